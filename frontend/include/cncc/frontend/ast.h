@@ -1,0 +1,373 @@
+// The abstract syntax tree. The parser builds it; the semantic checker
+// annotates it (types, resolved declarations); the formatter, the language
+// server and the lowering to IR read it.
+//
+// A broken source still produces a tree: what could not be parsed becomes an
+// Error node, so later phases and the editor keep working on the rest.
+#pragma once
+
+#include "cncc/frontend/lexer.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/frontend/types.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cncc::frontend {
+
+struct Declaration;
+
+// ----------------------------------------------------------------------------
+// Expressions
+
+enum class ExprKind {
+  Number,  // 12, 2.5mm, 45deg
+  Bool,    // true, false
+  String,  // "std/curves"
+  Name,    // P, depth, pi, t
+  Unary,   // -x, !c
+  Binary,  // a + b, a < b, a && b
+  Call,    // nurbs(order=4, points=P), sin(t), lobes(3, t)
+  Point,   // (x, y) or (x, y, z)
+  List,    // [1, 2, 3]
+  Range,   // a .. b
+  Index,   // L[i]
+  Member,  // p.x
+  IfElse,  // if c then a else b
+  Error,   // what could not be parsed
+};
+
+enum class UnaryOperator { Negate, Not };
+enum class BinaryOperator {
+  Add,
+  Subtract,
+  Multiply,
+  Divide,
+  Remainder,
+  Power,
+  Equal,
+  NotEqual,
+  Less,
+  LessEqual,
+  Greater,
+  GreaterEqual,
+  And,
+  Or,
+};
+
+std::string_view operatorSpelling(BinaryOperator op);
+
+struct Expr {
+  explicit Expr(ExprKind kind, SourceSpan span) : kind(kind), span(span) {}
+  virtual ~Expr() = default;
+  Expr(const Expr&) = delete;
+  Expr& operator=(const Expr&) = delete;
+
+  ExprKind kind;
+  SourceSpan span;
+  Type type; // set by the semantic checker
+};
+using ExprPtr = std::unique_ptr<Expr>;
+
+struct NumberExpr : Expr {
+  NumberExpr(SourceSpan span, double value, UnitSuffix unit)
+      : Expr(ExprKind::Number, span), value(value), unit(unit) {}
+  double value; // with the unit applied (mm, rad)
+  UnitSuffix unit;
+};
+
+struct BoolExpr : Expr {
+  BoolExpr(SourceSpan span, bool value) : Expr(ExprKind::Bool, span), value(value) {}
+  bool value;
+};
+
+struct StringExpr : Expr {
+  StringExpr(SourceSpan span, std::string value)
+      : Expr(ExprKind::String, span), value(std::move(value)) {}
+  std::string value;
+};
+
+struct NameExpr : Expr {
+  NameExpr(SourceSpan span, std::string name) : Expr(ExprKind::Name, span), name(std::move(name)) {}
+  std::string name;
+  const Declaration* declaration = nullptr; // set by the semantic checker
+};
+
+struct UnaryExpr : Expr {
+  UnaryExpr(SourceSpan span, UnaryOperator op, ExprPtr operand)
+      : Expr(ExprKind::Unary, span), op(op), operand(std::move(operand)) {}
+  UnaryOperator op;
+  ExprPtr operand;
+};
+
+struct BinaryExpr : Expr {
+  BinaryExpr(SourceSpan span, BinaryOperator op, SourceSpan operatorSpan, ExprPtr left,
+             ExprPtr right)
+      : Expr(ExprKind::Binary, span), op(op), operatorSpan(operatorSpan), left(std::move(left)),
+        right(std::move(right)) {}
+  BinaryOperator op;
+  SourceSpan operatorSpan;
+  ExprPtr left;
+  ExprPtr right;
+};
+
+// `name = value` or a positional `value`, in a call or a statement.
+struct Argument {
+  std::string name; // empty when positional
+  SourceSpan nameSpan;
+  ExprPtr value;
+  SourceSpan span() const { return name.empty() ? value->span : nameSpan.to(value->span); }
+};
+
+struct CallExpr : Expr {
+  CallExpr(SourceSpan span, std::string callee, SourceSpan calleeSpan,
+           std::vector<Argument> arguments)
+      : Expr(ExprKind::Call, span), callee(std::move(callee)), calleeSpan(calleeSpan),
+        arguments(std::move(arguments)) {}
+  std::string callee;
+  SourceSpan calleeSpan;
+  std::vector<Argument> arguments;
+  const Declaration* declaration = nullptr; // the fn or builtin, set by the checker
+};
+
+struct PointExpr : Expr {
+  PointExpr(SourceSpan span, std::vector<ExprPtr> components)
+      : Expr(ExprKind::Point, span), components(std::move(components)) {}
+  std::vector<ExprPtr> components; // two or three
+};
+
+struct ListExpr : Expr {
+  ListExpr(SourceSpan span, std::vector<ExprPtr> elements)
+      : Expr(ExprKind::List, span), elements(std::move(elements)) {}
+  std::vector<ExprPtr> elements;
+};
+
+struct RangeExpr : Expr {
+  RangeExpr(SourceSpan span, ExprPtr low, ExprPtr high)
+      : Expr(ExprKind::Range, span), low(std::move(low)), high(std::move(high)) {}
+  ExprPtr low;
+  ExprPtr high;
+};
+
+struct IndexExpr : Expr {
+  IndexExpr(SourceSpan span, ExprPtr base, ExprPtr index)
+      : Expr(ExprKind::Index, span), base(std::move(base)), index(std::move(index)) {}
+  ExprPtr base;
+  ExprPtr index;
+};
+
+struct MemberExpr : Expr {
+  MemberExpr(SourceSpan span, ExprPtr base, std::string member, SourceSpan memberSpan)
+      : Expr(ExprKind::Member, span), base(std::move(base)), member(std::move(member)),
+        memberSpan(memberSpan) {}
+  ExprPtr base;
+  std::string member;
+  SourceSpan memberSpan;
+};
+
+struct IfElseExpr : Expr {
+  IfElseExpr(SourceSpan span, ExprPtr condition, ExprPtr thenValue, ExprPtr elseValue)
+      : Expr(ExprKind::IfElse, span), condition(std::move(condition)),
+        thenValue(std::move(thenValue)), elseValue(std::move(elseValue)) {}
+  ExprPtr condition;
+  ExprPtr thenValue;
+  ExprPtr elseValue;
+};
+
+struct ErrorExpr : Expr {
+  explicit ErrorExpr(SourceSpan span) : Expr(ExprKind::Error, span) {}
+};
+
+// ----------------------------------------------------------------------------
+// Statements of a part body
+
+enum class StmtKind {
+  Units,   // units mm | inch
+  Tool,    // tool N diameter=D [spindle=S] [feed=F]
+  Feed,    // feed F
+  Spindle, // spindle S
+  Safe,    // safe z=Z
+  Let,     // let name = expr
+  Cut,     // curve <expr> [modifiers]
+  For,     // for i in a .. b { ... }
+  If,      // if cond { ... } else { ... }
+  Error,   // what could not be parsed
+};
+
+struct Stmt {
+  explicit Stmt(StmtKind kind, SourceSpan span) : kind(kind), span(span) {}
+  virtual ~Stmt() = default;
+  Stmt(const Stmt&) = delete;
+  Stmt& operator=(const Stmt&) = delete;
+
+  StmtKind kind;
+  SourceSpan span;
+};
+using StmtPtr = std::unique_ptr<Stmt>;
+
+struct Block {
+  SourceSpan span; // from '{' to '}'
+  std::vector<StmtPtr> statements;
+};
+
+struct UnitsStmt : Stmt {
+  UnitsStmt(SourceSpan span, std::string unit, SourceSpan unitSpan)
+      : Stmt(StmtKind::Units, span), unit(std::move(unit)), unitSpan(unitSpan) {}
+  std::string unit; // "mm" or "inch"
+  SourceSpan unitSpan;
+};
+
+struct ToolStmt : Stmt {
+  ToolStmt(SourceSpan span, ExprPtr number, std::vector<Argument> settings)
+      : Stmt(StmtKind::Tool, span), number(std::move(number)), settings(std::move(settings)) {}
+  ExprPtr number;
+  std::vector<Argument> settings; // diameter=, spindle=, feed=
+};
+
+// `feed F` and `spindle S`.
+struct ValueStmt : Stmt {
+  ValueStmt(StmtKind kind, SourceSpan span, ExprPtr value)
+      : Stmt(kind, span), value(std::move(value)) {}
+  ExprPtr value;
+};
+
+struct SafeStmt : Stmt {
+  SafeStmt(SourceSpan span, std::vector<Argument> settings)
+      : Stmt(StmtKind::Safe, span), settings(std::move(settings)) {}
+  std::vector<Argument> settings; // z=
+};
+
+struct LetStmt : Stmt {
+  LetStmt(SourceSpan span, std::string name, SourceSpan nameSpan, ExprPtr value)
+      : Stmt(StmtKind::Let, span), name(std::move(name)), nameSpan(nameSpan),
+        value(std::move(value)) {}
+  std::string name;
+  SourceSpan nameSpan;
+  ExprPtr value;
+  const Declaration* declaration = nullptr;
+};
+
+// A modifier after `curve <expr>`: a word alone (`sweep`) or `word=value`.
+struct Modifier {
+  std::string name;
+  SourceSpan nameSpan;
+  ExprPtr value; // null for a bare word
+  SourceSpan span() const { return value ? nameSpan.to(value->span) : nameSpan; }
+};
+
+struct CutStmt : Stmt {
+  CutStmt(SourceSpan span, ExprPtr curve, std::vector<Modifier> modifiers)
+      : Stmt(StmtKind::Cut, span), curve(std::move(curve)), modifiers(std::move(modifiers)) {}
+  ExprPtr curve;
+  std::vector<Modifier> modifiers;
+};
+
+struct ForStmt : Stmt {
+  ForStmt(SourceSpan span, std::string variable, SourceSpan variableSpan, ExprPtr range,
+          Block body)
+      : Stmt(StmtKind::For, span), variable(std::move(variable)), variableSpan(variableSpan),
+        range(std::move(range)), body(std::move(body)) {}
+  std::string variable;
+  SourceSpan variableSpan;
+  ExprPtr range;
+  Block body;
+  const Declaration* declaration = nullptr;
+};
+
+struct IfStmt : Stmt {
+  IfStmt(SourceSpan span, ExprPtr condition, Block thenBlock, Block elseBlock, bool hasElse)
+      : Stmt(StmtKind::If, span), condition(std::move(condition)),
+        thenBlock(std::move(thenBlock)), elseBlock(std::move(elseBlock)), hasElse(hasElse) {}
+  ExprPtr condition;
+  Block thenBlock;
+  Block elseBlock; // `else if` becomes an else block holding one IfStmt
+  bool hasElse;
+};
+
+struct ErrorStmt : Stmt {
+  explicit ErrorStmt(SourceSpan span) : Stmt(StmtKind::Error, span) {}
+};
+
+// ----------------------------------------------------------------------------
+// Top-level items
+
+enum class ItemKind { Import, Const, Fn, Part, Error };
+
+struct Item {
+  explicit Item(ItemKind kind, SourceSpan span) : kind(kind), span(span) {}
+  virtual ~Item() = default;
+  Item(const Item&) = delete;
+  Item& operator=(const Item&) = delete;
+
+  ItemKind kind;
+  SourceSpan span;
+};
+using ItemPtr = std::unique_ptr<Item>;
+
+struct ImportItem : Item {
+  ImportItem(SourceSpan span, std::string path, SourceSpan pathSpan)
+      : Item(ItemKind::Import, span), path(std::move(path)), pathSpan(pathSpan) {}
+  std::string path;
+  SourceSpan pathSpan;
+  FileId resolvedFile; // set by the module loader
+};
+
+struct ConstItem : Item {
+  ConstItem(SourceSpan span, std::string name, SourceSpan nameSpan, ExprPtr value)
+      : Item(ItemKind::Const, span), name(std::move(name)), nameSpan(nameSpan),
+        value(std::move(value)) {}
+  std::string name;
+  SourceSpan nameSpan;
+  ExprPtr value;
+  const Declaration* declaration = nullptr;
+};
+
+// A parameter of a fn (no default) or of a part (with a default).
+struct Parameter {
+  std::string name;
+  SourceSpan nameSpan;
+  ExprPtr defaultValue; // null when absent
+  const Declaration* declaration = nullptr;
+};
+
+struct FnItem : Item {
+  FnItem(SourceSpan span, std::string name, SourceSpan nameSpan, std::vector<Parameter> parameters,
+         ExprPtr body)
+      : Item(ItemKind::Fn, span), name(std::move(name)), nameSpan(nameSpan),
+        parameters(std::move(parameters)), body(std::move(body)) {}
+  std::string name;
+  SourceSpan nameSpan;
+  std::vector<Parameter> parameters;
+  ExprPtr body;
+  const Declaration* declaration = nullptr;
+};
+
+struct PartItem : Item {
+  PartItem(SourceSpan span, std::string name, SourceSpan nameSpan,
+           std::vector<Parameter> parameters, Block body)
+      : Item(ItemKind::Part, span), name(std::move(name)), nameSpan(nameSpan),
+        parameters(std::move(parameters)), body(std::move(body)) {}
+  std::string name;
+  SourceSpan nameSpan;
+  std::vector<Parameter> parameters;
+  Block body;
+};
+
+struct ErrorItem : Item {
+  explicit ErrorItem(SourceSpan span) : Item(ItemKind::Error, span) {}
+};
+
+// One parsed file.
+struct Module {
+  FileId file;
+  std::vector<ItemPtr> items;
+};
+
+// Casts a node to its concrete class after checking its kind.
+template <typename Node, typename Base> const Node& as(const Base& node) {
+  return static_cast<const Node&>(node);
+}
+template <typename Node, typename Base> Node& as(Base& node) { return static_cast<Node&>(node); }
+
+} // namespace cncc::frontend

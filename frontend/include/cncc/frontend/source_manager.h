@@ -1,0 +1,76 @@
+// Source files loaded into memory, and the mapping from byte offsets to
+// line and column that diagnostics, the language server and the AST use.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::frontend {
+
+// Index of a file in its SourceManager. Zero is "no file" (locations from
+// the command line, for example).
+struct FileId {
+  std::uint32_t index = 0;
+  bool valid() const { return index != 0; }
+  friend bool operator==(FileId, FileId) = default;
+};
+
+// A half-open byte range [begin, end) in one file.
+struct SourceSpan {
+  FileId file;
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+
+  bool valid() const { return file.valid(); }
+  // The smallest span covering both (which must be in the same file).
+  SourceSpan to(SourceSpan last) const { return {file, begin, last.end > end ? last.end : end}; }
+  friend bool operator==(SourceSpan, SourceSpan) = default;
+};
+
+// One-based line and column; the column counts bytes.
+struct LineColumn {
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+};
+
+class SourceFile {
+public:
+  SourceFile(std::string path, std::string text);
+
+  const std::string& path() const { return path_; }
+  std::string_view text() const { return text_; }
+  LineColumn lineColumn(std::uint32_t offset) const;
+  // The text of a one-based line, without its line break.
+  std::string_view lineText(std::uint32_t line) const;
+  std::uint32_t lineCount() const { return static_cast<std::uint32_t>(lineStarts_.size()); }
+  // Byte offset of a zero-based line and a zero-based UTF-16-agnostic byte
+  // column, clamped into the file (used by the language server).
+  std::uint32_t offsetOf(std::uint32_t zeroBasedLine, std::uint32_t zeroBasedColumn) const;
+
+private:
+  std::string path_;
+  std::string text_;
+  std::vector<std::uint32_t> lineStarts_;
+};
+
+class SourceManager {
+public:
+  // Adds a file held in memory (used for editor buffers and tests).
+  FileId addFile(std::string path, std::string text);
+  // Reads a file from disk; nullopt if it cannot be read. A file already
+  // loaded under the same path is returned again.
+  std::optional<FileId> loadFile(const std::string& path);
+  std::optional<FileId> findFile(const std::string& path) const;
+
+  const SourceFile& file(FileId id) const { return *files_.at(id.index - 1); }
+  std::string_view text(SourceSpan span) const;
+
+private:
+  std::vector<std::unique_ptr<SourceFile>> files_;
+};
+
+} // namespace cncc::frontend

@@ -1,0 +1,797 @@
+#include "cncc/frontend/parser.h"
+
+#include <fmt/format.h>
+
+namespace cncc::frontend {
+
+namespace {
+
+bool isStatementWord(const Token& token) {
+  if (token.kind != TokenKind::Identifier) {
+    return false;
+  }
+  const std::string& word = token.text;
+  return word == "units" || word == "tool" || word == "feed" || word == "spindle" ||
+         word == "safe";
+}
+
+bool isItemKeyword(TokenKind kind) {
+  return kind == TokenKind::KwPart || kind == TokenKind::KwFn || kind == TokenKind::KwConst ||
+         kind == TokenKind::KwImport;
+}
+
+bool isStatementKeyword(TokenKind kind) {
+  return kind == TokenKind::KwLet || kind == TokenKind::KwCurve || kind == TokenKind::KwFor ||
+         kind == TokenKind::KwIf;
+}
+
+std::string describe(const Token& token) {
+  switch (token.kind) {
+  case TokenKind::Identifier:
+    return fmt::format("'{}'", token.text);
+  case TokenKind::Number:
+  case TokenKind::String:
+  case TokenKind::EndOfFile:
+  case TokenKind::Error:
+    return std::string(tokenSpelling(token.kind));
+  default:
+    return fmt::format("'{}'", tokenSpelling(token.kind));
+  }
+}
+
+class Parser {
+public:
+  Parser(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnostics)
+      : tokens_(std::move(tokens)), file_(file), diagnostics_(diagnostics) {}
+
+  Module parseModule() {
+    Module module;
+    module.file = file_;
+    while (!check(TokenKind::EndOfFile)) {
+      panicking_ = false;
+      std::size_t before = position_;
+      module.items.push_back(parseItem());
+      if (panicking_ || position_ == before) {
+        synchroniseItem();
+      }
+    }
+    return module;
+  }
+
+private:
+  // Guards against stack exhaustion on absurd nesting.
+  struct DepthGuard {
+    explicit DepthGuard(int& depth) : depth(depth) { ++depth; }
+    ~DepthGuard() { --depth; }
+    int& depth;
+  };
+
+  // ---------------------------------------------------------------- tokens
+  const Token& peek(std::size_t ahead = 0) const {
+    std::size_t index = position_ + ahead;
+    return index < tokens_.size() ? tokens_[index] : tokens_.back();
+  }
+  bool check(TokenKind kind) const { return peek().kind == kind; }
+  bool checkWord(std::string_view word) const {
+    return check(TokenKind::Identifier) && peek().text == word;
+  }
+  const Token& advance() {
+    const Token& token = peek();
+    if (token.kind != TokenKind::EndOfFile) {
+      ++position_;
+    }
+    return token;
+  }
+  bool match(TokenKind kind) {
+    if (!check(kind)) {
+      return false;
+    }
+    advance();
+    return true;
+  }
+  SourceSpan previousSpan() const {
+    return position_ == 0 ? peek().span : tokens_[position_ - 1].span;
+  }
+  SourceSpan spanFrom(SourceSpan begin) const { return begin.to(previousSpan()); }
+
+  // ---------------------------------------------------------------- errors
+  Diagnostic* error(DiagnosticKind kind, SourceSpan span, std::string message) {
+    if (panicking_) {
+      return nullptr;
+    }
+    panicking_ = true;
+    // Lexer errors were already reported; do not pile a parse error on them.
+    if (check(TokenKind::Error) && span == peek().span) {
+      return nullptr;
+    }
+    return diagnostics_.report(kind, span, std::move(message));
+  }
+
+  Diagnostic* errorAtCurrent(DiagnosticKind kind, std::string_view expected) {
+    return error(kind, peek().span, fmt::format("expected {}, found {}", expected, describe(peek())));
+  }
+
+  bool expect(TokenKind kind, std::string_view context) {
+    if (match(kind)) {
+      return true;
+    }
+    errorAtCurrent(DiagnosticKind::ExpectedToken,
+                   fmt::format("'{}' {}", tokenSpelling(kind), context));
+    return false;
+  }
+
+  // Expects the closing token of a pair, pointing back at the opening one.
+  bool expectClosing(TokenKind kind, SourceSpan opening, std::string_view context) {
+    if (match(kind)) {
+      return true;
+    }
+    Diagnostic* diagnostic = errorAtCurrent(
+        DiagnosticKind::ExpectedToken, fmt::format("'{}' {}", tokenSpelling(kind), context));
+    diagnostics_.addNote(diagnostic, opening, "to match this");
+    return false;
+  }
+
+  std::string expectIdentifier(std::string_view what, SourceSpan& span) {
+    span = peek().span;
+    if (check(TokenKind::Identifier)) {
+      return advance().text;
+    }
+    if (peek().kind >= TokenKind::KwPart && peek().kind <= TokenKind::KwFalse) {
+      error(DiagnosticKind::ExpectedIdentifier, peek().span,
+            fmt::format("expected {}, found keyword '{}', which cannot be used as a name", what,
+                        tokenSpelling(peek().kind)));
+      advance();
+      return {};
+    }
+    errorAtCurrent(DiagnosticKind::ExpectedIdentifier, what);
+    return {};
+  }
+
+  void synchroniseItem() {
+    while (!check(TokenKind::EndOfFile)) {
+      if (peek().startsLine && isItemKeyword(peek().kind)) {
+        return;
+      }
+      advance();
+    }
+  }
+
+  // Skips to the next statement on a later line, or to a '}' or ';'.
+  void synchroniseStatement(int braceDepth = 0) {
+    while (!check(TokenKind::EndOfFile)) {
+      const Token& token = peek();
+      if (braceDepth == 0 && token.kind == TokenKind::RightBrace) {
+        return;
+      }
+      if (braceDepth == 0 && token.kind == TokenKind::Semicolon) {
+        advance();
+        return;
+      }
+      if (braceDepth == 0 && token.startsLine &&
+          (isStatementKeyword(token.kind) || isStatementWord(token) ||
+           isItemKeyword(token.kind))) {
+        return;
+      }
+      if (token.kind == TokenKind::LeftBrace) {
+        ++braceDepth;
+      } else if (token.kind == TokenKind::RightBrace) {
+        --braceDepth;
+      }
+      advance();
+    }
+  }
+
+  // Skips to just past the '}' that closes a '{' already consumed.
+  void skipPastMatchingBrace() {
+    int depth = 1;
+    while (!check(TokenKind::EndOfFile) && depth > 0) {
+      depth += check(TokenKind::LeftBrace) ? 1 : check(TokenKind::RightBrace) ? -1 : 0;
+      advance();
+    }
+  }
+
+  // ---------------------------------------------------------------- items
+  ItemPtr parseItem() {
+    SourceSpan begin = peek().span;
+    switch (peek().kind) {
+    case TokenKind::KwImport:
+      return parseImport();
+    case TokenKind::KwConst:
+      return parseConst();
+    case TokenKind::KwFn:
+      return parseFn();
+    case TokenKind::KwPart:
+      return parsePart();
+    default:
+      break;
+    }
+    std::string hint;
+    if (isStatementKeyword(peek().kind) || isStatementWord(peek())) {
+      hint = "; statements such as this belong inside a 'part { ... }'";
+    }
+    error(DiagnosticKind::ExpectedItem, peek().span,
+          fmt::format("expected 'part', 'fn', 'const' or 'import', found {}{}", describe(peek()),
+                      hint));
+    advance();
+    return std::make_unique<ErrorItem>(begin);
+  }
+
+  // import "std/curves"
+  ItemPtr parseImport() {
+    SourceSpan begin = advance().span;
+    if (!check(TokenKind::String)) {
+      errorAtCurrent(DiagnosticKind::ExpectedToken, "a module path in quotes after 'import'");
+      return std::make_unique<ErrorItem>(spanFrom(begin));
+    }
+    const Token& path = advance();
+    return std::make_unique<ImportItem>(spanFrom(begin), path.text, path.span);
+  }
+
+  // const name = expr
+  ItemPtr parseConst() {
+    SourceSpan begin = advance().span;
+    SourceSpan nameSpan;
+    std::string name = expectIdentifier("a constant name after 'const'", nameSpan);
+    ExprPtr value;
+    if (!name.empty() && expect(TokenKind::Equal, "after the constant's name")) {
+      value = parseExpression();
+    } else {
+      value = std::make_unique<ErrorExpr>(peek().span);
+    }
+    return std::make_unique<ConstItem>(spanFrom(begin), std::move(name), nameSpan,
+                                       std::move(value));
+  }
+
+  // fn name(a, b) = expr
+  ItemPtr parseFn() {
+    SourceSpan begin = advance().span;
+    SourceSpan nameSpan;
+    std::string name = expectIdentifier("a function name after 'fn'", nameSpan);
+    std::vector<Parameter> parameters;
+    if (!name.empty()) {
+      parameters = parseParameters("function");
+    }
+    ExprPtr body;
+    if (!panicking_ && expect(TokenKind::Equal, "before the function's body")) {
+      body = parseExpression();
+    } else {
+      body = std::make_unique<ErrorExpr>(peek().span);
+    }
+    return std::make_unique<FnItem>(spanFrom(begin), std::move(name), nameSpan,
+                                    std::move(parameters), std::move(body));
+  }
+
+  // part name(p = 1, q = 2) { ... }
+  ItemPtr parsePart() {
+    SourceSpan begin = advance().span;
+    SourceSpan nameSpan;
+    std::string name = expectIdentifier("a part name after 'part'", nameSpan);
+    std::vector<Parameter> parameters;
+    if (!name.empty() && check(TokenKind::LeftParen)) {
+      parameters = parseParameters("part");
+    }
+    Block body;
+    if (!panicking_ && check(TokenKind::LeftBrace)) {
+      body = parseBlock();
+    } else {
+      errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the part's body");
+      body.span = peek().span;
+    }
+    return std::make_unique<PartItem>(spanFrom(begin), std::move(name), nameSpan,
+                                      std::move(parameters), std::move(body));
+  }
+
+  // ( [name [= default] {, name [= default]}] )
+  std::vector<Parameter> parseParameters(std::string_view owner) {
+    std::vector<Parameter> parameters;
+    SourceSpan opening = peek().span;
+    if (!expect(TokenKind::LeftParen, fmt::format("to begin the {}'s parameters", owner))) {
+      return parameters;
+    }
+    while (!check(TokenKind::RightParen) && !check(TokenKind::EndOfFile) && !panicking_) {
+      Parameter parameter;
+      parameter.name = expectIdentifier("a parameter name", parameter.nameSpan);
+      if (panicking_) {
+        break;
+      }
+      if (match(TokenKind::Equal)) {
+        parameter.defaultValue = parseExpression();
+      }
+      parameters.push_back(std::move(parameter));
+      if (!match(TokenKind::Comma)) {
+        break;
+      }
+    }
+    if (!panicking_) {
+      expectClosing(TokenKind::RightParen, opening, "to close the parameter list");
+    }
+    return parameters;
+  }
+
+  // ---------------------------------------------------------------- statements
+  Block parseBlock() {
+    Block block;
+    DepthGuard guard(depth_);
+    SourceSpan opening = advance().span; // '{'
+    if (depth_ > maximumNestingDepth) {
+      error(DiagnosticKind::NestingTooDeep, opening,
+            fmt::format("blocks nested more than {} levels deep", maximumNestingDepth));
+      skipPastMatchingBrace();
+      block.span = spanFrom(opening);
+      return block;
+    }
+    while (!check(TokenKind::RightBrace) && !check(TokenKind::EndOfFile)) {
+      if (peek().startsLine && isItemKeyword(peek().kind)) {
+        break; // a missing '}': let the item loop take over
+      }
+      panicking_ = false;
+      std::size_t before = position_;
+      block.statements.push_back(parseStatement());
+      if (panicking_ || position_ == before) {
+        synchroniseStatement();
+      }
+    }
+    panicking_ = false;
+    if (!check(TokenKind::RightBrace)) {
+      Diagnostic* diagnostic =
+          error(DiagnosticKind::ExpectedToken, peek().span,
+                fmt::format("expected '}}' to close the block, found {}", describe(peek())));
+      diagnostics_.addNote(diagnostic, opening, "the block begins here");
+      block.span = spanFrom(opening);
+      return block;
+    }
+    advance();
+    block.span = spanFrom(opening);
+    return block;
+  }
+
+  StmtPtr parseStatement() {
+    SourceSpan begin = peek().span;
+    switch (peek().kind) {
+    case TokenKind::KwLet:
+      return parseLet();
+    case TokenKind::KwCurve:
+      return parseCut();
+    case TokenKind::KwFor:
+      return parseFor();
+    case TokenKind::KwIf:
+      return parseIf();
+    case TokenKind::Semicolon:
+      advance();
+      return std::make_unique<ErrorStmt>(begin);
+    default:
+      break;
+    }
+    if (isStatementWord(peek()) && peek(1).kind != TokenKind::Equal) {
+      return parseSettingStatement();
+    }
+    std::string hint;
+    if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal) {
+      hint = fmt::format("; to name a value write 'let {} = ...'", peek().text);
+    }
+    error(DiagnosticKind::ExpectedStatement, peek().span,
+          fmt::format("expected a statement (units, tool, feed, spindle, safe, let, curve, for, "
+                      "if), found {}{}",
+                      describe(peek()), hint));
+    return std::make_unique<ErrorStmt>(begin);
+  }
+
+  StmtPtr parseSettingStatement() {
+    const Token& word = advance();
+    SourceSpan begin = word.span;
+    std::string text = word.text;
+    if (text == "units") {
+      SourceSpan unitSpan = peek().span;
+      if (!check(TokenKind::Identifier)) {
+        errorAtCurrent(DiagnosticKind::ExpectedIdentifier, "'mm' or 'inch' after 'units'");
+        return std::make_unique<ErrorStmt>(spanFrom(begin));
+      }
+      std::string unit = advance().text;
+      if (unit != "mm" && unit != "inch") {
+        error(DiagnosticKind::UnknownUnits, unitSpan,
+              fmt::format("unknown units '{}'; expected 'mm' or 'inch'", unit));
+      }
+      return std::make_unique<UnitsStmt>(spanFrom(begin), std::move(unit), unitSpan);
+    }
+    if (text == "tool") {
+      ExprPtr number = parseExpression();
+      std::vector<Argument> settings = parseSettings();
+      return std::make_unique<ToolStmt>(spanFrom(begin), std::move(number), std::move(settings));
+    }
+    if (text == "safe") {
+      std::vector<Argument> settings = parseSettings();
+      if (settings.empty() && !panicking_) {
+        errorAtCurrent(DiagnosticKind::ExpectedToken, "'z=' after 'safe'");
+      }
+      return std::make_unique<SafeStmt>(spanFrom(begin), std::move(settings));
+    }
+    StmtKind kind = text == "feed" ? StmtKind::Feed : StmtKind::Spindle;
+    ExprPtr value = parseExpression();
+    return std::make_unique<ValueStmt>(kind, spanFrom(begin), std::move(value));
+  }
+
+  // { name = expr } while the next tokens read `identifier =`.
+  std::vector<Argument> parseSettings() {
+    std::vector<Argument> settings;
+    while (!panicking_ && check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal) {
+      Argument setting;
+      setting.nameSpan = peek().span;
+      setting.name = advance().text;
+      advance(); // '='
+      setting.value = parseExpression();
+      settings.push_back(std::move(setting));
+    }
+    return settings;
+  }
+
+  StmtPtr parseLet() {
+    SourceSpan begin = advance().span;
+    SourceSpan nameSpan;
+    std::string name = expectIdentifier("a name after 'let'", nameSpan);
+    ExprPtr value;
+    if (!name.empty() && expect(TokenKind::Equal, "after the name in 'let'")) {
+      value = parseExpression();
+    } else {
+      value = std::make_unique<ErrorExpr>(peek().span);
+    }
+    return std::make_unique<LetStmt>(spanFrom(begin), std::move(name), nameSpan, std::move(value));
+  }
+
+  // curve <expr> { word | word = expr }
+  StmtPtr parseCut() {
+    SourceSpan begin = advance().span;
+    ExprPtr curve = parseExpression();
+    std::vector<Modifier> modifiers;
+    while (!panicking_ && check(TokenKind::Identifier)) {
+      bool assigned = peek(1).kind == TokenKind::Equal;
+      // A bare word on the same line is a modifier (`sweep`); one starting a
+      // line is the next statement.
+      if (!assigned && peek().startsLine) {
+        break;
+      }
+      if (!assigned && isStatementWord(peek())) {
+        break;
+      }
+      Modifier modifier;
+      modifier.nameSpan = peek().span;
+      modifier.name = advance().text;
+      if (assigned) {
+        advance();
+        modifier.value = parseExpression();
+      }
+      modifiers.push_back(std::move(modifier));
+    }
+    return std::make_unique<CutStmt>(spanFrom(begin), std::move(curve), std::move(modifiers));
+  }
+
+  // for i in a .. b { ... }
+  StmtPtr parseFor() {
+    SourceSpan begin = advance().span;
+    SourceSpan variableSpan;
+    std::string variable = expectIdentifier("a loop variable after 'for'", variableSpan);
+    ExprPtr range;
+    Block body;
+    if (!panicking_ && expect(TokenKind::KwIn, "after the loop variable")) {
+      range = parseExpression();
+    } else {
+      range = std::make_unique<ErrorExpr>(peek().span);
+    }
+    if (!panicking_ && check(TokenKind::LeftBrace)) {
+      body = parseBlock();
+    } else {
+      errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the loop's body");
+      body.span = peek().span;
+    }
+    return std::make_unique<ForStmt>(spanFrom(begin), std::move(variable), variableSpan,
+                                     std::move(range), std::move(body));
+  }
+
+  // if cond { ... } [else if ... | else { ... }]
+  StmtPtr parseIf() {
+    SourceSpan begin = advance().span;
+    ExprPtr condition = parseExpression();
+    Block thenBlock;
+    Block elseBlock;
+    bool hasElse = false;
+    if (panicking_ || !check(TokenKind::LeftBrace)) {
+      errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' after the condition of 'if'");
+      thenBlock.span = peek().span;
+      return std::make_unique<IfStmt>(spanFrom(begin), std::move(condition), std::move(thenBlock),
+                                      std::move(elseBlock), false);
+    }
+    thenBlock = parseBlock();
+    if (match(TokenKind::KwElse)) {
+      hasElse = true;
+      if (check(TokenKind::KwIf)) {
+        SourceSpan elseBegin = peek().span;
+        elseBlock.statements.push_back(parseIf());
+        elseBlock.span = spanFrom(elseBegin);
+      } else if (check(TokenKind::LeftBrace)) {
+        elseBlock = parseBlock();
+      } else {
+        errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' or 'if' after 'else'");
+        elseBlock.span = peek().span;
+      }
+    }
+    return std::make_unique<IfStmt>(spanFrom(begin), std::move(condition), std::move(thenBlock),
+                                    std::move(elseBlock), hasElse);
+  }
+
+  // ---------------------------------------------------------------- expressions
+  ExprPtr parseExpression() {
+    DepthGuard guard(depth_);
+    if (depth_ > maximumNestingDepth) {
+      error(DiagnosticKind::NestingTooDeep, peek().span,
+            fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
+      return std::make_unique<ErrorExpr>(peek().span);
+    }
+    if (check(TokenKind::KwIf)) {
+      return parseIfElse();
+    }
+    return parseRange();
+  }
+
+  // if c then a else b
+  ExprPtr parseIfElse() {
+    SourceSpan begin = advance().span;
+    ExprPtr condition = parseExpression();
+    ExprPtr thenValue;
+    ExprPtr elseValue;
+    if (!panicking_ && expect(TokenKind::KwThen, "after the condition of an 'if' expression")) {
+      thenValue = parseExpression();
+    }
+    if (!panicking_ && expect(TokenKind::KwElse, "in an 'if' expression (it needs both values)")) {
+      elseValue = parseExpression();
+    }
+    if (!thenValue) {
+      thenValue = std::make_unique<ErrorExpr>(peek().span);
+    }
+    if (!elseValue) {
+      elseValue = std::make_unique<ErrorExpr>(peek().span);
+    }
+    return std::make_unique<IfElseExpr>(spanFrom(begin), std::move(condition),
+                                        std::move(thenValue), std::move(elseValue));
+  }
+
+  ExprPtr parseRange() {
+    ExprPtr low = parseOr();
+    if (!check(TokenKind::DotDot)) {
+      return low;
+    }
+    advance();
+    ExprPtr high = parseOr();
+    SourceSpan span = low->span.to(high->span);
+    return std::make_unique<RangeExpr>(span, std::move(low), std::move(high));
+  }
+
+  template <typename Next>
+  ExprPtr parseLeftAssociative(Next next, std::initializer_list<std::pair<TokenKind, BinaryOperator>>
+                                              operators) {
+    ExprPtr left = (this->*next)();
+    while (!panicking_) {
+      const std::pair<TokenKind, BinaryOperator>* found = nullptr;
+      for (const auto& entry : operators) {
+        if (check(entry.first)) {
+          found = &entry;
+        }
+      }
+      if (found == nullptr) {
+        return left;
+      }
+      SourceSpan operatorSpan = advance().span;
+      ExprPtr right = (this->*next)();
+      SourceSpan span = left->span.to(right->span);
+      left = std::make_unique<BinaryExpr>(span, found->second, operatorSpan, std::move(left),
+                                          std::move(right));
+    }
+    return left;
+  }
+
+  ExprPtr parseOr() {
+    return parseLeftAssociative(&Parser::parseAnd, {{TokenKind::PipePipe, BinaryOperator::Or}});
+  }
+  ExprPtr parseAnd() {
+    return parseLeftAssociative(&Parser::parseComparison,
+                                {{TokenKind::AmpAmp, BinaryOperator::And}});
+  }
+  ExprPtr parseComparison() {
+    return parseLeftAssociative(&Parser::parseAdditive,
+                                {{TokenKind::EqualEqual, BinaryOperator::Equal},
+                                 {TokenKind::BangEqual, BinaryOperator::NotEqual},
+                                 {TokenKind::Less, BinaryOperator::Less},
+                                 {TokenKind::LessEqual, BinaryOperator::LessEqual},
+                                 {TokenKind::Greater, BinaryOperator::Greater},
+                                 {TokenKind::GreaterEqual, BinaryOperator::GreaterEqual}});
+  }
+  ExprPtr parseAdditive() {
+    return parseLeftAssociative(&Parser::parseMultiplicative,
+                                {{TokenKind::Plus, BinaryOperator::Add},
+                                 {TokenKind::Minus, BinaryOperator::Subtract}});
+  }
+  ExprPtr parseMultiplicative() {
+    return parseLeftAssociative(&Parser::parseUnary,
+                                {{TokenKind::Star, BinaryOperator::Multiply},
+                                 {TokenKind::Slash, BinaryOperator::Divide},
+                                 {TokenKind::Percent, BinaryOperator::Remainder}});
+  }
+
+  ExprPtr parseUnary() {
+    DepthGuard guard(depth_);
+    if (depth_ > maximumNestingDepth) {
+      error(DiagnosticKind::NestingTooDeep, peek().span,
+            fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
+      return std::make_unique<ErrorExpr>(peek().span);
+    }
+    if (check(TokenKind::Minus) || check(TokenKind::Bang)) {
+      SourceSpan begin = peek().span;
+      UnaryOperator op = advance().kind == TokenKind::Minus ? UnaryOperator::Negate
+                                                             : UnaryOperator::Not;
+      ExprPtr operand = parseUnary();
+      SourceSpan span = begin.to(operand->span);
+      return std::make_unique<UnaryExpr>(span, op, std::move(operand));
+    }
+    return parsePower();
+  }
+
+  // a ^ b is right associative and binds tighter than unary minus on its
+  // left: -2^2 is -(2^2), 2^-1 is 2^(-1).
+  ExprPtr parsePower() {
+    ExprPtr base = parsePostfix();
+    if (panicking_ || !check(TokenKind::Caret)) {
+      return base;
+    }
+    SourceSpan operatorSpan = advance().span;
+    ExprPtr exponent = parseUnary();
+    SourceSpan span = base->span.to(exponent->span);
+    return std::make_unique<BinaryExpr>(span, BinaryOperator::Power, operatorSpan, std::move(base),
+                                        std::move(exponent));
+  }
+
+  ExprPtr parsePostfix() {
+    ExprPtr expression = parsePrimary();
+    while (!panicking_) {
+      if (check(TokenKind::LeftBracket)) {
+        SourceSpan opening = advance().span;
+        ExprPtr index = parseExpression();
+        expectClosing(TokenKind::RightBracket, opening, "to close the index");
+        SourceSpan span = spanFrom(expression->span);
+        expression = std::make_unique<IndexExpr>(span, std::move(expression), std::move(index));
+      } else if (check(TokenKind::Dot)) {
+        advance();
+        SourceSpan memberSpan;
+        std::string member = expectIdentifier("a member name (x, y or z) after '.'", memberSpan);
+        SourceSpan span = spanFrom(expression->span);
+        expression = std::make_unique<MemberExpr>(span, std::move(expression), std::move(member),
+                                                  memberSpan);
+      } else {
+        return expression;
+      }
+    }
+    return expression;
+  }
+
+  ExprPtr parsePrimary() {
+    const Token& token = peek();
+    switch (token.kind) {
+    case TokenKind::Number:
+      advance();
+      return std::make_unique<NumberExpr>(token.span, token.number, token.unit);
+    case TokenKind::String:
+      advance();
+      return std::make_unique<StringExpr>(token.span, token.text);
+    case TokenKind::KwTrue:
+    case TokenKind::KwFalse:
+      advance();
+      return std::make_unique<BoolExpr>(token.span, token.kind == TokenKind::KwTrue);
+    case TokenKind::Identifier:
+      return parseNameOrCall();
+    case TokenKind::LeftParen:
+      return parseParenthesisOrPoint();
+    case TokenKind::LeftBracket:
+      return parseList();
+    default:
+      break;
+    }
+    errorAtCurrent(DiagnosticKind::ExpectedExpression, "an expression");
+    SourceSpan span = token.span;
+    // Consume a stray token inside an expression, but never a token that can
+    // end the statement or close a bracket.
+    if (token.kind == TokenKind::Error || token.kind == TokenKind::Star ||
+        token.kind == TokenKind::Slash || token.kind == TokenKind::Caret ||
+        token.kind == TokenKind::Percent || token.kind == TokenKind::Equal) {
+      advance();
+    }
+    return std::make_unique<ErrorExpr>(span);
+  }
+
+  ExprPtr parseNameOrCall() {
+    const Token& name = advance();
+    if (!check(TokenKind::LeftParen)) {
+      return std::make_unique<NameExpr>(name.span, name.text);
+    }
+    SourceSpan opening = advance().span;
+    std::vector<Argument> arguments;
+    bool sawNamed = false;
+    while (!check(TokenKind::RightParen) && !check(TokenKind::EndOfFile) && !panicking_) {
+      Argument argument;
+      if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal) {
+        argument.nameSpan = peek().span;
+        argument.name = advance().text;
+        advance();
+        sawNamed = true;
+      } else if (sawNamed) {
+        error(DiagnosticKind::PositionalAfterNamed, peek().span,
+              "a positional argument cannot follow a named one");
+      }
+      argument.value = parseExpression();
+      arguments.push_back(std::move(argument));
+      if (!match(TokenKind::Comma)) {
+        break;
+      }
+    }
+    if (!panicking_) {
+      expectClosing(TokenKind::RightParen, opening,
+                    fmt::format("to close the arguments of '{}'", name.text));
+    }
+    return std::make_unique<CallExpr>(spanFrom(name.span), name.text, name.span,
+                                      std::move(arguments));
+  }
+
+  // (e) is grouping; (x, y) and (x, y, z) are points.
+  ExprPtr parseParenthesisOrPoint() {
+    SourceSpan opening = advance().span;
+    std::vector<ExprPtr> components;
+    components.push_back(parseExpression());
+    while (!panicking_ && match(TokenKind::Comma)) {
+      components.push_back(parseExpression());
+    }
+    if (!panicking_) {
+      expectClosing(TokenKind::RightParen, opening,
+                    components.size() == 1 ? "to close the parenthesis" : "to close the point");
+    }
+    SourceSpan span = spanFrom(opening);
+    if (components.size() == 1) {
+      return std::move(components.front());
+    }
+    if (components.size() > 3) {
+      error(DiagnosticKind::PointComponents, span,
+            fmt::format("a point has 2 or 3 components (x, y[, z]), this one has {}",
+                        components.size()));
+    }
+    return std::make_unique<PointExpr>(span, std::move(components));
+  }
+
+  ExprPtr parseList() {
+    SourceSpan opening = advance().span;
+    std::vector<ExprPtr> elements;
+    while (!check(TokenKind::RightBracket) && !check(TokenKind::EndOfFile) && !panicking_) {
+      elements.push_back(parseExpression());
+      if (!match(TokenKind::Comma)) {
+        break;
+      }
+    }
+    if (!panicking_) {
+      expectClosing(TokenKind::RightBracket, opening, "to close the list");
+    }
+    return std::make_unique<ListExpr>(spanFrom(opening), std::move(elements));
+  }
+
+  std::vector<Token> tokens_;
+  FileId file_;
+  DiagnosticEngine& diagnostics_;
+  std::size_t position_ = 0;
+  bool panicking_ = false;
+  int depth_ = 0;
+};
+
+} // namespace
+
+Module parse(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnostics) {
+  return Parser(std::move(tokens), file, diagnostics).parseModule();
+}
+
+Module parseFile(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics) {
+  return parse(lex(sources, file, diagnostics), file, diagnostics);
+}
+
+} // namespace cncc::frontend

@@ -1,0 +1,89 @@
+#include "cncc/frontend/source_manager.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace cncc::frontend {
+
+SourceFile::SourceFile(std::string path, std::string text)
+    : path_(std::move(path)), text_(std::move(text)) {
+  lineStarts_.push_back(0);
+  for (std::uint32_t i = 0; i < text_.size(); ++i) {
+    if (text_[i] == '\n') {
+      lineStarts_.push_back(i + 1);
+    }
+  }
+}
+
+LineColumn SourceFile::lineColumn(std::uint32_t offset) const {
+  offset = std::min<std::uint32_t>(offset, static_cast<std::uint32_t>(text_.size()));
+  auto next = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
+  auto lineIndex = static_cast<std::uint32_t>(next - lineStarts_.begin()) - 1;
+  return {lineIndex + 1, offset - lineStarts_[lineIndex] + 1};
+}
+
+std::string_view SourceFile::lineText(std::uint32_t line) const {
+  if (line == 0 || line > lineStarts_.size()) {
+    return {};
+  }
+  std::uint32_t begin = lineStarts_[line - 1];
+  std::uint32_t end =
+      line < lineStarts_.size() ? lineStarts_[line] : static_cast<std::uint32_t>(text_.size());
+  std::string_view result(text_.data() + begin, end - begin);
+  while (!result.empty() && (result.back() == '\n' || result.back() == '\r')) {
+    result.remove_suffix(1);
+  }
+  return result;
+}
+
+std::uint32_t SourceFile::offsetOf(std::uint32_t zeroBasedLine,
+                                   std::uint32_t zeroBasedColumn) const {
+  if (zeroBasedLine >= lineStarts_.size()) {
+    return static_cast<std::uint32_t>(text_.size());
+  }
+  auto lineLength = static_cast<std::uint32_t>(lineText(zeroBasedLine + 1).size());
+  return lineStarts_[zeroBasedLine] + std::min(zeroBasedColumn, lineLength);
+}
+
+FileId SourceManager::addFile(std::string path, std::string text) {
+  files_.push_back(std::make_unique<SourceFile>(std::move(path), std::move(text)));
+  return FileId{static_cast<std::uint32_t>(files_.size())};
+}
+
+std::optional<FileId> SourceManager::findFile(const std::string& path) const {
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    if (files_[i]->path() == path) {
+      return FileId{static_cast<std::uint32_t>(i + 1)};
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<FileId> SourceManager::loadFile(const std::string& path) {
+  if (auto existing = findFile(path)) {
+    return existing;
+  }
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) {
+    return std::nullopt;
+  }
+  std::ostringstream contents;
+  contents << stream.rdbuf();
+  if (stream.bad()) {
+    return std::nullopt;
+  }
+  return addFile(path, contents.str());
+}
+
+std::string_view SourceManager::text(SourceSpan span) const {
+  if (!span.valid()) {
+    return {};
+  }
+  std::string_view all = file(span.file).text();
+  std::uint32_t begin = std::min<std::uint32_t>(span.begin, static_cast<std::uint32_t>(all.size()));
+  std::uint32_t end = std::min<std::uint32_t>(span.end, static_cast<std::uint32_t>(all.size()));
+  return all.substr(begin, end > begin ? end - begin : 0);
+}
+
+} // namespace cncc::frontend

@@ -1,0 +1,79 @@
+#pragma once
+
+#include "cncc/geom/curve.h"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace cncc::geom {
+
+/// Where a largest distance between a polyline and a curve occurs.
+struct DeviationWitness {
+  double distance = 0.0;
+  Eigen::Vector3d polylinePoint = Eigen::Vector3d::Zero();
+  Eigen::Vector3d curvePoint = Eigen::Vector3d::Zero();
+  double curveParameter = 0.0;
+  /// Polyline segment holding polylinePoint (segment i joins vertices i and i + 1).
+  std::size_t segment = 0;
+};
+
+/// Both directed distances between a polyline P and a curve C.
+struct DeviationReport {
+  /// max over points p of P of the distance from p to C: how far the executed path
+  /// strays from the curve.
+  DeviationWitness polylineToCurve;
+  /// max over points c of C of the distance from c to P: how far the curve is from
+  /// being covered by the path (catches a path that stops short or cuts corners).
+  DeviationWitness curveToPolyline;
+
+  /// The Hausdorff distance, the larger of the two.
+  double maxDeviation() const;
+  const DeviationWitness& worst() const;
+};
+
+struct DeviationOptions {
+  /// Absolute accuracy (mm) of the reported distances. The curve is sampled so that
+  /// the polyline through its samples is within `accuracy` of it, polyline segments
+  /// at the matching spacing, and every sampled local maximum is refined.
+  double accuracy = 1e-7;
+};
+
+/// Closest points on a curve, from a dense polyline through curve samples (chosen so
+/// it stays within `accuracy` of the curve) and a bounding-box tree over it, then
+/// refinement of the curve parameter by Brent's method and Newton's method.
+class CurveProximity {
+public:
+  CurveProximity(const Curve& curve, double accuracy);
+  ~CurveProximity();
+  CurveProximity(const CurveProximity&) = delete;
+  CurveProximity& operator=(const CurveProximity&) = delete;
+
+  struct ClosestPoint {
+    double distance;
+    double parameter;
+    Eigen::Vector3d point;
+  };
+  ClosestPoint closestPoint(const Eigen::Vector3d& p) const;
+
+  const std::vector<double>& sampleParameters() const { return parameters_; }
+  const std::vector<Eigen::Vector3d>& samplePoints() const { return points_; }
+  /// Smallest radius of curvature seen at the samples (for choosing step sizes).
+  double smallestSampledRadius() const { return smallestRadius_; }
+
+private:
+  struct Index;
+  const Curve& curve_;
+  std::vector<double> parameters_;
+  std::vector<Eigen::Vector3d> points_;
+  double smallestRadius_;
+  std::unique_ptr<Index> index_;
+};
+
+/// Both directed deviations between `polyline` (at least one vertex) and `curve`.
+DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline,
+                                 const Curve& curve, const DeviationOptions& options = {});
+
+} // namespace cncc::geom

@@ -1,0 +1,47 @@
+#pragma once
+
+#include "cncc/geom/curve.h"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <vector>
+
+namespace cncc::geom {
+
+/// Vertices on a curve: parameters[i] is where points[i] = C(parameters[i]) lies.
+/// The first vertex is at t0 and the last at t1.
+struct CurveSamples {
+  std::vector<double> parameters;
+  std::vector<Eigen::Vector3d> points;
+
+  std::size_t chordCount() const { return points.empty() ? 0 : points.size() - 1; }
+};
+
+/// Largest distance from the curve arc C([ta, tb]) to the chord segment C(ta)C(tb).
+/// Sampled at 16 parameters or more (more where the arc turns), every sampled local
+/// maximum refined by Brent's method, so the value is never underestimated by more
+/// than the rounding of the refinement (about 1e-12 relative).
+double chordDeviation(const Curve& curve, double ta, double tb);
+
+/// The fewest chords with vertices on the curve such that every chord deviates at
+/// most `tolerance` from the arc it replaces (chordDeviation <= tolerance).
+///
+/// A farthest-reach greedy walk: from the current vertex it finds the farthest
+/// parameter whose chord still meets the tolerance (bracketing by doubling, then
+/// bisection to about 1e-13 of the domain), and moves there. When feasibility is
+/// monotone (if a chord meets the tolerance so does every chord over a sub-arc of
+/// it) the greedy vertex is at every step at least as far along as the vertex of any
+/// other valid chain, so no chain has fewer chords. Throws GeometryError for a
+/// tolerance <= 0.
+CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance);
+
+/// `count` >= 2 samples at equal parameter steps from t0 to t1 inclusive.
+CurveSamples sampleUniformParameter(const Curve& curve, std::size_t count);
+
+/// Samples every `spacing` mm of arc length from t0, and the last exactly at t1 (so
+/// the last step is in (0, spacing]; a remainder below 1e-9 of the spacing is
+/// absorbed into the previous step). Throws GeometryError for spacing <= 0.
+CurveSamples sampleEqualArcLength(const Curve& curve, double spacing);
+
+} // namespace cncc::geom
