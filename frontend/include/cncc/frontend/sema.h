@@ -1,0 +1,115 @@
+// Semantic analysis: imports, name resolution and scopes, types, builtin
+// signatures, compile-time evaluation of `const` and `fn`, and the geometric
+// checks a user needs before anything is generated.
+//
+// `checkProgram` loads the main file and its imports, checks everything and
+// returns the annotated program; problems go to the DiagnosticEngine and
+// never stop the check.
+#pragma once
+
+#include "cncc/frontend/ast.h"
+#include "cncc/frontend/diagnostics.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/frontend/value.h"
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cncc::frontend {
+
+enum class DeclarationKind {
+  Constant,          // const name = ...
+  Function,          // fn name(...) = ...
+  PartParameter,     // part p(name = default)
+  FunctionParameter, // fn f(name)
+  Let,               // let name = ...
+  LoopVariable,      // for name in ...
+  CurveParameter,    // t inside polar(...) and param(...)
+  Builtin,           // sin, nurbs, pi, ...
+  Part,              // part name(...) { ... }
+};
+
+std::string_view declarationKindName(DeclarationKind kind);
+
+struct Declaration {
+  DeclarationKind kind;
+  std::string name;
+  SourceSpan span; // the defining name; invalid for builtins
+  Type type;
+  // Constants: their value. Part parameters: the value used for checks (the
+  // default or a -D override). Lets: the value with parameters at defaults,
+  // when it could be computed.
+  std::optional<Value> value;
+  // Functions and builtins: `nurbs(order | degree, points, weights?, knots?)`.
+  std::string signature;
+  std::string description; // one line, for hovers
+  const FnItem* function = nullptr;
+  const PartItem* part = nullptr;
+};
+
+// A use or a definition of a name, for hovers and go-to-definition.
+struct Reference {
+  SourceSpan span;
+  const Declaration* declaration;
+  bool isDefinition;
+};
+
+struct CheckOptions {
+  // Directories searched for `import "..."` after the importing file's own
+  // directory, in order (-I dirs, then the stdlib directory).
+  std::vector<std::string> importPaths;
+  // -D name=value overrides of part parameter defaults.
+  std::map<std::string, double> defines;
+  // -p NAME; when empty and the file holds one part, that part.
+  std::string partName;
+  // Whether a missing or ambiguous part is an error (compiling needs one
+  // part; `cncc check` checks every part).
+  bool requirePart = false;
+};
+
+struct CheckedProgram {
+  std::deque<Module> modules; // the main file first, then its imports
+  std::deque<Declaration> declarations;
+  std::vector<Reference> references;
+  std::vector<const PartItem*> parts;     // of the main file
+  const PartItem* selectedPart = nullptr; // per CheckOptions::partName
+
+  // The innermost reference whose span contains `offset` in `file`.
+  const Reference* referenceAt(FileId file, std::uint32_t offset) const;
+  // Names visible at a position (for completion): builtins, file-level items,
+  // and the parameters, lets and loop variables in scope there.
+  std::vector<const Declaration*> visibleAt(FileId file, std::uint32_t offset) const;
+
+  // Where each scoped declaration is visible (parameters, lets, loop
+  // variables, `t`), for visibleAt.
+  struct ScopeExtent {
+    SourceSpan span;
+    const Declaration* declaration;
+  };
+  std::vector<ScopeExtent> scopeExtents;
+};
+
+CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const CheckOptions& options,
+                            DiagnosticEngine& diagnostics);
+
+// The builtin functions and constants, for completion and documentation.
+struct BuiltinParameter {
+  std::string name;
+  bool required;
+};
+struct BuiltinInfo {
+  std::string name;
+  std::vector<BuiltinParameter> parameters; // empty with `variadic` for path(...)
+  bool variadic = false;
+  std::string signature;
+  std::string description;
+};
+const std::vector<BuiltinInfo>& builtinFunctions();
+
+// The modifiers allowed after `curve <expr>`.
+const std::vector<std::string>& cutModifierNames();
+
+} // namespace cncc::frontend
