@@ -82,6 +82,15 @@ void DiagnosticEngine::addNote(Diagnostic* diagnostic, SourceSpan span, std::str
   }
 }
 
+void DiagnosticEngine::sortByLocation() {
+  std::stable_sort(diagnostics_.begin(), diagnostics_.end(), [](const auto& a, const auto& b) {
+    if (a.kind == DiagnosticKind::TooManyErrors || b.kind == DiagnosticKind::TooManyErrors) {
+      return b.kind == DiagnosticKind::TooManyErrors && a.kind != DiagnosticKind::TooManyErrors;
+    }
+    return std::pair(a.span.file.index, a.span.begin) < std::pair(b.span.file.index, b.span.begin);
+  });
+}
+
 void DiagnosticEngine::clear() {
   diagnostics_.clear();
   errorCount_ = 0;

@@ -1,6 +1,7 @@
 #include "cncc/frontend/source_manager.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -63,6 +64,10 @@ std::optional<FileId> SourceManager::findFile(const std::string& path) const {
 std::optional<FileId> SourceManager::loadFile(const std::string& path) {
   if (auto existing = findFile(path)) {
     return existing;
+  }
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    return std::nullopt;
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) {

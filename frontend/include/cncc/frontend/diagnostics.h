@@ -5,6 +5,7 @@
 #include "cncc/frontend/source_manager.h"
 
 #include <cstddef>
+#include <deque>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,13 +49,17 @@ public:
   Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message);
   void addNote(Diagnostic* diagnostic, SourceSpan span, std::string message);
 
-  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  // A deque, so a Diagnostic* from report() stays valid while more arrive.
+  const std::deque<Diagnostic>& diagnostics() const { return diagnostics_; }
   std::size_t errorCount() const { return errorCount_; }
   bool hasErrors() const { return errorCount_ > 0; }
+  // Orders diagnostics by file and position (phases report in their own
+  // order; users read top to bottom). Ones without a location come first.
+  void sortByLocation();
   void clear();
 
 private:
-  std::vector<Diagnostic> diagnostics_;
+  std::deque<Diagnostic> diagnostics_;
   std::size_t errorLimit_;
   std::size_t errorCount_ = 0;
   bool limitReported_ = false;

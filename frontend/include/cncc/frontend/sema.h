@@ -90,6 +90,8 @@ struct CheckedProgram {
     const Declaration* declaration;
   };
   std::vector<ScopeExtent> scopeExtents;
+  // The declaration of `t` made for each polar(...) and param(...) call.
+  std::map<const CallExpr*, const Declaration*> curveParameters;
 };
 
 CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const CheckOptions& options,

@@ -1,0 +1,274 @@
+// Runs each part's body at compile time with its parameters at their
+// defaults (or -D values), the way the machine will run it, and checks what
+// only values show: feeds, tools, sweeps, tolerances, loop bounds.
+#include "evaluator.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace cncc::frontend {
+
+namespace {
+
+// A loop runs at most this many times during checking; the checks of later
+// iterations repeat the earlier ones.
+constexpr double maximumCheckedIterations = 1000;
+
+class PartEvaluator {
+public:
+  PartEvaluator(Evaluator& evaluator, const PartItem& part)
+      : evaluator_(evaluator), context_(evaluator.context()), part_(part) {}
+
+  void run() {
+    Environment environment;
+    for (const Parameter& parameter : part_.parameters) {
+      if (parameter.declaration == nullptr) {
+        continue;
+      }
+      Value value = parameter.defaultValue ? evaluator_.evaluate(*parameter.defaultValue, {})
+                                           : Value{};
+      auto define = context_.options.defines.find(parameter.name);
+      if (define != context_.options.defines.end()) {
+        value = Value::ofNumber(define->second);
+      }
+      if (value.type.kind == TypeKind::Num) {
+        context_.mutableDeclaration(parameter.declaration).value = value;
+        environment[parameter.declaration] = value;
+      }
+    }
+    walk(part_.body, environment);
+  }
+
+private:
+  void walk(const Block& block, Environment environment) {
+    for (const StmtPtr& statement : block.statements) {
+      if (evaluator_.exhausted()) {
+        return;
+      }
+      walkStatement(*statement, environment);
+    }
+  }
+
+  std::optional<double> number(const Expr& expression, const Environment& environment) {
+    Value value = evaluator_.evaluate(expression, environment);
+    if (value.type.kind != TypeKind::Num) {
+      return std::nullopt;
+    }
+    return value.number;
+  }
+
+  // Checks value > 0 (or >= 0) and reports `what` otherwise.
+  std::optional<double> positive(const Expr& expression, const Environment& environment,
+                                 std::string_view what,
+                                 DiagnosticKind kind = DiagnosticKind::ValueNotPositive) {
+    std::optional<double> value = number(expression, environment);
+    if (value && !(*value > 0)) {
+      evaluator_.report(kind, expression.span,
+                        fmt::format("{} is {:g}; it must be greater than 0", what, *value));
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  std::optional<double> wholeNumber(const Expr& expression, const Environment& environment,
+                                    std::string_view what) {
+    std::optional<double> value = number(expression, environment);
+    if (value && *value != std::floor(*value)) {
+      evaluator_.report(DiagnosticKind::NotInteger, expression.span,
+                        fmt::format("{} must be a whole number, not {:g}", what, *value));
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  void walkStatement(const Stmt& statement, Environment& environment) {
+    switch (statement.kind) {
+    case StmtKind::Units:
+    case StmtKind::Error:
+      return;
+    case StmtKind::Tool:
+      walkTool(as<ToolStmt>(statement), environment);
+      return;
+    case StmtKind::Feed:
+      feedKnown_ |= positive(*as<ValueStmt>(statement).value, environment, "the feed").has_value();
+      return;
+    case StmtKind::Spindle:
+      positive(*as<ValueStmt>(statement).value, environment, "the spindle speed");
+      return;
+    case StmtKind::Safe:
+      for (const Argument& setting : as<SafeStmt>(statement).settings) {
+        positive(*setting.value, environment, "the safe height z (above the work surface)");
+      }
+      return;
+    case StmtKind::Let: {
+      const auto& let = as<LetStmt>(statement);
+      Value value = evaluator_.evaluate(*let.value, environment);
+      if (let.declaration != nullptr) {
+        environment[let.declaration] = value;
+        Declaration& declaration = context_.mutableDeclaration(let.declaration);
+        if (!declaration.value && !value.isError()) {
+          declaration.value = value;
+        }
+      }
+      return;
+    }
+    case StmtKind::Cut:
+      walkCut(as<CutStmt>(statement), environment);
+      return;
+    case StmtKind::For:
+      walkFor(as<ForStmt>(statement), environment);
+      return;
+    case StmtKind::If: {
+      const auto& conditional = as<IfStmt>(statement);
+      Value condition = evaluator_.evaluate(*conditional.condition, environment);
+      if (condition.type.kind == TypeKind::Bool) {
+        walk(condition.boolean ? conditional.thenBlock : conditional.elseBlock, environment);
+      }
+      return;
+    }
+    }
+  }
+
+  void walkTool(const ToolStmt& tool, const Environment& environment) {
+    toolKnown_ = true;
+    std::optional<double> toolNumber = wholeNumber(*tool.number, environment, "the tool number");
+    if (toolNumber && *toolNumber < 1) {
+      evaluator_.report(DiagnosticKind::ValueNotPositive, tool.number->span,
+                        fmt::format("the tool number is {:g}; tools are numbered from 1",
+                                    *toolNumber));
+    }
+    for (const Argument& setting : tool.settings) {
+      std::optional<double> value =
+          positive(*setting.value, environment, fmt::format("the tool's {}", setting.name));
+      if (setting.name == "feed" && value) {
+        feedKnown_ = true;
+      }
+    }
+  }
+
+  void walkFor(const ForStmt& loop, Environment& environment) {
+    Value range = evaluator_.evaluate(*loop.range, environment);
+    if (range.type.kind != TypeKind::Range || loop.declaration == nullptr) {
+      return;
+    }
+    const auto& rangeExpression = as<RangeExpr>(*loop.range);
+    for (const auto& [bound, expression] :
+         {std::pair{range.low, rangeExpression.low.get()}, {range.high, rangeExpression.high.get()}}) {
+      if (bound != std::floor(bound)) {
+        evaluator_.report(DiagnosticKind::NotInteger, expression->span,
+                          fmt::format("a loop bound must be a whole number, not {:g}", bound));
+        return;
+      }
+    }
+    if (range.high < range.low) {
+      evaluator_.report(DiagnosticKind::EmptyLoop, loop.range->span,
+                        fmt::format("this loop never runs: {:g} .. {:g} counts up from {:g} and "
+                                    "{:g} is smaller",
+                                    range.low, range.high, range.low, range.high));
+      return;
+    }
+    double last = std::min(range.high, range.low + maximumCheckedIterations - 1);
+    for (double i = range.low; i <= last && !evaluator_.exhausted(); ++i) {
+      Environment body = environment;
+      body[loop.declaration] = Value::ofNumber(i);
+      walk(loop.body, body);
+    }
+  }
+
+  void walkCut(const CutStmt& cut, const Environment& environment) {
+    evaluator_.evaluate(*cut.curve, environment);
+    std::map<std::string, std::pair<double, const Modifier*>> values;
+    for (const Modifier& modifier : cut.modifiers) {
+      if (!modifier.value || modifier.name == "method" || modifier.name == "entry") {
+        continue;
+      }
+      if (std::optional<double> value = number(*modifier.value, environment)) {
+        values[modifier.name] = {*value, &modifier};
+      }
+    }
+    checkSweep(values);
+    if (auto tolerance = values.find("tolerance"); tolerance != values.end()) {
+      auto [value, modifier] = tolerance->second;
+      if (!(value > 0)) {
+        evaluator_.report(DiagnosticKind::ToleranceNotPositive, modifier->value->span,
+                          fmt::format("the tolerance is {:g}; it must be greater than 0", value));
+      }
+    }
+    if (auto samples = values.find("samples"); samples != values.end()) {
+      auto [value, modifier] = samples->second;
+      if (value != std::floor(value) || value < 2) {
+        evaluator_.report(DiagnosticKind::InvalidSamples, modifier->value->span,
+                          fmt::format("samples={:g}: a cut needs a whole number of at least 2 "
+                                      "samples",
+                                      value));
+      }
+    }
+    for (const char* name : {"spacing", "feed"}) {
+      if (auto found = values.find(name); found != values.end() && !(found->second.first > 0)) {
+        evaluator_.report(DiagnosticKind::ValueNotPositive, found->second.second->value->span,
+                          fmt::format("{}={:g}: it must be greater than 0", name,
+                                      found->second.first));
+      }
+    }
+    // Reported once per part: the first cut shows what is missing.
+    if (!toolKnown_ && !toolReported_) {
+      toolReported_ = true;
+      evaluator_.report(DiagnosticKind::NoTool, cut.span,
+                        "this cut has no tool; write 'tool N diameter=D' before it");
+    }
+    bool hasFeedModifier = false;
+    for (const Modifier& modifier : cut.modifiers) {
+      hasFeedModifier |= modifier.name == "feed";
+    }
+    if (!feedKnown_ && !hasFeedModifier && !feedReported_) {
+      feedReported_ = true;
+      evaluator_.report(DiagnosticKind::NoFeed, cut.span,
+                        "this cut has no feed rate; give the tool 'feed=F', write 'feed F', or "
+                        "add 'feed=F' to the cut");
+    }
+  }
+
+  void checkSweep(const std::map<std::string, std::pair<double, const Modifier*>>& values) {
+    auto depth = values.find("depth");
+    auto step = values.find("step");
+    if (step != values.end() && !(step->second.first > 0)) {
+      evaluator_.report(DiagnosticKind::SweepStep, step->second.second->value->span,
+                        fmt::format("the sweep step is {:g}; it must be greater than 0",
+                                    step->second.first));
+      return;
+    }
+    if (depth != values.end() && step != values.end() &&
+        !(depth->second.first >= step->second.first)) {
+      evaluator_.report(DiagnosticKind::SweepDepth, depth->second.second->value->span,
+                        fmt::format("the sweep depth {:g} is less than its step {:g}; the depth "
+                                    "must be at least one step",
+                                    depth->second.first, step->second.first));
+    }
+  }
+
+  Evaluator& evaluator_;
+  SemaContext& context_;
+  const PartItem& part_;
+  bool toolKnown_ = false;
+  bool feedKnown_ = false;
+  bool toolReported_ = false;
+  bool feedReported_ = false;
+};
+
+} // namespace
+
+void evaluateProgram(SemaContext& context) {
+  Evaluator evaluator(context);
+  for (const Module& module : context.program.modules) {
+    for (const ItemPtr& item : module.items) {
+      if (item->kind == ItemKind::Const && as<ConstItem>(*item).declaration != nullptr) {
+        evaluator.constantValue(as<ConstItem>(*item).declaration);
+      }
+    }
+  }
+  for (const PartItem* part : context.program.parts) {
+    PartEvaluator(evaluator, *part).run();
+  }
+}
+
+} // namespace cncc::frontend

@@ -1,0 +1,250 @@
+#include "cncc/frontend/sema.h"
+
+#include "sema_context.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <numbers>
+
+namespace cncc::frontend {
+
+std::string_view declarationKindName(DeclarationKind kind) {
+  switch (kind) {
+  case DeclarationKind::Constant:
+    return "constant";
+  case DeclarationKind::Function:
+    return "function";
+  case DeclarationKind::PartParameter:
+    return "part parameter";
+  case DeclarationKind::FunctionParameter:
+    return "function parameter";
+  case DeclarationKind::Let:
+    return "let";
+  case DeclarationKind::LoopVariable:
+    return "loop variable";
+  case DeclarationKind::CurveParameter:
+    return "curve parameter";
+  case DeclarationKind::Builtin:
+    return "builtin";
+  case DeclarationKind::Part:
+    return "part";
+  }
+  return "name";
+}
+
+const Declaration* Scope::findLocal(const std::string& name) const {
+  auto found = names_.find(name);
+  return found == names_.end() ? nullptr : found->second;
+}
+
+const Declaration* Scope::find(const std::string& name) const {
+  for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
+    if (const Declaration* declaration = scope->findLocal(name)) {
+      return declaration;
+    }
+  }
+  return nullptr;
+}
+
+std::vector<std::string> Scope::visibleNames() const {
+  std::vector<std::string> names;
+  for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
+    for (const auto& entry : scope->names_) {
+      names.push_back(entry.first);
+    }
+  }
+  return names;
+}
+
+Declaration& SemaContext::declare(DeclarationKind kind, std::string name, SourceSpan span,
+                                  Type type) {
+  Declaration& declaration = program.declarations.emplace_back();
+  declaration.kind = kind;
+  declaration.name = std::move(name);
+  declaration.span = span;
+  declaration.type = type;
+  if (span.valid()) {
+    program.references.push_back({span, &declaration, true});
+  }
+  return declaration;
+}
+
+void SemaContext::reference(SourceSpan span, const Declaration* declaration, bool isDefinition) {
+  usedDeclarations.insert(declaration);
+  if (span.valid()) {
+    program.references.push_back({span, declaration, isDefinition});
+  }
+}
+
+Diagnostic* SemaContext::report(DiagnosticKind kind, SourceSpan span, std::string message) {
+  return diagnostics.report(kind, span, std::move(message));
+}
+
+namespace {
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> previous(b.size() + 1);
+  std::vector<std::size_t> current(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) {
+    previous[j] = j;
+  }
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    current[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t substitution = previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
+    }
+    std::swap(previous, current);
+  }
+  return previous[b.size()];
+}
+
+} // namespace
+
+std::string suggestion(const std::string& name, const std::vector<std::string>& candidates) {
+  const std::string* best = nullptr;
+  std::size_t bestDistance = name.size() / 3 + 1;
+  for (const std::string& candidate : candidates) {
+    std::size_t distance = editDistance(name, candidate);
+    if (candidate != name && distance <= bestDistance &&
+        (best == nullptr || distance < editDistance(name, *best))) {
+      best = &candidate;
+    }
+  }
+  return best == nullptr ? "" : fmt::format("; did you mean '{}'?", *best);
+}
+
+namespace {
+
+void declareBuiltins(SemaContext& context) {
+  for (const BuiltinInfo& builtin : builtinFunctions()) {
+    Declaration& declaration =
+        context.declare(DeclarationKind::Builtin, builtin.name, {}, Type::any());
+    declaration.signature = builtin.signature;
+    declaration.description = builtin.description;
+    context.builtinScope.add(builtin.name, &declaration);
+  }
+  Declaration& pi = context.declare(DeclarationKind::Builtin, "pi", {}, Type::num());
+  pi.value = Value::ofNumber(std::numbers::pi);
+  pi.signature = "pi";
+  pi.description = "the ratio of a circle's circumference to its diameter, 3.14159265...";
+  context.builtinScope.add("pi", &pi);
+}
+
+void selectPart(SemaContext& context) {
+  CheckedProgram& program = context.program;
+  const CheckOptions& options = context.options;
+  if (!options.partName.empty()) {
+    for (const PartItem* part : program.parts) {
+      if (part->name == options.partName) {
+        program.selectedPart = part;
+        return;
+      }
+    }
+    std::vector<std::string> names;
+    for (const PartItem* part : program.parts) {
+      names.push_back(part->name);
+    }
+    context.report(DiagnosticKind::UnknownPart, {},
+                   fmt::format("no part named '{}' in this file{}", options.partName,
+                               suggestion(options.partName, names)));
+    return;
+  }
+  if (program.parts.size() == 1) {
+    program.selectedPart = program.parts.front();
+    return;
+  }
+  if (!options.requirePart) {
+    return;
+  }
+  if (program.parts.empty()) {
+    const Module& main = program.modules.front();
+    context.report(DiagnosticKind::NoPart, {main.file, 0, 0},
+                   "this file has no 'part' to compile");
+    return;
+  }
+  Diagnostic* diagnostic =
+      context.report(DiagnosticKind::AmbiguousPart, program.parts[1]->nameSpan,
+                     fmt::format("this file has {} parts; choose one with -p NAME",
+                                 program.parts.size()));
+  for (const PartItem* part : program.parts) {
+    context.diagnostics.addNote(diagnostic, part->nameSpan,
+                                fmt::format("part '{}' is defined here", part->name));
+  }
+}
+
+void checkDefines(SemaContext& context) {
+  const CheckedProgram& program = context.program;
+  for (const auto& [name, value] : context.options.defines) {
+    bool found = false;
+    for (const PartItem* part : program.parts) {
+      if (program.selectedPart != nullptr && part != program.selectedPart) {
+        continue;
+      }
+      for (const Parameter& parameter : part->parameters) {
+        found |= parameter.name == name;
+      }
+    }
+    if (!found) {
+      context.report(DiagnosticKind::UnknownDefine, {},
+                     fmt::format("-D {}={:g} names no parameter of the part", name, value));
+    }
+  }
+}
+
+} // namespace
+
+CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const CheckOptions& options,
+                            DiagnosticEngine& diagnostics) {
+  CheckedProgram program;
+  SemaContext context(sources, diagnostics, program, options);
+  declareBuiltins(context);
+  loadModules(context, mainFile);
+  checkNamesAndTypes(context);
+  selectPart(context);
+  checkDefines(context);
+  evaluateProgram(context);
+  diagnostics.sortByLocation();
+  return program;
+}
+
+namespace {
+
+bool contains(SourceSpan span, FileId file, std::uint32_t offset) {
+  return span.file == file && span.begin <= offset && offset <= span.end;
+}
+
+} // namespace
+
+const Reference* CheckedProgram::referenceAt(FileId file, std::uint32_t offset) const {
+  const Reference* best = nullptr;
+  for (const Reference& reference : references) {
+    if (contains(reference.span, file, offset) &&
+        (best == nullptr || reference.span.end - reference.span.begin <
+                                best->span.end - best->span.begin)) {
+      best = &reference;
+    }
+  }
+  return best;
+}
+
+std::vector<const Declaration*> CheckedProgram::visibleAt(FileId file,
+                                                          std::uint32_t offset) const {
+  std::vector<const Declaration*> visible;
+  for (const Declaration& declaration : declarations) {
+    bool fileLevel = declaration.kind == DeclarationKind::Constant ||
+                     declaration.kind == DeclarationKind::Function;
+    if (declaration.kind == DeclarationKind::Builtin ||
+        (fileLevel && declaration.span.file == file)) {
+      visible.push_back(&declaration);
+    }
+  }
+  for (const ScopeExtent& extent : scopeExtents) {
+    if (contains(extent.span, file, offset)) {
+      visible.push_back(extent.declaration);
+    }
+  }
+  return visible;
+}
+
+} // namespace cncc::frontend

@@ -1,0 +1,71 @@
+// State shared by the phases of semantic analysis (private to the front end).
+#pragma once
+
+#include "cncc/frontend/sema.h"
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace cncc::frontend {
+
+// A lexical scope: names to declarations, with a parent.
+class Scope {
+public:
+  explicit Scope(const Scope* parent = nullptr) : parent_(parent) {}
+  const Declaration* find(const std::string& name) const;
+  const Declaration* findLocal(const std::string& name) const;
+  void add(const std::string& name, const Declaration* declaration) { names_[name] = declaration; }
+  const Scope* parent() const { return parent_; }
+  // Every name visible from here, innermost first (for suggestions).
+  std::vector<std::string> visibleNames() const;
+
+private:
+  const Scope* parent_;
+  std::map<std::string, const Declaration*> names_;
+};
+
+struct SemaContext {
+  SemaContext(SourceManager& sources, DiagnosticEngine& diagnostics, CheckedProgram& program,
+              const CheckOptions& options)
+      : sources(sources), diagnostics(diagnostics), program(program), options(options) {}
+
+  SourceManager& sources;
+  DiagnosticEngine& diagnostics;
+  CheckedProgram& program;
+  const CheckOptions& options;
+
+  Scope builtinScope;
+  std::map<const Module*, Scope> fileScopes;
+  // Functions that must not be evaluated (recursive, or broken).
+  std::set<const Declaration*> invalidFunctions;
+  // Declarations whose name was used somewhere (for unused-let).
+  std::set<const Declaration*> usedDeclarations;
+  // The constant or function item behind a declaration, and the file scope
+  // it is checked in.
+  std::map<const Declaration*, const Item*> itemOf;
+  std::map<const Declaration*, const Scope*> itemScope;
+
+  Declaration& declare(DeclarationKind kind, std::string name, SourceSpan span, Type type);
+  void reference(SourceSpan span, const Declaration* declaration, bool isDefinition);
+  Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message);
+  Declaration& mutableDeclaration(const Declaration* declaration) {
+    return const_cast<Declaration&>(*declaration);
+  }
+};
+
+// "; did you mean 'sweep'?" when a candidate is close to `name`, else "".
+std::string suggestion(const std::string& name, const std::vector<std::string>& candidates);
+
+// Loads the main module and, recursively, its imports (cycles reported).
+void loadModules(SemaContext& context, FileId mainFile);
+
+// Names, scopes and types of every module; records references.
+void checkNamesAndTypes(SemaContext& context);
+
+// Evaluates constants and, for each part, the body with its parameters at
+// their defaults (or -D values), reporting what evaluation finds.
+void evaluateProgram(SemaContext& context);
+
+} // namespace cncc::frontend
