@@ -21,6 +21,7 @@ struct ArgumentBinding {
   std::vector<const Argument*> bound; // one per parameter, null when absent
   std::vector<const Argument*> extra; // for variadic functions
   bool ok = true;
+  bool unknownName = false; // a misspelt name: missing arguments are its echo
 };
 
 struct ParameterSpec {
@@ -272,7 +273,9 @@ private:
       checkStatement(*statement, scope, block, lets);
     }
     for (const Declaration* let : lets) {
-      if (!context_.usedDeclarations.contains(let) && !let->name.starts_with("_")) {
+      // A let whose value had an error is already reported.
+      if (!context_.usedDeclarations.contains(let) && !let->name.starts_with("_") &&
+          let->type.kind != TypeKind::Error) {
         context_.report(DiagnosticKind::UnusedLet, let->span,
                         fmt::format("'{}' is never used", let->name));
       }
@@ -815,11 +818,16 @@ private:
                     fmt::format("unknown argument '{}'; {}{}", argument.name, expected,
                                 suggestion(argument.name, names)));
     binding.ok = false;
+    binding.unknownName = true;
   }
 
   void reportMissing(const CallExpr& call, const std::vector<ParameterSpec>& parameters,
                      ArgumentBinding& binding) {
     for (std::size_t i = 0; i < parameters.size(); ++i) {
+      if (binding.unknownName) {
+        binding.ok = false;
+        return;
+      }
       if (parameters[i].required && binding.bound[i] == nullptr) {
         context_.report(DiagnosticKind::MissingArgument, call.calleeSpan,
                         fmt::format("'{}' needs the argument '{}'", call.callee,

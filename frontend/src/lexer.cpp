@@ -251,6 +251,7 @@ private:
     std::size_t begin = position_;
     ++position_;
     std::string value;
+    bool invalid = false; // the parser must not act on a string with an error
     while (!atEnd() && peek() != '"' && peek() != '\n') {
       if (peek() == '\\') {
         char escaped = peek(1);
@@ -261,6 +262,7 @@ private:
         }
         std::size_t escapeBegin = position_;
         position_ += (escaped == '\0' || escaped == '\n') ? 1 : 2;
+        invalid = true;
         diagnostics_.report(DiagnosticKind::InvalidEscape, spanFrom(escapeBegin),
                             "invalid escape in string; only '\\\"' and '\\\\' are allowed");
         continue;
@@ -272,11 +274,11 @@ private:
       Token token = make(TokenKind::String, begin);
       diagnostics_.report(DiagnosticKind::UnterminatedString, token.span,
                           "string is not closed; expected '\"' before the end of the line");
-      token.text = std::move(value);
+      token.kind = TokenKind::Error;
       return token;
     }
     ++position_;
-    Token token = make(TokenKind::String, begin);
+    Token token = make(invalid ? TokenKind::Error : TokenKind::String, begin);
     token.text = std::move(value);
     return token;
   }

@@ -29,7 +29,9 @@ private:
     }
     Module& module = context_.program.modules.emplace_back(
         parseFile(context_.sources, file, context_.diagnostics));
-    stack_.push_back({file, canonical(context_.sources.file(file).path()), nullptr});
+    std::string canonicalPath = canonical(context_.sources.file(file).path());
+    loadedFiles_[canonicalPath] = file;
+    stack_.push_back({file, canonicalPath, nullptr});
     for (ItemPtr& item : module.items) {
       if (item->kind == ItemKind::Import) {
         loadImport(as<ImportItem>(*item), file);
@@ -50,17 +52,20 @@ private:
                                       : ", in -I directories and the standard library"));
       return;
     }
-    std::optional<FileId> file = context_.sources.loadFile(*path);
+    std::string canonicalPath = canonical(*path);
+    for (std::size_t i = 0; i < stack_.size(); ++i) {
+      if (stack_[i].canonicalPath == canonicalPath) {
+        reportCycle(import, i);
+        return;
+      }
+    }
+    std::optional<FileId> file = loadedFiles_.contains(canonicalPath)
+                                     ? std::optional(loadedFiles_.at(canonicalPath))
+                                     : context_.sources.loadFile(*path);
     if (!file) {
       context_.report(DiagnosticKind::ImportNotFound, import.pathSpan,
                       fmt::format("cannot read module \"{}\" at '{}'", import.path, *path));
       return;
-    }
-    for (std::size_t i = 0; i < stack_.size(); ++i) {
-      if (stack_[i].file == *file || stack_[i].canonicalPath == *path) {
-        reportCycle(import, i);
-        return;
-      }
     }
     import.resolvedFile = *file;
     stack_.back().import = &import;
@@ -92,7 +97,8 @@ private:
       fs::path candidate = directory / fileName;
       std::error_code error;
       if (fs::is_regular_file(candidate, error)) {
-        return fs::weakly_canonical(candidate, error).string();
+        // Keep the spelling relative when it was, so messages stay short.
+        return candidate.lexically_normal().string();
       }
     }
     return std::nullopt;
@@ -111,6 +117,7 @@ private:
 
   SemaContext& context_;
   std::vector<Frame> stack_;
+  std::map<std::string, FileId> loadedFiles_; // by canonical path
 };
 
 } // namespace

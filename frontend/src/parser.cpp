@@ -1,5 +1,6 @@
 #include "cncc/frontend/parser.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace cncc::frontend {
@@ -13,6 +14,11 @@ bool isStatementWord(const Token& token) {
   const std::string& word = token.text;
   return word == "units" || word == "tool" || word == "feed" || word == "spindle" ||
          word == "safe";
+}
+
+bool isModifierName(const std::string& word) {
+  const std::vector<std::string>& names = cutModifierNames();
+  return std::find(names.begin(), names.end(), word) != names.end();
 }
 
 bool isItemKeyword(TokenKind kind) {
@@ -395,11 +401,11 @@ private:
     }
     if (text == "tool") {
       ExprPtr number = parseExpression();
-      std::vector<Argument> settings = parseSettings();
+      std::vector<Argument> settings = parseSettings({"diameter", "spindle", "feed"});
       return std::make_unique<ToolStmt>(spanFrom(begin), std::move(number), std::move(settings));
     }
     if (text == "safe") {
-      std::vector<Argument> settings = parseSettings();
+      std::vector<Argument> settings = parseSettings({"z"});
       if (settings.empty() && !panicking_) {
         errorAtCurrent(DiagnosticKind::ExpectedToken, "'z=' after 'safe'");
       }
@@ -410,10 +416,13 @@ private:
     return std::make_unique<ValueStmt>(kind, spanFrom(begin), std::move(value));
   }
 
-  // { name = expr } while the next tokens read `identifier =`.
-  std::vector<Argument> parseSettings() {
+  // { name = expr } while the next tokens read `identifier =`. A setting on a
+  // later line must be one of `knownNames`; anything else starts a new
+  // statement (so `x = 3` on the next line is not taken for a setting).
+  std::vector<Argument> parseSettings(std::initializer_list<std::string_view> knownNames) {
     std::vector<Argument> settings;
-    while (!panicking_ && check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal) {
+    while (!panicking_ && check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal &&
+           continuesStatement(knownNames)) {
       Argument setting;
       setting.nameSpan = peek().span;
       setting.name = advance().text;
@@ -422,6 +431,18 @@ private:
       settings.push_back(std::move(setting));
     }
     return settings;
+  }
+
+  bool continuesStatement(std::initializer_list<std::string_view> knownNames) const {
+    if (!peek().startsLine) {
+      return true;
+    }
+    for (std::string_view name : knownNames) {
+      if (peek().text == name) {
+        return true;
+      }
+    }
+    return false;
   }
 
   StmtPtr parseLet() {
@@ -444,9 +465,9 @@ private:
     std::vector<Modifier> modifiers;
     while (!panicking_ && check(TokenKind::Identifier)) {
       bool assigned = peek(1).kind == TokenKind::Equal;
-      // A bare word on the same line is a modifier (`sweep`); one starting a
-      // line is the next statement.
-      if (!assigned && peek().startsLine) {
+      // A word on the same line is a modifier (`sweep`, `tolerance=0.01`); on
+      // a later line only a known `modifier=value` continues the cut.
+      if (peek().startsLine && !(assigned && isModifierName(peek().text))) {
         break;
       }
       if (!assigned && isStatementWord(peek())) {
@@ -720,8 +741,9 @@ private:
         advance();
         sawNamed = true;
       } else if (sawNamed) {
-        error(DiagnosticKind::PositionalAfterNamed, peek().span,
-              "a positional argument cannot follow a named one");
+        // Not a syntax error: the parser stays in step.
+        diagnostics_.report(DiagnosticKind::PositionalAfterNamed, peek().span,
+                            "a positional argument cannot follow a named one");
       }
       argument.value = parseExpression();
       arguments.push_back(std::move(argument));

@@ -256,6 +256,9 @@ struct Modifier {
   SourceSpan span() const { return value ? nameSpan.to(value->span) : nameSpan; }
 };
 
+// The modifiers allowed after `curve <expr>`.
+const std::vector<std::string>& cutModifierNames();
+
 struct CutStmt : Stmt {
   CutStmt(SourceSpan span, ExprPtr curve, std::vector<Modifier> modifiers)
       : Stmt(StmtKind::Cut, span), curve(std::move(curve)), modifiers(std::move(modifiers)) {}

@@ -111,7 +111,4 @@ struct BuiltinInfo {
 };
 const std::vector<BuiltinInfo>& builtinFunctions();
 
-// The modifiers allowed after `curve <expr>`.
-const std::vector<std::string>& cutModifierNames();
-
 } // namespace cncc::frontend
