@@ -632,9 +632,13 @@ private:
 
   Type checkIfElse(IfElseExpr& choice, const Scope& scope) {
     Type condition = checkExpression(*choice.condition, scope);
-    expectType(*choice.condition, condition, TypeKind::Bool, "condition of 'if'");
+    bool conditionOk =
+        expectType(*choice.condition, condition, TypeKind::Bool, "condition of 'if'");
     Type thenType = checkExpression(*choice.thenValue, scope);
     Type elseType = checkExpression(*choice.elseValue, scope);
+    if (!conditionOk || condition.kind == TypeKind::Error) {
+      return Type::error();
+    }
     if (thenType.isLenient()) {
       return elseType.kind == TypeKind::Error ? thenType : elseType;
     }

@@ -13,6 +13,8 @@ namespace {
 // A loop runs at most this many times during checking; the checks of later
 // iterations repeat the earlier ones.
 constexpr double maximumCheckedIterations = 1000;
+// And a part's body runs at most this many statements in all (nested loops).
+constexpr std::size_t maximumCheckedStatements = 100'000;
 
 class PartEvaluator {
 public:
@@ -42,7 +44,7 @@ public:
 private:
   void walk(const Block& block, Environment environment) {
     for (const StmtPtr& statement : block.statements) {
-      if (evaluator_.exhausted()) {
+      if (evaluator_.exhausted() || ++statements_ > maximumCheckedStatements) {
         return;
       }
       walkStatement(*statement, environment);
@@ -168,7 +170,8 @@ private:
       return;
     }
     double last = std::min(range.high, range.low + maximumCheckedIterations - 1);
-    for (double i = range.low; i <= last && !evaluator_.exhausted(); ++i) {
+    for (double i = range.low;
+         i <= last && !evaluator_.exhausted() && statements_ <= maximumCheckedStatements; ++i) {
       Environment body = environment;
       body[loop.declaration] = Value::ofNumber(i);
       walk(loop.body, body);
@@ -251,6 +254,7 @@ private:
   const PartItem& part_;
   bool toolKnown_ = false;
   bool feedKnown_ = false;
+  std::size_t statements_ = 0;
   bool toolReported_ = false;
   bool feedReported_ = false;
 };
