@@ -40,7 +40,10 @@ std::vector<BuiltinInfo> makeBuiltins() {
       math1("round", "nearest whole number, halves away from zero"),
       {"len", {{"list", true}}, false, "len(list)", "number of elements of a list"},
       {"nurbs",
-       {{"order", false}, {"degree", false}, {"points", true}, {"weights", false},
+       {{"order", false},
+        {"degree", false},
+        {"points", true},
+        {"weights", false},
         {"knots", false}},
        false,
        "nurbs(order=k | degree=p, points=L, weights=W?, knots=K?)",
@@ -50,12 +53,21 @@ std::vector<BuiltinInfo> makeBuiltins() {
        false,
        "bspline(order=k | degree=p, points=L, knots=K?)",
        "B-spline (a nurbs with unit weights)"},
-      {"bezier", {{"points", true}}, false, "bezier(points=L)",
+      {"bezier",
+       {{"points", true}},
+       false,
+       "bezier(points=L)",
        "one Bezier segment of degree len(L)-1"},
-      {"polar", {{"r", true}, {"t", true}}, false, "polar(r = expr in t, t = a .. b)",
+      {"polar",
+       {{"r", true}, {"t", true}},
+       false,
+       "polar(r = expr in t, t = a .. b)",
        "curve given by its radius r(t) at polar angle t"},
-      {"param", {{"x", true}, {"y", true}, {"z", false}, {"t", true}}, false,
-       "param(x = ..., y = ..., z = ...?, t = a .. b)", "parametric curve (x(t), y(t), z(t))"},
+      {"param",
+       {{"x", true}, {"y", true}, {"z", false}, {"t", true}},
+       false,
+       "param(x = ..., y = ..., z = ...?, t = a .. b)",
+       "parametric curve (x(t), y(t), z(t))"},
       {"line", {{"from", true}, {"to", true}}, false, "line(from, to)", "straight segment"},
       {"arc",
        {{"center", true}, {"radius", true}, {"from", true}, {"to", true}},
@@ -63,11 +75,20 @@ std::vector<BuiltinInfo> makeBuiltins() {
        "arc(center=, radius=, from=, to=)",
        "circular arc, angles in radians, counter-clockwise when to > from"},
       {"path", {}, true, "path(c1, c2, ...)", "curves joined end to start"},
-      {"translate", {{"curve", true}, {"dx", true}, {"dy", true}}, false,
-       "translate(curve, dx, dy)", "the curve moved by (dx, dy)"},
-      {"rotate", {{"curve", true}, {"angle", true}}, false, "rotate(curve, angle)",
+      {"translate",
+       {{"curve", true}, {"dx", true}, {"dy", true}},
+       false,
+       "translate(curve, dx, dy)",
+       "the curve moved by (dx, dy)"},
+      {"rotate",
+       {{"curve", true}, {"angle", true}},
+       false,
+       "rotate(curve, angle)",
        "the curve rotated about the origin by angle (radians, counter-clockwise)"},
-      {"scale", {{"curve", true}, {"factor", true}}, false, "scale(curve, factor)",
+      {"scale",
+       {{"curve", true}, {"factor", true}},
+       false,
+       "scale(curve, factor)",
        "the curve scaled about the origin"},
   };
   return builtins;
@@ -81,9 +102,8 @@ const std::vector<BuiltinInfo>& builtinFunctions() {
 }
 
 const std::vector<std::string>& cutModifierNames() {
-  static const std::vector<std::string> names = {"sweep",   "depth",  "step", "tolerance",
-                                                 "samples", "spacing", "method", "feed",
-                                                 "entry"};
+  static const std::vector<std::string> names = {
+      "sweep", "depth", "step", "tolerance", "samples", "spacing", "method", "feed", "entry"};
   return names;
 }
 

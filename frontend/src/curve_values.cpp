@@ -244,9 +244,9 @@ private:
     }
     for (std::size_t i = 0; i < n; ++i) {
       if (!((*weights)[i] > 0)) {
-        report(DiagnosticKind::WeightNotPositive, elementSpan(expression, i),
-               fmt::format("weight {} is {:g}; every weight must be positive", i + 1,
-                           (*weights)[i]));
+        report(
+            DiagnosticKind::WeightNotPositive, elementSpan(expression, i),
+            fmt::format("weight {} is {:g}; every weight must be positive", i + 1, (*weights)[i]));
       }
     }
     return *weights;
@@ -279,8 +279,8 @@ private:
     }
     if (!((*knots)[order - 1] < (*knots)[n])) {
       report(DiagnosticKind::DegenerateCurve, expression.span,
-             fmt::format("the knots leave the curve no parameter range (knot {} equals knot {})",
-                         k, n + 1));
+             fmt::format("the knots leave the curve no parameter range (knot {} equals knot {})", k,
+                         n + 1));
     }
     return *knots;
   }
@@ -389,9 +389,9 @@ private:
       Value piece = evaluator_.evaluate(*argument.value, environment_);
       if (piece.type.kind != TypeKind::Curve) {
         if (!piece.isError()) {
-          report(DiagnosticKind::TypeMismatch, argument.value->span,
-                 fmt::format("each piece of a path must be a curve, not a {}",
-                             typeName(piece.type)));
+          report(
+              DiagnosticKind::TypeMismatch, argument.value->span,
+              fmt::format("each piece of a path must be a curve, not a {}", typeName(piece.type)));
         }
         failed_ = true;
         continue;

@@ -57,7 +57,9 @@ Diagnostic* DiagnosticEngine::report(DiagnosticKind kind, SourceSpan span, std::
   if (severity == Severity::Error && errorLimit_ != 0 && errorCount_ >= errorLimit_) {
     if (!limitReported_) {
       limitReported_ = true;
-      diagnostics_.push_back({DiagnosticKind::TooManyErrors, Severity::Note, {},
+      diagnostics_.push_back({DiagnosticKind::TooManyErrors,
+                              Severity::Note,
+                              {},
                               fmt::format("too many errors; stopping after {}", errorLimit_),
                               {}});
     }
@@ -145,9 +147,9 @@ void renderOne(std::string& out, Severity severity, SourceSpan span, std::string
   }
   const SourceFile& file = sources.file(span.file);
   LineColumn begin = file.lineColumn(span.begin);
-  out += fmt::format("{}{}:{}:{}:{} {}{}:{} {}{}{}{}\n", bold, file.path(), begin.line,
-                     begin.column, reset, colour, severityWord(severity), reset, bold, message,
-                     reset, suffix);
+  out +=
+      fmt::format("{}{}:{}:{}:{} {}{}:{} {}{}{}{}\n", bold, file.path(), begin.line, begin.column,
+                  reset, colour, severityWord(severity), reset, bold, message, reset, suffix);
   std::string_view line = file.lineText(begin.line);
   out += expandTabs(line);
   out += '\n';

@@ -23,8 +23,7 @@ Value Evaluator::typeError(SourceSpan span, std::string message) {
 
 Value Evaluator::checkedNumber(double number, SourceSpan span, std::string_view what) {
   if (!std::isfinite(number)) {
-    report(DiagnosticKind::NonFiniteValue, span,
-           fmt::format("{} is not a finite number", what));
+    report(DiagnosticKind::NonFiniteValue, span, fmt::format("{} is not a finite number", what));
     return {};
   }
   return Value::ofNumber(number);
@@ -111,9 +110,9 @@ Value Evaluator::evaluate(const Expr& expression, const Environment& environment
     const auto& choice = as<IfElseExpr>(expression);
     Value condition = evaluate(*choice.condition, environment);
     if (condition.type.kind != TypeKind::Bool) {
-      return condition.isError() ? Value{}
-                                 : typeError(choice.condition->span,
-                                             "the condition of 'if' must be a bool");
+      return condition.isError()
+                 ? Value{}
+                 : typeError(choice.condition->span, "the condition of 'if' must be a bool");
     }
     return evaluate(condition.boolean ? *choice.thenValue : *choice.elseValue, environment);
   }
@@ -145,7 +144,8 @@ Value Evaluator::evaluateUnary(const UnaryExpr& unary, const Environment& enviro
   }
   if (unary.op == UnaryOperator::Not) {
     if (operand.type.kind != TypeKind::Bool) {
-      return typeError(unary.span, fmt::format("'!' needs a bool, not a {}", typeName(operand.type)));
+      return typeError(unary.span,
+                       fmt::format("'!' needs a bool, not a {}", typeName(operand.type)));
     }
     return Value::ofBool(!operand.boolean);
   }
@@ -281,8 +281,8 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
     return mismatch();
   case BinaryOperator::Divide:
   case BinaryOperator::Remainder:
-    if (r != TypeKind::Num || (l != TypeKind::Num && !(l == TypeKind::Point &&
-                                                       op == BinaryOperator::Divide))) {
+    if (r != TypeKind::Num ||
+        (l != TypeKind::Num && !(l == TypeKind::Point && op == BinaryOperator::Divide))) {
       return mismatch();
     }
     if (b == 0) {
@@ -299,8 +299,7 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
     if (!numbers) {
       return mismatch();
     }
-    return checkedNumber(std::pow(a, b), binary.span,
-                         fmt::format("{:g} ^ {:g}", a, b));
+    return checkedNumber(std::pow(a, b), binary.span, fmt::format("{:g} ^ {:g}", a, b));
   default:
     return mismatch();
   }
@@ -498,9 +497,8 @@ Value Evaluator::evaluateMember(const MemberExpr& member, const Environment& env
     return {};
   }
   if (base.type.kind != TypeKind::Point) {
-    return typeError(member.base->span,
-                     fmt::format("only a point has .{}; this is a {}", member.member,
-                                 typeName(base.type)));
+    return typeError(member.base->span, fmt::format("only a point has .{}; this is a {}",
+                                                    member.member, typeName(base.type)));
   }
   int axis = member.member == "x" ? 0 : member.member == "y" ? 1 : 2;
   return Value::ofNumber(base.point[axis]);

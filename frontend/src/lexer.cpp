@@ -37,8 +37,12 @@ namespace {
 bool isIdentifierStart(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
 }
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
-bool isIdentifierContinue(char c) { return isIdentifierStart(c) || isDigit(c); }
+bool isDigit(char c) {
+  return c >= '0' && c <= '9';
+}
+bool isIdentifierContinue(char c) {
+  return isIdentifierStart(c) || isDigit(c);
+}
 
 struct Keyword {
   std::string_view spelling;
@@ -114,10 +118,10 @@ private:
       ++position_;
     }
     if (atEnd()) {
-      diagnostics_.report(DiagnosticKind::UnterminatedComment,
-                          {file_, static_cast<std::uint32_t>(begin),
-                           static_cast<std::uint32_t>(begin + 2)},
-                          "block comment is not closed; expected '*/' before the end of the file");
+      diagnostics_.report(
+          DiagnosticKind::UnterminatedComment,
+          {file_, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(begin + 2)},
+          "block comment is not closed; expected '*/' before the end of the file");
     } else {
       position_ += 2;
     }
@@ -351,8 +355,8 @@ private:
   }
 
   static bool startsToken(char c) {
-    return isIdentifierContinue(c) || c == '"' || c == ' ' || c == '\t' || c == '\n' ||
-           c == '\r' || std::string_view("()[]{},;.+-*/%^=!<>").find(c) != std::string_view::npos;
+    return isIdentifierContinue(c) || c == '"' || c == ' ' || c == '\t' || c == '\n' || c == '\r' ||
+           std::string_view("()[]{},;.+-*/%^=!<>").find(c) != std::string_view::npos;
   }
 
   // A run of characters that start no token is one error, not one per byte.

@@ -73,9 +73,9 @@ private:
   }
 
   void reportCycle(const ImportItem& import, std::size_t cycleStart) {
-    Diagnostic* diagnostic = context_.report(
-        DiagnosticKind::ImportCycle, import.pathSpan,
-        fmt::format("importing \"{}\" forms a cycle", import.path));
+    Diagnostic* diagnostic =
+        context_.report(DiagnosticKind::ImportCycle, import.pathSpan,
+                        fmt::format("importing \"{}\" forms a cycle", import.path));
     for (std::size_t i = cycleStart; i + 1 < stack_.size(); ++i) {
       const ImportItem* step = stack_[i].import;
       if (step != nullptr) {

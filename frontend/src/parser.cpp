@@ -12,8 +12,7 @@ bool isStatementWord(const Token& token) {
     return false;
   }
   const std::string& word = token.text;
-  return word == "units" || word == "tool" || word == "feed" || word == "spindle" ||
-         word == "safe";
+  return word == "units" || word == "tool" || word == "feed" || word == "spindle" || word == "safe";
 }
 
 bool isModifierName(const std::string& word) {
@@ -114,7 +113,8 @@ private:
   }
 
   Diagnostic* errorAtCurrent(DiagnosticKind kind, std::string_view expected) {
-    return error(kind, peek().span, fmt::format("expected {}, found {}", expected, describe(peek())));
+    return error(kind, peek().span,
+                 fmt::format("expected {}, found {}", expected, describe(peek())));
   }
 
   bool expect(TokenKind kind, std::string_view context) {
@@ -131,8 +131,8 @@ private:
     if (match(kind)) {
       return true;
     }
-    Diagnostic* diagnostic = errorAtCurrent(
-        DiagnosticKind::ExpectedToken, fmt::format("'{}' {}", tokenSpelling(kind), context));
+    Diagnostic* diagnostic = errorAtCurrent(DiagnosticKind::ExpectedToken,
+                                            fmt::format("'{}' {}", tokenSpelling(kind), context));
     diagnostics_.addNote(diagnostic, opening, "to match this");
     return false;
   }
@@ -174,8 +174,7 @@ private:
         return;
       }
       if (braceDepth == 0 && token.startsLine &&
-          (isStatementKeyword(token.kind) || isStatementWord(token) ||
-           isItemKeyword(token.kind))) {
+          (isStatementKeyword(token.kind) || isStatementWord(token) || isItemKeyword(token.kind))) {
         return;
       }
       if (token.kind == TokenKind::LeftBrace) {
@@ -570,8 +569,8 @@ private:
     if (!elseValue) {
       elseValue = std::make_unique<ErrorExpr>(peek().span);
     }
-    return std::make_unique<IfElseExpr>(spanFrom(begin), std::move(condition),
-                                        std::move(thenValue), std::move(elseValue));
+    return std::make_unique<IfElseExpr>(spanFrom(begin), std::move(condition), std::move(thenValue),
+                                        std::move(elseValue));
   }
 
   ExprPtr parseRange() {
@@ -586,8 +585,9 @@ private:
   }
 
   template <typename Next>
-  ExprPtr parseLeftAssociative(Next next, std::initializer_list<std::pair<TokenKind, BinaryOperator>>
-                                              operators) {
+  ExprPtr
+  parseLeftAssociative(Next next,
+                       std::initializer_list<std::pair<TokenKind, BinaryOperator>> operators) {
     ExprPtr left = (this->*next)();
     while (!panicking_) {
       const std::pair<TokenKind, BinaryOperator>* found = nullptr;
@@ -625,9 +625,9 @@ private:
                                  {TokenKind::GreaterEqual, BinaryOperator::GreaterEqual}});
   }
   ExprPtr parseAdditive() {
-    return parseLeftAssociative(&Parser::parseMultiplicative,
-                                {{TokenKind::Plus, BinaryOperator::Add},
-                                 {TokenKind::Minus, BinaryOperator::Subtract}});
+    return parseLeftAssociative(
+        &Parser::parseMultiplicative,
+        {{TokenKind::Plus, BinaryOperator::Add}, {TokenKind::Minus, BinaryOperator::Subtract}});
   }
   ExprPtr parseMultiplicative() {
     return parseLeftAssociative(&Parser::parseUnary,
@@ -645,8 +645,8 @@ private:
     }
     if (check(TokenKind::Minus) || check(TokenKind::Bang)) {
       SourceSpan begin = peek().span;
-      UnaryOperator op = advance().kind == TokenKind::Minus ? UnaryOperator::Negate
-                                                             : UnaryOperator::Not;
+      UnaryOperator op =
+          advance().kind == TokenKind::Minus ? UnaryOperator::Negate : UnaryOperator::Not;
       ExprPtr operand = parseUnary();
       SourceSpan span = begin.to(operand->span);
       return std::make_unique<UnaryExpr>(span, op, std::move(operand));

@@ -27,8 +27,8 @@ public:
       if (parameter.declaration == nullptr) {
         continue;
       }
-      Value value = parameter.defaultValue ? evaluator_.evaluate(*parameter.defaultValue, {})
-                                           : Value{};
+      Value value =
+          parameter.defaultValue ? evaluator_.evaluate(*parameter.defaultValue, {}) : Value{};
       auto define = context_.options.defines.find(parameter.name);
       if (define != context_.options.defines.end()) {
         value = Value::ofNumber(define->second);
@@ -135,9 +135,9 @@ private:
     toolKnown_ = true;
     std::optional<double> toolNumber = wholeNumber(*tool.number, environment, "the tool number");
     if (toolNumber && *toolNumber < 1) {
-      evaluator_.report(DiagnosticKind::ValueNotPositive, tool.number->span,
-                        fmt::format("the tool number is {:g}; tools are numbered from 1",
-                                    *toolNumber));
+      evaluator_.report(
+          DiagnosticKind::ValueNotPositive, tool.number->span,
+          fmt::format("the tool number is {:g}; tools are numbered from 1", *toolNumber));
     }
     for (const Argument& setting : tool.settings) {
       std::optional<double> value =
@@ -154,8 +154,8 @@ private:
       return;
     }
     const auto& rangeExpression = as<RangeExpr>(*loop.range);
-    for (const auto& [bound, expression] :
-         {std::pair{range.low, rangeExpression.low.get()}, {range.high, rangeExpression.high.get()}}) {
+    for (const auto& [bound, expression] : {std::pair{range.low, rangeExpression.low.get()},
+                                            {range.high, rangeExpression.high.get()}}) {
       if (bound != std::floor(bound)) {
         evaluator_.report(DiagnosticKind::NotInteger, expression->span,
                           fmt::format("a loop bound must be a whole number, not {:g}", bound));
@@ -208,9 +208,9 @@ private:
     }
     for (const char* name : {"spacing", "feed"}) {
       if (auto found = values.find(name); found != values.end() && !(found->second.first > 0)) {
-        evaluator_.report(DiagnosticKind::ValueNotPositive, found->second.second->value->span,
-                          fmt::format("{}={:g}: it must be greater than 0", name,
-                                      found->second.first));
+        evaluator_.report(
+            DiagnosticKind::ValueNotPositive, found->second.second->value->span,
+            fmt::format("{}={:g}: it must be greater than 0", name, found->second.first));
       }
     }
     // Reported once per part: the first cut shows what is missing.
@@ -235,9 +235,9 @@ private:
     auto depth = values.find("depth");
     auto step = values.find("step");
     if (step != values.end() && !(step->second.first > 0)) {
-      evaluator_.report(DiagnosticKind::SweepStep, step->second.second->value->span,
-                        fmt::format("the sweep step is {:g}; it must be greater than 0",
-                                    step->second.first));
+      evaluator_.report(
+          DiagnosticKind::SweepStep, step->second.second->value->span,
+          fmt::format("the sweep step is {:g}; it must be greater than 0", step->second.first));
       return;
     }
     if (depth != values.end() && step != values.end() &&

@@ -159,14 +159,12 @@ void selectPart(SemaContext& context) {
   }
   if (program.parts.empty()) {
     const Module& main = program.modules.front();
-    context.report(DiagnosticKind::NoPart, {main.file, 0, 0},
-                   "this file has no 'part' to compile");
+    context.report(DiagnosticKind::NoPart, {main.file, 0, 0}, "this file has no 'part' to compile");
     return;
   }
-  Diagnostic* diagnostic =
-      context.report(DiagnosticKind::AmbiguousPart, program.parts[1]->nameSpan,
-                     fmt::format("this file has {} parts; choose one with -p NAME",
-                                 program.parts.size()));
+  Diagnostic* diagnostic = context.report(
+      DiagnosticKind::AmbiguousPart, program.parts[1]->nameSpan,
+      fmt::format("this file has {} parts; choose one with -p NAME", program.parts.size()));
   for (const PartItem* part : program.parts) {
     context.diagnostics.addNote(diagnostic, part->nameSpan,
                                 fmt::format("part '{}' is defined here", part->name));
@@ -220,16 +218,15 @@ const Reference* CheckedProgram::referenceAt(FileId file, std::uint32_t offset) 
   const Reference* best = nullptr;
   for (const Reference& reference : references) {
     if (contains(reference.span, file, offset) &&
-        (best == nullptr || reference.span.end - reference.span.begin <
-                                best->span.end - best->span.begin)) {
+        (best == nullptr ||
+         reference.span.end - reference.span.begin < best->span.end - best->span.begin)) {
       best = &reference;
     }
   }
   return best;
 }
 
-std::vector<const Declaration*> CheckedProgram::visibleAt(FileId file,
-                                                          std::uint32_t offset) const {
+std::vector<const Declaration*> CheckedProgram::visibleAt(FileId file, std::uint32_t offset) const {
   std::vector<const Declaration*> visible;
   for (const Declaration& declaration : declarations) {
     bool fileLevel = declaration.kind == DeclarationKind::Constant ||

@@ -22,20 +22,20 @@ struct Declaration;
 // Expressions
 
 enum class ExprKind {
-  Number,  // 12, 2.5mm, 45deg
-  Bool,    // true, false
-  String,  // "std/curves"
-  Name,    // P, depth, pi, t
-  Unary,   // -x, !c
-  Binary,  // a + b, a < b, a && b
-  Call,    // nurbs(order=4, points=P), sin(t), lobes(3, t)
-  Point,   // (x, y) or (x, y, z)
-  List,    // [1, 2, 3]
-  Range,   // a .. b
-  Index,   // L[i]
-  Member,  // p.x
-  IfElse,  // if c then a else b
-  Error,   // what could not be parsed
+  Number, // 12, 2.5mm, 45deg
+  Bool,   // true, false
+  String, // "std/curves"
+  Name,   // P, depth, pi, t
+  Unary,  // -x, !c
+  Binary, // a + b, a < b, a && b
+  Call,   // nurbs(order=4, points=P), sin(t), lobes(3, t)
+  Point,  // (x, y) or (x, y, z)
+  List,   // [1, 2, 3]
+  Range,  // a .. b
+  Index,  // L[i]
+  Member, // p.x
+  IfElse, // if c then a else b
+  Error,  // what could not be parsed
 };
 
 enum class UnaryOperator { Negate, Not };
@@ -267,8 +267,7 @@ struct CutStmt : Stmt {
 };
 
 struct ForStmt : Stmt {
-  ForStmt(SourceSpan span, std::string variable, SourceSpan variableSpan, ExprPtr range,
-          Block body)
+  ForStmt(SourceSpan span, std::string variable, SourceSpan variableSpan, ExprPtr range, Block body)
       : Stmt(StmtKind::For, span), variable(std::move(variable)), variableSpan(variableSpan),
         range(std::move(range)), body(std::move(body)) {}
   std::string variable;
@@ -280,8 +279,8 @@ struct ForStmt : Stmt {
 
 struct IfStmt : Stmt {
   IfStmt(SourceSpan span, ExprPtr condition, Block thenBlock, Block elseBlock, bool hasElse)
-      : Stmt(StmtKind::If, span), condition(std::move(condition)),
-        thenBlock(std::move(thenBlock)), elseBlock(std::move(elseBlock)), hasElse(hasElse) {}
+      : Stmt(StmtKind::If, span), condition(std::move(condition)), thenBlock(std::move(thenBlock)),
+        elseBlock(std::move(elseBlock)), hasElse(hasElse) {}
   ExprPtr condition;
   Block thenBlock;
   Block elseBlock; // `else if` becomes an else block holding one IfStmt
@@ -371,6 +370,8 @@ struct Module {
 template <typename Node, typename Base> const Node& as(const Base& node) {
   return static_cast<const Node&>(node);
 }
-template <typename Node, typename Base> Node& as(Base& node) { return static_cast<Node&>(node); }
+template <typename Node, typename Base> Node& as(Base& node) {
+  return static_cast<Node&>(node);
+}
 
 } // namespace cncc::frontend

@@ -1,0 +1,109 @@
+// Name resolution, scopes and types.
+//
+// Every expression gets a type; a mistake makes its expression's type Error,
+// which is accepted everywhere, so one mistake gives one message. `fn`
+// parameters have type Any: a function is checked once generically, and the
+// evaluator checks the values each call actually passes.
+#pragma once
+
+#include "sema_context.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cncc::frontend {
+
+// Constants and functions are checked on first use.
+enum class ItemState { Unchecked, InProgress, Checked };
+
+// Binds call arguments to parameters: positional ones in order, named ones
+// by name. Reports unknown, duplicate, surplus and missing arguments.
+struct ArgumentBinding {
+  std::vector<const Argument*> bound; // one per parameter, null when absent
+  std::vector<const Argument*> extra; // for variadic functions
+  bool ok = true;
+  bool unknownName = false; // a misspelt name: missing arguments are its echo
+};
+
+struct ParameterSpec {
+  std::string name;
+  bool required;
+};
+
+std::string joinNames(const std::vector<ParameterSpec>& parameters);
+
+class Checker {
+public:
+  explicit Checker(SemaContext& context) : context_(context) {}
+  void run();
+
+private:
+  // file level (checker_items.cpp)
+  void declareItems(Module& module);
+  static std::string functionSignature(const FnItem& function);
+  static const Declaration* itemDeclaration(const Item& item);
+  void buildFileScope(Module& module);
+  void addImportedNames(Scope& scope, const ImportItem& import,
+                        std::map<std::string, const ImportItem*>& importedFrom);
+  void checkItems(Module& module);
+  void checkUnnamedItem(Item& item, const Scope& scope);
+  void ensureChecked(const Declaration* declaration);
+  Type checkFunction(FnItem& function, const Scope& fileScope);
+
+  // parts (checker_statements.cpp)
+  void checkPart(PartItem& part, const Scope& fileScope);
+  void checkBlock(Block& block, const Scope& parent);
+  void checkStatement(Stmt& statement, Scope& scope, Block& block,
+                      std::vector<const Declaration*>& lets);
+  void checkSettings(std::vector<Argument>& settings, const std::vector<ParameterSpec>& allowed,
+                     const Scope& scope, std::string_view owner, SourceSpan ownerSpan);
+  void checkLet(LetStmt& let, Scope& scope, Block& block, std::vector<const Declaration*>& lets);
+  void warnIfShadowing(const std::string& name, SourceSpan span, const Scope& outer);
+  void checkFor(ForStmt& loop, const Scope& scope);
+  void checkCut(CutStmt& cut, const Scope& scope);
+  void checkModifier(Modifier& modifier, const Scope& scope,
+                     std::map<std::string, const Modifier*>& seen);
+  void checkChoice(Modifier& modifier, const std::vector<std::string>& choices);
+
+  // expressions (checker_expressions.cpp)
+  void expectNumber(Expr& expression, const Scope& scope, std::string_view context);
+  bool expectType(const Expr& expression, Type actual, TypeKind expected, std::string_view what,
+                  TypeKind element = TypeKind::Any);
+  Type checkExpression(Expr& expression, const Scope& scope);
+  Type computeType(Expr& expression, const Scope& scope);
+  Type checkName(NameExpr& name, const Scope& scope);
+  Type checkUnary(UnaryExpr& unary, const Scope& scope);
+  Type checkBinary(BinaryExpr& binary, const Scope& scope);
+  Type checkIfElse(IfElseExpr& choice, const Scope& scope);
+  Type checkPoint(PointExpr& point, const Scope& scope);
+  Type checkList(ListExpr& list, const Scope& scope);
+  Type checkIndex(IndexExpr& index, const Scope& scope);
+  Type checkMember(MemberExpr& member, const Scope& scope);
+
+  // calls (checker_calls.cpp)
+  Type checkCall(CallExpr& call, const Scope& scope);
+  void checkArgumentsAlone(CallExpr& call, const Scope& scope);
+  ArgumentBinding bindArguments(const CallExpr& call, const std::vector<ParameterSpec>& parameters,
+                                bool variadic);
+  void bindNamedArgument(const CallExpr& call, const Argument& argument,
+                         const std::vector<ParameterSpec>& parameters, ArgumentBinding& binding);
+  void reportMissing(const CallExpr& call, const std::vector<ParameterSpec>& parameters,
+                     ArgumentBinding& binding);
+  Type checkFunctionCall(CallExpr& call, const Declaration& declaration, const Scope& scope);
+  Type checkBuiltinCall(CallExpr& call, const Scope& scope);
+  void checkOrderOrDegree(const CallExpr& call, ArgumentBinding& binding);
+  static Type builtinResultType(const std::string& name);
+  bool checkBuiltinArgument(const std::string& function, const std::string& parameter, Expr& value,
+                            const Scope& scope);
+  bool checkAnalyticCurve(CallExpr& call, const std::vector<ParameterSpec>& parameters,
+                          const ArgumentBinding& binding, const Scope& scope);
+
+  static std::optional<Type> binaryResultType(BinaryOperator op, Type left, Type right);
+
+  SemaContext& context_;
+  std::map<const Declaration*, ItemState> states_;
+};
+
+} // namespace cncc::frontend
