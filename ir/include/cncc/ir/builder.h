@@ -1,0 +1,57 @@
+// Builds a Function instruction by instruction, with an insertion point
+// that enters and leaves the regions of loops and ifs.
+#pragma once
+
+#include "cncc/ir/ir.h"
+
+#include <utility>
+
+namespace cncc::ir {
+
+class FunctionBuilder {
+public:
+  explicit FunctionBuilder(std::string name);
+
+  std::uint32_t addParameter(std::string name, double defaultValue);
+  std::uint32_t addTable(std::vector<double> values);
+
+  ValueId constant(double value);
+  ValueId constantBool(bool value);
+  ValueId parameter(std::uint32_t index);
+  ValueId tableLoad(std::uint32_t table, ValueId index);
+  // Any operation of fixed operands whose result type the table gives.
+  ValueId operation(Opcode opcode, std::vector<ValueId> operands);
+  ValueId unary(Opcode opcode, ValueId operand) { return operation(opcode, {operand}); }
+  ValueId binary(Opcode opcode, ValueId left, ValueId right) {
+    return operation(opcode, {left, right});
+  }
+
+  // `%i = loop %low, %high { ... }`: returns the induction variable; the
+  // insertion point moves into the body until endLoop().
+  ValueId beginLoop(ValueId low, ValueId high);
+  void endLoop();
+  // `if %c { ... } else { ... }`: the insertion point moves into the then
+  // region; beginElse() moves it to the else region; endIf() leaves.
+  void beginIf(ValueId condition);
+  void beginElse();
+  void endIf();
+
+  void rapid(ValueId x, ValueId y, ValueId z);
+  void feed(ValueId x, ValueId y, ValueId z, ValueId feedRate);
+  void spindle(ValueId speed);
+  void tool(double number, ValueId diameter);
+  void comment(std::string text);
+
+  Function finish();
+  const Function& function() const { return function_; }
+
+private:
+  InstructionId append(Instruction instruction, ValueType resultType);
+  Region& currentRegion();
+
+  Function function_;
+  // The regions being filled: (instruction, region index); empty = body.
+  std::vector<std::pair<InstructionId, std::size_t>> insertion_;
+};
+
+} // namespace cncc::ir

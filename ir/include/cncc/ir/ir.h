@@ -1,0 +1,81 @@
+// The IR: the single meaning of a part. A Function per part, its parameters
+// as inputs; SSA values of type f64 or bool; structured control flow (loops
+// with an induction variable, if/else) because every controller language
+// cncc targets is structured; side effects (moves, spindle, tool, comments)
+// as explicit operations. Instructions live in one flat vector and refer to
+// each other by index.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::ir {
+
+enum class Opcode {
+#define CNCC_IR_OP(identifier, spelling, operands, result, meaning) identifier,
+#include "cncc/ir/ir_ops.def"
+};
+
+enum class ValueType { None, F64, Bool };
+
+struct OpcodeInfo {
+  std::string_view spelling;
+  int operandCount; // -1: any
+  ValueType result;
+  std::string_view meaning;
+};
+
+const OpcodeInfo& opcodeInfo(Opcode opcode);
+// Every opcode, in declaration order.
+std::vector<Opcode> allOpcodes();
+
+// An SSA value: the result of one instruction.
+struct ValueId {
+  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t index = none;
+  bool valid() const { return index != none; }
+  friend bool operator==(ValueId, ValueId) = default;
+};
+
+using InstructionId = std::uint32_t;
+
+// A straight-line list of instructions; loops and ifs own nested regions.
+struct Region {
+  std::vector<InstructionId> instructions;
+};
+
+struct Instruction {
+  Opcode opcode = Opcode::Const;
+  std::vector<ValueId> operands;
+  ValueId result;              // invalid when the operation has none
+  double number = 0;           // Const value, ConstBool (0 or 1), Tool number
+  std::uint32_t index = 0;     // TableLoad: the table; Param: the parameter
+  std::string text;            // Comment text
+  std::vector<Region> regions; // Loop: {body}; If: {then, else}
+};
+
+struct Parameter {
+  std::string name;
+  double defaultValue = 0;
+};
+
+struct Function {
+  std::string name;
+  std::vector<Parameter> parameters;
+  // Constant tables, such as precomputed curve parameters.
+  std::vector<std::vector<double>> tables;
+  std::vector<Instruction> instructions;
+  // The type of each value, and the instruction that defines it.
+  std::vector<ValueType> valueTypes;
+  std::vector<InstructionId> definitions;
+  Region body;
+
+  const Instruction& definition(ValueId value) const {
+    return instructions[definitions[value.index]];
+  }
+};
+
+} // namespace cncc::ir

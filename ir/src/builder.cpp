@@ -1,0 +1,138 @@
+#include "cncc/ir/builder.h"
+
+namespace cncc::ir {
+
+FunctionBuilder::FunctionBuilder(std::string name) {
+  function_.name = std::move(name);
+}
+
+std::uint32_t FunctionBuilder::addParameter(std::string name, double defaultValue) {
+  function_.parameters.push_back({std::move(name), defaultValue});
+  return static_cast<std::uint32_t>(function_.parameters.size() - 1);
+}
+
+std::uint32_t FunctionBuilder::addTable(std::vector<double> values) {
+  function_.tables.push_back(std::move(values));
+  return static_cast<std::uint32_t>(function_.tables.size() - 1);
+}
+
+Region& FunctionBuilder::currentRegion() {
+  if (insertion_.empty()) {
+    return function_.body;
+  }
+  auto [instruction, region] = insertion_.back();
+  return function_.instructions[instruction].regions[region];
+}
+
+InstructionId FunctionBuilder::append(Instruction instruction, ValueType resultType) {
+  auto id = static_cast<InstructionId>(function_.instructions.size());
+  if (resultType != ValueType::None) {
+    instruction.result = ValueId{static_cast<std::uint32_t>(function_.valueTypes.size())};
+    function_.valueTypes.push_back(resultType);
+    function_.definitions.push_back(id);
+  }
+  currentRegion().instructions.push_back(id);
+  function_.instructions.push_back(std::move(instruction));
+  return id;
+}
+
+ValueId FunctionBuilder::constant(double value) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Const;
+  instruction.number = value;
+  return function_.instructions[append(std::move(instruction), ValueType::F64)].result;
+}
+
+ValueId FunctionBuilder::constantBool(bool value) {
+  Instruction instruction;
+  instruction.opcode = Opcode::ConstBool;
+  instruction.number = value ? 1 : 0;
+  return function_.instructions[append(std::move(instruction), ValueType::Bool)].result;
+}
+
+ValueId FunctionBuilder::parameter(std::uint32_t index) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Param;
+  instruction.index = index;
+  return function_.instructions[append(std::move(instruction), ValueType::F64)].result;
+}
+
+ValueId FunctionBuilder::tableLoad(std::uint32_t table, ValueId index) {
+  Instruction instruction;
+  instruction.opcode = Opcode::TableLoad;
+  instruction.index = table;
+  instruction.operands = {index};
+  return function_.instructions[append(std::move(instruction), ValueType::F64)].result;
+}
+
+ValueId FunctionBuilder::operation(Opcode opcode, std::vector<ValueId> operands) {
+  Instruction instruction;
+  instruction.opcode = opcode;
+  instruction.operands = std::move(operands);
+  return function_.instructions[append(std::move(instruction), opcodeInfo(opcode).result)].result;
+}
+
+ValueId FunctionBuilder::beginLoop(ValueId low, ValueId high) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Loop;
+  instruction.operands = {low, high};
+  instruction.regions.resize(1);
+  InstructionId id = append(std::move(instruction), ValueType::F64);
+  insertion_.push_back({id, 0});
+  return function_.instructions[id].result;
+}
+
+void FunctionBuilder::endLoop() {
+  insertion_.pop_back();
+}
+
+void FunctionBuilder::beginIf(ValueId condition) {
+  Instruction instruction;
+  instruction.opcode = Opcode::If;
+  instruction.operands = {condition};
+  instruction.regions.resize(2);
+  InstructionId id = append(std::move(instruction), ValueType::None);
+  insertion_.push_back({id, 0});
+}
+
+void FunctionBuilder::beginElse() {
+  insertion_.back().second = 1;
+}
+
+void FunctionBuilder::endIf() {
+  insertion_.pop_back();
+}
+
+void FunctionBuilder::rapid(ValueId x, ValueId y, ValueId z) {
+  operation(Opcode::Rapid, {x, y, z});
+}
+
+void FunctionBuilder::feed(ValueId x, ValueId y, ValueId z, ValueId feedRate) {
+  operation(Opcode::Feed, {x, y, z, feedRate});
+}
+
+void FunctionBuilder::spindle(ValueId speed) {
+  operation(Opcode::Spindle, {speed});
+}
+
+void FunctionBuilder::tool(double number, ValueId diameter) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Tool;
+  instruction.number = number;
+  instruction.operands = {diameter};
+  append(std::move(instruction), ValueType::None);
+}
+
+void FunctionBuilder::comment(std::string text) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Comment;
+  instruction.text = std::move(text);
+  append(std::move(instruction), ValueType::None);
+}
+
+Function FunctionBuilder::finish() {
+  insertion_.clear();
+  return std::move(function_);
+}
+
+} // namespace cncc::ir

@@ -1,0 +1,308 @@
+// Reads the text form that printer.cpp writes, one instruction a line.
+#include "cncc/ir/builder.h"
+#include "cncc/ir/printer.h"
+
+#include <charconv>
+#include <fmt/format.h>
+#include <map>
+
+namespace cncc::ir {
+
+namespace {
+
+std::string_view trim(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) {
+    text.remove_prefix(1);
+  }
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) {
+    text.remove_suffix(1);
+  }
+  return text;
+}
+
+bool startsWith(std::string_view text, std::string_view prefix) {
+  return text.substr(0, prefix.size()) == prefix;
+}
+
+std::vector<std::string_view> splitList(std::string_view text) {
+  std::vector<std::string_view> parts;
+  while (!trim(text).empty()) {
+    std::size_t comma = text.find(',');
+    parts.push_back(trim(text.substr(0, comma)));
+    if (comma == std::string_view::npos) {
+      break;
+    }
+    text.remove_prefix(comma + 1);
+  }
+  return parts;
+}
+
+struct Failure {
+  std::string message;
+};
+
+double parseNumber(std::string_view text) {
+  text = trim(text);
+  double value = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    throw Failure{fmt::format("expected a number, found '{}'", text)};
+  }
+  return value;
+}
+
+class IrParser {
+public:
+  Function parse(std::string_view text) {
+    std::size_t lineNumber = 0;
+    while (!text.empty()) {
+      std::size_t newline = text.find('\n');
+      std::string_view line = trim(text.substr(0, newline));
+      text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
+      ++lineNumber;
+      line_ = static_cast<int>(lineNumber);
+      if (!line.empty() && !startsWith(line, "//")) {
+        parseLine(line);
+      }
+    }
+    if (!builder_ || !finished_) {
+      throw Failure{"the function is not closed with '}'"};
+    }
+    return builder_->finish();
+  }
+
+  int line() const { return line_; }
+
+private:
+  void parseLine(std::string_view line) {
+    if (!builder_) {
+      parseHeader(line);
+      return;
+    }
+    if (finished_) {
+      throw Failure{"text after the end of the function"};
+    }
+    if (line == "}") {
+      close();
+      return;
+    }
+    if (line == "} else {") {
+      if (open_.empty() || open_.back() != Opcode::If) {
+        throw Failure{"'else' without 'if'"};
+      }
+      builder_->beginElse();
+      return;
+    }
+    if (startsWith(line, "table @")) {
+      parseTable(line);
+      return;
+    }
+    std::string_view result;
+    if (startsWith(line, "%")) {
+      std::size_t equals = line.find(" = ");
+      if (equals == std::string_view::npos) {
+        throw Failure{"expected '%name = operation'"};
+      }
+      result = line.substr(0, equals);
+      line = line.substr(equals + 3);
+    }
+    parseOperation(result, line);
+  }
+
+  void parseHeader(std::string_view line) {
+    if (!startsWith(line, "func @") || line.back() != '{') {
+      throw Failure{"expected 'func @name(...) {'"};
+    }
+    std::size_t open = line.find('(');
+    std::size_t close = line.rfind(')');
+    if (open == std::string_view::npos || close == std::string_view::npos || close < open) {
+      throw Failure{"expected the parameter list in parentheses"};
+    }
+    builder_.emplace(std::string(line.substr(6, open - 6)));
+    for (std::string_view parameter : splitList(line.substr(open + 1, close - open - 1))) {
+      std::size_t equals = parameter.find('=');
+      if (equals == std::string_view::npos) {
+        throw Failure{"a parameter needs a default: 'name = value'"};
+      }
+      std::string name(trim(parameter.substr(0, equals)));
+      parameters_[name] = builder_->addParameter(name, parseNumber(parameter.substr(equals + 1)));
+    }
+  }
+
+  void parseTable(std::string_view line) {
+    std::size_t open = line.find('[');
+    std::size_t close = line.rfind(']');
+    if (open == std::string_view::npos || close == std::string_view::npos) {
+      throw Failure{"expected 'table @n = [...]'"};
+    }
+    std::vector<double> values;
+    for (std::string_view value : splitList(line.substr(open + 1, close - open - 1))) {
+      values.push_back(parseNumber(value));
+    }
+    builder_->addTable(std::move(values));
+  }
+
+  ValueId value(std::string_view name) {
+    auto found = values_.find(std::string(trim(name)));
+    if (found == values_.end()) {
+      throw Failure{fmt::format("'{}' is not defined", trim(name))};
+    }
+    return found->second;
+  }
+
+  std::vector<ValueId> operandList(std::string_view text) {
+    std::vector<ValueId> operands;
+    for (std::string_view name : splitList(text)) {
+      operands.push_back(value(name));
+    }
+    return operands;
+  }
+
+  void define(std::string_view name, ValueId id) {
+    if (name.empty()) {
+      throw Failure{"this operation has a result; write '%name = ...'"};
+    }
+    if (!values_.emplace(std::string(name), id).second) {
+      throw Failure{fmt::format("'{}' is defined twice", name)};
+    }
+  }
+
+  void parseOperation(std::string_view result, std::string_view line) {
+    std::size_t space = line.find(' ');
+    std::string spelling(line.substr(0, space));
+    std::string_view rest = space == std::string_view::npos ? "" : trim(line.substr(space + 1));
+    auto opcode = opcodes().find(spelling);
+    if (opcode == opcodes().end()) {
+      throw Failure{fmt::format("unknown operation '{}'", spelling)};
+    }
+    switch (opcode->second) {
+    case Opcode::Const:
+      define(result, builder_->constant(parseNumber(rest)));
+      return;
+    case Opcode::ConstBool:
+      define(result, builder_->constantBool(rest == "true"));
+      return;
+    case Opcode::Param: {
+      auto found = parameters_.find(std::string(rest));
+      if (found == parameters_.end()) {
+        throw Failure{fmt::format("'{}' is not a parameter of the function", rest)};
+      }
+      define(result, builder_->parameter(found->second));
+      return;
+    }
+    case Opcode::TableLoad: {
+      std::vector<std::string_view> parts = splitList(rest);
+      if (parts.size() != 2 || !startsWith(parts[0], "@")) {
+        throw Failure{"expected 'table.load @n, %index'"};
+      }
+      auto table = static_cast<std::uint32_t>(parseNumber(parts[0].substr(1)));
+      define(result, builder_->tableLoad(table, value(parts[1])));
+      return;
+    }
+    case Opcode::Tool: {
+      std::vector<std::string_view> parts = splitList(rest);
+      if (parts.size() != 2) {
+        throw Failure{"expected 'tool number, %diameter'"};
+      }
+      builder_->tool(parseNumber(parts[0]), value(parts[1]));
+      return;
+    }
+    case Opcode::Comment:
+      builder_->comment(unquote(rest));
+      return;
+    case Opcode::Loop: {
+      if (rest.empty() || rest.back() != '{') {
+        throw Failure{"expected '{' after the loop's bounds"};
+      }
+      std::vector<ValueId> bounds = operandList(rest.substr(0, rest.size() - 1));
+      if (bounds.size() != 2) {
+        throw Failure{"a loop has two bounds"};
+      }
+      define(result, builder_->beginLoop(bounds[0], bounds[1]));
+      open_.push_back(Opcode::Loop);
+      return;
+    }
+    case Opcode::If: {
+      if (rest.empty() || rest.back() != '{') {
+        throw Failure{"expected '{' after the condition"};
+      }
+      builder_->beginIf(value(rest.substr(0, rest.size() - 1)));
+      open_.push_back(Opcode::If);
+      return;
+    }
+    default:
+      break;
+    }
+    const OpcodeInfo& info = opcodeInfo(opcode->second);
+    std::vector<ValueId> operands = operandList(rest);
+    if (info.operandCount >= 0 && static_cast<int>(operands.size()) != info.operandCount) {
+      throw Failure{fmt::format("'{}' takes {} operands, not {}", spelling, info.operandCount,
+                                operands.size())};
+    }
+    ValueId id = builder_->operation(opcode->second, std::move(operands));
+    if (info.result != ValueType::None) {
+      define(result, id);
+    } else if (!result.empty()) {
+      throw Failure{fmt::format("'{}' has no result", spelling)};
+    }
+  }
+
+  static std::string unquote(std::string_view text) {
+    if (text.size() < 2 || text.front() != '"' || text.back() != '"') {
+      throw Failure{"expected a quoted string"};
+    }
+    std::string result;
+    for (std::size_t i = 1; i + 1 < text.size(); ++i) {
+      if (text[i] == '\\' && i + 2 < text.size()) {
+        ++i;
+      }
+      result += text[i];
+    }
+    return result;
+  }
+
+  void close() {
+    if (open_.empty()) {
+      finished_ = true;
+      return;
+    }
+    if (open_.back() == Opcode::Loop) {
+      builder_->endLoop();
+    } else {
+      builder_->endIf();
+    }
+    open_.pop_back();
+  }
+
+  static const std::map<std::string, Opcode>& opcodes() {
+    static const std::map<std::string, Opcode> table = [] {
+      std::map<std::string, Opcode> result;
+      for (Opcode opcode : allOpcodes()) {
+        result[std::string(opcodeInfo(opcode).spelling)] = opcode;
+      }
+      return result;
+    }();
+    return table;
+  }
+
+  std::optional<FunctionBuilder> builder_;
+  std::map<std::string, std::uint32_t> parameters_;
+  std::map<std::string, ValueId> values_;
+  std::vector<Opcode> open_;
+  bool finished_ = false;
+  int line_ = 0;
+};
+
+} // namespace
+
+std::optional<Function> parseFunction(std::string_view text, ParseError& error) {
+  IrParser parser;
+  try {
+    return parser.parse(text);
+  } catch (const Failure& failure) {
+    error = {parser.line(), failure.message};
+    return std::nullopt;
+  }
+}
+
+} // namespace cncc::ir

@@ -1,0 +1,118 @@
+#include "cncc/ir/printer.h"
+
+#include <fmt/format.h>
+#include <map>
+
+namespace cncc::ir {
+
+namespace {
+
+std::string quoted(std::string_view text) {
+  std::string result = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      result += '\\';
+    }
+    result += c == '\n' ? ' ' : c;
+  }
+  return result + "\"";
+}
+
+class Printer {
+public:
+  explicit Printer(const Function& function) : function_(function) {}
+
+  std::string print() {
+    out_ += fmt::format("func @{}(", function_.name);
+    for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
+      const Parameter& parameter = function_.parameters[i];
+      out_ += fmt::format("{}{} = {}", i == 0 ? "" : ", ", parameter.name, parameter.defaultValue);
+    }
+    out_ += ") {\n";
+    for (std::size_t i = 0; i < function_.tables.size(); ++i) {
+      out_ += fmt::format("  table @{} = [{}]\n", i, fmt::join(function_.tables[i], ", "));
+    }
+    printRegion(function_.body, 1);
+    out_ += "}\n";
+    return out_;
+  }
+
+private:
+  std::string name(ValueId value) {
+    auto [entry, inserted] = names_.try_emplace(value.index, names_.size());
+    return fmt::format("%{}", entry->second);
+  }
+
+  std::string operands(const Instruction& instruction) {
+    std::string text;
+    for (std::size_t i = 0; i < instruction.operands.size(); ++i) {
+      text += (i == 0 ? "" : ", ") + name(instruction.operands[i]);
+    }
+    return text;
+  }
+
+  void printRegion(const Region& region, int depth) {
+    for (InstructionId id : region.instructions) {
+      printInstruction(function_.instructions[id], depth);
+    }
+  }
+
+  void printInstruction(const Instruction& instruction, int depth) {
+    std::string indent(static_cast<std::size_t>(depth) * 2, ' ');
+    std::string_view spelling = opcodeInfo(instruction.opcode).spelling;
+    std::string operandText = operands(instruction);
+    std::string result = instruction.result.valid() ? name(instruction.result) + " = " : "";
+    switch (instruction.opcode) {
+    case Opcode::Const:
+      out_ += fmt::format("{}{}const {}\n", indent, result, instruction.number);
+      return;
+    case Opcode::ConstBool:
+      out_ += fmt::format("{}{}const.bool {}\n", indent, result,
+                          instruction.number != 0 ? "true" : "false");
+      return;
+    case Opcode::Param:
+      out_ += fmt::format("{}{}param {}\n", indent, result,
+                          function_.parameters[instruction.index].name);
+      return;
+    case Opcode::TableLoad:
+      out_ +=
+          fmt::format("{}{}table.load @{}, {}\n", indent, result, instruction.index, operandText);
+      return;
+    case Opcode::Tool:
+      out_ += fmt::format("{}tool {}, {}\n", indent, instruction.number, operandText);
+      return;
+    case Opcode::Comment:
+      out_ += fmt::format("{}comment {}\n", indent, quoted(instruction.text));
+      return;
+    case Opcode::Loop:
+      out_ += fmt::format("{}{}loop {} {{\n", indent, result, operandText);
+      printRegion(instruction.regions[0], depth + 1);
+      out_ += indent + "}\n";
+      return;
+    case Opcode::If:
+      out_ += fmt::format("{}if {} {{\n", indent, operandText);
+      printRegion(instruction.regions[0], depth + 1);
+      if (!instruction.regions[1].instructions.empty()) {
+        out_ += indent + "} else {\n";
+        printRegion(instruction.regions[1], depth + 1);
+      }
+      out_ += indent + "}\n";
+      return;
+    default:
+      out_ += fmt::format("{}{}{} {}\n", indent, result, spelling, operandText);
+      return;
+    }
+  }
+
+  const Function& function_;
+  std::string out_;
+  std::map<std::uint32_t, std::size_t> names_;
+};
+
+} // namespace
+
+std::string printFunction(const Function& function) {
+  return Printer(function).print();
+}
+
+} // namespace cncc::ir
