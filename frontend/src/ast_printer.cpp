@@ -15,26 +15,29 @@ std::string formatNumber(double value) {
   return fmt::format("{}", value);
 }
 
-// `text` between `quote` characters, with the quote, the backslash and
-// unprintable bytes escaped so every dump line stays one line.
-std::string quoteText(std::string_view text, char quote) {
-  std::string out(1, quote);
+// `text` with unprintable bytes as `\xNN`, so every dump line stays one line.
+std::string printable(std::string_view text) {
+  std::string out;
   for (unsigned char c : text) {
-    if (c == static_cast<unsigned char>(quote) || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c < 0x20 || c >= 0x7f) {
+    if (c < 0x20 || c >= 0x7f) {
       out += fmt::format("\\x{:02x}", c);
     } else {
       out += static_cast<char>(c);
     }
   }
-  out += quote;
   return out;
+}
+
+// A string's value as a double-quoted literal, `"` and `\` escaped.
+std::string stringLiteral(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+    }
+    out += c;
+  }
+  return printable(out + "\"");
 }
 
 std::string location(SourceSpan span, const SourceManager& sources) {
@@ -61,14 +64,14 @@ std::string dumpTokens(const std::vector<Token>& tokens, const SourceManager& so
   std::string out;
   for (const Token& token : tokens) {
     out += fmt::format("{} {} {}", location(token.span, sources), tokenKindName(token.kind),
-                       quoteText(sources.text(token.span), '\''));
+                       "'" + printable(sources.text(token.span)) + "'");
     if (token.kind == TokenKind::Number) {
       out += fmt::format(" value={}", formatNumber(token.number));
       if (token.unit != UnitSuffix::None) {
         out += fmt::format(" unit={}", unitSuffixSpelling(token.unit));
       }
     } else if (token.kind == TokenKind::String) {
-      out += fmt::format(" value={}", quoteText(token.text, '"'));
+      out += fmt::format(" value={}", stringLiteral(token.text));
     }
     out += '\n';
   }
@@ -148,7 +151,7 @@ private:
     switch (item.kind) {
     case ItemKind::Import: {
       const auto& import = as<ImportItem>(item);
-      node("Import", item.span, quoteText(import.path, '"'));
+      node("Import", item.span, stringLiteral(import.path));
       return;
     }
     case ItemKind::Const: {
@@ -307,7 +310,7 @@ private:
       node("Bool", span, as<BoolExpr>(expression).value ? "true" : "false", type);
       return;
     case ExprKind::String:
-      node("String", span, quoteText(as<StringExpr>(expression).value, '"'), type);
+      node("String", span, stringLiteral(as<StringExpr>(expression).value), type);
       return;
     case ExprKind::Name: {
       const auto& nameExpr = as<NameExpr>(expression);

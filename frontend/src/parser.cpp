@@ -589,6 +589,9 @@ private:
   parseLeftAssociative(Next next,
                        std::initializer_list<std::pair<TokenKind, BinaryOperator>> operators) {
     ExprPtr left = (this->*next)();
+    // Every operator deepens the (left-leaning) tree that later phases walk
+    // recursively, so a chain is bounded like nesting is.
+    int chainLength = 0;
     while (!panicking_) {
       const std::pair<TokenKind, BinaryOperator>* found = nullptr;
       for (const auto& entry : operators) {
@@ -597,6 +600,12 @@ private:
         }
       }
       if (found == nullptr) {
+        return left;
+      }
+      if (++chainLength > maximumChainLength) {
+        error(DiagnosticKind::NestingTooDeep, peek().span,
+              fmt::format("more than {} operators in a row; split the expression with 'let'",
+                          maximumChainLength));
         return left;
       }
       SourceSpan operatorSpan = advance().span;
@@ -637,13 +646,13 @@ private:
   }
 
   ExprPtr parseUnary() {
-    DepthGuard guard(depth_);
-    if (depth_ > maximumNestingDepth) {
-      error(DiagnosticKind::NestingTooDeep, peek().span,
-            fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
-      return std::make_unique<ErrorExpr>(peek().span);
-    }
     if (check(TokenKind::Minus) || check(TokenKind::Bang)) {
+      DepthGuard guard(depth_);
+      if (depth_ > maximumNestingDepth) {
+        error(DiagnosticKind::NestingTooDeep, peek().span,
+              fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
+        return std::make_unique<ErrorExpr>(peek().span);
+      }
       SourceSpan begin = peek().span;
       UnaryOperator op =
           advance().kind == TokenKind::Minus ? UnaryOperator::Negate : UnaryOperator::Not;

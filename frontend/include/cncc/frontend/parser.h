@@ -16,6 +16,8 @@ namespace cncc::frontend {
 
 // Deeper nesting than this is an error rather than a stack overflow.
 inline constexpr int maximumNestingDepth = 200;
+// Likewise for a chain of binary operators such as 1 + 1 + ... + 1.
+inline constexpr int maximumChainLength = 2000;
 
 Module parse(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnostics);
 
