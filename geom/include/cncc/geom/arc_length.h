@@ -14,15 +14,16 @@ inline constexpr double kArcLengthTolerance = 1e-10;
 /// quadrature of |C'(t)| (10 nodes; an interval is split until it and its two halves
 /// agree within its share of `tolerance`), integrating each smooth piece between
 /// breakpoints separately.
-double arcLength(const Curve& curve, double ta, double tb,
-                 double tolerance = kArcLengthTolerance);
+double arcLength(const Curve& curve, double ta, double tb, double tolerance = kArcLengthTolerance);
 double arcLength(const Curve& curve, double tolerance = kArcLengthTolerance);
 
 /// Cumulative arc length s(t) over the whole curve, and its inverse t(s).
 /// Built once by the adaptive quadrature; lookups reuse its accepted intervals.
+/// Keeps a reference to the curve, which must outlive the table.
 class ArcLengthTable {
 public:
   explicit ArcLengthTable(const Curve& curve, double tolerance = kArcLengthTolerance);
+  explicit ArcLengthTable(const Curve&& curve, double tolerance = kArcLengthTolerance) = delete;
 
   double totalLength() const { return cumulative_.back(); }
   /// s(t), arc length from t0 to t.

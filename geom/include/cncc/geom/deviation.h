@@ -35,18 +35,24 @@ struct DeviationReport {
 };
 
 struct DeviationOptions {
-  /// Absolute accuracy (mm) of the reported distances. The curve is sampled so that
-  /// the polyline through its samples is within `accuracy` of it, polyline segments
-  /// at the matching spacing, and every sampled local maximum is refined.
+  /// Absolute accuracy (mm). The curve is sampled so that the polyline through its
+  /// samples stays within `accuracy` of it, polyline segments are sampled at the
+  /// spacing at which the tightest bend of the curve sags by `accuracy`, and every
+  /// sampled local maximum is refined (Brent's method on the distance). A reported
+  /// distance is therefore one actually attained, exact to rounding (~1e-13 mm); only
+  /// a peak narrower than the sampling could be under-reported, by about `accuracy`.
+  /// Work grows like length / sqrt(accuracy * smallest radius of curvature).
   double accuracy = 1e-7;
 };
 
 /// Closest points on a curve, from a dense polyline through curve samples (chosen so
 /// it stays within `accuracy` of the curve) and a bounding-box tree over it, then
-/// refinement of the curve parameter by Brent's method and Newton's method.
+/// refinement of the curve parameter by Newton's method (Brent's method when Newton
+/// does not converge). Keeps a reference to the curve, which must outlive it.
 class CurveProximity {
 public:
   CurveProximity(const Curve& curve, double accuracy);
+  CurveProximity(const Curve&& curve, double accuracy) = delete; // would dangle
   ~CurveProximity();
   CurveProximity(const CurveProximity&) = delete;
   CurveProximity& operator=(const CurveProximity&) = delete;
@@ -73,7 +79,7 @@ private:
 };
 
 /// Both directed deviations between `polyline` (at least one vertex) and `curve`.
-DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline,
-                                 const Curve& curve, const DeviationOptions& options = {});
+DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline, const Curve& curve,
+                                 const DeviationOptions& options = {});
 
 } // namespace cncc::geom

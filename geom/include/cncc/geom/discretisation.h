@@ -19,21 +19,25 @@ struct CurveSamples {
 };
 
 /// Largest distance from the curve arc C([ta, tb]) to the chord segment C(ta)C(tb).
-/// Sampled at 16 parameters or more (more where the arc turns), every sampled local
-/// maximum refined by Brent's method, so the value is never underestimated by more
-/// than the rounding of the refinement (about 1e-12 relative).
+/// Sampled at 16 equal parameter steps (four times as many, repeatedly, while
+/// neighbouring sample chords turn by more than 0.2 rad), and every sampled local
+/// maximum refined by Brent's method, so the value is the arc's true largest distance
+/// up to the rounding of the point evaluation (a few ulp of the coordinates).
 double chordDeviation(const Curve& curve, double ta, double tb);
 
 /// The fewest chords with vertices on the curve such that every chord deviates at
-/// most `tolerance` from the arc it replaces (chordDeviation <= tolerance).
+/// most `tolerance` from the arc it replaces (chordDeviation <= tolerance, with a
+/// margin of 64 ulp of the coordinates so that rounding in an independent measurement
+/// cannot push a chord over).
 ///
 /// A farthest-reach greedy walk: from the current vertex it finds the farthest
 /// parameter whose chord still meets the tolerance (bracketing by doubling, then
 /// bisection to about 1e-13 of the domain), and moves there. When feasibility is
 /// monotone (if a chord meets the tolerance so does every chord over a sub-arc of
 /// it) the greedy vertex is at every step at least as far along as the vertex of any
-/// other valid chain, so no chain has fewer chords. Throws GeometryError for a
-/// tolerance <= 0.
+/// other valid chain, so no chain has fewer chords. The walk starts at t0; for a
+/// closed curve the count is the fewest for a chain with a vertex at t0. Throws
+/// GeometryError for a tolerance <= 0.
 CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance);
 
 /// `count` >= 2 samples at equal parameter steps from t0 to t1 inclusive.

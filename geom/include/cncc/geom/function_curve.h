@@ -17,10 +17,11 @@ using PointFunction = std::function<Eigen::Vector3d(double)>;
 /// Derivative callbacks are optional. Without them derivatives come from fourth-order
 /// finite differences of the position callback: central 5-point stencils inside the
 /// domain, one-sided 5-point stencils within two steps of an end (so the callback is
-/// never called outside the domain). Steps are eps^(1/5) (first) and eps^(1/6)
-/// (second derivative) times max(1, |t|), which balances truncation against rounding
-/// for parameters of order 1 (angles, normalised parameters); accuracy is then about
-/// 1e-9 relative for the first and 1e-6 for the second derivative of smooth curves.
+/// never called outside the domain). Steps are eps^(1/5) = 7.4e-4 (first) and
+/// eps^(1/6) = 2.5e-3 (second derivative) in t, which balances truncation against
+/// rounding for curves that vary on a parameter scale of about 1 (angles, normalised
+/// parameters): relative accuracy is then about 1e-9 (first) and 1e-6 (second) for
+/// slowly varying curves and (h w)^4 for a curve oscillating at w rad per unit of t.
 class FunctionCurve : public Curve {
 public:
   FunctionCurve(ParameterRange range, PointFunction position, PointFunction first = {},

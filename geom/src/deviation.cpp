@@ -1,0 +1,204 @@
+#include "cncc/geom/deviation.h"
+
+#include "cncc/geom/geometry_error.h"
+#include "curve_sampling.h"
+#include "scalar_optimisation.h"
+#include "segment_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cncc::geom {
+
+namespace {
+
+constexpr double kMaxTurnBetweenSamples = 0.1;
+constexpr int kMaxSamplesPerSegment = 1 << 16;
+constexpr int kNewtonIterations = 8;
+constexpr double kNewtonStepResolution = 1e-9;
+
+bool isLocalMaximum(const std::vector<double>& values, std::size_t i) {
+  bool aboveLeft = i == 0 || values[i] >= values[i - 1];
+  bool aboveRight = i + 1 == values.size() || values[i] >= values[i + 1];
+  return aboveLeft && aboveRight;
+}
+
+// Sampled local maxima worth refining: refinement can lift a sample by about the
+// sampling accuracy, or more where the samples are coarse relative to the peak.
+bool worthRefining(double value, double largestSample, double accuracy) {
+  return value >= std::min(0.5 * largestSample, largestSample - 4.0 * accuracy);
+}
+
+} // namespace
+
+struct CurveProximity::Index {
+  detail::SegmentTree tree;
+};
+
+CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(curve) {
+  if (!(accuracy > 0.0) || !std::isfinite(accuracy))
+    throw GeometryError("the deviation accuracy must be positive");
+  detail::SamplingRule rule;
+  rule.maxTurn = kMaxTurnBetweenSamples;
+  rule.maxSagitta = accuracy;
+  double largestCurvature = 0.0;
+  for (const detail::CurveSample& s : detail::sampleCurve(curve, rule)) {
+    parameters_.push_back(s.t);
+    points_.push_back(s.d.point);
+    largestCurvature = std::max(largestCurvature, curvatureOf(s.d));
+  }
+  smallestRadius_ =
+      largestCurvature > 0.0 ? 1.0 / largestCurvature : std::numeric_limits<double>::infinity();
+  index_ = std::make_unique<Index>(Index{detail::SegmentTree(points_)});
+}
+
+CurveProximity::~CurveProximity() = default;
+
+CurveProximity::ClosestPoint CurveProximity::closestPoint(const Eigen::Vector3d& p) const {
+  // The nearest segment of the sample polyline locates the closest curve point to
+  // within the sampling accuracy; the parameter is then refined between the samples
+  // around it by Newton's method on C'(t).(C(t) - p) = 0, or by Brent's method on the
+  // squared distance if Newton leaves the bracket without converging.
+  detail::SegmentTree::Nearest near = index_->tree.nearest(p);
+  std::size_t k = near.segment;
+  std::size_t last = parameters_.size() - 1;
+  double lo = parameters_[k == 0 ? 0 : k - 1];
+  double hi = parameters_[std::min(k + 2, last)];
+  std::size_t next = std::min(k + 1, last);
+  double t = parameters_[k] + near.fraction * (parameters_[next] - parameters_[k]);
+
+  ClosestPoint best{std::numeric_limits<double>::infinity(), t, p};
+  auto consider = [&](double s, const Eigen::Vector3d& c) {
+    double d = (c - p).norm();
+    if (d < best.distance)
+      best = {d, s, c};
+  };
+  consider(lo, curve_.point(lo));
+  consider(hi, curve_.point(hi));
+  bool converged = false;
+  for (int iteration = 0; iteration < kNewtonIterations && !converged; ++iteration) {
+    CurveDerivatives d = curve_.derivatives(t);
+    Eigen::Vector3d r = d.point - p;
+    consider(t, d.point);
+    double slope = d.first.dot(r);
+    double curvatureTerm = d.first.squaredNorm() + d.second.dot(r);
+    if (!(curvatureTerm > 0.0))
+      break;
+    double nextT = std::clamp(t - slope / curvatureTerm, lo, hi);
+    // Newton converges quadratically: after a step this small the next would be
+    // below rounding, and the distance is stationary in t anyway.
+    converged = std::fabs(nextT - t) <= kNewtonStepResolution * (hi - lo);
+    t = nextT;
+  }
+  consider(t, curve_.point(t));
+  if (!converged) {
+    auto squared = [&](double s) { return (curve_.point(s) - p).squaredNorm(); };
+    detail::ScalarExtremum m = detail::minimiseBrent(squared, lo, hi);
+    consider(m.t, curve_.point(m.t));
+  }
+  return best;
+}
+
+double DeviationReport::maxDeviation() const {
+  return worst().distance;
+}
+
+const DeviationWitness& DeviationReport::worst() const {
+  return polylineToCurve.distance >= curveToPolyline.distance ? polylineToCurve : curveToPolyline;
+}
+
+namespace {
+
+DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proximity,
+                                 const detail::SegmentTree& path, double accuracy) {
+  const std::vector<double>& t = proximity.sampleParameters();
+  std::vector<double> distance;
+  for (const Eigen::Vector3d& c : proximity.samplePoints())
+    distance.push_back(path.nearest(c).distance);
+  double largestSample = *std::max_element(distance.begin(), distance.end());
+
+  DeviationWitness worst;
+  worst.distance = -1.0;
+  auto record = [&](double s) {
+    Eigen::Vector3d c = curve.point(s);
+    detail::SegmentTree::Nearest near = path.nearest(c);
+    if (near.distance > worst.distance)
+      worst = {near.distance, near.point, c, s, near.segment};
+  };
+  auto distanceAt = [&](double s) { return path.nearest(curve.point(s)).distance; };
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!isLocalMaximum(distance, i) || !worthRefining(distance[i], largestSample, accuracy))
+      continue;
+    record(t[i]);
+    double lo = t[i == 0 ? 0 : i - 1], hi = t[std::min(i + 1, t.size() - 1)];
+    if (lo < hi)
+      record(detail::maximiseBrent(distanceAt, lo, hi).t);
+  }
+  return worst;
+}
+
+DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
+                                 const CurveProximity& proximity, double accuracy) {
+  // Steps along each segment such that a sampled maximum misses the true one by about
+  // `accuracy` where the distance bends like the curve (sagitta of the tightest radius).
+  double radius = std::min(proximity.smallestSampledRadius(), 1e12);
+  double step = std::sqrt(8.0 * accuracy * radius);
+  std::size_t segments = polyline.size() > 1 ? polyline.size() - 1 : 1;
+  auto pointOn = [&](std::size_t j, double u) {
+    const Eigen::Vector3d& a = polyline[j];
+    const Eigen::Vector3d& b = polyline[std::min(j + 1, polyline.size() - 1)];
+    return Eigen::Vector3d(a + u * (b - a));
+  };
+  std::vector<std::vector<double>> distance(segments);
+  double largestSample = 0.0;
+  for (std::size_t j = 0; j < segments; ++j) {
+    double length = (pointOn(j, 1.0) - pointOn(j, 0.0)).norm();
+    double wanted = std::ceil(length / step);
+    int n = static_cast<int>(std::clamp(wanted, 1.0, double(kMaxSamplesPerSegment)));
+    for (int k = 0; k <= n; ++k) {
+      distance[j].push_back(proximity.closestPoint(pointOn(j, double(k) / n)).distance);
+      largestSample = std::max(largestSample, distance[j].back());
+    }
+  }
+
+  DeviationWitness worst;
+  worst.distance = -1.0;
+  auto record = [&](std::size_t j, double u) {
+    Eigen::Vector3d p = pointOn(j, u);
+    CurveProximity::ClosestPoint c = proximity.closestPoint(p);
+    if (c.distance > worst.distance)
+      worst = {c.distance, p, c.point, c.parameter, j};
+  };
+  for (std::size_t j = 0; j < segments; ++j) {
+    const std::vector<double>& g = distance[j];
+    double n = double(g.size() - 1);
+    auto distanceAt = [&](double u) { return proximity.closestPoint(pointOn(j, u)).distance; };
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      if (!isLocalMaximum(g, k) || !worthRefining(g[k], largestSample, accuracy))
+        continue;
+      record(j, double(k) / n);
+      double lo = double(k == 0 ? 0 : k - 1) / n;
+      double hi = double(std::min(k + 1, g.size() - 1)) / n;
+      if (lo < hi)
+        record(j, detail::maximiseBrent(distanceAt, lo, hi).t);
+    }
+  }
+  return worst;
+}
+
+} // namespace
+
+DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline, const Curve& curve,
+                                 const DeviationOptions& options) {
+  if (polyline.empty())
+    throw GeometryError("deviation needs a polyline with at least one vertex");
+  CurveProximity proximity(curve, options.accuracy);
+  detail::SegmentTree path(polyline);
+  DeviationReport report;
+  report.curveToPolyline = curveToPolyline(curve, proximity, path, options.accuracy);
+  report.polylineToCurve = polylineToCurve(polyline, proximity, options.accuracy);
+  return report;
+}
+
+} // namespace cncc::geom

@@ -1,0 +1,82 @@
+#include "segment_tree.h"
+
+#include "vector_math.h"
+
+#include <array>
+#include <limits>
+
+namespace cncc::geom::detail {
+
+namespace {
+
+constexpr std::size_t kLeafSize = 4;
+
+} // namespace
+
+SegmentTree::SegmentTree(std::vector<Eigen::Vector3d> vertices)
+    : vertices_(std::move(vertices)),
+      segmentCount_(vertices_.size() > 1 ? vertices_.size() - 1 : 1) {
+  if (vertices_.empty())
+    vertices_.push_back(Eigen::Vector3d::Zero());
+  nodes_.reserve(2 * segmentCount_ / kLeafSize + 2);
+  build(0, segmentCount_);
+}
+
+const Eigen::Vector3d& SegmentTree::segmentEnd(std::size_t i) const {
+  return vertices_[std::min(i + 1, vertices_.size() - 1)];
+}
+
+int SegmentTree::build(std::size_t first, std::size_t count) {
+  Node node;
+  node.first = first;
+  node.count = count;
+  node.box.setEmpty();
+  for (std::size_t i = first; i < first + count; ++i) {
+    node.box.extend(segmentStart(i));
+    node.box.extend(segmentEnd(i));
+  }
+  int index = static_cast<int>(nodes_.size());
+  nodes_.push_back(node);
+  if (count > kLeafSize) {
+    std::size_t half = count / 2;
+    int left = build(first, half);
+    int right = build(first + half, count - half);
+    nodes_[static_cast<std::size_t>(index)].left = left;
+    nodes_[static_cast<std::size_t>(index)].right = right;
+  }
+  return index;
+}
+
+SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
+  Nearest best{std::numeric_limits<double>::infinity(), 0, 0.0, vertices_.front()};
+  // Depth-first, nearer box first; a box farther than the best segment so far is skipped.
+  // The tree is balanced, so the stack never holds more than about 2 log2(n) entries.
+  std::array<int, 2 * 64> stack;
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+    if (node.box.exteriorDistance(p) >= best.distance)
+      continue;
+    if (node.left < 0) {
+      for (std::size_t i = node.first; i < node.first + node.count; ++i) {
+        const Eigen::Vector3d& a = segmentStart(i);
+        const Eigen::Vector3d& b = segmentEnd(i);
+        double f = closestFractionOnSegment(p, a, b);
+        Eigen::Vector3d q = a + f * (b - a);
+        double d = (p - q).norm();
+        if (d < best.distance)
+          best = {d, i, f, q};
+      }
+      continue;
+    }
+    const Node& left = nodes_[static_cast<std::size_t>(node.left)];
+    const Node& right = nodes_[static_cast<std::size_t>(node.right)];
+    bool leftFirst = left.box.exteriorDistance(p) <= right.box.exteriorDistance(p);
+    stack[top++] = leftFirst ? node.right : node.left;
+    stack[top++] = leftFirst ? node.left : node.right;
+  }
+  return best;
+}
+
+} // namespace cncc::geom::detail
