@@ -107,9 +107,9 @@ TEST(SemaTest, GenericFunctionMisuseIsReportedWithTheCall) {
 }
 
 TEST(SemaTest, OperatorTypes) {
-  EXPECT_THAT(check("const a = (1, 2) + (3, 4)\nconst b = 2 * (1, 1)\nconst c = (4, 4) / 2\n")
-                  ->names(),
-              ElementsAre());
+  EXPECT_THAT(
+      check("const a = (1, 2) + (3, 4)\nconst b = 2 * (1, 1)\nconst c = (4, 4) / 2\n")->names(),
+      ElementsAre());
   EXPECT_THAT(check("const a = (1, 2) + 3\n")->names(), ElementsAre("type-mismatch"));
   EXPECT_THAT(check("const a = true + 1\n")->names(), ElementsAre("type-mismatch"));
   EXPECT_THAT(check("const a = 1 && true\n")->names(), ElementsAre("type-mismatch"));
@@ -126,8 +126,9 @@ TEST(SemaTest, OneMistakeGivesOneMessage) {
 }
 
 TEST(SemaTest, ScopesOfLetsAndLoops) {
-  auto checked = check(part("  for i in 1 .. 3 {\n    let y = i * 2\n    curve line((0, y), (10, y))\n"
-                            "  }\n  curve line((0, 0), (y, 0))"));
+  auto checked =
+      check(part("  for i in 1 .. 3 {\n    let y = i * 2\n    curve line((0, y), (10, y))\n"
+                 "  }\n  curve line((0, 0), (y, 0))"));
   EXPECT_THAT(checked->names(), ElementsAre("undefined-name"));
 }
 
@@ -166,7 +167,8 @@ TEST(SemaTest, NurbsNeedsExactlyOneOfOrderAndDegree) {
 }
 
 TEST(SemaTest, ClampedUniformKnotsWhenOmitted) {
-  auto checked = check("const c = nurbs(order=4, points=[(0,0),(1,1),(2,0),(3,1),(4,0),(5,1),(6,0)])\n");
+  auto checked =
+      check("const c = nurbs(order=4, points=[(0,0),(1,1),(2,0),(3,1),(4,0),(5,1),(6,0)])\n");
   ASSERT_THAT(checked->names(), ElementsAre());
   const CurveValue& curve = *checked->find("c")->value->curve;
   EXPECT_EQ(curve.degree, 3);
@@ -175,8 +177,8 @@ TEST(SemaTest, ClampedUniformKnotsWhenOmitted) {
 }
 
 TEST(SemaTest, WeightAndKnotChecksUseParameterDefaultsAndDefines) {
-  std::string source = part("  curve nurbs(order=2, points=[(0, 0), (1, 1)], weights=[1, w])",
-                            "w = 1");
+  std::string source =
+      part("  curve nurbs(order=2, points=[(0, 0), (1, 1)], weights=[1, w])", "w = 1");
   EXPECT_THAT(check(source)->names(), ElementsAre());
   CheckOptions options;
   options.defines["w"] = -2;
@@ -188,12 +190,12 @@ TEST(SemaTest, WeightAndKnotChecksUseParameterDefaultsAndDefines) {
 
 TEST(SemaTest, KnotVectorLengthAndDomain) {
   std::string points = "points=[(0, 0), (1, 1), (2, 0)]";
-  EXPECT_THAT(check(part("  curve bspline(order=2, " + points + ", knots=[0, 0, 1, 2, 2])"))
-                  ->names(),
-              ElementsAre());
-  EXPECT_THAT(check(part("  curve bspline(order=2, " + points + ", knots=[0, 0, 0, 0, 0])"))
-                  ->names(),
-              ElementsAre("degenerate-curve"));
+  EXPECT_THAT(
+      check(part("  curve bspline(order=2, " + points + ", knots=[0, 0, 1, 2, 2])"))->names(),
+      ElementsAre());
+  EXPECT_THAT(
+      check(part("  curve bspline(order=2, " + points + ", knots=[0, 0, 0, 0, 0])"))->names(),
+      ElementsAre("degenerate-curve"));
 }
 
 TEST(SemaTest, LoopsAreCheckedForEveryIteration) {
@@ -297,6 +299,29 @@ TEST(SemaTest, PathologicalLoopsAreBounded) {
   auto checked = check(part("  for i in 0 .. 1e12 {\n    for j in 0 .. 1e12 {\n"
                             "      curve line((0, 0), (i + j + 1, 0))\n    }\n  }"));
   EXPECT_THAT(checked->names(), ElementsAre());
+}
+
+} // namespace
+} // namespace cncc::frontend
+
+namespace cncc::frontend {
+namespace {
+
+TEST(ExpressionEvaluatorTest, EvaluatesACurveRadiusAtAnyParameter) {
+  auto checked = check("const c = polar(r = 18 + 4*cos(2*t)*cos(6*t), t = 0 .. 2*pi)\n");
+  ASSERT_THAT(checked->names(), ElementsAre());
+  const CurveValue& curve = *checked->find("c")->value->curve;
+  ASSERT_NE(curve.radius, nullptr);
+  DiagnosticEngine diagnostics;
+  ExpressionEvaluator evaluator(checked->program, diagnostics);
+  Environment environment = curve.environment;
+  for (double t : {0.0, 0.3, 1.7}) {
+    environment[curve.parameter] = Value::ofNumber(t);
+    Value radius = evaluator.evaluate(*curve.radius, environment);
+    ASSERT_EQ(radius.type.kind, TypeKind::Num);
+    EXPECT_DOUBLE_EQ(radius.number, 18 + 4 * std::cos(2 * t) * std::cos(6 * t));
+  }
+  EXPECT_FALSE(diagnostics.hasErrors());
 }
 
 } // namespace

@@ -14,6 +14,7 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -96,6 +97,23 @@ struct CheckedProgram {
 
 CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const CheckOptions& options,
                             DiagnosticEngine& diagnostics);
+
+// Evaluates expressions of a checked program afterwards: a curve's r(t) at
+// many t, a let at other parameter values. Problems give an Error value
+// and a diagnostic in `diagnostics`.
+class ExpressionEvaluator {
+public:
+  ExpressionEvaluator(const CheckedProgram& program, DiagnosticEngine& diagnostics);
+  ~ExpressionEvaluator();
+  ExpressionEvaluator(const ExpressionEvaluator&) = delete;
+  ExpressionEvaluator& operator=(const ExpressionEvaluator&) = delete;
+
+  Value evaluate(const Expr& expression, const Environment& environment);
+
+private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // The builtin functions and constants, for completion and documentation.
 struct BuiltinParameter {
