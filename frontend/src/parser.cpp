@@ -670,6 +670,12 @@ private:
     if (panicking_ || !check(TokenKind::Caret)) {
       return base;
     }
+    DepthGuard guard(depth_); // 2^2^2^... nests to the right
+    if (depth_ > maximumNestingDepth) {
+      error(DiagnosticKind::NestingTooDeep, peek().span,
+            fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
+      return base;
+    }
     SourceSpan operatorSpan = advance().span;
     ExprPtr exponent = parseUnary();
     SourceSpan span = base->span.to(exponent->span);

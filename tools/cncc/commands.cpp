@@ -1,0 +1,154 @@
+#include "commands.h"
+
+#include "atomic_output_file.h"
+#include "diagnostic_output.h"
+#include "input_checking.h"
+#include "targets.h"
+
+#include "cncc/frontend/ast_printer.h"
+#include "cncc/frontend/lexer.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/printer.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+namespace cncc::driver {
+
+namespace {
+
+using frontend::DiagnosticEngine;
+using frontend::SourceManager;
+
+DiagnosticOutput diagnosticOutputFor(const DriverOptions& options) {
+  return DiagnosticOutput(options.diagnosticsFormat, options.colour);
+}
+
+void reportWriteFailure(const DiagnosticOutput& output, const std::string& path,
+                        std::error_code error) {
+  output.driverError(fmt::format("cannot write '{}': {}", path, error.message()));
+}
+
+// The text of `--emit`: the tokens, the tree after semantic checking, or the
+// selected part lowered to the IR.
+std::string emittedText(const DriverOptions& options, SourceManager& sources,
+                        DiagnosticEngine& diagnostics) {
+  const std::string& path = options.inputs.front();
+  if (options.emit == EmitKind::Tokens) {
+    std::optional<frontend::FileId> file = loadInput(path, sources, diagnostics);
+    return file ? frontend::dumpTokens(frontend::lex(sources, *file, diagnostics), sources) : "";
+  }
+  if (options.emit == EmitKind::Ir) {
+    std::optional<frontend::CheckedProgram> program =
+        checkInput(path, options, true, sources, diagnostics);
+    if (!program || diagnostics.hasErrors() || program->selectedPart == nullptr) {
+      return "";
+    }
+    std::optional<ir::Function> function =
+        ir::lowerPart(*program, *program->selectedPart, diagnostics);
+    if (!function) {
+      return "";
+    }
+    std::vector<std::string> problems = ir::verifyFunction(*function);
+    if (!problems.empty()) {
+      diagnostics.report(frontend::DiagnosticKind::InvalidChoice, program->selectedPart->nameSpan,
+                         "internal error: the lowered IR does not verify: " + problems.front());
+      return "";
+    }
+    return ir::printFunction(*function);
+  }
+  std::optional<frontend::CheckedProgram> program =
+      checkInput(path, options, false, sources, diagnostics);
+  return program ? frontend::dumpAst(program->modules.front(), sources) : "";
+}
+
+} // namespace
+
+int runCompile(const DriverOptions& options) {
+  DiagnosticOutput output = diagnosticOutputFor(options);
+  SourceManager sources;
+  DiagnosticEngine diagnostics(options.errorLimit);
+  std::optional<frontend::CheckedProgram> program =
+      checkInput(options.inputs.front(), options, true, sources, diagnostics);
+  output.print(diagnostics, sources);
+  if (!program || diagnostics.hasErrors()) {
+    return 1;
+  }
+  const Target& target = *findTarget(options.target);
+  if (!target.available()) {
+    output.driverError(fmt::format("target '{}' has no backend in this version", target.name));
+    return 1;
+  }
+  std::error_code error;
+  std::optional<AtomicOutputFile> file = AtomicOutputFile::create(options.output, error);
+  if (!file) {
+    reportWriteFailure(output, options.output, error);
+    return 1;
+  }
+  DiagnosticEngine backendDiagnostics(options.errorLimit);
+  target.backend({*program, sources, options, backendDiagnostics, *file});
+  output.print(backendDiagnostics, sources);
+  if (backendDiagnostics.hasErrors()) {
+    return 1; // the file discards what the backend wrote
+  }
+  if (!file->commit(error)) {
+    reportWriteFailure(output, options.output, error);
+    return 1;
+  }
+  return 0;
+}
+
+int runEmit(const DriverOptions& options) {
+  DiagnosticOutput output = diagnosticOutputFor(options);
+  SourceManager sources;
+  DiagnosticEngine diagnostics(options.errorLimit);
+  std::string text = emittedText(options, sources, diagnostics);
+  output.print(diagnostics, sources);
+  // A broken file's dump still helps on the terminal; a file is only written
+  // from a clean one.
+  if (diagnostics.hasErrors() && options.output != "-") {
+    return 1;
+  }
+  std::error_code error;
+  if (!writeFileAtomically(options.output, text, error)) {
+    reportWriteFailure(output, options.output, error);
+    return 1;
+  }
+  return diagnostics.hasErrors() ? 1 : 0;
+}
+
+int runCheck(const DriverOptions& options) {
+  DiagnosticOutput output = diagnosticOutputFor(options);
+  bool failed = false;
+  for (const std::string& path : options.inputs) {
+    SourceManager sources;
+    DiagnosticEngine diagnostics(options.errorLimit);
+    checkInput(path, options, false, sources, diagnostics);
+    output.print(diagnostics, sources);
+    failed |= diagnostics.hasErrors();
+  }
+  return failed ? 1 : 0;
+}
+
+int runListDiagnostics() {
+  for (frontend::DiagnosticKind kind : frontend::allDiagnosticKinds()) {
+    fmt::print("{}\n", frontend::diagnosticName(kind));
+  }
+  return 0;
+}
+
+int runCommand(const DriverOptions& options) {
+  switch (options.command) {
+  case Command::Compile:
+    return runCompile(options);
+  case Command::Emit:
+    return runEmit(options);
+  case Command::Check:
+    return runCheck(options);
+  case Command::ListDiagnostics:
+    return runListDiagnostics();
+  }
+  return 2;
+}
+
+} // namespace cncc::driver

@@ -1,0 +1,70 @@
+#include "diagnostic_output.h"
+
+#include <cstdio>
+#include <fmt/format.h>
+#include <string>
+#include <unistd.h>
+
+namespace cncc::driver {
+
+namespace {
+
+bool useColour(ColourMode mode) {
+  switch (mode) {
+  case ColourMode::Always:
+    return true;
+  case ColourMode::Never:
+    return false;
+  case ColourMode::Auto:
+    return ::isatty(STDERR_FILENO) != 0;
+  }
+  return false;
+}
+
+// `text` as a JSON string literal.
+std::string jsonString(std::string_view text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      out += fmt::format("\\u{:04x}", c);
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+} // namespace
+
+DiagnosticOutput::DiagnosticOutput(DiagnosticsFormat format, ColourMode colour)
+    : format_(format), colour_(useColour(colour)) {}
+
+void DiagnosticOutput::print(const frontend::DiagnosticEngine& diagnostics,
+                             const frontend::SourceManager& sources) const {
+  for (const frontend::Diagnostic& diagnostic : diagnostics.diagnostics()) {
+    if (format_ == DiagnosticsFormat::Json) {
+      fmt::print(stderr, "{}\n", frontend::renderJson(diagnostic, sources));
+    } else {
+      fmt::print(stderr, "{}", frontend::renderText(diagnostic, sources, {.colour = colour_}));
+    }
+  }
+  std::fflush(stderr);
+}
+
+void DiagnosticOutput::driverError(std::string_view message) const {
+  if (format_ == DiagnosticsFormat::Json) {
+    fmt::print(stderr,
+               "{{\"severity\":\"error\",\"name\":null,\"message\":{},\"range\":null,"
+               "\"notes\":[]}}\n",
+               jsonString(message));
+  } else if (colour_) {
+    fmt::print(stderr, "\033[1mcncc:\033[0m \033[1;31merror:\033[0m \033[1m{}\033[0m\n", message);
+  } else {
+    fmt::print(stderr, "cncc: error: {}\n", message);
+  }
+}
+
+} // namespace cncc::driver

@@ -1,0 +1,31 @@
+// Prints diagnostics to standard error in the format the user chose: text
+// (`file:line:col: error: message [name]` with the quoted line), optionally
+// coloured, or JSON with one object per line.
+#pragma once
+
+#include "driver_options.h"
+
+#include "cncc/frontend/diagnostics.h"
+#include "cncc/frontend/source_manager.h"
+
+#include <string_view>
+
+namespace cncc::driver {
+
+class DiagnosticOutput {
+public:
+  DiagnosticOutput(DiagnosticsFormat format, ColourMode colour);
+
+  // Prints every diagnostic the engine holds, in its order.
+  void print(const frontend::DiagnosticEngine& diagnostics,
+             const frontend::SourceManager& sources) const;
+  // A problem of the driver itself, with no diagnostic kind ("target 'm80'
+  // has no backend in this version"): `cncc: error: message`.
+  void driverError(std::string_view message) const;
+
+private:
+  DiagnosticsFormat format_;
+  bool colour_;
+};
+
+} // namespace cncc::driver

@@ -1,0 +1,276 @@
+#include "driver_options.h"
+
+#include "targets.h"
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <system_error>
+#include <unistd.h>
+
+namespace cncc::driver {
+
+namespace {
+
+// The command line as CLI11 fills it in, before it is checked.
+struct RawOptions {
+  std::string input;
+  std::vector<std::string> checkInputs;
+  std::string target;
+  std::string output;
+  std::string emit;
+  std::vector<std::string> defines;
+  std::string partName;
+  std::vector<std::string> includeDirectories;
+  std::string diagnosticsFormat = "text";
+  std::string colour = "auto";
+  std::string errorLimit = "50";
+  bool listDiagnostics = false;
+};
+
+// A mistake in how cncc was called: printed, exit code 2.
+class UsageError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string helpFooter() {
+  std::string footer = "\nTargets:\n";
+  for (const Target& target : allTargets()) {
+    footer += fmt::format("  {:<11}{}{}\n", target.name, target.description,
+                          target.available() ? "" : " (not in this version)");
+  }
+  footer += "\nExamples:\n"
+            "  cncc examples/s_profile.cdl -t m80 -o O1000\n"
+            "  cncc check examples/*.cdl\n"
+            "  cncc --emit=ast examples/s_profile.cdl\n"
+            "\nExit codes: 0 success, 1 errors in the source, 2 wrong usage.";
+  return footer;
+}
+
+// Options shared by every command (compiling, emitting, checking).
+void addCommonOptions(CLI::App& app, RawOptions& raw) {
+  app.add_option("-D", raw.defines, "Override the default of part parameter NAME")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false);
+  app.add_option("-p,--part", raw.partName, "The part to compile when a file holds several")
+      ->type_name("PART");
+  app.add_option("-I", raw.includeDirectories,
+                 "Search DIR for imports (before the standard library)")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  app.add_option("--diagnostics-format", raw.diagnosticsFormat,
+                 "How diagnostics are printed: text, or json (one object per line)")
+      ->type_name("FORMAT")
+      ->check(CLI::IsMember({"text", "json"}));
+  app.add_option("--color", raw.colour,
+                 "Colour diagnostics: auto (when stderr is a terminal), "
+                 "always or never")
+      ->type_name("WHEN")
+      ->check(CLI::IsMember({"auto", "always", "never"}));
+  app.add_option("--error-limit", raw.errorLimit, "Stop reporting after N errors (0: no limit)")
+      ->type_name("N");
+  app.add_flag("--list-diagnostics", raw.listDiagnostics,
+               "Print the name of every diagnostic and exit")
+      ->group("");
+}
+
+void addCompileOptions(CLI::App& app, RawOptions& raw) {
+  app.add_option("FILE", raw.input, "The .cdl file to compile")->type_name("");
+  app.add_option("-t,--target", raw.target, "The controller to compile for (see Targets below)")
+      ->type_name("TARGET");
+  app.add_option("-o,--output", raw.output, "Where to write the program ('-': standard output)")
+      ->type_name("OUT");
+  app.add_option("--emit", raw.emit,
+                 "Print a stage instead of compiling: tokens, ast (after checking), or ir "
+                 "(the part lowered)")
+      ->type_name("STAGE")
+      ->check(CLI::IsMember({"tokens", "ast", "ir"}));
+}
+
+CLI::App* addCheckCommand(CLI::App& app, RawOptions& raw) {
+  CLI::App* check =
+      app.add_subcommand("check", "Check files and report every problem without compiling");
+  check->add_option("FILE", raw.checkInputs, "The .cdl files to check")->type_name("")->required();
+  // The common options belong to the main command and fall through to here.
+  check->fallthrough();
+  check->footer("\nAlso takes -D, -p, -I, --diagnostics-format, --color and --error-limit "
+                "(see 'cncc --help').\nExit codes: 0 no errors, 1 errors in some file, 2 wrong "
+                "usage.");
+  return check;
+}
+
+bool isIdentifier(std::string_view text) {
+  auto isStart = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+  };
+  if (text.empty() || !isStart(text[0])) {
+    return false;
+  }
+  for (char c : text) {
+    if (!isStart(c) && !(c >= '0' && c <= '9')) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::map<std::string, double> parseDefines(const std::vector<std::string>& defines) {
+  std::map<std::string, double> values;
+  for (const std::string& define : defines) {
+    std::size_t equals = define.find('=');
+    std::string name = define.substr(0, equals);
+    if (equals == std::string::npos || !isIdentifier(name)) {
+      throw UsageError(
+          fmt::format("invalid -D '{}': expected NAME=VALUE, as in -D depth=3.5", define));
+    }
+    std::string_view text = std::string_view(define).substr(equals + 1);
+    double value = 0;
+    auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
+        !std::isfinite(value)) {
+      throw UsageError(
+          fmt::format("invalid -D '{}': the value '{}' is not a number", define, text));
+    }
+    values[name] = value;
+  }
+  return values;
+}
+
+std::size_t parseErrorLimit(const std::string& text) {
+  std::size_t limit = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), limit);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    throw UsageError(fmt::format("invalid --error-limit '{}': expected a whole number "
+                                 "(0 for no limit)",
+                                 text));
+  }
+  return limit;
+}
+
+std::string standardLibraryDirectory() {
+  const char* fromEnvironment = std::getenv("CNCC_STDLIB");
+  if (fromEnvironment != nullptr && *fromEnvironment != '\0') {
+    return fromEnvironment;
+  }
+  return CNCC_STDLIB_DIR;
+}
+
+// The -I directories, each checked readable, then the standard library.
+std::vector<std::string> importPaths(const std::vector<std::string>& includeDirectories) {
+  std::vector<std::string> paths;
+  for (const std::string& directory : includeDirectories) {
+    std::error_code error;
+    std::filesystem::file_status status = std::filesystem::status(directory, error);
+    if (!error && !std::filesystem::is_directory(status)) {
+      error = std::make_error_code(std::filesystem::exists(status)
+                                       ? std::errc::not_a_directory
+                                       : std::errc::no_such_file_or_directory);
+    } else if (!error && ::access(directory.c_str(), R_OK | X_OK) != 0) {
+      error = std::error_code(errno, std::generic_category());
+    }
+    if (error) {
+      throw UsageError(
+          fmt::format("cannot read include directory '{}': {}", directory, error.message()));
+    }
+    paths.push_back(directory);
+  }
+  paths.push_back(standardLibraryDirectory());
+  return paths;
+}
+
+void checkTarget(const std::string& name) {
+  if (findTarget(name) == nullptr) {
+    throw UsageError(
+        fmt::format("unknown target '{}'; valid targets are: {}", name, targetNameList()));
+  }
+}
+
+// Which command runs, and the inputs and target it needs.
+void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
+                   DriverOptions& options) {
+  if (raw.listDiagnostics) {
+    options.command = Command::ListDiagnostics;
+    return;
+  }
+  if (checking) {
+    for (const char* name : {"--target", "--output", "--emit"}) {
+      if (app.count(name) > 0) {
+        throw UsageError(fmt::format("option {} does not apply to 'check'", name));
+      }
+    }
+    options.command = Command::Check;
+    options.inputs = raw.checkInputs;
+    return;
+  }
+  if (raw.input.empty()) {
+    throw UsageError("no input file");
+  }
+  options.inputs = {raw.input};
+  if (!raw.target.empty()) {
+    checkTarget(raw.target);
+  }
+  if (!raw.emit.empty()) {
+    options.command = Command::Emit;
+    options.emit = raw.emit == "tokens" ? EmitKind::Tokens
+                   : raw.emit == "ir"   ? EmitKind::Ir
+                                        : EmitKind::Ast;
+  } else if (raw.target.empty()) {
+    throw UsageError(fmt::format("no target; choose one with -t TARGET ({})", targetNameList()));
+  }
+}
+
+DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool checking) {
+  DriverOptions options;
+  chooseCommand(raw, app, checking, options);
+  options.target = raw.target;
+  options.output = raw.output.empty() ? "-" : raw.output;
+  options.defines = parseDefines(raw.defines);
+  options.partName = raw.partName;
+  if (options.command != Command::ListDiagnostics) {
+    options.importPaths = importPaths(raw.includeDirectories);
+  }
+  options.diagnosticsFormat =
+      raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text;
+  options.colour = raw.colour == "always"  ? ColourMode::Always
+                   : raw.colour == "never" ? ColourMode::Never
+                                           : ColourMode::Auto;
+  options.errorLimit = parseErrorLimit(raw.errorLimit);
+  return options;
+}
+
+int reportUsageError(std::string_view message) {
+  fmt::print(stderr, "cncc: error: {}\nRun 'cncc --help' for usage.\n", message);
+  return 2;
+}
+
+} // namespace
+
+ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
+  RawOptions raw;
+  CLI::App app("cncc: compiles CDL part descriptions for CNC controllers", "cncc");
+  app.set_version_flag("--version", "cncc " CNCC_VERSION);
+  app.footer(helpFooter());
+  app.require_subcommand(0, 1);
+  addCompileOptions(app, raw);
+  addCommonOptions(app, raw);
+  CLI::App* check = addCheckCommand(app, raw);
+  try {
+    app.parse(argc, argv);
+    return {validatedOptions(raw, app, check->parsed()), 0};
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) {
+      return {std::nullopt, app.exit(error)};
+    }
+    return {std::nullopt, reportUsageError(error.what())};
+  } catch (const UsageError& error) {
+    return {std::nullopt, reportUsageError(error.what())};
+  }
+}
+
+} // namespace cncc::driver

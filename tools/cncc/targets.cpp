@@ -1,0 +1,103 @@
+#include "targets.h"
+
+#include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/tool_path_csv.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+#include <optional>
+
+namespace cncc::driver {
+
+namespace {
+
+// The selected part's tool path, as the IR interpreter runs it; nullopt
+// after a diagnostic. A verifier failure or an interpreter error is an
+// internal error.
+std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request) {
+  const frontend::PartItem* part = request.program.selectedPart;
+  if (part == nullptr) {
+    return std::nullopt;
+  }
+  std::optional<ir::Function> function =
+      ir::lowerPart(request.program, *part, request.diagnostics);
+  if (!function) {
+    return std::nullopt;
+  }
+  std::vector<std::string> problems = ir::verifyFunction(*function);
+  if (!problems.empty()) {
+    request.diagnostics.report(frontend::DiagnosticKind::InvalidChoice, part->nameSpan,
+                               "internal error: the lowered IR does not verify: " +
+                                   problems.front());
+    return std::nullopt;
+  }
+  try {
+    return ir::interpret(*function);
+  } catch (const ir::InterpreterError& error) {
+    request.diagnostics.report(frontend::DiagnosticKind::InvalidChoice, part->nameSpan,
+                               fmt::format("internal error: running the IR failed: {}",
+                                           error.what()));
+    return std::nullopt;
+  }
+}
+
+void gcodeBackend(const BackendRequest& request) {
+  std::optional<ir::ToolPath> path = hostToolPath(request);
+  if (!path) {
+    return;
+  }
+  const frontend::PartItem& part = *request.program.selectedPart;
+  backends::GcodeOptions options;
+  options.programNumber = backends::programNumberFromFileName(request.output.path()).value_or(1);
+  const std::string& input = request.options.inputs.front();
+  std::size_t slash = input.find_last_of('/');
+  options.sourceName = slash == std::string::npos ? input : input.substr(slash + 1);
+  options.partName = part.name;
+  options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
+  request.output.write(backends::writeGcode(*path, options));
+}
+
+void jitBackend(const BackendRequest& request) {
+  std::optional<ir::ToolPath> path = hostToolPath(request);
+  if (path) {
+    request.output.write(backends::writeToolPathCsv(*path));
+  }
+}
+
+constexpr Target targetTable[] = {
+    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", nullptr},
+    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", nullptr},
+    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", nullptr},
+    {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
+    {"linuxcnc", "LinuxCNC program with o-word subroutines and parameters", nullptr},
+    {"jit", "run the part on the host and print the tool path", jitBackend},
+};
+
+} // namespace
+
+std::span<const Target> allTargets() {
+  return targetTable;
+}
+
+const Target* findTarget(std::string_view name) {
+  for (const Target& target : targetTable) {
+    if (target.name == name) {
+      return &target;
+    }
+  }
+  return nullptr;
+}
+
+std::string targetNameList() {
+  std::string names;
+  for (const Target& target : targetTable) {
+    names += names.empty() ? "" : ", ";
+    names += target.name;
+  }
+  return names;
+}
+
+} // namespace cncc::driver

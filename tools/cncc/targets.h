@@ -1,0 +1,43 @@
+// The targets `-t` accepts. A target is known (its name is valid) before its
+// backend exists; a backend makes it available by filling in `backend`.
+#pragma once
+
+#include "atomic_output_file.h"
+#include "driver_options.h"
+
+#include "cncc/frontend/diagnostics.h"
+#include "cncc/frontend/sema.h"
+
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace cncc::driver {
+
+// What a backend is given: the checked program (its selected part is the one
+// to compile), the options, where to report and where to write.
+struct BackendRequest {
+  const frontend::CheckedProgram& program;
+  const frontend::SourceManager& sources;
+  const DriverOptions& options;
+  frontend::DiagnosticEngine& diagnostics;
+  AtomicOutputFile& output;
+};
+
+// Writes the program; problems go to the request's diagnostics.
+using BackendFunction = void (*)(const BackendRequest& request);
+
+struct Target {
+  std::string_view name;        // what `-t` takes
+  std::string_view description; // one line, for --help
+  BackendFunction backend;      // null until the backend exists
+
+  bool available() const { return backend != nullptr; }
+};
+
+std::span<const Target> allTargets();
+const Target* findTarget(std::string_view name);
+// "m80, fanuc, ..." in table order, for messages and --help.
+std::string targetNameList();
+
+} // namespace cncc::driver
