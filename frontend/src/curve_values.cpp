@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 
 namespace cncc::frontend {
 
@@ -22,17 +23,20 @@ SourceSpan elementSpan(const Expr& list, std::size_t i) {
   return list.span;
 }
 
-std::vector<std::string> parameterNames(const std::string& builtin) {
-  for (const BuiltinInfo& info : builtinFunctions()) {
-    if (info.name == builtin) {
-      std::vector<std::string> names;
+// The parameter names of each builtin, built once.
+const std::vector<std::string>& parameterNames(const std::string& builtin) {
+  static const std::map<std::string, std::vector<std::string>> table = [] {
+    std::map<std::string, std::vector<std::string>> names;
+    for (const BuiltinInfo& info : builtinFunctions()) {
       for (const BuiltinParameter& parameter : info.parameters) {
-        names.push_back(parameter.name);
+        names[info.name].push_back(parameter.name);
       }
-      return names;
     }
-  }
-  return {};
+    return names;
+  }();
+  static const std::vector<std::string> none;
+  auto found = table.find(builtin);
+  return found == table.end() ? none : found->second;
 }
 
 // Clamped uniform knots: `order` zeros, evenly spaced interior knots,
@@ -75,7 +79,7 @@ public:
 
 private:
   const Expr* argument(const std::string& name) const {
-    std::vector<std::string> names = parameterNames(call_.callee);
+    const std::vector<std::string>& names = parameterNames(call_.callee);
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (names[i] == name) {
         return arguments_[i];
@@ -319,7 +323,7 @@ private:
   // undefined somewhere (sqrt of a negative, a division by zero) is an error
   // now rather than a bad program later.
   void sampleExpressions(CurveValue& curve) {
-    constexpr int samples = 64;
+    constexpr int samples = 16;
     Environment environment = environment_;
     for (int i = 0; i <= samples && !failed_ && !evaluator_.exhausted(); ++i) {
       double t = curve.low + (curve.high - curve.low) * i / samples;

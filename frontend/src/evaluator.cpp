@@ -21,12 +21,8 @@ Value Evaluator::typeError(SourceSpan span, std::string message) {
   return {};
 }
 
-Value Evaluator::checkedNumber(double number, SourceSpan span, std::string_view what) {
-  if (!std::isfinite(number)) {
-    report(DiagnosticKind::NonFiniteValue, span, fmt::format("{} is not a finite number", what));
-    return {};
-  }
-  return Value::ofNumber(number);
+void Evaluator::reportNonFinite(SourceSpan span, const std::string& what) {
+  report(DiagnosticKind::NonFiniteValue, span, fmt::format("{} is not a finite number", what));
 }
 
 std::vector<const Expr*> Evaluator::bindArguments(const CallExpr& call,
@@ -261,7 +257,7 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
   case BinaryOperator::Subtract: {
     double sign = op == BinaryOperator::Add ? 1 : -1;
     if (numbers) {
-      return checkedNumber(a + sign * b, binary.span, "the result");
+      return checkedNumber(a + sign * b, binary.span, [] { return std::string("the result"); });
     }
     if (l == TypeKind::Point && r == TypeKind::Point) {
       return combinePoints(left, right, sign);
@@ -270,7 +266,7 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
   }
   case BinaryOperator::Multiply:
     if (numbers) {
-      return checkedNumber(a * b, binary.span, "the product");
+      return checkedNumber(a * b, binary.span, [] { return std::string("the product"); });
     }
     if (l == TypeKind::Num && r == TypeKind::Point) {
       return scalePoint(right, a);
@@ -294,12 +290,13 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
       return scalePoint(left, 1.0 / b);
     }
     return checkedNumber(op == BinaryOperator::Divide ? a / b : std::fmod(a, b), binary.span,
-                         "the quotient");
+                         [] { return std::string("the quotient"); });
   case BinaryOperator::Power:
     if (!numbers) {
       return mismatch();
     }
-    return checkedNumber(std::pow(a, b), binary.span, fmt::format("{:g} ^ {:g}", a, b));
+    return checkedNumber(std::pow(a, b), binary.span,
+                         [&] { return fmt::format("{:g} ^ {:g}", a, b); });
   default:
     return mismatch();
   }
@@ -389,7 +386,8 @@ Value Evaluator::evaluateMathCall(const CallExpr& call, const Environment& envir
                     : name == "pow" ? std::pow(a, b)
                     : name == "min" ? std::min(a, b)
                                     : std::max(a, b);
-    return checkedNumber(result, call.span, fmt::format("{}({:g}, {:g})", name, a, b));
+    return checkedNumber(result, call.span,
+                         [&] { return fmt::format("{}({:g}, {:g})", name, a, b); });
   }
   if (values.size() != 1) {
     return {};
@@ -423,7 +421,7 @@ Value Evaluator::evaluateMathCall(const CallExpr& call, const Environment& envir
   } else if (name == "round") {
     result = std::round(x);
   }
-  return checkedNumber(result, call.span, fmt::format("{}({:g})", name, x));
+  return checkedNumber(result, call.span, [&] { return fmt::format("{}({:g})", name, x); });
 }
 
 Value Evaluator::evaluatePoint(const PointExpr& point, const Environment& environment) {

@@ -6,6 +6,7 @@
 
 #include "sema_context.h"
 
+#include <cmath>
 #include <set>
 #include <utility>
 
@@ -49,7 +50,17 @@ private:
   Value evaluateList(const ListExpr& list, const Environment& environment);
   Value evaluateIndex(const IndexExpr& index, const Environment& environment);
   Value evaluateMember(const MemberExpr& member, const Environment& environment);
-  Value checkedNumber(double number, SourceSpan span, std::string_view what);
+  // `describe` is called only when the number is not finite: formatting a
+  // message for every good value would dominate evaluation time.
+  template <typename Describe>
+  Value checkedNumber(double number, SourceSpan span, Describe describe) {
+    if (std::isfinite(number)) {
+      return Value::ofNumber(number);
+    }
+    reportNonFinite(span, describe());
+    return {};
+  }
+  void reportNonFinite(SourceSpan span, const std::string& what);
   Value typeError(SourceSpan span, std::string message);
 
   SemaContext& context_;

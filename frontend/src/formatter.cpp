@@ -136,8 +136,8 @@ Doc TreeFormatter::parameter(const Parameter& parameter) {
 // `head = value`: a call, list or point value breaks inside its brackets;
 // any other value moves to the next line when it does not fit.
 Doc TreeFormatter::assignment(std::vector<Doc> head, const Expr& value) {
-  bool bracketedValue = value.kind == ExprKind::Call || value.kind == ExprKind::List ||
-                        value.kind == ExprKind::Point;
+  bool bracketedValue =
+      value.kind == ExprKind::Call || value.kind == ExprKind::List || value.kind == ExprKind::Point;
   if (bracketedValue) {
     head.push_back(Doc::space());
     head.push_back(expression(value));
@@ -208,8 +208,8 @@ Doc TreeFormatter::unitsStatement(const UnitsStmt& units) {
 
 // tool N diameter=D spindle=S feed=F
 Doc TreeFormatter::toolStatement(const ToolStmt& tool) {
-  Doc head = Doc::concat(
-      {source_.printAt(tool.span.begin), Doc::space(), expression(*tool.number)});
+  Doc head =
+      Doc::concat({source_.printAt(tool.span.begin), Doc::space(), expression(*tool.number)});
   return Doc::concat({head, settings(tool.settings, {"diameter", "spindle", "feed"})});
 }
 
@@ -234,8 +234,7 @@ Doc TreeFormatter::letStatement(const LetStmt& let) {
 
 // curve <expr> modifiers
 Doc TreeFormatter::cutStatement(const CutStmt& cut) {
-  Doc head =
-      Doc::concat({source_.printAt(cut.span.begin), Doc::space(), expression(*cut.curve)});
+  Doc head = Doc::concat({source_.printAt(cut.span.begin), Doc::space(), expression(*cut.curve)});
   return Doc::concat({head, modifiers(cut.modifiers)});
 }
 
@@ -284,8 +283,8 @@ Doc TreeFormatter::modifiers(const std::vector<Modifier>& modifiers) {
   const std::vector<std::string>& known = cutModifierNames();
   std::vector<Doc> pieces{Doc::concat({})};
   for (const Modifier& modifier : modifiers) {
-    bool canBreak = modifier.value &&
-                    std::find(known.begin(), known.end(), modifier.name) != known.end();
+    bool canBreak =
+        modifier.value && std::find(known.begin(), known.end(), modifier.name) != known.end();
     pieces.push_back(canBreak ? Doc::line() : Doc::space());
     pieces.push_back(setting(modifier.nameSpan, modifier.value.get()));
   }
@@ -298,8 +297,7 @@ Doc TreeFormatter::setting(SourceSpan nameSpan, const Expr* value) {
   if (value == nullptr) {
     return name;
   }
-  return Doc::concat(
-      {name, source_.printNext(TokenKind::Equal, nameSpan.end), expression(*value)});
+  return Doc::concat({name, source_.printNext(TokenKind::Equal, nameSpan.end), expression(*value)});
 }
 
 } // namespace format

@@ -211,8 +211,8 @@ Doc TreeFormatter::unary(const UnaryExpr& unary) {
 }
 
 Doc TreeFormatter::call(const CallExpr& call) {
-  bool spacedEquals = std::any_of(
-      call.arguments.begin(), call.arguments.end(), [](const Argument& argument) {
+  bool spacedEquals =
+      std::any_of(call.arguments.begin(), call.arguments.end(), [](const Argument& argument) {
         return !argument.name.empty() && hasSpacedOperator(*argument.value);
       });
   Doc callee = source_.printAt(call.calleeSpan.begin);
@@ -280,14 +280,11 @@ Doc TreeFormatter::member(const MemberExpr& member) {
 Doc TreeFormatter::ifElse(const IfElseExpr& choice) {
   std::vector<Doc> parts{source_.printAt(choice.span.begin), Doc::space(),
                          expression(*choice.condition)};
-  std::vector<Doc> rest{Doc::line(),
-                        source_.printNext(TokenKind::KwThen, choice.condition->span.end),
-                        Doc::space(),
-                        expression(*choice.thenValue),
-                        Doc::line(),
-                        source_.printNext(TokenKind::KwElse, choice.thenValue->span.end),
-                        Doc::space(),
-                        expression(*choice.elseValue)};
+  std::vector<Doc> rest{
+      Doc::line(),  source_.printNext(TokenKind::KwThen, choice.condition->span.end),
+      Doc::space(), expression(*choice.thenValue),
+      Doc::line(),  source_.printNext(TokenKind::KwElse, choice.thenValue->span.end),
+      Doc::space(), expression(*choice.elseValue)};
   parts.push_back(Doc::nest(indent_, Doc::concat(std::move(rest))));
   return Doc::group(Doc::concat(std::move(parts)));
 }

@@ -28,10 +28,9 @@ SourceCursor::Comment SourceCursor::describeComment(SourceSpan span) const {
 }
 
 std::size_t SourceCursor::tokenIndexFrom(std::uint32_t offset) const {
-  auto found = std::lower_bound(tokens_.begin(), tokens_.end(), offset,
-                                [](const Token& token, std::uint32_t value) {
-                                  return token.span.begin < value;
-                                });
+  auto found = std::lower_bound(
+      tokens_.begin(), tokens_.end(), offset,
+      [](const Token& token, std::uint32_t value) { return token.span.begin < value; });
   return found == tokens_.end() ? tokens_.size() - 1
                                 : static_cast<std::size_t>(found - tokens_.begin());
 }
@@ -80,7 +79,8 @@ Doc SourceCursor::print(const Token& token) {
 
 Doc SourceCursor::printWithoutTrailing(const Token& token) {
   Doc comments = commentsBefore(token.span.begin);
-  Doc text = Doc::text(std::string(text_.substr(token.span.begin, token.span.end - token.span.begin)));
+  Doc text =
+      Doc::text(std::string(text_.substr(token.span.begin, token.span.end - token.span.begin)));
   atBlockStart_ = false;
   commentContinuesLine_ = false;
   return Doc::concat({std::move(comments), std::move(text)});
@@ -127,7 +127,7 @@ Doc SourceCursor::printComment(const Comment& comment, bool beforeCode) {
     text.remove_suffix(1);
   }
   parts.push_back(comment.startsLine ? Doc::text(std::string(text))
-                                    : Doc::lineEnd(std::string(text)));
+                                     : Doc::lineEnd(std::string(text)));
   bool breaksLine = comment.isLine || (comment.startsLine && !comment.codeFollowsOnLine);
   if (breaksLine) {
     parts.push_back(Doc::hardLine());
