@@ -4,44 +4,53 @@
 
 namespace cncc::frontend::format {
 
-Doc::Doc(DocKind kind) : kind_(kind) {
-  forcesBreak_ = kind == DocKind::HardLine || kind == DocKind::BlankLine;
+Doc Doc::leaf(DocKind kind) {
+  auto node = std::make_shared<Node>();
+  node->kind = kind;
+  node->forcesBreak = kind == DocKind::HardLine || kind == DocKind::BlankLine;
+  return Doc(std::move(node));
 }
 
-Doc::Doc(DocKind kind, std::vector<Doc> children) : kind_(kind), children_(std::move(children)) {
-  forcesBreak_ = std::any_of(children_.begin(), children_.end(),
-                             [](const Doc& child) { return child.forcesBreak(); });
+Doc Doc::withChildren(DocKind kind, std::vector<Doc> children, int indent) {
+  auto node = std::make_shared<Node>();
+  node->kind = kind;
+  node->indent = indent;
+  node->forcesBreak = std::any_of(children.begin(), children.end(),
+                                  [](const Doc& child) { return child.forcesBreak(); });
+  node->children = std::move(children);
+  return Doc(std::move(node));
 }
 
 Doc Doc::text(std::string text) {
-  Doc doc(DocKind::Text);
-  doc.forcesBreak_ = text.find('\n') != std::string::npos;
-  doc.text_ = std::move(text);
-  return doc;
+  auto node = std::make_shared<Node>();
+  node->kind = DocKind::Text;
+  node->forcesBreak = text.find('\n') != std::string::npos;
+  node->text = std::move(text);
+  return Doc(std::move(node));
 }
 
 Doc Doc::lineEnd(std::string text) {
-  Doc doc = Doc::text(std::move(text));
-  doc.kind_ = DocKind::LineEnd;
-  return doc;
+  auto node = std::make_shared<Node>();
+  node->kind = DocKind::LineEnd;
+  node->forcesBreak = text.find('\n') != std::string::npos;
+  node->text = std::move(text);
+  return Doc(std::move(node));
 }
 
 Doc Doc::concat(std::vector<Doc> children) {
-  return Doc(DocKind::Concat, std::move(children));
+  return withChildren(DocKind::Concat, std::move(children));
 }
 
 Doc Doc::nest(int indent, Doc child) {
-  Doc doc(DocKind::Nest, {std::move(child)});
-  doc.indent_ = indent;
-  return doc;
+  return withChildren(DocKind::Nest, {std::move(child)}, indent);
 }
 
 Doc Doc::group(Doc child) {
-  return Doc(DocKind::Group, {std::move(child)});
+  return withChildren(DocKind::Group, {std::move(child)});
 }
 
 Doc Doc::fill(std::vector<Doc> contentsAndSeparators) {
-  return Doc(DocKind::Fill, std::move(contentsAndSeparators));
+  return withChildren(DocKind::Fill, std::move(contentsAndSeparators));
 }
 
 namespace {

@@ -12,6 +12,7 @@
 // has trailing spaces or runs of blank lines.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,38 +34,45 @@ enum class DocKind {
              // when the content after it would not fit
 };
 
+// An immutable document node, shared: copying a Doc copies a pointer, so
+// building nested documents costs no copies of their contents.
 class Doc {
 public:
   static Doc text(std::string text);
   static Doc lineEnd(std::string text);
-  static Doc space() { return Doc(DocKind::Space); }
-  static Doc line() { return Doc(DocKind::Line); }
-  static Doc softLine() { return Doc(DocKind::SoftLine); }
-  static Doc hardLine() { return Doc(DocKind::HardLine); }
-  static Doc blankLine() { return Doc(DocKind::BlankLine); }
+  static Doc space() { return leaf(DocKind::Space); }
+  static Doc line() { return leaf(DocKind::Line); }
+  static Doc softLine() { return leaf(DocKind::SoftLine); }
+  static Doc hardLine() { return leaf(DocKind::HardLine); }
+  static Doc blankLine() { return leaf(DocKind::BlankLine); }
   static Doc concat(std::vector<Doc> children);
   static Doc nest(int indent, Doc child);
   static Doc group(Doc child);
   static Doc fill(std::vector<Doc> contentsAndSeparators);
 
-  DocKind kind() const { return kind_; }
-  const std::string& textValue() const { return text_; }
-  int indent() const { return indent_; }
-  const std::vector<Doc>& children() const { return children_; }
+  DocKind kind() const { return node_->kind; }
+  const std::string& textValue() const { return node_->text; }
+  int indent() const { return node_->indent; }
+  const std::vector<Doc>& children() const { return node_->children; }
   // Whether this document must break the line (a hard or blank line, or
   // multi-line text, somewhere inside): its groups never print flat.
-  bool forcesBreak() const { return forcesBreak_; }
-  bool empty() const { return kind_ == DocKind::Concat && children_.empty(); }
+  bool forcesBreak() const { return node_->forcesBreak; }
+  bool empty() const { return kind() == DocKind::Concat && children().empty(); }
 
 private:
-  explicit Doc(DocKind kind);
-  Doc(DocKind kind, std::vector<Doc> children);
+  struct Node {
+    DocKind kind;
+    std::string text;
+    int indent = 0;
+    std::vector<Doc> children;
+    bool forcesBreak = false;
+  };
 
-  DocKind kind_;
-  std::string text_;
-  int indent_ = 0;
-  std::vector<Doc> children_;
-  bool forcesBreak_ = false;
+  explicit Doc(std::shared_ptr<const Node> node) : node_(std::move(node)) {}
+  static Doc leaf(DocKind kind);
+  static Doc withChildren(DocKind kind, std::vector<Doc> children, int indent = 0);
+
+  std::shared_ptr<const Node> node_;
 };
 
 // Lays `document` out in lines of at most `width` columns where it can, and

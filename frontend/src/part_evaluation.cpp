@@ -15,6 +15,10 @@ namespace {
 constexpr double maximumCheckedIterations = 1000;
 // And a part's body runs at most this many statements in all (nested loops).
 constexpr std::size_t maximumCheckedStatements = 100'000;
+// Below a hundredth of a micrometre no controller can follow, and the
+// number of points grows without bound.
+constexpr double minimumTolerance = 1e-5;
+constexpr double maximumSamples = 1'000'000;
 
 class PartEvaluator {
 public:
@@ -98,6 +102,7 @@ private:
       positive(*as<ValueStmt>(statement).value, environment, "the spindle speed");
       return;
     case StmtKind::Safe:
+      safeKnown_ = true;
       for (const Argument& setting : as<SafeStmt>(statement).settings) {
         positive(*setting.value, environment, "the safe height z (above the work surface)");
       }
@@ -193,17 +198,22 @@ private:
     if (auto tolerance = values.find("tolerance"); tolerance != values.end()) {
       auto [value, modifier] = tolerance->second;
       if (!(value > 0)) {
-        evaluator_.report(DiagnosticKind::ToleranceNotPositive, modifier->value->span,
+        evaluator_.report(DiagnosticKind::InvalidTolerance, modifier->value->span,
                           fmt::format("the tolerance is {:g}; it must be greater than 0", value));
+      } else if (value < minimumTolerance) {
+        evaluator_.report(DiagnosticKind::InvalidTolerance, modifier->value->span,
+                          fmt::format("the tolerance {:g} mm is below the {:g} mm the compiler "
+                                      "can honour",
+                                      value, minimumTolerance));
       }
     }
     if (auto samples = values.find("samples"); samples != values.end()) {
       auto [value, modifier] = samples->second;
-      if (value != std::floor(value) || value < 2) {
+      if (value != std::floor(value) || value < 2 || value > maximumSamples) {
         evaluator_.report(DiagnosticKind::InvalidSamples, modifier->value->span,
-                          fmt::format("samples={:g}: a cut needs a whole number of at least 2 "
-                                      "samples",
-                                      value));
+                          fmt::format("samples={:g}: a cut needs a whole number of samples, from 2 "
+                                      "to {:g}",
+                                      value, maximumSamples));
       }
     }
     for (const char* name : {"spacing", "feed"}) {
@@ -218,6 +228,11 @@ private:
       toolReported_ = true;
       evaluator_.report(DiagnosticKind::NoTool, cut.span,
                         "this cut has no tool; write 'tool N diameter=D' before it");
+    }
+    if (!safeKnown_ && !safeReported_) {
+      safeReported_ = true;
+      evaluator_.report(DiagnosticKind::NoSafeHeight, cut.span,
+                        "this cut has no safe height for rapid moves; write 'safe z=Z' before it");
     }
     bool hasFeedModifier = false;
     for (const Modifier& modifier : cut.modifiers) {
@@ -256,6 +271,8 @@ private:
   bool feedKnown_ = false;
   std::size_t statements_ = 0;
   bool toolReported_ = false;
+  bool safeKnown_ = false;
+  bool safeReported_ = false;
   bool feedReported_ = false;
 };
 

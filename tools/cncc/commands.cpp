@@ -51,9 +51,7 @@ std::string emittedText(const DriverOptions& options, SourceManager& sources,
     }
     std::vector<std::string> problems = ir::verifyFunction(*function);
     if (!problems.empty()) {
-      diagnostics.report(frontend::DiagnosticKind::InvalidChoice, program->selectedPart->nameSpan,
-                         "internal error: the lowered IR does not verify: " + problems.front());
-      return "";
+      throw InternalError("the lowered IR does not verify: " + problems.front());
     }
     return ir::printFunction(*function);
   }
@@ -147,6 +145,10 @@ int runCommand(const DriverOptions& options) {
     return runCheck(options);
   case Command::ListDiagnostics:
     return runListDiagnostics();
+  case Command::Format:
+    return runFormat(options);
+  case Command::LanguageServer:
+    return runLanguageServer();
   }
   return 2;
 }

@@ -3,6 +3,7 @@
 #include "targets.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -31,6 +32,9 @@ struct RawOptions {
   std::string colour = "auto";
   std::string errorLimit = "50";
   bool listDiagnostics = false;
+  std::vector<std::string> formatInputs;
+  bool formatCheck = false;
+  bool formatInPlace = false;
 };
 
 // A mistake in how cncc was called: printed, exit code 2.
@@ -48,6 +52,7 @@ std::string helpFooter() {
   footer += "\nExamples:\n"
             "  cncc examples/s_profile.cdl -t m80 -o O1000\n"
             "  cncc check examples/*.cdl\n"
+            "  cncc fmt -i examples/*.cdl\n"
             "  cncc --emit=ast examples/s_profile.cdl\n"
             "\nExit codes: 0 success, 1 errors in the source, 2 wrong usage.";
   return footer;
@@ -103,6 +108,31 @@ CLI::App* addCheckCommand(CLI::App& app, RawOptions& raw) {
                 "(see 'cncc --help').\nExit codes: 0 no errors, 1 errors in some file, 2 wrong "
                 "usage.");
   return check;
+}
+
+CLI::App* addFormatCommand(CLI::App& app, RawOptions& raw) {
+  CLI::App* format = app.add_subcommand(
+      "fmt",
+      "Print files in the canonical layout (see frontend/include/cncc/frontend/formatter.h)");
+  format->add_option("FILE", raw.formatInputs, "The .cdl files ('-': standard input)")
+      ->type_name("")
+      ->required();
+  format->add_flag("--check", raw.formatCheck,
+                   "Write nothing; list the files that are not formatted (exit code 1 if any)");
+  format->add_flag("-i,--in-place", raw.formatInPlace, "Rewrite the files that are not formatted");
+  format->fallthrough();
+  format->footer("\nExit codes: 0 done, 1 syntax errors (such a file is left as it is) or, with "
+                 "--check, unformatted files, 2 wrong usage.");
+  return format;
+}
+
+CLI::App* addLanguageServerCommand(CLI::App& app) {
+  CLI::App* lsp = app.add_subcommand(
+      "lsp", "Run the language server (Language Server Protocol on standard input and output)");
+  lsp->add_flag_function(
+      "--stdio", [](std::int64_t) {},
+      "Use standard input and output (the default; editors pass it)");
+  return lsp;
 }
 
 bool isIdentifier(std::string_view text) {
@@ -244,6 +274,35 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   return options;
 }
 
+DriverOptions formatOptions(const RawOptions& raw, const CLI::App& app) {
+  for (const char* name : {"--target", "--output", "--emit"}) {
+    if (app.count(name) > 0) {
+      throw UsageError(fmt::format("option {} does not apply to 'fmt'", name));
+    }
+  }
+  if (raw.formatCheck && raw.formatInPlace) {
+    throw UsageError("'fmt' takes --check or -i, not both");
+  }
+  bool readsStandardInput =
+      std::find(raw.formatInputs.begin(), raw.formatInputs.end(), "-") != raw.formatInputs.end();
+  if (raw.formatInPlace && readsStandardInput) {
+    throw UsageError("'fmt -i' cannot rewrite standard input");
+  }
+  DriverOptions options;
+  options.command = Command::Format;
+  options.inputs = raw.formatInputs;
+  options.formatMode = raw.formatCheck     ? FormatMode::Check
+                       : raw.formatInPlace ? FormatMode::InPlace
+                                           : FormatMode::Print;
+  options.diagnosticsFormat =
+      raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text;
+  options.colour = raw.colour == "always"  ? ColourMode::Always
+                   : raw.colour == "never" ? ColourMode::Never
+                                           : ColourMode::Auto;
+  options.errorLimit = parseErrorLimit(raw.errorLimit);
+  return options;
+}
+
 int reportUsageError(std::string_view message) {
   fmt::print(stderr, "cncc: error: {}\nRun 'cncc --help' for usage.\n", message);
   return 2;
@@ -260,8 +319,18 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   addCompileOptions(app, raw);
   addCommonOptions(app, raw);
   CLI::App* check = addCheckCommand(app, raw);
+  CLI::App* format = addFormatCommand(app, raw);
+  CLI::App* lsp = addLanguageServerCommand(app);
   try {
     app.parse(argc, argv);
+    if (format->parsed()) {
+      return {formatOptions(raw, app), 0};
+    }
+    if (lsp->parsed()) {
+      DriverOptions options;
+      options.command = Command::LanguageServer;
+      return {options, 0};
+    }
     return {validatedOptions(raw, app, check->parsed()), 0};
   } catch (const CLI::ParseError& error) {
     if (error.get_exit_code() == 0) {

@@ -16,11 +16,16 @@ enum class Command {
   Emit,            // cncc FILE --emit=tokens|ast|ir [-o OUT]
   Check,           // cncc check FILE...
   ListDiagnostics, // cncc --list-diagnostics (hidden; for the coverage test)
+  Format,          // cncc fmt FILE... [--check | -i]
+  LanguageServer,  // cncc lsp
 };
 
 enum class EmitKind { Tokens, Ast, Ir };
 enum class DiagnosticsFormat { Text, Json };
 enum class ColourMode { Auto, Always, Never };
+// What `cncc fmt` does with the formatted text: print it, list the files it
+// would change (--check), or rewrite them (-i).
+enum class FormatMode { Print, Check, InPlace };
 
 struct DriverOptions {
   Command command = Command::Compile;
@@ -35,6 +40,7 @@ struct DriverOptions {
   DiagnosticsFormat diagnosticsFormat = DiagnosticsFormat::Text;
   ColourMode colour = ColourMode::Auto;
   std::size_t errorLimit = 50; // 0 means no limit
+  FormatMode formatMode = FormatMode::Print;
 };
 
 // What parsing the command line decided: options to run with, or an exit

@@ -1,5 +1,7 @@
 #include "targets.h"
 
+#include "commands.h"
+
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/ir/interpreter.h"
@@ -29,16 +31,13 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request) {
   }
   std::vector<std::string> problems = ir::verifyFunction(*function);
   if (!problems.empty()) {
-    request.diagnostics.report(frontend::DiagnosticKind::InvalidChoice, part->nameSpan,
-                               "internal error: the lowered IR does not verify: " +
-                                   problems.front());
-    return std::nullopt;
+    throw InternalError("the lowered IR does not verify: " + problems.front());
   }
   try {
     return ir::interpret(*function);
   } catch (const ir::InterpreterError& error) {
-    request.diagnostics.report(frontend::DiagnosticKind::InvalidChoice, part->nameSpan,
-                               fmt::format("internal error: running the IR failed: {}",
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
+                               fmt::format("the part cannot be run on the host: {}",
                                            error.what()));
     return std::nullopt;
   }

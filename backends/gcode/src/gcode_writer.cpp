@@ -1,0 +1,177 @@
+#include "cncc/backends/gcode_writer.h"
+
+#include <fmt/format.h>
+
+#include <cctype>
+#include <cmath>
+#include <optional>
+
+namespace cncc::backends {
+
+std::string formatGcodeNumber(double value, int decimals) {
+  std::string text = fmt::format("{:.{}f}", value, decimals);
+  std::size_t point = text.find('.');
+  if (point == std::string::npos) {
+    text += '.';
+  } else {
+    std::size_t last = text.find_last_not_of('0');
+    text.erase(last + 1); // keeps the point when every decimal was 0
+  }
+  if (text == "-0.") {
+    text = "0.";
+  }
+  return text;
+}
+
+std::string gcodeCommentText(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '(' || c == ')') {
+      continue;
+    }
+    unsigned char u = static_cast<unsigned char>(c);
+    out += std::isprint(u) ? static_cast<char>(std::toupper(u)) : ' ';
+  }
+  return out;
+}
+
+std::optional<int> programNumberFromFileName(std::string_view path) {
+  std::size_t slash = path.find_last_of('/');
+  std::string_view name = slash == std::string_view::npos ? path : path.substr(slash + 1);
+  std::size_t dot = name.find('.');
+  if (dot != std::string_view::npos) {
+    name = name.substr(0, dot);
+  }
+  if (name.size() < 2 || name.size() > 9 || (name[0] != 'O' && name[0] != 'o')) {
+    return std::nullopt;
+  }
+  int number = 0;
+  for (char c : name.substr(1)) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) {
+      return std::nullopt;
+    }
+    number = number * 10 + (c - '0');
+  }
+  return number > 0 ? std::optional<int>(number) : std::nullopt;
+}
+
+namespace {
+
+// Prints motion blocks, keeping coordinates and the feed modal.
+class BlockWriter {
+public:
+  explicit BlockWriter(int decimals) : decimals_(decimals) {}
+
+  void line(std::string text) {
+    out_ += text;
+    out_ += '\n';
+  }
+
+  void move(bool rapid, double x, double y, double z, double feed) {
+    if (rapid) {
+      // Up first and down last, so a rapid never moves sideways below the
+      // height it starts or ends at.
+      bool rising = !known_ || z > z_ + 1e-12;
+      if (rising) {
+        block(true, std::nullopt, std::nullopt, z, 0);
+        block(true, x, y, std::nullopt, 0);
+      } else {
+        block(true, x, y, std::nullopt, 0);
+        block(true, std::nullopt, std::nullopt, z, 0);
+      }
+      return;
+    }
+    block(false, x, y, z, feed);
+  }
+
+  std::string take() { return std::move(out_); }
+
+private:
+  void block(bool rapid, std::optional<double> x, std::optional<double> y,
+             std::optional<double> z, double feed) {
+    std::string words;
+    auto word = [&](char letter, std::optional<double> value, std::string& current) {
+      if (!value) {
+        return;
+      }
+      std::string text = formatGcodeNumber(*value, decimals_);
+      if (text != current) {
+        words += fmt::format(" {}{}", letter, text);
+        current = text;
+      }
+    };
+    word('X', x, x_);
+    word('Y', y, y_);
+    word('Z', z, zText_);
+    if (z) {
+      z_ = *z;
+    }
+    if (x && y && z) {
+      known_ = true;
+    }
+    if (words.empty()) {
+      return; // the machine is already there
+    }
+    std::string feedWord;
+    if (!rapid) {
+      std::string text = formatGcodeNumber(feed, decimals_);
+      if (text != feed_) {
+        feedWord = " F" + text;
+        feed_ = text;
+      }
+    }
+    line(fmt::format("{}{}{}", rapid ? "G00" : "G01", words, feedWord));
+  }
+
+  int decimals_;
+  std::string out_;
+  std::string x_, y_, zText_, feed_;
+  double z_ = 0;
+  bool known_ = false;
+};
+
+} // namespace
+
+std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
+  BlockWriter writer(options.decimals);
+  writer.line("%");
+  writer.line(fmt::format("O{}", options.programNumber));
+  writer.line(fmt::format("({} - PART {})", gcodeCommentText(options.sourceName),
+                          gcodeCommentText(options.partName)));
+  writer.line(options.inches ? "G20" : "G21");
+  writer.line("G17 G90");
+  writer.line("G40 G49 G80");
+  bool spindleOn = false;
+  for (const ir::MachineEvent& event : path.events) {
+    switch (event.kind) {
+    case ir::MachineEvent::Kind::Rapid:
+    case ir::MachineEvent::Kind::Feed:
+      writer.move(event.kind == ir::MachineEvent::Kind::Rapid, event.x, event.y, event.z,
+                  event.feed);
+      break;
+    case ir::MachineEvent::Kind::Spindle:
+      writer.line(fmt::format("S{} M03", static_cast<long long>(std::llround(event.number))));
+      spindleOn = true;
+      break;
+    case ir::MachineEvent::Kind::Tool:
+      if (spindleOn) {
+        writer.line("M05");
+        spindleOn = false;
+      }
+      writer.line(fmt::format("T{} M06 (DIAMETER {})", static_cast<long long>(std::llround(event.number)),
+                              formatGcodeNumber(event.diameter, options.decimals)));
+      break;
+    case ir::MachineEvent::Kind::Comment:
+      writer.line(fmt::format("({})", gcodeCommentText(event.text)));
+      break;
+    }
+  }
+  if (spindleOn) {
+    writer.line("M05");
+  }
+  writer.line("M30");
+  writer.line("%");
+  return writer.take();
+}
+
+} // namespace cncc::backends

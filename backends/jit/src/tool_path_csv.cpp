@@ -1,0 +1,34 @@
+#include "cncc/backends/tool_path_csv.h"
+
+#include <fmt/format.h>
+
+namespace cncc::backends {
+
+std::string formatCsvNumber(double value) {
+  std::string text = fmt::format("{:.6f}", value);
+  std::size_t point = text.find('.');
+  if (point != std::string::npos) {
+    std::size_t last = text.find_last_not_of('0');
+    text.erase(last == point ? point : last + 1);
+  }
+  if (text == "-0") {
+    text = "0";
+  }
+  return text;
+}
+
+std::string writeToolPathCsv(const ir::ToolPath& path) {
+  std::string out = "x,y,z,feed,rapid\n";
+  for (const ir::MachineEvent& event : path.events) {
+    bool rapid = event.kind == ir::MachineEvent::Kind::Rapid;
+    if (!rapid && event.kind != ir::MachineEvent::Kind::Feed) {
+      continue;
+    }
+    out += fmt::format("{},{},{},{},{}\n", formatCsvNumber(event.x), formatCsvNumber(event.y),
+                       formatCsvNumber(event.z), formatCsvNumber(rapid ? 0.0 : event.feed),
+                       rapid ? 1 : 0);
+  }
+  return out;
+}
+
+} // namespace cncc::backends

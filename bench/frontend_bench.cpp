@@ -1,0 +1,269 @@
+// Front-end throughput: lexing, parsing and checking (sema, with its
+// compile-time evaluation of every part) of a generated 50,000-line CDL file
+// of realistic content: constants, curve functions and parts with lets,
+// NURBS, B-splines, polar and parametric curves, paths, loops and
+// conditionals, importing the standard library.
+//
+//   build/bench/frontend_bench                       run the benchmarks
+//   build/bench/frontend_bench --write-cdl=FILE [--lines=N]
+//                                                    write the generated file
+//                                                    (for timing `cncc check`)
+//
+// Each benchmark reports `lines_per_second` (source lines through the phases
+// per second of wall time) and bytes per second. The target for the whole
+// front end is at least one million lines per second; bench/RESULTS.md has
+// the figures.
+#include "cncc/frontend/diagnostics.h"
+#include "cncc/frontend/lexer.h"
+#include "cncc/frontend/parser.h"
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace {
+
+using namespace cncc::frontend;
+
+constexpr int defaultLines = 50'000;
+
+// The standard library of this source tree, found from this file's path.
+std::string stdlibDirectory() {
+  return (std::filesystem::path(__FILE__).parent_path().parent_path() / "stdlib").string();
+}
+
+// A small deterministic generator, so every run checks the same file.
+class Numbers {
+public:
+  double next(double low, double high) {
+    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
+    double unit = static_cast<double>(state_ >> 11) / static_cast<double>(1ULL << 53);
+    return low + unit * (high - low);
+  }
+  int whole(int low, int high) { return low + static_cast<int>(next(0, high - low + 0.999)); }
+
+private:
+  std::uint64_t state_ = 0x2545F4914F6CDD1DULL;
+};
+
+// One family of parts as a CNC programmer might write it: 45 lines.
+std::string family(int k, Numbers& numbers) {
+  double x = numbers.next(20, 40);
+  double y = numbers.next(15, 30);
+  double w = numbers.next(1, 4);
+  double size = numbers.next(4, 8);
+  int lobes = numbers.whole(3, 7);
+  int count = numbers.whole(2, 6);
+  return fmt::format(
+      R"(// Family {k}: a bracket with a NURBS edge, {count} lobed pockets and a helix.
+const c{k}_clearance = {clearance:.1f}
+fn f{k}_lobes(k, t) = 1 + 0.2*cos(k*t)
+fn f{k}_pocket(size) = polar(r = size*f{k}_lobes({lobes}, t), t = 0 .. 2*pi)
+
+part p{k}(depth = 3, step = 1, w = {w:.3f}, count = {count}) {{
+  units mm
+  tool 1 diameter=10 spindle=3000 feed=300
+  safe z=c{k}_clearance
+  let P = [(25, 50), ({x:.4f}, {y:.4f}), (70.5832, 72.3597), (86.608, 165.3624),
+           (112.4532, 38.3852), (132.4671, 35.1148), (175, 150)]
+  curve nurbs(order=4, points=P, weights=[1, 1, 1, 1, 1, w, 1]) sweep depth=depth step=step tolerance=0.01
+  let spline = bspline(degree=3, points=[(0, 0), (10, {y:.2f}), (20, -5), (30, 0), (40, 8)],
+                       knots=[0, 0, 0, 0, 0.3, 1, 1, 1, 1])
+  curve translate(spline, 5, 5) feed=200
+  /* Pockets round the centre, a quarter turn apart. */
+  for i in 0 .. count - 1 {{
+    let a = i * 90deg
+    curve rotate(translate(f{k}_pocket({size:.2f}), 40, 0), a) sweep depth=2 step=1 method=cspline
+  }}
+  if depth > 2 && w < 5 {{
+    curve arc(center=(0, 0), radius=60, from=0, to=pi) tolerance=0.02
+  }} else {{
+    curve line((0, 0), (100, 0))
+  }}
+  let h = if w > 2 then 1.5 else 1
+  // A helical bore, then a slot outline and a Bezier lead-out.
+  curve param(x = 10*cos(t), y = 10*sin(t), z = -h*t/(2*pi), t = 0 .. 4*pi) samples=200
+  curve path(line((0, 0), (50, 0)),
+             arc(center=(50, 10), radius=10, from=-pi/2, to=pi/2),
+             line((50, 20), (0, 20))) spacing=0.5
+  curve bezier(points=[(0, 0), (10, 20), (30, 20), (40, 0)]) entry=ramp
+  curve archimedean_spiral(1, 0.5, 3) tolerance=0.005
+  let corner = P[1]
+  curve scale(circle(corner.x, corner.y, 2.5), 1.01) samples=72
+  curve rounded_rectangle(80, 40, 60, 30, 4) sweep depth=depth step=1.5
+  feed 250
+  spindle 4000
+  curve ellipse(100, 100, 30, 20) tolerance=0.01 feed=150
+  for j in 1 .. 2 {{
+    curve translate(line((0, 0), (10, 0)), 0, j*5)
+  }}
+}}
+
+)",
+      fmt::arg("k", k), fmt::arg("clearance", numbers.next(2, 10)), fmt::arg("lobes", lobes),
+      fmt::arg("w", w), fmt::arg("count", count), fmt::arg("x", x), fmt::arg("y", y),
+      fmt::arg("size", size));
+}
+
+std::size_t countLines(std::string_view text) {
+  std::size_t lines = 0;
+  for (char c : text) {
+    lines += c == '\n' ? 1 : 0;
+  }
+  return lines;
+}
+
+// Exactly `lines` lines: whole families, then comment lines to fill.
+std::string generateCdl(int lines) {
+  std::string text = "// Generated by bench/frontend_bench.cpp for the front-end benchmark.\n"
+                     "import \"std/curves\"\n\n";
+  Numbers numbers;
+  for (int k = 1;; ++k) {
+    std::string next = family(k, numbers);
+    if (countLines(text) + countLines(next) > static_cast<std::size_t>(lines)) {
+      break;
+    }
+    text += next;
+  }
+  for (std::size_t line = countLines(text); line < static_cast<std::size_t>(lines); ++line) {
+    text += "// filler\n";
+  }
+  return text;
+}
+
+const std::string& generatedSource() {
+  static const std::string text = generateCdl(defaultLines);
+  return text;
+}
+
+CheckOptions checkOptions() {
+  CheckOptions options;
+  options.importPaths = {stdlibDirectory()};
+  return options;
+}
+
+void reportRates(benchmark::State& state, const std::string& text) {
+  double lines = static_cast<double>(countLines(text));
+  state.counters["lines_per_second"] =
+      benchmark::Counter(lines * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
+  state.counters["lines"] = lines;
+  state.SetBytesProcessed(static_cast<std::int64_t>(text.size()) * state.iterations());
+}
+
+// The file must check cleanly, or the benchmark measures error recovery.
+bool checksCleanly(benchmark::State& state, const std::string& text) {
+  SourceManager sources;
+  FileId file = sources.addFile("generated.cdl", text);
+  DiagnosticEngine diagnostics(0);
+  checkProgram(sources, file, checkOptions(), diagnostics);
+  if (diagnostics.diagnostics().empty()) {
+    return true;
+  }
+  const Diagnostic& first = diagnostics.diagnostics().front();
+  std::string message = fmt::format("the generated file does not check cleanly ({} diagnostics): {}",
+                                    diagnostics.diagnostics().size(),
+                                    renderText(first, sources));
+  state.SkipWithError(message.c_str());
+  return false;
+}
+
+void lexOnly(benchmark::State& state) {
+  const std::string& text = generatedSource();
+  SourceManager sources;
+  FileId file = sources.addFile("generated.cdl", text);
+  for (auto _ : state) {
+    DiagnosticEngine diagnostics;
+    std::vector<Token> tokens = lex(sources, file, diagnostics);
+    benchmark::DoNotOptimize(tokens.data());
+  }
+  reportRates(state, text);
+}
+BENCHMARK(lexOnly)->Name("frontend/lex")->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void lexAndParse(benchmark::State& state) {
+  const std::string& text = generatedSource();
+  SourceManager sources;
+  FileId file = sources.addFile("generated.cdl", text);
+  for (auto _ : state) {
+    DiagnosticEngine diagnostics;
+    Module module = parseFile(sources, file, diagnostics);
+    benchmark::DoNotOptimize(module.items.data());
+  }
+  reportRates(state, text);
+}
+BENCHMARK(lexAndParse)->Name("frontend/lex+parse")->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// What `cncc check` does with one file: load it, lex, parse, follow the
+// import, resolve names, check types and evaluate every part.
+void lexParseAndCheck(benchmark::State& state) {
+  const std::string& text = generatedSource();
+  if (!checksCleanly(state, text)) {
+    return;
+  }
+  CheckOptions options = checkOptions();
+  for (auto _ : state) {
+    SourceManager sources;
+    FileId file = sources.addFile("generated.cdl", text);
+    DiagnosticEngine diagnostics;
+    CheckedProgram program = checkProgram(sources, file, options, diagnostics);
+    benchmark::DoNotOptimize(program.parts.data());
+  }
+  reportRates(state, text);
+}
+BENCHMARK(lexParseAndCheck)
+    ->Name("frontend/lex+parse+check")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// `--write-cdl=FILE [--lines=N]`: writes the generated source and exits.
+// Returns -1 when the arguments ask for no such thing.
+int writeRequested(int argc, char** argv) {
+  std::string path;
+  int lines = defaultLines;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view argument = argv[i];
+    if (argument.starts_with("--write-cdl=")) {
+      path = std::string(argument.substr(12));
+    } else if (argument.starts_with("--lines=")) {
+      lines = std::atoi(argv[i] + 8);
+    }
+  }
+  if (path.empty()) {
+    return -1;
+  }
+  std::ofstream out(path, std::ios::binary);
+  out << generateCdl(lines);
+  out.close();
+  if (!out) {
+    std::fprintf(stderr, "frontend_bench: cannot write '%s'\n", path.c_str());
+    return 1;
+  }
+  std::printf("wrote %d lines to %s\n", lines, path.c_str());
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (int written = writeRequested(argc, argv); written >= 0) {
+    return written;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
+    return 1;
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,36 @@
+// Lowering from the checked AST to the IR: one Function per part.
+//
+// The part's parameters become the function's parameters, their values (the
+// defaults, or -D overrides) as defaults. Tool, spindle, feed and safe height
+// become effects and lowered values; each cut becomes its passes: a rapid
+// over the start at the safe height, a plunge at the cut's feed, a loop over
+// a table of curve parameters chosen at compile time (chord tolerance,
+// samples= or spacing=) that evaluates the curve point in IR arithmetic, and
+// a retract. What this version cannot lower yet is an error diagnostic at its
+// source span; lowering never skips a construct silently.
+#pragma once
+
+#include "cncc/frontend/diagnostics.h"
+#include "cncc/frontend/sema.h"
+#include "cncc/ir/ir.h"
+
+#include <optional>
+
+namespace cncc::ir {
+
+struct LoweringOptions {
+  // The chord tolerance of a cut without tolerance=, samples= or spacing=.
+  double defaultTolerance = 0.01;
+};
+
+// The lowered part, or nullopt after an error diagnostic.
+std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
+                                  const frontend::PartItem& part,
+                                  frontend::DiagnosticEngine& diagnostics,
+                                  const LoweringOptions& options = {});
+
+enum class PartUnits { Millimetres, Inches };
+// The `units` statement at the top of the part's body (millimetres without one).
+PartUnits partUnits(const frontend::PartItem& part);
+
+} // namespace cncc::ir
