@@ -86,6 +86,12 @@ TEST_F(CompletionTest, StatementKeywordsAtTheStartOfAStatement) {
   EXPECT_THAT(found, Not(Contains("part")));
 }
 
+TEST_F(CompletionTest, NothingInCommentsAndStrings) {
+  EXPECT_TRUE(labels(completeAt("part p() {\n  units mm // a no|\n}\n")).empty());
+  EXPECT_TRUE(labels(completeAt("const s = \"a \\\" b|\"\n")).empty());
+  EXPECT_FALSE(labels(completeAt("const s = \"a\" + |\n")).empty());
+}
+
 TEST_F(CompletionTest, ItemKeywordsAtTopLevel) {
   std::vector<std::string> found = labels(completeAt("const a = 1\n|"));
   EXPECT_EQ(found, (std::vector<std::string>{"part", "fn", "const", "import"}));

@@ -72,7 +72,7 @@ void checkInsertions(const std::string& source, const std::string& name, std::si
 }
 
 TEST(FormatterComments, AnywhereInAnExample) {
-  checkInsertions(readSourceFile("examples/cam_profile.cdl"), "cam_profile");
+  checkInsertions(readSourceFile("examples/cam_profile.cdl"), "cam_profile", 2);
 }
 
 TEST(FormatterComments, AnywhereInTheStdlib) {

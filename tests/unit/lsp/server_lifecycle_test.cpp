@@ -85,6 +85,16 @@ TEST(ServerErrors, UnknownMethodsAndBadParams) {
   EXPECT_EQ(changed[0]["method"], "window/logMessage");
 }
 
+TEST(ServerLifecycle, MalformedCapabilitiesAreIgnored) {
+  for (Json capabilities : {Json(5), Json::array({1, 2}),
+                            Json{{"textDocument", {{"completion", Json::array({1})}}}},
+                            Json{{"textDocument", {{"completion", {{"completionItem", "yes"}}}}}}}) {
+    Session session;
+    Json response = session.initialize(capabilities);
+    EXPECT_TRUE(response.contains("result")) << capabilities.dump();
+  }
+}
+
 TEST(ServerErrors, StringIdsAreEchoed) {
   Session session;
   std::vector<Json> answer = session.send(

@@ -136,6 +136,22 @@ bool continuesExpression(std::string_view text, std::uint32_t lineStart) {
   return i > 0 && std::string_view("([,=+-*/%^<>&|!.").find(text[i - 1]) != std::string_view::npos;
 }
 
+// Whether the cursor is in a `//` comment or a string (judged from its line;
+// block comments spanning lines are not detected).
+bool inCommentOrString(std::string_view before) {
+  bool inString = false;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    if (inString && before[i] == '\\') {
+      ++i;
+    } else if (before[i] == '"') {
+      inString = !inString;
+    } else if (!inString && before.substr(i, 2) == "//") {
+      return true;
+    }
+  }
+  return inString;
+}
+
 } // namespace
 
 Json completion(const Analysis& analysis, Position position, const CompletionOptions& options) {
@@ -144,7 +160,7 @@ Json completion(const Analysis& analysis, Position position, const CompletionOpt
   std::uint32_t offset = analysis.offsetOf(position);
   CursorLine line = cursorLine(text, offset);
   if (completeImport(items, line, analysis.positions(), offset, options) ||
-      completeModifiers(items, line)) {
+      inCommentOrString(line.before) || completeModifiers(items, line)) {
     return items.list();
   }
   bool lineStart = isBlank(line.head) && !continuesExpression(text, line.lineStart);

@@ -52,18 +52,30 @@ void Server::registerHandlers() {
   notifications_["textDocument/didClose"] = [this](const Json& params) { didClose(params); };
 }
 
+namespace {
+
+// Whether the client's capabilities say it expands completion snippets;
+// false for anything missing or malformed.
+bool clientExpandsSnippets(const Json& params) {
+  const Json* value = &params;
+  for (const char* key :
+       {"capabilities", "textDocument", "completion", "completionItem", "snippetSupport"}) {
+    if (!value->is_object() || !value->contains(key)) {
+      return false;
+    }
+    value = &(*value)[key];
+  }
+  return value->is_boolean() && value->get<bool>();
+}
+
+} // namespace
+
 Json Server::initialize(const Json& params) {
   if (state_ != State::Uninitialized) {
     throw RequestError(ErrorCode::InvalidRequest, "the server is already initialized");
   }
   state_ = State::Running;
-  const Json* snippets = nullptr;
-  if (params.is_object()) {
-    Json::json_pointer pointer(
-        "/capabilities/textDocument/completion/completionItem/snippetSupport");
-    snippets = params.contains(pointer) ? &params.at(pointer) : nullptr;
-  }
-  clientSnippets_ = snippets != nullptr && snippets->is_boolean() && snippets->get<bool>();
+  clientSnippets_ = clientExpandsSnippets(params);
   Json capabilities = {
       {"positionEncoding", "utf-16"},
       {"textDocumentSync", {{"openClose", true}, {"change", 2}}}, // 2: incremental
