@@ -335,6 +335,9 @@ private:
       if (panicking_ || position_ == before) {
         synchroniseStatement();
       }
+      if (position_ == before) {
+        advance(); // a statement word that cannot start a statement: `tool = 1`
+      }
     }
     panicking_ = false;
     if (!check(TokenKind::RightBrace)) {
