@@ -11,10 +11,8 @@ std::string formatCsvNumber(double value) {
     std::size_t last = text.find_last_not_of('0');
     text.erase(last == point ? point : last + 1);
   }
-  if (text == "-0") {
-    text = "0";
-  }
-  return text;
+  // Assigning "0" here trips GCC 12's false -Wrestrict under the sanitizers.
+  return text == "-0" ? std::string("0") : text;
 }
 
 std::string writeToolPathCsv(const ir::ToolPath& path) {
