@@ -255,6 +255,16 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   }
 }
 
+// How diagnostics are printed: the same options for every command.
+void setDiagnosticOutput(const RawOptions& raw, DriverOptions& options) {
+  options.diagnosticsFormat =
+      raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text;
+  options.colour = raw.colour == "always"  ? ColourMode::Always
+                   : raw.colour == "never" ? ColourMode::Never
+                                           : ColourMode::Auto;
+  options.errorLimit = parseErrorLimit(raw.errorLimit);
+}
+
 DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool checking) {
   DriverOptions options;
   chooseCommand(raw, app, checking, options);
@@ -265,12 +275,7 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   if (options.command != Command::ListDiagnostics) {
     options.importPaths = importPaths(raw.includeDirectories);
   }
-  options.diagnosticsFormat =
-      raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text;
-  options.colour = raw.colour == "always"  ? ColourMode::Always
-                   : raw.colour == "never" ? ColourMode::Never
-                                           : ColourMode::Auto;
-  options.errorLimit = parseErrorLimit(raw.errorLimit);
+  setDiagnosticOutput(raw, options);
   return options;
 }
 
@@ -294,12 +299,7 @@ DriverOptions formatOptions(const RawOptions& raw, const CLI::App& app) {
   options.formatMode = raw.formatCheck     ? FormatMode::Check
                        : raw.formatInPlace ? FormatMode::InPlace
                                            : FormatMode::Print;
-  options.diagnosticsFormat =
-      raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text;
-  options.colour = raw.colour == "always"  ? ColourMode::Always
-                   : raw.colour == "never" ? ColourMode::Never
-                                           : ColourMode::Auto;
-  options.errorLimit = parseErrorLimit(raw.errorLimit);
+  setDiagnosticOutput(raw, options);
   return options;
 }
 

@@ -24,7 +24,8 @@ class HoverTest : public ::testing::Test {
 protected:
   void SetUp() override {
     session.initialize();
-    for (const Json& diagnostic : session.open(uri, source)["diagnostics"]) {
+    Json published = session.open(uri, source);
+    for (const Json& diagnostic : published["diagnostics"]) {
       EXPECT_NE(diagnostic["severity"], 1) << diagnostic.dump(); // warnings for unused lets only
     }
   }

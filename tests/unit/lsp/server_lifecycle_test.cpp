@@ -86,9 +86,9 @@ TEST(ServerErrors, UnknownMethodsAndBadParams) {
 }
 
 TEST(ServerLifecycle, MalformedCapabilitiesAreIgnored) {
-  for (Json capabilities : {Json(5), Json::array({1, 2}),
-                            Json{{"textDocument", {{"completion", Json::array({1})}}}},
-                            Json{{"textDocument", {{"completion", {{"completionItem", "yes"}}}}}}}) {
+  for (Json capabilities :
+       {Json(5), Json::array({1, 2}), Json{{"textDocument", {{"completion", Json::array({1})}}}},
+        Json{{"textDocument", {{"completion", {{"completionItem", "yes"}}}}}}}) {
     Session session;
     Json response = session.initialize(capabilities);
     EXPECT_TRUE(response.contains("result")) << capabilities.dump();
