@@ -1,0 +1,71 @@
+// What a controller accepts, as data: the register allocator, the program
+// printers and the virtual controller all read the same profile, so a
+// program that does not fit its controller is refused at compile time with
+// the limit named, and the simulator enforces the same limits when it runs
+// what was printed. Facts and their sources are in TARGETS.md; uncertain
+// ones take the conservative value every variant of the controller accepts.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::backends {
+
+// A contiguous range of numbered variables, `#first` to `#last` inclusive.
+struct VariableRange {
+  int first = 0;
+  int last = -1;
+  int count() const { return last >= first ? last - first + 1 : 0; }
+  bool contains(int variable) const { return variable >= first && variable <= last; }
+};
+
+// Which G65 argument letter reaches which local variable (`A` -> #1).
+struct ArgumentLetter {
+  char letter = 'A';
+  int variable = 1;
+};
+
+struct ControllerProfile {
+  std::string name;        // "fanuc", "m80", ...
+  std::string description; // one line for messages and --help
+
+  // Variables a program may use for its own values, in the order the
+  // register allocator prefers them: locals of a macro call, volatile
+  // commons, retained commons.
+  VariableRange locals;                      // #1-#33, local to a G65 call
+  std::vector<VariableRange> volatileCommon; // #100-#199: cleared at power-off
+  std::vector<VariableRange> retainedCommon; // #500-#999: kept at power-off
+  std::vector<ArgumentLetter> argumentLetters;
+
+  int maximumLoopNesting = 3;    // WHILE .. DOm nesting (m = 1..this)
+  int maximumLoopIdentifier = 3; // the largest m in DOm / ENDm
+  int maximumBracketNesting = 5; // [ ] levels, function brackets included
+  int maximumCallNesting = 4;    // G65 macro call depth
+  int maximumBlockLength = 128;  // characters in one block (line)
+  int maximumProgramNumber = 9999;
+  int maximumSequenceNumber = 99999;
+  int significantDigits = 8;            // in a printed constant
+  int coordinateDecimals = 3;           // digits after the point, millimetres
+  double leastInputIncrement = 0.001;   // mm: every executed coordinate is rounded to it
+  double maximumCoordinate = 99999.999; // mm
+  bool hasIndirectVariables = true;     // `#[expression]`
+  bool hasThen = true;                  // `IF [..] THEN statement`
+  bool hasPowerFunction = false;        // `POW[a,b]` (30i)
+
+  // The letter of the G65 argument that reaches local `variable`, if any.
+  std::optional<char> letterForLocal(int variable) const;
+  // The local variable that argument `letter` reaches, if any.
+  std::optional<int> localForLetter(char letter) const;
+  // How many variables of the allocatable ranges exist in all.
+  int allocatableVariableCount() const;
+};
+
+// The built-in profiles: "fanuc" (conservative Fanuc 0i/16i/30i),
+// "fanuc-0i-small" (only #100-#149 and #500-#531), "m80".
+std::span<const ControllerProfile> builtinControllerProfiles();
+const ControllerProfile* findControllerProfile(std::string_view name);
+
+} // namespace cncc::backends
