@@ -1,0 +1,58 @@
+// Deviation between two curves.
+
+#include "cncc/geom/curve_deviation.h"
+#include "cncc/geom/geometry_error.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "test_curves.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace cncc::geom {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(CurveDeviation, ConcentricArcsAreTheirRadiusApart) {
+  ArcCurve inner({1, 2}, 5.0, 0.0, kPi);
+  ArcCurve outer({1, 2}, 5.01, 0.0, kPi);
+  CurveDeviationReport report = measureCurveDeviation(inner, outer, {1e-7});
+  EXPECT_NEAR(report.approximationToCurve.distance, 0.01, 1e-12);
+  EXPECT_NEAR(report.curveToApproximation.distance, 0.01, 1e-12);
+  EXPECT_NEAR(report.maxDeviation(), 0.01, 1e-12);
+}
+
+TEST(CurveDeviation, BothDirectionsCatchAPathThatStopsShort) {
+  LineCurve whole({0, 0, 0}, {10, 0, 0});
+  LineCurve part({0, 0.001, 0}, {7, 0.001, 0});
+  CurveDeviationReport report = measureCurveDeviation(part, whole, {1e-7});
+  // The part stays near the whole line, but the last 3 mm of it are not covered.
+  EXPECT_NEAR(report.approximationToCurve.distance, 0.001, 1e-12);
+  EXPECT_NEAR(report.curveToApproximation.distance, std::hypot(3.0, 0.001), 1e-9);
+  EXPECT_NEAR(report.curveToApproximation.parameter, 10.0, 1e-9);
+}
+
+TEST(CurveDeviation, FindsANarrowBumpBetweenSamples) {
+  // A line against a curve with a bump of height 0.002 and width 0.05 around x = 3.3.
+  auto bump = [](double x) { return 0.002 * std::exp(-std::pow((x - 3.3) / 0.05, 2)); };
+  FunctionCurve bumpy({0.0, 10.0}, [&](double t) { return Eigen::Vector3d(t, bump(t), 0.0); });
+  LineCurve line({0, 0, 0}, {10, 0, 0});
+  CurveDeviationReport report = measureCurveDeviation(line, bumpy, {1e-6});
+  EXPECT_NEAR(report.maxDeviation(), 0.002, 1e-6);
+  EXPECT_NEAR(report.curveToApproximation.parameter, 3.3, 1e-3);
+}
+
+TEST(CurveDeviation, LargestDistanceOverAnInterval) {
+  NurbsCurve quarter = testing::quarterCircle();
+  CurveProximity circle(quarter, 1e-7);
+  ArcCurve bigger({0, 0}, 1.5, 0.0, 0.5 * kPi);
+  CurveDistanceWitness witness =
+      largestDistanceToCurve(bigger, 0.0, bigger.length() / 2, circle, 16);
+  EXPECT_NEAR(witness.distance, 0.5, 1e-12);
+  EXPECT_THROW(largestDistanceToCurve(bigger, 1.0, 0.0, circle), GeometryError);
+}
+
+} // namespace
+} // namespace cncc::geom
