@@ -130,6 +130,13 @@ void FunctionBuilder::comment(std::string text) {
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::cutBegin(std::uint32_t index) {
+  Instruction instruction;
+  instruction.opcode = Opcode::CutBegin;
+  instruction.index = index;
+  append(std::move(instruction), ValueType::None);
+}
+
 Function FunctionBuilder::finish() {
   insertion_.clear();
   return std::move(function_);

@@ -142,6 +142,7 @@ private:
     case Opcode::Spindle:
     case Opcode::Tool:
     case Opcode::Comment:
+    case Opcode::CutBegin:
       record(instruction);
       return;
     default:
@@ -196,6 +197,10 @@ private:
       event.kind = MachineEvent::Kind::Tool;
       event.number = instruction.number;
       event.diameter = value(operands[0]);
+      break;
+    case Opcode::CutBegin:
+      event.kind = MachineEvent::Kind::CutBegin;
+      event.number = instruction.index;
       break;
     default:
       event.kind = MachineEvent::Kind::Comment;

@@ -51,6 +51,17 @@ double parseNumber(std::string_view text) {
   return value;
 }
 
+// The index of `cut.begin n`: a whole number that fits an index.
+std::uint32_t parseCutIndex(std::string_view text) {
+  text = trim(text);
+  std::uint32_t index = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), index);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    throw Failure{fmt::format("expected a cut index, found '{}'", text)};
+  }
+  return index;
+}
+
 class IrParser {
 public:
   Function parse(std::string_view text) {
@@ -209,6 +220,9 @@ private:
     }
     case Opcode::Comment:
       builder_->comment(unquote(rest));
+      return;
+    case Opcode::CutBegin:
+      builder_->cutBegin(parseCutIndex(rest));
       return;
     case Opcode::Loop: {
       if (rest.empty() || rest.back() != '{') {

@@ -84,6 +84,9 @@ private:
     case Opcode::Comment:
       out_ += fmt::format("{}comment {}\n", indent, quoted(instruction.text));
       return;
+    case Opcode::CutBegin:
+      out_ += fmt::format("{}cut.begin {}\n", indent, instruction.index);
+      return;
     case Opcode::Loop:
       out_ += fmt::format("{}{}loop {} {{\n", indent, result, operandText);
       printRegion(instruction.regions[0], depth + 1);

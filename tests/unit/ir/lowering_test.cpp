@@ -109,7 +109,7 @@ TEST(Lowering, NurbsSpansUseHornerAndStayOnTheCurve) {
 
 TEST(Lowering, UnsupportedConstructIsAnErrorAtItsSpan) {
   auto lowered = lower("part p {\n  tool 1 diameter=2 feed=100\n  safe z=2\n"
-                       "  for i in 1 .. 2 {\n    curve line((0, 0), (i, 5))\n  }\n}\n");
+                       "  curve line((0, 0), (10, 0)) sweep depth=2 step=1 entry=ramp\n}\n");
   EXPECT_FALSE(lowered->function);
   ASSERT_TRUE(lowered->diagnostics.hasErrors());
   const frontend::Diagnostic& diagnostic = lowered->diagnostics.diagnostics().back();

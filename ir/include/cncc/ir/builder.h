@@ -41,6 +41,8 @@ public:
   void spindle(ValueId speed);
   void tool(double number, ValueId diameter);
   void comment(std::string text);
+  // `cut.begin index`: the moves that follow belong to cut `index`.
+  void cutBegin(std::uint32_t index);
 
   Function finish();
   const Function& function() const { return function_; }

@@ -52,7 +52,7 @@ struct Instruction {
   std::vector<ValueId> operands;
   ValueId result;              // invalid when the operation has none
   double number = 0;           // Const value, ConstBool (0 or 1), Tool number
-  std::uint32_t index = 0;     // TableLoad: the table; Param: the parameter
+  std::uint32_t index = 0;     // TableLoad: the table; Param: the parameter; CutBegin: the cut
   std::string text;            // Comment text
   std::vector<Region> regions; // Loop: {body}; If: {then, else}
 };

@@ -12,18 +12,46 @@
 
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
+#include "cncc/geom/curve.h"
 #include "cncc/ir/ir.h"
 
+#include <memory>
 #include <optional>
+#include <vector>
 
 namespace cncc::ir {
 
 struct LoweringOptions {
   // The chord tolerance of a cut without tolerance=, samples= or spacing=.
   double defaultTolerance = 0.01;
+  // Whether the target interpolates splines (method=cspline, aspline,
+  // bspline, nurbs) itself. Without it such a cut is cut as straight feed
+  // moves within its tolerance, with a spline-as-chords warning.
+  bool splineInterpolation = false;
+};
+
+// One cut of the part: what `cut.begin index` refers to.
+struct CutGeometry {
+  // The true curve in part coordinates, transforms applied (XY plane).
+  std::shared_ptr<const geom::Curve> curve;
+  // The cut's promise in mm; NaN when samples= or spacing= chose the points.
+  double tolerance = 0;
+  // The `curve` statement.
+  frontend::SourceSpan span;
+};
+
+struct LoweredPart {
+  Function function;
+  // Indexed by cut.begin; a cut in an unrolled loop has one per iteration.
+  std::vector<CutGeometry> cuts;
 };
 
 // The lowered part, or nullopt after an error diagnostic.
+std::optional<LoweredPart> lowerPartWithCuts(const frontend::CheckedProgram& program,
+                                             const frontend::PartItem& part,
+                                             frontend::DiagnosticEngine& diagnostics,
+                                             const LoweringOptions& options = {});
+// The same, the function only.
 std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
                                   const frontend::PartItem& part,
                                   frontend::DiagnosticEngine& diagnostics,

@@ -8,11 +8,11 @@
 namespace cncc::ir {
 
 struct MachineEvent {
-  enum class Kind { Rapid, Feed, Spindle, Tool, Comment };
+  enum class Kind { Rapid, Feed, Spindle, Tool, Comment, CutBegin };
   Kind kind = Kind::Rapid;
   double x = 0, y = 0, z = 0; // Rapid, Feed: the target
   double feed = 0;            // Feed: mm/min
-  double number = 0;          // Spindle: rpm; Tool: the tool number
+  double number = 0;          // Spindle: rpm; Tool: the tool number; CutBegin: the cut index
   double diameter = 0;        // Tool
   std::string text;           // Comment
 };

@@ -1,0 +1,81 @@
+// The IR optimiser: passes that rewrite a Function into an equivalent,
+// usually smaller one. Every pass keeps the tool path the interpreter
+// computes bit for bit: folding uses the interpreter's arithmetic, an
+// algebraic identity is used only when it holds for every input (NaN, the
+// infinities and signed zeros included), and effect operations (moves,
+// spindle, tool, comment, cut.begin) are never removed, duplicated out of
+// their loop or reordered. Parameters stay parameters: nothing is folded
+// through `param`, so a controller program keeps them editable.
+//
+// Each pass returns whether it changed the function; its output verifies.
+#pragma once
+
+#include "cncc/ir/ir.h"
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::ir {
+
+// `fold`: constant folding and algebraic simplification; an `if` on a
+// constant becomes its taken region, a loop that runs zero times goes.
+bool foldConstants(Function& function);
+// `cse`: a pure operation equal to one that is visible at its place (same
+// region or an enclosing one) is replaced by it.
+bool eliminateCommonSubexpressions(Function& function);
+// `licm`: pure operations in a loop's body whose operands come from outside
+// the loop move before the loop. table.load (it can fail) and operations in
+// an `if` inside the loop stay where they are.
+bool hoistLoopInvariants(Function& function);
+
+struct UnrollOptions {
+  std::size_t maximumTripCount = 8;
+  // Instructions in the body, nested regions included.
+  std::size_t maximumBodySize = 64;
+  // Keep an unrolled loop only when fold, cse and dce then leave the
+  // function no larger than they leave it with the loop.
+  bool onlyWhenNoLarger = false;
+};
+// `unroll` (options as given) and `unroll-no-larger` (onlyWhenNoLarger):
+// a loop with constant bounds that runs at most maximumTripCount times is
+// replaced by copies of its body, the induction variable a constant in each.
+bool unrollLoops(Function& function, const UnrollOptions& options = {});
+// `dce`: pure operations whose results are unused go; so do ifs and loops
+// without effects (a loop only when its bounds are known finite, since the
+// interpreter rejects others).
+bool eliminateDeadCode(Function& function);
+
+struct Pass {
+  std::string_view name;
+  std::string_view description;
+  bool (*run)(Function& function);
+};
+
+// Every pass by its stable name, in the order above.
+std::span<const Pass> allPasses();
+const Pass* findPass(std::string_view name);
+
+// fold, cse, licm, unroll-no-larger, fold, cse, dce.
+std::span<const std::string_view> defaultPipeline();
+
+// Called after each pass with its name and the function it left.
+using AfterPassCallback = std::function<void(std::string_view name, const Function& function)>;
+
+// Runs the named passes once, in order; false (and nothing run) when a
+// name is unknown, with `unknown` set to it.
+bool runPasses(Function& function, std::span<const std::string> names,
+               const AfterPassCallback& afterPass, std::string* unknown = nullptr);
+
+// Runs the default pipeline until a round changes nothing (at most
+// `maximumRounds` rounds).
+void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass = {},
+                        int maximumRounds = 4);
+
+// The number of instructions placed in the function's regions.
+std::size_t instructionCount(const Function& function);
+
+} // namespace cncc::ir

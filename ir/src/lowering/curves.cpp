@@ -1,0 +1,310 @@
+// A cut's curve: flattened into smooth pieces (a path's pieces in order,
+// translate/rotate/scale composed into one transform per piece), the whole
+// as one geom curve for choosing the points, and each piece's point in IR
+// arithmetic at a parameter the IR loads from a table.
+#include "lowering/part_lowering.h"
+
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/function_curve.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/geom/nurbs_curve.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+// How far apart (mm) the end of one path piece and the start of the next
+// may be: rounding in the pieces' own evaluation, not a gap in the part.
+constexpr double joinTolerance = 1e-6;
+
+// What an analytic curve evaluates its expressions with; shared by the
+// curve's callbacks, so that the curve outlives the lowering (it still
+// needs the checked program).
+struct AnalyticContext {
+  AnalyticContext(const CheckedProgram& program, Environment values)
+      : evaluator(program, diagnostics), environment(std::move(values)) {}
+  DiagnosticEngine diagnostics{0};
+  RenewingEvaluator evaluator;
+  Environment environment;
+};
+
+Eigen::Vector3d vector(const std::array<double, 3>& point) {
+  return {point[0], point[1], point[2]};
+}
+
+} // namespace
+
+CutCurve PartLowering::cutCurve(const CutStmt& cut) {
+  Value value = evaluate(*cut.curve, environment_);
+  if (value.type.kind != TypeKind::Curve || !value.curve) {
+    fail(cut.curve->span, "cannot evaluate this curve for lowering");
+  }
+  CutCurve curve;
+  addPieces(value.curve, Affine{}, cut, curve);
+  if (curve.pieces.empty()) {
+    fail(cut.curve->span, "this path has no pieces to cut", DiagnosticKind::DegenerateCurve);
+  }
+  joinPieces(curve, cut);
+  return curve;
+}
+
+void PartLowering::addPieces(const std::shared_ptr<const CurveValue>& value,
+                             const Affine& transform, const CutStmt& cut, CutCurve& curve) {
+  switch (value->kind) {
+  case CurveKind::Path:
+    for (const auto& piece : value->pieces) {
+      addPieces(piece, transform, cut, curve);
+    }
+    return;
+  case CurveKind::Translate:
+  case CurveKind::Rotate:
+  case CurveKind::Scale: {
+    if (value->pieces.size() != 1) {
+      fail(cut.curve->span, "cannot evaluate this transformed curve for lowering");
+    }
+    Affine own = value->kind == CurveKind::Translate ? Affine::translation(value->dx, value->dy)
+                 : value->kind == CurveKind::Rotate  ? Affine::rotation(value->angle)
+                                                     : Affine::scaling(value->factor);
+    // The inner curve is moved first, then the enclosing transforms apply.
+    addPieces(value->pieces.front(), transform.after(own), cut, curve);
+    return;
+  }
+  default: {
+    CurvePiece piece = leafPiece(value, cut);
+    piece.transform = transform;
+    curve.pieces.push_back(std::move(piece));
+    return;
+  }
+  }
+}
+
+CurvePiece PartLowering::leafPiece(const std::shared_ptr<const CurveValue>& value,
+                                   const CutStmt& cut) {
+  CurvePiece piece;
+  piece.value = value;
+  const CurveValue& curve = *value;
+  switch (curve.kind) {
+  case CurveKind::Nurbs: {
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& point : curve.points) {
+      points.push_back(vector(point));
+    }
+    std::vector<double> weights = curve.weights;
+    if (weights.empty()) {
+      weights.assign(points.size(), 1.0);
+    }
+    auto nurbs = std::make_shared<geom::NurbsCurve>(geom::KnotVector(curve.knots, curve.degree),
+                                                    points, weights);
+    piece.spans = geom::toPowerBasis(*nurbs);
+    piece.geometry = std::move(nurbs);
+    break;
+  }
+  case CurveKind::Polar:
+  case CurveKind::Param:
+    piece.geometry = analyticCurve(value);
+    break;
+  case CurveKind::Line:
+    piece.geometry = std::make_shared<geom::LineCurve>(vector(curve.from), vector(curve.to));
+    break;
+  case CurveKind::Arc:
+    piece.geometry = std::make_shared<geom::ArcCurve>(
+        Eigen::Vector2d(curve.center[0], curve.center[1]), curve.arcRadius, curve.startAngle,
+        curve.endAngle - curve.startAngle);
+    break;
+  default:
+    unsupported(cut.curve->span, fmt::format("a '{}' curve", curve.constructor));
+  }
+  return piece;
+}
+
+std::shared_ptr<const geom::Curve>
+PartLowering::analyticCurve(const std::shared_ptr<const CurveValue>& curve) {
+  auto context = std::make_shared<AnalyticContext>(program_, curve->environment);
+  const Declaration* parameter = curve->parameter;
+  auto scalar = [context, parameter](const Expr* expression) {
+    return [context, parameter, expression](double t) {
+      context->diagnostics.clear();
+      context->environment[parameter] = Value::ofNumber(t);
+      Value value = context->evaluator.evaluate(*expression, context->environment);
+      return value.type.kind == TypeKind::Num ? value.number
+                                              : std::numeric_limits<double>::quiet_NaN();
+    };
+  };
+  geom::ParameterRange range{curve->low, curve->high};
+  if (curve->kind == CurveKind::Polar) {
+    return std::make_shared<geom::PolarCurve>(range, scalar(curve->radius));
+  }
+  geom::ScalarFunction z;
+  if (curve->z != nullptr) {
+    z = scalar(curve->z);
+  }
+  return std::make_shared<geom::FunctionCurve>(
+      geom::FunctionCurve::fromCoordinates(range, scalar(curve->x), scalar(curve->y), z));
+}
+
+void PartLowering::joinPieces(CutCurve& curve, const CutStmt& cut) {
+  std::vector<std::shared_ptr<const geom::Curve>> moved;
+  for (const CurvePiece& piece : curve.pieces) {
+    moved.push_back(piece.transform.isIdentity()
+                        ? piece.geometry
+                        : std::make_shared<TransformedCurve>(piece.geometry, piece.transform));
+  }
+  if (moved.size() == 1) {
+    geom::ParameterRange domain = moved.front()->domain();
+    curve.geometry = moved.front();
+    curve.pieceStarts = {domain.t0, domain.t1};
+    return;
+  }
+  curve.pieceStarts = {0.0};
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    geom::ParameterRange domain = moved[i]->domain();
+    if (i > 0) {
+      Eigen::Vector3d end = moved[i - 1]->point(moved[i - 1]->domain().t1);
+      double gap = (moved[i]->point(domain.t0) - end).norm();
+      if (!(gap <= joinTolerance)) {
+        fail(cut.curve->span,
+             fmt::format("the pieces of this path do not join: piece {} starts {:.6g} from "
+                         "where piece {} ends at ({:.6g}, {:.6g}, {:.6g})",
+                         i + 1, gap, i, end.x(), end.y(), end.z()),
+             DiagnosticKind::DegenerateCurve);
+      }
+    }
+    curve.pieceStarts.push_back(curve.pieceStarts.back() + domain.length());
+  }
+  curve.geometry = std::make_shared<geom::CompositeCurve>(std::move(moved), joinTolerance);
+}
+
+SampleLocation PartLowering::locate(const CutCurve& curve, double t) const {
+  SampleLocation location;
+  // The later piece at a join, as geom::CompositeCurve evaluates it.
+  std::size_t count = curve.pieces.size();
+  while (location.piece + 1 < count && curve.pieceStarts[location.piece + 1] <= t) {
+    ++location.piece;
+  }
+  const CurvePiece& piece = curve.pieces[location.piece];
+  geom::ParameterRange domain = piece.geometry->domain();
+  double own = count == 1 ? t : domain.t0 + (t - curve.pieceStarts[location.piece]);
+  own = domain.clamp(own);
+  location.local = own;
+  if (!piece.spans.empty()) {
+    while (location.span + 1 < piece.spans.size() && piece.spans[location.span + 1].t0 <= own) {
+      ++location.span;
+    }
+    const geom::PolynomialSpan& span = piece.spans[location.span];
+    location.local = std::clamp((own - span.t0) / (span.t1 - span.t0), 0.0, 1.0);
+  }
+  return location;
+}
+
+CurvePoint PartLowering::pointAt(const CutCurve& curve, std::size_t piece, std::size_t span,
+                                 Scalar local, const CutStmt& cut) {
+  const CurvePiece& own = curve.pieces[piece];
+  return transformed(own.transform, untransformedPointAt(own, span, local, cut));
+}
+
+CurvePoint PartLowering::transformed(const Affine& transform, const CurvePoint& point) {
+  if (transform.isIdentity()) {
+    return point;
+  }
+  // x' = l00 x + l01 y + ox; the terms of a zero coefficient are left out.
+  auto row = [&](int r, double offset) {
+    Scalar sum = Scalar::of(offset);
+    const Scalar* inputs[2] = {&point.x, &point.y};
+    for (int c = 0; c < 2; ++c) {
+      double coefficient = transform.linear(r, c);
+      if (coefficient != 0) {
+        sum = arithmetic_.add(sum, arithmetic_.multiply(Scalar::of(coefficient), *inputs[c]));
+      }
+    }
+    return sum;
+  };
+  Scalar z = transform.zScale == 1 ? point.z
+                                   : arithmetic_.multiply(Scalar::of(transform.zScale), point.z);
+  return {row(0, transform.offset.x()), row(1, transform.offset.y()), z};
+}
+
+CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size_t span,
+                                              Scalar local, const CutStmt& cut) {
+  const CurveValue& curve = *piece.value;
+  Arithmetic& math = arithmetic_;
+  switch (curve.kind) {
+  case CurveKind::Polar:
+  case CurveKind::Param: {
+    Bindings bindings = bindings_;
+    bindings[curve.parameter] = {TypeKind::Num, {local}};
+    auto lower = [&](const Expr* expression) {
+      std::optional<Lowered> value = tryLower(*expression, bindings, curve.environment);
+      if (!value || value->kind != TypeKind::Num) {
+        unsupported(expression->span, "this curve expression");
+      }
+      return value->values.front();
+    };
+    if (curve.kind == CurveKind::Polar) {
+      Scalar r = lower(curve.radius);
+      return {math.multiply(r, math.unary(Opcode::Cos, local)),
+              math.multiply(r, math.unary(Opcode::Sin, local)), Scalar::of(0)};
+    }
+    return {lower(curve.x), lower(curve.y), curve.z ? lower(curve.z) : Scalar::of(0)};
+  }
+  case CurveKind::Line: {
+    double length = piece.geometry->domain().t1;
+    Scalar s = math.binary(Opcode::Div, local, Scalar::of(length));
+    Scalar coordinates[3];
+    for (int i = 0; i < 3; ++i) {
+      double change = curve.to[i] - curve.from[i];
+      coordinates[i] = change == 0 ? Scalar::of(curve.from[i])
+                                   : math.add(Scalar::of(curve.from[i]),
+                                              math.multiply(Scalar::of(change), s));
+    }
+    return {coordinates[0], coordinates[1], coordinates[2]};
+  }
+  case CurveKind::Arc: {
+    const auto& arc = static_cast<const geom::ArcCurve&>(*piece.geometry);
+    Scalar angle = math.add(Scalar::of(curve.startAngle),
+                            math.multiply(Scalar::of(arc.sweep() / arc.length()), local));
+    Scalar r = Scalar::of(curve.arcRadius);
+    return {math.add(Scalar::of(curve.center[0]),
+                     math.multiply(r, math.unary(Opcode::Cos, angle))),
+            math.add(Scalar::of(curve.center[1]),
+                     math.multiply(r, math.unary(Opcode::Sin, angle))),
+            Scalar::of(0)};
+  }
+  case CurveKind::Nurbs:
+    return spanPointAt(piece.spans[span], local);
+  default:
+    unsupported(cut.curve->span, fmt::format("a '{}' curve", curve.constructor));
+  }
+}
+
+CurvePoint PartLowering::spanPointAt(const geom::PolynomialSpan& span, Scalar u) {
+  auto horner = [&](int coordinate) {
+    auto degree = static_cast<std::size_t>(span.degree());
+    Scalar sum = Scalar::of(span.coefficients[degree][coordinate]);
+    for (std::size_t k = degree; k-- > 0;) {
+      Scalar coefficient = Scalar::of(span.coefficients[k][coordinate]);
+      // Leading zeros (a planar curve's z) need no multiplication: u is finite.
+      bool zero = sum.isConstant() && sum.constant == 0;
+      sum = zero ? coefficient : arithmetic_.add(arithmetic_.multiply(sum, u), coefficient);
+    }
+    return sum;
+  };
+  CurvePoint point{horner(0), horner(1), horner(2)};
+  if (span.isRational()) {
+    Scalar w = horner(3);
+    for (Scalar* coordinate : {&point.x, &point.y, &point.z}) {
+      if (!(coordinate->isConstant() && coordinate->constant == 0)) {
+        *coordinate = arithmetic_.binary(Opcode::Div, *coordinate, w);
+      }
+    }
+  }
+  return point;
+}
+
+} // namespace cncc::ir::lowering

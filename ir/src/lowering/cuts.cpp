@@ -1,0 +1,270 @@
+// A `curve` statement: its points chosen at compile time (chord tolerance,
+// samples= or spacing=) on the whole curve, their parameters in constant
+// tables (one per piece and NURBS span), and for each pass a rapid over the
+// start, a plunge (or a ramp lap), loops that evaluate the curve at the
+// tabled parameters, and a rapid retract.
+#include "lowering/part_lowering.h"
+
+#include "cncc/geom/arc_length.h"
+#include "cncc/geom/geometry_error.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+constexpr double maximumPointsPerCut = 1'000'000;
+
+// Consecutive samples on the same piece and span: one table, one loop.
+struct SampleRun {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  std::vector<double> locals;
+  // The share of the cut's chord length done at each sample (entry=ramp).
+  std::vector<double> progress;
+  std::uint32_t localTable = 0;
+  std::uint32_t progressTable = 0;
+};
+
+} // namespace
+
+const Modifier* findModifier(const CutStmt& cut, std::string_view name) {
+  for (const Modifier& modifier : cut.modifiers) {
+    if (modifier.name == name) {
+      return &modifier;
+    }
+  }
+  return nullptr;
+}
+
+const Expr* modifierValue(const CutStmt& cut, std::string_view name) {
+  const Modifier* modifier = findModifier(cut, name);
+  return modifier == nullptr ? nullptr : modifier->value.get();
+}
+
+std::string wordOf(const Expr& expression) {
+  if (expression.kind == ExprKind::Name) {
+    return as<NameExpr>(expression).name;
+  }
+  if (expression.kind == ExprKind::String) {
+    return as<StringExpr>(expression).value;
+  }
+  return {};
+}
+
+void PartLowering::checkMethod(const CutStmt& cut) {
+  const Modifier* method = findModifier(cut, "method");
+  if (method == nullptr) {
+    return;
+  }
+  std::string word = method->value ? wordOf(*method->value) : "";
+  if (word == "linear") {
+    return;
+  }
+  if (word != "cspline" && word != "aspline" && word != "bspline" && word != "nurbs") {
+    unsupported(method->span(), fmt::format("method={}", word));
+  }
+  // The IR has no spline moves yet: a spline target gets the same chords.
+  if (!options_.splineInterpolation) {
+    diagnostics_.report(DiagnosticKind::SplineAsChords, method->span(),
+                        fmt::format("this target has no spline interpolation: method={} is cut "
+                                    "as straight feed moves within the cut's tolerance",
+                                    word));
+  }
+}
+
+bool PartLowering::rampEntry(const CutStmt& cut) {
+  const Modifier* entry = findModifier(cut, "entry");
+  if (entry == nullptr) {
+    return false;
+  }
+  std::string word = entry->value ? wordOf(*entry->value) : "";
+  if (word != "plunge" && word != "ramp") {
+    unsupported(entry->span(), fmt::format("entry={}", word));
+  }
+  return word == "ramp";
+}
+
+Scalar PartLowering::cutFeed(const CutStmt& cut) {
+  if (const Expr* expression = modifierValue(cut, "feed")) {
+    return number(*expression);
+  }
+  if (!feed_) {
+    fail(cut.span, "this cut has no feed rate", DiagnosticKind::NoFeed);
+  }
+  return *feed_;
+}
+
+std::optional<double> PartLowering::chordTolerance(const CutStmt& cut) {
+  if (modifierValue(cut, "samples") != nullptr || modifierValue(cut, "spacing") != nullptr) {
+    return std::nullopt;
+  }
+  const Expr* expression = modifierValue(cut, "tolerance");
+  return expression == nullptr ? options_.defaultTolerance
+                               : constantNumber(*expression, "this tolerance");
+}
+
+geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curve& curve) {
+  try {
+    if (const Expr* expression = modifierValue(cut, "samples")) {
+      double samples = constantNumber(*expression, "samples=");
+      if (!(samples >= 2 && samples <= maximumPointsPerCut) || samples != std::floor(samples)) {
+        fail(expression->span, fmt::format("samples={:g} is not a whole number from 2 to {:g}",
+                                           samples, maximumPointsPerCut),
+             DiagnosticKind::InvalidSamples);
+      }
+      return geom::sampleUniformParameter(curve, static_cast<std::size_t>(samples));
+    }
+    if (const Expr* expression = modifierValue(cut, "spacing")) {
+      double spacing = constantNumber(*expression, "spacing=");
+      double count = geom::arcLength(curve) / spacing;
+      if (!(count <= maximumPointsPerCut)) {
+        fail(cut.span,
+             fmt::format("spacing={:g} would put {:.0f} points on this curve; the limit is {:.0f}",
+                         spacing, count, maximumPointsPerCut),
+             DiagnosticKind::ProgramTooLarge);
+      }
+      return geom::sampleEqualArcLength(curve, spacing);
+    }
+    return geom::discretiseByChordTolerance(curve, *chordTolerance(cut));
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
+  }
+}
+
+std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
+  const Expr* depthExpression = modifierValue(cut, "depth");
+  const Expr* stepExpression = modifierValue(cut, "step");
+  if (depthExpression == nullptr && stepExpression == nullptr) {
+    return {0.0};
+  }
+  if (depthExpression == nullptr || stepExpression == nullptr) {
+    fail(cut.span, "a sweep needs both depth= and step=", DiagnosticKind::SweepIncomplete);
+  }
+  double depth = constantNumber(*depthExpression, "the sweep depth");
+  double step = constantNumber(*stepExpression, "the sweep step");
+  if (!(step > 0) || !(depth >= step) || !(depth / step <= maximumPointsPerCut)) {
+    fail(cut.span, "cannot lower this sweep: it needs 0 < step <= depth");
+  }
+  // -S, -2S, ... ending exactly at -D.
+  std::vector<double> depths;
+  for (int k = 1;; ++k) {
+    double z = k * step;
+    if (z >= depth - 1e-9 * depth) {
+      depths.push_back(depth);
+      return depths;
+    }
+    depths.push_back(z);
+  }
+}
+
+void PartLowering::lowerCut(const CutStmt& cut) {
+  checkMethod(cut);
+  bool ramp = rampEntry(cut);
+  if (!safe_) {
+    fail(cut.span, "this cut has no safe height; write 'safe z=Z' before it",
+         DiagnosticKind::NoSafeHeight);
+  }
+  Scalar feed = cutFeed(cut);
+  CutCurve curve = cutCurve(cut);
+  geom::CurveSamples samples = samplesFor(cut, *curve.geometry);
+  for (const Eigen::Vector3d& point : samples.points) {
+    if (!point.allFinite()) {
+      fail(cut.curve->span, "this curve has a point that is not a finite number",
+           DiagnosticKind::NonFiniteValue);
+    }
+  }
+  if (samples.parameters.size() < 2) {
+    fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
+  }
+  std::vector<double> depths = passDepths(cut);
+  if (ramp && !((samples.points.front() - samples.points.back()).norm() <= 1e-6)) {
+    unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
+  }
+
+  // Feed and safe height once, visible in every loop of the cut.
+  ValueId feedValue = arithmetic_.value(feed);
+  ValueId safeValue = arithmetic_.value(*safe_);
+  auto index = static_cast<std::uint32_t>(cuts_.size());
+  cuts_.push_back({curve.geometry,
+                   chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+                   cut.span});
+  builder_.cutBegin(index);
+
+  // The runs of samples after the first (the start, reached by the plunge).
+  double totalLength = 0;
+  for (std::size_t i = 1; i < samples.points.size(); ++i) {
+    totalLength += (samples.points[i] - samples.points[i - 1]).norm();
+  }
+  std::vector<SampleRun> runs;
+  double done = 0;
+  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
+    SampleLocation location = locate(curve, samples.parameters[i]);
+    if (runs.empty() || runs.back().piece != location.piece ||
+        runs.back().span != location.span) {
+      runs.push_back({location.piece, location.span, {}, {}, 0, 0});
+    }
+    done += (samples.points[i] - samples.points[i - 1]).norm();
+    runs.back().locals.push_back(location.local);
+    runs.back().progress.push_back(totalLength > 0 ? done / totalLength : 1.0);
+  }
+  for (SampleRun& run : runs) {
+    run.localTable = builder_.addTable(run.locals);
+    if (ramp) {
+      run.progressTable = builder_.addTable(run.progress);
+    }
+  }
+
+  // One lap of the curve, its z going from zFrom to zTo in proportion to
+  // the chord length done, plus the curve's own z.
+  auto lap = [&](double zFrom, double zTo) {
+    for (const SampleRun& run : runs) {
+      double last = static_cast<double>(run.locals.size()) - 1;
+      ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
+      Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
+      CurvePoint point = pointAt(curve, run.piece, run.span, local, cut);
+      Scalar z = Scalar::of(zTo);
+      if (zFrom != zTo) {
+        Scalar progress = Scalar::of(builder_.tableLoad(run.progressTable, i), ValueType::F64);
+        z = arithmetic_.add(Scalar::of(zFrom),
+                            arithmetic_.multiply(Scalar::of(zTo - zFrom), progress));
+      }
+      builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
+                    arithmetic_.value(arithmetic_.add(z, point.z)), feedValue);
+      builder_.endLoop();
+    }
+  };
+
+  SampleLocation first = locate(curve, samples.parameters.front());
+  SampleLocation end = locate(curve, samples.parameters.back());
+  double previous = 0;
+  for (double depth : depths) {
+    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
+    double passZ = depth == 0 ? 0.0 : -depth;
+    double entryZ = ramp ? previous : passZ;
+    CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
+    ValueId startX = arithmetic_.value(start.x);
+    ValueId startY = arithmetic_.value(start.y);
+    builder_.rapid(startX, startY, safeValue);
+    builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(Scalar::of(entryZ), start.z)),
+                  feedValue);
+    if (ramp) {
+      builder_.comment("ramp");
+      lap(entryZ, passZ);
+    }
+    lap(passZ, passZ);
+    // The retract: straight up from the end of the curve.
+    CurvePoint finish = pointAt(curve, end.piece, end.span, Scalar::of(end.local), cut);
+    builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
+    previous = passZ;
+  }
+}
+
+} // namespace cncc::ir::lowering

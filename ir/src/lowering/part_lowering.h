@@ -1,0 +1,212 @@
+// The lowering's private parts: one PartLowering per part, its members
+// implemented by concern in statements.cpp, expressions.cpp, curves.cpp and
+// cuts.cpp of this folder.
+#pragma once
+
+#include "lowering/affine.h"
+
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/value.h"
+#include "cncc/geom/curve.h"
+#include "cncc/geom/discretisation.h"
+#include "cncc/geom/polynomial_span.h"
+#include "cncc/ir/builder.h"
+#include "cncc/ir/lowering.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::ir::lowering {
+
+// A number or bool of the lowering: a constant not yet written to the IR
+// (`value` invalid), or an IR value. Constants are written where they are
+// used, so arithmetic on them folds without leaving dead instructions.
+struct Scalar {
+  ValueId value;
+  double constant = 0;
+  ValueType type = ValueType::F64;
+
+  static Scalar of(double number) { return {ValueId{}, number, ValueType::F64}; }
+  static Scalar ofBool(bool yes) { return {ValueId{}, yes ? 1.0 : 0.0, ValueType::Bool}; }
+  static Scalar of(ValueId id, ValueType type) { return {id, 0, type}; }
+  bool isConstant() const { return !value.valid(); }
+};
+
+// A lowered CDL value: a num or bool (one scalar) or a point (three).
+struct Lowered {
+  frontend::TypeKind kind = frontend::TypeKind::Num;
+  std::vector<Scalar> values;
+};
+
+using Bindings = std::map<const frontend::Declaration*, Lowered>;
+
+// Thrown to abandon the lowering after its diagnostic has been reported.
+struct LoweringFailed {};
+
+// A point of a curve.
+struct CurvePoint {
+  Scalar x, y, z;
+};
+
+// One smooth piece of a cut's curve: a line, an arc, a polar or param
+// curve, or a NURBS (then split into polynomial spans), with the transform
+// that the enclosing translate/rotate/scale calls make.
+struct CurvePiece {
+  std::shared_ptr<const frontend::CurveValue> value;
+  // The piece before its transform, in its own parameter.
+  std::shared_ptr<const geom::Curve> geometry;
+  std::vector<geom::PolynomialSpan> spans; // NURBS only
+  Affine transform;
+};
+
+// A cut's curve: its pieces in order, and the whole of it as one geom curve
+// (transforms applied; a path's pieces joined) whose parameter the samples
+// use.
+struct CutCurve {
+  std::vector<CurvePiece> pieces;
+  std::shared_ptr<const geom::Curve> geometry;
+  // Where each piece starts in the whole curve's parameter, and the end.
+  std::vector<double> pieceStarts;
+};
+
+// Where a sample of the whole curve lies: its piece, the NURBS span in the
+// piece (0 otherwise) and the parameter that piece's IR evaluates at (the
+// span's u in [0, 1], or the piece's own t).
+struct SampleLocation {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  double local = 0;
+};
+
+// Arithmetic on scalars through the builder: folds constant operands and
+// the identities x + 0, x - 0, x * 1, x / 1.
+class Arithmetic {
+public:
+  explicit Arithmetic(FunctionBuilder& builder) : builder_(builder) {}
+
+  // The scalar as an IR value (a constant is written here).
+  ValueId value(Scalar scalar);
+  Scalar unary(Opcode opcode, Scalar operand);
+  Scalar binary(Opcode opcode, Scalar left, Scalar right);
+  Scalar add(Scalar left, Scalar right) { return binary(Opcode::Add, left, right); }
+  Scalar multiply(Scalar left, Scalar right) { return binary(Opcode::Mul, left, right); }
+  Scalar select(Scalar condition, Scalar yes, Scalar no);
+
+private:
+  FunctionBuilder& builder_;
+};
+
+// The frontend's evaluator, renewed every so many evaluations: each
+// evaluator has a step budget against pathological inputs, which the
+// thousands of evaluations of a curve's points would otherwise exhaust.
+class RenewingEvaluator {
+public:
+  RenewingEvaluator(const frontend::CheckedProgram& program,
+                    frontend::DiagnosticEngine& diagnostics)
+      : program_(program), diagnostics_(diagnostics) {}
+
+  frontend::Value evaluate(const frontend::Expr& expression,
+                           const frontend::Environment& environment);
+
+private:
+  static constexpr int evaluationsPerEvaluator = 1000;
+  const frontend::CheckedProgram& program_;
+  frontend::DiagnosticEngine& diagnostics_;
+  std::unique_ptr<frontend::ExpressionEvaluator> evaluator_;
+  int evaluations_ = 0;
+};
+
+class PartLowering {
+public:
+  PartLowering(const frontend::CheckedProgram& program, const frontend::PartItem& part,
+               frontend::DiagnosticEngine& diagnostics, const LoweringOptions& options);
+
+  LoweredPart run();
+
+private:
+  [[noreturn]] void unsupported(frontend::SourceSpan span, std::string_view what);
+  [[noreturn]] void fail(frontend::SourceSpan span, std::string message,
+                         frontend::DiagnosticKind kind = frontend::DiagnosticKind::UnsupportedConstruct);
+  void checkSize(frontend::SourceSpan span);
+
+  // statements.cpp
+  void lowerParameters();
+  void lowerBlock(const frontend::Block& block);
+  void lowerStatement(const frontend::Stmt& statement);
+  void lowerTool(const frontend::ToolStmt& tool);
+  void lowerLet(const frontend::LetStmt& let);
+  void lowerFor(const frontend::ForStmt& loop);
+  void lowerIf(const frontend::IfStmt& conditional);
+
+  // expressions.cpp
+  frontend::Value evaluate(const frontend::Expr& expression,
+                           const frontend::Environment& environment);
+  double constantNumber(const frontend::Expr& expression, std::string_view what);
+  Scalar number(const frontend::Expr& expression);
+  std::optional<Lowered> constantOf(const frontend::Value& value);
+  std::optional<Lowered> tryLower(const frontend::Expr& expression, const Bindings& bindings,
+                                  const frontend::Environment& environment);
+  std::optional<Lowered> lowerDirect(const frontend::Expr& expression, const Bindings& bindings,
+                                     const frontend::Environment& environment);
+  std::optional<Lowered> lowerUnary(const frontend::UnaryExpr& unary, const Bindings& bindings,
+                                    const frontend::Environment& environment);
+  std::optional<Lowered> lowerBinary(const frontend::BinaryExpr& binary, const Bindings& bindings,
+                                     const frontend::Environment& environment);
+  std::optional<Lowered> lowerIfElse(const frontend::IfElseExpr& choice, const Bindings& bindings,
+                                     const frontend::Environment& environment);
+  std::optional<Lowered> lowerCall(const frontend::CallExpr& call, const Bindings& bindings,
+                                   const frontend::Environment& environment);
+
+  // curves.cpp
+  CutCurve cutCurve(const frontend::CutStmt& cut);
+  void addPieces(const std::shared_ptr<const frontend::CurveValue>& value, const Affine& transform,
+                 const frontend::CutStmt& cut, CutCurve& curve);
+  CurvePiece leafPiece(const std::shared_ptr<const frontend::CurveValue>& value,
+                       const frontend::CutStmt& cut);
+  std::shared_ptr<const geom::Curve>
+  analyticCurve(const std::shared_ptr<const frontend::CurveValue>& curve);
+  void joinPieces(CutCurve& curve, const frontend::CutStmt& cut);
+  SampleLocation locate(const CutCurve& curve, double t) const;
+  CurvePoint pointAt(const CutCurve& curve, std::size_t piece, std::size_t span, Scalar local,
+                     const frontend::CutStmt& cut);
+  CurvePoint untransformedPointAt(const CurvePiece& piece, std::size_t span, Scalar local,
+                                  const frontend::CutStmt& cut);
+  CurvePoint spanPointAt(const geom::PolynomialSpan& span, Scalar u);
+  CurvePoint transformed(const Affine& transform, const CurvePoint& point);
+
+  // cuts.cpp
+  void lowerCut(const frontend::CutStmt& cut);
+  void checkMethod(const frontend::CutStmt& cut);
+  bool rampEntry(const frontend::CutStmt& cut);
+  Scalar cutFeed(const frontend::CutStmt& cut);
+  std::optional<double> chordTolerance(const frontend::CutStmt& cut);
+  geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
+  std::vector<double> passDepths(const frontend::CutStmt& cut);
+
+  const frontend::CheckedProgram& program_;
+  const frontend::PartItem& part_;
+  frontend::DiagnosticEngine& diagnostics_;
+  const LoweringOptions& options_;
+  // Diagnostics of speculative evaluations (their failures are handled here).
+  frontend::DiagnosticEngine scratch_{0};
+  RenewingEvaluator evaluator_;
+  FunctionBuilder builder_;
+  Arithmetic arithmetic_{builder_};
+  Bindings bindings_;
+  frontend::Environment environment_;
+  std::optional<Scalar> feed_;
+  std::optional<Scalar> safe_;
+  std::vector<CutGeometry> cuts_;
+  std::size_t unrolledIterations_ = 0;
+};
+
+// Small helpers shared by the files.
+const frontend::Modifier* findModifier(const frontend::CutStmt& cut, std::string_view name);
+const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_view name);
+std::string wordOf(const frontend::Expr& expression);
+
+} // namespace cncc::ir::lowering

@@ -1,0 +1,185 @@
+// The part and its statements. Control flow is decided here, at compile
+// time, from the values the host backends run with: a `for` is unrolled
+// with its variable a constant in each copy, an `if` lowers only the branch
+// its condition chooses.
+#include "lowering/part_lowering.h"
+
+#include <fmt/format.h>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+// Bounds on what unrolling may produce, so that a loop of a billion
+// iterations is a diagnostic rather than an exhausted machine.
+constexpr std::size_t maximumUnrolledIterations = 100'000;
+constexpr std::size_t maximumInstructions = 5'000'000;
+constexpr std::size_t maximumTableEntries = 20'000'000;
+
+} // namespace
+
+PartLowering::PartLowering(const CheckedProgram& program, const PartItem& part,
+                           DiagnosticEngine& diagnostics, const LoweringOptions& options)
+    : program_(program), part_(part), diagnostics_(diagnostics), options_(options),
+      evaluator_(program, scratch_), builder_(part.name) {}
+
+LoweredPart PartLowering::run() {
+  lowerParameters();
+  builder_.comment(fmt::format("part {}", part_.name));
+  lowerBlock(part_.body);
+  return {builder_.finish(), std::move(cuts_)};
+}
+
+void PartLowering::unsupported(SourceSpan span, std::string_view what) {
+  fail(span, fmt::format("{} is not supported by this version's lowering", what));
+}
+
+void PartLowering::fail(SourceSpan span, std::string message, DiagnosticKind kind) {
+  diagnostics_.report(kind, span, std::move(message));
+  throw LoweringFailed{};
+}
+
+void PartLowering::checkSize(SourceSpan span) {
+  const Function& function = builder_.function();
+  std::size_t entries = 0;
+  for (const std::vector<double>& table : function.tables) {
+    entries += table.size();
+  }
+  if (function.instructions.size() > maximumInstructions || entries > maximumTableEntries) {
+    fail(span,
+         fmt::format("the part grows past {} IR instructions or {} table entries here; "
+                     "it is too large to compile",
+                     maximumInstructions, maximumTableEntries),
+         DiagnosticKind::ProgramTooLarge);
+  }
+}
+
+void PartLowering::lowerParameters() {
+  for (const frontend::Parameter& parameter : part_.parameters) {
+    if (parameter.declaration == nullptr || !parameter.declaration->value ||
+        parameter.declaration->value->type.kind != TypeKind::Num) {
+      unsupported(parameter.nameSpan, "a parameter without a numeric value");
+    }
+    double value = parameter.declaration->value->number;
+    std::uint32_t index = builder_.addParameter(parameter.name, value);
+    bindings_[parameter.declaration] = {TypeKind::Num,
+                                        {Scalar::of(builder_.parameter(index), ValueType::F64)}};
+    environment_[parameter.declaration] = Value::ofNumber(value);
+  }
+}
+
+void PartLowering::lowerBlock(const Block& block) {
+  for (const StmtPtr& statement : block.statements) {
+    lowerStatement(*statement);
+    checkSize(statement->span);
+  }
+}
+
+void PartLowering::lowerStatement(const Stmt& statement) {
+  switch (statement.kind) {
+  case StmtKind::Units:
+    return; // partUnits() reads it; the IR's numbers are in the part's units
+  case StmtKind::Tool:
+    return lowerTool(as<ToolStmt>(statement));
+  case StmtKind::Feed:
+    feed_ = number(*as<ValueStmt>(statement).value);
+    return;
+  case StmtKind::Spindle:
+    builder_.spindle(arithmetic_.value(number(*as<ValueStmt>(statement).value)));
+    return;
+  case StmtKind::Safe:
+    for (const Argument& setting : as<SafeStmt>(statement).settings) {
+      if (setting.name == "z") {
+        safe_ = number(*setting.value);
+      }
+    }
+    return;
+  case StmtKind::Let:
+    return lowerLet(as<LetStmt>(statement));
+  case StmtKind::Cut:
+    return lowerCut(as<CutStmt>(statement));
+  case StmtKind::For:
+    return lowerFor(as<ForStmt>(statement));
+  case StmtKind::If:
+    return lowerIf(as<IfStmt>(statement));
+  case StmtKind::Error:
+    fail(statement.span, "cannot lower a statement that did not parse");
+  }
+}
+
+void PartLowering::lowerTool(const ToolStmt& tool) {
+  double toolNumber = constantNumber(*tool.number, "the tool number");
+  Scalar diameter = Scalar::of(0);
+  std::optional<Scalar> spindle;
+  for (const Argument& setting : tool.settings) {
+    if (setting.name == "diameter") {
+      diameter = number(*setting.value);
+    } else if (setting.name == "spindle") {
+      spindle = number(*setting.value);
+    } else if (setting.name == "feed") {
+      feed_ = number(*setting.value);
+    }
+  }
+  builder_.tool(toolNumber, arithmetic_.value(diameter));
+  if (spindle) {
+    builder_.spindle(arithmetic_.value(*spindle));
+  }
+}
+
+void PartLowering::lowerLet(const LetStmt& let) {
+  Value value = evaluate(*let.value, environment_);
+  if (let.declaration == nullptr || value.isError()) {
+    fail(let.value->span, "cannot evaluate this value for lowering");
+  }
+  environment_[let.declaration] = value;
+  bindings_.erase(let.declaration); // a let in a loop body: the previous copy's
+  TypeKind kind = value.type.kind;
+  if (kind == TypeKind::Num || kind == TypeKind::Bool || kind == TypeKind::Point) {
+    std::optional<Lowered> lowered = tryLower(*let.value, bindings_, environment_);
+    // A let that folded to a constant stays in the environment only.
+    if (lowered) {
+      bool constant = true;
+      for (const Scalar& scalar : lowered->values) {
+        constant = constant && scalar.isConstant();
+      }
+      if (!constant) {
+        bindings_[let.declaration] = *lowered;
+      }
+    }
+  }
+}
+
+void PartLowering::lowerFor(const ForStmt& loop) {
+  Value range = evaluate(*loop.range, environment_);
+  if (range.type.kind != TypeKind::Range || loop.declaration == nullptr) {
+    fail(loop.range->span, "cannot evaluate this range for lowering");
+  }
+  if (range.low != std::floor(range.low) || range.high != std::floor(range.high)) {
+    fail(loop.range->span, "a loop's bounds must be whole numbers", DiagnosticKind::NotInteger);
+  }
+  // Inclusive of both ends, step 1; none when high < low.
+  for (double i = range.low; i <= range.high; ++i) {
+    if (++unrolledIterations_ > maximumUnrolledIterations) {
+      fail(loop.span,
+           fmt::format("the part's loops run more than {} times in all; it is too large to "
+                       "compile",
+                       maximumUnrolledIterations),
+           DiagnosticKind::ProgramTooLarge);
+    }
+    environment_[loop.declaration] = Value::ofNumber(i);
+    lowerBlock(loop.body);
+  }
+}
+
+void PartLowering::lowerIf(const IfStmt& conditional) {
+  Value condition = evaluate(*conditional.condition, environment_);
+  if (condition.type.kind != TypeKind::Bool) {
+    fail(conditional.condition->span, "cannot evaluate this condition for lowering");
+  }
+  // `else if` is an else block holding one if statement.
+  lowerBlock(condition.boolean ? conditional.thenBlock : conditional.elseBlock);
+}
+
+} // namespace cncc::ir::lowering

@@ -1,0 +1,96 @@
+// The pass registry and the default pipeline.
+#include "cncc/ir/passes.h"
+
+#include "rewriter.h"
+
+namespace cncc::ir {
+
+namespace {
+
+bool unrollWithDefaults(Function& function) {
+  return unrollLoops(function);
+}
+
+bool unrollWhenNoLarger(Function& function) {
+  UnrollOptions options;
+  options.onlyWhenNoLarger = true;
+  return unrollLoops(function, options);
+}
+
+constexpr Pass passTable[] = {
+    {"fold", "constant folding and algebraic simplification", foldConstants},
+    {"cse", "common subexpression elimination", eliminateCommonSubexpressions},
+    {"licm", "loop-invariant code motion", hoistLoopInvariants},
+    {"unroll", "full unrolling of loops of at most 8 trips and 64 body instructions",
+     unrollWithDefaults},
+    {"unroll-no-larger", "unroll, keeping only unrollings that leave the function no larger",
+     unrollWhenNoLarger},
+    {"dce", "dead code elimination", eliminateDeadCode},
+};
+
+constexpr std::string_view defaultPassNames[] = {
+    "fold", "cse", "licm", "unroll-no-larger", "fold", "cse", "dce",
+};
+
+} // namespace
+
+std::span<const Pass> allPasses() {
+  return passTable;
+}
+
+const Pass* findPass(std::string_view name) {
+  for (const Pass& pass : passTable) {
+    if (pass.name == name) {
+      return &pass;
+    }
+  }
+  return nullptr;
+}
+
+std::span<const std::string_view> defaultPipeline() {
+  return defaultPassNames;
+}
+
+bool runPasses(Function& function, std::span<const std::string> names,
+               const AfterPassCallback& afterPass, std::string* unknown) {
+  std::vector<const Pass*> passes;
+  for (const std::string& name : names) {
+    const Pass* pass = findPass(name);
+    if (pass == nullptr) {
+      if (unknown != nullptr) {
+        *unknown = name;
+      }
+      return false;
+    }
+    passes.push_back(pass);
+  }
+  for (const Pass* pass : passes) {
+    pass->run(function);
+    if (afterPass) {
+      afterPass(pass->name, function);
+    }
+  }
+  return true;
+}
+
+void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, int maximumRounds) {
+  for (int round = 0; round < maximumRounds; ++round) {
+    bool changed = false;
+    for (std::string_view name : defaultPassNames) {
+      const Pass* pass = findPass(name);
+      changed |= pass->run(function);
+      if (afterPass) {
+        afterPass(pass->name, function);
+      }
+    }
+    if (!changed) {
+      break;
+    }
+  }
+}
+
+std::size_t instructionCount(const Function& function) {
+  return passes::regionSize(function, function.body);
+}
+
+} // namespace cncc::ir

@@ -1,0 +1,129 @@
+// Full unrolling of loops with constant bounds and a small trip count: the
+// loop becomes copies of its body, one per iteration, the induction
+// variable a constant in each, counted as the interpreter counts (i = low,
+// then ++i while i <= high). Loops nested in an unrolled body are copied
+// and, when they qualify themselves, unrolled too.
+#include "cncc/ir/passes.h"
+
+#include "rewriter.h"
+
+#include <set>
+
+namespace cncc::ir {
+
+namespace {
+
+// The trip count of a loop that qualifies, read from the source function.
+std::optional<std::size_t> unrollableTrips(const Function& function, const Instruction& loop,
+                                           const UnrollOptions& options) {
+  std::optional<double> low = passes::constantValue(function, loop.operands[0]);
+  std::optional<double> high = passes::constantValue(function, loop.operands[1]);
+  if (!low || !high || passes::regionSize(function, loop.regions[0]) > options.maximumBodySize) {
+    return std::nullopt;
+  }
+  return passes::tripCount(*low, *high, options.maximumTripCount);
+}
+
+class Unroller : public passes::Rewriter {
+public:
+  // Unrolls the qualifying loops in `only` (instruction ids of the source),
+  // or every qualifying loop when `only` is null.
+  Unroller(const Function& source, const UnrollOptions& options,
+           const std::set<InstructionId>* only)
+      : Rewriter(source), options_(options), only_(only) {}
+
+private:
+  void visit(const Instruction& instruction) override {
+    if (instruction.opcode != Opcode::Loop || !chosen(instruction)) {
+      copy(instruction);
+      return;
+    }
+    std::optional<std::size_t> trips = unrollableTrips(source_, instruction, options_);
+    if (!trips) {
+      copy(instruction);
+      return;
+    }
+    double index = *passes::constantValue(source_, instruction.operands[0]);
+    for (std::size_t trip = 0; trip < *trips; ++trip, ++index) {
+      replace(instruction.result, constant(index));
+      rewriteRegion(instruction.regions[0]);
+    }
+    markChanged();
+  }
+
+  bool chosen(const Instruction& loop) const {
+    return only_ == nullptr || only_->count(source_.definitions[loop.result.index]) != 0;
+  }
+
+  const UnrollOptions& options_;
+  const std::set<InstructionId>* only_;
+};
+
+Function unrolled(const Function& function, const UnrollOptions& options,
+                  const std::set<InstructionId>* only, bool& changed) {
+  Unroller pass(function, options, only);
+  Function result = pass.run();
+  changed = pass.changed();
+  return result;
+}
+
+std::size_t cleanedUpSize(Function function) {
+  foldConstants(function);
+  eliminateCommonSubexpressions(function);
+  eliminateDeadCode(function);
+  return instructionCount(function);
+}
+
+void collectCandidates(const Function& function, const Region& region, const UnrollOptions& options,
+                       std::vector<InstructionId>& candidates) {
+  for (InstructionId id : region.instructions) {
+    const Instruction& instruction = function.instructions[id];
+    if (instruction.opcode == Opcode::Loop && unrollableTrips(function, instruction, options)) {
+      candidates.push_back(id);
+    }
+    for (const Region& nested : instruction.regions) {
+      collectCandidates(function, nested, options, candidates);
+    }
+  }
+}
+
+// Tries each qualifying loop alone and keeps the ones after which the
+// cleaned-up function is no larger; then all of them together, if that
+// is no larger either.
+bool unrollWhenNoLarger(Function& function, const UnrollOptions& options) {
+  std::vector<InstructionId> candidates;
+  collectCandidates(function, function.body, options, candidates);
+  if (candidates.empty()) {
+    return false;
+  }
+  std::size_t baseline = cleanedUpSize(function);
+  std::set<InstructionId> accepted;
+  for (InstructionId candidate : candidates) {
+    std::set<InstructionId> only{candidate};
+    bool changed = false;
+    Function trial = unrolled(function, options, &only, changed);
+    if (changed && cleanedUpSize(std::move(trial)) <= baseline) {
+      accepted.insert(candidate);
+    }
+  }
+  bool changed = false;
+  Function result = unrolled(function, options, &accepted, changed);
+  if (!changed || cleanedUpSize(result) > baseline) {
+    return false;
+  }
+  function = std::move(result);
+  return true;
+}
+
+} // namespace
+
+bool unrollLoops(Function& function, const UnrollOptions& options) {
+  if (options.onlyWhenNoLarger) {
+    return unrollWhenNoLarger(function, options);
+  }
+  bool changed = false;
+  function = unrolled(function, options, nullptr, changed);
+  return changed;
+}
+
+} // namespace cncc::ir

@@ -1,0 +1,518 @@
+#include "cncc/ir/register_allocation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <queue>
+#include <set>
+
+namespace cncc::ir {
+
+int bracketedDepth(const InlineShape& shape) {
+  return shape.form == InlineForm::Atom ? shape.bracketDepth : shape.bracketDepth + 1;
+}
+
+namespace {
+
+InlineShape conservativeShape(const Function&, const Instruction&,
+                              std::span<const InlineShape> operands) {
+  InlineShape shape{1, InlineForm::Atom, 1};
+  for (const InlineShape& operand : operands) {
+    shape.bracketDepth = std::max(shape.bracketDepth, operand.bracketDepth + 1);
+    shape.operations += operand.operations;
+  }
+  return shape;
+}
+
+// Where each instruction sits in the program, counted in steps of two so
+// that an operation written as several statements can read its operands
+// one step after its result is first written.
+struct ProgramLayout {
+  std::vector<int> position;                    // per instruction
+  std::vector<std::vector<InstructionId>> loops; // per instruction: enclosing loops, outermost first
+  std::map<InstructionId, int> loopEnd;          // per loop: where its test and increment sit
+  std::vector<InstructionId> order;              // every instruction, in program order
+};
+
+void layOutRegion(const Function& function, const Region& region,
+                  std::vector<InstructionId>& enclosing, ProgramLayout& layout, int& next) {
+  for (InstructionId id : region.instructions) {
+    const Instruction& instruction = function.instructions[id];
+    layout.position[id] = next;
+    next += 2;
+    layout.loops[id] = enclosing;
+    layout.order.push_back(id);
+    bool isLoop = instruction.opcode == Opcode::Loop;
+    if (isLoop) {
+      enclosing.push_back(id);
+    }
+    for (const Region& nested : instruction.regions) {
+      layOutRegion(function, nested, enclosing, layout, next);
+    }
+    if (isLoop) {
+      enclosing.pop_back();
+      layout.loopEnd[id] = next;
+      next += 2;
+    }
+  }
+}
+
+bool isPure(Opcode opcode) {
+  switch (opcode) {
+  case Opcode::Loop:
+  case Opcode::If:
+  case Opcode::Rapid:
+  case Opcode::Feed:
+  case Opcode::Spindle:
+  case Opcode::Tool:
+  case Opcode::Comment:
+  case Opcode::CutBegin:
+    return false;
+  default:
+    return true;
+  }
+}
+
+class Allocator {
+public:
+  Allocator(const Function& function, const AllocationOptions& options)
+      : function_(function), options_(options) {
+    if (!options_.shape) {
+      options_.shape = conservativeShape;
+    }
+  }
+
+  AllocationResult run() {
+    std::size_t valueCount = function_.valueTypes.size();
+    allocation_.variableOfValue.assign(valueCount, -1);
+    materialized_.assign(valueCount, false);
+    useCount_.assign(valueCount, 0);
+    layOut();
+    markNeeded();
+    countUses();
+    chooseMaterialized();
+    fitExpressions();
+    if (result_.failures.empty()) {
+      assignVariables();
+    }
+    result_.allocation = std::move(allocation_);
+    return std::move(result_);
+  }
+
+private:
+  const Instruction& definition(ValueId value) const { return function_.definition(value); }
+  InstructionId definitionId(ValueId value) const { return function_.definitions[value.index]; }
+
+  bool isStatementOpcode(Opcode opcode) const {
+    const std::vector<Opcode>& list = options_.statementOpcodes;
+    return std::find(list.begin(), list.end(), opcode) != list.end();
+  }
+
+  void layOut() {
+    layout_.position.assign(function_.instructions.size(), -1);
+    layout_.loops.assign(function_.instructions.size(), {});
+    std::vector<InstructionId> enclosing;
+    int next = 0;
+    layOutRegion(function_, function_.body, enclosing, layout_, next);
+  }
+
+  // Effects and control flow are needed; so is everything they read.
+  void markNeeded() {
+    needed_.assign(function_.instructions.size(), false);
+    std::vector<InstructionId> work;
+    for (InstructionId id : layout_.order) {
+      if (!isPure(function_.instructions[id].opcode)) {
+        work.push_back(id);
+      }
+    }
+    while (!work.empty()) {
+      InstructionId id = work.back();
+      work.pop_back();
+      if (needed_[id]) {
+        continue;
+      }
+      needed_[id] = true;
+      for (ValueId operand : function_.instructions[id].operands) {
+        work.push_back(definitionId(operand));
+      }
+    }
+  }
+
+  void countUses() {
+    for (InstructionId id : layout_.order) {
+      if (!needed_[id]) {
+        continue;
+      }
+      const Instruction& instruction = function_.instructions[id];
+      int weight = isStatementOpcode(instruction.opcode) ? 2 : 1;
+      for (ValueId operand : instruction.operands) {
+        useCount_[operand.index] += weight;
+      }
+    }
+  }
+
+  // Values that need a variable whatever the limits say.
+  void chooseMaterialized() {
+    for (InstructionId id : layout_.order) {
+      const Instruction& instruction = function_.instructions[id];
+      if (!needed_[id] || !instruction.result.valid()) {
+        continue;
+      }
+      ValueId value = instruction.result;
+      Opcode opcode = instruction.opcode;
+      if (opcode == Opcode::Const || opcode == Opcode::ConstBool ||
+          function_.valueTypes[value.index] != ValueType::F64) {
+        continue;
+      }
+      if (opcode == Opcode::Loop || opcode == Opcode::Param || isStatementOpcode(opcode) ||
+          useCount_[value.index] > 1) {
+        materialized_[value.index] = true;
+      }
+    }
+    // A value read inside a loop that does not define it is computed once.
+    for (InstructionId id : layout_.order) {
+      if (!needed_[id]) {
+        continue;
+      }
+      for (ValueId operand : function_.instructions[id].operands) {
+        const Instruction& operandDefinition = definition(operand);
+        bool constant = operandDefinition.opcode == Opcode::Const ||
+                        operandDefinition.opcode == Opcode::ConstBool;
+        if (!constant && function_.valueTypes[operand.index] == ValueType::F64 &&
+            layout_.loops[id].size() > layout_.loops[definitionId(operand)].size()) {
+          materialized_[operand.index] = true;
+        }
+      }
+    }
+  }
+
+  InlineShape shapeOf(ValueId value) const {
+    const Instruction& instruction = definition(value);
+    if (materialized_[value.index] || instruction.opcode == Opcode::Const ||
+        instruction.opcode == Opcode::ConstBool) {
+      return InlineShape{};
+    }
+    std::vector<InlineShape> operands;
+    for (ValueId operand : instruction.operands) {
+      operands.push_back(shapeOf(operand));
+    }
+    return options_.shape(function_, instruction, operands);
+  }
+
+  // The cost of one consumer: the deepest bracket nesting it writes, and
+  // the operations written in its block.
+  std::pair<int, int> cost(const Instruction& consumer) const {
+    int depth = 0;
+    int operations = 0;
+    if (consumer.result.valid() && materialized_[consumer.result.index] &&
+        consumer.opcode != Opcode::Loop && !isStatementOpcode(consumer.opcode)) {
+      // `#n=expr`: the expression itself, unbracketed.
+      std::vector<InlineShape> operands;
+      for (ValueId operand : consumer.operands) {
+        operands.push_back(shapeOf(operand));
+      }
+      InlineShape own = options_.shape(function_, consumer, operands);
+      return {own.bracketDepth, own.operations};
+    }
+    for (std::size_t i = 0; i < consumer.operands.size(); ++i) {
+      InlineShape shape = shapeOf(consumer.operands[i]);
+      int operandDepth = bracketedDepth(shape);
+      if (consumer.opcode == Opcode::If) {
+        operandDepth = shape.bracketDepth; // a condition brings its own brackets
+      } else if (consumer.opcode == Opcode::Loop && i == 1) {
+        operandDepth += 1; // `WHILE [#i LE bound]`
+      } else if (isStatementOpcode(consumer.opcode)) {
+        operandDepth += 1; // inside an `IF [..]` test
+      }
+      depth = std::max(depth, operandDepth);
+      operations += shape.operations; // one block holds them all
+    }
+    return {depth, operations};
+  }
+
+  bool fits(const Instruction& consumer) const {
+    auto [depth, operations] = cost(consumer);
+    return depth <= options_.maximumBracketDepth &&
+           operations <= options_.maximumInlineOperations;
+  }
+
+  // Moves the deepest inline value under `instruction` into a variable;
+  // false when nothing below can move.
+  bool materializeDeepest(const Instruction& instruction) {
+    ValueId best;
+    int bestScore = -1;
+    for (ValueId operand : instruction.operands) {
+      const Instruction& operandDefinition = definition(operand);
+      if (materialized_[operand.index] || operandDefinition.opcode == Opcode::Const ||
+          operandDefinition.opcode == Opcode::ConstBool) {
+        continue;
+      }
+      InlineShape shape = shapeOf(operand);
+      int score = bracketedDepth(shape) * 1000 + shape.operations;
+      if (score > bestScore) {
+        bestScore = score;
+        best = operand;
+      }
+    }
+    if (!best.valid()) {
+      return false;
+    }
+    if (function_.valueTypes[best.index] != ValueType::F64) {
+      return materializeDeepest(definition(best)); // a condition: shrink what it compares
+    }
+    materialized_[best.index] = true;
+    fit(definitionId(best));
+    return true;
+  }
+
+  void fit(InstructionId id) {
+    const Instruction& consumer = function_.instructions[id];
+    while (!fits(consumer)) {
+      if (!materializeDeepest(consumer)) {
+        auto [depth, operations] = cost(consumer);
+        bool tooDeep = depth > options_.maximumBracketDepth;
+        fail(tooDeep ? "bracket nesting" : "inline operations",
+             tooDeep ? depth : operations,
+             tooDeep ? options_.maximumBracketDepth : options_.maximumInlineOperations,
+             "an expression that cannot be split");
+        return;
+      }
+    }
+  }
+
+  void fitExpressions() {
+    for (InstructionId id : layout_.order) {
+      const Instruction& instruction = function_.instructions[id];
+      bool consumer = !isPure(instruction.opcode) ||
+                      (instruction.result.valid() && materialized_[instruction.result.index]);
+      if (needed_[id] && consumer) {
+        fit(id);
+      }
+    }
+  }
+
+  void fail(std::string limit, int needed, int available, std::string what) {
+    for (const AllocationFailure& failure : result_.failures) {
+      if (failure.limit == limit) {
+        return;
+      }
+    }
+    result_.failures.push_back(
+        {limit, needed, available,
+         fmt::format("{} needs {} {}, the controller allows {}", what, needed, limit, available)});
+  }
+
+  // The last position at which `value` is read, the loops it is read in
+  // counted as a whole.
+  void recordUse(ValueId value, int position, const std::vector<InstructionId>& loops) {
+    const Instruction& instruction = definition(value);
+    if (instruction.opcode == Opcode::Const || instruction.opcode == Opcode::ConstBool) {
+      return;
+    }
+    if (!materialized_[value.index]) {
+      for (ValueId operand : instruction.operands) {
+        recordUse(operand, position, loops); // an inline value reads its operands where it is used
+      }
+      return;
+    }
+    const std::vector<InstructionId>& definedIn = layout_.loops[definitionId(value)];
+    if (loops.size() > definedIn.size()) {
+      position = std::max(position, layout_.loopEnd.at(loops[definedIn.size()]));
+    }
+    lastUse_[value.index] = std::max(lastUse_[value.index], position);
+  }
+
+  void computeLiveness() {
+    lastUse_.assign(function_.valueTypes.size(), -1);
+    for (InstructionId id : layout_.order) {
+      if (!needed_[id]) {
+        continue;
+      }
+      const Instruction& instruction = function_.instructions[id];
+      if (instruction.result.valid() && materialized_[instruction.result.index]) {
+        recordUse(instruction.result, layout_.position[id], layout_.loops[id]);
+      }
+      if (instruction.result.valid() && materialized_[instruction.result.index] == false &&
+          isPure(instruction.opcode)) {
+        continue; // inline: its operands are read where it is used
+      }
+      int position = layout_.position[id] + (isStatementOpcode(instruction.opcode) ? 1 : 0);
+      for (std::size_t i = 0; i < instruction.operands.size(); ++i) {
+        bool bound = instruction.opcode == Opcode::Loop && i == 1;
+        recordUse(instruction.operands[i], bound ? layout_.loopEnd.at(id) : position,
+                  layout_.loops[id]);
+      }
+      if (instruction.opcode == Opcode::Loop) {
+        lastUse_[instruction.result.index] =
+            std::max(lastUse_[instruction.result.index], layout_.loopEnd.at(id));
+      }
+    }
+  }
+
+  // The variables free for values, in preference order, after the
+  // parameters and the tables have taken theirs.
+  std::vector<int> assignTables(std::set<int>& taken) {
+    for (int variable : options_.parameterVariables) {
+      taken.insert(variable);
+    }
+    allocation_.parameterVariables = options_.parameterVariables;
+    allocation_.tableBase.assign(function_.tables.size(), -1);
+    std::vector<bool> tableUsed(function_.tables.size(), false);
+    for (InstructionId id : layout_.order) {
+      const Instruction& instruction = function_.instructions[id];
+      if (needed_[id] && instruction.opcode == Opcode::TableLoad &&
+          instruction.index < tableUsed.size()) {
+        tableUsed[instruction.index] = true;
+      }
+    }
+    // The largest first: they need the longest runs.
+    std::vector<std::size_t> order;
+    for (std::size_t table = 0; table < function_.tables.size(); ++table) {
+      if (tableUsed[table]) {
+        order.push_back(table);
+      }
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return function_.tables[a].size() > function_.tables[b].size();
+    });
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      std::size_t table = order[i];
+      // Equal tables (one per pass of a cut) share their variables.
+      auto equal = std::find_if(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(i),
+                                [&](std::size_t other) {
+                                  return function_.tables[other] == function_.tables[table];
+                                });
+      if (equal != order.begin() + static_cast<std::ptrdiff_t>(i)) {
+        allocation_.tableBase[table] = allocation_.tableBase[*equal];
+      } else {
+        placeTable(table, taken);
+      }
+    }
+    std::vector<int> free;
+    for (const VariableSpan& span : options_.variables) {
+      for (int variable = span.first; variable <= span.last; ++variable) {
+        if (!taken.contains(variable)) {
+          free.push_back(variable);
+        }
+      }
+    }
+    return free;
+  }
+
+  void placeTable(std::size_t table, std::set<int>& taken) {
+    int size = static_cast<int>(function_.tables[table].size());
+    for (const VariableSpan& span : options_.variables) {
+      int runStart = span.first;
+      for (int variable = span.first; variable <= span.last; ++variable) {
+        if (taken.contains(variable)) {
+          runStart = variable + 1;
+        } else if (variable - runStart + 1 == size) {
+          allocation_.tableBase[table] = runStart;
+          for (int v = runStart; v <= variable; ++v) {
+            taken.insert(v);
+          }
+          return;
+        }
+      }
+    }
+    if (size == 0) {
+      return;
+    }
+    fail("consecutive variables", size, longestFreeRun(taken),
+         fmt::format("table {} of {} values", table, size));
+  }
+
+  int longestFreeRun(const std::set<int>& taken) const {
+    int longest = 0;
+    for (const VariableSpan& span : options_.variables) {
+      int run = 0;
+      for (int variable = span.first; variable <= span.last; ++variable) {
+        run = taken.contains(variable) ? 0 : run + 1;
+        longest = std::max(longest, run);
+      }
+    }
+    return longest;
+  }
+
+  struct Interval {
+    int start;
+    int end;
+    ValueId value;
+  };
+
+  // Linear scan over the live intervals: the lowest free variable in
+  // preference order, freed once its value is dead.
+  void assignVariables() {
+    computeLiveness();
+    std::set<int> taken;
+    std::vector<int> free = assignTables(taken);
+    std::vector<Interval> intervals;
+    for (InstructionId id : layout_.order) {
+      const Instruction& instruction = function_.instructions[id];
+      if (needed_[id] && instruction.result.valid() && materialized_[instruction.result.index] &&
+          instruction.opcode != Opcode::Param) {
+        int start = layout_.position[id];
+        intervals.push_back({start, std::max(start, lastUse_[instruction.result.index]),
+                             instruction.result});
+      }
+    }
+    std::stable_sort(intervals.begin(), intervals.end(),
+                     [](const Interval& a, const Interval& b) { return a.start < b.start; });
+    std::set<std::size_t> freeSlots; // indices into `free`; beyond it: variables that do not exist
+    std::size_t slotCount = 0;
+    using Active = std::pair<int, std::size_t>; // (end, slot)
+    std::priority_queue<Active, std::vector<Active>, std::greater<>> active;
+    for (const Interval& interval : intervals) {
+      while (!active.empty() && active.top().first <= interval.start) {
+        freeSlots.insert(active.top().second);
+        active.pop();
+      }
+      std::size_t slot;
+      if (freeSlots.empty()) {
+        slot = slotCount++;
+      } else {
+        slot = *freeSlots.begin();
+        freeSlots.erase(freeSlots.begin());
+      }
+      active.push({interval.end, slot});
+      if (slot < free.size()) {
+        allocation_.variableOfValue[interval.value.index] = free[slot];
+        taken.insert(free[slot]);
+      }
+    }
+    for (std::size_t i = 0; i < options_.parameterVariables.size(); ++i) {
+      for (InstructionId id : layout_.order) {
+        const Instruction& instruction = function_.instructions[id];
+        if (instruction.opcode == Opcode::Param && instruction.index == i) {
+          allocation_.variableOfValue[instruction.result.index] = options_.parameterVariables[i];
+        }
+      }
+    }
+    if (slotCount > free.size()) {
+      int reserved = static_cast<int>(taken.size() - std::min(slotCount, free.size()));
+      fail("variables", reserved + static_cast<int>(slotCount),
+           reserved + static_cast<int>(free.size()), "the program");
+    }
+    allocation_.usedVariables.assign(taken.begin(), taken.end());
+  }
+
+  const Function& function_;
+  AllocationOptions options_;
+  ProgramLayout layout_;
+  std::vector<bool> needed_;
+  std::vector<bool> materialized_;
+  std::vector<int> useCount_;
+  std::vector<int> lastUse_;
+  Allocation allocation_;
+  AllocationResult result_;
+};
+
+} // namespace
+
+AllocationResult allocateVariables(const Function& function, const AllocationOptions& options) {
+  return Allocator(function, options).run();
+}
+
+} // namespace cncc::ir

@@ -1,0 +1,112 @@
+// The default pipeline on every example that lowers: the interpreter's tool
+// path is the same before and after, and the function does not grow.
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/verifier.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace cncc::ir {
+namespace {
+
+std::optional<Function> lowerExample(const std::string& name, const std::string& part) {
+  frontend::SourceManager sources;
+  frontend::DiagnosticEngine diagnostics;
+  std::optional<frontend::FileId> file =
+      sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + name);
+  if (!file) {
+    ADD_FAILURE() << "cannot read " << name;
+    return std::nullopt;
+  }
+  frontend::CheckOptions options;
+  options.importPaths = {CNCC_STDLIB_DIR};
+  options.requirePart = true;
+  options.partName = part;
+  frontend::CheckedProgram program = frontend::checkProgram(sources, *file, options, diagnostics);
+  if (diagnostics.hasErrors() || program.selectedPart == nullptr) {
+    return std::nullopt;
+  }
+  return lowerPart(program, *program.selectedPart, diagnostics);
+}
+
+void expectSamePath(const ToolPath& before, const ToolPath& after, const std::string& name) {
+  ASSERT_EQ(before.events.size(), after.events.size()) << name;
+  std::size_t inexact = 0;
+  for (std::size_t i = 0; i < before.events.size(); ++i) {
+    const MachineEvent& a = before.events[i];
+    const MachineEvent& b = after.events[i];
+    ASSERT_EQ(a.kind, b.kind) << name << " event " << i;
+    EXPECT_EQ(a.text, b.text) << name << " event " << i;
+    for (auto [x, y] :
+         {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z}, std::pair{a.feed, b.feed},
+          std::pair{a.number, b.number}, std::pair{a.diameter, b.diameter}}) {
+      EXPECT_NEAR(x, y, 1e-9) << name << " event " << i;
+      inexact += x == y ? 0 : 1;
+    }
+  }
+  // Folding uses the interpreter's arithmetic: not even the last bit moves.
+  EXPECT_EQ(inexact, 0u) << name;
+}
+
+struct Example {
+  const char* file;
+  const char* part; // empty: the file's only part
+};
+
+constexpr Example examples[] = {
+    {"archimedean_spiral.cdl", ""},
+    {"cam_profile.cdl", ""},
+    {"helix_bore.cdl", "bore_plate_mm"},
+    {"helix_bore.cdl", "bore_plate_inch"},
+    {"polar_contour.cdl", ""},
+    {"rosette_plate.cdl", ""},
+    {"s_profile.cdl", ""},
+};
+
+TEST(PassesExamplesTest, DefaultPipelineKeepsToolPathAndDoesNotGrow) {
+  int lowered = 0;
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::optional<Function> function = lowerExample(example.file, example.part);
+    if (!function) {
+      std::cout << name << ": does not lower in this version, skipped\n";
+      continue;
+    }
+    ++lowered;
+    ToolPath before = interpret(*function);
+    std::size_t countBefore = instructionCount(*function);
+    runDefaultPipeline(*function, [&](std::string_view pass, const Function& after) {
+      EXPECT_TRUE(verifyFunction(after).empty()) << name << " after " << pass;
+    });
+    std::size_t countAfter = instructionCount(*function);
+    expectSamePath(before, interpret(*function), name);
+    EXPECT_LE(countAfter, countBefore) << name;
+    std::cout << name << ": " << countBefore << " -> " << countAfter << " instructions, "
+              << before.events.size() << " events\n";
+  }
+  // archimedean_spiral, polar_contour and s_profile lower today.
+  EXPECT_GE(lowered, 3);
+}
+
+TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {
+  std::optional<Function> lowered = lowerExample("s_profile.cdl", "");
+  ASSERT_TRUE(lowered);
+  ToolPath before = interpret(*lowered);
+  for (const Pass& pass : allPasses()) {
+    Function function = *lowered;
+    pass.run(function);
+    EXPECT_TRUE(verifyFunction(function).empty()) << pass.name;
+    expectSamePath(before, interpret(function), std::string(pass.name));
+  }
+}
+
+} // namespace
+} // namespace cncc::ir

@@ -1,0 +1,226 @@
+// Register allocation: which values get variables, liveness over loops,
+// reuse of dead variables, tables, and the limits.
+#include "cncc/ir/builder.h"
+#include "cncc/ir/register_allocation.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace cncc::ir {
+namespace {
+
+using ::testing::HasSubstr;
+
+AllocationOptions optionsWith(std::vector<VariableSpan> variables,
+                              std::vector<int> parameters = {}) {
+  AllocationOptions options;
+  options.variables = std::move(variables);
+  options.parameterVariables = std::move(parameters);
+  return options;
+}
+
+// Two values used twice each, the first dead before the second is made:
+// the second reuses the first's variable.
+TEST(RegisterAllocation, ReusesTheVariableOfADeadValue) {
+  FunctionBuilder builder("reuse");
+  ValueId side = builder.parameter(builder.addParameter("side", 10));
+  ValueId zero = builder.constant(0);
+  ValueId first = builder.binary(Opcode::Mul, side, builder.constant(2));
+  builder.rapid(first, first, zero);
+  ValueId second = builder.binary(Opcode::Mul, side, builder.constant(3));
+  builder.rapid(second, second, zero);
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}}, {1}));
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  EXPECT_EQ(allocation.variableOfValue[side.index], 1);
+  EXPECT_EQ(allocation.variableOfValue[first.index], 2);
+  EXPECT_EQ(allocation.variableOfValue[second.index], 2);
+  EXPECT_EQ(allocation.usedVariables, (std::vector<int>{1, 2}));
+}
+
+// A value used once stays inline; a constant never takes a variable.
+TEST(RegisterAllocation, KeepsSingleUseValuesInline) {
+  FunctionBuilder builder("inline");
+  ValueId side = builder.parameter(builder.addParameter("side", 10));
+  ValueId two = builder.constant(2);
+  ValueId x = builder.binary(Opcode::Mul, side, two);
+  builder.rapid(x, two, two);
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}}, {1}));
+  ASSERT_TRUE(result.ok());
+  EXPECT_FALSE(result.allocation.inVariable(x));
+  EXPECT_FALSE(result.allocation.inVariable(two));
+}
+
+// A value defined before a loop and read in it is live through the whole
+// loop: the values made in the body get other variables, and so does the
+// induction variable; after the loop its variable is free again.
+TEST(RegisterAllocation, KeepsAValueReadInALoopLiveThroughTheLoop) {
+  FunctionBuilder builder("loop");
+  ValueId side = builder.parameter(builder.addParameter("side", 10));
+  ValueId zero = builder.constant(0);
+  ValueId scaled = builder.binary(Opcode::Mul, side, builder.constant(2)); // read in the loop
+  ValueId index = builder.beginLoop(zero, builder.constant(9));
+  ValueId step = builder.binary(Opcode::Add, index, builder.constant(0.5));
+  ValueId twice = builder.binary(Opcode::Mul, step, step); // `step` used twice
+  builder.feed(scaled, twice, zero, builder.constant(100));
+  builder.endLoop();
+  ValueId after = builder.binary(Opcode::Sub, side, builder.constant(1));
+  builder.rapid(after, after, zero);
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}}, {1}));
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  ASSERT_TRUE(allocation.inVariable(scaled)); // computed once, outside the loop
+  ASSERT_TRUE(allocation.inVariable(index));
+  ASSERT_TRUE(allocation.inVariable(step));
+  int scaledVariable = allocation.variableOfValue[scaled.index];
+  EXPECT_NE(allocation.variableOfValue[index.index], scaledVariable);
+  EXPECT_NE(allocation.variableOfValue[step.index], scaledVariable);
+  EXPECT_NE(allocation.variableOfValue[step.index], allocation.variableOfValue[index.index]);
+  // After the loop, the lowest free variable is taken again.
+  EXPECT_EQ(allocation.variableOfValue[after.index], 2);
+}
+
+// The induction variable of an outer loop lives through the inner loop.
+TEST(RegisterAllocation, KeepsAnOuterInductionVariableThroughAnInnerLoop) {
+  FunctionBuilder builder("nested");
+  ValueId zero = builder.constant(0);
+  ValueId outer = builder.beginLoop(zero, builder.constant(3));
+  ValueId inner = builder.beginLoop(zero, builder.constant(4));
+  ValueId sum = builder.binary(Opcode::Add, outer, inner);
+  builder.feed(sum, sum, zero, builder.constant(100));
+  builder.endLoop();
+  builder.endLoop();
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}}));
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  std::set<int> distinct = {allocation.variableOfValue[outer.index],
+                            allocation.variableOfValue[inner.index],
+                            allocation.variableOfValue[sum.index]};
+  EXPECT_EQ(distinct.size(), 3u);
+}
+
+// A table takes consecutive variables that nothing else shares.
+TEST(RegisterAllocation, PlacesATableInConsecutiveVariables) {
+  FunctionBuilder builder("table");
+  std::uint32_t table = builder.addTable({0.1, 0.2, 0.3, 0.4});
+  ValueId zero = builder.constant(0);
+  ValueId index = builder.beginLoop(zero, builder.constant(3));
+  ValueId t = builder.tableLoad(table, index);
+  builder.feed(t, t, zero, builder.constant(100));
+  builder.endLoop();
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 3}, {100, 110}}));
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  EXPECT_EQ(allocation.tableBase[table], 100); // #1-#3 are too few
+  for (ValueId value : {index, t}) {
+    int variable = allocation.variableOfValue[value.index];
+    EXPECT_TRUE(variable < 100 || variable > 103) << variable;
+  }
+}
+
+TEST(RegisterAllocation, ReportsTooFewVariablesWithTheCount) {
+  FunctionBuilder builder("crowded");
+  ValueId zero = builder.constant(0);
+  std::vector<ValueId> values;
+  for (int i = 0; i < 4; ++i) { // four values live at once
+    ValueId base = i == 0 ? builder.constant(1) : values.back();
+    values.push_back(builder.binary(Opcode::Add, base, builder.constant(i + 1.0)));
+  }
+  for (ValueId value : values) {
+    builder.rapid(value, value, zero);
+  }
+  for (ValueId value : values) {
+    builder.rapid(value, zero, zero);
+  }
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 3}}));
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.failures[0].limit, "variables");
+  EXPECT_EQ(result.failures[0].needed, 4);
+  EXPECT_EQ(result.failures[0].available, 3);
+  EXPECT_THAT(result.failures[0].message, HasSubstr("needs 4 variables"));
+}
+
+TEST(RegisterAllocation, ReportsATableLargerThanAnyRun) {
+  FunctionBuilder builder("long table");
+  std::uint32_t table = builder.addTable(std::vector<double>(40, 0.5));
+  ValueId zero = builder.constant(0);
+  ValueId index = builder.beginLoop(zero, builder.constant(39));
+  builder.feed(builder.tableLoad(table, index), zero, zero, builder.constant(100));
+  builder.endLoop();
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}, {100, 129}}));
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.failures[0].limit, "consecutive variables");
+  EXPECT_EQ(result.failures[0].needed, 40);
+  EXPECT_EQ(result.failures[0].available, 33);
+}
+
+// sqrt(sqrt(sqrt(sqrt(x)))) with two bracket levels allowed: values move to
+// variables until every statement fits.
+TEST(RegisterAllocation, SplitsExpressionsDeeperThanTheBracketLimit) {
+  FunctionBuilder builder("deep");
+  ValueId x = builder.parameter(builder.addParameter("x", 2));
+  ValueId value = x;
+  std::vector<ValueId> chain;
+  for (int i = 0; i < 4; ++i) {
+    value = builder.unary(Opcode::Sqrt, value);
+    chain.push_back(value);
+  }
+  ValueId zero = builder.constant(0);
+  builder.rapid(value, zero, zero);
+  Function function = builder.finish();
+
+  AllocationOptions options = optionsWith({{1, 33}}, {1});
+  options.maximumBracketDepth = 2;
+  AllocationResult result = allocateVariables(function, options);
+  ASSERT_TRUE(result.ok());
+  int inVariables = 0;
+  for (ValueId link : chain) {
+    inVariables += result.allocation.inVariable(link) ? 1 : 0;
+  }
+  EXPECT_GE(inVariables, 1);
+  EXPECT_LT(inVariables, 4);
+
+  options.maximumBracketDepth = 0; // not even one function bracket
+  AllocationResult impossible = allocateVariables(function, options);
+  ASSERT_FALSE(impossible.ok());
+  EXPECT_EQ(impossible.failures[0].limit, "bracket nesting");
+}
+
+TEST(RegisterAllocation, GivesOperationsWrittenAsStatementsAVariable) {
+  FunctionBuilder builder("min");
+  ValueId a = builder.parameter(builder.addParameter("a", 1));
+  ValueId b = builder.binary(Opcode::Mul, a, builder.constant(3));
+  ValueId smaller = builder.binary(Opcode::Min, a, b);
+  ValueId zero = builder.constant(0);
+  builder.rapid(smaller, zero, zero);
+  Function function = builder.finish();
+
+  AllocationOptions options = optionsWith({{1, 33}}, {1});
+  options.statementOpcodes = {Opcode::Min};
+  AllocationResult result = allocateVariables(function, options);
+  ASSERT_TRUE(result.ok());
+  EXPECT_TRUE(result.allocation.inVariable(smaller));
+  EXPECT_TRUE(result.allocation.inVariable(b)); // written twice by min
+  // `b` is read after the result is first written: no sharing.
+  EXPECT_NE(result.allocation.variableOfValue[b.index],
+            result.allocation.variableOfValue[smaller.index]);
+}
+
+} // namespace
+} // namespace cncc::ir
