@@ -164,6 +164,8 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
     case ir::MachineEvent::Kind::Comment:
       writer.line(fmt::format("({})", gcodeCommentText(event.text)));
       break;
+    case ir::MachineEvent::Kind::CutBegin: // the cut's own comment already says it
+      break;
     }
   }
   if (spindleOn) {

@@ -51,6 +51,10 @@ struct ControllerProfile {
   int coordinateDecimals = 3;           // digits after the point, millimetres
   double leastInputIncrement = 0.001;   // mm: every executed coordinate is rounded to it
   double maximumCoordinate = 99999.999; // mm
+  // G02/G03: how far the end point may be from the circle through the start
+  // around the centre (mm) before the controller alarms (Fanuc parameter
+  // 3410; its setting varies (?), this is a common value).
+  double arcRadiusTolerance = 0.005;
   bool hasIndirectVariables = true;     // `#[expression]`
   bool hasThen = true;                  // `IF [..] THEN statement`
   bool hasPowerFunction = false;        // `POW[a,b]` (30i)

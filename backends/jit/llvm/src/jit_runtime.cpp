@@ -1,0 +1,153 @@
+#include "jit_runtime.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace cncc::backends::jit {
+
+namespace {
+
+// Records an event; an exception (out of memory) must not unwind through the
+// native code, so it is kept for the caller and reported as a failure.
+template <typename MakeEvent>
+std::int32_t record(RunContext* context, MakeEvent makeEvent) {
+  try {
+    context->events->push_back(makeEvent());
+    return 0;
+  } catch (...) {
+    context->exception = std::current_exception();
+    return 1;
+  }
+}
+
+template <typename Fill>
+std::int32_t recordError(RunContext* context, Fill fill) {
+  try {
+    context->errorMessage = fill();
+  } catch (...) {
+    context->exception = std::current_exception();
+  }
+  return 1;
+}
+
+} // namespace
+
+extern "C" {
+
+static std::int32_t cncc_jit_rapid(RunContext* context, double x, double y, double z) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Rapid;
+    event.x = x;
+    event.y = y;
+    event.z = z;
+    return event;
+  });
+}
+
+static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, double z,
+                                  double feed) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Feed;
+    event.x = x;
+    event.y = y;
+    event.z = z;
+    event.feed = feed;
+    return event;
+  });
+}
+
+static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Spindle;
+    event.number = speed;
+    return event;
+  });
+}
+
+static std::int32_t cncc_jit_tool(RunContext* context, double number, double diameter) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Tool;
+    event.number = number;
+    event.diameter = diameter;
+    return event;
+  });
+}
+
+static std::int32_t cncc_jit_comment(RunContext* context, std::uint32_t index) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Comment;
+    event.text = (*context->comments)[index];
+    return event;
+  });
+}
+
+static std::int32_t cncc_jit_cut_begin(RunContext* context, std::uint32_t cut) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::CutBegin;
+    event.number = cut;
+    return event;
+  });
+}
+
+// The errors, worded as the interpreter words them.
+static std::int32_t cncc_jit_table_index_error(RunContext* context, double index,
+                                               std::uint32_t table, std::uint64_t size) {
+  return recordError(context, [&] {
+    return fmt::format("index {} is outside table @{} of {} entries", index, table, size);
+  });
+}
+
+static std::int32_t cncc_jit_loop_bound_error(RunContext* context) {
+  return recordError(context, [] { return std::string("a loop bound is not a finite number"); });
+}
+
+static std::int32_t cncc_jit_step_limit_error(RunContext* context, std::uint64_t maximumSteps) {
+  return recordError(context, [&] {
+    return fmt::format("the program takes more than {} steps", maximumSteps);
+  });
+}
+
+} // extern "C"
+
+namespace {
+
+using Unary = double (*)(double);
+using Binary = double (*)(double, double);
+
+} // namespace
+
+const std::vector<RuntimeSymbol>& runtimeSymbols() {
+  static const std::vector<RuntimeSymbol> symbols = {
+      {"cncc_jit_rapid", reinterpret_cast<void*>(&cncc_jit_rapid)},
+      {"cncc_jit_feed", reinterpret_cast<void*>(&cncc_jit_feed)},
+      {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
+      {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
+      {"cncc_jit_comment", reinterpret_cast<void*>(&cncc_jit_comment)},
+      {"cncc_jit_cut_begin", reinterpret_cast<void*>(&cncc_jit_cut_begin)},
+      {"cncc_jit_table_index_error", reinterpret_cast<void*>(&cncc_jit_table_index_error)},
+      {"cncc_jit_loop_bound_error", reinterpret_cast<void*>(&cncc_jit_loop_bound_error)},
+      {"cncc_jit_step_limit_error", reinterpret_cast<void*>(&cncc_jit_step_limit_error)},
+      // The C library's functions, as the interpreter's std:: calls reach them.
+      {"sin", reinterpret_cast<void*>(static_cast<Unary>(&::sin))},
+      {"cos", reinterpret_cast<void*>(static_cast<Unary>(&::cos))},
+      {"tan", reinterpret_cast<void*>(static_cast<Unary>(&::tan))},
+      {"asin", reinterpret_cast<void*>(static_cast<Unary>(&::asin))},
+      {"acos", reinterpret_cast<void*>(static_cast<Unary>(&::acos))},
+      {"atan", reinterpret_cast<void*>(static_cast<Unary>(&::atan))},
+      {"exp", reinterpret_cast<void*>(static_cast<Unary>(&::exp))},
+      {"log", reinterpret_cast<void*>(static_cast<Unary>(&::log))},
+      {"pow", reinterpret_cast<void*>(static_cast<Binary>(&::pow))},
+      {"fmod", reinterpret_cast<void*>(static_cast<Binary>(&::fmod))},
+      {"atan2", reinterpret_cast<void*>(static_cast<Binary>(&::atan2))},
+  };
+  return symbols;
+}
+
+} // namespace cncc::backends::jit

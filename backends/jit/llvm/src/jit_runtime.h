@@ -1,0 +1,43 @@
+// What the native code calls: the state of one run, and the C functions that
+// record machine events and errors into it. The native code receives a
+// RunContext pointer and passes it back to every callback.
+#pragma once
+
+#include "cncc/ir/tool_path.h"
+
+#include <cstdint>
+#include <exception>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::backends::jit {
+
+struct RunContext {
+  // Where the events go (appended).
+  std::vector<ir::MachineEvent>* events = nullptr;
+  // The texts of the function's comments, by the index the code passes.
+  const std::vector<std::string>* comments = nullptr;
+  // Set before the native code returns a failure: the interpreter's message
+  // for the same error, or an exception raised while recording an event.
+  std::string errorMessage;
+  std::exception_ptr exception;
+};
+
+// The native entry point: 0 when the run finished, 1 after an error was
+// recorded in the context.
+using EntryFunction = std::int32_t (*)(const double* parameters, RunContext* context,
+                                       std::uint64_t maximumSteps, std::uint64_t* steps);
+inline constexpr std::string_view entryName = "cncc_part";
+
+// A C function the native code may call, by the name it is declared under.
+struct RuntimeSymbol {
+  std::string_view name;
+  void* address;
+};
+
+// The event and error callbacks, and the libm functions the IR's
+// operations call (the ones the interpreter calls).
+const std::vector<RuntimeSymbol>& runtimeSymbols();
+
+} // namespace cncc::backends::jit

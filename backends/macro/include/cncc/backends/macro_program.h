@@ -1,0 +1,64 @@
+// Mitsubishi M70/M80/M800 and Fanuc Custom Macro B programs that evaluate
+// the part on the controller: IR loops become WHILE [..] DOm .. ENDm, IR
+// values become controller variables (ir::allocateVariables) or inline
+// bracket expressions, part parameters stay editable variables. One printer
+// serves both controllers; the ControllerProfile says what differs.
+//
+// Layout: `%`, `O<number>`, a comment table of every variable the program
+// uses (part parameters first, with defaults), the safety line, the
+// parameters' defaults, the tables, tool and spindle, the moves, `M30` (a
+// main program) or `M99` (a macro called with `G65 P<number> A.. B..`, the
+// call given in the header), `%`. A program that exceeds a limit of the
+// profile is refused with the limit and the count named.
+#pragma once
+
+#include "cncc/backends/controller_profile.h"
+#include "cncc/ir/ir.h"
+#include "cncc/ir/register_allocation.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace cncc::backends {
+
+struct MacroProgramOptions {
+  int programNumber = 1000;
+  std::string sourceName; // for the header comment, e.g. "s_profile.cdl"
+  std::string partName;
+  bool inches = false;
+  bool callable = false;           // --macro: ends M99, parameters are G65 arguments
+  bool parametersInCommon = false; // --params=common: parameters in retained common variables
+};
+
+struct MacroProgramStatistics {
+  int variables = 0;                   // distinct variables the program uses
+  int blocks = 0;                      // lines between the `%` lines
+  std::size_t bytes = 0;               // the whole text
+  std::size_t bytesWithoutComments = 0; // without comments and comment-only lines
+};
+
+struct MacroProgram {
+  std::string text;                // empty when errors is not
+  std::vector<std::string> errors; // each names the limit and the count
+  MacroProgramStatistics statistics;
+};
+
+// Where the part parameters go: G65 argument locals in letter order
+// (#1=A, #2=B, #3=C, #4=I, ...), or the first retained common variables.
+// Fewer variables than parameters is reported in `errors`.
+std::vector<int> macroParameterVariables(std::size_t parameterCount,
+                                         const ControllerProfile& profile, bool inCommon,
+                                         std::vector<std::string>& errors);
+
+// What the register allocator is told about this controller.
+ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
+                                             std::vector<int> parameterVariables);
+
+MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
+                               const MacroProgramOptions& options);
+
+// Counts of a program text: blocks, bytes, bytes without comments.
+MacroProgramStatistics measureMacroProgram(const std::string& text);
+
+} // namespace cncc::backends

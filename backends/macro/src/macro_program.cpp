@@ -1,0 +1,583 @@
+#include "cncc/backends/macro_program.h"
+
+#include "cncc/backends/gcode_writer.h"
+#include "macro_expressions.h"
+#include "macro_simplify.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace cncc::backends {
+
+namespace {
+
+using ir::Opcode;
+using ir::ValueId;
+
+// The words a move printed last, so that a literal already in force is not
+// written again. Only literals are remembered (a variable may have changed),
+// and everything is forgotten where control flow joins.
+struct ModalState {
+  std::string motion;
+  std::map<char, std::string> literals;
+  std::optional<double> z; // the last literal Z, to order a rapid's axes
+  void forget() { *this = ModalState{}; }
+};
+
+class ProgramPrinter {
+public:
+  ProgramPrinter(const ir::Function& function, const ir::Allocation& allocation,
+                 const ControllerProfile& profile, const MacroProgramOptions& options,
+                 std::vector<std::string>& errors)
+      : function_(function), allocation_(allocation), profile_(profile), options_(options),
+        errors_(errors), expressions_(function, allocation, profile, errors) {}
+
+  std::string print() {
+    line("%");
+    line(fmt::format("O{}", options_.programNumber));
+    printHeader();
+    line(options_.inches ? "G20 G17 G90 G40 G49 G80" : "G21 G17 G90 G40 G49 G80");
+    printParameterDefaults();
+    printTables();
+    printRegion(function_.body);
+    if (spindleOn_) {
+      line("M5");
+    }
+    line(options_.callable ? "M99" : "M30");
+    line("%");
+    std::string text;
+    std::size_t longest = 0;
+    int tooLong = 0;
+    for (const std::string& block : lines_) {
+      if (static_cast<int>(block.size()) > profile_.maximumBlockLength) {
+        longest = std::max(longest, block.size());
+        ++tooLong;
+      }
+      text += block;
+      text += '\n';
+    }
+    if (tooLong > 0) {
+      errors_.push_back(fmt::format("{} blocks exceed the controller's {} characters, the longest "
+                                    "has {}",
+                                    tooLong, profile_.maximumBlockLength, longest));
+    }
+    return text;
+  }
+
+private:
+  void line(std::string text) { lines_.push_back(std::move(text)); }
+
+  void comment(std::string_view text) {
+    std::string body = gcodeCommentText(text);
+    std::size_t room = static_cast<std::size_t>(std::max(0, profile_.maximumBlockLength - 2));
+    line("(" + body.substr(0, room) + ")");
+  }
+
+  // ---- header ----------------------------------------------------------
+
+  std::string parameterDefault(std::size_t index) const {
+    return expressions_.constant(function_.parameters[index].defaultValue);
+  }
+
+  void printHeader() {
+    comment(fmt::format("{} - PART {}", options_.sourceName, options_.partName));
+    if (options_.callable) {
+      std::string call = fmt::format("CALL G65 P{}", options_.programNumber);
+      for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
+        if (std::optional<char> letter = profile_.letterForLocal(allocation_.parameterVariables[i])) {
+          call += fmt::format(" {}{}", *letter, parameterDefault(i));
+        }
+      }
+      comment(call);
+    }
+    for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
+      comment(fmt::format("#{} {}, DEFAULT {}", allocation_.parameterVariables[i],
+                          function_.parameters[i].name, parameterDefault(i)));
+    }
+    for (const auto& [base, tables] : tablesByBase()) {
+      int count = static_cast<int>(function_.tables[tables.front()].size());
+      comment(fmt::format("#{}-#{} TABLE {}, {} VALUES", base, base + count - 1,
+                          fmt::join(tables, " AND "), count));
+    }
+    printValueVariables();
+  }
+
+  // Variables of values, grouped into runs that share a meaning.
+  void printValueVariables() {
+    std::map<int, std::set<std::string>> meanings;
+    for (const ir::Instruction& instruction : function_.instructions) {
+      if (!instruction.result.valid() || instruction.opcode == Opcode::Param) {
+        continue;
+      }
+      int variable = allocation_.variableOfValue[instruction.result.index];
+      if (variable >= 0) {
+        meanings[variable].insert(instruction.opcode == Opcode::Loop ? "LOOP INDEX" : "WORK VALUE");
+      }
+    }
+    auto meaningText = [](const std::set<std::string>& set) {
+      std::string text;
+      for (const std::string& meaning : set) {
+        text += (text.empty() ? "" : " AND ") + meaning;
+      }
+      return text;
+    };
+    for (auto it = meanings.begin(); it != meanings.end();) {
+      auto last = it;
+      auto next = std::next(it);
+      while (next != meanings.end() && next->first == last->first + 1 &&
+             next->second == it->second) {
+        last = next++;
+      }
+      std::string range = last == it ? fmt::format("#{}", it->first)
+                                     : fmt::format("#{}-#{}", it->first, last->first);
+      comment(fmt::format("{} {}", range, meaningText(it->second)));
+      it = next;
+    }
+  }
+
+  // A main program assigns the defaults where the operator edits them; a
+  // macro, or parameters in common variables, keep what the caller or the
+  // operator set and fill in only what is vacant.
+  void printParameterDefaults() {
+    bool assignAlways = !options_.callable && !options_.parametersInCommon;
+    for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
+      std::string variable = fmt::format("#{}", allocation_.parameterVariables[i]);
+      std::string assignment = fmt::format("{}={}", variable, parameterDefault(i));
+      if (assignAlways) {
+        line(assignment);
+      } else {
+        conditional(fmt::format("[{} EQ #0]", variable), fmt::format("[{} NE #0]", variable),
+                    assignment);
+      }
+    }
+  }
+
+  // Equal tables share one block of variables.
+  std::map<int, std::vector<std::size_t>> tablesByBase() const {
+    std::map<int, std::vector<std::size_t>> tables;
+    for (std::size_t table = 0; table < function_.tables.size(); ++table) {
+      if (allocation_.tableBase[table] >= 0) {
+        tables[allocation_.tableBase[table]].push_back(table);
+      }
+    }
+    return tables;
+  }
+
+  void printTables() {
+    for (const auto& [base, tables] : tablesByBase()) {
+      const std::vector<double>& values = function_.tables[tables.front()];
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        line(fmt::format("#{}={}", base + static_cast<int>(i), expressions_.constant(values[i])));
+      }
+    }
+  }
+
+  // ---- statements --------------------------------------------------------
+
+  int newLabel() {
+    int label = nextLabel_++;
+    if (label > profile_.maximumSequenceNumber) {
+      errors_.push_back(fmt::format("the program needs sequence number N{}, the controller allows "
+                                    "up to N{}",
+                                    label, profile_.maximumSequenceNumber));
+    }
+    return label;
+  }
+
+  // `IF [c] THEN statement`, or a jump over it where THEN is missing.
+  void conditional(const std::string& condition, const std::string& negatedCondition,
+                   const std::string& statement) {
+    if (profile_.hasThen) {
+      line(fmt::format("IF {} THEN {}", condition, statement));
+      return;
+    }
+    int label = newLabel();
+    line(fmt::format("IF {} GOTO {}", negatedCondition, label));
+    line(statement);
+    line(fmt::format("N{}", label));
+  }
+
+  void printRegion(const ir::Region& region) {
+    for (ir::InstructionId id : region.instructions) {
+      printInstruction(function_.instructions[id]);
+    }
+  }
+
+  void printInstruction(const ir::Instruction& instruction) {
+    switch (instruction.opcode) {
+    case Opcode::Loop:
+      printLoop(instruction);
+      return;
+    case Opcode::If:
+      printIf(instruction);
+      return;
+    case Opcode::Rapid:
+      printRapid(instruction);
+      return;
+    case Opcode::Feed:
+      printFeed(instruction);
+      return;
+    case Opcode::Spindle:
+      line(fmt::format("S{} M3", spindleSpeed(instruction.operands[0])));
+      spindleOn_ = true;
+      return;
+    case Opcode::Tool:
+      printTool(instruction);
+      return;
+    case Opcode::Comment:
+      comment(instruction.text);
+      return;
+    case Opcode::CutBegin: // the cut's own comment says it
+    case Opcode::Param:
+      return;
+    default:
+      break;
+    }
+    if (instruction.result.valid() && allocation_.inVariable(instruction.result)) {
+      printAssignment(instruction);
+    }
+  }
+
+  std::string spindleSpeed(ValueId speed) const {
+    const ir::Instruction& definition = function_.definition(speed);
+    if (definition.opcode == Opcode::Const) {
+      return fmt::format("{}", std::llround(definition.number));
+    }
+    return expressions_.operand(speed);
+  }
+
+  void printTool(const ir::Instruction& instruction) {
+    if (spindleOn_) {
+      line("M5");
+      spindleOn_ = false;
+    }
+    std::string text = fmt::format("T{} M6", std::llround(instruction.number));
+    const ir::Instruction& diameter = function_.definition(instruction.operands[0]);
+    if (diameter.opcode == Opcode::Const) {
+      text += fmt::format(" (DIAMETER {})", expressions_.coordinateLiteral(diameter.number));
+    }
+    line(text);
+    modal_.forget();
+  }
+
+  void printAssignment(const ir::Instruction& instruction) {
+    std::string target = expressions_.variable(instruction.result);
+    auto operand = [&](std::size_t i) { return expressions_.operand(instruction.operands[i]); };
+    switch (instruction.opcode) {
+    case Opcode::Min:
+    case Opcode::Max: {
+      bool isMin = instruction.opcode == Opcode::Min;
+      line(fmt::format("{}={}", target, expressions_.value(instruction.operands[0]).text));
+      conditional(fmt::format("[{} {} {}]", operand(1), isMin ? "LT" : "GT", target),
+                  fmt::format("[{} {} {}]", operand(1), isMin ? "GE" : "LE", target),
+                  fmt::format("{}={}", target, expressions_.value(instruction.operands[1]).text));
+      return;
+    }
+    case Opcode::Floor:
+    case Opcode::Ceil: { // FIX truncates toward zero; one step fixes the other sign
+      bool isFloor = instruction.opcode == Opcode::Floor;
+      line(fmt::format("{}=FIX[{}]", target, expressions_.value(instruction.operands[0]).text));
+      conditional(fmt::format("[{} {} {}]", target, isFloor ? "GT" : "LT", operand(0)),
+                  fmt::format("[{} {} {}]", target, isFloor ? "LE" : "GE", operand(0)),
+                  fmt::format("{}={}{}1.", target, target, isFloor ? "-" : "+"));
+      return;
+    }
+    case Opcode::Select:
+      line(fmt::format("{}={}", target, expressions_.value(instruction.operands[2]).text));
+      conditional(expressions_.condition(instruction.operands[0]),
+                  expressions_.condition(instruction.operands[0], true),
+                  fmt::format("{}={}", target, expressions_.value(instruction.operands[1]).text));
+      return;
+    case Opcode::Rem: // fmod: a - FIX[a/b]*b, a and b are atoms here
+      line(fmt::format("{}={}-FIX[{}/{}]*{}", target, operand(0), operand(0), operand(1),
+                       operand(1)));
+      return;
+    case Opcode::Atan:
+    case Opcode::Atan2: {
+      // ATAN[y]/[x] gives 0..360 or -180..180 degrees by a parameter; both
+      // become the IR's -pi..pi.
+      std::string x = instruction.opcode == Opcode::Atan ? "1." : operand(1);
+      line(fmt::format("{}=ATAN[{}]/[{}]", target, expressions_.value(instruction.operands[0]).text,
+                       instruction.opcode == Opcode::Atan ? x
+                                                          : expressions_.value(instruction.operands[1]).text));
+      conditional(fmt::format("[{} GT 180.]", target), fmt::format("[{} LE 180.]", target),
+                  fmt::format("{}={}-360.", target, target));
+      line(fmt::format("{}={}*{}", target, target, expressions_.constant(1 / degreesPerRadian)));
+      return;
+    }
+    default:
+      line(fmt::format("{}={}", target, expressions_.definition(instruction.result).text));
+      return;
+    }
+  }
+
+  // ---- control flow ------------------------------------------------------
+
+  void printLoop(const ir::Instruction& instruction) {
+    ++loopDepth_;
+    int limit = std::min(profile_.maximumLoopNesting, profile_.maximumLoopIdentifier);
+    if (loopDepth_ > limit && !reportedLoopDepth_) {
+      errors_.push_back(fmt::format("the program nests {} loops, the controller allows {}",
+                                    loopDepth_, limit));
+      reportedLoopDepth_ = true;
+    }
+    std::string index = expressions_.variable(instruction.result);
+    line(fmt::format("{}={}", index, expressions_.value(instruction.operands[0]).text));
+    line(fmt::format("WHILE [{} LE {}] DO{}", index, expressions_.operand(instruction.operands[1]),
+                     loopDepth_));
+    modal_.forget();
+    printRegion(instruction.regions[0]);
+    line(fmt::format("{}={}+1.", index, index));
+    line(fmt::format("END{}", loopDepth_));
+    modal_.forget();
+    --loopDepth_;
+  }
+
+  std::vector<std::string> capture(const ir::Region& region) {
+    std::vector<std::string> saved = std::move(lines_);
+    lines_.clear();
+    modal_.forget();
+    printRegion(region);
+    std::vector<std::string> captured = std::move(lines_);
+    lines_ = std::move(saved);
+    modal_.forget();
+    return captured;
+  }
+
+  // IF THEN where one statement is the whole branch; jumps otherwise.
+  void printIf(const ir::Instruction& instruction) {
+    ValueId condition = instruction.operands[0];
+    std::vector<std::string> thenLines = capture(instruction.regions[0]);
+    std::vector<std::string> elseLines =
+        instruction.regions.size() > 1 ? capture(instruction.regions[1]) : std::vector<std::string>{};
+    if (thenLines.empty() && elseLines.empty()) {
+      return;
+    }
+    bool single = elseLines.empty() && thenLines.size() == 1 && thenLines[0].starts_with("#");
+    if (single && profile_.hasThen) {
+      line(fmt::format("IF {} THEN {}", expressions_.condition(condition), thenLines[0]));
+      return;
+    }
+    int skipThen = newLabel();
+    line(fmt::format("IF {} GOTO {}", expressions_.condition(condition, true), skipThen));
+    lines_.insert(lines_.end(), thenLines.begin(), thenLines.end());
+    if (elseLines.empty()) {
+      line(fmt::format("N{}", skipThen));
+      return;
+    }
+    int skipElse = newLabel();
+    line(fmt::format("GOTO {}", skipElse));
+    line(fmt::format("N{}", skipThen));
+    lines_.insert(lines_.end(), elseLines.begin(), elseLines.end());
+    line(fmt::format("N{}", skipElse));
+  }
+
+  // ---- moves -------------------------------------------------------------
+
+  std::optional<double> constantOf(ValueId value) const {
+    const ir::Instruction& definition = function_.definition(value);
+    return definition.opcode == Opcode::Const ? std::optional<double>(definition.number)
+                                              : std::nullopt;
+  }
+
+  // " X12.5", or nothing when that literal is in force already.
+  std::string word(char letter, ValueId value, bool isCoordinate = true) {
+    std::string text = isCoordinate ? expressions_.coordinate(value) : expressions_.operand(value);
+    if (!isCoordinate && constantOf(value)) {
+      text = expressions_.constant(*constantOf(value));
+    }
+    bool literal = constantOf(value).has_value();
+    auto known = modal_.literals.find(letter);
+    if (literal && known != modal_.literals.end() && known->second == text) {
+      return "";
+    }
+    if (literal) {
+      modal_.literals[letter] = text;
+    } else {
+      modal_.literals.erase(letter);
+    }
+    return fmt::format(" {}{}", letter, text);
+  }
+
+  void block(std::string_view motion, const std::string& words) {
+    if (words.empty()) {
+      return;
+    }
+    std::string text = motion == modal_.motion ? words.substr(1) : std::string(motion) + words;
+    modal_.motion = std::string(motion);
+    line(text);
+  }
+
+  void rememberZ(ValueId z) { modal_.z = constantOf(z); }
+
+  // Up first and down last, so a rapid never moves sideways below where it
+  // starts or ends; where the heights are not literals, Z goes first (the
+  // lowering's rapids climb to the safe height).
+  void printRapid(const ir::Instruction& instruction) {
+    ValueId x = instruction.operands[0], y = instruction.operands[1], z = instruction.operands[2];
+    std::optional<double> target = constantOf(z);
+    bool descending = target && modal_.z && *target < *modal_.z - 1e-12;
+    if (descending) {
+      block("G0", word('X', x) + word('Y', y));
+      block("G0", word('Z', z));
+    } else {
+      block("G0", word('Z', z));
+      block("G0", word('X', x) + word('Y', y));
+    }
+    rememberZ(z);
+  }
+
+  void printFeed(const ir::Instruction& instruction) {
+    std::string words = word('X', instruction.operands[0]) + word('Y', instruction.operands[1]) +
+                        word('Z', instruction.operands[2]);
+    if (!words.empty()) {
+      words += word('F', instruction.operands[3], false);
+    }
+    block("G1", words);
+    rememberZ(instruction.operands[2]);
+  }
+
+  const ir::Function& function_;
+  const ir::Allocation& allocation_;
+  const ControllerProfile& profile_;
+  const MacroProgramOptions& options_;
+  std::vector<std::string>& errors_;
+  MacroExpressionWriter expressions_;
+  std::vector<std::string> lines_;
+  ModalState modal_;
+  int loopDepth_ = 0;
+  bool reportedLoopDepth_ = false;
+  int nextLabel_ = 1;
+  bool spindleOn_ = false;
+};
+
+bool isCommentLine(std::string_view line) {
+  return line.starts_with("(");
+}
+
+} // namespace
+
+std::vector<int> macroParameterVariables(std::size_t parameterCount,
+                                         const ControllerProfile& profile, bool inCommon,
+                                         std::vector<std::string>& errors) {
+  std::vector<int> candidates;
+  if (inCommon) {
+    for (const VariableRange& range : profile.retainedCommon) {
+      for (int variable = range.first; variable <= range.last; ++variable) {
+        candidates.push_back(variable);
+      }
+    }
+  } else {
+    for (const ArgumentLetter& argument : profile.argumentLetters) {
+      candidates.push_back(argument.variable);
+    }
+    std::sort(candidates.begin(), candidates.end());
+  }
+  if (candidates.size() < parameterCount) {
+    errors.push_back(fmt::format("the part has {} parameters, the controller has {} {} for them",
+                                 parameterCount, candidates.size(),
+                                 inCommon ? "retained common variables" : "argument letters"));
+    candidates.resize(parameterCount, 0);
+  }
+  candidates.resize(parameterCount);
+  return candidates;
+}
+
+ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
+                                             std::vector<int> parameterVariables) {
+  ir::AllocationOptions options;
+  options.variables.push_back({profile.locals.first, profile.locals.last});
+  for (const VariableRange& range : profile.volatileCommon) {
+    options.variables.push_back({range.first, range.last});
+  }
+  for (const VariableRange& range : profile.retainedCommon) {
+    options.variables.push_back({range.first, range.last});
+  }
+  options.parameterVariables = std::move(parameterVariables);
+  options.maximumBracketDepth = profile.maximumBracketNesting;
+  // About ten characters an operation, room for the address and `#n=`.
+  options.maximumInlineOperations = std::max(2, (profile.maximumBlockLength - 16) / 10);
+  options.shape = macroInlineShape;
+  options.statementOpcodes = macroStatementOpcodes();
+  return options;
+}
+
+MacroProgramStatistics measureMacroProgram(const std::string& text) {
+  MacroProgramStatistics statistics;
+  statistics.bytes = text.size();
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) {
+      end = text.size();
+    }
+    std::string_view line(text.data() + start, end - start);
+    if (line != "%") {
+      ++statistics.blocks;
+    }
+    std::string bare;
+    int depth = 0;
+    for (char c : line) {
+      depth += c == '(' ? 1 : 0;
+      if (depth == 0) {
+        bare += c;
+      }
+      depth -= (c == ')' && depth > 0) ? 1 : 0;
+    }
+    while (!bare.empty() && bare.back() == ' ') {
+      bare.pop_back();
+    }
+    if (!bare.empty() && !isCommentLine(line)) {
+      statistics.bytesWithoutComments += bare.size() + 1;
+    }
+    start = end + 1;
+  }
+  return statistics;
+}
+
+MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
+                               const MacroProgramOptions& options) {
+  MacroProgram program;
+  if (options.programNumber < 1 || options.programNumber > profile.maximumProgramNumber) {
+    program.errors.push_back(fmt::format("program number O{} is outside the controller's 1..{}",
+                                         options.programNumber, profile.maximumProgramNumber));
+    return program;
+  }
+  if (!profile.hasIndirectVariables && !function.tables.empty()) {
+    program.errors.push_back(fmt::format("the part reads {} tables, and the controller has no "
+                                         "indirect variables #[..] to read them",
+                                         function.tables.size()));
+    return program;
+  }
+  ir::Function simplified = simplifyForMacroProgram(function);
+  std::vector<int> parameterVariables = macroParameterVariables(
+      simplified.parameters.size(), profile, options.parametersInCommon, program.errors);
+  if (!program.errors.empty()) {
+    return program;
+  }
+  ir::AllocationResult allocated =
+      ir::allocateVariables(simplified, macroAllocationOptions(profile, parameterVariables));
+  for (const ir::AllocationFailure& failure : allocated.failures) {
+    program.errors.push_back(failure.message);
+  }
+  if (!program.errors.empty()) {
+    return program;
+  }
+  std::string text =
+      ProgramPrinter(simplified, allocated.allocation, profile, options, program.errors).print();
+  if (!program.errors.empty()) {
+    return program;
+  }
+  program.text = std::move(text);
+  program.statistics = measureMacroProgram(program.text);
+  program.statistics.variables = static_cast<int>(allocated.allocation.usedVariables.size());
+  return program;
+}
+
+} // namespace cncc::backends

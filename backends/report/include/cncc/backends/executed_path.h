@@ -1,0 +1,65 @@
+// The path a controller executes when it runs a program, move by move, with
+// the cut each feed move belongs to: what `--stats` and `cncc plot` measure
+// against the true curves. A backend whose program text differs from the IR's
+// tool path (rounded numbers, split rapids, or macro programs run in a
+// virtual controller) provides its own ExecutedProgram.
+#pragma once
+
+#include "cncc/ir/tool_path.h"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::backends {
+
+struct ExecutedMove {
+  bool rapid = false;
+  Eigen::Vector3d end = Eigen::Vector3d::Zero(); // the move starts where the previous ended
+  double feed = 0;                               // mm/min (in/min in inch parts); feed moves
+  std::optional<std::size_t> cut;                // index into the part's cut table
+};
+
+struct ExecutedPath {
+  // Where the first move starts: the first position at which every axis is
+  // known (moves before it, from an unknown position, are left out).
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  std::vector<ExecutedMove> moves;
+
+  // The start of move i.
+  const Eigen::Vector3d& startOf(std::size_t i) const { return i == 0 ? start : moves[i - 1].end; }
+};
+
+// A program and what running it does.
+struct ExecutedProgram {
+  std::string text;       // the program as written
+  std::size_t blocks = 0; // what the target counts as a block
+  ExecutedPath path;
+};
+
+// The executed path does not match the tool path the program was printed
+// from: a bug in a backend, not in the input.
+class ExecutionMismatch : public std::logic_error {
+public:
+  using std::logic_error::logic_error;
+};
+
+// The tool path itself, exactly: what a host run (the jit target) executes.
+ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath);
+
+// Runs plain G-code as a controller would: G00/G01 blocks with modal X, Y, Z,
+// F and motion mode; other words and comments are ignored. Each feed move is
+// given the cut of the tool path event it was printed from (`toolPath` is what
+// the program was printed from; coordinates match after rounding to
+// `decimals`). Throws ExecutionMismatch when the two disagree.
+ExecutedPath executeGcode(std::string_view program, const ir::ToolPath& toolPath, int decimals);
+
+// Lines other than empty ones and `%` tape marks.
+std::size_t countProgramBlocks(std::string_view program);
+
+} // namespace cncc::backends

@@ -1,0 +1,48 @@
+// `cncc plot`: an SVG picture of a compiled part for a person to look at.
+// Each cut's true curve is a thin line; the executed path is drawn over it
+// segment by segment, coloured by how far the segment strays from the curve
+// (green up to half the tolerance, through yellow to red at the tolerance, a
+// distinct purple beyond it); the emitted points are dots, rapids dashed.
+// A legend gives each cut's largest deviation and tolerance; axes are in the
+// part's unit with y up.
+#pragma once
+
+#include "cncc/backends/executed_path.h"
+#include "cncc/geom/curve.h"
+#include "cncc/ir/lowering.h"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace cncc::backends {
+
+struct PlotOptions {
+  std::string title;                 // one line above the picture
+  std::string unit = "mm";           // of the axes and the legend
+  std::vector<std::string> cutNames; // as in StatisticsOptions
+  double width = 800;                // of the drawing area, in pixels
+};
+
+// The colours, for the picture's legend and for tests.
+inline constexpr const char* kWithinHalfToleranceColour = "#1a9641";
+inline constexpr const char* kBeyondToleranceColour = "#5e3c99";
+inline constexpr const char* kNoToleranceColour = "#2c7bb6";
+
+// The colour of a segment `deviation` away from the curve: green up to half
+// the tolerance, then through yellow to red at the tolerance, purple beyond;
+// blue when the cut has no tolerance (NaN).
+std::string deviationColour(double deviation, double tolerance);
+
+// For each segment of `polyline` (segment i joins vertices i and i + 1), the
+// largest distance from a point of it to `curve`, found by sampling and then
+// refining the largest sample (to about `accuracy`).
+std::vector<double> segmentDeviations(const std::vector<Eigen::Vector3d>& polyline,
+                                      const geom::Curve& curve, double accuracy);
+
+std::string plotSvg(const ExecutedPath& path, std::span<const ir::CutGeometry> cuts,
+                    const PlotOptions& options);
+
+} // namespace cncc::backends

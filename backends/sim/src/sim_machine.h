@@ -1,0 +1,80 @@
+// The state of the virtual controller while it runs a program: the call
+// stack with each level's locals, the common variables, the modal state and
+// the path recorded so far. virtual_controller.cpp runs blocks and macro
+// statements; sim_motion.cpp runs address words (modal codes, motion, calls).
+#pragma once
+
+#include "cncc/backends/virtual_controller.h"
+
+#include "sim_evaluator.h"
+
+#include <array>
+#include <map>
+#include <optional>
+
+namespace cncc::backends::sim {
+
+class Machine : public VariableReader {
+public:
+  Machine(const ProgramText& program, const ControllerProfile& profile,
+          const SimulationOptions& options, ExecutedPath& path);
+
+  // Runs to M30/M02 (or the final M99 of a macro call); throws
+  // SimulationError.
+  void run();
+  std::size_t blocksExecuted() const { return blocksExecuted_; }
+  std::map<int, std::optional<double>> commonVariables() const;
+
+  Value read(int variable, const Block& block) const override;
+
+private:
+  static constexpr int localCount = 34; // #0 unused, #1-#33
+
+  struct Frame {
+    std::size_t program = 0;     // index in ProgramText::programs
+    std::size_t returnBlock = 0; // where the caller goes on after M99
+    int repeatsLeft = 0;         // L: further runs of the macro after this one
+    std::array<Value, localCount> arguments{};
+    std::array<Value, localCount> locals{};
+  };
+
+  struct ModalState {
+    std::optional<int> motion; // 0..3 once commanded
+    bool absolute = true;
+    bool inches = false;
+    std::optional<double> feed;
+    Point3 position;
+    std::optional<int> selectedTool;
+    double spindleSpeed = 0;
+    bool spindleRunning = false;
+  };
+
+  // What running one block decided.
+  enum class Next { Continue, Jump, Stop };
+
+  Next executeBlock(const Block& block, std::size_t& next);
+  void write(int variable, Value value, const Block& block);
+  std::size_t findSequenceNumber(int number, const Block& from, std::size_t fromIndex) const;
+  void runOutOfProgram(std::size_t index) const;
+
+  // sim_motion.cpp
+  Next executeWords(const Block& block, std::size_t& next);
+  void callMacro(const Block& block, std::size_t& next);
+  Next returnFromMacro(const Block& block, std::size_t& next);
+  void move(const Block& block, int motion, const std::map<char, double>& axes);
+  void moveArc(const Block& block, int motion, Point3 target, const std::map<char, double>& axes);
+  double increment() const;
+  double roundToIncrement(double value) const;
+
+  const ProgramText& program_;
+  const ControllerProfile& profile_;
+  const SimulationOptions& options_;
+  ExecutedPath& path_;
+  std::vector<Frame> frames_;
+  std::map<int, Value> commons_;
+  std::map<int, Value> systemVariables_;
+  ModalState modal_;
+  std::size_t blocksExecuted_ = 0;
+};
+
+} // namespace cncc::backends::sim

@@ -1,0 +1,382 @@
+// Address words: modal G codes, F S T, G00-G03 motion, G65 calls, M codes.
+#include "sim_machine.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+namespace cncc::backends::sim {
+
+namespace {
+
+// G codes in tenths (G06.2 is 62) with their modal group; 0 is the
+// one-shot group.
+struct GCode {
+  int tenths;
+  int group;
+};
+
+constexpr GCode supportedGCodes[] = {
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
+    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
+    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15}};
+
+constexpr std::string_view axisLetters = "XYZ";
+constexpr std::string_view arcLetters = "IJKR";
+
+std::string gName(int tenths) {
+  return tenths % 10 == 0 ? fmt::format("G{:02d}", tenths / 10)
+                          : fmt::format("G{:02d}.{}", tenths / 10, tenths % 10);
+}
+
+std::optional<int> groupOf(int tenths) {
+  for (const GCode& code : supportedGCodes) {
+    if (code.tenths == tenths) {
+      return code.group;
+    }
+  }
+  return std::nullopt;
+}
+
+bool isCoordinateLetter(char letter) {
+  return axisLetters.find(letter) != std::string_view::npos ||
+         arcLetters.find(letter) != std::string_view::npos;
+}
+
+// The words of a block after evaluation; vacant ones are dropped, as the
+// controller drops an address whose variable is vacant.
+struct BlockWords {
+  std::vector<int> gCodes; // tenths
+  std::vector<int> mCodes;
+  std::map<char, double> values; // every other letter
+};
+
+} // namespace
+
+double Machine::increment() const {
+  // IS-B: 0.001 mm, 0.0001 inch.
+  return modal_.inches ? profile_.leastInputIncrement / 10.0 : profile_.leastInputIncrement;
+}
+
+double Machine::roundToIncrement(double value) const {
+  return std::round(value / increment()) * increment();
+}
+
+namespace {
+
+void checkLiteral(const Word& word, const Block& block, int decimals, bool isArgument) {
+  if (!word.isLiteral) {
+    return;
+  }
+  // Without a point, 0 is 0 however the controller reads it.
+  if (!word.literalHasPoint && word.value.number != 0) {
+    failInBlock(block, fmt::format("{} {} without a decimal point: its meaning depends on a "
+                                   "parameter; write {}{}.",
+                                   isArgument ? "the argument" : "the coordinate", word.letter,
+                                   word.letter, word.value.number));
+  }
+  if (word.literalDecimals > decimals) {
+    failInBlock(block, fmt::format("the address {} has {} decimals; the least input increment "
+                                   "allows {}",
+                                   word.letter, word.literalDecimals, decimals));
+  }
+}
+
+BlockWords evaluateWords(const Block& block, const VariableReader& variables) {
+  BlockWords words;
+  for (const Word& word : block.words) {
+    if (word.containsRound) {
+      failInBlock(block, fmt::format("ROUND in the address {} rounds to the least input "
+                                     "increment on some controllers and to a whole number on "
+                                     "others; compute it in a variable",
+                                     word.letter));
+    }
+    Value value = evaluate(word.value, variables, block);
+    if (value.vacant) {
+      continue;
+    }
+    if (word.letter == 'G' || word.letter == 'M') {
+      double tenths = value.number * (word.letter == 'G' ? 10 : 1);
+      if (std::abs(tenths - std::round(tenths)) > 1e-6 || std::abs(tenths) > 1e6) {
+        failInBlock(block, fmt::format("{}{} is not a code", word.letter, value.number));
+      }
+      (word.letter == 'G' ? words.gCodes : words.mCodes)
+          .push_back(static_cast<int>(std::lround(tenths)));
+      continue;
+    }
+    words.values[word.letter] = value.number;
+  }
+  return words;
+}
+
+bool has(const BlockWords& words, int gTenths) {
+  return std::find(words.gCodes.begin(), words.gCodes.end(), gTenths) != words.gCodes.end();
+}
+
+void checkGCodes(const Block& block, const BlockWords& words) {
+  std::map<int, int> groups;
+  for (int tenths : words.gCodes) {
+    std::optional<int> group = groupOf(tenths);
+    if (!group) {
+      failInBlock(block,
+                  fmt::format("{} is not simulated (refused rather than guessed)", gName(tenths)));
+    }
+    if (*group != 0 && groups.count(*group) > 0) {
+      failInBlock(block, fmt::format("{} and {} are in the same modal group", gName(groups[*group]),
+                                     gName(tenths)));
+    }
+    groups[*group] = tenths;
+  }
+  if (has(words, 650) && words.gCodes.size() > 1) {
+    failInBlock(block, "G65 must be the only G code of its block");
+  }
+}
+
+// The letters a block of this kind may hold.
+void checkLetters(const Block& block, const BlockWords& words) {
+  bool dwell = has(words, 40);
+  for (const auto& [letter, value] : words.values) {
+    bool allowed = std::string_view("XYZIJKRFST").find(letter) != std::string_view::npos ||
+                   (letter == 'P' && dwell) || (letter == 'H' && has(words, 430));
+    if (!allowed) {
+      failInBlock(block, fmt::format("the address {} is not simulated in this block", letter));
+    }
+  }
+}
+
+} // namespace
+
+Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
+  BlockWords words = evaluateWords(block, *this);
+  checkGCodes(block, words);
+  if (has(words, 650)) {
+    for (const Word& word : block.words) {
+      if (word.letter != 'G' && word.letter != 'P' && word.letter != 'L') {
+        checkLiteral(word, block, 8, true);
+      }
+    }
+    callMacro(block, next);
+    return Next::Jump;
+  }
+  checkLetters(block, words);
+  int decimals = profile_.coordinateDecimals + (modal_.inches ? 1 : 0);
+  for (const Word& word : block.words) {
+    if (isCoordinateLetter(word.letter)) {
+      checkLiteral(word, block, decimals, false);
+    }
+  }
+  for (int tenths : words.gCodes) {
+    switch (tenths) {
+    case 0:
+    case 10:
+    case 20:
+    case 30:
+      modal_.motion = tenths / 10;
+      break;
+    case 900:
+    case 910:
+      modal_.absolute = tenths == 900;
+      break;
+    case 200:
+    case 210:
+      modal_.inches = tenths == 200;
+      path_.inches = modal_.inches;
+      break;
+    default:
+      break; // G04, G17, G40, G43, G49, G54-G59, G61, G64, G80, G94: no effect on the path
+    }
+  }
+  if (words.values.count('F') > 0) {
+    if (words.values['F'] <= 0) {
+      failInBlock(block, "the feed F must be positive");
+    }
+    modal_.feed = words.values['F'];
+  }
+  if (words.values.count('S') > 0) {
+    double speed = words.values['S'];
+    if (speed < 0 || speed != std::round(speed)) {
+      failInBlock(block, "the spindle speed S must be a whole number from 0");
+    }
+    modal_.spindleSpeed = speed;
+    if (modal_.spindleRunning) {
+      path_.events.push_back({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, speed, block.line});
+    }
+  }
+  if (words.values.count('T') > 0) {
+    double tool = words.values['T'];
+    if (tool < 0 || tool != std::round(tool) || tool > 99999999) {
+      failInBlock(block, "the tool number T must be a whole number from 0");
+    }
+    modal_.selectedTool = static_cast<int>(tool);
+  }
+  std::map<char, double> axes;
+  for (const auto& [letter, value] : words.values) {
+    if (isCoordinateLetter(letter)) {
+      axes[letter] = value;
+    }
+  }
+  if (has(words, 40)) {
+    if (!axes.empty()) {
+      failInBlock(block, "G04 takes its time in P, with no axis words");
+    }
+  } else if (!axes.empty()) {
+    if (!modal_.motion) {
+      failInBlock(block, "a move before any G00, G01, G02 or G03: the power-on motion mode is "
+                         "a parameter");
+    }
+    move(block, *modal_.motion, axes);
+  }
+  if (words.mCodes.size() > 1) {
+    failInBlock(block, "one M code per block");
+  }
+  if (words.mCodes.empty()) {
+    return Next::Continue;
+  }
+  switch (words.mCodes.front()) {
+  case 0:
+  case 1:
+  case 8:
+  case 9:
+    return Next::Continue;
+  case 2:
+  case 30:
+    return Next::Stop;
+  case 3:
+  case 4:
+    modal_.spindleRunning = true;
+    path_.events.push_back(
+        {ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, modal_.spindleSpeed, block.line});
+    return Next::Continue;
+  case 5:
+    modal_.spindleRunning = false;
+    path_.events.push_back({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, 0, block.line});
+    return Next::Continue;
+  case 6:
+    if (!modal_.selectedTool) {
+      failInBlock(block, "M06 before any T: which tool?");
+    }
+    path_.events.push_back(
+        {ExecutedEvent::Kind::ToolChange, {}, {}, {}, 0, double(*modal_.selectedTool), block.line});
+    return Next::Continue;
+  case 99:
+    return returnFromMacro(block, next);
+  default:
+    failInBlock(block, fmt::format("M{:02d} is not simulated", words.mCodes.front()));
+  }
+}
+
+void Machine::callMacro(const Block& block, std::size_t& next) {
+  Frame callee;
+  bool hasProgram = false;
+  int repeats = 1;
+  for (const Word& word : block.words) {
+    if (word.letter == 'G') {
+      continue;
+    }
+    Value value = evaluate(word.value, *this, block);
+    if (word.letter == 'P' || word.letter == 'L') {
+      if (word.isLiteral && word.literalHasPoint) {
+        failInBlock(block,
+                    fmt::format("{} of G65 is written without a decimal point", word.letter));
+      }
+      int number =
+          evaluateWholeNumber(word.value, *this, block, fmt::format("G65 {}", word.letter));
+      if (word.letter == 'L') {
+        if (number < 1 || number > 9999) {
+          failInBlock(block, fmt::format("G65 L{}: the repeat count is 1 to 9999", number));
+        }
+        repeats = number;
+        continue;
+      }
+      auto found = std::find_if(program_.programs.begin(), program_.programs.end(),
+                                [&](const ProgramUnit& unit) { return unit.number == number; });
+      if (found == program_.programs.end() || number == 0) {
+        failInBlock(block,
+                    fmt::format("G65 P{}: there is no program O{} in the file", number, number));
+      }
+      callee.program = static_cast<std::size_t>(found - program_.programs.begin());
+      hasProgram = true;
+      continue;
+    }
+    std::optional<int> local = profile_.localForLetter(word.letter);
+    if (!local || *local >= localCount) {
+      failInBlock(block, fmt::format("{} is not a G65 argument on {}", word.letter, profile_.name));
+    }
+    callee.arguments[*local] = value; // a vacant argument leaves the local vacant
+  }
+  if (!hasProgram) {
+    failInBlock(block, "G65 without P: which program?");
+  }
+  int level = static_cast<int>(frames_.size()) + (options_.runAsMacroCall ? 1 : 0);
+  if (level > profile_.maximumCallNesting) {
+    failInBlock(block, fmt::format("macro calls nested {} deep; {} allows {}", level, profile_.name,
+                                   profile_.maximumCallNesting));
+  }
+  callee.returnBlock = next;
+  callee.repeatsLeft = repeats - 1;
+  callee.locals = callee.arguments;
+  frames_.push_back(callee);
+  next = program_.programs[callee.program].first;
+}
+
+Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
+  if (frames_.size() == 1) {
+    if (options_.runAsMacroCall) {
+      return Next::Stop;
+    }
+    failInBlock(block, "M99 in the main program restarts it forever");
+  }
+  Frame& frame = frames_.back();
+  if (frame.repeatsLeft > 0) {
+    // Each repetition starts from the arguments again.
+    --frame.repeatsLeft;
+    frame.locals = frame.arguments;
+    next = program_.programs[frame.program].first;
+    return Next::Jump;
+  }
+  next = frame.returnBlock;
+  frames_.pop_back();
+  return Next::Jump;
+}
+
+void Machine::move(const Block& block, int motion, const std::map<char, double>& axes) {
+  Point3 target = modal_.position;
+  double* coordinates[] = {&target.x, &target.y, &target.z};
+  for (int axis = 0; axis < 3; ++axis) {
+    auto found = axes.find(axisLetters[axis]);
+    if (found == axes.end()) {
+      continue;
+    }
+    double amount = roundToIncrement(found->second);
+    *coordinates[axis] = modal_.absolute ? amount : roundToIncrement(*coordinates[axis] + amount);
+    double limit = modal_.inches ? profile_.maximumCoordinate / 10.0 : profile_.maximumCoordinate;
+    if (std::abs(*coordinates[axis]) > limit + increment() / 2) {
+      failInBlock(block, fmt::format("{} {} is beyond the controller's range +-{}",
+                                     axisLetters[axis], *coordinates[axis], limit));
+    }
+  }
+  bool arcWords = axes.count('I') + axes.count('J') + axes.count('K') + axes.count('R') > 0;
+  if (motion == 0 || motion == 1) {
+    if (arcWords) {
+      failInBlock(block, "I, J, K or R in a straight move");
+    }
+    if (motion == 1 && !modal_.feed) {
+      failInBlock(block, "G01 without a feed: no F has been commanded");
+    }
+    ExecutedEvent event{motion == 0 ? ExecutedEvent::Kind::Rapid : ExecutedEvent::Kind::Feed,
+                        modal_.position,
+                        target,
+                        {},
+                        motion == 0 ? 0 : *modal_.feed,
+                        0,
+                        block.line};
+    path_.events.push_back(event);
+    modal_.position = target;
+    return;
+  }
+  moveArc(block, motion, target, axes);
+}
+
+} // namespace cncc::backends::sim

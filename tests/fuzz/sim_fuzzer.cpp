@@ -1,0 +1,85 @@
+// libFuzzer entry point for the virtual controller: the program reader and
+// the executor run on arbitrary bytes, then the executed path is flattened.
+//
+// The contract under test: no program, however malformed, crashes the
+// simulator or runs forever; every error names a line of the input (or
+// none); every point of the path is finite and an arc's polyline ends at the
+// arc's end point. The first byte picks the profile and whether the program
+// runs as a G65 call with arguments.
+#include "cncc/backends/controller_profile.h"
+#include "cncc/backends/virtual_controller.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string_view>
+
+namespace {
+
+using namespace cncc::backends;
+
+[[noreturn]] void fail(const char* what) {
+  std::fprintf(stderr, "sim_fuzzer: invariant broken: %s\n", what);
+  std::abort();
+}
+
+int lineCount(std::string_view text) {
+  int lines = 1;
+  for (char c : text) {
+    lines += c == '\n' ? 1 : 0;
+  }
+  return lines;
+}
+
+void checkPath(const sim::ExecutedPath& path) {
+  // Enough to flatten every arc of a small path finely, without letting a
+  // long loop of huge arcs exhaust the memory.
+  if (path.events.size() > 500) {
+    return;
+  }
+  cncc::ir::ToolPath flat = sim::flattenPath(path, 0.1);
+  for (const cncc::ir::MachineEvent& event : flat.events) {
+    if (!std::isfinite(event.x) || !std::isfinite(event.y) || !std::isfinite(event.z)) {
+      fail("a point of the flattened path is not finite");
+    }
+  }
+  if (!path.events.empty() &&
+      (path.events.back().kind == sim::ExecutedEvent::Kind::ClockwiseArc ||
+       path.events.back().kind == sim::ExecutedEvent::Kind::CounterclockwiseArc)) {
+    const cncc::ir::MachineEvent& last = flat.events.back();
+    if (last.x != path.events.back().end.x || last.y != path.events.back().end.y) {
+      fail("an arc's polyline does not end at the arc's end point");
+    }
+  }
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) {
+    return 0;
+  }
+  static const char* const profileNames[] = {"fanuc", "m80", "fanuc-0i-small"};
+  const ControllerProfile* profile = findControllerProfile(profileNames[data[0] % 3]);
+  if (profile == nullptr) {
+    fail("a built-in profile is missing");
+  }
+  sim::SimulationOptions options;
+  options.stepLimit = 20000;
+  if (data[0] & 0x10) {
+    options.runAsMacroCall = true;
+    options.arguments = {{'A', 1.5}, {'B', -2}, {'X', 10}};
+  }
+  std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
+  sim::SimulationResult result = sim::simulateProgram(text, *profile, options);
+  if (result.error && (result.error->line() < 0 || result.error->line() > lineCount(text))) {
+    fail("an error names a line outside the program");
+  }
+  if (result.blocksExecuted > options.stepLimit + 1) {
+    fail("the step limit was not enforced");
+  }
+  checkPath(result.path);
+  return 0;
+}

@@ -1,0 +1,15 @@
+%
+O9001 (POLYGON: A SIDES, R RADIUS, F FEED)
+IF [#1 EQ #0] THEN #3000 = 1 (SIDES MISSING)
+IF [#18 EQ #0] THEN #18 = 5.
+#2 = 0
+G90 G00 X#18 Y0 Z1.
+G01 Z0 F#9
+WHILE [#2 LT #1] DO1
+#2 = #2 + 1
+#3 = 360. * #2 / #1
+G01 X[#18 * COS[#3]] Y[#18 * SIN[#3]]
+END1
+G00 Z1.
+M99
+%

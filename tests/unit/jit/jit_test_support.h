@@ -1,0 +1,90 @@
+// Runs a Function through the IR interpreter and the LLVM JIT and compares
+// the tool paths: the same events in the same order, numbers within 1e-9 mm
+// (NaN matching NaN, infinities of the same sign matching).
+#pragma once
+
+#include "cncc/backends/jit_compiler.h"
+#include "cncc/ir/interpreter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace cncc::jit_test {
+
+inline constexpr double kTolerance = 1e-9;
+
+inline bool sameNumber(double expected, double actual) {
+  if (std::isnan(expected) || std::isnan(actual)) {
+    return std::isnan(expected) && std::isnan(actual);
+  }
+  if (std::isinf(expected) || std::isinf(actual)) {
+    return expected == actual;
+  }
+  return std::abs(expected - actual) <= kTolerance;
+}
+
+inline ::testing::AssertionResult samePaths(const ir::ToolPath& expected,
+                                            const ir::ToolPath& actual) {
+  if (expected.events.size() != actual.events.size()) {
+    return ::testing::AssertionFailure() << "the interpreter records " << expected.events.size()
+                                         << " events, the JIT " << actual.events.size();
+  }
+  for (std::size_t i = 0; i < expected.events.size(); ++i) {
+    const ir::MachineEvent& a = expected.events[i];
+    const ir::MachineEvent& b = actual.events[i];
+    bool same = a.kind == b.kind && sameNumber(a.x, b.x) && sameNumber(a.y, b.y) &&
+                sameNumber(a.z, b.z) && sameNumber(a.feed, b.feed) &&
+                sameNumber(a.number, b.number) && sameNumber(a.diameter, b.diameter) &&
+                a.text == b.text;
+    if (!same) {
+      return ::testing::AssertionFailure()
+             << "event " << i << " differs: interpreter kind " << static_cast<int>(a.kind) << " ("
+             << a.x << ", " << a.y << ", " << a.z << ", " << a.feed << ", " << a.number << ", "
+             << a.diameter << ", \"" << a.text << "\"), JIT kind " << static_cast<int>(b.kind)
+             << " (" << b.x << ", " << b.y << ", " << b.z << ", " << b.feed << ", " << b.number
+             << ", " << b.diameter << ", \"" << b.text << "\")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// What a run gives: its tool path, or the error message.
+struct RunOutcome {
+  ir::ToolPath path;
+  bool failed = false;
+  std::string error;
+};
+
+template <typename Run>
+RunOutcome outcomeOf(Run run) {
+  RunOutcome outcome;
+  try {
+    outcome.path = run();
+  } catch (const ir::InterpreterError& error) {
+    outcome.failed = true;
+    outcome.error = error.what();
+  }
+  return outcome;
+}
+
+// Both runs end alike: the same error, or tool paths that agree.
+inline ::testing::AssertionResult sameOutcome(const RunOutcome& interpreted,
+                                              const RunOutcome& compiled) {
+  if (interpreted.failed != compiled.failed || interpreted.error != compiled.error) {
+    return ::testing::AssertionFailure()
+           << "interpreter: " << (interpreted.failed ? interpreted.error : "finishes")
+           << "; JIT: " << (compiled.failed ? compiled.error : "finishes");
+  }
+  return samePaths(interpreted.path, compiled.path);
+}
+
+inline ::testing::AssertionResult jitMatchesInterpreter(const ir::Function& function,
+                                                        const ir::InterpreterOptions& options = {}) {
+  backends::CompiledFunction compiled(function);
+  return sameOutcome(outcomeOf([&] { return ir::interpret(function, options); }),
+                     outcomeOf([&] { return compiled.run(options); }));
+}
+
+} // namespace cncc::jit_test
