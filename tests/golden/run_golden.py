@@ -2,9 +2,11 @@
 """File-based golden tests for the cncc driver.
 
 Each folder under tests/golden/ is a suite; each NAME.cdl directly inside it
-is a case. The first line of NAME.cdl may give the arguments:
+is a case, and so is each NAME.ir (textual IR, for `cncc opt`; `//` starts a
+comment line in IR too). The first line of a case may give the arguments:
 
     // ARGS: %s -t gcode -p roughing
+    // ARGS: opt %s --passes=fold,dce
 
 (shell-style quoting; %s is the case's path relative to the repository root,
 %d its folder, %% a percent sign). Without it the arguments are `check %s`.
@@ -47,6 +49,7 @@ ROOT = GOLDEN_DIR.parent.parent
 DEFAULT_ARGUMENTS = "check %s"
 TIMEOUT_SECONDS = 10
 COVERAGE_SUITE = "diagnostics"
+CASE_SUFFIXES = (".cdl", ".ir")
 
 
 class Case:
@@ -136,7 +139,9 @@ def suite_names():
 
 def cases_of(suite):
     folder = GOLDEN_DIR / suite
-    return [Case(path) for path in sorted(folder.glob("*.cdl"))] if folder.is_dir() else []
+    if not folder.is_dir():
+        return []
+    return [Case(path) for path in sorted([*folder.glob("*.cdl"), *folder.glob("*.ir")])]
 
 
 def select_cases(selectors):
@@ -150,7 +155,12 @@ def select_cases(selectors):
             continue
         path = Path(selector)
         candidates = [path, ROOT / path, GOLDEN_DIR / path]
-        found = [c.with_suffix(".cdl") for c in candidates if c.with_suffix(".cdl").is_file()]
+        found = [
+            c.with_suffix(suffix)
+            for c in candidates
+            for suffix in CASE_SUFFIXES
+            if c.with_suffix(suffix).is_file()
+        ]
         if not found:
             sys.exit(f"run_golden.py: no suite or case named '{selector}'")
         cases.append(Case(found[0].resolve()))
@@ -163,7 +173,7 @@ def orphan_expectations(cases):
         expected
         for folder in suites
         for expected in folder.glob("*.expected")
-        if not expected.with_suffix(".cdl").is_file()
+        if not any(expected.with_suffix(suffix).is_file() for suffix in CASE_SUFFIXES)
     )
 
 
@@ -203,7 +213,7 @@ def run_cases(cncc, cases, update):
             print(f"FAIL {outcome.case.relative}\n{message.rstrip()}\n")
     for orphan in orphan_expectations(cases):
         failures += 1
-        print(f"FAIL {orphan.relative_to(ROOT)} has no .cdl beside it\n")
+        print(f"FAIL {orphan.relative_to(ROOT)} has no .cdl or .ir beside it\n")
     print(f"{len(cases) - failures} of {len(cases)} golden cases passed")
     return 1 if failures else 0
 

@@ -93,7 +93,8 @@ int runCompile(const DriverOptions& options) {
     reportWriteFailure(output, options.output, error);
     return 1;
   }
-  return 0;
+  return options.stats ? printStatistics({*program, sources, options, backendDiagnostics, *file})
+                       : 0;
 }
 
 int runEmit(const DriverOptions& options) {
@@ -149,6 +150,12 @@ int runCommand(const DriverOptions& options) {
     return runFormat(options);
   case Command::LanguageServer:
     return runLanguageServer();
+  case Command::Optimize:
+    return runOptimize(options);
+  case Command::Plot:
+    return runPlot(options);
+  case Command::Simulate:
+    return runSimulate(options);
   }
   return 2;
 }

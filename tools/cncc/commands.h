@@ -6,6 +6,9 @@
 
 #include "driver_options.h"
 
+#include "cncc/ir/passes.h"
+#include "targets.h"
+
 #include <stdexcept>
 
 namespace cncc::driver {
@@ -29,6 +32,21 @@ int runListDiagnostics();
 int runFormat(const DriverOptions& options);
 // cncc lsp (format_and_lsp_commands.cpp)
 int runLanguageServer();
+// cncc plot FILE [-o OUT.svg] [-t TARGET] (plot_command.cpp)
+int runPlot(const DriverOptions& options);
+// After a compile with --stats: measures what the target wrote and prints
+// the statistics to stderr (stats_command.cpp). Returns the exit code.
+int printStatistics(const BackendRequest& request);
+
+// cncc opt FILE.ir [--passes=a,b] (opt_command.cpp)
+int runOptimize(const DriverOptions& options);
+// Runs the passes the options ask for (the default pipeline unless -O0 or
+// --passes), printing as --print-after asks; throws InternalError when the
+// result does not verify.
+void optimise(ir::Function& function, const DriverOptions& options);
+
+// cncc sim PROGRAM -t fanuc|m80 [-a A3.] [-o OUT] (sim_command.cpp)
+int runSimulate(const DriverOptions& options);
 
 // Runs the command `options` names.
 int runCommand(const DriverOptions& options);

@@ -1,6 +1,9 @@
 #include "driver_options.h"
 
+#include "stats_measurement.h"
 #include "targets.h"
+
+#include "cncc/ir/passes.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -35,6 +38,18 @@ struct RawOptions {
   std::vector<std::string> formatInputs;
   bool formatCheck = false;
   bool formatInPlace = false;
+  bool stats = false;
+  std::string rapidRate = "10000";
+  std::string plotInput;
+  std::string optInput;
+  std::string passes;
+  std::string printAfter;
+  std::string optimisationLevel = "1";
+  bool macroCall = false;
+  std::string parameterStorage = "local";
+  std::string profile;
+  std::string simulateInput;
+  std::vector<std::string> macroArguments;
 };
 
 // A mistake in how cncc was called: printed, exit code 2.
@@ -54,6 +69,8 @@ std::string helpFooter() {
             "  cncc check examples/*.cdl\n"
             "  cncc fmt -i examples/*.cdl\n"
             "  cncc --emit=ast examples/s_profile.cdl\n"
+            "  cncc examples/s_profile.cdl -t gcode --stats -o O1\n"
+            "  cncc plot examples/s_profile.cdl -o s_profile.svg\n"
             "\nExit codes: 0 success, 1 errors in the source, 2 wrong usage.";
   return footer;
 }
@@ -96,6 +113,22 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
                  "(the part lowered)")
       ->type_name("STAGE")
       ->check(CLI::IsMember({"tokens", "ast", "ir"}));
+  app.add_flag("--macro", raw.macroCall,
+               "m80/fanuc: print a macro called with G65 P.. and arguments, ending M99");
+  app.add_option("--params", raw.parameterStorage,
+                 "m80/fanuc: part parameters as G65 argument locals, or in common variables")
+      ->type_name("local|common")
+      ->check(CLI::IsMember({"local", "common"}));
+  app.add_option("--profile", raw.profile,
+                 "m80/fanuc: the controller profile (fanuc, fanuc-0i-small, m80)")
+      ->type_name("NAME")
+      ->check(CLI::IsMember({"fanuc", "fanuc-0i-small", "m80"}));
+  app.add_flag("--stats", raw.stats,
+               "Also print, on stderr, the program's size, path length, time estimate and "
+               "largest deviation from the true curves");
+  app.add_option("--rapid-rate", raw.rapidRate,
+                 "The rapid rate the --stats time estimate assumes (default 10000)")
+      ->type_name("MM/MIN");
 }
 
 CLI::App* addCheckCommand(CLI::App& app, RawOptions& raw) {
@@ -124,6 +157,49 @@ CLI::App* addFormatCommand(CLI::App& app, RawOptions& raw) {
   format->footer("\nExit codes: 0 done, 1 syntax errors (such a file is left as it is) or, with "
                  "--check, unformatted files, 2 wrong usage.");
   return format;
+}
+
+CLI::App* addPlotCommand(CLI::App& app, RawOptions& raw) {
+  CLI::App* plot = app.add_subcommand(
+      "plot", "Draw the part's true curves and emitted path, coloured by deviation, as SVG");
+  plot->add_option("FILE", raw.plotInput, "The .cdl file to plot")->type_name("")->required();
+  plot->fallthrough();
+  plot->footer("\nTakes -o OUT.svg ('-': standard output), -t TARGET (gcode or jit; gcode by "
+               "default), -D, -p, -I and the diagnostic options (see 'cncc --help').");
+  return plot;
+}
+
+// cncc opt: IR passes on a textual IR file; -O and --print-after are
+// options of the main command that fall through to it.
+CLI::App* addOptCommand(CLI::App& app, RawOptions& raw) {
+  app.add_option("--print-after", raw.printAfter,
+                 "Print the IR to stderr after each run of IR pass NAME (or all)")
+      ->type_name("NAME");
+  app.add_option("-O", raw.optimisationLevel, "-O0: skip the IR optimiser (-O1, the default)")
+      ->type_name("LEVEL")
+      ->check(CLI::IsMember({"0", "1"}));
+  CLI::App* opt = app.add_subcommand("opt", "Run IR passes on a textual IR file and print it");
+  opt->add_option("FILE", raw.optInput, "The .ir file")->type_name("")->required();
+  opt->add_option("--passes", raw.passes, "Comma-separated pass names (default: the pipeline)")
+      ->type_name("A,B");
+  opt->fallthrough();
+  return opt;
+}
+
+// cncc sim: -t, -o and --profile are the main command's options.
+CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
+  CLI::App* simulate = app.add_subcommand(
+      "sim", "Run an m80/fanuc program on the virtual controller and print its path as CSV");
+  simulate->add_option("PROGRAM", raw.simulateInput, "The program file")
+      ->type_name("")
+      ->required();
+  simulate->add_option("-a", raw.macroArguments,
+                       "Run the program as if called by G65 with this argument (A3.)")
+      ->type_name("ARG")
+      ->allow_extra_args(false);
+  simulate->fallthrough();
+  simulate->footer("\nTakes -t fanuc|m80, --profile NAME and -o OUT ('-': standard output).");
+  return simulate;
 }
 
 CLI::App* addLanguageServerCommand(CLI::App& app) {
@@ -170,6 +246,17 @@ std::map<std::string, double> parseDefines(const std::vector<std::string>& defin
     values[name] = value;
   }
   return values;
+}
+
+double parseRapidRate(const std::string& text) {
+  double rate = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), rate);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
+      !std::isfinite(rate) || !(rate > 0)) {
+    throw UsageError(fmt::format("invalid --rapid-rate '{}': expected a positive number (mm/min)",
+                                 text));
+  }
+  return rate;
 }
 
 std::size_t parseErrorLimit(const std::string& text) {
@@ -229,7 +316,7 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
     return;
   }
   if (checking) {
-    for (const char* name : {"--target", "--output", "--emit"}) {
+    for (const char* name : {"--target", "--output", "--emit", "--stats", "--rapid-rate"}) {
       if (app.count(name) > 0) {
         throw UsageError(fmt::format("option {} does not apply to 'check'", name));
       }
@@ -253,6 +340,17 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   } else if (raw.target.empty()) {
     throw UsageError(fmt::format("no target; choose one with -t TARGET ({})", targetNameList()));
   }
+  if ((raw.stats || app.count("--rapid-rate") > 0) && options.command != Command::Compile) {
+    throw UsageError("--stats and --rapid-rate need a target to compile for, not --emit");
+  }
+  if (app.count("--rapid-rate") > 0 && !raw.stats) {
+    throw UsageError("--rapid-rate only sets the time estimate of --stats");
+  }
+  if (raw.stats && !canMeasure(raw.target)) {
+    throw UsageError(fmt::format("--stats is not available for target '{}' in this version "
+                                 "(gcode and jit have it)",
+                                 raw.target));
+  }
 }
 
 // How diagnostics are printed: the same options for every command.
@@ -265,6 +363,31 @@ void setDiagnosticOutput(const RawOptions& raw, DriverOptions& options) {
   options.errorLimit = parseErrorLimit(raw.errorLimit);
 }
 
+// The pass names of --passes and --print-after, checked.
+void setOptimisation(const RawOptions& raw, DriverOptions& options) {
+  options.optimise = raw.optimisationLevel != "0";
+  std::string_view list = raw.passes;
+  while (!list.empty()) {
+    std::size_t comma = list.find(',');
+    options.passes.emplace_back(list.substr(0, comma));
+    list = comma == std::string_view::npos ? "" : list.substr(comma + 1);
+  }
+  std::vector<std::string> named = options.passes;
+  if (!raw.printAfter.empty() && raw.printAfter != "all") {
+    named.push_back(raw.printAfter);
+  }
+  for (const std::string& name : named) {
+    if (ir::findPass(name) == nullptr) {
+      std::string known;
+      for (const ir::Pass& pass : ir::allPasses()) {
+        known += fmt::format("{}{}", known.empty() ? "" : ", ", pass.name);
+      }
+      throw UsageError(fmt::format("unknown IR pass '{}'; the passes are: {}", name, known));
+    }
+  }
+  options.printAfter = raw.printAfter;
+}
+
 DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool checking) {
   DriverOptions options;
   chooseCommand(raw, app, checking, options);
@@ -272,6 +395,12 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   options.output = raw.output.empty() ? "-" : raw.output;
   options.defines = parseDefines(raw.defines);
   options.partName = raw.partName;
+  options.stats = raw.stats;
+  options.macroCall = raw.macroCall;
+  options.parametersInCommon = raw.parameterStorage == "common";
+  options.profile = raw.profile;
+  options.rapidRate = parseRapidRate(raw.rapidRate);
+  setOptimisation(raw, options);
   if (options.command != Command::ListDiagnostics) {
     options.importPaths = importPaths(raw.includeDirectories);
   }
@@ -303,6 +432,56 @@ DriverOptions formatOptions(const RawOptions& raw, const CLI::App& app) {
   return options;
 }
 
+// cncc plot: the compile options, gcode as the default target.
+DriverOptions plotOptions(const RawOptions& raw, const CLI::App& app) {
+  for (const char* name : {"--emit", "--stats", "--rapid-rate"}) {
+    if (app.count(name) > 0) {
+      throw UsageError(fmt::format("option {} does not apply to 'plot'", name));
+    }
+  }
+  RawOptions compile = raw;
+  compile.input = raw.plotInput;
+  compile.target = raw.target.empty() ? "gcode" : raw.target;
+  DriverOptions options = validatedOptions(compile, app, false);
+  if (!canMeasure(options.target)) {
+    throw UsageError(fmt::format("'plot' is not available for target '{}' in this version "
+                                 "(gcode and jit have it)",
+                                 options.target));
+  }
+  options.command = Command::Plot;
+  return options;
+}
+
+DriverOptions optOptions(const RawOptions& raw, const CLI::App& app) {
+  for (const char* name : {"--target", "--emit", "--stats", "--rapid-rate"}) {
+    if (app.count(name) > 0) {
+      throw UsageError(fmt::format("option {} does not apply to 'opt'", name));
+    }
+  }
+  DriverOptions options;
+  options.command = Command::Optimize;
+  options.inputs = {raw.optInput};
+  options.output = raw.output.empty() ? "-" : raw.output;
+  setDiagnosticOutput(raw, options);
+  setOptimisation(raw, options);
+  return options;
+}
+
+DriverOptions simulateOptions(const RawOptions& raw) {
+  if (raw.target != "fanuc" && raw.target != "m80") {
+    throw UsageError("'sim' needs -t fanuc or -t m80");
+  }
+  DriverOptions options;
+  options.command = Command::Simulate;
+  options.inputs = {raw.simulateInput};
+  options.target = raw.target;
+  options.profile = raw.profile;
+  options.output = raw.output.empty() ? "-" : raw.output;
+  options.macroArguments = raw.macroArguments;
+  setDiagnosticOutput(raw, options);
+  return options;
+}
+
 int reportUsageError(std::string_view message) {
   fmt::print(stderr, "cncc: error: {}\nRun 'cncc --help' for usage.\n", message);
   return 2;
@@ -321,10 +500,22 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   CLI::App* check = addCheckCommand(app, raw);
   CLI::App* format = addFormatCommand(app, raw);
   CLI::App* lsp = addLanguageServerCommand(app);
+  CLI::App* plot = addPlotCommand(app, raw);
+  CLI::App* opt = addOptCommand(app, raw);
+  CLI::App* simulate = addSimulateCommand(app, raw);
   try {
     app.parse(argc, argv);
     if (format->parsed()) {
       return {formatOptions(raw, app), 0};
+    }
+    if (opt->parsed()) {
+      return {optOptions(raw, app), 0};
+    }
+    if (plot->parsed()) {
+      return {plotOptions(raw, app), 0};
+    }
+    if (simulate->parsed()) {
+      return {simulateOptions(raw), 0};
     }
     if (lsp->parsed()) {
       DriverOptions options;

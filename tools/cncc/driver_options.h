@@ -18,6 +18,9 @@ enum class Command {
   ListDiagnostics, // cncc --list-diagnostics (hidden; for the coverage test)
   Format,          // cncc fmt FILE... [--check | -i]
   LanguageServer,  // cncc lsp
+  Optimize,        // cncc opt FILE.ir [--passes=a,b]
+  Plot,            // cncc plot FILE -o OUT.svg [-t TARGET]
+  Simulate,        // cncc sim PROGRAM -t fanuc|m80 [-a A3.] [--profile NAME] [-o OUT]
 };
 
 enum class EmitKind { Tokens, Ast, Ir };
@@ -41,6 +44,20 @@ struct DriverOptions {
   ColourMode colour = ColourMode::Auto;
   std::size_t errorLimit = 50; // 0 means no limit
   FormatMode formatMode = FormatMode::Print;
+  // IR passes: -O0 turns the default pipeline off; `opt --passes=a,b` runs
+  // these instead of it (empty: the default pipeline); --print-after=NAME
+  // (or all) prints the IR after that pass to stderr.
+  bool optimise = true;
+  std::vector<std::string> passes;
+  std::string printAfter;
+  bool stats = false;      // --stats: measure the program, report on stderr
+  double rapidRate = 1e4;  // --rapid-rate, mm/min, for the time estimate
+  // Macro targets: --macro (a G65-callable macro ending M99), --params=common
+  // (parameters in common variables), --profile=NAME (a controller profile).
+  bool macroCall = false;
+  bool parametersInCommon = false;
+  std::string profile;
+  std::vector<std::string> macroArguments; // sim -a A3.: run as if called by G65
 };
 
 // What parsing the command line decided: options to run with, or an exit

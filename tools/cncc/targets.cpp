@@ -1,12 +1,16 @@
 #include "targets.h"
 
 #include "commands.h"
+#include "macro_targets.h"
 
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
+#ifdef CNCC_HAVE_JIT
+#include "cncc/backends/jit_compiler.h"
+#endif
 
 #include <fmt/format.h>
 
@@ -19,7 +23,7 @@ namespace {
 // The selected part's tool path, as the IR interpreter runs it; nullopt
 // after a diagnostic. A verifier failure or an interpreter error is an
 // internal error.
-std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request) {
+std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
@@ -33,7 +37,18 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request) {
   if (!problems.empty()) {
     throw InternalError("the lowered IR does not verify: " + problems.front());
   }
+  optimise(*function, request.options); // the IR optimiser, unless -O0
   try {
+#ifdef CNCC_HAVE_JIT
+    // `native`: compiled by the LLVM JIT, which runs as the interpreter does.
+    if (native && backends::jitAvailable()) {
+      try {
+        return backends::runJit(*function);
+      } catch (const backends::JitError& error) {
+        throw InternalError(std::string("the LLVM JIT failed: ") + error.what());
+      }
+    }
+#endif
     return ir::interpret(*function);
   } catch (const ir::InterpreterError& error) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
@@ -48,6 +63,28 @@ void gcodeBackend(const BackendRequest& request) {
   if (!path) {
     return;
   }
+  request.output.write(backends::writeGcode(*path, gcodeOptionsFor(request)));
+}
+
+void jitBackend(const BackendRequest& request) {
+  std::optional<ir::ToolPath> path = hostToolPath(request, true);
+  if (path) {
+    request.output.write(backends::writeToolPathCsv(*path));
+  }
+}
+
+constexpr Target targetTable[] = {
+    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend},
+    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
+    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", nullptr},
+    {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
+    {"linuxcnc", "LinuxCNC program with o-word subroutines and parameters", nullptr},
+    {"jit", "run the part on the host and print the tool path", jitBackend},
+};
+
+} // namespace
+
+backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   const frontend::PartItem& part = *request.program.selectedPart;
   backends::GcodeOptions options;
   options.programNumber = backends::programNumberFromFileName(request.output.path()).value_or(1);
@@ -56,26 +93,8 @@ void gcodeBackend(const BackendRequest& request) {
   options.sourceName = slash == std::string::npos ? input : input.substr(slash + 1);
   options.partName = part.name;
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
-  request.output.write(backends::writeGcode(*path, options));
+  return options;
 }
-
-void jitBackend(const BackendRequest& request) {
-  std::optional<ir::ToolPath> path = hostToolPath(request);
-  if (path) {
-    request.output.write(backends::writeToolPathCsv(*path));
-  }
-}
-
-constexpr Target targetTable[] = {
-    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", nullptr},
-    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", nullptr},
-    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", nullptr},
-    {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
-    {"linuxcnc", "LinuxCNC program with o-word subroutines and parameters", nullptr},
-    {"jit", "run the part on the host and print the tool path", jitBackend},
-};
-
-} // namespace
 
 std::span<const Target> allTargets() {
   return targetTable;

@@ -5,6 +5,7 @@
 #include "atomic_output_file.h"
 #include "driver_options.h"
 
+#include "cncc/backends/gcode_writer.h"
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
 
@@ -34,6 +35,9 @@ struct Target {
 
   bool available() const { return backend != nullptr; }
 };
+
+// How the gcode target prints the request's part (also what --stats measures).
+backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request);
 
 std::span<const Target> allTargets();
 const Target* findTarget(std::string_view name);

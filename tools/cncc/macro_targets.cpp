@@ -1,0 +1,80 @@
+#include "macro_targets.h"
+
+#include "commands.h"
+
+#include "cncc/backends/controller_profile.h"
+#include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/macro_program.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+#include <optional>
+
+namespace cncc::driver {
+
+namespace {
+
+// The lowered, optimised part; nullopt after a diagnostic.
+std::optional<ir::Function> loweredPart(const BackendRequest& request) {
+  const frontend::PartItem* part = request.program.selectedPart;
+  if (part == nullptr) {
+    return std::nullopt;
+  }
+  std::optional<ir::Function> function =
+      ir::lowerPart(request.program, *part, request.diagnostics);
+  if (!function) {
+    return std::nullopt;
+  }
+  optimise(*function, request.options);
+  std::vector<std::string> problems = ir::verifyFunction(*function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  return function;
+}
+
+void macroBackend(const BackendRequest& request, std::string_view defaultProfile) {
+  std::string_view profileName =
+      request.options.profile.empty() ? defaultProfile : std::string_view(request.options.profile);
+  const backends::ControllerProfile* profile = backends::findControllerProfile(profileName);
+  if (profile == nullptr) {
+    throw InternalError(fmt::format("unknown controller profile '{}'", profileName));
+  }
+  std::optional<ir::Function> function = loweredPart(request);
+  if (!function) {
+    return;
+  }
+  const frontend::PartItem& part = *request.program.selectedPart;
+  backends::GcodeOptions names = gcodeOptionsFor(request);
+  backends::MacroProgramOptions options;
+  options.programNumber =
+      backends::programNumberFromFileName(request.output.path()).value_or(1000);
+  options.sourceName = names.sourceName;
+  options.partName = names.partName;
+  options.inches = names.inches;
+  options.callable = request.options.macroCall;
+  options.parametersInCommon = request.options.parametersInCommon;
+  backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
+  for (const std::string& error : program.errors) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part.nameSpan,
+                               fmt::format("the part does not fit the {} profile: {}",
+                                           profile->name, error));
+  }
+  if (program.errors.empty()) {
+    request.output.write(program.text);
+  }
+}
+
+} // namespace
+
+void m80Backend(const BackendRequest& request) {
+  macroBackend(request, "m80");
+}
+
+void fanucBackend(const BackendRequest& request) {
+  macroBackend(request, "fanuc");
+}
+
+} // namespace cncc::driver

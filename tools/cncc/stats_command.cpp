@@ -1,0 +1,46 @@
+// --stats: after the program is written, the statistics of what it executes
+// go to standard error, so the program itself can go to standard output.
+#include "commands.h"
+#include "diagnostic_output.h"
+#include "stats_measurement.h"
+
+#include "cncc/backends/path_statistics.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+namespace cncc::driver {
+
+namespace {
+
+constexpr double kMillimetresPerInch = 25.4;
+
+} // namespace
+
+int printStatistics(const BackendRequest& request) {
+  const DriverOptions& options = request.options;
+  DiagnosticOutput output(options.diagnosticsFormat, options.colour);
+  frontend::DiagnosticEngine diagnostics(options.errorLimit);
+  BackendRequest measuring{request.program, request.sources, options, diagnostics,
+                           request.output};
+  std::optional<MeasuredPart> measured = measurePart(measuring);
+  output.print(diagnostics, request.sources);
+  if (!measured || diagnostics.hasErrors()) {
+    return 1;
+  }
+  backends::StatisticsOptions statisticsOptions;
+  statisticsOptions.unit = unitName(measured->inches);
+  // --rapid-rate is in mm/min whatever the part's unit.
+  statisticsOptions.rapidRate =
+      measured->inches ? options.rapidRate / kMillimetresPerInch : options.rapidRate;
+  statisticsOptions.cutNames = measured->cutNames;
+  backends::PathStatistics statistics =
+      backends::measureProgram(measured->program, measured->cuts, statisticsOptions);
+  fmt::print(stderr, "statistics of part {} for target {}:\n{}",
+             request.program.selectedPart->name, options.target,
+             backends::formatStatistics(statistics, statisticsOptions));
+  return 0;
+}
+
+} // namespace cncc::driver

@@ -1,0 +1,130 @@
+#include "stats_measurement.h"
+
+#include "commands.h"
+
+#include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/tool_path_csv.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+namespace cncc::driver {
+
+namespace {
+
+struct HostRun {
+  ir::ToolPath toolPath;
+  std::vector<ir::CutGeometry> cuts;
+};
+
+// The part lowered with its cut table and run on the host, as the gcode
+// and jit backends run it.
+std::optional<HostRun> runOnHost(const BackendRequest& request) {
+  const frontend::PartItem* part = request.program.selectedPart;
+  if (part == nullptr) {
+    return std::nullopt;
+  }
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics);
+  if (!lowered) {
+    return std::nullopt;
+  }
+  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  try {
+    return HostRun{ir::interpret(lowered->function), std::move(lowered->cuts)};
+  } catch (const ir::InterpreterError& error) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
+                               fmt::format("the part cannot be run on the host: {}",
+                                           error.what()));
+    return std::nullopt;
+  }
+}
+
+backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const ir::ToolPath& path) {
+  backends::GcodeOptions options = gcodeOptionsFor(request);
+  std::string text = backends::writeGcode(path, options);
+  backends::ExecutedPath executed = backends::executeGcode(text, path, options.decimals);
+  std::size_t blocks = backends::countProgramBlocks(text);
+  return {std::move(text), blocks, std::move(executed)};
+}
+
+// The jit target's program is the tool path as CSV; a block is a row.
+backends::ExecutedProgram jitProgram(const BackendRequest&, const ir::ToolPath& path) {
+  std::string text = backends::writeToolPathCsv(path);
+  std::size_t rows = backends::countProgramBlocks(text) - 1; // without the header
+  return {std::move(text), rows, backends::executedPathOfToolPath(path)};
+}
+
+struct MeasurableTarget {
+  std::string_view name;
+  backends::ExecutedProgram (*program)(const BackendRequest&, const ir::ToolPath&);
+};
+
+constexpr MeasurableTarget measurableTargets[] = {
+    {"gcode", gcodeProgram},
+    {"jit", jitProgram},
+};
+
+const MeasurableTarget* findMeasurable(std::string_view name) {
+  for (const MeasurableTarget& target : measurableTargets) {
+    if (target.name == name) {
+      return &target;
+    }
+  }
+  return nullptr;
+}
+
+std::string fileName(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+std::vector<std::string> cutNames(const std::vector<ir::CutGeometry>& cuts,
+                                  const frontend::SourceManager& sources) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    const frontend::SourceSpan& span = cuts[i].span;
+    if (!span.valid()) {
+      names.push_back(fmt::format("cut {}", i + 1));
+      continue;
+    }
+    const frontend::SourceFile& file = sources.file(span.file);
+    names.push_back(fmt::format("cut {} ({}:{})", i + 1, fileName(file.path()),
+                                file.lineColumn(span.begin).line));
+  }
+  return names;
+}
+
+} // namespace
+
+bool canMeasure(std::string_view name) {
+  return findMeasurable(name) != nullptr;
+}
+
+std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
+  const MeasurableTarget* target = findMeasurable(request.options.target);
+  if (target == nullptr) {
+    throw InternalError(fmt::format("target '{}' cannot be measured", request.options.target));
+  }
+  std::optional<HostRun> run = runOnHost(request);
+  if (!run) {
+    return std::nullopt;
+  }
+  MeasuredPart measured;
+  try {
+    measured.program = target->program(request, run->toolPath);
+  } catch (const backends::ExecutionMismatch& mismatch) {
+    throw InternalError(fmt::format("the {} program does not execute as its tool path: {}",
+                                    target->name, mismatch.what()));
+  }
+  measured.cutNames = cutNames(run->cuts, request.sources);
+  measured.cuts = std::move(run->cuts);
+  measured.inches = ir::partUnits(*request.program.selectedPart) == ir::PartUnits::Inches;
+  return measured;
+}
+
+} // namespace cncc::driver
