@@ -88,6 +88,17 @@ private:
     return nullptr;
   }
 
+  // The whole `name=value` of an argument (just the value when positional),
+  // for messages about the argument as a whole.
+  SourceSpan argumentSpan(const Expr& expression) const {
+    for (const Argument& given : call_.arguments) {
+      if (given.value.get() == &expression) {
+        return given.span();
+      }
+    }
+    return expression.span;
+  }
+
   std::optional<Value> value(const std::string& name, TypeKind kind) {
     const Expr* expression = argument(name);
     if (expression == nullptr) {
@@ -242,7 +253,7 @@ private:
     }
     const Expr& expression = *argument("weights");
     if (weights->size() != n) {
-      report(DiagnosticKind::WeightsCount, expression.span,
+      report(DiagnosticKind::WeightsCount, argumentSpan(expression),
              fmt::format("'weights' has {} entries but 'points' has {}", weights->size(), n));
       return {};
     }
