@@ -58,7 +58,8 @@ std::optional<AtomicOutputFile> AtomicOutputFile::create(const std::string& path
 
 AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept
     : path_(std::move(other.path_)), temporaryPath_(std::move(other.temporaryPath_)),
-      descriptor_(other.descriptor_), writeError_(other.writeError_) {
+      descriptor_(other.descriptor_), writeError_(other.writeError_), inMemory_(other.inMemory_),
+      memory_(std::move(other.memory_)) {
   other.temporaryPath_.clear();
   other.descriptor_ = -1;
 }
@@ -69,6 +70,10 @@ AtomicOutputFile::~AtomicOutputFile() {
 
 void AtomicOutputFile::write(std::string_view data) {
   if (writeError_) {
+    return;
+  }
+  if (inMemory_) {
+    memory_ += data;
     return;
   }
   if (isStandardOutput()) {
@@ -92,6 +97,9 @@ void AtomicOutputFile::write(std::string_view data) {
 
 bool AtomicOutputFile::commit(std::error_code& error) {
   error = writeError_;
+  if (inMemory_) {
+    return true;
+  }
   if (isStandardOutput()) {
     if (!error && std::fflush(stdout) != 0) {
       error = lastError();

@@ -18,6 +18,9 @@ class AtomicOutputFile {
 public:
   // Creates the temporary file. On failure returns nullopt and sets `error`.
   static std::optional<AtomicOutputFile> create(const std::string& path, std::error_code& error);
+  // An output kept in memory (contents()), for a command that runs what a
+  // backend writes rather than saving it; its path is empty.
+  static AtomicOutputFile inMemory() { return AtomicOutputFile("", "", -1, true); }
 
   AtomicOutputFile(AtomicOutputFile&& other) noexcept;
   AtomicOutputFile& operator=(AtomicOutputFile&&) = delete;
@@ -27,6 +30,7 @@ public:
 
   const std::string& path() const { return path_; }
   bool isStandardOutput() const { return path_ == "-"; }
+  const std::string& contents() const { return memory_; }
 
   // Appends to the output. A failure is remembered and reported by commit().
   void write(std::string_view data);
@@ -38,13 +42,17 @@ public:
   void discard();
 
 private:
-  AtomicOutputFile(std::string path, std::string temporaryPath, int descriptor)
-      : path_(std::move(path)), temporaryPath_(std::move(temporaryPath)), descriptor_(descriptor) {}
+  AtomicOutputFile(std::string path, std::string temporaryPath, int descriptor,
+                   bool inMemory = false)
+      : path_(std::move(path)), temporaryPath_(std::move(temporaryPath)), descriptor_(descriptor),
+        inMemory_(inMemory) {}
 
   std::string path_;
   std::string temporaryPath_; // empty for standard output, or once committed
   int descriptor_ = -1;
   std::error_code writeError_;
+  bool inMemory_ = false;
+  std::string memory_;
 };
 
 // Writes `contents` to `path` through an AtomicOutputFile.

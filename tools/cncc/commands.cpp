@@ -3,6 +3,7 @@
 #include "atomic_output_file.h"
 #include "diagnostic_output.h"
 #include "input_checking.h"
+#include "stats_measurement.h"
 #include "targets.h"
 
 #include "cncc/frontend/ast_printer.h"
@@ -93,8 +94,11 @@ int runCompile(const DriverOptions& options) {
     reportWriteFailure(output, options.output, error);
     return 1;
   }
-  return options.stats ? printStatistics({*program, sources, options, backendDiagnostics, *file})
-                       : 0;
+  if (!options.stats) {
+    return 0;
+  }
+  BackendRequest measured{*program, sources, options, backendDiagnostics, *file};
+  return canMeasure(options.target) ? printStatistics(measured) : printVerifiedStatistics(measured);
 }
 
 int runEmit(const DriverOptions& options) {
@@ -156,6 +160,8 @@ int runCommand(const DriverOptions& options) {
     return runPlot(options);
   case Command::Simulate:
     return runSimulate(options);
+  case Command::Verify:
+    return runVerify(options);
   }
   return 2;
 }

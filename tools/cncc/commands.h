@@ -48,6 +48,14 @@ void optimise(ir::Function& function, const DriverOptions& options);
 // cncc sim PROGRAM -t fanuc|m80 [-a A3.] [-o OUT] (sim_command.cpp)
 int runSimulate(const DriverOptions& options);
 
+// cncc verify FILE -t TARGET [-D NAME=VALUE ...] (verify_command.cpp)
+int runVerify(const DriverOptions& options);
+// Whether `cncc verify` can run target `name`'s programs.
+bool canVerify(std::string_view name);
+// --stats of a target measured by running its program on the virtual
+// controller (m80, fanuc): the report of verify, on stderr.
+int printVerifiedStatistics(const BackendRequest& request);
+
 // Runs the command `options` names.
 int runCommand(const DriverOptions& options);
 

@@ -1,5 +1,6 @@
 #include "driver_options.h"
 
+#include "commands.h"
 #include "stats_measurement.h"
 #include "targets.h"
 
@@ -49,6 +50,7 @@ struct RawOptions {
   std::string parameterStorage = "local";
   std::string profile;
   std::string simulateInput;
+  std::string verifyInput;
   std::vector<std::string> macroArguments;
 };
 
@@ -202,6 +204,23 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
   return simulate;
 }
 
+// cncc verify: the compile options (-t, -D, -p, --profile, --macro,
+// --params) are the main command's.
+CLI::App* addVerifyCommand(CLI::App& app, RawOptions& raw) {
+  CLI::App* verify = app.add_subcommand(
+      "verify", "Compile for a target, run the program as its controller would and check it "
+                "against the true curves");
+  verify->add_option("FILE", raw.verifyInput, "The .cdl file")->type_name("")->required();
+  verify->fallthrough();
+  verify->footer("\nTakes -t TARGET, -D NAME=VALUE (m80/fanuc: set on the controller, as G65 "
+                 "arguments with --macro, common variables with --params common, else in the "
+                 "program's parameter lines), -p, -I, --profile, --macro, --params and the "
+                 "diagnostic options.\nExit codes: 0 every cut within its tolerance, 1 a cut "
+                 "exceeds it, the controller refuses the program or the source has errors, 2 "
+                 "wrong usage.");
+  return verify;
+}
+
 CLI::App* addLanguageServerCommand(CLI::App& app) {
   CLI::App* lsp = app.add_subcommand(
       "lsp", "Run the language server (Language Server Protocol on standard input and output)");
@@ -346,9 +365,9 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (app.count("--rapid-rate") > 0 && !raw.stats) {
     throw UsageError("--rapid-rate only sets the time estimate of --stats");
   }
-  if (raw.stats && !canMeasure(raw.target)) {
+  if (raw.stats && !canMeasure(raw.target) && !canVerify(raw.target)) {
     throw UsageError(fmt::format("--stats is not available for target '{}' in this version "
-                                 "(gcode and jit have it)",
+                                 "(gcode, jit, m80 and fanuc have it)",
                                  raw.target));
   }
 }
@@ -467,6 +486,26 @@ DriverOptions optOptions(const RawOptions& raw, const CLI::App& app) {
   return options;
 }
 
+DriverOptions verifyOptions(const RawOptions& raw, const CLI::App& app) {
+  for (const char* name : {"--emit", "--stats", "--rapid-rate", "--output"}) {
+    if (app.count(name) > 0) {
+      throw UsageError(fmt::format("option {} does not apply to 'verify'", name));
+    }
+  }
+  if (raw.target.empty()) {
+    throw UsageError(fmt::format("'verify' needs a target: -t TARGET ({})", targetNameList()));
+  }
+  RawOptions compile = raw;
+  compile.input = raw.verifyInput;
+  DriverOptions options = validatedOptions(compile, app, false);
+  if (!canVerify(options.target)) {
+    throw UsageError(
+        fmt::format("'verify' is not available for target '{}' in this version", options.target));
+  }
+  options.command = Command::Verify;
+  return options;
+}
+
 DriverOptions simulateOptions(const RawOptions& raw) {
   if (raw.target != "fanuc" && raw.target != "m80") {
     throw UsageError("'sim' needs -t fanuc or -t m80");
@@ -503,6 +542,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   CLI::App* plot = addPlotCommand(app, raw);
   CLI::App* opt = addOptCommand(app, raw);
   CLI::App* simulate = addSimulateCommand(app, raw);
+  CLI::App* verify = addVerifyCommand(app, raw);
   try {
     app.parse(argc, argv);
     if (format->parsed()) {
@@ -516,6 +556,9 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
     }
     if (simulate->parsed()) {
       return {simulateOptions(raw), 0};
+    }
+    if (verify->parsed()) {
+      return {verifyOptions(raw, app), 0};
     }
     if (lsp->parsed()) {
       DriverOptions options;

@@ -21,6 +21,7 @@ enum class Command {
   Optimize,        // cncc opt FILE.ir [--passes=a,b]
   Plot,            // cncc plot FILE -o OUT.svg [-t TARGET]
   Simulate,        // cncc sim PROGRAM -t fanuc|m80 [-a A3.] [--profile NAME] [-o OUT]
+  Verify,          // cncc verify FILE -t TARGET [-D NAME=VALUE ...]
 };
 
 enum class EmitKind { Tokens, Ast, Ir };

@@ -23,6 +23,7 @@ public:
   // SimulationError.
   void run();
   std::size_t blocksExecuted() const { return blocksExecuted_; }
+  const std::vector<std::size_t>& blockExecutions() const { return blockExecutions_; }
   std::map<int, std::optional<double>> commonVariables() const;
 
   Value read(int variable, const Block& block) const override;
@@ -75,6 +76,7 @@ private:
   std::map<int, Value> systemVariables_;
   ModalState modal_;
   std::size_t blocksExecuted_ = 0;
+  std::vector<std::size_t> blockExecutions_; // by block index
 };
 
 } // namespace cncc::backends::sim

@@ -44,6 +44,10 @@ Machine::Machine(const ProgramText& program, const ControllerProfile& profile,
   }
   main.locals = main.arguments;
   frames_.push_back(main);
+  for (const auto& [variable, value] : options.commonVariables) {
+    commons_[variable] = Value::of(value);
+  }
+  blockExecutions_.assign(program.blocks.size(), 0);
 }
 
 std::map<int, std::optional<double>> Machine::commonVariables() const {
@@ -202,6 +206,7 @@ void Machine::run() {
       failInBlock(
           block, fmt::format("more than {} blocks executed: an endless loop?", options_.stepLimit));
     }
+    ++blockExecutions_[index];
     std::size_t next = index + 1;
     Next decision = executeBlock(block, next);
     if (decision == Next::Stop) {
@@ -223,6 +228,7 @@ SimulationResult simulateProgram(std::string_view text, const ControllerProfile&
       result.error = error;
     }
     result.blocksExecuted = machine.blocksExecuted();
+    result.blockExecutions = machine.blockExecutions();
     result.commonVariables = machine.commonVariables();
   } catch (const SimulationError& error) {
     result.error = error;

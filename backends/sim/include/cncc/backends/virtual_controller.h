@@ -58,6 +58,9 @@ struct SimulationOptions {
   // start from the arguments and M99 ends the run.
   bool runAsMacroCall = false;
   std::vector<MacroArgument> arguments;
+  // Common variables (#100.., #500..) set before the run, as an operator
+  // sets the parameters of a program that reads them there.
+  std::map<int, double> commonVariables;
   // The safety net against endless loops: blocks executed in all.
   std::size_t stepLimit = 10'000'000;
 };
@@ -66,6 +69,8 @@ struct SimulationResult {
   ExecutedPath path;                    // what ran up to the end, or the error
   std::optional<SimulationError> error; // the first error, if any
   std::size_t blocksExecuted = 0;
+  // How often each block of readProgram's ProgramText ran, by index.
+  std::vector<std::size_t> blockExecutions;
   // The common variables (#100.., #500..) the program assigned, as they were
   // at the end: nullopt for vacant.
   std::map<int, std::optional<double>> commonVariables;

@@ -1,0 +1,72 @@
+// Running a target's program text to find the path it executes: what
+// `cncc verify` measures. Each target that can be verified has one entry in
+// the executor table (program_execution.cpp): the macro targets run in the
+// virtual controller with the part parameters given as the operator gives
+// them, gcode runs there as plain G-code, jit's tool path is read back. A
+// new target (say sinumerik) plugs in by adding an entry.
+#pragma once
+
+#include "cncc/backends/executed_path.h"
+#include "cncc/backends/sim_operation_count.h"
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::backends {
+
+// How the operator gives a program that keeps its part parameters
+// symbolic their values (without recompiling it).
+enum class ParameterPassing {
+  None,            // computed on the host: the program holds the values already
+  EditedDefaults,  // the program sets `#n=default` near its top: those lines are edited
+  MacroArguments,  // a macro (ends M99) called by G65 P.. with one argument per parameter
+  CommonVariables, // common variables set before the program runs
+};
+
+struct ParameterValue {
+  std::string name;
+  int variable = 0; // the variable the program reads it from
+  double value = 0;
+};
+
+struct ExecutionRequest {
+  std::string text;    // the program as the target wrote it
+  std::string profile; // the controller profile (empty: the target's default)
+  ParameterPassing passing = ParameterPassing::None;
+  // Only the parameters the operator sets; the others keep their defaults.
+  std::vector<ParameterValue> parameters;
+  bool callable = false; // the program ends with M99: it runs as if called by G65
+};
+
+// The controller refused the program: the message names its line.
+struct ControllerFailure {
+  int line = 0; // 1-based in the text the controller ran; 0: no line
+  std::string message;
+  std::string lineText;
+};
+
+struct ProgramExecution {
+  std::string text;     // what ran (the request's, with the edits the operator made)
+  ExecutedPath path;    // feed moves without cuts: assignCuts gives them theirs
+  double increment = 0; // the least increment the controller rounds coordinates to
+  std::optional<ControllerFailure> failure;
+  std::optional<sim::LoopOperationCounts> operations; // programs with loops
+  std::optional<std::size_t> variables;               // distinct #n the program names
+};
+
+using ProgramExecutor = ProgramExecution (*)(const ExecutionRequest& request);
+
+struct TargetExecutor {
+  std::string_view target;
+  ProgramExecutor execute;
+};
+
+std::span<const TargetExecutor> targetExecutors();
+// Null when target `name`'s programs cannot be executed here.
+const TargetExecutor* findTargetExecutor(std::string_view name);
+
+} // namespace cncc::backends

@@ -1,0 +1,71 @@
+// `cncc verify`: a compiled program run as its controller runs it and
+// measured against the part's true curves. The program's path is matched to
+// the cuts of the part run on the host with the same parameter values (the
+// reference): each executed feed move belongs to the reference cut whose
+// path it lies on. A program passes when it runs without a controller error,
+// every cut the reference cuts is cut, every feed move lies on the
+// reference's path and no cut strays from its curve by more than its
+// tolerance.
+#pragma once
+
+#include "cncc/backends/path_statistics.h"
+#include "cncc/backends/program_execution.h"
+#include "cncc/ir/lowering.h"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace cncc::backends {
+
+struct VerificationInput {
+  std::string target;
+  ExecutionRequest execution;
+  // The part run on the host with the same parameter values, its feed
+  // moves carrying their cuts (executedPathOfToolPath).
+  ExecutedPath reference;
+  std::span<const ir::CutGeometry> cuts;
+};
+
+// Feed moves that are on no cut of the reference: the program cuts
+// something the part does not.
+struct StrayMoves {
+  std::size_t count = 0;
+  double largestDistance = 0; // from the reference path, 3D
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();
+};
+
+struct VerificationReport {
+  std::string target;
+  std::size_t blocks = 0;
+  std::size_t bytes = 0;
+  std::size_t bytesWithoutComments = 0;
+  std::optional<std::size_t> variables;
+  std::optional<sim::LoopOperationCounts> operations;
+  PathStatistics statistics;           // its cuts: the deviations
+  std::vector<std::size_t> missedCuts; // the reference cuts them, the program does not
+  StrayMoves stray;
+  std::optional<ControllerFailure> failure;
+
+  bool passed() const;
+};
+
+// Gives each feed move of `path` the cut of the reference path it is
+// nearest to, following the reference's order of cuts (a move nearest to a
+// reference feed move outside every cut gets none); moves farther than
+// `allowance[cut]` (`outsideAllowance` outside cuts) from that reference
+// path are counted in the result.
+StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
+                      const std::vector<double>& allowance, double outsideAllowance);
+
+// Runs the program with the input's executor and measures it. Throws
+// std::invalid_argument when no executor exists for the target.
+VerificationReport verifyProgram(const VerificationInput& input, const StatisticsOptions& options);
+
+std::string formatVerification(const VerificationReport& report, const StatisticsOptions& options);
+
+} // namespace cncc::backends

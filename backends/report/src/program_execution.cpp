@@ -1,0 +1,252 @@
+#include "cncc/backends/program_execution.h"
+
+#include "cncc/backends/controller_profile.h"
+#include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/virtual_controller.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <set>
+
+namespace cncc::backends {
+
+namespace {
+
+// Arcs are flattened this finely: far below any tolerance, so the chords do
+// not add to the deviation measured.
+constexpr double kArcSagitta = 1e-6;
+
+ProgramExecution failed(std::string text, int line, std::string message) {
+  ProgramExecution execution;
+  execution.text = std::move(text);
+  execution.failure = ControllerFailure{line, std::move(message), ""};
+  return execution;
+}
+
+// The text with the first block `#n=...` given `value` instead: what the
+// operator edits in a program whose parameters are set near its top.
+std::optional<std::string> withEditedDefault(const std::string& text, int variable, double value) {
+  std::string prefix = fmt::format("#{}=", variable);
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find('\n', begin);
+    end = end == std::string::npos ? text.size() : end;
+    if (text.compare(begin, prefix.size(), prefix) == 0) {
+      std::string edited = text.substr(0, begin + prefix.size());
+      edited += formatGcodeNumber(value, 8);
+      edited += text.substr(end);
+      return edited;
+    }
+    begin = end + 1;
+  }
+  return std::nullopt;
+}
+
+void addNamedVariables(const sim::Expression& expression, std::set<int>& variables) {
+  if (expression.kind == sim::Expression::Kind::Variable &&
+      expression.operands.front().kind == sim::Expression::Kind::Number &&
+      expression.operands.front().number > 0) {
+    variables.insert(static_cast<int>(expression.operands.front().number));
+  }
+  for (const sim::Expression& operand : expression.operands) {
+    addNamedVariables(operand, variables);
+  }
+}
+
+std::size_t namedVariableCount(const sim::ProgramText& program) {
+  std::set<int> variables;
+  for (const sim::Block& block : program.blocks) {
+    bool assigns =
+        block.kind == sim::Block::Kind::Assignment || block.kind == sim::Block::Kind::IfThen;
+    if (assigns && block.variable.kind == sim::Expression::Kind::Number) {
+      variables.insert(static_cast<int>(block.variable.number));
+    }
+    for (const sim::Expression* expression :
+         {&block.condition, &block.target, &block.variable, &block.value}) {
+      addNamedVariables(*expression, variables);
+    }
+    for (const sim::Word& word : block.words) {
+      addNamedVariables(word.value, variables);
+    }
+  }
+  return variables.size();
+}
+
+// Sets the parameters as `request.passing` says; nullopt (and `problem`)
+// when the program gives no way to.
+std::optional<std::string> applyParameters(const ExecutionRequest& request,
+                                           const ControllerProfile& profile,
+                                           sim::SimulationOptions& options, std::string& problem) {
+  std::string text = request.text;
+  for (const ParameterValue& parameter : request.parameters) {
+    switch (request.passing) {
+    case ParameterPassing::None:
+      break;
+    case ParameterPassing::EditedDefaults: {
+      std::optional<std::string> edited =
+          withEditedDefault(text, parameter.variable, parameter.value);
+      if (!edited) {
+        problem = fmt::format("the program sets no #{} for parameter {}", parameter.variable,
+                              parameter.name);
+        return std::nullopt;
+      }
+      text = std::move(*edited);
+      break;
+    }
+    case ParameterPassing::MacroArguments: {
+      std::optional<char> letter = profile.letterForLocal(parameter.variable);
+      if (!letter) {
+        problem = fmt::format("no G65 argument reaches #{} (parameter {})", parameter.variable,
+                              parameter.name);
+        return std::nullopt;
+      }
+      options.arguments.push_back({*letter, parameter.value});
+      break;
+    }
+    case ParameterPassing::CommonVariables:
+      options.commonVariables[parameter.variable] = parameter.value;
+      break;
+    }
+  }
+  return text;
+}
+
+ProgramExecution runOnController(const ExecutionRequest& request,
+                                 const ControllerProfile& profile) {
+  sim::SimulationOptions options;
+  options.runAsMacroCall = request.callable;
+  std::string problem;
+  std::optional<std::string> text = applyParameters(request, profile, options, problem);
+  if (!text) {
+    return failed(request.text, 0, problem);
+  }
+  ProgramExecution execution;
+  execution.text = std::move(*text);
+  sim::SimulationResult result = sim::simulateProgram(execution.text, profile, options);
+  execution.increment =
+      result.path.inches ? profile.leastInputIncrement / 10.0 : profile.leastInputIncrement;
+  if (result.error) {
+    execution.failure =
+        ControllerFailure{result.error->line(), result.error->what(), result.error->lineText()};
+    return execution;
+  }
+  execution.path = executedPathOfToolPath(sim::flattenPath(result.path, kArcSagitta));
+  sim::ProgramText program = sim::readProgram(execution.text, profile);
+  sim::LoopOperationCounts operations = sim::countLoopOperations(program, result);
+  if (operations.feedMoves > 0) {
+    execution.operations = operations;
+  }
+  execution.variables = namedVariableCount(program);
+  return execution;
+}
+
+ProgramExecution runMacroProgram(const ExecutionRequest& request, std::string_view profileName) {
+  std::string_view name = request.profile.empty() ? profileName : request.profile;
+  const ControllerProfile* profile = findControllerProfile(name);
+  if (profile == nullptr) {
+    return failed(request.text, 0, fmt::format("unknown controller profile '{}'", name));
+  }
+  return runOnController(request, *profile);
+}
+
+ProgramExecution runM80(const ExecutionRequest& request) {
+  return runMacroProgram(request, "m80");
+}
+
+ProgramExecution runFanuc(const ExecutionRequest& request) {
+  return runMacroProgram(request, "fanuc");
+}
+
+// Plain G-code on a controller that takes the 4 decimals the gcode target
+// prints (0.0001 mm).
+ProgramExecution runGcode(const ExecutionRequest& request) {
+  ControllerProfile profile = *findControllerProfile("fanuc");
+  profile.coordinateDecimals = 4;
+  profile.leastInputIncrement = 0.0001;
+  ExecutionRequest plain = request;
+  plain.passing = ParameterPassing::None;
+  return runOnController(plain, profile);
+}
+
+std::optional<double> csvNumber(std::string_view text) {
+  double value = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+// One `x,y,z,feed,rapid` row; nullopt when it is not one.
+std::optional<ir::MachineEvent> csvMove(std::string_view row) {
+  std::array<double, 5> fields{};
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    std::size_t comma = row.find(',');
+    if ((comma == std::string_view::npos) != (i + 1 == fields.size())) {
+      return std::nullopt;
+    }
+    std::optional<double> value = csvNumber(row.substr(0, comma));
+    if (!value) {
+      return std::nullopt;
+    }
+    fields[i] = *value;
+    row = comma == std::string_view::npos ? "" : row.substr(comma + 1);
+  }
+  ir::MachineEvent event;
+  event.kind = fields[4] != 0 ? ir::MachineEvent::Kind::Rapid : ir::MachineEvent::Kind::Feed;
+  event.x = fields[0];
+  event.y = fields[1];
+  event.z = fields[2];
+  event.feed = fields[3];
+  return event;
+}
+
+// The jit target's program is its tool path as CSV: read back, it is the path.
+ProgramExecution runJit(const ExecutionRequest& request) {
+  ProgramExecution execution;
+  execution.text = request.text;
+  execution.increment = 1e-6; // the CSV's 6 decimals
+  ir::ToolPath toolPath;
+  std::string_view text = request.text;
+  int line = 0;
+  while (!text.empty()) {
+    std::size_t newline = text.find('\n');
+    std::string_view row = text.substr(0, newline);
+    text = newline == std::string_view::npos ? "" : text.substr(newline + 1);
+    if (++line == 1 || row.empty()) {
+      continue; // the header
+    }
+    std::optional<ir::MachineEvent> event = csvMove(row);
+    if (!event) {
+      return failed(request.text, line, "not a row x,y,z,feed,rapid");
+    }
+    toolPath.events.push_back(*event);
+  }
+  execution.path = executedPathOfToolPath(toolPath);
+  return execution;
+}
+
+constexpr TargetExecutor executorTable[] = {
+    {"m80", runM80},
+    {"fanuc", runFanuc},
+    {"gcode", runGcode},
+    {"jit", runJit},
+};
+
+} // namespace
+
+std::span<const TargetExecutor> targetExecutors() {
+  return executorTable;
+}
+
+const TargetExecutor* findTargetExecutor(std::string_view name) {
+  for (const TargetExecutor& executor : executorTable) {
+    if (executor.target == name) {
+      return &executor;
+    }
+  }
+  return nullptr;
+}
+
+} // namespace cncc::backends

@@ -1,0 +1,265 @@
+// cncc verify's library: macro programs run on the virtual controller with
+// the parameters set as the operator sets them, the executed path matched
+// to the reference's cuts and measured, operations counted per point; the
+// executor table.
+#include "cncc/backends/controller_profile.h"
+#include "cncc/backends/macro_program.h"
+#include "cncc/backends/sim_operation_count.h"
+#include "cncc/backends/tool_path_csv.h"
+#include "cncc/backends/verification.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/ir/builder.h"
+#include "cncc/ir/interpreter.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+namespace cncc::backends {
+namespace {
+
+using ir::Opcode;
+using ir::ValueId;
+using ::testing::HasSubstr;
+
+constexpr double kDepth = 1;
+
+// A circle of radius `radius` (a parameter) around the origin in 36 chords
+// of 10 degrees, one cut, at depth 1.
+ir::Function circle(double radius) {
+  ir::FunctionBuilder builder("circle");
+  ValueId r = builder.parameter(builder.addParameter("r", radius));
+  ValueId zero = builder.constant(0);
+  ValueId z = builder.constant(-kDepth);
+  builder.tool(1, builder.constant(6));
+  builder.spindle(builder.constant(2000));
+  builder.rapid(r, zero, builder.constant(5));
+  builder.cutBegin(0);
+  builder.feed(r, zero, z, builder.constant(250));
+  ValueId index = builder.beginLoop(builder.constant(1), builder.constant(36));
+  ValueId angle = builder.binary(Opcode::Mul, index, builder.constant(std::numbers::pi / 18));
+  ValueId x = builder.binary(Opcode::Mul, r, builder.unary(Opcode::Cos, angle));
+  ValueId y = builder.binary(Opcode::Mul, r, builder.unary(Opcode::Sin, angle));
+  builder.feed(x, y, z, builder.constant(250));
+  builder.endLoop();
+  builder.rapid(r, zero, builder.constant(5));
+  return builder.finish();
+}
+
+// 36 chords of a circle of radius r sag by r (1 - cos 5 degrees).
+double chordSagitta(double radius) {
+  return radius * (1 - std::cos(std::numbers::pi / 36));
+}
+
+std::string macroText(const ir::Function& function, std::string_view profile,
+                      const MacroProgramOptions& options = {}) {
+  MacroProgram program = writeMacroProgram(function, *findControllerProfile(profile), options);
+  EXPECT_TRUE(program.errors.empty());
+  return program.text;
+}
+
+// The part's cuts and the host's run of it, with radius `radius`.
+struct Reference {
+  std::vector<ir::CutGeometry> cuts;
+  ExecutedPath path;
+};
+
+Reference reference(double radius, double tolerance) {
+  Reference result;
+  ir::CutGeometry cut;
+  cut.curve =
+      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), radius, 0.0, 2 * std::numbers::pi);
+  cut.tolerance = tolerance;
+  result.cuts.push_back(cut);
+  result.path = executedPathOfToolPath(ir::interpret(circle(radius)));
+  return result;
+}
+
+VerificationReport verify(std::string_view target, ExecutionRequest execution,
+                          const Reference& part) {
+  return verifyProgram({std::string(target), std::move(execution), part.path, part.cuts}, {});
+}
+
+TEST(Verification, PassesAMacroProgramWithinItsTolerance) {
+  Reference part = reference(5, 0.025);
+  ExecutionRequest execution;
+  execution.text = macroText(circle(5), "fanuc");
+  VerificationReport report = verify("fanuc", execution, part);
+  ASSERT_FALSE(report.failure) << report.failure->message;
+  EXPECT_TRUE(report.passed()) << formatVerification(report, {});
+  ASSERT_EQ(report.statistics.cuts.size(), 1u);
+  // The chords' sagitta, give or take the 0.001 mm the controller rounds to.
+  EXPECT_NEAR(report.statistics.cuts[0].maxDeviation, chordSagitta(5), 0.001);
+  EXPECT_EQ(report.statistics.cuts[0].feedMoves, 37u); // the plunge and 36 chords
+  EXPECT_EQ(report.stray.count, 0u);
+  EXPECT_TRUE(report.missedCuts.empty());
+  EXPECT_EQ(report.blocks, countProgramBlocks(execution.text));
+  EXPECT_LT(report.bytesWithoutComments, report.bytes);
+  ASSERT_TRUE(report.operations);
+  EXPECT_EQ(report.operations->feedMoves, 36u);
+  // Per point: the loop test (37 tests for 36 points), the index step.
+  EXPECT_GT(report.operations->perFeedMove(&sim::OperationCounts::comparisons), 1.0);
+  EXPECT_LT(report.operations->perFeedMove(&sim::OperationCounts::comparisons), 1.1);
+  EXPECT_GE(report.operations->perFeedMove(&sim::OperationCounts::functions), 2.0);
+  EXPECT_GE(report.operations->perFeedMove(&sim::OperationCounts::assignments), 1.0);
+  std::string text = formatVerification(report, {});
+  EXPECT_THAT(text, HasSubstr("target: fanuc\n"));
+  EXPECT_THAT(text, HasSubstr("operations per point: "));
+  EXPECT_THAT(text, HasSubstr("tolerance 0.025 mm, within"));
+  EXPECT_THAT(text, HasSubstr("verdict: PASSED\n"));
+}
+
+TEST(Verification, FailsACutBeyondItsTolerance) {
+  Reference part = reference(5, 0.015);
+  ExecutionRequest execution;
+  execution.text = macroText(circle(5), "m80");
+  VerificationReport report = verify("m80", execution, part);
+  ASSERT_FALSE(report.failure);
+  EXPECT_FALSE(report.passed());
+  EXPECT_FALSE(report.statistics.cuts[0].withinTolerance());
+  EXPECT_THAT(formatVerification(report, {}), HasSubstr("EXCEEDED"));
+  EXPECT_THAT(formatVerification(report, {}), HasSubstr("verdict: FAILED\n"));
+}
+
+// The program is written for r = 5 and given r = 6 on the controller.
+TEST(Verification, SetsParametersAsTheOperatorDoes) {
+  Reference part = reference(6, 0.03);
+  ExecutionRequest execution;
+  execution.text = macroText(circle(5), "fanuc");
+  execution.passing = ParameterPassing::EditedDefaults;
+  execution.parameters = {{"r", 1, 6.0}};
+  VerificationReport report = verify("fanuc", execution, part);
+  ASSERT_FALSE(report.failure) << report.failure->message;
+  EXPECT_TRUE(report.passed()) << formatVerification(report, {});
+  EXPECT_NEAR(report.statistics.cuts[0].maxDeviation, chordSagitta(6), 0.001);
+
+  MacroProgramOptions callable;
+  callable.callable = true;
+  execution.text = macroText(circle(5), "fanuc", callable);
+  execution.passing = ParameterPassing::MacroArguments;
+  execution.callable = true;
+  report = verify("fanuc", execution, part);
+  ASSERT_FALSE(report.failure) << report.failure->message;
+  EXPECT_TRUE(report.passed()) << formatVerification(report, {});
+
+  MacroProgramOptions common;
+  common.parametersInCommon = true;
+  execution.text = macroText(circle(5), "m80", common);
+  execution.passing = ParameterPassing::CommonVariables;
+  execution.callable = false;
+  execution.parameters = {{"r", 500, 6.0}};
+  report = verify("m80", execution, part);
+  ASSERT_FALSE(report.failure) << report.failure->message;
+  EXPECT_TRUE(report.passed()) << formatVerification(report, {});
+}
+
+TEST(Verification, FailsAProgramThatCutsSomethingElse) {
+  // Run with the default r = 5 while the part asks for r = 6: every chord
+  // is 1 mm off the reference path.
+  Reference part = reference(6, 0.03);
+  ExecutionRequest execution;
+  execution.text = macroText(circle(5), "fanuc");
+  VerificationReport report = verify("fanuc", execution, part);
+  ASSERT_FALSE(report.failure);
+  EXPECT_FALSE(report.passed());
+  EXPECT_GT(report.stray.count, 30u);
+  EXPECT_NEAR(report.stray.largestDistance, 1.0, 0.05);
+  EXPECT_THAT(formatVerification(report, {}), HasSubstr("feed moves are off the part's path"));
+}
+
+TEST(Verification, ReportsAMissingParameterLine) {
+  Reference part = reference(6, 0.03);
+  ExecutionRequest execution;
+  execution.text = macroText(circle(5), "fanuc");
+  execution.passing = ParameterPassing::EditedDefaults;
+  execution.parameters = {{"r", 7, 6.0}}; // the program has no `#7=`
+  VerificationReport report = verify("fanuc", execution, part);
+  ASSERT_TRUE(report.failure);
+  EXPECT_THAT(report.failure->message, HasSubstr("#7"));
+  EXPECT_FALSE(report.passed());
+}
+
+TEST(Verification, NamesTheLineTheControllerRefuses) {
+  Reference part = reference(5, 0.03);
+  ExecutionRequest execution;
+  execution.text = "%\nO1000\nG0 X0. Y0. Z5.\n#1=1./0\nG1 X#1 F100.\nM30\n%\n";
+  VerificationReport report = verify("fanuc", execution, part);
+  ASSERT_TRUE(report.failure);
+  EXPECT_EQ(report.failure->line, 4);
+  EXPECT_FALSE(report.passed());
+  std::string text = formatVerification(report, {});
+  EXPECT_THAT(text, HasSubstr("the controller stopped the program: line 4: "));
+  EXPECT_THAT(text, HasSubstr("verdict: FAILED\n"));
+}
+
+TEST(Verification, MissesACutTheProgramDoesNotCut) {
+  Reference part = reference(5, 0.03);
+  ExecutionRequest execution;
+  execution.text = "%\nO1000\nG0 X5. Y0. Z5.\nM30\n%\n";
+  VerificationReport report = verify("fanuc", execution, part);
+  ASSERT_FALSE(report.failure);
+  EXPECT_EQ(report.missedCuts.size(), 1u);
+  EXPECT_FALSE(report.passed());
+  EXPECT_THAT(formatVerification(report, {}), HasSubstr("NOT CUT"));
+}
+
+TEST(Verification, ReadsTheJitTargetsToolPathBack) {
+  Reference part = reference(5, 0.025);
+  ExecutionRequest execution;
+  execution.text = writeToolPathCsv(ir::interpret(circle(5)));
+  VerificationReport report = verify("jit", execution, part);
+  ASSERT_FALSE(report.failure);
+  EXPECT_TRUE(report.passed()) << formatVerification(report, {});
+  EXPECT_NEAR(report.statistics.cuts[0].maxDeviation, chordSagitta(5), 1e-5);
+  EXPECT_FALSE(report.operations);
+
+  execution.text = "x,y,z,feed,rapid\n1,2,3\n";
+  report = verify("jit", execution, part);
+  ASSERT_TRUE(report.failure);
+  EXPECT_EQ(report.failure->line, 2);
+}
+
+TEST(Verification, HasAnExecutorForEachTargetItRuns) {
+  for (std::string_view target : {"m80", "fanuc", "gcode", "jit"}) {
+    const TargetExecutor* executor = findTargetExecutor(target);
+    ASSERT_NE(executor, nullptr) << target;
+    EXPECT_EQ(executor->target, target);
+  }
+  EXPECT_EQ(findTargetExecutor("no-such-target"), nullptr);
+  EXPECT_THROW(verifyProgram({"no-such-target", {}, {}, {}}, {}), std::invalid_argument);
+}
+
+TEST(OperationCounts, CountsEachKindOfOperationInABlock) {
+  const ControllerProfile& fanuc = *findControllerProfile("fanuc");
+  sim::ProgramText program =
+      sim::readProgram("%\nO1\n#3=[#1+2.]*SIN[#2]-#[100+#4]\nIF [#3 GT 1.] THEN #5=-#3\n"
+                       "G1 X[#1/2.] Y#2 F100.\nM30\n%\n",
+                       fanuc);
+  auto counts = [&](int line) {
+    for (const sim::Block& block : program.blocks) {
+      if (block.line == line) {
+        return sim::countBlockOperations(block);
+      }
+    }
+    ADD_FAILURE() << "no line " << line;
+    return sim::OperationCounts{};
+  };
+  sim::OperationCounts assignment = counts(3);
+  EXPECT_EQ(assignment.arithmetic, 4u); // + * - and the index's +
+  EXPECT_EQ(assignment.functions, 1u);
+  EXPECT_EQ(assignment.comparisons, 0u);
+  EXPECT_EQ(assignment.assignments, 1u);
+  sim::OperationCounts ifThen = counts(4);
+  EXPECT_EQ(ifThen.comparisons, 1u);
+  EXPECT_EQ(ifThen.arithmetic, 1u); // the negation
+  EXPECT_EQ(ifThen.assignments, 1u);
+  sim::OperationCounts words = counts(5);
+  EXPECT_EQ(words.arithmetic, 1u);
+  EXPECT_EQ(words.assignments, 0u);
+}
+
+} // namespace
+} // namespace cncc::backends

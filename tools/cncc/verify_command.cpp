@@ -1,0 +1,283 @@
+// cncc verify: compiles the part for a target as `cncc FILE -t TARGET` does,
+// runs the program as the controller would (backends/report's executor
+// table) and measures it against the true curves of the part with the -D
+// values. A target whose programs keep the parameters as variables (m80,
+// fanuc) is compiled once with the defaults and given the -D values as the
+// operator gives them; the other targets compute on the host, so the -D
+// values are compiled in. Also the --stats of those targets.
+#include "atomic_output_file.h"
+#include "commands.h"
+#include "diagnostic_output.h"
+#include "input_checking.h"
+
+#include "cncc/backends/controller_profile.h"
+#include "cncc/backends/macro_program.h"
+#include "cncc/backends/verification.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace cncc::driver {
+
+namespace {
+
+using frontend::CheckedProgram;
+using frontend::DiagnosticEngine;
+using frontend::SourceManager;
+
+// A target whose programs read the part parameters from variables.
+struct SymbolicTarget {
+  std::string_view name;
+  std::string_view defaultProfile;
+};
+
+constexpr SymbolicTarget symbolicTargets[] = {
+    {"m80", "m80"},
+    {"fanuc", "fanuc"},
+};
+
+const SymbolicTarget* findSymbolicTarget(std::string_view name) {
+  for (const SymbolicTarget& target : symbolicTargets) {
+    if (target.name == name) {
+      return &target;
+    }
+  }
+  return nullptr;
+}
+
+// A checked input; kept whole because analytic cut curves evaluate the
+// program's expressions.
+struct CheckedInput {
+  SourceManager sources;
+  DiagnosticEngine diagnostics;
+  std::optional<CheckedProgram> program;
+
+  explicit CheckedInput(std::size_t errorLimit) : diagnostics(errorLimit) {}
+};
+
+std::unique_ptr<CheckedInput> checkedInput(const DriverOptions& options,
+                                           const DiagnosticOutput& output) {
+  auto input = std::make_unique<CheckedInput>(options.errorLimit);
+  input->program =
+      checkInput(options.inputs.front(), options, true, input->sources, input->diagnostics);
+  output.print(input->diagnostics, input->sources);
+  if (!input->program || input->diagnostics.hasErrors() ||
+      input->program->selectedPart == nullptr) {
+    return nullptr;
+  }
+  return input;
+}
+
+// The program text the target's backend writes, exactly as a compile would.
+std::optional<std::string> compiledText(const CheckedProgram& program, const SourceManager& sources,
+                                        const DriverOptions& options,
+                                        const DiagnosticOutput& output) {
+  const Target* target = findTarget(options.target);
+  if (target == nullptr || !target->available()) {
+    output.driverError(fmt::format("target '{}' has no backend in this version", options.target));
+    return std::nullopt;
+  }
+  DiagnosticEngine diagnostics(options.errorLimit);
+  AtomicOutputFile memory = AtomicOutputFile::inMemory();
+  target->backend({program, sources, options, diagnostics, memory});
+  output.print(diagnostics, sources);
+  if (diagnostics.hasErrors()) {
+    return std::nullopt;
+  }
+  return memory.contents();
+}
+
+struct HostReference {
+  std::vector<ir::CutGeometry> cuts;
+  backends::ExecutedPath path;
+};
+
+// The part run on the host with the checked parameter values.
+std::optional<HostReference> hostReference(const CheckedProgram& program,
+                                           const SourceManager& sources,
+                                           const DriverOptions& options,
+                                           const DiagnosticOutput& output) {
+  const frontend::PartItem& part = *program.selectedPart;
+  DiagnosticEngine diagnostics(options.errorLimit);
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(program, part, diagnostics);
+  output.print(diagnostics, sources);
+  if (!lowered || diagnostics.hasErrors()) {
+    return std::nullopt;
+  }
+  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  try {
+    ir::ToolPath path = ir::interpret(lowered->function);
+    return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path)};
+  } catch (const ir::InterpreterError& error) {
+    output.driverError(fmt::format("the part cannot be run on the host: {}", error.what()));
+    return std::nullopt;
+  }
+}
+
+std::string fileName(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+std::vector<std::string> cutNames(const std::vector<ir::CutGeometry>& cuts,
+                                  const SourceManager& sources) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    const frontend::SourceSpan& span = cuts[i].span;
+    std::string where;
+    if (span.valid()) {
+      const frontend::SourceFile& file = sources.file(span.file);
+      where = fmt::format(" ({}:{})", fileName(file.path()), file.lineColumn(span.begin).line);
+    }
+    names.push_back(fmt::format("cut {}{}", i + 1, where));
+  }
+  return names;
+}
+
+backends::ParameterPassing parameterPassing(const DriverOptions& options) {
+  if (options.parametersInCommon) {
+    return backends::ParameterPassing::CommonVariables;
+  }
+  return options.macroCall ? backends::ParameterPassing::MacroArguments
+                           : backends::ParameterPassing::EditedDefaults;
+}
+
+// The -D values and the variables the program reads them from.
+std::optional<std::vector<backends::ParameterValue>>
+parameterValues(const frontend::PartItem& part, const DriverOptions& options,
+                std::string_view profileName, const DiagnosticOutput& output) {
+  const backends::ControllerProfile* profile = backends::findControllerProfile(profileName);
+  if (profile == nullptr) {
+    throw InternalError(fmt::format("unknown controller profile '{}'", profileName));
+  }
+  std::vector<std::string> errors;
+  std::vector<int> variables = backends::macroParameterVariables(
+      part.parameters.size(), *profile, options.parametersInCommon, errors);
+  if (!errors.empty()) {
+    output.driverError(errors.front());
+    return std::nullopt;
+  }
+  std::vector<backends::ParameterValue> values;
+  for (std::size_t i = 0; i < part.parameters.size() && i < variables.size(); ++i) {
+    auto define = options.defines.find(part.parameters[i].name);
+    if (define != options.defines.end()) {
+      values.push_back({define->first, variables[i], define->second});
+    }
+  }
+  return values;
+}
+
+backends::StatisticsOptions statisticsOptions(const CheckedProgram& program,
+                                              const SourceManager& sources,
+                                              const HostReference& reference) {
+  backends::StatisticsOptions options;
+  options.unit = ir::partUnits(*program.selectedPart) == ir::PartUnits::Inches ? "in" : "mm";
+  options.cutNames = cutNames(reference.cuts, sources);
+  return options;
+}
+
+std::string parameterLine(const DriverOptions& options) {
+  std::string line;
+  for (const auto& [name, value] : options.defines) {
+    line += fmt::format("{}{}={:g}", line.empty() ? "" : " ", name, value);
+  }
+  return line.empty() ? "the defaults" : line;
+}
+
+void reportFailure(const backends::VerificationReport& report, const DriverOptions& options) {
+  if (report.failure) {
+    fmt::print(stderr, "cncc: error: the {} program fails on the controller at line {}: {}\n",
+               options.target, report.failure->line, report.failure->message);
+  } else if (!report.passed()) {
+    fmt::print(stderr, "cncc: error: the {} program does not keep to the part's tolerances\n",
+               options.target);
+  }
+}
+
+} // namespace
+
+bool canVerify(std::string_view target) {
+  return backends::findTargetExecutor(target) != nullptr;
+}
+
+int runVerify(const DriverOptions& options) {
+  DiagnosticOutput output(options.diagnosticsFormat, options.colour);
+  std::unique_ptr<CheckedInput> truth = checkedInput(options, output);
+  if (!truth) {
+    return 1;
+  }
+  const SymbolicTarget* symbolic = findSymbolicTarget(options.target);
+  backends::ExecutionRequest execution;
+  std::optional<std::string> text;
+  if (symbolic != nullptr) {
+    // Compiled once with the defaults, as the program is kept; the -D
+    // values are set on the controller.
+    DriverOptions defaults = options;
+    defaults.defines.clear();
+    std::unique_ptr<CheckedInput> compiled = checkedInput(defaults, output);
+    if (!compiled ||
+        !(text = compiledText(*compiled->program, compiled->sources, defaults, output))) {
+      return 1;
+    }
+    std::string_view profile =
+        options.profile.empty() ? symbolic->defaultProfile : std::string_view(options.profile);
+    std::optional<std::vector<backends::ParameterValue>> values =
+        parameterValues(*truth->program->selectedPart, options, profile, output);
+    if (!values) {
+      return 1;
+    }
+    execution.parameters = std::move(*values);
+    execution.passing = parameterPassing(options);
+  } else if (!(text = compiledText(*truth->program, truth->sources, options, output))) {
+    return 1;
+  }
+  std::optional<HostReference> reference =
+      hostReference(*truth->program, truth->sources, options, output);
+  if (!reference) {
+    return 1;
+  }
+  execution.text = std::move(*text);
+  execution.profile = options.profile;
+  execution.callable = options.macroCall;
+  backends::StatisticsOptions statistics =
+      statisticsOptions(*truth->program, truth->sources, *reference);
+  backends::VerificationReport report = backends::verifyProgram(
+      {options.target, std::move(execution), reference->path, reference->cuts}, statistics);
+  fmt::print("verification of part {} ({}) with {}:\n{}", truth->program->selectedPart->name,
+             fileName(options.inputs.front()), parameterLine(options),
+             backends::formatVerification(report, statistics));
+  reportFailure(report, options);
+  return report.passed() ? 0 : 1;
+}
+
+int printVerifiedStatistics(const BackendRequest& request) {
+  const DriverOptions& options = request.options;
+  DiagnosticOutput output(options.diagnosticsFormat, options.colour);
+  std::optional<std::string> text = compiledText(request.program, request.sources, options, output);
+  std::optional<HostReference> reference =
+      text ? hostReference(request.program, request.sources, options, output) : std::nullopt;
+  if (!reference) {
+    return 1;
+  }
+  backends::ExecutionRequest execution;
+  execution.text = std::move(*text);
+  execution.profile = options.profile;
+  execution.callable = options.macroCall;
+  backends::StatisticsOptions statistics =
+      statisticsOptions(request.program, request.sources, *reference);
+  backends::VerificationReport report = backends::verifyProgram(
+      {options.target, std::move(execution), reference->path, reference->cuts}, statistics);
+  fmt::print(stderr, "statistics of part {} for target {}:\n{}", request.program.selectedPart->name,
+             options.target, backends::formatVerification(report, statistics));
+  return report.failure ? 1 : 0;
+}
+
+} // namespace cncc::driver
