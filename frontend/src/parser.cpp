@@ -336,7 +336,10 @@ private:
         synchroniseStatement();
       }
       if (position_ == before) {
-        advance(); // a statement word that cannot start a statement: `tool = 1`
+        // A statement word that cannot start a statement (`tool = 1`): step
+        // past it and skip the rest, so the one typo gives one message.
+        advance();
+        synchroniseStatement();
       }
     }
     panicking_ = false;
