@@ -1,6 +1,7 @@
 #include "targets.h"
 
 #include "commands.h"
+#include "linuxcnc_target.h"
 #include "macro_targets.h"
 
 #include "cncc/backends/gcode_writer.h"
@@ -78,7 +79,7 @@ constexpr Target targetTable[] = {
     {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
     {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", nullptr},
     {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
-    {"linuxcnc", "LinuxCNC program with o-word subroutines and parameters", nullptr},
+    {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend},
     {"jit", "run the part on the host and print the tool path", jitBackend},
 };
 

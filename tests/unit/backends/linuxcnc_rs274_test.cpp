@@ -1,0 +1,335 @@
+// Every example compiled for LinuxCNC and run by LinuxCNC's own interpreter
+// (`rs274 -g`): the path it reports is measured against each cut's true
+// curve. The moves are given their cuts by walking the IR interpreter's tool
+// path in step with rs274's; every pass of every cut must stay within the
+// cut's tolerance. rs274 prints four decimals, so the measurement allows
+// for that rounding (half a unit of the last digit on each axis) and for
+// nothing else. Skipped, with a message, only where rs274 is not installed.
+#include "linuxcnc_rs274.h"
+
+#include "cncc/backends/linuxcnc_canon.h"
+#include "cncc/backends/linuxcnc_program.h"
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/geom/deviation.h"
+#include "cncc/ir/builder.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/verifier.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <regex>
+
+namespace cncc {
+namespace {
+
+// Half a unit of rs274's fourth decimal on each of three axes.
+const double printRounding = 0.5e-4 * std::sqrt(3.0);
+// How far a point rs274 reports may lie from the host's: its rounding and
+// the program's own (five decimals, twelve digits).
+constexpr double matchDistance = 2e-4;
+
+struct Compiled {
+  frontend::SourceManager sources;
+  frontend::DiagnosticEngine diagnostics;
+  std::optional<frontend::CheckedProgram> program;
+  std::optional<ir::LoweredPart> lowered;
+  ir::ToolPath path;
+  std::string text;
+};
+
+std::unique_ptr<Compiled> compile(const std::string& file, const std::string& part,
+                                  const std::map<std::string, double>& defines = {}) {
+  auto result = std::make_unique<Compiled>();
+  std::optional<frontend::FileId> id =
+      result->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + file);
+  if (!id) {
+    ADD_FAILURE() << "cannot read " << file;
+    return nullptr;
+  }
+  frontend::CheckOptions options;
+  options.importPaths = {CNCC_STDLIB_DIR};
+  options.requirePart = true;
+  options.partName = part;
+  options.defines = defines;
+  result->program = frontend::checkProgram(result->sources, *id, options, result->diagnostics);
+  if (result->diagnostics.hasErrors() || result->program->selectedPart == nullptr) {
+    ADD_FAILURE() << file << " does not check";
+    return nullptr;
+  }
+  const frontend::PartItem& selected = *result->program->selectedPart;
+  result->lowered = ir::lowerPartWithCuts(*result->program, selected, result->diagnostics);
+  if (!result->lowered) {
+    ADD_FAILURE() << file << " does not lower";
+    return nullptr;
+  }
+  ir::runDefaultPipeline(result->lowered->function);
+  std::vector<std::string> problems = ir::verifyFunction(result->lowered->function);
+  if (!problems.empty()) {
+    ADD_FAILURE() << file << ": " << problems.front();
+    return nullptr;
+  }
+  result->path = ir::interpret(result->lowered->function);
+  backends::LinuxcncProgramOptions printing;
+  printing.sourceName = file;
+  printing.partName = selected.name;
+  printing.inches = ir::partUnits(selected) == ir::PartUnits::Inches;
+  printing.blendTolerance = backends::linuxcncBlendTolerance(result->lowered->cuts);
+  backends::LinuxcncProgram program =
+      backends::writeLinuxcncProgram(result->lowered->function, printing);
+  if (!program.errors.empty()) {
+    ADD_FAILURE() << file << ": " << program.errors.front();
+    return nullptr;
+  }
+  result->text = std::move(program.text);
+  return result;
+}
+
+// One pass: the feed moves between rapids within one cut.
+struct Pass {
+  std::size_t cut = 0;
+  bool ramp = false;
+  std::vector<Eigen::Vector3d> points;
+};
+
+// The host's feed moves, each with the pass it belongs to.
+struct HostFeed {
+  Eigen::Vector3d end;
+  std::size_t pass = 0;
+};
+
+void hostPasses(const ir::ToolPath& path, std::vector<HostFeed>& feeds, std::vector<Pass>& passes) {
+  std::optional<std::size_t> cut;
+  bool newPass = true;
+  for (const ir::MachineEvent& event : path.events) {
+    switch (event.kind) {
+    case ir::MachineEvent::Kind::CutBegin:
+      cut = static_cast<std::size_t>(event.number);
+      newPass = true;
+      break;
+    case ir::MachineEvent::Kind::Rapid:
+      newPass = true;
+      break;
+    case ir::MachineEvent::Kind::Comment:
+      if (event.text == "ramp" && !passes.empty()) {
+        passes.back().ramp = true;
+      }
+      break;
+    case ir::MachineEvent::Kind::Feed:
+      ASSERT_TRUE(cut.has_value()) << "a feed move outside every cut";
+      if (newPass) {
+        passes.push_back({*cut, false, {}});
+        newPass = false;
+      }
+      feeds.push_back({{event.x, event.y, event.z}, passes.size() - 1});
+      break;
+    default:
+      break;
+    }
+  }
+}
+
+// rs274's feed moves into the host's passes, in step: a host move rs274
+// does not report must be one that goes nowhere (the program leaves out a
+// line whose words are all in force).
+void fillPasses(const backends::ExecutedPath& executed, const std::vector<HostFeed>& feeds,
+                std::vector<Pass>& passes) {
+  std::size_t next = 0;
+  for (const backends::ExecutedMove& move : executed.moves) {
+    if (move.rapid) {
+      continue;
+    }
+    while (next < feeds.size() &&
+           (feeds[next].end - move.end).lpNorm<Eigen::Infinity>() > matchDistance) {
+      bool nowhere = next > 0 && (feeds[next].end - feeds[next - 1].end).norm() < 1e-9;
+      ASSERT_TRUE(nowhere) << "rs274 has no move to (" << feeds[next].end.transpose()
+                           << "); it reports (" << move.end.transpose() << ")";
+      ++next;
+    }
+    ASSERT_LT(next, feeds.size()) << "rs274 reports a move the host does not make: ("
+                                  << move.end.transpose() << ")";
+    passes[feeds[next].pass].points.push_back(move.end);
+    ++next;
+  }
+  ASSERT_EQ(next, feeds.size()) << "rs274 stops before the host's path ends";
+}
+
+// A curve seen from above: its z set to 0.
+class PlanView : public geom::Curve {
+public:
+  explicit PlanView(const geom::Curve& curve) : curve_(curve) {}
+  geom::ParameterRange domain() const override { return curve_.domain(); }
+  Eigen::Vector3d point(double t) const override { return flat(curve_.point(t)); }
+  Eigen::Vector3d derivative(double t) const override { return flat(curve_.derivative(t)); }
+  Eigen::Vector3d secondDerivative(double t) const override {
+    return flat(curve_.secondDerivative(t));
+  }
+  std::vector<double> breakpoints() const override { return curve_.breakpoints(); }
+
+private:
+  static Eigen::Vector3d flat(Eigen::Vector3d v) {
+    v.z() = 0;
+    return v;
+  }
+  const geom::Curve& curve_;
+};
+
+// A pass runs at the curve's own z plus its depth (the plunge's offset
+// from the curve's start); a ramped pass descends on purpose and is
+// measured in plan.
+double passDeviation(const Pass& pass, const geom::Curve& curve) {
+  std::vector<Eigen::Vector3d> polyline = pass.points;
+  double offset = polyline.front().z() - curve.point(curve.domain().t0).z();
+  for (Eigen::Vector3d& point : polyline) {
+    point.z() = pass.ramp ? 0 : point.z() - offset;
+  }
+  PlanView plan(curve);
+  const geom::Curve& reference = pass.ramp ? static_cast<const geom::Curve&>(plan) : curve;
+  return geom::measureDeviation(polyline, reference, {1e-6}).maxDeviation();
+}
+
+// Runs the program and checks every cut; `what` names the case.
+void expectWithinTolerance(const Compiled& compiled, const std::string& program,
+                           const std::string& rs274, const std::string& what) {
+  testing::Rs274Run run = testing::runRs274(rs274, program, testing::toolTableOf(compiled.path));
+  ASSERT_EQ(run.exitCode, 0) << what << ": rs274 failed:\n" << run.errors << run.canon;
+  backends::ExecutedPath executed;
+  ASSERT_NO_THROW(executed = backends::readLinuxcncCanon(run.canon)) << what;
+  std::vector<HostFeed> feeds;
+  std::vector<Pass> passes;
+  ASSERT_NO_FATAL_FAILURE(hostPasses(compiled.path, feeds, passes));
+  ASSERT_NO_FATAL_FAILURE(fillPasses(executed, feeds, passes)) << what;
+  const std::vector<ir::CutGeometry>& cuts = compiled.lowered->cuts;
+  std::vector<double> worst(cuts.size(), 0);
+  for (const Pass& pass : passes) {
+    ASSERT_LT(pass.cut, cuts.size());
+    ASSERT_FALSE(pass.points.empty());
+    if (!std::isnan(cuts[pass.cut].tolerance)) {
+      worst[pass.cut] = std::max(worst[pass.cut], passDeviation(pass, *cuts[pass.cut].curve));
+    }
+  }
+  std::cout << what << ": " << executed.moves.size() << " moves from rs274, " << cuts.size()
+            << " cuts\n";
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    if (std::isnan(cuts[k].tolerance)) {
+      continue; // samples= or spacing= chose the points; there is no promise
+    }
+    std::cout << "  cut " << k << ": deviation " << std::setprecision(6) << worst[k]
+              << ", tolerance " << cuts[k].tolerance << "\n";
+    EXPECT_LE(worst[k], cuts[k].tolerance + printRounding) << what << ", cut " << k;
+  }
+}
+
+struct ExampleCase {
+  std::string file;
+  std::string part;
+};
+
+class EveryExampleOnLinuxcnc : public ::testing::TestWithParam<ExampleCase> {};
+
+TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
+  std::optional<std::string> rs274 = testing::findRs274();
+  if (!rs274) {
+    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
+  }
+  std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part);
+  ASSERT_TRUE(compiled);
+  expectWithinTolerance(*compiled, compiled->text, *rs274, GetParam().file + " " + GetParam().part);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Examples, EveryExampleOnLinuxcnc,
+    ::testing::Values(ExampleCase{"archimedean_spiral.cdl", ""}, ExampleCase{"cam_profile.cdl", ""},
+                      ExampleCase{"helix_bore.cdl", "bore_plate_mm"},
+                      ExampleCase{"helix_bore.cdl", "bore_plate_inch"},
+                      ExampleCase{"polar_contour.cdl", ""}, ExampleCase{"rosette_plate.cdl", ""},
+                      ExampleCase{"s_profile.cdl", ""}),
+    [](const ::testing::TestParamInfo<ExampleCase>& info) {
+      std::string name = info.param.part.empty() ? info.param.file : info.param.part;
+      return name.substr(0, name.find('.'));
+    });
+
+// The circle of radius r, 72 chords, at depth d: both parameters are read
+// where the moves are computed.
+ir::Function circle() {
+  ir::FunctionBuilder builder("circle");
+  ir::ValueId radius = builder.parameter(builder.addParameter("r", 5));
+  ir::ValueId depth = builder.parameter(builder.addParameter("d", 1));
+  builder.tool(1, builder.constant(6));
+  ir::ValueId zero = builder.constant(0);
+  ir::ValueId z = builder.unary(ir::Opcode::Neg, depth);
+  builder.rapid(radius, zero, builder.constant(5));
+  ir::ValueId index = builder.beginLoop(builder.constant(0), builder.constant(72));
+  ir::ValueId angle = builder.binary(ir::Opcode::Mul, index, builder.constant(M_PI / 36));
+  builder.feed(builder.binary(ir::Opcode::Mul, radius, builder.unary(ir::Opcode::Cos, angle)),
+               builder.binary(ir::Opcode::Mul, radius, builder.unary(ir::Opcode::Sin, angle)), z,
+               builder.constant(200));
+  builder.endLoop();
+  return builder.finish();
+}
+
+// The program keeps its parameters symbolic: editing the line that sets
+// one at the top changes the path rs274 runs.
+TEST(LinuxcncOnRs274, EditingAParameterAtTheTopChangesThePart) {
+  std::optional<std::string> rs274 = testing::findRs274();
+  if (!rs274) {
+    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
+  }
+  backends::LinuxcncProgram program = backends::writeLinuxcncProgram(circle(), {});
+  ASSERT_TRUE(program.errors.empty());
+  std::string edited = std::regex_replace(program.text, std::regex("#<_r> = 5\\."), "#<_r> = 7.5");
+  edited = std::regex_replace(edited, std::regex("#<_d> = 1\\."), "#<_d> = 2.");
+  ASSERT_NE(edited, program.text);
+  testing::Rs274Run run =
+      testing::runRs274(*rs274, edited, testing::toolTableOf(ir::interpret(circle())));
+  ASSERT_EQ(run.exitCode, 0) << run.errors;
+  backends::ExecutedPath path = backends::readLinuxcncCanon(run.canon);
+  int feeds = 0;
+  for (const backends::ExecutedMove& move : path.moves) {
+    if (!move.rapid) {
+      ++feeds;
+      EXPECT_NEAR(move.end.head<2>().norm(), 7.5, 1e-4);
+      EXPECT_EQ(move.end.z(), -2);
+    }
+  }
+  EXPECT_EQ(feeds, 73);
+}
+
+// A macro is a subroutine: called with arguments, it cuts what they say.
+TEST(LinuxcncOnRs274, TheSubroutineTakesTheParametersAsArguments) {
+  std::optional<std::string> rs274 = testing::findRs274();
+  if (!rs274) {
+    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
+  }
+  backends::LinuxcncProgramOptions options;
+  options.partName = "circle";
+  options.callable = true;
+  backends::LinuxcncProgram program = backends::writeLinuxcncProgram(circle(), options);
+  ASSERT_TRUE(program.errors.empty());
+  // The subroutine and a main program calling it, in one file.
+  std::string text = std::regex_replace(program.text, std::regex("\nM2\n$"), "\n");
+  text += "o<circle> call [3] [0.5]\nM2\n";
+  testing::Rs274Run run =
+      testing::runRs274(*rs274, text, testing::toolTableOf(ir::interpret(circle())));
+  ASSERT_EQ(run.exitCode, 0) << run.errors;
+  backends::ExecutedPath path = backends::readLinuxcncCanon(run.canon);
+  int feeds = 0;
+  for (const backends::ExecutedMove& move : path.moves) {
+    if (!move.rapid) {
+      ++feeds;
+      EXPECT_NEAR(move.end.head<2>().norm(), 3, 1e-4);
+      EXPECT_EQ(move.end.z(), -0.5);
+    }
+  }
+  EXPECT_EQ(feeds, 73);
+}
+
+} // namespace
+} // namespace cncc

@@ -1,0 +1,47 @@
+#include "linuxcnc_target.h"
+
+#include "commands.h"
+
+#include "cncc/backends/linuxcnc_program.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+#include <optional>
+
+namespace cncc::driver {
+
+void linuxcncBackend(const BackendRequest& request) {
+  const frontend::PartItem* part = request.program.selectedPart;
+  if (part == nullptr) {
+    return;
+  }
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics);
+  if (!lowered) {
+    return;
+  }
+  optimise(lowered->function, request.options);
+  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  backends::GcodeOptions names = gcodeOptionsFor(request);
+  backends::LinuxcncProgramOptions options;
+  options.sourceName = names.sourceName;
+  options.partName = names.partName;
+  options.inches = names.inches;
+  options.callable = request.options.macroCall;
+  options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
+  backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
+  for (const std::string& error : program.errors) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
+                               fmt::format("the part does not fit LinuxCNC: {}", error));
+  }
+  if (program.errors.empty()) {
+    request.output.write(program.text);
+  }
+}
+
+} // namespace cncc::driver
