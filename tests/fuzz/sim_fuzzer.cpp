@@ -4,9 +4,12 @@
 // The contract under test: no program, however malformed, crashes the
 // simulator or runs forever; every error names a line of the input (or
 // none); every point of the path is finite and an arc's polyline ends at the
-// arc's end point. The first byte picks the profile and whether the program
-// runs as a G65 call with arguments.
+// arc's end point; the operations counted per point come from blocks that
+// ran, and the loop feed moves are feed moves of the path. The first byte
+// picks the profile and whether the program runs as a G65 call with
+// arguments.
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/sim_operation_count.h"
 #include "cncc/backends/virtual_controller.h"
 
 #include <cmath>
@@ -55,6 +58,28 @@ void checkPath(const sim::ExecutedPath& path) {
   }
 }
 
+void checkOperationCounts(std::string_view text, const ControllerProfile& profile,
+                          const sim::SimulationResult& result) {
+  sim::ProgramText program = sim::readProgram(text, profile);
+  if (result.blockExecutions.size() != program.blocks.size()) {
+    fail("the execution counts do not cover the program's blocks");
+  }
+  std::size_t executed = 0;
+  for (std::size_t count : result.blockExecutions) {
+    executed += count;
+  }
+  if (executed != result.blocksExecuted) {
+    fail("the execution counts do not add up to the blocks executed");
+  }
+  sim::LoopOperationCounts counts = sim::countLoopOperations(program, result);
+  if (counts.feedMoves > result.path.events.size()) {
+    fail("more loop feed moves than moves");
+  }
+  if (counts.feedMoves == 0 && counts.totalPerFeedMove() != 0) {
+    fail("operations per point without points");
+  }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -81,5 +106,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fail("the step limit was not enforced");
   }
   checkPath(result.path);
+  if (!result.error) {
+    checkOperationCounts(text, *profile, result);
+  }
   return 0;
 }
