@@ -244,6 +244,12 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
     checkChoice(modifier, {"linear", "aspline", "bspline", "cspline", "nurbs"});
   } else if (modifier.name == "entry") {
     checkChoice(modifier, {"plunge", "ramp"});
+  } else if (modifier.name == "arcs") {
+    // A switch of the printed program, so a literal rather than an expression.
+    if (modifier.value->kind != ExprKind::Bool) {
+      context_.report(DiagnosticKind::InvalidChoice, modifier.value->span,
+                      "'arcs=' takes true or false");
+    }
   } else {
     expectNumber(*modifier.value, scope, fmt::format("'{}='", modifier.name));
   }

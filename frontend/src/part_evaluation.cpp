@@ -187,7 +187,8 @@ private:
     evaluator_.evaluate(*cut.curve, environment);
     std::map<std::string, std::pair<double, const Modifier*>> values;
     for (const Modifier& modifier : cut.modifiers) {
-      if (!modifier.value || modifier.name == "method" || modifier.name == "entry") {
+      if (!modifier.value || modifier.name == "method" || modifier.name == "entry" ||
+          modifier.name == "arcs") {
         continue;
       }
       if (std::optional<double> value = number(*modifier.value, environment)) {

@@ -40,6 +40,7 @@ struct RawOptions {
   bool formatCheck = false;
   bool formatInPlace = false;
   bool stats = false;
+  bool arcs = false;
   std::string rapidRate = "10000";
   std::string plotInput;
   std::string optInput;
@@ -125,6 +126,9 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
                  "m80/fanuc: the controller profile (fanuc, fanuc-0i-small, m80)")
       ->type_name("NAME")
       ->check(CLI::IsMember({"fanuc", "fanuc-0i-small", "m80"}));
+  app.add_flag("--arcs", raw.arcs,
+               "gcode: cut planar curves as G02/G03 arcs within their tolerance "
+               "(as arcs=true on every cut)");
   app.add_flag("--stats", raw.stats,
                "Also print, on stderr, the program's size, path length, time estimate and "
                "largest deviation from the true curves");
@@ -365,6 +369,9 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (app.count("--rapid-rate") > 0 && !raw.stats) {
     throw UsageError("--rapid-rate only sets the time estimate of --stats");
   }
+  if (raw.arcs && (options.command != Command::Compile || raw.target != "gcode")) {
+    throw UsageError("--arcs is for the gcode target: it prints cuts as G02/G03 arcs");
+  }
   if (raw.stats && !canMeasure(raw.target) && !canVerify(raw.target)) {
     throw UsageError(fmt::format("--stats is not available for target '{}' in this version "
                                  "(gcode, jit, m80 and fanuc have it)",
@@ -415,6 +422,7 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   options.defines = parseDefines(raw.defines);
   options.partName = raw.partName;
   options.stats = raw.stats;
+  options.arcs = raw.arcs;
   options.macroCall = raw.macroCall;
   options.parametersInCommon = raw.parameterStorage == "common";
   options.profile = raw.profile;

@@ -44,16 +44,21 @@ std::optional<HostRun> runOnHost(const BackendRequest& request) {
   }
 }
 
-backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const ir::ToolPath& path) {
+backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const HostRun& run) {
+  const ir::ToolPath& path = run.toolPath;
   backends::GcodeOptions options = gcodeOptionsFor(request);
+  addArcFits(options, run.cuts, request);
   std::string text = backends::writeGcode(path, options);
-  backends::ExecutedPath executed = backends::executeGcode(text, path, options.decimals);
+  // With arcs, the program reaches the ends of the arcs instead of the chords.
+  backends::ExecutedPath executed = backends::executeGcode(
+      text, backends::arcEndPoints(path, options.arcFits), options.decimals);
   std::size_t blocks = backends::countProgramBlocks(text);
   return {std::move(text), blocks, std::move(executed)};
 }
 
 // The jit target's program is the tool path as CSV; a block is a row.
-backends::ExecutedProgram jitProgram(const BackendRequest&, const ir::ToolPath& path) {
+backends::ExecutedProgram jitProgram(const BackendRequest&, const HostRun& run) {
+  const ir::ToolPath& path = run.toolPath;
   std::string text = backends::writeToolPathCsv(path);
   std::size_t rows = backends::countProgramBlocks(text) - 1; // without the header
   return {std::move(text), rows, backends::executedPathOfToolPath(path)};
@@ -61,7 +66,7 @@ backends::ExecutedProgram jitProgram(const BackendRequest&, const ir::ToolPath& 
 
 struct MeasurableTarget {
   std::string_view name;
-  backends::ExecutedProgram (*program)(const BackendRequest&, const ir::ToolPath&);
+  backends::ExecutedProgram (*program)(const BackendRequest&, const HostRun&);
 };
 
 constexpr MeasurableTarget measurableTargets[] = {
@@ -116,8 +121,8 @@ std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
   }
   MeasuredPart measured;
   try {
-    measured.program = target->program(request, run->toolPath);
-  } catch (const backends::ExecutionMismatch& mismatch) {
+    measured.program = target->program(request, *run);
+  } catch (const std::logic_error& mismatch) { // ExecutionMismatch, or arcs off the tool path
     throw InternalError(fmt::format("the {} program does not execute as its tool path: {}",
                                     target->name, mismatch.what()));
   }

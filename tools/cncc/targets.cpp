@@ -24,16 +24,22 @@ namespace {
 // The selected part's tool path, as the IR interpreter runs it; nullopt
 // after a diagnostic. A verifier failure or an interpreter error is an
 // internal error.
-std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false) {
+// `cuts`, when given, receives the part's cut table.
+std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false,
+                                         std::vector<ir::CutGeometry>* cuts = nullptr) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::Function> function =
-      ir::lowerPart(request.program, *part, request.diagnostics);
-  if (!function) {
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics);
+  if (!lowered) {
     return std::nullopt;
   }
+  if (cuts != nullptr) {
+    *cuts = std::move(lowered->cuts);
+  }
+  ir::Function* function = &lowered->function;
   std::vector<std::string> problems = ir::verifyFunction(*function);
   if (!problems.empty()) {
     throw InternalError("the lowered IR does not verify: " + problems.front());
@@ -60,11 +66,18 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
 }
 
 void gcodeBackend(const BackendRequest& request) {
-  std::optional<ir::ToolPath> path = hostToolPath(request);
+  std::vector<ir::CutGeometry> cuts;
+  std::optional<ir::ToolPath> path = hostToolPath(request, false, &cuts);
   if (!path) {
     return;
   }
-  request.output.write(backends::writeGcode(*path, gcodeOptionsFor(request)));
+  backends::GcodeOptions options = gcodeOptionsFor(request);
+  addArcFits(options, cuts, request);
+  try {
+    request.output.write(backends::writeGcode(*path, options));
+  } catch (const std::logic_error& error) {
+    throw InternalError(std::string("the arcs do not fit the tool path: ") + error.what());
+  }
 }
 
 void jitBackend(const BackendRequest& request) {
@@ -95,6 +108,18 @@ backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   options.partName = part.name;
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
   return options;
+}
+
+void addArcFits(backends::GcodeOptions& options, const std::vector<ir::CutGeometry>& cuts,
+                const BackendRequest& request) {
+  backends::CutArcFitting fitting =
+      backends::fitCutArcs(cuts, request.options.arcs, options.decimals);
+  for (const backends::ArcProblem& problem : fitting.problems) {
+    request.diagnostics.report(frontend::DiagnosticKind::ArcsAsChords, cuts[problem.cut].span,
+                               fmt::format("this cut is printed as G01 chords, not arcs: {}",
+                                           problem.reason));
+  }
+  options.arcFits = std::move(fitting.fits);
 }
 
 std::span<const Target> allTargets() {

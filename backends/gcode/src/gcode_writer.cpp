@@ -5,6 +5,8 @@
 #include <cctype>
 #include <cmath>
 #include <optional>
+#include <span>
+#include <vector>
 
 namespace cncc::backends {
 
@@ -84,11 +86,32 @@ public:
     block(false, x, y, z, feed);
   }
 
+  // A lap of arcs from the current position (gcode_arcs.h), at the current Z.
+  void arcs(std::span<const geom::ArcSegment> segments, double feed) {
+    ArcBlockFormat format;
+    format.decimals = decimals_;
+    format.start = {std::stod(x_), std::stod(y_)};
+    std::string feedText = formatGcodeNumber(feed, decimals_);
+    if (feedText != feed_) {
+      format.feedWord = " F" + feedText;
+    }
+    std::vector<std::string> blocks = arcBlocks(segments, format);
+    if (blocks.empty()) {
+      return;
+    }
+    for (std::string& block : blocks) {
+      line(std::move(block));
+    }
+    feed_ = feedText;
+    x_ = formatGcodeNumber(segments.back().end.x(), decimals_);
+    y_ = formatGcodeNumber(segments.back().end.y(), decimals_);
+  }
+
   std::string take() { return std::move(out_); }
 
 private:
-  void block(bool rapid, std::optional<double> x, std::optional<double> y,
-             std::optional<double> z, double feed) {
+  void block(bool rapid, std::optional<double> x, std::optional<double> y, std::optional<double> z,
+             double feed) {
     std::string words;
     auto word = [&](char letter, std::optional<double> value, std::string& current) {
       if (!value) {
@@ -142,7 +165,16 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
   writer.line("G17 G90");
   writer.line("G40 G49 G80");
   bool spindleOn = false;
-  for (const ir::MachineEvent& event : path.events) {
+  std::vector<ArcLap> laps = findArcLaps(path, options.arcFits);
+  std::size_t nextLap = 0;
+  for (std::size_t index = 0; index < path.events.size(); ++index) {
+    if (nextLap < laps.size() && laps[nextLap].first == index) {
+      const ArcLap& lap = laps[nextLap++];
+      writer.arcs(options.arcFits[lap.cut]->segments, lap.feed);
+      index = lap.last;
+      continue;
+    }
+    const ir::MachineEvent& event = path.events[index];
     switch (event.kind) {
     case ir::MachineEvent::Kind::Rapid:
     case ir::MachineEvent::Kind::Feed:
@@ -158,7 +190,8 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
         writer.line("M05");
         spindleOn = false;
       }
-      writer.line(fmt::format("T{} M06 (DIAMETER {})", static_cast<long long>(std::llround(event.number)),
+      writer.line(fmt::format("T{} M06 (DIAMETER {})",
+                              static_cast<long long>(std::llround(event.number)),
                               formatGcodeNumber(event.diameter, options.decimals)));
       break;
     case ir::MachineEvent::Kind::Comment:

@@ -4,9 +4,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <numbers>
 
 namespace cncc::backends {
 
@@ -108,12 +111,17 @@ public:
 private:
   void readBlock(const std::vector<Word>& words, std::size_t lineNumber) {
     bool moves = false;
+    std::optional<ArcMotion> arc;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero(); // I J, from the start
+    ModalPosition start = position_;
     for (const Word& word : words) {
       if (word.letter == 'G' && (word.value == 0 || word.value == 1)) {
         rapid_ = word.value == 0;
         motionKnown_ = true;
       } else if (word.letter == 'G' && (word.value == 2 || word.value == 3)) {
-        throw ExecutionMismatch(fmt::format("line {}: arcs are not executed here", lineNumber));
+        arc = word.value == 2 ? ArcMotion::Clockwise : ArcMotion::Counterclockwise;
+      } else if (word.letter == 'I' || word.letter == 'J') {
+        (word.letter == 'I' ? centre.x() : centre.y()) = word.value;
       } else if (word.letter >= 'X' && word.letter <= 'Z') {
         position_[static_cast<std::size_t>(word.letter - 'X')] = word.value;
         moves = true;
@@ -124,10 +132,62 @@ private:
     if (!moves) {
       return;
     }
+    if (arc) {
+      addArc(*arc, start, centre, lineNumber);
+      return;
+    }
     if (!motionKnown_) {
       throw ExecutionMismatch(fmt::format("line {}: a move before G00 or G01", lineNumber));
     }
     blocks_.push_back({rapid_, position_, rapid_ ? 0.0 : feed_, std::nullopt, lineNumber});
+  }
+
+  enum class ArcMotion { Clockwise, Counterclockwise };
+
+  // A G02/G03 block (XY plane, I J centre, not modal here: the printers
+  // write the G word on every arc) as feed moves along it whose sagitta is
+  // at most 1e-5 (program units), so that measuring them measures the arc.
+  void addArc(ArcMotion motion, const ModalPosition& start, const Eigen::Vector2d& offset,
+              std::size_t lineNumber) {
+    if (!isKnown(start)) {
+      throw ExecutionMismatch(fmt::format("line {}: an arc from an unknown position", lineNumber));
+    }
+    Eigen::Vector3d from = pointOf(start);
+    Eigen::Vector3d to = pointOf(position_);
+    Eigen::Vector2d centre = from.head<2>() + offset;
+    Eigen::Vector2d a = from.head<2>() - centre;
+    Eigen::Vector2d b = to.head<2>() - centre;
+    double startRadius = a.norm();
+    if (startRadius == 0) {
+      throw ExecutionMismatch(fmt::format("line {}: the arc's centre is its start", lineNumber));
+    }
+    double sweep = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    bool clockwise = motion == ArcMotion::Clockwise;
+    if (clockwise && sweep >= 0) {
+      sweep -= 2 * std::numbers::pi;
+    } else if (!clockwise && sweep <= 0) {
+      sweep += 2 * std::numbers::pi;
+    }
+    double startAngle = std::atan2(a.y(), a.x());
+    double endRadius = b.norm();
+    // The radius changes linearly from start to end, as controllers do.
+    double largest = std::max(startRadius, endRadius);
+    double step = 2 * std::acos(1 - std::min(1.0, 1e-5 / largest));
+    auto steps = static_cast<std::size_t>(std::min(1e5, std::ceil(std::fabs(sweep) / step)));
+    for (std::size_t k = 1; k <= steps; ++k) {
+      double share = static_cast<double>(k) / static_cast<double>(steps);
+      double radius = startRadius + (endRadius - startRadius) * share;
+      double angle = startAngle + sweep * share;
+      ModalPosition point = position_;
+      if (k < steps) {
+        point[0] = centre.x() + radius * std::cos(angle);
+        point[1] = centre.y() + radius * std::sin(angle);
+        point[2] = from.z() + (to.z() - from.z()) * share;
+      }
+      blocks_.push_back({false, point, feed_, std::nullopt, lineNumber});
+    }
+    rapid_ = false;
+    motionKnown_ = true;
   }
 
   std::vector<GcodeBlock> blocks_;
@@ -183,7 +243,8 @@ private:
       GcodeBlock& block = blocks_[next_++];
       block.cut = rapid ? std::nullopt : cut;
       position_ = block.position;
-      if (!rapid && !isAt(event)) {
+      bool arcGoesOn = next_ < blocks_.size() && blocks_[next_].line == block.line;
+      if (!rapid && !isAt(event) && !arcGoesOn) {
         throw ExecutionMismatch(
             fmt::format("line {}: the feed move does not reach the tool path's", block.line));
       }

@@ -133,6 +133,16 @@ TEST(ArcFitting, PolarContourAndSProfile) {
   EXPECT_LT(profileFit.segments.size(), 115u / 2); // chords: 115
 }
 
+// The tolerances the gcode target fits with: the promise less the rounding of
+// four decimals.
+TEST(ArcFitting, SProfileAtPrintingTolerances) {
+  NurbsCurve profile = testing::sProfile({1, 1, 1, 1, 1, 3, 1});
+  for (double tolerance : {0.01 - 2.2e-4, 0.005, 0.002}) {
+    SCOPED_TRACE(tolerance);
+    expectValidFit(fitArcs(profile, {tolerance}), profile, tolerance);
+  }
+}
+
 TEST(ArcFitting, RejectsCurvesOutOfPlaneAndBadTolerances) {
   ArcCurve helix({0, 0}, 2.0, 0.0, kPi, 0.0, 3.0);
   EXPECT_TRUE(findArcFittingProblem(helix));

@@ -38,6 +38,8 @@ struct CutGeometry {
   double tolerance = 0;
   // The `curve` statement.
   frontend::SourceSpan span;
+  // arcs=true or arcs=false on the cut; nullopt leaves it to --arcs.
+  std::optional<bool> arcs;
 };
 
 struct LoweredPart {

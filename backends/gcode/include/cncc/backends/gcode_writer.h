@@ -2,6 +2,7 @@
 // blocks with modal coordinates.
 #pragma once
 
+#include "cncc/backends/gcode_arcs.h"
 #include "cncc/ir/tool_path.h"
 
 #include <optional>
@@ -11,11 +12,13 @@
 namespace cncc::backends {
 
 struct GcodeOptions {
-  int programNumber = 1;       // O<number>
-  std::string sourceName;      // for the header comment, e.g. "s_profile.cdl"
-  std::string partName;        // for the header comment
-  bool inches = false;         // G20 instead of G21
-  int decimals = 4;            // the most decimals a number is printed with
+  int programNumber = 1;  // O<number>
+  std::string sourceName; // for the header comment, e.g. "s_profile.cdl"
+  std::string partName;   // for the header comment
+  bool inches = false;    // G20 instead of G21
+  int decimals = 4;       // the most decimals a number is printed with
+  // The cuts printed as arcs (gcode_arcs.h); empty: chords everywhere.
+  CutArcFits arcFits;
 };
 
 // `10.`, `0.5`, `-1.25`: at most `decimals` decimals, no trailing zeros, always

@@ -1,0 +1,317 @@
+// Arc output of the gcode target (arcs=true, --arcs): every example compiled
+// with arcs on every cut, the printed program run by a G-code reader written
+// here (G00/G01 lines, G02/G03 arcs sampled from their I J centres, the
+// radius going linearly from the start's to the end's as a controller
+// interpolates it), and each pass measured against its cut's true curve in
+// both directions. The reference figure: the Archimedean spiral at 5 um in at
+// most a third of its 90 minimal chords.
+#include "cncc/backends/gcode_arcs.h"
+#include "cncc/backends/gcode_writer.h"
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/geom/deviation.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/lowering.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+namespace cncc {
+namespace {
+
+struct CompiledPart {
+  frontend::SourceManager sources;
+  frontend::DiagnosticEngine diagnostics;
+  std::optional<frontend::CheckedProgram> program;
+  std::optional<ir::LoweredPart> lowered;
+  ir::ToolPath path;
+  backends::CutArcFitting fitting;
+  std::string text;
+};
+
+// The example's part compiled for gcode with --arcs.
+std::unique_ptr<CompiledPart> compileWithArcs(const std::string& name, const std::string& part) {
+  auto result = std::make_unique<CompiledPart>();
+  std::optional<frontend::FileId> file =
+      result->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + name);
+  if (!file) {
+    ADD_FAILURE() << "cannot read " << name;
+    return nullptr;
+  }
+  frontend::CheckOptions options;
+  options.importPaths = {CNCC_STDLIB_DIR};
+  options.requirePart = true;
+  options.partName = part;
+  result->program = frontend::checkProgram(result->sources, *file, options, result->diagnostics);
+  if (result->diagnostics.hasErrors() || result->program->selectedPart == nullptr) {
+    ADD_FAILURE() << name << " does not check";
+    return nullptr;
+  }
+  result->lowered =
+      ir::lowerPartWithCuts(*result->program, *result->program->selectedPart, result->diagnostics);
+  if (!result->lowered) {
+    ADD_FAILURE() << name << " does not lower";
+    return nullptr;
+  }
+  result->path = ir::interpret(result->lowered->function);
+  backends::GcodeOptions gcode;
+  result->fitting = backends::fitCutArcs(result->lowered->cuts, true, gcode.decimals);
+  gcode.arcFits = result->fitting.fits;
+  result->text = backends::writeGcode(result->path, gcode);
+  return result;
+}
+
+// One pass as the reader executed it: the XY points of its lap (arcs
+// sampled densely), from the end of the plunge or ramp to the retract.
+struct ExecutedPass {
+  std::size_t cut = 0;
+  std::vector<Eigen::Vector3d> points;
+  std::size_t arcs = 0;
+  std::size_t lines = 0; // G01 moves in the plane of the pass
+  double largestSweep = 0;
+};
+
+std::map<char, double> wordsOf(const std::string& line) {
+  std::map<char, double> words;
+  std::istringstream stream(line.substr(0, line.find('(')));
+  char letter = 0;
+  while (stream >> letter) {
+    double value = 0;
+    stream >> value;
+    words[letter] = value;
+  }
+  return words;
+}
+
+// Points along G02/G03 from `from` to `to` around `centre`, close enough
+// (sagitta 1e-6 mm) that the polyline is the arc for the measurement.
+void sampleArc(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+               const Eigen::Vector2d& centre, bool clockwise, ExecutedPass& pass) {
+  Eigen::Vector2d a = from - centre;
+  Eigen::Vector2d b = to - centre;
+  double startAngle = std::atan2(a.y(), a.x());
+  double endAngle = std::atan2(b.y(), b.x());
+  double sweep = endAngle - startAngle;
+  while (clockwise ? sweep >= 0 : sweep <= 0) {
+    sweep += clockwise ? -2 * std::numbers::pi : 2 * std::numbers::pi;
+  }
+  double radius = std::max(a.norm(), b.norm());
+  double step = 2 * std::acos(1 - std::min(1.0, 1e-6 / radius));
+  int count = std::max(2, static_cast<int>(std::ceil(std::fabs(sweep) / step)));
+  for (int k = 1; k <= count; ++k) {
+    double share = static_cast<double>(k) / count;
+    double r = a.norm() + (b.norm() - a.norm()) * share;
+    double angle = startAngle + sweep * share;
+    pass.points.emplace_back(centre.x() + r * std::cos(angle), centre.y() + r * std::sin(angle), 0);
+  }
+  pass.largestSweep = std::max(pass.largestSweep, std::fabs(sweep));
+  ++pass.arcs;
+}
+
+// Runs the program. A full-line comment of the program is one of the tool
+// path's Comment events, in order: the cut of the latest CutBegin before it
+// says which cut the following moves belong to.
+std::vector<ExecutedPass> executePasses(const CompiledPart& part);
+
+// The deviation of a pass from its cut's curve, the pass put in the curve's
+// plane (the reader reads the pass depth, the curve lies at its own z).
+double passDeviation(const ExecutedPass& pass, const ir::CutGeometry& cut) {
+  double z = cut.curve->point(cut.curve->domain().t0).z();
+  std::vector<Eigen::Vector3d> points = pass.points;
+  for (Eigen::Vector3d& point : points) {
+    point.z() = z;
+  }
+  return geom::measureDeviation(points, *cut.curve, {cut.tolerance * 1e-3}).maxDeviation();
+}
+
+std::vector<ExecutedPass> executePasses(const CompiledPart& part) {
+  std::vector<std::optional<std::size_t>> commentCuts;
+  std::optional<std::size_t> cut;
+  for (const ir::MachineEvent& event : part.path.events) {
+    if (event.kind == ir::MachineEvent::Kind::CutBegin) {
+      cut = static_cast<std::size_t>(event.number);
+    } else if (event.kind == ir::MachineEvent::Kind::Comment) {
+      commentCuts.push_back(cut);
+    }
+  }
+  std::vector<ExecutedPass> passes;
+  std::istringstream lines(part.text);
+  std::string line;
+  int lineNumber = 0;
+  std::size_t comments = 0;
+  std::optional<std::size_t> current;
+  Eigen::Vector3d position(0, 0, 0);
+  bool inPass = false;
+  while (std::getline(lines, line)) {
+    if (++lineNumber <= 3) {
+      continue; // %, O1 and the header comment
+    }
+    if (line.rfind("(", 0) == 0) {
+      current = comments < commentCuts.size() ? commentCuts[comments] : std::nullopt;
+      ++comments;
+      continue;
+    }
+    std::map<char, double> words = wordsOf(line);
+    if (!words.count('G')) {
+      continue;
+    }
+    int motion = static_cast<int>(words['G']);
+    Eigen::Vector3d target = position;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (auto found = words.find(static_cast<char>('X' + axis)); found != words.end()) {
+        target[axis] = found->second;
+      }
+    }
+    if (motion == 0) {
+      inPass = false;
+    } else if (motion >= 1 && motion <= 3 && current) {
+      if (!inPass) {
+        passes.push_back({*current, {Eigen::Vector3d(position.x(), position.y(), 0)}});
+        inPass = true;
+      }
+      ExecutedPass& pass = passes.back();
+      if (motion == 1 && target.z() != position.z()) {
+        // The plunge or a ramp chord: the lap starts after the last of them.
+        pass.points = {Eigen::Vector3d(target.x(), target.y(), 0)};
+      } else if (motion == 1) {
+        pass.points.emplace_back(target.x(), target.y(), 0);
+        ++pass.lines;
+      } else {
+        Eigen::Vector2d centre = position.head<2>() + Eigen::Vector2d(words['I'], words['J']);
+        sampleArc(position.head<2>(), target.head<2>(), centre, motion == 2, pass);
+      }
+    }
+    position = target;
+  }
+  return passes;
+}
+
+// What every example promises with arcs: each pass of each fitted cut
+// within the cut's tolerance of its true curve, arcs of at most 180 degrees.
+void expectArcsWithinTolerance(const std::string& example, const std::string& partName = {}) {
+  SCOPED_TRACE(example + " " + partName);
+  std::unique_ptr<CompiledPart> part = compileWithArcs(example, partName);
+  ASSERT_TRUE(part);
+  std::vector<ExecutedPass> passes = executePasses(*part);
+  std::size_t measured = 0;
+  std::vector<const ExecutedPass*> firstPass(part->lowered->cuts.size(), nullptr);
+  for (const ExecutedPass& pass : passes) {
+    const ir::CutGeometry& cut = part->lowered->cuts.at(pass.cut);
+    if (!part->fitting.fits[pass.cut]) {
+      EXPECT_EQ(pass.arcs, 0u) << "cut " << pass.cut << " has no fit but arcs";
+      continue;
+    }
+    // Every pass repeats the first one's moves at its own depth: measured once.
+    if (firstPass[pass.cut] != nullptr) {
+      EXPECT_EQ(pass.points, firstPass[pass.cut]->points) << "cut " << pass.cut;
+      continue;
+    }
+    firstPass[pass.cut] = &pass;
+    EXPECT_LE(passDeviation(pass, cut), cut.tolerance) << "cut " << pass.cut;
+    EXPECT_LE(pass.largestSweep, std::numbers::pi + 1e-9);
+    EXPECT_GT(pass.arcs, 0u);
+    ++measured;
+  }
+  EXPECT_GT(measured, 0u) << "no pass was printed with arcs";
+}
+
+TEST(ArcsOutput, SProfileWithinTolerance) {
+  expectArcsWithinTolerance("s_profile.cdl");
+}
+
+TEST(ArcsOutput, ArchimedeanSpiralWithinTolerance) {
+  expectArcsWithinTolerance("archimedean_spiral.cdl");
+}
+
+TEST(ArcsOutput, PolarContourWithinTolerance) {
+  expectArcsWithinTolerance("polar_contour.cdl");
+}
+
+TEST(ArcsOutput, RosettePlateWithinTolerance) {
+  expectArcsWithinTolerance("rosette_plate.cdl");
+}
+
+TEST(ArcsOutput, CamProfileWithinTolerance) {
+  expectArcsWithinTolerance("cam_profile.cdl");
+}
+
+TEST(ArcsOutput, HelixBoreKeepsChordsOnHelices) {
+  for (const char* partName : {"bore_plate_mm", "bore_plate_inch"}) {
+    std::unique_ptr<CompiledPart> part = compileWithArcs("helix_bore.cdl", partName);
+    ASSERT_TRUE(part);
+    for (const backends::ArcProblem& problem : part->fitting.problems) {
+      EXPECT_FALSE(part->fitting.fits[problem.cut]);
+    }
+    for (const ExecutedPass& pass : executePasses(*part)) {
+      const ir::CutGeometry& cut = part->lowered->cuts.at(pass.cut);
+      if (part->fitting.fits[pass.cut]) {
+        EXPECT_LE(passDeviation(pass, cut), cut.tolerance) << partName << " cut " << pass.cut;
+      } else {
+        EXPECT_EQ(pass.arcs, 0u);
+      }
+    }
+  }
+}
+
+// REFERENCE-CASES.md, case 2: 90 chords at 5 um; the arcs must take at most 30
+// blocks (arcs and the lines between them) for the same tolerance.
+TEST(ArcsOutput, SpiralInAThirdOfTheMinimalChords) {
+  std::unique_ptr<CompiledPart> part = compileWithArcs("archimedean_spiral.cdl", "");
+  ASSERT_TRUE(part);
+  std::vector<ExecutedPass> passes = executePasses(*part);
+  ASSERT_EQ(passes.size(), 1u);
+  std::size_t blocks = passes[0].arcs + passes[0].lines;
+  RecordProperty("blocks", static_cast<int>(blocks));
+  EXPECT_LE(blocks, 30u);
+  EXPECT_GE(passes[0].arcs, 2u);
+  EXPECT_LE(passDeviation(passes[0], part->lowered->cuts[0]), 0.005);
+}
+
+TEST(ArcsOutput, LapsAreFoundAtEveryPass) {
+  std::unique_ptr<CompiledPart> part = compileWithArcs("s_profile.cdl", "");
+  ASSERT_TRUE(part);
+  std::vector<backends::ArcLap> laps = backends::findArcLaps(part->path, part->fitting.fits);
+  ASSERT_EQ(laps.size(), 3u); // depth 3, step 1
+  EXPECT_DOUBLE_EQ(laps[0].z, -1);
+  EXPECT_DOUBLE_EQ(laps[2].z, -3);
+  ir::ToolPath ends = backends::arcEndPoints(part->path, part->fitting.fits);
+  std::size_t segments = part->fitting.fits[0]->segments.size();
+  EXPECT_EQ(ends.events.size(),
+            part->path.events.size() - 3 * (laps[0].last - laps[0].first + 1) + 3 * segments);
+}
+
+TEST(ArcsOutput, ArcBlocksTakeTheCentreFromThePrintedStart) {
+  geom::ArcSegment arc;
+  arc.kind = geom::ArcSegmentKind::Arc;
+  arc.start = {10, 0, 0};
+  arc.end = {0, 10, 0};
+  arc.centre = {0, 0};
+  arc.radius = 10;
+  arc.sweep = std::numbers::pi / 2;
+  arc.direction = geom::ArcDirection::CounterClockwise;
+  backends::ArcBlockFormat format;
+  format.decimals = 3;
+  format.feedWord = " F300.";
+  format.start = {10.0004, 0}; // the start as printed, off the exact one
+  std::vector<std::string> blocks = backends::arcBlocks(std::span(&arc, 1), format);
+  ASSERT_EQ(blocks.size(), 1u);
+  EXPECT_EQ(blocks[0], "G03 X0. Y10. I-10. J0. F300.");
+  arc.direction = geom::ArcDirection::Clockwise;
+  arc.sweep = -arc.sweep;
+  format.feedWord.clear();
+  format.start = {10, 0};
+  EXPECT_EQ(backends::arcBlocks(std::span(&arc, 1), format)[0], "G02 X0. Y10. I-10. J0.");
+  // A move that rounds to nothing is left out.
+  geom::ArcSegment tiny = arc;
+  tiny.end = {10.0001, 0.0001, 0};
+  EXPECT_TRUE(backends::arcBlocks(std::span(&tiny, 1), format).empty());
+}
+
+} // namespace
+} // namespace cncc
