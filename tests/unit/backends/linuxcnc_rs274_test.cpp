@@ -196,17 +196,19 @@ double passDeviation(const Pass& pass, const geom::Curve& curve) {
 }
 
 // Runs the program and checks every cut; `what` names the case.
-void expectWithinTolerance(const Compiled& compiled, const std::string& program,
-                           const std::string& rs274, const std::string& what) {
-  testing::Rs274Run run = testing::runRs274(rs274, program, testing::toolTableOf(compiled.path));
+// `host` is what the program does as the IR interpreter runs it, `cuts`
+// the true curves.
+void expectWithinTolerance(const ir::ToolPath& host, const std::vector<ir::CutGeometry>& cuts,
+                           const std::string& program, const std::string& rs274,
+                           const std::string& what) {
+  testing::Rs274Run run = testing::runRs274(rs274, program, testing::toolTableOf(host));
   ASSERT_EQ(run.exitCode, 0) << what << ": rs274 failed:\n" << run.errors << run.canon;
   backends::ExecutedPath executed;
   ASSERT_NO_THROW(executed = backends::readLinuxcncCanon(run.canon)) << what;
   std::vector<HostFeed> feeds;
   std::vector<Pass> passes;
-  ASSERT_NO_FATAL_FAILURE(hostPasses(compiled.path, feeds, passes));
+  ASSERT_NO_FATAL_FAILURE(hostPasses(host, feeds, passes));
   ASSERT_NO_FATAL_FAILURE(fillPasses(executed, feeds, passes)) << what;
-  const std::vector<ir::CutGeometry>& cuts = compiled.lowered->cuts;
   std::vector<double> worst(cuts.size(), 0);
   for (const Pass& pass : passes) {
     ASSERT_LT(pass.cut, cuts.size());
@@ -241,7 +243,8 @@ TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
   }
   std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part);
   ASSERT_TRUE(compiled);
-  expectWithinTolerance(*compiled, compiled->text, *rs274, GetParam().file + " " + GetParam().part);
+  expectWithinTolerance(compiled->path, compiled->lowered->cuts, compiled->text, *rs274,
+                        GetParam().file + " " + GetParam().part);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -255,6 +258,66 @@ INSTANTIATE_TEST_SUITE_P(
       std::string name = info.param.part.empty() ? info.param.file : info.param.part;
       return name.substr(0, name.find('.'));
     });
+
+// A parameter set at the top of the program to another value: rs274 runs
+// the part that value makes, within its tolerance. The host runs the same
+// IR with the new value; the true curves are the part lowered with it.
+struct EditCase {
+  std::string file;
+  std::string parameter;
+  double value;
+};
+
+class EditedParameterOnLinuxcnc : public ::testing::TestWithParam<EditCase> {};
+
+TEST_P(EditedParameterOnLinuxcnc, Rs274RunsTheEditedPartWithinTolerance) {
+  std::optional<std::string> rs274 = testing::findRs274();
+  if (!rs274) {
+    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
+  }
+  const EditCase& edit = GetParam();
+  std::unique_ptr<Compiled> compiled = compile(edit.file, "");
+  ASSERT_TRUE(compiled);
+  const ir::Function& function = compiled->lowered->function;
+  std::size_t index = 0;
+  while (index < function.parameters.size() && function.parameters[index].name != edit.parameter) {
+    ++index;
+  }
+  ASSERT_LT(index, function.parameters.size()) << edit.parameter;
+  std::string name = backends::linuxcncParameterNames(function.parameters)[index];
+  std::string line = "#<" + name + "> = ";
+  std::size_t at = compiled->text.find("\n" + line);
+  ASSERT_NE(at, std::string::npos) << "no line sets " << line;
+  std::size_t end = compiled->text.find('\n', at + 1);
+  std::string edited = compiled->text.substr(0, at + 1) + line + std::to_string(edit.value) +
+                       compiled->text.substr(end);
+  ir::InterpreterOptions values;
+  values.parameters[edit.parameter] = edit.value;
+  ir::ToolPath host = ir::interpret(function, values);
+  std::unique_ptr<Compiled> reference = compile(edit.file, "", {{edit.parameter, edit.value}});
+  ASSERT_TRUE(reference);
+  ASSERT_EQ(reference->lowered->cuts.size(), compiled->lowered->cuts.size());
+  // The edit changes the path: the parameter is read by the program.
+  std::vector<HostFeed> before, after;
+  std::vector<Pass> unused;
+  hostPasses(compiled->path, before, unused);
+  unused.clear();
+  hostPasses(host, after, unused);
+  bool changed = before.size() != after.size();
+  for (std::size_t i = 0; !changed && i < before.size(); ++i) {
+    changed = (before[i].end - after[i].end).norm() > 1e-6;
+  }
+  EXPECT_TRUE(changed) << edit.parameter << " = " << edit.value << " moves nothing";
+  expectWithinTolerance(host, reference->lowered->cuts, edited, *rs274,
+                        edit.file + " " + edit.parameter + "=" + std::to_string(edit.value));
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, EditedParameterOnLinuxcnc,
+                         ::testing::Values(EditCase{"archimedean_spiral.cdl", "b", 1.5}),
+                         [](const ::testing::TestParamInfo<EditCase>& info) {
+                           std::string name = info.param.file;
+                           return name.substr(0, name.find('.')) + "_" + info.param.parameter;
+                         });
 
 // The circle of radius r, 72 chords, at depth d: both parameters are read
 // where the moves are computed.
