@@ -197,6 +197,19 @@ TEST(LinuxcncProgram, RefusesALineLongerThan255Characters) {
   EXPECT_TRUE(program.text.empty());
 }
 
+TEST(LinuxcncProgram, RefusesMoreValuesThanTheNumberedParameters) {
+  ir::FunctionBuilder builder("table");
+  std::uint32_t table = builder.addTable(std::vector<double>(5000, 1.5));
+  ValueId zero = builder.constant(0);
+  ValueId i = builder.beginLoop(zero, builder.constant(4999));
+  builder.feed(builder.tableLoad(table, i), zero, zero, builder.constant(100));
+  builder.endLoop();
+  LinuxcncProgram program = writeLinuxcncProgram(builder.finish(), circleOptions());
+  ASSERT_EQ(program.errors.size(), 1u);
+  EXPECT_THAT(program.errors.front(), HasSubstr("4970"));
+  EXPECT_TRUE(program.text.empty());
+}
+
 TEST(LinuxcncProgram, LongCommentsAreShortened) {
   ir::FunctionBuilder builder("comment");
   builder.comment(std::string(300, 'c'));
