@@ -117,7 +117,8 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
       ->type_name("STAGE")
       ->check(CLI::IsMember({"tokens", "ast", "ir"}));
   app.add_flag("--macro", raw.macroCall,
-               "m80/fanuc: print a macro called with G65 P.. and arguments, ending M99");
+               "m80/fanuc: print a macro called with G65 P.. and arguments, ending M99; "
+               "linuxcnc: an o<part> sub taking the parameters as call arguments");
   app.add_option("--params", raw.parameterStorage,
                  "m80/fanuc: part parameters as G65 argument locals, or in common variables")
       ->type_name("local|common")
