@@ -7,6 +7,7 @@
 #include "cncc/backends/virtual_controller.h"
 
 #include "sim_evaluator.h"
+#include "sim_nurbs.h"
 
 #include <array>
 #include <map>
@@ -67,6 +68,11 @@ private:
   double increment() const;
   double roundToIncrement(double value) const;
 
+  // sim_nurbs.cpp: G05 P10000 and G06.2 blocks; true when the block was one.
+  bool executeNurbsWords(const Block& block, const std::vector<int>& gCodes,
+                         const std::vector<int>& mCodes, const std::map<char, double>& values);
+  void finishNurbs(const Block& block);
+
   const ProgramText& program_;
   const ControllerProfile& profile_;
   const SimulationOptions& options_;
@@ -75,6 +81,7 @@ private:
   std::map<int, Value> commons_;
   std::map<int, Value> systemVariables_;
   ModalState modal_;
+  NurbsInProgress nurbs_; // sim_nurbs.h
   std::size_t blocksExecuted_ = 0;
   std::vector<std::size_t> blockExecutions_; // by block index
 };

@@ -21,7 +21,8 @@ struct GCode {
 constexpr GCode supportedGCodes[] = {
     {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
     {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
-    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15}};
+    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
+    {62, 1},   {50, 0}}; // G06.2 NURBS, G05 P10000 (sim_nurbs.cpp)
 
 constexpr std::string_view axisLetters = "XYZ";
 constexpr std::string_view arcLetters = "IJKR";
@@ -159,6 +160,9 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     }
     callMacro(block, next);
     return Next::Jump;
+  }
+  if (executeNurbsWords(block, words.gCodes, words.mCodes, words.values)) {
+    return Next::Continue;
   }
   checkLetters(block, words);
   int decimals = profile_.coordinateDecimals + (modal_.inches ? 1 : 0);
