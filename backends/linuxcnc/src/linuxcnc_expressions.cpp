@@ -116,10 +116,18 @@ ir::InlineShape linuxcncInlineShape(const ir::Function&, const ir::Instruction& 
 }
 
 std::string LinuxcncExpressionWriter::constant(double value) const {
+  if (!std::isfinite(value)) {
+    errors_.push_back(
+        fmt::format("the program needs the number {}, which LinuxCNC cannot read", value));
+    return "0";
+  }
   return significant(value, format_.significantDigits);
 }
 
 std::string LinuxcncExpressionWriter::coordinateLiteral(double value) const {
+  if (!std::isfinite(value)) {
+    return constant(value);
+  }
   return formatGcodeNumber(value, format_.coordinateDecimals);
 }
 

@@ -43,11 +43,13 @@ struct LinuxcncNumberFormat {
 class LinuxcncExpressionWriter {
 public:
   LinuxcncExpressionWriter(const ir::Function& function, const ir::Allocation& allocation,
-                           std::vector<std::string> parameterNames, LinuxcncNumberFormat format)
+                           std::vector<std::string> parameterNames, LinuxcncNumberFormat format,
+                           std::vector<std::string>& errors)
       : function_(function), allocation_(allocation), parameterNames_(std::move(parameterNames)),
-        format_(format) {}
+        format_(format), errors_(errors) {}
 
-  // `3.`, `0.5`, `-57.2957795131`: at most the format's significant digits.
+  // `3.`, `0.5`, `-57.2957795131`: at most the format's significant digits;
+  // a value that is not finite is an error.
   std::string constant(double value) const;
   std::string coordinateLiteral(double value) const;
 
@@ -77,6 +79,7 @@ private:
   const ir::Allocation& allocation_;
   std::vector<std::string> parameterNames_;
   LinuxcncNumberFormat format_;
+  std::vector<std::string>& errors_; // a number LinuxCNC cannot read (not finite)
 };
 
 // The text bracketed unless it binds at least as tightly as `loosest`.

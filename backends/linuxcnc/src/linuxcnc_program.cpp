@@ -105,7 +105,7 @@ public:
                  const LinuxcncProgramOptions& options, std::vector<std::string>& errors)
       : function_(function), allocation_(allocation), options_(options), errors_(errors),
         names_(linuxcncParameterNames(function.parameters)),
-        expressions_(function, allocation, names_, {12, options.inches ? 6 : 5}),
+        expressions_(function, allocation, names_, {12, options.inches ? 6 : 5}, errors),
         moves_(expressions_, lines_) {}
 
   std::string print() {

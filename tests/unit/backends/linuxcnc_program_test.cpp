@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 
 namespace cncc::backends {
@@ -207,6 +208,17 @@ TEST(LinuxcncProgram, RefusesMoreValuesThanTheNumberedParameters) {
   LinuxcncProgram program = writeLinuxcncProgram(builder.finish(), circleOptions());
   ASSERT_EQ(program.errors.size(), 1u);
   EXPECT_THAT(program.errors.front(), HasSubstr("4970"));
+  EXPECT_TRUE(program.text.empty());
+}
+
+TEST(LinuxcncProgram, RefusesANumberThatIsNotFinite) {
+  ir::FunctionBuilder builder("infinite");
+  ValueId zero = builder.constant(0);
+  builder.feed(builder.constant(std::numeric_limits<double>::infinity()), zero, zero,
+               builder.constant(100));
+  LinuxcncProgram program = writeLinuxcncProgram(builder.finish(), circleOptions());
+  ASSERT_EQ(program.errors.size(), 1u);
+  EXPECT_THAT(program.errors.front(), HasSubstr("inf"));
   EXPECT_TRUE(program.text.empty());
 }
 
