@@ -17,13 +17,17 @@ namespace cncc::driver {
 namespace {
 
 // The lowered, optimised part; nullopt after a diagnostic.
-std::optional<ir::Function> loweredPart(const BackendRequest& request) {
+std::optional<ir::Function> loweredPart(const BackendRequest& request,
+                                        const backends::ControllerProfile& profile) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
   }
+  // The controller runs the curve loops, within the budget its increment leaves.
+  ir::LoweringOptions lowering =
+      backends::macroLoweringOptions(profile, ir::partUnits(*part) == ir::PartUnits::Inches);
   std::optional<ir::Function> function =
-      ir::lowerPart(request.program, *part, request.diagnostics);
+      ir::lowerPart(request.program, *part, request.diagnostics, lowering);
   if (!function) {
     return std::nullopt;
   }
@@ -42,7 +46,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   if (profile == nullptr) {
     throw InternalError(fmt::format("unknown controller profile '{}'", profileName));
   }
-  std::optional<ir::Function> function = loweredPart(request);
+  std::optional<ir::Function> function = loweredPart(request, *profile);
   if (!function) {
     return;
   }

@@ -16,7 +16,14 @@ using ir::InlineShape;
 using ir::Opcode;
 
 // Where an operand stands decides whether it needs brackets.
-enum class Position { LeftOfAdditive, RightOfAdditive, LeftOfMultiplicative, RightOfMultiplicative, UnderNegation, Compared };
+enum class Position {
+  LeftOfAdditive,
+  RightOfAdditive,
+  LeftOfMultiplicative,
+  RightOfMultiplicative,
+  UnderNegation,
+  Compared
+};
 
 bool bareAt(InlineForm form, Position position) {
   switch (position) {
@@ -110,8 +117,65 @@ std::string bracketedUnless(const MacroText& text, bool keepBare) {
 }
 
 std::vector<ir::Opcode> macroStatementOpcodes() {
-  return {Opcode::Min,   Opcode::Max, Opcode::Select, Opcode::Floor,
-          Opcode::Ceil,  Opcode::Rem, Opcode::Atan,   Opcode::Atan2};
+  return {Opcode::Min,  Opcode::Max, Opcode::Select, Opcode::Floor,
+          Opcode::Ceil, Opcode::Rem, Opcode::Atan,   Opcode::Atan2};
+}
+
+namespace {
+
+// The characters of an expression's own text: its operator or function
+// name, and the operands that are atoms (a literal, `#nn`).
+int ownCharacters(const ir::Function& function, const ir::Instruction& instruction,
+                  std::span<const InlineShape> operands, int significantDigits) {
+  int characters = 1;
+  std::string_view name = functionName(instruction.opcode);
+  if (!name.empty()) {
+    characters = static_cast<int>(name.size()) + 2;
+  }
+  if (isTrigonometric(instruction.opcode) || isInverseTrigonometric(instruction.opcode)) {
+    characters += 10; // *57.29578 or *.01745329, and brackets
+  }
+  bool additive = instruction.opcode == Opcode::Add || instruction.opcode == Opcode::Sub;
+  bool multiplicative = instruction.opcode == Opcode::Mul || instruction.opcode == Opcode::Div;
+  for (std::size_t i = 0; i < operands.size(); ++i) {
+    if (operands[i].operations > 0) {
+      Position position = additive ? (i == 0 ? Position::LeftOfAdditive : Position::RightOfAdditive)
+                          : multiplicative ? (i == 0 ? Position::LeftOfMultiplicative
+                                                     : Position::RightOfMultiplicative)
+                                           : Position::Compared;
+      characters += bareAt(operands[i].form, position) ? 0 : 2;
+      continue;
+    }
+    const ir::Instruction& definition = function.definition(instruction.operands[i]);
+    if (definition.opcode == Opcode::Const) {
+      // As MacroExpressionWriter::constant prints it.
+      double magnitude = std::abs(definition.number);
+      int whole = magnitude < 1 ? 0 : static_cast<int>(std::floor(std::log10(magnitude))) + 1;
+      std::string text =
+          formatGcodeNumber(definition.number, std::max(0, significantDigits - whole));
+      bool leadingZero = text.starts_with("0.") || text.starts_with("-0.");
+      characters += static_cast<int>(text.size()) - (leadingZero && text.size() > 2 ? 1 : 0);
+    } else {
+      characters += 3; // #nn
+    }
+  }
+  return characters;
+}
+
+} // namespace
+
+InlineShape macroInlineShape(const ControllerProfile& profile, const ir::Function& function,
+                             const ir::Instruction& instruction,
+                             std::span<const InlineShape> operands) {
+  InlineShape shape = macroInlineShape(function, instruction, operands);
+  if (shape.operations > 0) {
+    int characters = ownCharacters(function, instruction, operands, profile.significantDigits);
+    for (const InlineShape& operand : operands) {
+      characters += operand.operations;
+    }
+    shape.operations = characters;
+  }
+  return shape;
 }
 
 InlineShape macroInlineShape(const ir::Function&, const ir::Instruction& instruction,
@@ -177,8 +241,8 @@ std::string MacroExpressionWriter::constant(double value) const {
   double magnitude = std::abs(value);
   int digits = profile_.significantDigits;
   if (magnitude >= std::pow(10.0, digits) || !std::isfinite(value)) {
-    errors_.push_back(fmt::format("the number {} needs more than the controller's {} digits",
-                                  value, digits));
+    errors_.push_back(
+        fmt::format("the number {} needs more than the controller's {} digits", value, digits));
     return "0.";
   }
   int wholeDigits = magnitude < 1 ? 0 : static_cast<int>(std::floor(std::log10(magnitude))) + 1;
@@ -296,7 +360,8 @@ MacroText MacroExpressionWriter::arithmetic(const ir::Instruction& instruction) 
       sign = sign == '+' ? '-' : '+';
       right = {constant(-*number), InlineForm::Atom};
     }
-    return {textAt(left, Position::LeftOfAdditive) + sign + textAt(right, Position::RightOfAdditive),
+    return {textAt(left, Position::LeftOfAdditive) + sign +
+                textAt(right, Position::RightOfAdditive),
             InlineForm::Additive};
   }
   char sign = instruction.opcode == Opcode::Mul ? '*' : '/';
@@ -323,8 +388,7 @@ std::string MacroExpressionWriter::degrees(ir::ValueId radians) const {
              constant(degreesPerRadian / *right);
     }
   }
-  return textAt(value(radians), Position::LeftOfMultiplicative) + "*" +
-         constant(degreesPerRadian);
+  return textAt(value(radians), Position::LeftOfMultiplicative) + "*" + constant(degreesPerRadian);
 }
 
 MacroText MacroExpressionWriter::function(const ir::Instruction& instruction) const {
@@ -349,8 +413,8 @@ MacroText MacroExpressionWriter::function(const ir::Instruction& instruction) co
   }
   std::string_view name = functionName(opcode);
   if (name.empty() || operands.size() != 1) {
-    errors_.push_back(fmt::format("internal: '{}' cannot be written inline",
-                                  ir::opcodeInfo(opcode).spelling));
+    errors_.push_back(
+        fmt::format("internal: '{}' cannot be written inline", ir::opcodeInfo(opcode).spelling));
     return {"0.", InlineForm::Atom};
   }
   return {fmt::format("{}[{}]", name, value(operands[0]).text), InlineForm::Atom};

@@ -19,6 +19,11 @@ namespace cncc::backends {
 
 inline constexpr double degreesPerRadian = 57.29577951308232;
 
+// The same shape with `operations` counted as the characters of the text
+// (an estimate: variables as `#nn`), for the block length limit.
+ir::InlineShape macroInlineShape(const ControllerProfile& profile, const ir::Function& function,
+                                 const ir::Instruction& instruction,
+                                 std::span<const ir::InlineShape> operands);
 ir::InlineShape macroInlineShape(const ir::Function& function, const ir::Instruction& instruction,
                                  std::span<const ir::InlineShape> operands);
 

@@ -20,23 +20,102 @@ namespace {
 using ir::Opcode;
 using ir::ValueId;
 
-// The words a move printed last, so that a literal already in force is not
-// written again. Only literals are remembered (a variable may have changed),
-// and everything is forgotten where control flow joins.
+// A word in force: a literal, or the IR value it printed (SSA: the same
+// value is the same number while it is used, its variable is not reused).
+struct ModalWord {
+  std::string text;
+  std::optional<std::uint32_t> value; // none for a literal
+  friend bool operator==(const ModalWord&, const ModalWord&) = default;
+};
+
+// The words a move printed last, so that a word already in force is not
+// written again. Where control flow joins only what both ways agree on is
+// kept (a loop: what holds at its entry and after its body).
 struct ModalState {
   std::string motion;
-  std::map<char, std::string> literals;
+  std::map<char, ModalWord> words;
   std::optional<double> z; // the last literal Z, to order a rapid's axes
   void forget() { *this = ModalState{}; }
+  ModalState agreedWith(const ModalState& other) const {
+    ModalState agreed;
+    agreed.motion = motion == other.motion ? motion : "";
+    for (const auto& [letter, word] : words) {
+      auto found = other.words.find(letter);
+      if (found != other.words.end() && found->second == word) {
+        agreed.words[letter] = word;
+      }
+    }
+    agreed.z = z == other.z ? z : std::nullopt;
+    return agreed;
+  }
+  friend bool operator==(const ModalState&, const ModalState&) = default;
 };
+
+// Loops whose index is used only scaled, u = i * c (a curve's parameter):
+// the index variable then holds u itself, stepped by c, which saves the
+// multiplication and its assignment at every point.
+struct SteppedLoops {
+  std::map<std::uint32_t, double> scaleOfIndex; // loop index value -> c
+  std::set<std::uint32_t> scaledValues;         // the products, not printed
+};
+
+SteppedLoops stepLoopsByTheirScale(const ir::Function& function, ir::Allocation& allocation) {
+  std::map<std::uint32_t, std::vector<ir::InstructionId>> users;
+  for (ir::InstructionId id = 0; id < function.instructions.size(); ++id) {
+    for (ValueId operand : function.instructions[id].operands) {
+      users[operand.index].push_back(id);
+    }
+  }
+  auto constant = [&](ValueId value) {
+    const ir::Instruction& definition = function.definition(value);
+    return definition.opcode == Opcode::Const ? std::optional<double>(definition.number)
+                                              : std::nullopt;
+  };
+  SteppedLoops stepped;
+  for (const ir::Instruction& loop : function.instructions) {
+    if (loop.opcode != Opcode::Loop || !constant(loop.operands[0]) || !constant(loop.operands[1]) ||
+        users[loop.result.index].size() != 1) {
+      continue;
+    }
+    const ir::Instruction& product = function.instructions[users[loop.result.index].front()];
+    if (product.opcode != Opcode::Mul || !allocation.inVariable(loop.result)) {
+      continue;
+    }
+    ValueId other = product.operands[0] == loop.result ? product.operands[1] : product.operands[0];
+    std::optional<double> scale = constant(other);
+    if (!scale || *scale == 0 || !std::isfinite(*scale)) {
+      continue;
+    }
+    allocation.variableOfValue[product.result.index] =
+        allocation.variableOfValue[loop.result.index];
+    stepped.scaleOfIndex[loop.result.index] = *scale;
+    stepped.scaledValues.insert(product.result.index);
+  }
+  // The products' own variables may now be unused.
+  std::set<int> used(allocation.parameterVariables.begin(), allocation.parameterVariables.end());
+  for (int variable : allocation.variableOfValue) {
+    if (variable >= 0) {
+      used.insert(variable);
+    }
+  }
+  for (std::size_t table = 0; table < function.tables.size(); ++table) {
+    for (std::size_t i = 0; allocation.tableBase[table] >= 0 && i < function.tables[table].size();
+         ++i) {
+      used.insert(allocation.tableBase[table] + static_cast<int>(i));
+    }
+  }
+  allocation.usedVariables.assign(used.begin(), used.end());
+  return stepped;
+}
 
 class ProgramPrinter {
 public:
   ProgramPrinter(const ir::Function& function, const ir::Allocation& allocation,
-                 const ControllerProfile& profile, const MacroProgramOptions& options,
-                 std::vector<std::string>& errors)
+                 const SteppedLoops& stepped, const ControllerProfile& profile,
+                 const MacroProgramOptions& options, std::vector<std::string>& errors)
       : function_(function), allocation_(allocation), profile_(profile), options_(options),
-        errors_(errors), expressions_(function, allocation, profile, errors) {}
+        errors_(errors), expressions_(function, allocation, profile, errors),
+        steppedLoops_(stepped.scaleOfIndex), scaledValues_(stepped.scaledValues) {}
 
   std::string print() {
     line("%");
@@ -90,7 +169,8 @@ private:
     if (options_.callable) {
       std::string call = fmt::format("CALL G65 P{}", options_.programNumber);
       for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
-        if (std::optional<char> letter = profile_.letterForLocal(allocation_.parameterVariables[i])) {
+        if (std::optional<char> letter =
+                profile_.letterForLocal(allocation_.parameterVariables[i])) {
           call += fmt::format(" {}{}", *letter, parameterDefault(i));
         }
       }
@@ -239,7 +319,8 @@ private:
     default:
       break;
     }
-    if (instruction.result.valid() && allocation_.inVariable(instruction.result)) {
+    if (instruction.result.valid() && allocation_.inVariable(instruction.result) &&
+        !scaledValues_.contains(instruction.result.index)) {
       printAssignment(instruction);
     }
   }
@@ -304,8 +385,9 @@ private:
       // become the IR's -pi..pi.
       std::string x = instruction.opcode == Opcode::Atan ? "1." : operand(1);
       line(fmt::format("{}=ATAN[{}]/[{}]", target, expressions_.value(instruction.operands[0]).text,
-                       instruction.opcode == Opcode::Atan ? x
-                                                          : expressions_.value(instruction.operands[1]).text));
+                       instruction.opcode == Opcode::Atan
+                           ? x
+                           : expressions_.value(instruction.operands[1]).text));
       conditional(fmt::format("[{} GT 180.]", target), fmt::format("[{} LE 180.]", target),
                   fmt::format("{}={}-360.", target, target));
       line(fmt::format("{}={}*{}", target, target, expressions_.constant(1 / degreesPerRadian)));
@@ -323,20 +405,64 @@ private:
     ++loopDepth_;
     int limit = std::min(profile_.maximumLoopNesting, profile_.maximumLoopIdentifier);
     if (loopDepth_ > limit && !reportedLoopDepth_) {
-      errors_.push_back(fmt::format("the program nests {} loops, the controller allows {}",
-                                    loopDepth_, limit));
+      errors_.push_back(
+          fmt::format("the program nests {} loops, the controller allows {}", loopDepth_, limit));
       reportedLoopDepth_ = true;
     }
     std::string index = expressions_.variable(instruction.result);
-    line(fmt::format("{}={}", index, expressions_.value(instruction.operands[0]).text));
-    line(fmt::format("WHILE [{} LE {}] DO{}", index, expressions_.operand(instruction.operands[1]),
-                     loopDepth_));
-    modal_.forget();
-    printRegion(instruction.regions[0]);
-    line(fmt::format("{}={}+1.", index, index));
+    auto stepped = steppedLoops_.find(instruction.result.index);
+    if (stepped != steppedLoops_.end()) {
+      // The index variable holds i * scale, stepped by the scale.
+      double scale = stepped->second;
+      double low = *constantOf(instruction.operands[0]);
+      double high = *constantOf(instruction.operands[1]);
+      line(fmt::format("{}={}", index, expressions_.constant(low * scale)));
+      line(fmt::format("WHILE [{} {} {}] DO{}", index, scale > 0 ? "LE" : "GE",
+                       expressions_.constant((high + 0.5) * scale), loopDepth_));
+    } else {
+      line(fmt::format("{}={}", index, expressions_.value(instruction.operands[0]).text));
+      line(fmt::format("WHILE [{} LE {}] DO{}", index,
+                       expressions_.operand(instruction.operands[1]), loopDepth_));
+    }
+    // The body as it prints from the words in force before the loop, then
+    // from those that also hold after one pass through it, until stable.
+    ModalState entry = modal_;
+    std::vector<std::string> body;
+    for (int attempt = 0;; ++attempt) {
+      if (attempt >= 3) {
+        entry.forget();
+      }
+      int labels = nextLabel_;
+      std::size_t errorCount = errors_.size();
+      body = capture(instruction.regions[0], entry);
+      ModalState agreed = entry.agreedWith(modal_);
+      if (agreed == entry || attempt >= 3) {
+        modal_ = agreed;
+        break;
+      }
+      nextLabel_ = labels;
+      errors_.resize(errorCount);
+      entry = agreed;
+    }
+    lines_.insert(lines_.end(), body.begin(), body.end());
+    if (stepped != steppedLoops_.end()) {
+      line(fmt::format("{}={}+{}", index, index, expressions_.constant(stepped->second)));
+    } else {
+      line(fmt::format("{}={}+1.", index, index));
+    }
     line(fmt::format("END{}", loopDepth_));
-    modal_.forget();
     --loopDepth_;
+  }
+
+  // The region's lines, printed from `entry`; modal_ is left as it ends.
+  std::vector<std::string> capture(const ir::Region& region, const ModalState& entry) {
+    std::vector<std::string> saved = std::move(lines_);
+    lines_.clear();
+    modal_ = entry;
+    printRegion(region);
+    std::vector<std::string> captured = std::move(lines_);
+    lines_ = std::move(saved);
+    return captured;
   }
 
   std::vector<std::string> capture(const ir::Region& region) {
@@ -354,8 +480,9 @@ private:
   void printIf(const ir::Instruction& instruction) {
     ValueId condition = instruction.operands[0];
     std::vector<std::string> thenLines = capture(instruction.regions[0]);
-    std::vector<std::string> elseLines =
-        instruction.regions.size() > 1 ? capture(instruction.regions[1]) : std::vector<std::string>{};
+    std::vector<std::string> elseLines = instruction.regions.size() > 1
+                                             ? capture(instruction.regions[1])
+                                             : std::vector<std::string>{};
     if (thenLines.empty() && elseLines.empty()) {
       return;
     }
@@ -386,22 +513,19 @@ private:
                                               : std::nullopt;
   }
 
-  // " X12.5", or nothing when that literal is in force already.
+  // " X12.5", or nothing when that word is in force already.
   std::string word(char letter, ValueId value, bool isCoordinate = true) {
     std::string text = isCoordinate ? expressions_.coordinate(value) : expressions_.operand(value);
     if (!isCoordinate && constantOf(value)) {
       text = expressions_.constant(*constantOf(value));
     }
-    bool literal = constantOf(value).has_value();
-    auto known = modal_.literals.find(letter);
-    if (literal && known != modal_.literals.end() && known->second == text) {
+    ModalWord current{text,
+                      constantOf(value) ? std::nullopt : std::optional<std::uint32_t>(value.index)};
+    auto known = modal_.words.find(letter);
+    if (known != modal_.words.end() && known->second == current) {
       return "";
     }
-    if (literal) {
-      modal_.literals[letter] = text;
-    } else {
-      modal_.literals.erase(letter);
-    }
+    modal_.words[letter] = current;
     return fmt::format(" {}{}", letter, text);
   }
 
@@ -449,6 +573,8 @@ private:
   const MacroProgramOptions& options_;
   std::vector<std::string>& errors_;
   MacroExpressionWriter expressions_;
+  const std::map<std::uint32_t, double>& steppedLoops_;
+  const std::set<std::uint32_t>& scaledValues_;
   std::vector<std::string> lines_;
   ModalState modal_;
   int loopDepth_ = 0;
@@ -501,10 +627,23 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
   }
   options.parameterVariables = std::move(parameterVariables);
   options.maximumBracketDepth = profile.maximumBracketNesting;
-  // About ten characters an operation, room for the address and `#n=`.
-  options.maximumInlineOperations = std::max(2, (profile.maximumBlockLength - 16) / 10);
-  options.shape = macroInlineShape;
+  // Counted in characters (macroInlineShape with the profile), with room
+  // for the addresses of a move or `#nnn=`; the printer checks every block's
+  // real length.
+  options.maximumInlineOperations = std::max(16, profile.maximumBlockLength - 20);
+  options.shape = [&profile](const ir::Function& function, const ir::Instruction& instruction,
+                             std::span<const ir::InlineShape> operands) {
+    return macroInlineShape(profile, function, instruction, operands);
+  };
   options.statementOpcodes = macroStatementOpcodes();
+  return options;
+}
+
+ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool inches) {
+  ir::LoweringOptions options;
+  options.controllerLoops = true;
+  options.coordinateIncrement =
+      inches ? profile.leastInputIncrement / 10 : profile.leastInputIncrement;
   return options;
 }
 
@@ -569,8 +708,10 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   if (!program.errors.empty()) {
     return program;
   }
+  SteppedLoops stepped = stepLoopsByTheirScale(simplified, allocated.allocation);
   std::string text =
-      ProgramPrinter(simplified, allocated.allocation, profile, options, program.errors).print();
+      ProgramPrinter(simplified, allocated.allocation, stepped, profile, options, program.errors)
+          .print();
   if (!program.errors.empty()) {
     return program;
   }

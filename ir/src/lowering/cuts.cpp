@@ -58,6 +58,11 @@ std::string wordOf(const Expr& expression) {
   return {};
 }
 
+std::string methodOf(const CutStmt& cut) {
+  const Modifier* method = findModifier(cut, "method");
+  return method != nullptr && method->value ? wordOf(*method->value) : "";
+}
+
 void PartLowering::checkMethod(const CutStmt& cut) {
   const Modifier* method = findModifier(cut, "method");
   if (method == nullptr) {
@@ -166,6 +171,12 @@ std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
+  if (lowerNurbsCut(cut)) {
+    return;
+  }
+  if (lowerControllerCut(cut)) {
+    return;
+  }
   checkMethod(cut);
   bool ramp = rampEntry(cut);
   if (!safe_) {
@@ -199,7 +210,8 @@ void PartLowering::lowerCut(const CutStmt& cut) {
                    cut.span,
                    arcs != nullptr && arcs->kind == ExprKind::Bool
                        ? std::optional<bool>(as<BoolExpr>(*arcs).value)
-                       : std::nullopt});
+                       : std::nullopt,
+                   methodOf(cut)});
   builder_.cutBegin(index);
 
   // The runs of samples after the first (the start, reached by the plunge).

@@ -120,6 +120,8 @@ private:
   int evaluations_ = 0;
 };
 
+struct ControllerSegment; // controller_cuts.cpp
+
 class PartLowering {
 public:
   PartLowering(const frontend::CheckedProgram& program, const frontend::PartItem& part,
@@ -129,8 +131,9 @@ public:
 
 private:
   [[noreturn]] void unsupported(frontend::SourceSpan span, std::string_view what);
-  [[noreturn]] void fail(frontend::SourceSpan span, std::string message,
-                         frontend::DiagnosticKind kind = frontend::DiagnosticKind::UnsupportedConstruct);
+  [[noreturn]] void
+  fail(frontend::SourceSpan span, std::string message,
+       frontend::DiagnosticKind kind = frontend::DiagnosticKind::UnsupportedConstruct);
   void checkSize(frontend::SourceSpan span);
 
   // statements.cpp
@@ -187,6 +190,25 @@ private:
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   std::vector<double> passDepths(const frontend::CutStmt& cut);
 
+  // nurbs_cuts.cpp
+  bool lowerNurbsCut(const frontend::CutStmt& cut);
+
+  // controller_cuts.cpp
+  bool lowerControllerCut(const frontend::CutStmt& cut);
+  std::optional<std::vector<ControllerSegment>>
+  planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget);
+  std::optional<std::vector<std::optional<Lowered>>> symbolicList(const frontend::Expr& expression);
+  const frontend::Expr* curveArgument(const frontend::CutStmt& cut, std::string_view name);
+  void emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
+                             ValueId feed, const frontend::CutStmt& cut);
+  std::optional<Scalar> polarStepCount(const CurvePiece& piece, double budget,
+                                       const frontend::CutStmt& cut);
+  using SymbolicList = std::vector<std::optional<Lowered>>;
+  void planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
+                     const SymbolicList* points, ControllerSegment& segment, double budget);
+  Scalar hornerOf(const std::vector<double>& polynomial, Scalar u);
+  CurvePoint splitSpanPoint(const ControllerSegment& segment, Scalar u);
+
   const frontend::CheckedProgram& program_;
   const frontend::PartItem& part_;
   frontend::DiagnosticEngine& diagnostics_;
@@ -208,5 +230,7 @@ private:
 const frontend::Modifier* findModifier(const frontend::CutStmt& cut, std::string_view name);
 const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_view name);
 std::string wordOf(const frontend::Expr& expression);
+// The cut's method= word, empty without one.
+std::string methodOf(const frontend::CutStmt& cut);
 
 } // namespace cncc::ir::lowering

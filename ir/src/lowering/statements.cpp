@@ -27,7 +27,9 @@ PartLowering::PartLowering(const CheckedProgram& program, const PartItem& part,
 
 LoweredPart PartLowering::run() {
   lowerParameters();
-  builder_.comment(fmt::format("part {}", part_.name));
+  if (!options_.controllerLoops) { // the macro programs' header names the part
+    builder_.comment(fmt::format("part {}", part_.name));
+  }
   lowerBlock(part_.body);
   return {builder_.finish(), std::move(cuts_)};
 }

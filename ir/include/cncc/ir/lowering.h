@@ -17,6 +17,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace cncc::ir {
@@ -28,6 +29,18 @@ struct LoweringOptions {
   // bspline, nurbs) itself. Without it such a cut is cut as straight feed
   // moves within its tolerance, with a spline-as-chords warning.
   bool splineInterpolation = false;
+  // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
+  // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
+  bool nurbsBlocks = false;
+  // Controller-side targets (macro programs): each cut becomes loops the
+  // controller runs over uniform parameter steps, a pass loop over the sweep
+  // and no constant tables; what depends on part parameters (step counts
+  // included) is computed on the controller. See controller_cuts.cpp.
+  bool controllerLoops = false;
+  // The controller's least input increment (mm or inch; 0: none). Its
+  // rounding of every executed coordinate, half an increment per axis, is
+  // taken from the tolerance before the chord error is chosen.
+  double coordinateIncrement = 0;
 };
 
 // One cut of the part: what `cut.begin index` refers to.
@@ -40,6 +53,8 @@ struct CutGeometry {
   frontend::SourceSpan span;
   // arcs=true or arcs=false on the cut; nullopt leaves it to --arcs.
   std::optional<bool> arcs;
+  // The cut's method= word (linear, aspline, bspline, cspline, nurbs); empty without one.
+  std::string method;
 };
 
 struct LoweredPart {

@@ -14,6 +14,7 @@
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/ir/ir.h"
+#include "cncc/ir/lowering.h"
 #include "cncc/ir/register_allocation.h"
 
 #include <cstddef>
@@ -54,6 +55,11 @@ std::vector<int> macroParameterVariables(std::size_t parameterCount,
 // What the register allocator is told about this controller.
 ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
                                              std::vector<int> parameterVariables);
+
+// How to lower a part for this controller: the curve loops run on the
+// controller (LoweringOptions::controllerLoops), its least input increment
+// (IS-B: 0.001 mm, 0.0001 inch) counted in each cut's tolerance budget.
+ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool inches);
 
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
                                const MacroProgramOptions& options);

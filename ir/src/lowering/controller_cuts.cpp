@@ -1,0 +1,817 @@
+// A `curve` statement for controllers that run the curve loop themselves
+// (LoweringOptions::controllerLoops, the macro targets): no constant
+// tables. Each smooth piece (each knot span of a NURBS) is cut in uniform
+// parameter steps by a loop the controller runs, and the sweep's passes are
+// a loop too, so part parameters stay editable at the machine.
+//
+// The tolerance promise holds for the values the program runs with. The
+// controller rounds every coordinate to its least input increment, so the
+// chord error may use the tolerance less half an increment per moving axis
+// (the budget). Then:
+// - Constant geometry: the step count of each piece is the fewest uniform
+//   steps whose chords all stay within the budget, measured exactly on the
+//   curve (geom::chordDeviation). A NURBS span is evaluated by Horner's
+//   rule in the loop index, its power-basis coefficients rescaled to the
+//   index and written as literals; a rational span adds its denominator
+//   and one division per coordinate.
+// - Geometry that depends on parameters: the controller computes the step
+//   count of the piece, once per cut, from a bound M >= |C''| over the
+//   piece: a chord over a parameter step h deviates at most h^2 M / 8, so
+//   N = (length of the domain) * sqrt(M / (8 budget)) steps, rounded up,
+//   suffice. The bounds are derived with the functions that compute them.
+// A cut this mode cannot treat (samples=, spacing=, entry=ramp, an
+// analytic curve depending on parameters other than a polar r affine in
+// t) is lowered by the table-driven lowering of cuts.cpp.
+#include "lowering/part_lowering.h"
+
+#include "cncc/geom/deviation.h"
+#include "cncc/geom/discretisation.h"
+#include "cncc/geom/geometry_error.h"
+#include "cncc/geom/nurbs_curve.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+constexpr int maximumStepsPerPiece = 100'000;
+// Added before rounding: round(x + 0.5) = floor(x) + 1 >= ceil(x) and >= 1
+// for x >= 0, written as one inline ROUND on the controller.
+constexpr double roundUpOffset = 0.5;
+// ceil(depth / step) for the pass count, as round(x + offset): a ratio
+// within 1e-8 above a whole number counts as that number (as cuts.cpp's
+// 1e-9 relative rule does), and the literal fits 8 significant digits.
+constexpr double passCountOffset = 0.49999999;
+
+using Polynomial = std::vector<double>; // ascending powers of u
+
+Polynomial derivativeOf(const Polynomial& polynomial) {
+  Polynomial derivative;
+  for (std::size_t k = 1; k < polynomial.size(); ++k) {
+    derivative.push_back(static_cast<double>(k) * polynomial[k]);
+  }
+  return derivative;
+}
+
+// An upper bound of |p(u)| on [0, 1]: the largest Bernstein coefficient of
+// p (the curve of a polynomial lies in the hull of its Bezier coefficients).
+double supremumBound(const Polynomial& polynomial) {
+  std::size_t n = polynomial.size();
+  if (n == 0) {
+    return 0;
+  }
+  auto choose = [](std::size_t a, std::size_t b) {
+    double value = 1;
+    for (std::size_t i = 1; i <= b; ++i) {
+      value = value * static_cast<double>(a - b + i) / static_cast<double>(i);
+    }
+    return value;
+  };
+  double largest = 0;
+  std::size_t degree = n - 1;
+  for (std::size_t j = 0; j <= degree; ++j) {
+    double bernstein = 0;
+    for (std::size_t k = 0; k <= j; ++k) {
+      bernstein += choose(j, k) / choose(degree, k) * polynomial[k];
+    }
+    largest = std::max(largest, std::abs(bernstein));
+  }
+  // A few ulp for the rounding of the conversion.
+  return largest * (1 + 1e-12);
+}
+
+// Every coordinate's bound, as one bound of the vector's length.
+double vectorSupremumBound(const std::vector<Polynomial>& coordinates) {
+  double sum = 0;
+  for (const Polynomial& coordinate : coordinates) {
+    double bound = supremumBound(coordinate);
+    sum += bound * bound;
+  }
+  return std::sqrt(sum);
+}
+
+// The fewest uniform steps over [from, to] whose chords all deviate at most
+// `budget` from the curve (found by doubling, then bisection; every count
+// returned has been measured).
+int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
+  auto fits = [&](int steps) {
+    double previous = from;
+    for (int j = 1; j <= steps; ++j) {
+      double next = j == steps ? to : from + (to - from) * j / steps;
+      if (!(geom::chordDeviation(curve, previous, next) <= budget)) {
+        return false;
+      }
+      previous = next;
+    }
+    return true;
+  };
+  int high = 1;
+  while (!fits(high)) {
+    high *= 2;
+    if (high > maximumStepsPerPiece) {
+      return 0;
+    }
+  }
+  int low = high / 2; // does not fit (or 0)
+  while (high - low > 1) {
+    int middle = low + (high - low) / 2;
+    (fits(middle) ? high : low) = middle;
+  }
+  return high;
+}
+
+// The span without the rounding noise of the conversion: a weight that is
+// constant makes the span polynomial (its coordinates divided by it).
+geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span) {
+  bool constantWeight = true;
+  for (std::size_t k = 1; k < span.coefficients.size(); ++k) {
+    constantWeight = constantWeight && std::abs(span.coefficients[k].w()) <=
+                                           1e-12 * std::abs(span.coefficients[0].w());
+  }
+  if (constantWeight && span.coefficients[0].w() != 0) {
+    double weight = span.coefficients[0].w();
+    for (geom::HomogeneousPoint& coefficient : span.coefficients) {
+      coefficient /= weight;
+      coefficient.w() = 0;
+    }
+    span.coefficients[0].w() = 1;
+  }
+  return span;
+}
+
+double linearNorm(const Affine& transform) {
+  // The largest singular value of the 2x2 map (the z scale counts too).
+  Eigen::Matrix2d gram = transform.linear.transpose() * transform.linear;
+  double trace = gram.trace();
+  double determinant = gram(0, 0) * gram(1, 1) - gram(0, 1) * gram(1, 0);
+  double largest = trace / 2 + std::sqrt(std::max(0.0, trace * trace / 4 - determinant));
+  return std::max(std::sqrt(largest), std::abs(transform.zScale));
+}
+
+} // namespace
+
+// One loop of the cut: a piece, or a knot span of a NURBS piece.
+struct ControllerSegment {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  // The piece's own parameter range (a NURBS span: its local u, 0 to 1).
+  double from = 0;
+  double to = 1;
+  // Chosen at compile time; 0 when the controller computes stepCount.
+  int steps = 0;
+  std::optional<Scalar> stepCount;
+  bool isNurbs = false;
+  // A NURBS span whose control points depend on parameters, split as
+  //   W(u) = reference + Wc(u) + sum_d (w_d - reference) N_d(u),
+  //   X(u) = Xc(u) + sum_d w_d x_d N_d(u)   (likewise y, z),
+  // with Xc, Wc the constant control points' share (literals) and, per
+  // dependent control point d, its basis function N_d (literals) and its
+  // homogeneous point (computed on the controller once).
+  bool split = false;
+  bool rational = false;
+  double referenceWeight = 1;
+  std::array<Polynomial, 4> constantPart;
+  std::vector<Polynomial> dependentBasis;
+  std::vector<std::array<Scalar, 4>> dependentPoints;
+};
+
+const Expr* PartLowering::curveArgument(const CutStmt& cut, std::string_view name) {
+  if (cut.curve->kind != ExprKind::Call) {
+    return nullptr;
+  }
+  const auto& call = as<CallExpr>(*cut.curve);
+  if (call.callee != "nurbs" && call.callee != "bspline" && call.callee != "bezier") {
+    return nullptr;
+  }
+  for (const Argument& argument : call.arguments) {
+    if (argument.name == name) {
+      return argument.value.get();
+    }
+  }
+  return nullptr;
+}
+
+// The elements of a list literal (or of the let it names) lowered one by
+// one; nullopt where the list is not written out.
+std::optional<std::vector<std::optional<Lowered>>>
+PartLowering::symbolicList(const Expr& expression) {
+  if (expression.kind == ExprKind::Name) {
+    const Declaration* declaration = as<NameExpr>(expression).declaration;
+    const LetStmt* found = nullptr;
+    std::function<void(const Block&)> search = [&](const Block& block) {
+      for (const StmtPtr& statement : block.statements) {
+        if (statement->kind == StmtKind::Let &&
+            as<LetStmt>(*statement).declaration == declaration) {
+          found = &as<LetStmt>(*statement);
+        }
+      }
+    };
+    search(part_.body);
+    return found == nullptr ? std::nullopt : symbolicList(*found->value);
+  }
+  if (expression.kind != ExprKind::List) {
+    return std::nullopt;
+  }
+  std::vector<std::optional<Lowered>> elements;
+  for (const ExprPtr& element : as<ListExpr>(expression).elements) {
+    elements.push_back(tryLower(*element, bindings_, environment_));
+  }
+  return elements;
+}
+
+bool PartLowering::lowerControllerCut(const CutStmt& cut) {
+  if (!options_.controllerLoops || modifierValue(cut, "samples") != nullptr ||
+      modifierValue(cut, "spacing") != nullptr) {
+    return false;
+  }
+  if (rampEntry(cut)) {
+    return false;
+  }
+  if (!safe_) {
+    fail(cut.span, "this cut has no safe height; write 'safe z=Z' before it",
+         DiagnosticKind::NoSafeHeight);
+  }
+  double tolerance = *chordTolerance(cut);
+  CutCurve curve = cutCurve(cut);
+  bool planar = true;
+  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    geom::ParameterRange domain = curve.geometry->domain();
+    planar = planar && curve.geometry->point(domain.t0 + t * domain.length()).z() == 0;
+  }
+  double rounding = options_.coordinateIncrement / 2 * std::sqrt(planar ? 2.0 : 3.0);
+  double budget = tolerance - rounding;
+  if (!(budget > 0)) {
+    fail(modifierValue(cut, "tolerance") ? modifierValue(cut, "tolerance")->span : cut.span,
+         fmt::format("tolerance={:g} is not larger than the controller's rounding of the "
+                     "coordinates ({:.6g}, half its increment {:g} on each axis)",
+                     tolerance, rounding, options_.coordinateIncrement),
+         DiagnosticKind::InvalidTolerance);
+  }
+  std::optional<std::vector<ControllerSegment>> planned =
+      planControllerSegments(curve, cut, budget);
+  if (!planned) {
+    return false;
+  }
+  checkMethod(cut);
+  Scalar feed = cutFeed(cut);
+  ValueId feedValue = arithmetic_.value(feed);
+  ValueId safeValue = arithmetic_.value(*safe_);
+  auto index = static_cast<std::uint32_t>(cuts_.size());
+  const Expr* arcs = modifierValue(cut, "arcs");
+  cuts_.push_back({curve.geometry, tolerance, cut.span,
+                   arcs != nullptr && arcs->kind == ExprKind::Bool
+                       ? std::optional<bool>(as<BoolExpr>(*arcs).value)
+                       : std::nullopt,
+                   methodOf(cut)});
+  builder_.cutBegin(index);
+
+  const ControllerSegment& first = planned->front();
+  const ControllerSegment& last = planned->back();
+  auto endPoint = [&](const ControllerSegment& segment, double local) {
+    if (segment.split) {
+      return splitSpanPoint(segment, Scalar::of(local));
+    }
+    return pointAt(curve, segment.piece, segment.span, Scalar::of(local), cut);
+  };
+
+  // The passes: one at z = 0 without a sweep, else k = 1 .. ceil(depth /
+  // step) at z = -min(k step, depth), computed on the controller.
+  const Expr* depthExpression = modifierValue(cut, "depth");
+  const Expr* stepExpression = modifierValue(cut, "step");
+  bool sweep = depthExpression != nullptr || stepExpression != nullptr;
+  Scalar z = Scalar::of(0);
+  if (sweep) {
+    std::vector<double> checked = passDepths(cut); // the checks at the defaults
+    (void)checked;
+    Scalar depth = number(*depthExpression);
+    Scalar step = number(*stepExpression);
+    Scalar passes = arithmetic_.unary(
+        Opcode::Round,
+        arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step), Scalar::of(passCountOffset)));
+    builder_.comment("passes");
+    ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(passes));
+    Scalar reached = arithmetic_.binary(
+        Opcode::Min, arithmetic_.multiply(Scalar::of(k, ValueType::F64), step), depth);
+    z = arithmetic_.unary(Opcode::Neg, reached);
+  } else {
+    builder_.comment("cut");
+  }
+  CurvePoint start = endPoint(first, first.from);
+  ValueId startX = arithmetic_.value(start.x);
+  ValueId startY = arithmetic_.value(start.y);
+  builder_.rapid(startX, startY, safeValue);
+  builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(z, start.z)), feedValue);
+  for (const ControllerSegment& segment : *planned) {
+    emitControllerSegment(curve, segment, z, feedValue, cut);
+  }
+  CurvePoint finish = endPoint(last, last.to);
+  builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
+  if (sweep) {
+    builder_.endLoop();
+  }
+  return true;
+}
+
+std::optional<std::vector<ControllerSegment>>
+PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, double budget) {
+  std::vector<ControllerSegment> segments;
+  auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
+    int steps = 0;
+    try {
+      steps = fewestUniformSteps(geometry, from, to, budget);
+    } catch (const geom::GeometryError& error) {
+      fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
+           DiagnosticKind::DegenerateCurve);
+    }
+    if (steps == 0) {
+      fail(cut.span,
+           fmt::format("this curve needs more than {} uniform steps on one piece within its "
+                       "tolerance",
+                       maximumStepsPerPiece),
+           DiagnosticKind::ProgramTooLarge);
+    }
+    return steps;
+  };
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    const CurvePiece& piece = curve.pieces[p];
+    const CurveValue& value = *piece.value;
+    if (value.kind == CurveKind::Nurbs) {
+      for (std::size_t s = 0; s < piece.spans.size(); ++s) {
+        ControllerSegment segment;
+        segment.piece = p;
+        segment.span = s;
+        segment.isNurbs = true;
+        segments.push_back(segment);
+      }
+      continue;
+    }
+    ControllerSegment segment;
+    segment.piece = p;
+    geom::ParameterRange domain = piece.geometry->domain();
+    segment.from = domain.t0;
+    segment.to = domain.t1;
+    if (value.kind == CurveKind::Line) {
+      segment.steps = 1;
+    } else if (value.kind == CurveKind::Polar || value.kind == CurveKind::Param) {
+      // Parameter-dependent when the lowered point uses a parameter.
+      Scalar probe = Scalar::of(builder_.constant(domain.t0), ValueType::F64);
+      CurvePoint point = untransformedPointAt(piece, 0, probe, cut);
+      std::set<std::uint32_t> seen;
+      std::function<bool(ValueId)> usesParameter = [&](ValueId id) {
+        if (!id.valid() || !seen.insert(id.index).second) {
+          return false;
+        }
+        const Instruction& instruction = builder_.function().definition(id);
+        if (instruction.opcode == Opcode::Param) {
+          return true;
+        }
+        return std::any_of(instruction.operands.begin(), instruction.operands.end(), usesParameter);
+      };
+      bool dependent = usesParameter(point.x.value) || usesParameter(point.y.value) ||
+                       usesParameter(point.z.value);
+      if (dependent) {
+        if (value.kind != CurveKind::Polar) {
+          return std::nullopt;
+        }
+        segment.stepCount = polarStepCount(piece, budget, cut);
+        if (!segment.stepCount) {
+          return std::nullopt;
+        }
+      }
+    }
+    segments.push_back(segment);
+  }
+  // Constant pieces: the fewest uniform steps, measured on the true curve.
+  std::optional<SymbolicList> weights, points;
+  bool symbolic = curve.pieces.size() == 1 && curve.pieces.front().transform.isIdentity() &&
+                  curve.pieces.front().value->kind == CurveKind::Nurbs;
+  if (symbolic) {
+    if (const Expr* expression = curveArgument(cut, "weights")) {
+      weights = symbolicList(*expression);
+    }
+    if (const Expr* expression = curveArgument(cut, "points")) {
+      points = symbolicList(*expression);
+    }
+  }
+  for (ControllerSegment& segment : segments) {
+    const CurvePiece& piece = curve.pieces[segment.piece];
+    if (segment.steps != 0 || segment.stepCount) {
+      continue;
+    }
+    if (!segment.isNurbs) {
+      auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
+      segment.steps = constantSteps(*moved, segment.from, segment.to);
+      continue;
+    }
+    if (symbolic) {
+      planSplitSpan(piece, weights ? &*weights : nullptr, points ? &*points : nullptr, segment,
+                    budget);
+      if (segment.split) {
+        continue;
+      }
+    }
+    geom::PolynomialSpan span = piece.spans[segment.span];
+    auto own =
+        std::make_shared<geom::PiecewisePolynomialCurve>(std::vector<geom::PolynomialSpan>{span});
+    TransformedCurve moved(own, piece.transform);
+    segment.steps = constantSteps(moved, span.t0, span.t1);
+  }
+  return segments;
+}
+
+// A polar curve r(t) whose r is affine in t with parameter-dependent
+// coefficients (the Archimedean spiral r = a + b t). For C = r (cos t,
+// sin t): C'' = (r'' - r)(cos t, sin t) + 2 r' (-sin t, cos t), so
+// |C''|^2 = (r'' - r)^2 + 4 r'^2 = r^2 + 4 r'^2 when r'' = 0. |r| is convex
+// and r' constant, so over [t0, t1]
+//   |C''|^2 <= max(r(t0)^2, r(t1)^2) + 4 r'^2 <= r(t0)^2 + r(t1)^2 + 4 r'^2,
+// the bound the controller computes (the sum instead of the larger term
+// saves a comparison and costs at most a factor sqrt(2) in |C''|). An r
+// that is not affine in t returns an invalid scalar.
+std::optional<Scalar> PartLowering::polarStepCount(const CurvePiece& piece, double budget,
+                                                   const CutStmt& cut) {
+  const CurveValue& curve = *piece.value;
+  ValueId probe = builder_.constant(std::numeric_limits<double>::quiet_NaN());
+  auto lowerAt = [&](Scalar t) {
+    Bindings bindings = bindings_;
+    bindings[curve.parameter] = {TypeKind::Num, {t}};
+    std::optional<Lowered> value = tryLower(*curve.radius, bindings, curve.environment);
+    if (!value || value->kind != TypeKind::Num) {
+      unsupported(curve.radius->span, "this curve expression");
+    }
+    return value->values.front();
+  };
+  Scalar radius = lowerAt(Scalar::of(probe, ValueType::F64));
+  // d r / d t over the IR, or nullopt when r is not affine in t.
+  std::map<std::uint32_t, std::optional<Scalar>> derivatives;
+  std::function<std::optional<Scalar>(Scalar)> derivative =
+      [&](Scalar value) -> std::optional<Scalar> {
+    if (value.isConstant()) {
+      return Scalar::of(0);
+    }
+    if (value.value == probe) {
+      return Scalar::of(1);
+    }
+    if (auto found = derivatives.find(value.value.index); found != derivatives.end()) {
+      return found->second;
+    }
+    // A copy: the arithmetic below appends instructions.
+    Instruction instruction = builder_.function().definition(value.value);
+    std::vector<std::optional<Scalar>> operands;
+    for (ValueId operand : instruction.operands) {
+      operands.push_back(derivative(Scalar::of(operand, ValueType::F64)));
+      if (!operands.back()) {
+        return derivatives[value.value.index] = std::nullopt;
+      }
+    }
+    auto isZero = [](const std::optional<Scalar>& scalar) {
+      return scalar->isConstant() && scalar->constant == 0;
+    };
+    bool free = std::all_of(operands.begin(), operands.end(), isZero);
+    std::optional<Scalar> result;
+    if (free) {
+      result = Scalar::of(0);
+    } else {
+      auto operand = [&](std::size_t i) {
+        return Scalar::of(instruction.operands[i], ValueType::F64);
+      };
+      switch (instruction.opcode) {
+      case Opcode::Add:
+        result = arithmetic_.add(*operands[0], *operands[1]);
+        break;
+      case Opcode::Sub:
+        result = arithmetic_.binary(Opcode::Sub, *operands[0], *operands[1]);
+        break;
+      case Opcode::Neg:
+        result = arithmetic_.unary(Opcode::Neg, *operands[0]);
+        break;
+      case Opcode::Mul:
+        if (isZero(operands[0])) {
+          result = arithmetic_.multiply(operand(0), *operands[1]);
+        } else if (isZero(operands[1])) {
+          result = arithmetic_.multiply(*operands[0], operand(1));
+        }
+        break;
+      case Opcode::Div:
+        if (isZero(operands[1])) {
+          result = arithmetic_.binary(Opcode::Div, *operands[0], operand(1));
+        }
+        break;
+      default:
+        break;
+      }
+    }
+    return derivatives[value.value.index] = result;
+  };
+  std::optional<Scalar> slope = derivative(radius);
+  if (!slope) {
+    return std::nullopt;
+  }
+  (void)cut;
+  geom::ParameterRange domain = piece.geometry->domain();
+  Scalar r0 = lowerAt(Scalar::of(domain.t0));
+  Scalar r1 = lowerAt(Scalar::of(domain.t1));
+  auto square = [&](Scalar value) { return arithmetic_.multiply(value, value); };
+  Scalar sum = arithmetic_.add(arithmetic_.add(square(r0), square(r1)),
+                               arithmetic_.multiply(Scalar::of(4), square(*slope)));
+  double scale = linearNorm(piece.transform);
+  Scalar bound = arithmetic_.multiply(Scalar::of(scale), arithmetic_.unary(Opcode::Sqrt, sum));
+  // N >= (t1 - t0) sqrt(M / (8 budget)).
+  Scalar steps = arithmetic_.multiply(
+      Scalar::of(domain.length()),
+      arithmetic_.unary(Opcode::Sqrt, arithmetic_.multiply(bound, Scalar::of(1 / (8 * budget)))));
+  return arithmetic_.unary(Opcode::Round, arithmetic_.add(steps, Scalar::of(roundUpOffset)));
+}
+
+Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
+  Scalar sum = Scalar::of(0);
+  for (std::size_t k = polynomial.size(); k-- > 0;) {
+    bool zero = sum.isConstant() && sum.constant == 0;
+    sum = zero ? Scalar::of(polynomial[k])
+               : arithmetic_.add(arithmetic_.multiply(sum, u), Scalar::of(polynomial[k]));
+  }
+  return sum;
+}
+
+// A NURBS span with control points that depend on parameters (planned as
+// `split`, see ControllerSegment), and its step count on the controller.
+//
+// The bound of |C''| in the span's u in [0, 1], for positive weights. Let
+// c be a fixed point, P(u) = sum_i w_i (q_i - c) N_i(u) and W(u) = sum_i
+// w_i N_i(u), so C - c = P / W. Differentiating W (C - c) = P twice:
+//   C' = (P' - W' (C - c)) / W,  C'' = (P'' - W'' (C - c) - 2 W' C') / W.
+// With W >= wmin (the smallest weight of the span: the N_i are a partition
+// of unity), |C - c| <= R (the curve stays in the hull of its control
+// points) and bounds P1 >= |P'|, P2 >= |P''|, W1 >= |W'|, W2 >= |W''|:
+//   |C'| <= D1 = (P1 + W1 R) / wmin,  |C''| <= (P2 + W2 R + 2 W1 D1) / wmin.
+// Each P_k, W_k is the bound of the constant control points' share (the
+// largest Bernstein coefficient of the derivative's polynomial, exact at
+// compile time) plus, per dependent control point, |w_i| |q_i - c| (or
+// |w_i|) times the bound of N_i^(k), computed on the controller; R is the
+// constant points' largest distance from c (c their centroid) plus the
+// dependent points' distances. Without parameter-dependent or unequal
+// weights W' = W'' = 0 and the bound is P2 / w.
+void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
+                                 const SymbolicList* points, ControllerSegment& segment,
+                                 double budget) {
+  const CurveValue& value = *piece.value;
+  std::size_t count = value.points.size();
+  if ((weights != nullptr && weights->size() != count) ||
+      (points != nullptr && points->size() != count)) {
+    return;
+  }
+  std::vector<std::array<Scalar, 3>> q(count);
+  std::vector<Scalar> w(count);
+  std::vector<bool> qConstant(count, true), wConstant(count, true);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      q[i][c] = Scalar::of(value.points[i][c]);
+    }
+    w[i] = Scalar::of(value.weights.empty() ? 1.0 : value.weights[i]);
+    if (points != nullptr && (*points)[i] && (*points)[i]->kind == TypeKind::Point) {
+      const std::vector<Scalar>& lowered = (*points)[i]->values;
+      for (std::size_t c = 0; c < lowered.size() && c < 3; ++c) {
+        if (!lowered[c].isConstant()) {
+          q[i][c] = lowered[c];
+          qConstant[i] = false;
+        }
+      }
+    }
+    if (weights != nullptr && (*weights)[i] && (*weights)[i]->kind == TypeKind::Num &&
+        !(*weights)[i]->values.front().isConstant()) {
+      w[i] = (*weights)[i]->values.front();
+      wConstant[i] = false;
+    }
+  }
+  // The basis functions on this span, ascending powers of u.
+  const auto& nurbs = static_cast<const geom::NurbsCurve&>(*piece.geometry);
+  std::vector<Polynomial> basis(count);
+  std::vector<bool> active(count, false);
+  std::vector<std::size_t> dependent;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::vector<Eigen::Vector3d> unit(count, Eigen::Vector3d::Zero());
+    unit[i].x() = 1;
+    geom::NurbsCurve function = geom::NurbsCurve::bspline(nurbs.knots(), unit);
+    geom::PolynomialSpan span = geom::toPowerBasis(function)[segment.span];
+    for (const geom::HomogeneousPoint& coefficient : span.coefficients) {
+      basis[i].push_back(coefficient.x());
+      active[i] = active[i] || std::abs(coefficient.x()) > 1e-14;
+    }
+    if (active[i] && !(qConstant[i] && wConstant[i])) {
+      dependent.push_back(i);
+    }
+  }
+  if (dependent.empty()) {
+    return;
+  }
+  segment.split = true;
+  std::size_t degree = basis.front().size();
+  for (Polynomial& coordinate : segment.constantPart) {
+    coordinate.assign(degree, 0.0);
+  }
+  double reference = segment.referenceWeight;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  int constantPoints = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (active[i] && qConstant[i]) {
+      centre += Eigen::Vector3d(q[i][0].constant, q[i][1].constant, q[i][2].constant);
+      ++constantPoints;
+    }
+  }
+  if (constantPoints > 0) {
+    centre /= constantPoints;
+  }
+  // Shares of the constant control points: evaluation (Xc, Wc) and bound.
+  std::array<Polynomial, 3> translated;
+  Polynomial constantWeights(degree, 0.0);
+  for (Polynomial& coordinate : translated) {
+    coordinate.assign(degree, 0.0);
+  }
+  double constantRadius = 0;
+  std::optional<double> smallestConstantWeight;
+  bool unequalWeights = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!active[i]) {
+      continue;
+    }
+    if (wConstant[i]) {
+      double weight = w[i].constant;
+      unequalWeights = unequalWeights || weight != reference;
+      smallestConstantWeight = std::min(smallestConstantWeight.value_or(weight), weight);
+      for (std::size_t k = 0; k < degree; ++k) {
+        constantWeights[k] += weight * basis[i][k];
+      }
+    } else {
+      unequalWeights = true;
+    }
+    if (qConstant[i]) {
+      Eigen::Vector3d point(q[i][0].constant, q[i][1].constant, q[i][2].constant);
+      constantRadius = std::max(constantRadius, (point - centre).norm());
+    }
+    if (qConstant[i] && wConstant[i]) {
+      double weight = w[i].constant;
+      for (std::size_t k = 0; k < degree; ++k) {
+        for (int c = 0; c < 3; ++c) {
+          segment.constantPart[c][k] += weight * q[i][c].constant * basis[i][k];
+          translated[c][k] += weight * (q[i][c].constant - centre[c]) * basis[i][k];
+        }
+        segment.constantPart[3][k] += (weight - reference) * basis[i][k];
+      }
+    }
+  }
+  for (double& coefficient : segment.constantPart[3]) {
+    coefficient = std::abs(coefficient) <= 1e-12 ? 0.0 : coefficient;
+  }
+  segment.rational = unequalWeights;
+  // Homogeneous points of the dependent control points, on the controller.
+  Arithmetic& math = arithmetic_;
+  Scalar radius = Scalar::of(constantRadius);
+  Scalar weightSlope = Scalar::of(0), weightCurve = Scalar::of(0);
+  Scalar pointSlope, pointCurve;
+  std::array<Polynomial, 3> translatedSlope, translatedCurve;
+  for (int c = 0; c < 3; ++c) {
+    translatedSlope[c] = derivativeOf(translated[c]);
+    translatedCurve[c] = derivativeOf(translatedSlope[c]);
+  }
+  pointSlope =
+      Scalar::of(vectorSupremumBound({translatedSlope[0], translatedSlope[1], translatedSlope[2]}));
+  pointCurve =
+      Scalar::of(vectorSupremumBound({translatedCurve[0], translatedCurve[1], translatedCurve[2]}));
+  if (unequalWeights) {
+    weightSlope = Scalar::of(supremumBound(derivativeOf(constantWeights)));
+    weightCurve = Scalar::of(supremumBound(derivativeOf(derivativeOf(constantWeights))));
+  }
+  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
+  bool haveSmallest = smallestConstantWeight.has_value();
+  for (std::size_t d : dependent) {
+    segment.dependentBasis.push_back(basis[d]);
+    // A zero coordinate stays a literal zero (x * 0 is not folded: x may be
+    // infinite, here it is a finite weight).
+    auto weighted = [&](const Scalar& coordinate) {
+      return coordinate.isConstant() && coordinate.constant == 0 ? Scalar::of(0)
+                                                                 : math.multiply(w[d], coordinate);
+    };
+    segment.dependentPoints.push_back({weighted(q[d][0]), weighted(q[d][1]), weighted(q[d][2]),
+                                       math.binary(Opcode::Sub, w[d], Scalar::of(reference))});
+    double slopeBound = supremumBound(derivativeOf(basis[d]));
+    double curveBound = supremumBound(derivativeOf(derivativeOf(basis[d])));
+    Scalar distance = Scalar::of(0);
+    for (int c = 0; c < 3; ++c) {
+      Scalar offset = math.binary(Opcode::Sub, q[d][c], Scalar::of(centre[c]));
+      distance = math.add(distance, math.multiply(offset, offset));
+    }
+    distance = math.unary(Opcode::Sqrt, distance);
+    Scalar size =
+        wConstant[d] ? Scalar::of(std::abs(w[d].constant)) : math.unary(Opcode::Abs, w[d]);
+    Scalar homogeneous = math.multiply(size, distance);
+    pointSlope = math.add(pointSlope, math.multiply(homogeneous, Scalar::of(slopeBound)));
+    pointCurve = math.add(pointCurve, math.multiply(homogeneous, Scalar::of(curveBound)));
+    if (!qConstant[d]) {
+      radius = math.add(radius, distance);
+    }
+    if (!wConstant[d]) {
+      weightSlope = math.add(weightSlope, math.multiply(size, Scalar::of(slopeBound)));
+      weightCurve = math.add(weightCurve, math.multiply(size, Scalar::of(curveBound)));
+      // min(a, b) = (a + b - |a - b|) / 2, one inline expression.
+      smallestWeight =
+          haveSmallest
+              ? math.multiply(
+                    Scalar::of(0.5),
+                    math.binary(
+                        Opcode::Sub, math.add(smallestWeight, w[d]),
+                        math.unary(Opcode::Abs, math.binary(Opcode::Sub, smallestWeight, w[d]))))
+              : w[d];
+      haveSmallest = true;
+    }
+  }
+  Scalar bound;
+  if (unequalWeights) {
+    Scalar slope = math.binary(
+        Opcode::Div, math.add(pointSlope, math.multiply(weightSlope, radius)), smallestWeight);
+    Scalar numerator = math.add(math.add(pointCurve, math.multiply(weightCurve, radius)),
+                                math.multiply(Scalar::of(2), math.multiply(weightSlope, slope)));
+    bound = math.binary(Opcode::Div, numerator, smallestWeight);
+  } else {
+    bound = math.binary(Opcode::Div, pointCurve, smallestWeight);
+  }
+  // N >= sqrt(M / (8 budget)) steps of u.
+  Scalar steps = math.unary(Opcode::Sqrt, math.multiply(bound, Scalar::of(1 / (8 * budget))));
+  segment.stepCount = math.unary(Opcode::Round, math.add(steps, Scalar::of(roundUpOffset)));
+}
+
+CurvePoint PartLowering::splitSpanPoint(const ControllerSegment& segment, Scalar u) {
+  Arithmetic& math = arithmetic_;
+  std::array<Scalar, 4> sums;
+  for (int c = 0; c < 4; ++c) {
+    sums[c] = hornerOf(segment.constantPart[c], u);
+  }
+  for (std::size_t d = 0; d < segment.dependentBasis.size(); ++d) {
+    Scalar basis = hornerOf(segment.dependentBasis[d], u);
+    for (int c = 0; c < 4; ++c) {
+      const Scalar& factor = segment.dependentPoints[d][c];
+      if (!(factor.isConstant() && factor.constant == 0)) {
+        sums[c] = math.add(sums[c], math.multiply(factor, basis));
+      }
+    }
+  }
+  if (segment.rational) {
+    Scalar weight = math.add(Scalar::of(segment.referenceWeight), sums[3]);
+    for (int c = 0; c < 3; ++c) {
+      if (!(sums[c].isConstant() && sums[c].constant == 0)) {
+        sums[c] = math.binary(Opcode::Div, sums[c], weight);
+      }
+    }
+  } else if (segment.referenceWeight != 1) {
+    for (int c = 0; c < 3; ++c) {
+      sums[c] = math.binary(Opcode::Div, sums[c], Scalar::of(segment.referenceWeight));
+    }
+  }
+  return {sums[0], sums[1], sums[2]};
+}
+
+void PartLowering::emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment,
+                                         Scalar z, ValueId feed, const CutStmt& cut) {
+  const CurvePiece& piece = curve.pieces[segment.piece];
+  auto move = [&](const CurvePoint& point) {
+    builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
+                  arithmetic_.value(arithmetic_.add(z, point.z)), feed);
+  };
+  if (segment.steps == 1) {
+    move(segment.split ? splitSpanPoint(segment, Scalar::of(segment.to))
+                       : pointAt(curve, segment.piece, segment.span, Scalar::of(segment.to), cut));
+    return;
+  }
+  ValueId count =
+      segment.steps > 0 ? builder_.constant(segment.steps) : arithmetic_.value(*segment.stepCount);
+  ValueId i = builder_.beginLoop(builder_.constant(1), count);
+  Scalar index = Scalar::of(i, ValueType::F64);
+  if (segment.isNurbs && !segment.split) {
+    // u = i / steps, written as a product the printer can step by.
+    geom::PolynomialSpan span = cleanedSpan(piece.spans[segment.span]);
+    Scalar u = arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps));
+    move(transformed(piece.transform, spanPointAt(span, u)));
+  } else if (segment.split) {
+    move(splitSpanPoint(segment,
+                        arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))));
+  } else {
+    Scalar step = segment.steps > 0
+                      ? Scalar::of((segment.to - segment.from) / segment.steps)
+                      : arithmetic_.binary(Opcode::Div, Scalar::of(segment.to - segment.from),
+                                           Scalar::of(count, ValueType::F64));
+    Scalar t = arithmetic_.add(Scalar::of(segment.from), arithmetic_.multiply(index, step));
+    move(pointAt(curve, segment.piece, segment.span, t, cut));
+  }
+  builder_.endLoop();
+}
+
+} // namespace cncc::ir::lowering
