@@ -1,6 +1,7 @@
 #include "cncc/backends/path_statistics.h"
 
 #include "cncc/geom/deviation.h"
+#include "plane_projection.h"
 
 #include <fmt/format.h>
 
@@ -29,8 +30,9 @@ CutDeviation measureCut(const ExecutedPath& path, std::size_t cut,
   if (deviation.feedMoves == 0 || geometry.curve == nullptr) {
     return deviation;
   }
+  PlaneProjection plan(*geometry.curve);
   for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(path, cut)) {
-    geom::DeviationReport report = geom::measureDeviation(polyline, *geometry.curve);
+    geom::DeviationReport report = geom::measureDeviation(polyline, plan);
     if (!(report.maxDeviation() <= deviation.maxDeviation)) {
       deviation.maxDeviation = report.maxDeviation();
       deviation.where = report.worst().polylinePoint;

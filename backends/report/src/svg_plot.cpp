@@ -2,6 +2,7 @@
 
 #include "cncc/backends/path_statistics.h"
 #include "cncc/geom/deviation.h"
+#include "plane_projection.h"
 
 #include <fmt/format.h>
 
@@ -209,7 +210,8 @@ std::string cutPaths(const Frame& frame, const ExecutedPath& path,
     for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(path, cut)) {
       std::vector<double> deviations;
       if (cuts[cut].curve != nullptr) {
-        deviations = segmentDeviations(polyline, *cuts[cut].curve, 1e-3 / frame.scale());
+        PlaneProjection plan(*cuts[cut].curve);
+        deviations = segmentDeviations(polyline, plan, 1e-3 / frame.scale());
       }
       for (std::size_t i = 0; i < deviations.size(); ++i) {
         segments += fmt::format(

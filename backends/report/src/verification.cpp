@@ -2,6 +2,7 @@
 
 #include "cncc/backends/macro_program.h"
 #include "cncc/geom/deviation.h"
+#include "plane_projection.h"
 
 #include <fmt/format.h>
 
@@ -29,8 +30,9 @@ double referenceDeviation(const ExecutedPath& reference, std::size_t cut,
   if (geometry.curve == nullptr) {
     return largest;
   }
+  PlaneProjection plan(*geometry.curve);
   for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(reference, cut)) {
-    largest = std::max(largest, geom::measureDeviation(polyline, *geometry.curve).maxDeviation());
+    largest = std::max(largest, geom::measureDeviation(polyline, plan).maxDeviation());
   }
   return largest;
 }

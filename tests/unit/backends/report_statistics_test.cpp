@@ -42,6 +42,30 @@ TEST(ReportStatistics, DeviationOfEachCutIsTheSagittaOfItsChords) {
   EXPECT_NEAR(std::min(std::abs(angle - pi / 8), std::abs(angle - 3 * pi / 8)), 0.0, 1e-6);
 }
 
+// A helix descending 3 mm in a turn, cut by chords of 22.5 degrees that
+// follow it down: measured in XY, its deviation is the chords' sagitta, not
+// the 3 mm between the path's depth and z = 0.
+TEST(ReportStatistics, MeasuresACurveThatDescendsInPlanView) {
+  ir::CutGeometry helix;
+  helix.curve =
+      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 10.0, 0.0, 2 * pi, 0.0, -3.0);
+  helix.tolerance = 0.5;
+  ir::ToolPath path;
+  path.events.push_back(rapid(10, 0, 5));
+  path.events.push_back(cutBegin(0));
+  path.events.push_back(feed(10, 0, 0, 100));
+  for (int step = 1; step <= 16; ++step) {
+    double angle = step * pi / 8;
+    path.events.push_back(feed(10 * std::cos(angle), 10 * std::sin(angle), -3.0 * step / 16, 100));
+  }
+  ExecutedProgram program{"", 0, backends::executedPathOfToolPath(path)};
+  std::vector<ir::CutGeometry> cuts{helix};
+  PathStatistics statistics = backends::measureProgram(program, cuts, {});
+  ASSERT_EQ(statistics.cuts.size(), 1u);
+  EXPECT_NEAR(statistics.cuts[0].maxDeviation, sagitta(pi / 8), 1e-6);
+  EXPECT_TRUE(statistics.cuts[0].withinTolerance());
+}
+
 TEST(ReportStatistics, LengthsAndTimesAtTheProgrammedFeeds) {
   backends::StatisticsOptions options;
   options.rapidRate = 5000;
@@ -51,8 +75,7 @@ TEST(ReportStatistics, LengthsAndTimesAtTheProgrammedFeeds) {
   EXPECT_EQ(statistics.rapidMoves, 3u);
   EXPECT_NEAR(statistics.feedLength, 12 + 2 * chord45 + 4 * chord22, 1e-12);
   EXPECT_NEAR(statistics.rapidLength, 6 + std::sqrt(200.0) + 6, 1e-12);
-  EXPECT_NEAR(statistics.feedMinutes, 2 * 6 / 100.0 + 2 * chord45 / 200 + 4 * chord22 / 400,
-              1e-12);
+  EXPECT_NEAR(statistics.feedMinutes, 2 * 6 / 100.0 + 2 * chord45 / 200 + 4 * chord22 / 400, 1e-12);
   EXPECT_NEAR(statistics.rapidMinutes, (12 + std::sqrt(200.0)) / 5000, 1e-12);
   EXPECT_EQ(statistics.blocks, 1u);
   EXPECT_EQ(statistics.bytes, 4u);
@@ -72,8 +95,8 @@ TEST(ReportStatistics, GcodeRoundingIsPartOfTheMeasuredDeviation) {
                           backends::executeGcode(text, toolPath, 1)};
   std::vector<ir::CutGeometry> cuts = {quarterCircle(0.1)};
   PathStatistics rounded = backends::measureProgram(program, cuts, {});
-  PathStatistics exact = backends::measureProgram(
-      {text, 0, backends::executedPathOfToolPath(toolPath)}, cuts, {});
+  PathStatistics exact =
+      backends::measureProgram({text, 0, backends::executedPathOfToolPath(toolPath)}, cuts, {});
   EXPECT_NEAR(exact.cuts[0].maxDeviation, sagitta(pi / 4), 1e-9);
   // The middle point is printed as (7.1, 7.1), off the circle: the chord from
   // (10, 0) to it passes 71 / |(-2.9, 7.1)| from the centre.
