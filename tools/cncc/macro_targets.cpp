@@ -16,9 +16,11 @@ namespace cncc::driver {
 
 namespace {
 
-// The lowered, optimised part; nullopt after a diagnostic.
+// The lowered, optimised part; nullopt after a diagnostic. `cuts` receives
+// the part's cut table (method=nurbs cuts are printed from it).
 std::optional<ir::Function> loweredPart(const BackendRequest& request,
-                                        const backends::ControllerProfile& profile) {
+                                        const backends::ControllerProfile& profile,
+                                        std::vector<ir::CutGeometry>& cuts) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
@@ -26,11 +28,14 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request,
   // The controller runs the curve loops, within the budget its increment leaves.
   ir::LoweringOptions lowering =
       backends::macroLoweringOptions(profile, ir::partUnits(*part) == ir::PartUnits::Inches);
-  std::optional<ir::Function> function =
-      ir::lowerPart(request.program, *part, request.diagnostics, lowering);
-  if (!function) {
+  lowering.nurbsBlocks = true; // method=nurbs as G06.2 blocks
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, lowering);
+  if (!lowered) {
     return std::nullopt;
   }
+  cuts = std::move(lowered->cuts);
+  std::optional<ir::Function> function = std::move(lowered->function);
   optimise(*function, request.options);
   std::vector<std::string> problems = ir::verifyFunction(*function);
   if (!problems.empty()) {
@@ -46,7 +51,8 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   if (profile == nullptr) {
     throw InternalError(fmt::format("unknown controller profile '{}'", profileName));
   }
-  std::optional<ir::Function> function = loweredPart(request, *profile);
+  std::vector<ir::CutGeometry> cuts;
+  std::optional<ir::Function> function = loweredPart(request, *profile, cuts);
   if (!function) {
     return;
   }
@@ -60,6 +66,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.inches = names.inches;
   options.callable = request.options.macroCall;
   options.parametersInCommon = request.options.parametersInCommon;
+  options.cuts = std::move(cuts);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
   for (const std::string& error : program.errors) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part.nameSpan,

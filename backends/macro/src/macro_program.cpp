@@ -1,4 +1,5 @@
 #include "cncc/backends/macro_program.h"
+#include "cncc/backends/nurbs_blocks.h"
 
 #include "cncc/backends/gcode_writer.h"
 #include "macro_expressions.h"
@@ -301,6 +302,10 @@ private:
       printRapid(instruction);
       return;
     case Opcode::Feed:
+      if (nurbsNext_) {
+        printNurbs(instruction);
+        return;
+      }
       printFeed(instruction);
       return;
     case Opcode::Spindle:
@@ -311,9 +316,15 @@ private:
       printTool(instruction);
       return;
     case Opcode::Comment:
+      if (instruction.text == "NURBS") { // the next feed is a method=nurbs lap
+        nurbsNext_ = true;
+        return;
+      }
       comment(instruction.text);
       return;
     case Opcode::CutBegin: // the cut's own comment says it
+      cut_ = instruction.index;
+      return;
     case Opcode::Param:
       return;
     default:
@@ -567,6 +578,25 @@ private:
     rememberZ(instruction.operands[2]);
   }
 
+  // A method=nurbs lap: the cut's G06.2 blocks at the feed's height and rate.
+  void printNurbs(const ir::Instruction& instruction) {
+    nurbsNext_ = false;
+    std::optional<double> endZ = constantOf(instruction.operands[2]);
+    if (!endZ || cut_ >= options_.cuts.size() || options_.cuts[cut_].curve == nullptr) {
+      errors_.push_back("G06.2: a NURBS lap without its cut's curve or a constant height");
+      return;
+    }
+    std::string feed = word('F', instruction.operands[3], false);
+    NurbsBlocks blocks = nurbsBlocksForCut(options_.cuts[cut_], *endZ,
+                                           feed.empty() ? modal_.words['F'].text : feed.substr(2),
+                                           profile_, options_.inches);
+    errors_.insert(errors_.end(), blocks.errors.begin(), blocks.errors.end());
+    for (std::string& text : blocks.lines) {
+      line(std::move(text));
+    }
+    modal_.forget(); // G06.2 is modal now, and the position is the curve's end
+  }
+
   const ir::Function& function_;
   const ir::Allocation& allocation_;
   const ControllerProfile& profile_;
@@ -581,6 +611,8 @@ private:
   bool reportedLoopDepth_ = false;
   int nextLabel_ = 1;
   bool spindleOn_ = false;
+  bool nurbsNext_ = false;  // after comment "NURBS": the feed is printed as NURBS blocks
+  std::uint32_t cut_ = 0;   // the cut of the latest CutBegin
 };
 
 bool isCommentLine(std::string_view line) {

@@ -2,6 +2,7 @@
 
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/geometry_error.h"
 
 #include <fmt/format.h>
 
@@ -163,7 +164,8 @@ NurbsBlocks writeNurbsBlocks(const geom::NurbsCurve& curve, const NurbsBlockOpti
     std::string block = fmt::format("K{} X{} Y{} Z{} R{}", knotWord(i), number(point.x()),
                                     number(point.y()), number(point.z()), weightWord(i));
     if (i == 0) {
-      block = fmt::format("G06.2 P{} {} F{}", order, block, number(options.feed));
+      block = fmt::format("G06.2 P{} {} F{}", order, block,
+                          options.feedText.empty() ? number(options.feed) : options.feedText);
     }
     result.lines.push_back(std::move(block));
   }
@@ -181,6 +183,38 @@ geom::NurbsCurve nurbsForBlocks(const geom::Curve& curve, double tolerance) {
   options.degree = 3;
   options.tolerance = tolerance;
   return geom::fitBSpline(curve, options).spline;
+}
+
+NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std::string& feedText,
+                              const ControllerProfile& profile, bool inches,
+                              double defaultTolerance) {
+  // The pass's offset: the marked feed ends at the curve's end, lowered by it.
+  double z = endZ - cut.curve->point(cut.curve->domain().t1).z();
+  double increment = inches ? profile.leastInputIncrement / 10.0 : profile.leastInputIncrement;
+  double rounding = increment / 2 * std::sqrt(3.0);
+  double tolerance = std::isnan(cut.tolerance) ? defaultTolerance : cut.tolerance;
+  NurbsBlocks blocks;
+  if (!(tolerance > 2 * rounding)) {
+    blocks.errors.push_back(fmt::format("G06.2: the tolerance {:g} leaves no room for the "
+                                        "controller's rounding of the control points ({:.6g})",
+                                        tolerance, rounding));
+    return blocks;
+  }
+  std::optional<geom::NurbsCurve> curve;
+  try {
+    curve = nurbsForBlocks(*cut.curve, tolerance - rounding);
+  } catch (const geom::GeometryError& error) {
+    blocks.errors.push_back(fmt::format("G06.2: no B-spline fits this curve within {:g}: {}",
+                                        tolerance - rounding, error.what()));
+    return blocks;
+  }
+  NurbsBlockOptions options;
+  options.dialect = profile.name == "m80" ? NurbsDialect::Mitsubishi : NurbsDialect::Fanuc;
+  options.coordinateDecimals = profile.coordinateDecimals + (inches ? 1 : 0);
+  options.z = z;
+  options.feedText = feedText;
+  options.currentPosition = curve->controlPoints().front() + Eigen::Vector3d(0, 0, z);
+  return writeNurbsBlocks(*curve, options);
 }
 
 } // namespace cncc::backends

@@ -16,8 +16,10 @@
 // knots is refused. A rule the curve breaks is an error naming the rule.
 #pragma once
 
+#include "cncc/backends/controller_profile.h"
 #include "cncc/geom/curve.h"
 #include "cncc/geom/nurbs_curve.h"
+#include "cncc/ir/lowering.h"
 
 #include <Eigen/Core>
 
@@ -35,6 +37,7 @@ struct NurbsBlockOptions {
   // The pass height added to the curve's own z.
   double z = 0;
   double feed = 0;
+  std::string feedText; // printed after F instead of `feed` when not empty (`#9`)
   // Where the machine is when the first block runs (must be the first
   // control point, at the pass height).
   Eigen::Vector3d currentPosition = Eigen::Vector3d::Zero();
@@ -58,5 +61,14 @@ NurbsBlocks writeNurbsBlocks(const geom::NurbsCurve& curve, const NurbsBlockOpti
 // least-squares cubic B-spline within `tolerance` (geom/bspline_fitting.h).
 // Throws geom::GeometryError when no fit is found.
 geom::NurbsCurve nurbsForBlocks(const geom::Curve& curve, double tolerance);
+
+// One pass of a method=nurbs cut (ir/src/lowering/nurbs_cuts.cpp) whose
+// marked feed ends at height `endZ`, for the profile's controller: its NURBS fitted within the
+// cut's tolerance less the rounding of the control points (half an increment on each axis), then
+// printed. Without a tolerance (samples=, spacing=) an analytic curve is fitted within
+// `defaultTolerance`.
+NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std::string& feedText,
+                              const ControllerProfile& profile, bool inches,
+                              double defaultTolerance = 0.01);
 
 } // namespace cncc::backends
