@@ -104,7 +104,12 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
                                            const DiagnosticOutput& output) {
   const frontend::PartItem& part = *program.selectedPart;
   DiagnosticEngine diagnostics(options.errorLimit);
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(program, part, diagnostics);
+  // The reference is the chord path whatever the target interpolates: the
+  // target's own compile has already warned about spline methods it lacks.
+  ir::LoweringOptions reference;
+  reference.splineInterpolation = true;
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(program, part, diagnostics, reference);
   output.print(diagnostics, sources);
   if (!lowered || diagnostics.hasErrors()) {
     return std::nullopt;
