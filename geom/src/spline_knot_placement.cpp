@@ -171,6 +171,11 @@ private:
         next = reach(step, false);
       if (next < 0.0) // the curve is degenerate here; take a small step anyway
         next = std::min(domain_.t1, chosen_.back() + 1e-6 * domain_.length());
+      // A sliver left before the end would make two points almost coincide,
+      // which the printed coordinates cannot resolve: split the rest evenly.
+      double reached = next - chosen_.back();
+      if (next < domain_.t1 && domain_.t1 - next < 0.5 * reached)
+        next = chosen_.back() + 0.5 * (domain_.t1 - chosen_.back());
       std::vector<Vector> tangents;
       feasible(next, true, &tangents);
       step = next - chosen_.back();

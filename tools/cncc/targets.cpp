@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "linuxcnc_target.h"
 #include "macro_targets.h"
+#include "sinumerik_target.h"
 
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/backends/tool_path_csv.h"
@@ -90,7 +91,8 @@ void jitBackend(const BackendRequest& request) {
 constexpr Target targetTable[] = {
     {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend},
     {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
-    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", nullptr},
+    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks",
+     sinumerikBackend},
     {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
     {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend},
     {"jit", "run the part on the host and print the tool path", jitBackend},

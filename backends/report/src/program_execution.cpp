@@ -2,6 +2,7 @@
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/sinumerik_controller.h"
 #include "cncc/backends/virtual_controller.h"
 
 #include <fmt/format.h>
@@ -227,11 +228,35 @@ ProgramExecution runJit(const ExecutionRequest& request) {
   return execution;
 }
 
+// A Sinumerik program in the virtual Sinumerik; it prints 5 decimals.
+ProgramExecution runSinumerik(const ExecutionRequest& request) {
+  ProgramExecution execution;
+  execution.text = request.text;
+  execution.increment = 1e-5;
+  sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(request.text);
+  if (run.error) {
+    std::string_view text = request.text;
+    std::size_t begin = 0;
+    for (int line = 1; line < run.error->line() && begin != std::string_view::npos; ++line) {
+      begin = text.find('\n', begin);
+      begin = begin == std::string_view::npos ? begin : begin + 1;
+    }
+    std::string lineText(begin == std::string_view::npos
+                             ? std::string_view()
+                             : text.substr(begin, text.find('\n', begin) - begin));
+    execution.failure = ControllerFailure{run.error->line(), run.error->what(), lineText};
+    return execution;
+  }
+  execution.path = sinumerik::executedPathOf(run, {});
+  return execution;
+}
+
 constexpr TargetExecutor executorTable[] = {
     {"m80", runM80},
     {"fanuc", runFanuc},
     {"gcode", runGcode},
     {"jit", runJit},
+    {"sinumerik", runSinumerik},
 };
 
 } // namespace

@@ -1,0 +1,545 @@
+#include "cncc/backends/sinumerik_controller.h"
+
+#include "sinumerik_blocks.h"
+
+#include "cncc/geom/discretisation.h"
+#include "cncc/geom/geometry_error.h"
+#include "cncc/geom/knot_vector.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace cncc::backends::sinumerik {
+
+geom::NurbsCurve bsplineOfBlocks(const Eigen::Vector3d& start, int degree,
+                                 const std::vector<Eigen::Vector3d>& points,
+                                 const std::vector<double>& weights,
+                                 const std::vector<double>& intervals) {
+  if (degree != 2 && degree != 3) {
+    throw geom::GeometryError(fmt::format("SD={} (2 or 3)", degree));
+  }
+  if (points.size() < std::size_t(degree)) {
+    throw geom::GeometryError(fmt::format("a B spline of degree {} needs at least {} points "
+                                          "after its start, this one has {}",
+                                          degree, degree, points.size()));
+  }
+  // u_0 = u_1 = 0, u_{i+1} = u_i + PL_i (i = 1..n), then p more copies of
+  // u_{n+1}: the first p - 1 intervals must keep u_2..u_p at 0.
+  for (int i = 0; i + 1 < degree; ++i) {
+    if (intervals[std::size_t(i)] != 0.0) {
+      throw geom::GeometryError(fmt::format(
+          "PL of point {} lies inside the clamped start of a degree {} spline and must be 0", i + 1,
+          degree));
+    }
+  }
+  std::vector<double> knots{0.0, 0.0};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    knots.push_back(knots.back() + intervals[i]);
+  }
+  for (int k = 0; k < degree; ++k) {
+    knots.push_back(knots.back());
+  }
+  std::vector<Eigen::Vector3d> controlPoints{start};
+  controlPoints.insert(controlPoints.end(), points.begin(), points.end());
+  std::vector<double> allWeights{1.0};
+  allWeights.insert(allWeights.end(), weights.begin(), weights.end());
+  return geom::NurbsCurve(geom::KnotVector(std::move(knots), degree), std::move(controlPoints),
+                          std::move(allWeights));
+}
+
+namespace {
+
+constexpr double kNoDirection = 1e-9;
+
+using Vector = Eigen::Vector3d;
+
+enum class Motion { Rapid, Linear, BSpline, CSpline, ASpline };
+
+// The points of a spline group, gathered until the motion changes.
+struct PendingSpline {
+  Motion motion = Motion::BSpline;
+  Vector start = Vector::Zero();
+  std::optional<Vector> startDirection;
+  geom::SplineEndCondition startCondition = geom::SplineEndCondition::Tangent;
+  geom::SplineEndCondition endCondition = geom::SplineEndCondition::Tangent;
+  int degree = 3;
+  std::vector<Vector> points;
+  std::vector<double> weights;
+  std::vector<double> intervals;
+  std::vector<int> lines, mainLines;
+  double feed = 0;
+};
+
+MotionKind kindOf(Motion motion) {
+  switch (motion) {
+  case Motion::Rapid:
+    return MotionKind::Rapid;
+  case Motion::Linear:
+    return MotionKind::Linear;
+  case Motion::BSpline:
+    return MotionKind::BSpline;
+  case Motion::CSpline:
+    return MotionKind::CSpline;
+  case Motion::ASpline:
+    return MotionKind::ASpline;
+  }
+  return MotionKind::Linear;
+}
+
+bool isSpline(Motion motion) {
+  return motion == Motion::BSpline || motion == Motion::CSpline || motion == Motion::ASpline;
+}
+
+// Equal parameter steps on each smooth piece, short enough that a chord
+// sags at most `tolerance`: over a step h the sagitta is at most
+// h^2 max|C''| / 8, the maximum taken over 33 samples with a margin.
+geom::CurveSamples sampleDensely(const geom::Curve& curve, double tolerance) {
+  constexpr int kProbes = 32;
+  constexpr double kMargin = 2.0;
+  geom::CurveSamples samples;
+  std::vector<double> breakpoints = curve.breakpoints();
+  samples.parameters.push_back(breakpoints.front());
+  for (std::size_t piece = 0; piece + 1 < breakpoints.size(); ++piece) {
+    double t0 = breakpoints[piece];
+    double t1 = breakpoints[piece + 1];
+    double bend = 0;
+    for (int i = 0; i <= kProbes; ++i) {
+      double t = t0 + (t1 - t0) * i / kProbes;
+      bend = std::max(bend, curve.secondDerivative(std::min(t, t1)).norm());
+    }
+    double step = bend > 0 ? std::sqrt(8.0 * tolerance / (kMargin * bend)) : (t1 - t0);
+    auto steps = static_cast<std::size_t>(std::ceil((t1 - t0) / step));
+    steps = std::clamp<std::size_t>(steps, 1, 10'000'000);
+    for (std::size_t i = 1; i <= steps; ++i) {
+      samples.parameters.push_back(i == steps ? t1 : t0 + (t1 - t0) * double(i) / double(steps));
+    }
+  }
+  for (double t : samples.parameters) {
+    samples.points.push_back(curve.point(t));
+  }
+  return samples;
+}
+
+class Controller {
+public:
+  Controller(std::vector<SinumerikProgramUnit> units, const SinumerikRunOptions& options,
+             SinumerikRun& run)
+      : units_(std::move(units)), options_(options), run_(run) {}
+
+  void execute() {
+    runUnit(0, 0);
+    finishSpline(std::nullopt);
+  }
+
+private:
+  // Runs program `index`; `callLine` is the main-program line calling it.
+  void runUnit(std::size_t index, int callLine) {
+    const SinumerikProgramUnit& unit = units_[index];
+    if (++depth_ > 8) {
+      throw ProgramError(unit.name, unit.blocks.empty() ? 1 : unit.blocks.front().line,
+                         "subprograms nest deeper than this model allows (8)");
+    }
+    for (const SinumerikBlock& block : unit.blocks) {
+      if (++run_.blocksExecuted > options_.stepLimit) {
+        throw ProgramError(unit.name, block.line, "the step limit was reached");
+      }
+      program_ = unit.name;
+      line_ = block.line;
+      mainLine_ = index == 0 ? block.line : callLine;
+      if (!executeBlock(block)) {
+        --depth_;
+        return;
+      }
+    }
+    if (index == 0) {
+      fail("the main program ends without M30");
+    }
+    fail("the subprogram ends without M17 or RET");
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw ProgramError(program_, line_, message);
+  }
+
+  std::optional<std::size_t> findUnit(const std::string& name) const {
+    for (std::size_t i = 1; i < units_.size(); ++i) {
+      if (units_[i].subprogram && units_[i].name == name) {
+        return i;
+      }
+    }
+    return std::nullopt;
+  }
+
+  // False when the block ends the program.
+  bool executeBlock(const SinumerikBlock& block) {
+    std::array<std::optional<double>, 3> axes;
+    std::optional<double> weight, interval;
+    bool motionWord = false;
+    bool ends = false;
+    for (const SinumerikWord& word : block.words) {
+      const std::string& a = word.address;
+      if (a == "X" || a == "Y" || a == "Z") {
+        axes[std::size_t(a[0] - 'X')] = needNumber(word);
+      } else if (a == "G") {
+        motionWord |= gCode(needNumber(word));
+      } else if (a == "M") {
+        ends |= mCode(needNumber(word));
+      } else if (a == "F") {
+        feed_ = needNumber(word);
+      } else if (a == "S" || a == "N") {
+        needNumber(word);
+      } else if (a == "T") {
+        if (word.text.empty() && !word.value) {
+          fail("T needs a tool name or number");
+        }
+      } else if (a == "PW") {
+        weight = needNumber(word);
+        if (!(*weight >= 0 && *weight <= 3)) {
+          fail(fmt::format("PW={:g} is outside 0..3", *weight));
+        }
+      } else if (a == "PL") {
+        interval = needNumber(word);
+        if (!(*interval >= 0)) {
+          fail(fmt::format("PL={:g} is negative", *interval));
+        }
+      } else if (a == "SD") {
+        double degree = needNumber(word);
+        if (degree != 2 && degree != 3) {
+          fail(fmt::format("SD={:g}: the degree is 2 or 3", degree));
+        }
+        degree_ = int(degree);
+      } else if (a == "BSPLINE" || a == "CSPLINE" || a == "ASPLINE") {
+        setMotion(a == "BSPLINE" ? Motion::BSpline
+                                 : (a == "CSPLINE" ? Motion::CSpline : Motion::ASpline));
+        motionWord = true;
+      } else if (a == "BAUTO" || a == "BNAT" || a == "BTAN") {
+        startCondition_ = a == "BAUTO" ? geom::SplineEndCondition::Auto
+                                       : (a == "BNAT" ? geom::SplineEndCondition::Natural
+                                                      : geom::SplineEndCondition::Tangent);
+      } else if (a == "EAUTO" || a == "ENAT" || a == "ETAN") {
+        endCondition_ = a == "EAUTO" ? geom::SplineEndCondition::Auto
+                                     : (a == "ENAT" ? geom::SplineEndCondition::Natural
+                                                    : geom::SplineEndCondition::Tangent);
+      } else if (a == "SPLINEPATH") {
+        splinePath(word);
+      } else if (a == "SOFT" || a == "BRISK") {
+      } else if (a == "M17" || a == "RET") {
+        ends = true;
+      } else if (std::optional<std::size_t> unit = findUnit(a)) {
+        finishSpline(std::nullopt);
+        runUnit(*unit, mainLine_);
+      } else {
+        fail(fmt::format("'{}' is not known to this model", a));
+      }
+    }
+    bool hasAxis = axes[0] || axes[1] || axes[2];
+    if ((weight || interval) && (motion_ != Motion::BSpline || !hasAxis)) {
+      fail("PW and PL belong in a BSPLINE block with a point");
+    }
+    if (hasAxis) {
+      moveTo(axes, weight, interval);
+    } else if (motionWord && !isSpline(motion_)) {
+      finishSpline(std::nullopt);
+    }
+    return !ends;
+  }
+
+  double needNumber(const SinumerikWord& word) const {
+    if (!word.value) {
+      fail(fmt::format("{} needs a number", word.address));
+    }
+    return *word.value;
+  }
+
+  // True for a motion code.
+  bool gCode(double value) {
+    int code = int(value);
+    if (double(code) != value) {
+      fail(fmt::format("G{:g} is not known to this model", value));
+    }
+    switch (code) {
+    case 0:
+      setMotion(Motion::Rapid);
+      return true;
+    case 1:
+      setMotion(Motion::Linear);
+      return true;
+    case 17:
+    case 90:
+    case 54:
+    case 64:
+      return false;
+    case 70:
+    case 71:
+      run_.inches = code == 70;
+      return false;
+    default:
+      fail(fmt::format("G{} is not known to this model", code));
+    }
+  }
+
+  // True when the program ends.
+  bool mCode(double value) {
+    int code = int(value);
+    switch (code) {
+    case 3:
+    case 5:
+    case 6:
+      return false;
+    case 30:
+      if (depth_ != 1) {
+        fail("M30 inside a subprogram");
+      }
+      return true;
+    case 17:
+      if (depth_ == 1) {
+        fail("M17 in the main program");
+      }
+      return true;
+    default:
+      fail(fmt::format("M{:g} is not known to this model", value));
+    }
+  }
+
+  void splinePath(const SinumerikWord& word) {
+    if (word.text != "1,X,Y" && word.text != "1,X,Y,Z") {
+      fail(fmt::format("SPLINEPATH({}) is not modelled (1,X,Y or 1,X,Y,Z)", word.text));
+    }
+    splineZ_ = word.text == "1,X,Y,Z";
+  }
+
+  void setMotion(Motion motion) {
+    if (motion != motion_) {
+      motionChanged_ = true;
+    }
+    motion_ = motion;
+  }
+
+  void moveTo(const std::array<std::optional<double>, 3>& axes, std::optional<double> weight,
+              std::optional<double> interval) {
+    Vector target;
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::optional<double> value = axes[k] ? axes[k] : position_[k];
+      if (!value) {
+        if (motion_ != Motion::Rapid) {
+          fail(fmt::format("{} is not known yet: the first feed move needs every axis",
+                           char('X' + k)));
+        }
+        value = std::nullopt;
+      }
+      target[Eigen::Index(k)] = value ? *value : 0.0;
+    }
+    if (isSpline(motion_)) {
+      if (axes[2] && !splineZ_) {
+        fail("Z in a spline block, but the spline axes are X and Y (SPLINEPATH)");
+      }
+      splinePoint(target, weight, interval);
+      return;
+    }
+    finishSpline(target);
+    if (motion_ == Motion::Linear && !feed_) {
+      fail("a G1 move without a feed rate");
+    }
+    record(motion_ == Motion::Rapid ? MotionKind::Rapid : MotionKind::Linear, target, axes);
+    previous_ = known() ? std::optional<Vector>(current()) : std::nullopt;
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (axes[k]) {
+        position_[k] = axes[k];
+      }
+    }
+    lastLinear_ = motion_ == Motion::Linear;
+  }
+
+  bool known() const { return position_[0] && position_[1] && position_[2]; }
+  Vector current() const { return {*position_[0], *position_[1], *position_[2]}; }
+
+  void record(MotionKind kind, const Vector& target,
+              const std::array<std::optional<double>, 3>& axes) {
+    bool wasKnown = known();
+    bool becomesKnown =
+        (position_[0] || axes[0]) && (position_[1] || axes[1]) && (position_[2] || axes[2]);
+    if (!wasKnown) {
+      if (becomesKnown) {
+        run_.start = target;
+        startKnown_ = true;
+      }
+      return;
+    }
+    run_.moves.push_back({kind, target, feed_.value_or(0.0), line_, mainLine_});
+  }
+
+  void splinePoint(const Vector& target, std::optional<double> weight,
+                   std::optional<double> interval) {
+    if (!known()) {
+      fail("a spline needs a known start: move to it first");
+    }
+    if (!pending_ || motionChanged_) {
+      finishSpline(std::nullopt);
+      pending_ = PendingSpline{};
+      pending_->motion = motion_;
+      pending_->start = current();
+      pending_->degree = degree_;
+      pending_->startCondition = startCondition_;
+      pending_->endCondition = endCondition_;
+      if (lastLinear_ && previous_) {
+        Vector direction = current() - *previous_;
+        if (!splineZ_) {
+          direction.z() = 0;
+        }
+        if (direction.norm() > kNoDirection) {
+          pending_->startDirection = direction;
+        }
+      }
+      if (!feed_) {
+        fail("a spline without a feed rate");
+      }
+      pending_->feed = *feed_;
+      motionChanged_ = false;
+    }
+    std::size_t index = pending_->points.size();
+    pending_->points.push_back(target);
+    pending_->weights.push_back(weight.value_or(1.0));
+    pending_->intervals.push_back(interval.value_or(int(index) + 1 < pending_->degree ? 0.0 : 1.0));
+    pending_->lines.push_back(line_);
+    pending_->mainLines.push_back(mainLine_);
+    for (std::size_t k = 0; k < 3; ++k) {
+      position_[k] = target[Eigen::Index(k)];
+    }
+    lastLinear_ = false;
+  }
+
+  // Builds and cuts the pending spline; `next` is where the block after it
+  // goes (for ETAN).
+  void finishSpline(std::optional<Vector> next) {
+    if (!pending_) {
+      return;
+    }
+    PendingSpline spline = std::move(*pending_);
+    pending_.reset();
+    int savedLine = line_;
+    line_ = spline.lines.front();
+    std::shared_ptr<const geom::Curve> curve;
+    try {
+      curve = build(spline, next);
+    } catch (const geom::GeometryError& error) {
+      fail(fmt::format("this spline cannot be built: {}", error.what()));
+    }
+    line_ = savedLine;
+    run_.splines.push_back(
+        {kindOf(spline.motion), curve, spline.points.size(), spline.mainLines.front()});
+    geom::CurveSamples samples = sampleDensely(*curve, options_.sampleTolerance);
+    // Each sample belongs to the block whose point ends the piece it is on.
+    std::vector<double> ends = pieceEnds(spline, *curve);
+    std::size_t piece = 0;
+    for (std::size_t i = 1; i < samples.points.size(); ++i) {
+      while (piece + 1 < ends.size() && samples.parameters[i] > ends[piece] + 1e-12) {
+        ++piece;
+      }
+      run_.moves.push_back({kindOf(spline.motion), samples.points[i], spline.feed,
+                            spline.lines[piece], spline.mainLines[piece]});
+    }
+  }
+
+  // The parameter at which each programmed block's share of the curve ends.
+  static std::vector<double> pieceEnds(const PendingSpline& spline, const geom::Curve& curve) {
+    std::vector<double> ends;
+    std::vector<double> breakpoints = curve.breakpoints();
+    if (spline.motion == Motion::BSpline) {
+      // A B spline has fewer spans than blocks: spread the blocks over its
+      // parameter in proportion.
+      geom::ParameterRange domain = curve.domain();
+      for (std::size_t i = 1; i <= spline.points.size(); ++i) {
+        ends.push_back(domain.t0 + domain.length() * double(i) / double(spline.points.size()));
+      }
+      return ends;
+    }
+    ends.assign(breakpoints.begin() + 1, breakpoints.end());
+    return ends;
+  }
+
+  std::shared_ptr<const geom::Curve> build(const PendingSpline& spline,
+                                           const std::optional<Vector>& next) const {
+    if (spline.motion == Motion::BSpline) {
+      return std::make_shared<geom::NurbsCurve>(bsplineOfBlocks(
+          spline.start, spline.degree, spline.points, spline.weights, spline.intervals));
+    }
+    std::vector<Vector> points{spline.start};
+    points.insert(points.end(), spline.points.begin(), spline.points.end());
+    geom::SplineTransitions transitions;
+    transitions.start = spline.startCondition;
+    transitions.end = spline.endCondition;
+    transitions.startDirection = spline.startDirection;
+    if (next) {
+      Vector direction = *next - points.back();
+      if (!splineZ_) {
+        direction.z() = 0;
+      }
+      if (direction.norm() > kNoDirection) {
+        transitions.endDirection = direction;
+      }
+    }
+    if (spline.motion == Motion::CSpline) {
+      geom::CSplineOptions options;
+      options.windowBlocks = options_.cubicSplineWindow;
+      return std::make_shared<geom::PiecewisePolynomialCurve>(
+          geom::cSpline(points, transitions, options));
+    }
+    return std::make_shared<geom::PiecewisePolynomialCurve>(geom::aSpline(points, transitions));
+  }
+
+  std::vector<SinumerikProgramUnit> units_;
+  const SinumerikRunOptions& options_;
+  SinumerikRun& run_;
+  std::string program_;
+  int line_ = 0;
+  int mainLine_ = 0;
+  int depth_ = 0;
+  Motion motion_ = Motion::Rapid;
+  bool motionChanged_ = false;
+  std::array<std::optional<double>, 3> position_;
+  std::optional<Vector> previous_;
+  bool lastLinear_ = false;
+  bool startKnown_ = false;
+  std::optional<double> feed_;
+  int degree_ = 3;
+  bool splineZ_ = true;
+  geom::SplineEndCondition startCondition_ = geom::SplineEndCondition::Tangent;
+  geom::SplineEndCondition endCondition_ = geom::SplineEndCondition::Tangent;
+  std::optional<PendingSpline> pending_;
+};
+
+} // namespace
+
+SinumerikRun runSinumerikProgram(std::string_view text, const SinumerikRunOptions& options) {
+  SinumerikRun run;
+  try {
+    Controller(readSinumerikText(text), options, run).execute();
+  } catch (const ProgramError& error) {
+    run.error = error;
+  }
+  return run;
+}
+
+ExecutedPath executedPathOf(const SinumerikRun& run,
+                            std::span<const std::optional<std::size_t>> cutOfLine) {
+  ExecutedPath path;
+  path.start = run.start;
+  for (const ExecutedSinumerikMove& move : run.moves) {
+    ExecutedMove executed;
+    executed.rapid = move.kind == MotionKind::Rapid;
+    executed.end = move.end;
+    executed.feed = move.feed;
+    std::size_t index = std::size_t(move.mainLine) - 1;
+    if (move.mainLine >= 1 && index < cutOfLine.size()) {
+      executed.cut = cutOfLine[index];
+    }
+    path.moves.push_back(executed);
+  }
+  return path;
+}
+
+} // namespace cncc::backends::sinumerik

@@ -1,0 +1,253 @@
+#include "sinumerik_splines.h"
+
+#include "cncc/backends/sinumerik_controller.h"
+#include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/curve_deviation.h"
+#include "cncc/geom/geometry_error.h"
+#include "cncc/geom/nurbs_curve.h"
+#include "cncc/geom/spline_knot_placement.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cncc::backends::sinumerik {
+
+namespace {
+
+using geom::SplineEndCondition;
+
+constexpr double kMaximumWeight = 3.0;    // PW range 0..3
+constexpr double kWeightStep = 1e-4;      // PW increment
+constexpr int kIntervalExtraDecimals = 3; // PL gets more decimals than coordinates
+// Each retry with the printed numbers over the tolerance aims this much lower.
+constexpr double kRetryFactor = 0.9;
+constexpr int kRetries = 4;
+
+// The measurement's accuracy, a share of the tolerance: the fits aim this
+// much lower.
+constexpr double kMeasureAccuracy = 1e-3;
+
+double measure(const geom::Curve& spline, const geom::Curve& curve, double tolerance) {
+  double accuracy = std::isnan(tolerance) ? 1e-6 : tolerance * kMeasureAccuracy;
+  return geom::measureCurveDeviation(spline, curve, {accuracy}).maxDeviation();
+}
+
+int intervalDecimals(int decimals) {
+  return decimals + kIntervalExtraDecimals;
+}
+
+// The blocks of a clamped spline: its points after the first, PW and PL.
+SplineBlocks blocksOfSpline(const geom::NurbsCurve& spline, double weightScale, int decimals) {
+  SplineBlocks blocks;
+  blocks.kind = SplineKind::BSpline;
+  blocks.degree = spline.degree();
+  const std::vector<double>& knots = spline.knots().values();
+  std::size_t n = spline.controlPoints().size() - 1;
+  for (std::size_t i = 1; i <= n; ++i) {
+    blocks.points.push_back(roundPoint(spline.controlPoints()[i], decimals));
+    double weight = spline.weights()[i] * weightScale;
+    blocks.weights.push_back(std::round(weight / kWeightStep) * kWeightStep);
+    blocks.intervals.push_back(roundTo(knots[i + 1] - knots[i], intervalDecimals(decimals)));
+  }
+  return blocks;
+}
+
+// What the controller builds from the blocks.
+geom::NurbsCurve modelOf(const SplineBlocks& blocks, const Eigen::Vector3d& start) {
+  return bsplineOfBlocks(start, blocks.degree, blocks.points, blocks.weights, blocks.intervals);
+}
+
+// A NURBS of degree 2 or 3 whose weights fit PW once scaled: its own blocks.
+// Nothing (and `note` says why) when it cannot be written as it is.
+std::optional<SplineBlocks> exactBlocks(const geom::NurbsCurve& nurbs, const SplineRequest& request,
+                                        std::string& note) {
+  int degree = nurbs.degree();
+  if (degree != 2 && degree != 3) {
+    note = fmt::format("degree {} (SD is 2 or 3)", degree);
+    return std::nullopt;
+  }
+  if (!nurbs.knots().isClamped()) {
+    note = "its knots are not clamped";
+    return std::nullopt;
+  }
+  // The start point's weight cannot be programmed and is 1: scale every
+  // weight by the same factor, which leaves a NURBS unchanged.
+  double scale = 1.0 / nurbs.weights().front();
+  auto [lowest, highest] = std::minmax_element(nurbs.weights().begin(), nurbs.weights().end());
+  double top = *highest * scale;
+  double bottom = *lowest * scale;
+  if (top > kMaximumWeight + 1e-12 || bottom < kWeightStep) {
+    note = fmt::format("its weights relative to the first run from {:g} to {:g}, outside PW's "
+                       "range 0..3",
+                       bottom, top);
+    return std::nullopt;
+  }
+  SplineBlocks blocks = blocksOfSpline(nurbs, scale, request.decimals);
+  Eigen::Vector3d start = roundPoint(nurbs.controlPoints().front(), request.decimals);
+  blocks.deviation = measure(modelOf(blocks, start), *request.curve, request.tolerance);
+  if (!(blocks.deviation <= request.tolerance) && !std::isnan(request.tolerance)) {
+    note = fmt::format("its printed numbers (weights in steps of 0.0001) move it by {:.3g} mm",
+                       blocks.deviation);
+    return std::nullopt;
+  }
+  blocks.exact = true;
+  return blocks;
+}
+
+// The curve's own points as control points (samples= or spacing=, as the
+// published programs did), PL the chord lengths.
+SplineBlocks samplesAsControlPoints(const SplineRequest& request) {
+  SplineBlocks blocks;
+  blocks.kind = SplineKind::BSpline;
+  const std::vector<Eigen::Vector3d>& samples = request.samples;
+  blocks.degree = samples.size() >= 4 ? 3 : 2;
+  if (samples.size() < 3) {
+    throw geom::GeometryError("a B spline needs at least three points");
+  }
+  std::vector<double> knots(std::size_t(blocks.degree) + 1, 0.0);
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& sample : samples) {
+    points.push_back(roundPoint(sample, request.decimals));
+  }
+  geom::NurbsCurve spline = geom::NurbsCurve::bspline(blocks.degree, points);
+  double length = 0;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    length += (points[i] - points[i - 1]).norm();
+  }
+  blocks = blocksOfSpline(spline, 1.0, request.decimals);
+  for (double& interval : blocks.intervals) {
+    interval = roundTo(interval * length, intervalDecimals(request.decimals));
+  }
+  blocks.deviation = measure(modelOf(blocks, points.front()), *request.curve, request.tolerance);
+  return blocks;
+}
+
+SplineBlocks fittedBlocks(const SplineRequest& request) {
+  double target = request.tolerance * (1 - kMeasureAccuracy) - roundingBound(request.decimals);
+  for (int attempt = 0; attempt < kRetries && target > 0; ++attempt, target *= kRetryFactor) {
+    geom::BSplineFitOptions options;
+    options.tolerance = target;
+    geom::BSplineFit fit = geom::fitBSpline(*request.curve, options);
+    SplineBlocks blocks = blocksOfSpline(fit.spline, 1.0, request.decimals);
+    Eigen::Vector3d start = roundPoint(fit.spline.controlPoints().front(), request.decimals);
+    blocks.deviation = measure(modelOf(blocks, start), *request.curve, request.tolerance);
+    if (blocks.deviation <= request.tolerance) {
+      return blocks;
+    }
+  }
+  throw geom::GeometryError(
+      fmt::format("no B spline with coordinates of {} decimals stays within {:g} mm of this curve",
+                  request.decimals, request.tolerance));
+}
+
+SplineBlocks bsplineBlocks(const SplineRequest& request) {
+  if (std::isnan(request.tolerance)) {
+    return samplesAsControlPoints(request);
+  }
+  std::string note;
+  if (const auto* nurbs = dynamic_cast<const geom::NurbsCurve*>(request.curve)) {
+    if (std::optional<SplineBlocks> blocks = exactBlocks(*nurbs, request, note)) {
+      return *blocks;
+    }
+  }
+  SplineBlocks blocks = fittedBlocks(request);
+  blocks.note = note.empty() ? "" : "re-fitted: " + note;
+  return blocks;
+}
+
+geom::SplineTransitions transitionsFor(const SplineRequest& request) {
+  geom::SplineTransitions transitions;
+  switch (request.transitions) {
+  case SinumerikTransitions::Automatic:
+    transitions.start =
+        request.startDirection ? SplineEndCondition::Tangent : SplineEndCondition::Natural;
+    transitions.startDirection = request.startDirection;
+    transitions.end = SplineEndCondition::Natural;
+    break;
+  case SinumerikTransitions::Natural:
+    transitions.start = transitions.end = SplineEndCondition::Natural;
+    break;
+  case SinumerikTransitions::Auto:
+    transitions.start = transitions.end = SplineEndCondition::Auto;
+    break;
+  }
+  return transitions;
+}
+
+geom::InterpolatingSplineKind modelKind(SplineKind kind) {
+  return kind == SplineKind::CSpline ? geom::InterpolatingSplineKind::CSpline
+                                     : geom::InterpolatingSplineKind::ASpline;
+}
+
+// Points on the curve through which the modelled spline, built from the
+// printed numbers, stays within the tolerance.
+SplineBlocks interpolatingBlocks(const SplineRequest& request) {
+  geom::SplineTransitions transitions = transitionsFor(request);
+  SplineBlocks blocks;
+  blocks.kind = request.kind;
+  blocks.start = transitions.start;
+  blocks.end = transitions.end;
+  auto finish = [&](const std::vector<Eigen::Vector3d>& points) {
+    std::vector<Eigen::Vector3d> printed;
+    for (const Eigen::Vector3d& point : points) {
+      // Knots closer than the printed resolution become one.
+      Eigen::Vector3d rounded = roundPoint(point, request.decimals);
+      if (printed.empty() || rounded != printed.back()) {
+        printed.push_back(rounded);
+      }
+    }
+    geom::PiecewisePolynomialCurve model =
+        geom::modelSpline(modelKind(request.kind), printed, transitions);
+    blocks.points.assign(printed.begin() + 1, printed.end());
+    blocks.deviation = measure(model, *request.curve, request.tolerance);
+  };
+  if (std::isnan(request.tolerance)) {
+    finish(request.samples);
+    return blocks;
+  }
+  // Rounding a knot moves the spline by about as much, its neighbours'
+  // tangents a little more.
+  double target = request.tolerance * (1 - kMeasureAccuracy) - 3 * roundingBound(request.decimals);
+  for (int attempt = 0; attempt < kRetries && target > 0; ++attempt, target *= kRetryFactor) {
+    geom::SplineKnotPlacementOptions options;
+    options.kind = modelKind(request.kind);
+    options.tolerance = target;
+    options.transitions = transitions;
+    geom::SplineKnots knots = geom::placeSplineKnots(*request.curve, options);
+    finish(knots.points);
+    if (blocks.deviation <= request.tolerance) {
+      return blocks;
+    }
+  }
+  throw geom::GeometryError(fmt::format("no {} knots with coordinates of {} decimals keep the "
+                                        "spline within {:g} mm of this curve",
+                                        request.kind == SplineKind::CSpline ? "CSPLINE" : "ASPLINE",
+                                        request.decimals, request.tolerance));
+}
+
+} // namespace
+
+double roundingBound(int decimals) {
+  return 0.5 * std::pow(10.0, -decimals) * std::sqrt(3.0);
+}
+
+double roundTo(double value, int decimals) {
+  double scale = std::pow(10.0, decimals);
+  double rounded = std::round(value * scale) / scale;
+  return rounded == 0.0 ? 0.0 : rounded; // never -0
+}
+
+Eigen::Vector3d roundPoint(const Eigen::Vector3d& point, int decimals) {
+  return {roundTo(point.x(), decimals), roundTo(point.y(), decimals), roundTo(point.z(), decimals)};
+}
+
+SplineBlocks chooseSplineBlocks(const SplineRequest& request) {
+  if (request.kind == SplineKind::BSpline) {
+    return bsplineBlocks(request);
+  }
+  return interpolatingBlocks(request);
+}
+
+} // namespace cncc::backends::sinumerik

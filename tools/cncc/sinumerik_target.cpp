@@ -1,0 +1,104 @@
+#include "sinumerik_target.h"
+
+#include "commands.h"
+
+#include "cncc/backends/sinumerik_controller.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+#include <utility>
+
+namespace cncc::driver {
+
+namespace {
+
+std::string fileStem(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  return name.substr(0, name.find('.'));
+}
+
+backends::SinumerikOptions sinumerikOptionsFor(const BackendRequest& request) {
+  const frontend::PartItem& part = *request.program.selectedPart;
+  backends::SinumerikOptions options;
+  const std::string& input = request.options.inputs.front();
+  std::size_t slash = input.find_last_of('/');
+  options.sourceName = slash == std::string::npos ? input : input.substr(slash + 1);
+  options.partName = part.name;
+  std::string output = request.output.path();
+  options.programName = output.empty() || output == "-" ? part.name : fileStem(output);
+  options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
+  return options;
+}
+
+std::vector<backends::SinumerikCut> sinumerikCuts(std::vector<ir::CutGeometry> geometries) {
+  std::vector<backends::SinumerikCut> cuts;
+  for (ir::CutGeometry& geometry : geometries) {
+    std::string method = geometry.method;
+    cuts.push_back({std::move(geometry), std::move(method)});
+  }
+  return cuts;
+}
+
+} // namespace
+
+std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& request) {
+  const frontend::PartItem* part = request.program.selectedPart;
+  if (part == nullptr) {
+    return std::nullopt;
+  }
+  ir::LoweringOptions lowering;
+  lowering.splineInterpolation = true;
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, lowering);
+  if (!lowered) {
+    return std::nullopt;
+  }
+  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  optimise(lowered->function, request.options);
+  ir::ToolPath path;
+  try {
+    path = ir::interpret(lowered->function);
+  } catch (const ir::InterpreterError& error) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
+                               fmt::format("the part cannot be run on the host: {}", error.what()));
+    return std::nullopt;
+  }
+  std::vector<backends::SinumerikCut> cuts = sinumerikCuts(std::move(lowered->cuts));
+  try {
+    backends::SinumerikProgram program =
+        backends::writeSinumerik(path, cuts, sinumerikOptionsFor(request));
+    return SinumerikCompilation{std::move(program), std::move(cuts)};
+  } catch (const backends::SinumerikError& error) {
+    request.diagnostics.report(frontend::DiagnosticKind::DegenerateCurve,
+                               cuts[error.cut()].geometry.span, error.what());
+    return std::nullopt;
+  }
+}
+
+backends::ExecutedProgram executeSinumerik(const backends::SinumerikProgram& program) {
+  backends::sinumerik::SinumerikRun run = backends::sinumerik::runSinumerikProgram(program.text);
+  if (run.error) {
+    throw InternalError(
+        fmt::format("the virtual Sinumerik cannot run the program: {}", run.error->what()));
+  }
+  backends::ExecutedProgram executed;
+  executed.text = program.text;
+  executed.blocks = backends::countProgramBlocks(program.text);
+  executed.path = backends::sinumerik::executedPathOf(run, program.cutOfLine);
+  return executed;
+}
+
+void sinumerikBackend(const BackendRequest& request) {
+  std::optional<SinumerikCompilation> compiled = compileForSinumerik(request);
+  if (compiled) {
+    request.output.write(compiled->program.text);
+  }
+}
+
+} // namespace cncc::driver
