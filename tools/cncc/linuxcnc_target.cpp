@@ -12,13 +12,25 @@
 
 namespace cncc::driver {
 
+namespace {
+
+// The controller runs the curve loops; LinuxCNC computes in doubles, so no
+// input increment takes from the tolerance.
+ir::LoweringOptions loweringOptions() {
+  ir::LoweringOptions options;
+  options.controllerLoops = true;
+  return options;
+}
+
+} // namespace
+
 void linuxcncBackend(const BackendRequest& request) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return;
   }
   std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics);
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, loweringOptions());
   if (!lowered) {
     return;
   }

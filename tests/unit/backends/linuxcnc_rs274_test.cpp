@@ -65,7 +65,10 @@ std::unique_ptr<Compiled> compile(const std::string& file, const std::string& pa
     return nullptr;
   }
   const frontend::PartItem& selected = *result->program->selectedPart;
-  result->lowered = ir::lowerPartWithCuts(*result->program, selected, result->diagnostics);
+  ir::LoweringOptions lowering;
+  lowering.controllerLoops = true; // as the linuxcnc target lowers
+  result->lowered =
+      ir::lowerPartWithCuts(*result->program, selected, result->diagnostics, lowering);
   if (!result->lowered) {
     ADD_FAILURE() << file << " does not lower";
     return nullptr;
@@ -313,10 +316,16 @@ TEST_P(EditedParameterOnLinuxcnc, Rs274RunsTheEditedPartWithinTolerance) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, EditedParameterOnLinuxcnc,
-                         ::testing::Values(EditCase{"archimedean_spiral.cdl", "b", 1.5}),
+                         ::testing::Values(EditCase{"archimedean_spiral.cdl", "a", 2},
+                                           EditCase{"archimedean_spiral.cdl", "b", 1.5},
+                                           EditCase{"s_profile.cdl", "w6", 2},
+                                           EditCase{"s_profile.cdl", "w6", 8},
+                                           EditCase{"s_profile.cdl", "depth", 5},
+                                           EditCase{"s_profile.cdl", "step", 1.5}),
                          [](const ::testing::TestParamInfo<EditCase>& info) {
                            std::string name = info.param.file;
-                           return name.substr(0, name.find('.')) + "_" + info.param.parameter;
+                           return name.substr(0, name.find('.')) + "_" + info.param.parameter +
+                                  "_" + std::to_string(info.index);
                          });
 
 // The circle of radius r, 72 chords, at depth d: both parameters are read
