@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
@@ -320,6 +321,10 @@ private:
         nurbsNext_ = true;
         return;
       }
+      if (instruction.text.starts_with("NURBS R")) { // "NURBS R5=P2": a parameter weight
+        nurbsWeight(instruction.text);
+        return;
+      }
       comment(instruction.text);
       return;
     case Opcode::CutBegin: // the cut's own comment says it
@@ -578,6 +583,15 @@ private:
     rememberZ(instruction.operands[2]);
   }
 
+  void nurbsWeight(const std::string& note) {
+    unsigned point = 0, parameter = 0;
+    if (std::sscanf(note.c_str(), "NURBS R%u=P%u", &point, &parameter) == 2 &&
+        parameter < allocation_.parameterVariables.size()) {
+      nurbsWeights_.resize(std::max<std::size_t>(nurbsWeights_.size(), point + 1));
+      nurbsWeights_[point] = fmt::format("#{}", allocation_.parameterVariables[parameter]);
+    }
+  }
+
   // A method=nurbs lap: the cut's G06.2 blocks at the feed's height and rate.
   void printNurbs(const ir::Instruction& instruction) {
     nurbsNext_ = false;
@@ -589,7 +603,8 @@ private:
     std::string feed = word('F', instruction.operands[3], false);
     NurbsBlocks blocks = nurbsBlocksForCut(options_.cuts[cut_], *endZ,
                                            feed.empty() ? modal_.words['F'].text : feed.substr(2),
-                                           profile_, options_.inches);
+                                           profile_, options_.inches, nurbsWeights_);
+    nurbsWeights_.clear();
     errors_.insert(errors_.end(), blocks.errors.begin(), blocks.errors.end());
     for (std::string& text : blocks.lines) {
       line(std::move(text));
@@ -613,6 +628,7 @@ private:
   bool spindleOn_ = false;
   bool nurbsNext_ = false;  // after comment "NURBS": the feed is printed as NURBS blocks
   std::uint32_t cut_ = 0;   // the cut of the latest CutBegin
+  std::vector<std::string> nurbsWeights_; // per control point: "#3", or empty
 };
 
 bool isCommentLine(std::string_view line) {

@@ -187,6 +187,7 @@ geom::NurbsCurve nurbsForBlocks(const geom::Curve& curve, double tolerance) {
 
 NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std::string& feedText,
                               const ControllerProfile& profile, bool inches,
+                              const std::vector<std::string>& weightVariables,
                               double defaultTolerance) {
   // The pass's offset: the marked feed ends at the curve's end, lowered by it.
   double z = endZ - cut.curve->point(cut.curve->domain().t1).z();
@@ -214,6 +215,10 @@ NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std
   options.z = z;
   options.feedText = feedText;
   options.currentPosition = curve->controlPoints().front() + Eigen::Vector3d(0, 0, z);
+  // A fitted curve has weights of its own: the parameters' weights no longer apply.
+  if (dynamic_cast<const geom::NurbsCurve*>(cut.curve.get()) != nullptr) {
+    options.weightVariables = weightVariables;
+  }
   return writeNurbsBlocks(*curve, options);
 }
 

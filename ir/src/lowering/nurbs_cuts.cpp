@@ -15,6 +15,32 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
+// "NURBS R5=P2" for each weight of a nurbs(...) cut that is a part
+// parameter (control point 5, parameter 2): the printer writes it as that
+// parameter's variable (`R#3`), so the operator's edit reaches the curve.
+std::vector<std::string> PartLowering::parameterWeights(const CutStmt& cut, const CutCurve& curve) {
+  std::vector<std::string> notes;
+  const Expr* expression = curveArgument(cut, "weights");
+  if (expression == nullptr || curve.pieces.size() != 1) {
+    return notes;
+  }
+  std::optional<std::vector<std::optional<Lowered>>> weights = symbolicList(*expression);
+  if (!weights) {
+    return notes;
+  }
+  for (std::size_t i = 0; i < weights->size(); ++i) {
+    const std::optional<Lowered>& weight = (*weights)[i];
+    if (!weight || weight->values.size() != 1 || weight->values[0].isConstant()) {
+      continue;
+    }
+    const Instruction& definition = builder_.function().definition(weight->values[0].value);
+    if (definition.opcode == Opcode::Param) {
+      notes.push_back(fmt::format("NURBS R{}=P{}", i, definition.index));
+    }
+  }
+  return notes;
+}
+
 bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
@@ -37,6 +63,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   cuts_.push_back(geometry);
   builder_.cutBegin(index);
 
+  std::vector<std::string> weightNotes = parameterWeights(cut, curve);
   geom::ParameterRange domain = curve.geometry->domain();
   Eigen::Vector3d start = curve.geometry->point(domain.t0);
   Eigen::Vector3d end = curve.geometry->point(domain.t1);
@@ -48,6 +75,9 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
     ValueId startY = builder_.constant(start.y());
     builder_.rapid(startX, startY, safeValue);
     builder_.feed(startX, startY, builder_.constant(z + start.z()), feedValue);
+    for (const std::string& note : weightNotes) {
+      builder_.comment(note);
+    }
     builder_.comment("NURBS");
     ValueId endX = builder_.constant(end.x());
     ValueId endY = builder_.constant(end.y());

@@ -192,6 +192,7 @@ private:
 
   // nurbs_cuts.cpp
   bool lowerNurbsCut(const frontend::CutStmt& cut);
+  std::vector<std::string> parameterWeights(const frontend::CutStmt& cut, const CutCurve& curve);
 
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut);

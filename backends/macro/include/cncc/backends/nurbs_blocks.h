@@ -69,6 +69,7 @@ geom::NurbsCurve nurbsForBlocks(const geom::Curve& curve, double tolerance);
 // `defaultTolerance`.
 NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std::string& feedText,
                               const ControllerProfile& profile, bool inches,
+                              const std::vector<std::string>& weightVariables = {},
                               double defaultTolerance = 0.01);
 
 } // namespace cncc::backends
