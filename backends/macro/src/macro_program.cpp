@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -57,8 +58,9 @@ struct ModalState {
 // the index variable then holds u itself, stepped by c, which saves the
 // multiplication and its assignment at every point.
 struct SteppedLoops {
-  std::map<std::uint32_t, double> scaleOfIndex; // loop index value -> c
-  std::set<std::uint32_t> scaledValues;         // the products, not printed
+  // loop index value -> c; NaN: u = i / high, the loop from 1 to high.
+  std::map<std::uint32_t, double> scaleOfIndex;
+  std::set<std::uint32_t> scaledValues; // the products, not printed
 };
 
 SteppedLoops stepLoopsByTheirScale(const ir::Function& function, ir::Allocation& allocation) {
@@ -75,17 +77,22 @@ SteppedLoops stepLoopsByTheirScale(const ir::Function& function, ir::Allocation&
   };
   SteppedLoops stepped;
   for (const ir::Instruction& loop : function.instructions) {
-    if (loop.opcode != Opcode::Loop || !constant(loop.operands[0]) || !constant(loop.operands[1]) ||
-        users[loop.result.index].size() != 1) {
+    if (loop.opcode != Opcode::Loop || !constant(loop.operands[0]) ||
+        users[loop.result.index].size() != 1 || !allocation.inVariable(loop.result)) {
       continue;
     }
     const ir::Instruction& product = function.instructions[users[loop.result.index].front()];
-    if (product.opcode != Opcode::Mul || !allocation.inVariable(loop.result)) {
-      continue;
+    std::optional<double> scale;
+    if (product.opcode == Opcode::Mul && constant(loop.operands[1])) {
+      ValueId other =
+          product.operands[0] == loop.result ? product.operands[1] : product.operands[0];
+      scale = constant(other);
+    } else if (product.opcode == Opcode::Div && product.operands[0] == loop.result &&
+               product.operands[1] == loop.operands[1] && *constant(loop.operands[0]) == 1 &&
+               allocation.inVariable(loop.operands[1])) {
+      scale = std::numeric_limits<double>::quiet_NaN();
     }
-    ValueId other = product.operands[0] == loop.result ? product.operands[1] : product.operands[0];
-    std::optional<double> scale = constant(other);
-    if (!scale || *scale == 0 || !std::isfinite(*scale)) {
+    if (!scale || *scale == 0 || std::isinf(*scale)) {
       continue;
     }
     allocation.variableOfValue[product.result.index] =
@@ -190,36 +197,58 @@ private:
     printValueVariables();
   }
 
-  // Variables of values, grouped into runs that share a meaning.
+  // Variables of values, one line per meaning: `(#4-#8 #10 WORK VALUES)`.
   void printValueVariables() {
-    std::map<int, std::set<std::string>> meanings;
+    std::set<std::uint32_t> bounds;
     for (const ir::Instruction& instruction : function_.instructions) {
-      if (!instruction.result.valid() || instruction.opcode == Opcode::Param) {
+      if (instruction.opcode == Opcode::Loop) {
+        bounds.insert(instruction.operands[1].index);
+      }
+    }
+    std::map<std::string, std::set<int>> variables;
+    for (const ir::Instruction& instruction : function_.instructions) {
+      if (!instruction.result.valid() || instruction.opcode == Opcode::Param ||
+          scaledValues_.contains(instruction.result.index)) {
         continue;
       }
       int variable = allocation_.variableOfValue[instruction.result.index];
-      if (variable >= 0) {
-        meanings[variable].insert(instruction.opcode == Opcode::Loop ? "LOOP INDEX" : "WORK VALUE");
+      if (variable < 0) {
+        continue;
       }
+      std::string meaning = "WORK VALUES";
+      if (instruction.opcode == Opcode::Loop) {
+        meaning =
+            steppedLoops_.contains(instruction.result.index) ? "CURVE PARAMETERS" : "LOOP INDEXES";
+      } else if (bounds.contains(instruction.result.index)) {
+        meaning = "STEP COUNTS";
+      }
+      variables[meaning].insert(variable);
     }
-    auto meaningText = [](const std::set<std::string>& set) {
-      std::string text;
-      for (const std::string& meaning : set) {
-        text += (text.empty() ? "" : " AND ") + meaning;
+    // Meanings joined on as few lines as the block length allows.
+    std::string text;
+    auto append = [&](const std::string& piece, const char* separator) {
+      if (!text.empty() &&
+          static_cast<int>(text.size() + piece.size()) + 4 > profile_.maximumBlockLength) {
+        comment(text);
+        text.clear();
       }
-      return text;
+      text += (text.empty() ? "" : separator) + piece;
     };
-    for (auto it = meanings.begin(); it != meanings.end();) {
-      auto last = it;
-      auto next = std::next(it);
-      while (next != meanings.end() && next->first == last->first + 1 &&
-             next->second == it->second) {
-        last = next++;
+    for (const auto& [meaning, set] : variables) {
+      for (auto it = set.begin(); it != set.end();) {
+        auto last = it;
+        auto next = std::next(it);
+        while (next != set.end() && *next == *last + 1) {
+          last = next++;
+        }
+        append(last == it ? fmt::format("#{}", *it) : fmt::format("#{}-#{}", *it, *last),
+               it == set.begin() ? ", " : " ");
+        it = next;
       }
-      std::string range = last == it ? fmt::format("#{}", it->first)
-                                     : fmt::format("#{}-#{}", it->first, last->first);
-      comment(fmt::format("{} {}", range, meaningText(it->second)));
-      it = next;
+      append(meaning, " ");
+    }
+    if (!text.empty()) {
+      comment(text);
     }
   }
 
@@ -427,7 +456,12 @@ private:
     }
     std::string index = expressions_.variable(instruction.result);
     auto stepped = steppedLoops_.find(instruction.result.index);
-    if (stepped != steppedLoops_.end()) {
+    if (stepped != steppedLoops_.end() && std::isnan(stepped->second)) {
+      // The index variable holds i / high, stepped by 1 / high.
+      std::string high = expressions_.operand(instruction.operands[1]);
+      line(fmt::format("{}=1./{}", index, high));
+      line(fmt::format("WHILE [{} LE 1.+.5/{}] DO{}", index, high, loopDepth_));
+    } else if (stepped != steppedLoops_.end()) {
       // The index variable holds i * scale, stepped by the scale.
       double scale = stepped->second;
       double low = *constantOf(instruction.operands[0]);
@@ -461,7 +495,9 @@ private:
       entry = agreed;
     }
     lines_.insert(lines_.end(), body.begin(), body.end());
-    if (stepped != steppedLoops_.end()) {
+    if (stepped != steppedLoops_.end() && std::isnan(stepped->second)) {
+      line(fmt::format("{}={}+1./{}", index, index, expressions_.operand(instruction.operands[1])));
+    } else if (stepped != steppedLoops_.end()) {
       line(fmt::format("{}={}+{}", index, index, expressions_.constant(stepped->second)));
     } else {
       line(fmt::format("{}={}+1.", index, index));
@@ -626,8 +662,8 @@ private:
   bool reportedLoopDepth_ = false;
   int nextLabel_ = 1;
   bool spindleOn_ = false;
-  bool nurbsNext_ = false;  // after comment "NURBS": the feed is printed as NURBS blocks
-  std::uint32_t cut_ = 0;   // the cut of the latest CutBegin
+  bool nurbsNext_ = false; // after comment "NURBS": the feed is printed as NURBS blocks
+  std::uint32_t cut_ = 0;  // the cut of the latest CutBegin
   std::vector<std::string> nurbsWeights_; // per control point: "#3", or empty
 };
 

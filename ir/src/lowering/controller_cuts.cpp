@@ -158,6 +158,53 @@ double linearNorm(const Affine& transform) {
   return std::max(std::sqrt(largest), std::abs(transform.zScale));
 }
 
+// constant + sum of coefficient * value: the bounds of a NURBS span, kept
+// in this form so that the controller computes each as one flat sum.
+struct LinearForm {
+  double constant = 0;
+  std::vector<std::pair<Scalar, double>> terms;
+
+  void add(Scalar value, double coefficient) {
+    if (value.isConstant()) {
+      constant += coefficient * value.constant;
+      return;
+    }
+    for (auto& [existing, factor] : terms) {
+      if (existing.value == value.value) {
+        factor += coefficient;
+        return;
+      }
+    }
+    terms.emplace_back(value, coefficient);
+  }
+  void add(const LinearForm& other, double coefficient) {
+    constant += coefficient * other.constant;
+    for (const auto& [value, factor] : other.terms) {
+      add(value, coefficient * factor);
+    }
+  }
+  bool isConstant() const { return terms.empty(); }
+  Scalar scalar(Arithmetic& math) const {
+    Scalar sum = Scalar::of(constant);
+    for (const auto& [value, factor] : terms) {
+      sum = math.add(sum, factor == 1 ? value : math.multiply(value, Scalar::of(factor)));
+    }
+    return sum;
+  }
+  // The product; a product of two non-constant forms becomes one term.
+  LinearForm times(const LinearForm& other, Arithmetic& math) const {
+    LinearForm product;
+    if (other.isConstant()) {
+      product.add(*this, other.constant);
+    } else if (isConstant()) {
+      product.add(other, constant);
+    } else {
+      product.add(math.multiply(scalar(math), other.scalar(math)), 1);
+    }
+    return product;
+  }
+};
+
 } // namespace
 
 // One loop of the cut: a piece, or a knot span of a NURBS piece.
@@ -298,11 +345,14 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
     Scalar passes = arithmetic_.unary(
         Opcode::Round,
         arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step), Scalar::of(passCountOffset)));
-    builder_.comment("passes");
     ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(passes));
-    Scalar reached = arithmetic_.binary(
-        Opcode::Min, arithmetic_.multiply(Scalar::of(k, ValueType::F64), step), depth);
-    z = arithmetic_.unary(Opcode::Neg, reached);
+    // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one
+    // expression where the controller has no min.
+    Scalar reached = arithmetic_.multiply(Scalar::of(k, ValueType::F64), step);
+    Scalar gap = arithmetic_.unary(Opcode::Abs, arithmetic_.binary(Opcode::Sub, reached, depth));
+    z = arithmetic_.multiply(
+        Scalar::of(0.5),
+        arithmetic_.binary(Opcode::Sub, arithmetic_.binary(Opcode::Sub, gap, reached), depth));
   } else {
     builder_.comment("cut");
   }
@@ -673,23 +723,23 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     coefficient = std::abs(coefficient) <= 1e-12 ? 0.0 : coefficient;
   }
   segment.rational = unequalWeights;
-  // Homogeneous points of the dependent control points, on the controller.
+  // Homogeneous points of the dependent control points, on the controller,
+  // and the bounds as sums of constant multiples of controller values.
   Arithmetic& math = arithmetic_;
-  Scalar radius = Scalar::of(constantRadius);
-  Scalar weightSlope = Scalar::of(0), weightCurve = Scalar::of(0);
-  Scalar pointSlope, pointCurve;
+  LinearForm radius{constantRadius, {}};
+  LinearForm weightSlope, weightCurve;
   std::array<Polynomial, 3> translatedSlope, translatedCurve;
   for (int c = 0; c < 3; ++c) {
     translatedSlope[c] = derivativeOf(translated[c]);
     translatedCurve[c] = derivativeOf(translatedSlope[c]);
   }
-  pointSlope =
-      Scalar::of(vectorSupremumBound({translatedSlope[0], translatedSlope[1], translatedSlope[2]}));
-  pointCurve =
-      Scalar::of(vectorSupremumBound({translatedCurve[0], translatedCurve[1], translatedCurve[2]}));
+  LinearForm pointSlope{
+      vectorSupremumBound({translatedSlope[0], translatedSlope[1], translatedSlope[2]}), {}};
+  LinearForm pointCurve{
+      vectorSupremumBound({translatedCurve[0], translatedCurve[1], translatedCurve[2]}), {}};
   if (unequalWeights) {
-    weightSlope = Scalar::of(supremumBound(derivativeOf(constantWeights)));
-    weightCurve = Scalar::of(supremumBound(derivativeOf(derivativeOf(constantWeights))));
+    weightSlope.constant = supremumBound(derivativeOf(constantWeights));
+    weightCurve.constant = supremumBound(derivativeOf(derivativeOf(constantWeights)));
   }
   Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
   bool haveSmallest = smallestConstantWeight.has_value();
@@ -705,23 +755,31 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
                                        math.binary(Opcode::Sub, w[d], Scalar::of(reference))});
     double slopeBound = supremumBound(derivativeOf(basis[d]));
     double curveBound = supremumBound(derivativeOf(derivativeOf(basis[d])));
-    Scalar distance = Scalar::of(0);
-    for (int c = 0; c < 3; ++c) {
-      Scalar offset = math.binary(Opcode::Sub, q[d][c], Scalar::of(centre[c]));
-      distance = math.add(distance, math.multiply(offset, offset));
+    // |q_d - c|: a literal for a constant point.
+    LinearForm distance;
+    if (qConstant[d]) {
+      Eigen::Vector3d point(q[d][0].constant, q[d][1].constant, q[d][2].constant);
+      distance.constant = (point - centre).norm();
+    } else {
+      Scalar squares = Scalar::of(0);
+      for (int c = 0; c < 3; ++c) {
+        Scalar offset = math.binary(Opcode::Sub, q[d][c], Scalar::of(centre[c]));
+        squares = math.add(squares, math.multiply(offset, offset));
+      }
+      distance.add(math.unary(Opcode::Sqrt, squares), 1);
+      radius.add(distance.terms.front().first, 1);
     }
-    distance = math.unary(Opcode::Sqrt, distance);
-    Scalar size =
-        wConstant[d] ? Scalar::of(std::abs(w[d].constant)) : math.unary(Opcode::Abs, w[d]);
-    Scalar homogeneous = math.multiply(size, distance);
-    pointSlope = math.add(pointSlope, math.multiply(homogeneous, Scalar::of(slopeBound)));
-    pointCurve = math.add(pointCurve, math.multiply(homogeneous, Scalar::of(curveBound)));
-    if (!qConstant[d]) {
-      radius = math.add(radius, distance);
-    }
+    // The weights are positive (the bound divides by the smallest), so |w| = w.
+    LinearForm size{wConstant[d] ? w[d].constant : 0, {}};
     if (!wConstant[d]) {
-      weightSlope = math.add(weightSlope, math.multiply(size, Scalar::of(slopeBound)));
-      weightCurve = math.add(weightCurve, math.multiply(size, Scalar::of(curveBound)));
+      size.add(w[d], 1);
+    }
+    LinearForm homogeneous = size.times(distance, math);
+    pointSlope.add(homogeneous, slopeBound);
+    pointCurve.add(homogeneous, curveBound);
+    if (!wConstant[d]) {
+      weightSlope.add(size, slopeBound);
+      weightCurve.add(size, curveBound);
       // min(a, b) = (a + b - |a - b|) / 2, one inline expression.
       smallestWeight =
           haveSmallest
@@ -736,13 +794,18 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
   }
   Scalar bound;
   if (unequalWeights) {
-    Scalar slope = math.binary(
-        Opcode::Div, math.add(pointSlope, math.multiply(weightSlope, radius)), smallestWeight);
-    Scalar numerator = math.add(math.add(pointCurve, math.multiply(weightCurve, radius)),
-                                math.multiply(Scalar::of(2), math.multiply(weightSlope, slope)));
-    bound = math.binary(Opcode::Div, numerator, smallestWeight);
+    // M = (P2 + W2 R + 2 W1 (P1 + W1 R) / wmin) / wmin.
+    LinearForm slopeNumerator = pointSlope;
+    slopeNumerator.add(weightSlope.times(radius, math), 1);
+    LinearForm curveNumerator = pointCurve;
+    curveNumerator.add(weightCurve.times(radius, math), 1);
+    Scalar cross = math.binary(Opcode::Div,
+                               math.multiply(math.multiply(Scalar::of(2), weightSlope.scalar(math)),
+                                             slopeNumerator.scalar(math)),
+                               smallestWeight);
+    bound = math.binary(Opcode::Div, math.add(curveNumerator.scalar(math), cross), smallestWeight);
   } else {
-    bound = math.binary(Opcode::Div, pointCurve, smallestWeight);
+    bound = math.binary(Opcode::Div, pointCurve.scalar(math), smallestWeight);
   }
   // N >= sqrt(M / (8 budget)) steps of u.
   Scalar steps = math.unary(Opcode::Sqrt, math.multiply(bound, Scalar::of(1 / (8 * budget))));
