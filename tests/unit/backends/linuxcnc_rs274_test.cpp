@@ -237,6 +237,10 @@ struct ExampleCase {
   std::string part;
 };
 
+void PrintTo(const ExampleCase& example, std::ostream* out) {
+  *out << example.file << (example.part.empty() ? "" : " -p ") << example.part;
+}
+
 class EveryExampleOnLinuxcnc : public ::testing::TestWithParam<ExampleCase> {};
 
 TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
@@ -270,6 +274,10 @@ struct EditCase {
   std::string parameter;
   double value;
 };
+
+void PrintTo(const EditCase& edit, std::ostream* out) {
+  *out << edit.file << " " << edit.parameter << "=" << edit.value;
+}
 
 class EditedParameterOnLinuxcnc : public ::testing::TestWithParam<EditCase> {};
 
