@@ -20,12 +20,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <regex>
+#include <sstream>
 
 namespace cncc {
 namespace {
@@ -46,7 +49,8 @@ struct Compiled {
 };
 
 std::unique_ptr<Compiled> compile(const std::string& file, const std::string& part,
-                                  const std::map<std::string, double>& defines = {}) {
+                                  const std::map<std::string, double>& defines = {},
+                                  bool callable = false) {
   auto result = std::make_unique<Compiled>();
   std::optional<frontend::FileId> id =
       result->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + file);
@@ -85,6 +89,7 @@ std::unique_ptr<Compiled> compile(const std::string& file, const std::string& pa
   printing.partName = selected.name;
   printing.inches = ir::partUnits(selected) == ir::PartUnits::Inches;
   printing.blendTolerance = backends::linuxcncBlendTolerance(result->lowered->cuts);
+  printing.callable = callable;
   backends::LinuxcncProgram program =
       backends::writeLinuxcncProgram(result->lowered->function, printing);
   if (!program.errors.empty()) {
@@ -252,6 +257,32 @@ TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
   ASSERT_TRUE(compiled);
   expectWithinTolerance(compiled->path, compiled->lowered->cuts, compiled->text, *rs274,
                         GetParam().file + " " + GetParam().part);
+}
+
+// The subroutine (--macro) of every example, called with the defaults as
+// its arguments, cuts the same part.
+TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItsSubroutineCalledWithTheDefaults) {
+  std::optional<std::string> rs274 = testing::findRs274();
+  if (!rs274) {
+    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
+  }
+  std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part, {}, true);
+  ASSERT_TRUE(compiled);
+  const std::string end = "\nM2\n";
+  ASSERT_TRUE(compiled->text.ends_with(end));
+  std::string program = compiled->text.substr(0, compiled->text.size() - end.size() + 1);
+  std::string name = compiled->program->selectedPart->name;
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  program += "o<" + name + "> call";
+  for (const ir::Parameter& parameter : compiled->lowered->function.parameters) {
+    std::ostringstream value;
+    value << std::fixed << std::setprecision(12) << parameter.defaultValue;
+    program += " [" + value.str() + "]";
+  }
+  program += "\nM2\n";
+  expectWithinTolerance(compiled->path, compiled->lowered->cuts, program, *rs274,
+                        GetParam().file + " " + GetParam().part + " --macro");
 }
 
 INSTANTIATE_TEST_SUITE_P(
