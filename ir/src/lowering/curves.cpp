@@ -286,6 +286,21 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
 CurvePoint PartLowering::spanPointAt(const geom::PolynomialSpan& span, Scalar u) {
   auto horner = [&](int coordinate) {
     auto degree = static_cast<std::size_t>(span.degree());
+    while (degree > 0 && span.coefficients[degree][coordinate] == 0) {
+      --degree;
+    }
+    // A negative leading coefficient: c0 - (((-c3) u - c2) u - c1) u, the
+    // same operations without a negated literal to start the expression.
+    double constantTerm = span.coefficients[0][coordinate];
+    if (degree > 0 && span.coefficients[degree][coordinate] < 0 && constantTerm != 0) {
+      Scalar inner = Scalar::of(-span.coefficients[degree][coordinate]);
+      for (std::size_t k = degree; k-- > 1;) {
+        inner = arithmetic_.add(arithmetic_.multiply(inner, u),
+                                Scalar::of(-span.coefficients[k][coordinate]));
+      }
+      return arithmetic_.binary(Opcode::Sub, Scalar::of(constantTerm),
+                                arithmetic_.multiply(inner, u));
+    }
     Scalar sum = Scalar::of(span.coefficients[degree][coordinate]);
     for (std::size_t k = degree; k-- > 0;) {
       Scalar coefficient = Scalar::of(span.coefficients[k][coordinate]);
