@@ -29,6 +29,15 @@ double distanceToPath(const Eigen::Vector3d& point, const std::vector<Segment>& 
   return nearest;
 }
 
+// How far a move is from a path: the farthest of its start, middle and end
+// from it. A move where two cuts meet (a plunge onto the end of a helix) is
+// told apart by where it starts.
+double distanceToPath(const Segment& move, const std::vector<Segment>& segments) {
+  Eigen::Vector3d middle = (move.start + move.end) / 2.0;
+  return std::max({distanceToPath(move.start, segments), distanceToPath(middle, segments),
+                   distanceToPath(move.end, segments)});
+}
+
 // The reference's feed moves by cut, the cuts in the order they start.
 struct ReferenceCuts {
   std::vector<std::size_t> order;
@@ -73,25 +82,21 @@ StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
     if (move.rapid) {
       continue;
     }
-    Eigen::Vector3d middle = (path.startOf(i) + move.end) / 2.0;
+    Segment executed{path.startOf(i), move.end};
     double best = std::numeric_limits<double>::infinity();
     std::optional<std::size_t> chosen;
-    const std::vector<Segment>* chosenSegments = &cuts.outsideCuts;
     std::size_t last = std::min(cuts.order.size(), current + kLookAhead + 1);
     for (std::size_t k = current; k < last; ++k) {
-      const std::vector<Segment>& segments = cuts.byCut[cuts.order[k]];
-      double distance = distanceToPath(move.end, segments);
+      double distance = distanceToPath(executed, cuts.byCut[cuts.order[k]]);
       if (distance < best - kTie) {
         best = distance;
         chosen = k;
-        chosenSegments = &segments;
       }
     }
-    double outside = distanceToPath(move.end, cuts.outsideCuts);
+    double outside = distanceToPath(executed, cuts.outsideCuts);
     if (outside < best - kTie) {
       best = outside;
       chosen.reset();
-      chosenSegments = &cuts.outsideCuts;
     }
     double limit = outsideAllowance;
     move.cut.reset();
@@ -100,7 +105,7 @@ StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
       move.cut = cuts.order[current];
       limit = *move.cut < allowance.size() ? allowance[*move.cut] : outsideAllowance;
     }
-    double distance = std::max(best, distanceToPath(middle, *chosenSegments));
+    double distance = best;
     if (!(distance <= limit)) {
       ++stray.count;
       if (!(distance <= stray.largestDistance)) {

@@ -31,7 +31,20 @@ CutDeviation measureCut(const ExecutedPath& path, std::size_t cut,
     return deviation;
   }
   PlaneProjection plan(*geometry.curve);
-  for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(path, cut)) {
+  std::vector<std::vector<Eigen::Vector3d>> polylines = cutPolylines(path, cut);
+  // A stretch that is a single point in XY (a plunge apart from the rest of
+  // the cut) covers nothing of the curve: only its distance to it counts.
+  bool hasExtent = std::any_of(polylines.begin(), polylines.end(),
+                               [](const auto& polyline) { return polyline.size() > 1; });
+  for (const std::vector<Eigen::Vector3d>& polyline : polylines) {
+    if (hasExtent && polyline.size() == 1) {
+      double distance = geom::CurveProximity(plan, 1e-7).closestPoint(polyline.front()).distance;
+      if (!(distance <= deviation.maxDeviation)) {
+        deviation.maxDeviation = distance;
+        deviation.where = polyline.front();
+      }
+      continue;
+    }
     geom::DeviationReport report = geom::measureDeviation(polyline, plan);
     if (!(report.maxDeviation() <= deviation.maxDeviation)) {
       deviation.maxDeviation = report.maxDeviation();
