@@ -30,10 +30,11 @@ InlineShape conservativeShape(const Function&, const Instruction&,
 // that an operation written as several statements can read its operands
 // one step after its result is first written.
 struct ProgramLayout {
-  std::vector<int> position;                    // per instruction
-  std::vector<std::vector<InstructionId>> loops; // per instruction: enclosing loops, outermost first
-  std::map<InstructionId, int> loopEnd;          // per loop: where its test and increment sit
-  std::vector<InstructionId> order;              // every instruction, in program order
+  std::vector<int> position; // per instruction
+  std::vector<std::vector<InstructionId>>
+      loops;                            // per instruction: enclosing loops, outermost first
+  std::map<InstructionId, int> loopEnd; // per loop: where its test and increment sit
+  std::vector<InstructionId> order;     // every instruction, in program order
 };
 
 void layOutRegion(const Function& function, const Region& region,
@@ -232,10 +233,19 @@ private:
     return {depth, operations};
   }
 
+  // `#n=expr` has only its variable besides the expression; a move or a
+  // test has addresses and words around it.
+  int operationLimit(const Instruction& consumer) const {
+    bool assignment = consumer.result.valid() && materialized_[consumer.result.index] &&
+                      consumer.opcode != Opcode::Loop && !isStatementOpcode(consumer.opcode);
+    return assignment && options_.maximumAssignmentOperations > 0
+               ? options_.maximumAssignmentOperations
+               : options_.maximumInlineOperations;
+  }
+
   bool fits(const Instruction& consumer) const {
     auto [depth, operations] = cost(consumer);
-    return depth <= options_.maximumBracketDepth &&
-           operations <= options_.maximumInlineOperations;
+    return depth <= options_.maximumBracketDepth && operations <= operationLimit(consumer);
   }
 
   // Moves the deepest inline value under `instruction` into a variable;
@@ -273,9 +283,8 @@ private:
       if (!materializeDeepest(consumer)) {
         auto [depth, operations] = cost(consumer);
         bool tooDeep = depth > options_.maximumBracketDepth;
-        fail(tooDeep ? "bracket nesting" : "inline operations",
-             tooDeep ? depth : operations,
-             tooDeep ? options_.maximumBracketDepth : options_.maximumInlineOperations,
+        fail(tooDeep ? "bracket nesting" : "inline operations", tooDeep ? depth : operations,
+             tooDeep ? options_.maximumBracketDepth : operationLimit(consumer),
              "an expression that cannot be split");
         return;
       }
@@ -380,10 +389,9 @@ private:
     for (std::size_t i = 0; i < order.size(); ++i) {
       std::size_t table = order[i];
       // Equal tables (one per pass of a cut) share their variables.
-      auto equal = std::find_if(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(i),
-                                [&](std::size_t other) {
-                                  return function_.tables[other] == function_.tables[table];
-                                });
+      auto equal = std::find_if(
+          order.begin(), order.begin() + static_cast<std::ptrdiff_t>(i),
+          [&](std::size_t other) { return function_.tables[other] == function_.tables[table]; });
       if (equal != order.begin() + static_cast<std::ptrdiff_t>(i)) {
         allocation_.tableBase[table] = allocation_.tableBase[*equal];
       } else {
@@ -454,8 +462,8 @@ private:
       if (needed_[id] && instruction.result.valid() && materialized_[instruction.result.index] &&
           instruction.opcode != Opcode::Param) {
         int start = layout_.position[id];
-        intervals.push_back({start, std::max(start, lastUse_[instruction.result.index]),
-                             instruction.result});
+        intervals.push_back(
+            {start, std::max(start, lastUse_[instruction.result.index]), instruction.result});
       }
     }
     std::stable_sort(intervals.begin(), intervals.end(),

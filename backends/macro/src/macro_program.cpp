@@ -121,10 +121,12 @@ class ProgramPrinter {
 public:
   ProgramPrinter(const ir::Function& function, const ir::Allocation& allocation,
                  const SteppedLoops& stepped, const ControllerProfile& profile,
-                 const MacroProgramOptions& options, std::vector<std::string>& errors)
+                 const MacroProgramOptions& options, std::vector<std::string>& errors,
+                 int* longestBlock = nullptr)
       : function_(function), allocation_(allocation), profile_(profile), options_(options),
-        errors_(errors), expressions_(function, allocation, profile, errors),
-        steppedLoops_(stepped.scaleOfIndex), scaledValues_(stepped.scaledValues) {}
+        errors_(errors), longestBlock_(longestBlock),
+        expressions_(function, allocation, profile, errors), steppedLoops_(stepped.scaleOfIndex),
+        scaledValues_(stepped.scaledValues) {}
 
   std::string print() {
     line("%");
@@ -149,6 +151,9 @@ public:
       }
       text += block;
       text += '\n';
+    }
+    if (longestBlock_ != nullptr) {
+      *longestBlock_ = static_cast<int>(longest);
     }
     if (tooLong > 0) {
       errors_.push_back(fmt::format("{} blocks exceed the controller's {} characters, the longest "
@@ -653,6 +658,7 @@ private:
   const ControllerProfile& profile_;
   const MacroProgramOptions& options_;
   std::vector<std::string>& errors_;
+  int* longestBlock_;
   MacroExpressionWriter expressions_;
   const std::map<std::uint32_t, double>& steppedLoops_;
   const std::set<std::uint32_t>& scaledValues_;
@@ -715,6 +721,7 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
   // for the addresses of a move or `#nnn=`; the printer checks every block's
   // real length.
   options.maximumInlineOperations = std::max(16, profile.maximumBlockLength - 20);
+  options.maximumAssignmentOperations = std::max(16, profile.maximumBlockLength - 8);
   options.shape = [&profile](const ir::Function& function, const ir::Instruction& instruction,
                              std::span<const ir::InlineShape> operands) {
     return macroInlineShape(profile, function, instruction, operands);
@@ -784,18 +791,35 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   if (!program.errors.empty()) {
     return program;
   }
-  ir::AllocationResult allocated =
-      ir::allocateVariables(simplified, macroAllocationOptions(profile, parameterVariables));
-  for (const ir::AllocationFailure& failure : allocated.failures) {
-    program.errors.push_back(failure.message);
+  // The allocator estimates the length of a block; where a printed block is
+  // longer than the controller takes, the limits shrink and it runs again.
+  ir::AllocationOptions allocationOptions = macroAllocationOptions(profile, parameterVariables);
+  ir::AllocationResult allocated;
+  std::string text;
+  for (int attempt = 0;; ++attempt) {
+    program.errors.clear();
+    allocated = ir::allocateVariables(simplified, allocationOptions);
+    for (const ir::AllocationFailure& failure : allocated.failures) {
+      program.errors.push_back(failure.message);
+    }
+    if (!program.errors.empty()) {
+      return program;
+    }
+    SteppedLoops stepped = stepLoopsByTheirScale(simplified, allocated.allocation);
+    int longest = 0;
+    text = ProgramPrinter(simplified, allocated.allocation, stepped, profile, options,
+                          program.errors, &longest)
+               .print();
+    bool onlyTooLong = program.errors.size() == 1 && longest > profile.maximumBlockLength;
+    if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {
+      break;
+    }
+    int excess = longest - profile.maximumBlockLength;
+    allocationOptions.maximumInlineOperations =
+        std::max(16, allocationOptions.maximumInlineOperations - excess - 2);
+    allocationOptions.maximumAssignmentOperations =
+        std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
   }
-  if (!program.errors.empty()) {
-    return program;
-  }
-  SteppedLoops stepped = stepLoopsByTheirScale(simplified, allocated.allocation);
-  std::string text =
-      ProgramPrinter(simplified, allocated.allocation, stepped, profile, options, program.errors)
-          .print();
   if (!program.errors.empty()) {
     return program;
   }

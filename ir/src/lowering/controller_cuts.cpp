@@ -606,8 +606,10 @@ Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
 //   |C'| <= D1 = (P1 + W1 R) / wmin,  |C''| <= (P2 + W2 R + 2 W1 D1) / wmin.
 // Each P_k, W_k is the bound of the constant control points' share (the
 // largest Bernstein coefficient of the derivative's polynomial, exact at
-// compile time) plus, per dependent control point, |w_i| |q_i - c| (or
-// |w_i|) times the bound of N_i^(k), computed on the controller; R is the
+// compile time) plus, per dependent control point, |w_i| |q_i - c| (for
+// P) or |w_i - w0| (for W: the N_i^(k) sum to zero, so W^(k) = sum (w_i -
+// w0) N_i^(k) for the reference weight w0 = 1) times the bound of N_i^(k),
+// computed on the controller; R is the
 // constant points' largest distance from c (c their centroid) plus the
 // dependent points' distances. Without parameter-dependent or unequal
 // weights W' = W'' = 0 and the bound is P2 / w.
@@ -699,7 +701,9 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
       unequalWeights = unequalWeights || weight != reference;
       smallestConstantWeight = std::min(smallestConstantWeight.value_or(weight), weight);
       for (std::size_t k = 0; k < degree; ++k) {
-        constantWeights[k] += weight * basis[i][k];
+        // W' = sum (w_i - reference) N_i' (the N_i' sum to zero): the share
+        // of weights equal to the reference is nothing.
+        constantWeights[k] += (weight - reference) * basis[i][k];
       }
     } else {
       unequalWeights = true;
@@ -778,8 +782,10 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     pointSlope.add(homogeneous, slopeBound);
     pointCurve.add(homogeneous, curveBound);
     if (!wConstant[d]) {
-      weightSlope.add(size, slopeBound);
-      weightCurve.add(size, curveBound);
+      LinearForm offset;
+      offset.add(math.unary(Opcode::Abs, math.binary(Opcode::Sub, w[d], Scalar::of(reference))), 1);
+      weightSlope.add(offset, slopeBound);
+      weightCurve.add(offset, curveBound);
       // min(a, b) = (a + b - |a - b|) / 2, one inline expression.
       smallestWeight =
           haveSmallest
@@ -792,23 +798,28 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
       haveSmallest = true;
     }
   }
-  Scalar bound;
+  // M / (8 budget), the constant factor taken into the sums' coefficients:
+  // M = (P2 + W2 R + 2 W1 (P1 + W1 R) / wmin) / wmin.
+  double factor = 1 / (8 * budget);
+  LinearForm curveNumerator;
+  curveNumerator.add(pointCurve, factor);
+  Scalar scaledBound;
   if (unequalWeights) {
-    // M = (P2 + W2 R + 2 W1 (P1 + W1 R) / wmin) / wmin.
     LinearForm slopeNumerator = pointSlope;
     slopeNumerator.add(weightSlope.times(radius, math), 1);
-    LinearForm curveNumerator = pointCurve;
-    curveNumerator.add(weightCurve.times(radius, math), 1);
-    Scalar cross = math.binary(Opcode::Div,
-                               math.multiply(math.multiply(Scalar::of(2), weightSlope.scalar(math)),
-                                             slopeNumerator.scalar(math)),
-                               smallestWeight);
-    bound = math.binary(Opcode::Div, math.add(curveNumerator.scalar(math), cross), smallestWeight);
+    curveNumerator.add(weightCurve.times(radius, math), factor);
+    LinearForm doubledSlope;
+    doubledSlope.add(weightSlope, 2 * factor);
+    Scalar cross = math.binary(
+        Opcode::Div, math.multiply(doubledSlope.scalar(math), slopeNumerator.scalar(math)),
+        smallestWeight);
+    scaledBound =
+        math.binary(Opcode::Div, math.add(curveNumerator.scalar(math), cross), smallestWeight);
   } else {
-    bound = math.binary(Opcode::Div, pointCurve.scalar(math), smallestWeight);
+    scaledBound = math.binary(Opcode::Div, curveNumerator.scalar(math), smallestWeight);
   }
   // N >= sqrt(M / (8 budget)) steps of u.
-  Scalar steps = math.unary(Opcode::Sqrt, math.multiply(bound, Scalar::of(1 / (8 * budget))));
+  Scalar steps = math.unary(Opcode::Sqrt, scaledBound);
   segment.stepCount = math.unary(Opcode::Round, math.add(steps, Scalar::of(roundUpOffset)));
 }
 

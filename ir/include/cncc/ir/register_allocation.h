@@ -65,6 +65,8 @@ struct AllocationOptions {
   // and an operand written twice count the bracketed depth.
   int maximumBracketDepth = 5;
   int maximumInlineOperations = 10;
+  // The same limit for the expression of a `#n=expr` statement (0: as above).
+  int maximumAssignmentOperations = 0;
   InlineShapeFunction shape; // empty: every operation adds a bracket level
   // Operations printed as several statements (min, max, select, ..): their
   // result always gets a variable, and their operands are written twice.
