@@ -87,7 +87,7 @@ std::vector<Eigen::Vector3d> executedNurbs(const sim::SimulationResult& result, 
 
 // The largest distance from an executed point to the curve.
 double largestPointDistance(const std::vector<Eigen::Vector3d>& points, const geom::Curve& curve) {
-  geom::CurveProximity proximity(curve, 1e-9);
+  geom::CurveProximity proximity(curve, 1e-8);
   double largest = 0;
   for (const Eigen::Vector3d& point : points) {
     largest = std::max(largest, proximity.closestPoint(point).distance);
