@@ -88,6 +88,9 @@ public:
 
   // A lap of arcs from the current position (gcode_arcs.h), at the current Z.
   void arcs(std::span<const geom::ArcSegment> segments, double feed) {
+    if (segments.empty()) {
+      return;
+    }
     ArcBlockFormat format;
     format.decimals = decimals_;
     format.start = {std::stod(x_), std::stod(y_)};
