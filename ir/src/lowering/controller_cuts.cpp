@@ -45,6 +45,8 @@ using namespace frontend;
 namespace {
 
 constexpr int maximumStepsPerPiece = 100'000;
+// The share of the increment kept for the rounding of printed literals.
+constexpr double literalShare = 0.02;
 // Added before rounding: round(x + 0.5) = floor(x) + 1 >= ceil(x) and >= 1
 // for x >= 0, written as one inline ROUND on the controller.
 constexpr double roundUpOffset = 0.5;
@@ -378,7 +380,10 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
     int steps = 0;
     try {
-      steps = fewestUniformSteps(geometry, from, to, budget);
+      // Less a fiftieth of an increment for the literals' 8 significant
+      // digits (coefficients, the step), a few micrometres at most.
+      steps = fewestUniformSteps(geometry, from, to,
+                                 budget - options_.coordinateIncrement * literalShare);
     } catch (const geom::GeometryError& error) {
       fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
            DiagnosticKind::DegenerateCurve);

@@ -120,8 +120,9 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
     if (const Expr* expression = modifierValue(cut, "samples")) {
       double samples = constantNumber(*expression, "samples=");
       if (!(samples >= 2 && samples <= maximumPointsPerCut) || samples != std::floor(samples)) {
-        fail(expression->span, fmt::format("samples={:g} is not a whole number from 2 to {:g}",
-                                           samples, maximumPointsPerCut),
+        fail(expression->span,
+             fmt::format("samples={:g} is not a whole number from 2 to {:g}", samples,
+                         maximumPointsPerCut),
              DiagnosticKind::InvalidSamples);
       }
       return geom::sampleUniformParameter(curve, static_cast<std::size_t>(samples));
@@ -137,7 +138,10 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
       }
       return geom::sampleEqualArcLength(curve, spacing);
     }
-    return geom::discretiseByChordTolerance(curve, *chordTolerance(cut));
+    // A controller that rounds every coordinate to its increment takes up to
+    // half an increment per axis of the tolerance (LoweringOptions).
+    double rounding = options_.coordinateIncrement / 2 * std::sqrt(3.0);
+    return geom::discretiseByChordTolerance(curve, *chordTolerance(cut) - rounding);
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);
@@ -206,8 +210,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   auto index = static_cast<std::uint32_t>(cuts_.size());
   const Expr* arcs = modifierValue(cut, "arcs");
   cuts_.push_back({curve.geometry,
-                   chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
-                   cut.span,
+                   chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
                    arcs != nullptr && arcs->kind == ExprKind::Bool
                        ? std::optional<bool>(as<BoolExpr>(*arcs).value)
                        : std::nullopt,
@@ -223,8 +226,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   double done = 0;
   for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
     SampleLocation location = locate(curve, samples.parameters[i]);
-    if (runs.empty() || runs.back().piece != location.piece ||
-        runs.back().span != location.span) {
+    if (runs.empty() || runs.back().piece != location.piece || runs.back().span != location.span) {
       runs.push_back({location.piece, location.span, {}, {}, 0, 0});
     }
     done += (samples.points[i] - samples.points[i - 1]).norm();
