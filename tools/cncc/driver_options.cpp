@@ -41,6 +41,8 @@ struct RawOptions {
   bool formatInPlace = false;
   bool stats = false;
   bool arcs = false;
+  bool subprograms = false;
+  std::string splineEnds;
   std::string rapidRate = "10000";
   std::string plotInput;
   std::string optInput;
@@ -130,6 +132,14 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
   app.add_flag("--arcs", raw.arcs,
                "gcode: cut planar curves as G02/G03 arcs within their tolerance "
                "(as arcs=true on every cut)");
+  app.add_flag("--subprograms", raw.subprograms,
+               "sinumerik: each cut's spline blocks in a subprogram NAME_CUTn.SPF called at "
+               "every pass (after the main program, in archive form)");
+  app.add_option("--spline-ends", raw.splineEnds,
+                 "sinumerik: how A and C splines start and end: BTAN after a move in XY and "
+                 "BNAT otherwise (tangent, the default), BNAT ENAT, or BAUTO EAUTO")
+      ->type_name("tangent|natural|auto")
+      ->check(CLI::IsMember({"tangent", "natural", "auto"}));
   app.add_flag("--stats", raw.stats,
                "Also print, on stderr, the program's size, path length, time estimate and "
                "largest deviation from the true curves");
@@ -373,6 +383,9 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (raw.arcs && (options.command != Command::Compile || raw.target != "gcode")) {
     throw UsageError("--arcs is for the gcode target: it prints cuts as G02/G03 arcs");
   }
+  if ((raw.subprograms || !raw.splineEnds.empty()) && raw.target != "sinumerik") {
+    throw UsageError("--subprograms and --spline-ends are for the sinumerik target");
+  }
   if (raw.stats && !canMeasure(raw.target) && !canVerify(raw.target)) {
     throw UsageError(fmt::format("--stats is not available for target '{}' in this version "
                                  "(gcode, jit, m80 and fanuc have it)",
@@ -424,6 +437,8 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   options.partName = raw.partName;
   options.stats = raw.stats;
   options.arcs = raw.arcs;
+  options.subprograms = raw.subprograms;
+  options.splineEnds = raw.splineEnds.empty() ? "tangent" : raw.splineEnds;
   options.macroCall = raw.macroCall;
   options.parametersInCommon = raw.parameterStorage == "common";
   options.profile = raw.profile;

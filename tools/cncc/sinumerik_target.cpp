@@ -30,6 +30,11 @@ backends::SinumerikOptions sinumerikOptionsFor(const BackendRequest& request) {
   std::string output = request.output.path();
   options.programName = output.empty() || output == "-" ? part.name : fileStem(output);
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
+  options.subprograms = request.options.subprograms;
+  const std::string& ends = request.options.splineEnds;
+  options.transitions = ends == "natural" ? backends::SinumerikTransitions::Natural
+                        : ends == "auto"  ? backends::SinumerikTransitions::Auto
+                                          : backends::SinumerikTransitions::Automatic;
   return options;
 }
 

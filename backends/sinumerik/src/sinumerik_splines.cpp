@@ -5,12 +5,15 @@
 #include "cncc/geom/curve_deviation.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/nurbs_curve.h"
+#include "cncc/geom/polynomial_span.h"
 #include "cncc/geom/spline_knot_placement.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
 
 namespace cncc::backends::sinumerik {
 
@@ -24,6 +27,8 @@ constexpr int kIntervalExtraDecimals = 3; // PL gets more decimals than coordina
 // Each retry with the printed numbers over the tolerance aims this much lower.
 constexpr double kRetryFactor = 0.9;
 constexpr int kRetries = 4;
+// The share of the tolerance an analytic curve's stand-in may be off by.
+constexpr double kStandInShare = 1e-4;
 
 // The measurement's accuracy, a share of the tolerance: the fits aim this
 // much lower.
@@ -227,6 +232,107 @@ SplineBlocks interpolatingBlocks(const SplineRequest& request) {
                                         request.decimals, request.tolerance));
 }
 
+// A stand-in for an analytic curve, whose every evaluation runs the part's
+// expressions: quintic Hermite spans through its points, first and second
+// derivatives at equal parameter steps on each smooth piece, the steps
+// halved until the spans' midpoints and quarter points are within `error`
+// of the curve (the error falls like h^6). The searches run on it, the
+// deviations they find get `error` added.
+// Its joins are not the curve's breakpoints (it is C2 there, and within
+// `error`), so it reports the curve's own: the fits place knots by the
+// curve, not by the stand-in's spans.
+class StandInCurve : public geom::PiecewisePolynomialCurve {
+public:
+  StandInCurve(std::vector<geom::PolynomialSpan> spans, std::vector<double> breakpoints)
+      : PiecewisePolynomialCurve(std::move(spans)), breakpoints_(std::move(breakpoints)) {}
+  std::vector<double> breakpoints() const override { return breakpoints_; }
+
+private:
+  std::vector<double> breakpoints_;
+};
+
+struct CurveStandIn {
+  std::unique_ptr<StandInCurve> curve;
+  double error = 0;
+};
+
+geom::PolynomialSpan quinticSpan(const geom::Curve& curve, double t0, double t1) {
+  geom::CurveDerivatives a = curve.derivatives(t0);
+  geom::CurveDerivatives b = curve.derivatives(t1);
+  double h = t1 - t0;
+  Eigen::Vector3d p = b.point - a.point;
+  Eigen::Vector3d v0 = a.first * h, v1 = b.first * h;
+  Eigen::Vector3d s0 = a.second * h * h, s1 = b.second * h * h;
+  std::array<Eigen::Vector3d, 6> c = {
+      a.point,
+      v0,
+      0.5 * s0,
+      10 * p - 6 * v0 - 4 * v1 - 1.5 * s0 + 0.5 * s1,
+      -15 * p + 8 * v0 + 7 * v1 + 1.5 * s0 - s1,
+      6 * p - 3 * v0 - 3 * v1 - 0.5 * s0 + 0.5 * s1,
+  };
+  geom::PolynomialSpan span;
+  span.t0 = t0;
+  span.t1 = t1;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    span.coefficients.push_back({c[k].x(), c[k].y(), c[k].z(), k == 0 ? 1.0 : 0.0});
+  }
+  return span;
+}
+
+std::optional<CurveStandIn> standInFor(const geom::Curve& curve, double error) {
+  constexpr int kInitialSteps = 32;
+  constexpr int kMaximumSteps = 1 << 14;
+  std::vector<double> breakpoints = curve.breakpoints();
+  std::vector<geom::PolynomialSpan> spans;
+  for (std::size_t piece = 0; piece + 1 < breakpoints.size(); ++piece) {
+    double a = breakpoints[piece];
+    double b = breakpoints[piece + 1];
+    for (int steps = kInitialSteps;; steps *= 2) {
+      if (steps > kMaximumSteps) {
+        return std::nullopt;
+      }
+      std::vector<geom::PolynomialSpan> pieceSpans;
+      bool close = true;
+      for (int i = 0; i < steps && close; ++i) {
+        double t0 = a + (b - a) * i / steps;
+        double t1 = i + 1 == steps ? b : a + (b - a) * (i + 1) / steps;
+        pieceSpans.push_back(quinticSpan(curve, t0, t1));
+        for (double u : {0.25, 0.5, 0.75}) {
+          double t = t0 + (t1 - t0) * u;
+          close = close && (pieceSpans.back().pointAt(u) - curve.point(t)).norm() <= error;
+        }
+      }
+      if (close) {
+        spans.insert(spans.end(), pieceSpans.begin(), pieceSpans.end());
+        break;
+      }
+    }
+  }
+  return CurveStandIn{std::make_unique<StandInCurve>(std::move(spans), std::move(breakpoints)),
+                      error};
+}
+
+// The request on a stand-in of its curve when that is analytic.
+struct CheapRequest {
+  SplineRequest request;
+  std::optional<CurveStandIn> standIn;
+};
+
+CheapRequest cheaper(const SplineRequest& request) {
+  CheapRequest cheap{request, std::nullopt};
+  bool analytic = dynamic_cast<const geom::NurbsCurve*>(request.curve) == nullptr &&
+                  dynamic_cast<const geom::PiecewisePolynomialCurve*>(request.curve) == nullptr;
+  if (analytic && !std::isnan(request.tolerance)) {
+    cheap.standIn = standInFor(*request.curve, request.tolerance * kStandInShare);
+    if (cheap.standIn) {
+      cheap.request.curve = cheap.standIn->curve.get();
+      cheap.request.tolerance = request.tolerance - cheap.standIn->error;
+    }
+  }
+  return cheap;
+}
+
 } // namespace
 
 double roundingBound(int decimals) {
@@ -244,10 +350,13 @@ Eigen::Vector3d roundPoint(const Eigen::Vector3d& point, int decimals) {
 }
 
 SplineBlocks chooseSplineBlocks(const SplineRequest& request) {
-  if (request.kind == SplineKind::BSpline) {
-    return bsplineBlocks(request);
+  CheapRequest cheap = cheaper(request);
+  SplineBlocks blocks = request.kind == SplineKind::BSpline ? bsplineBlocks(cheap.request)
+                                                            : interpolatingBlocks(cheap.request);
+  if (cheap.standIn) {
+    blocks.deviation += cheap.standIn->error;
   }
-  return interpolatingBlocks(request);
+  return blocks;
 }
 
 } // namespace cncc::backends::sinumerik

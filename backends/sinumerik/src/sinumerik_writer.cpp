@@ -215,6 +215,7 @@ private:
 
   // Up first and down last, as the G-code writer does.
   void rapid(const MachineEvent& e) {
+    exact_ = Eigen::Vector3d(e.x, e.y, e.z);
     Eigen::Vector3d target = sinumerik::roundPoint({e.x, e.y, e.z}, options_.decimals);
     bool rising = !position_ || target.z() > position_->z() + 1e-12;
     if (rising) {
@@ -277,6 +278,7 @@ private:
   }
 
   void linear(const Eigen::Vector3d& point, double feed) {
+    exact_ = point;
     Eigen::Vector3d target = sinumerik::roundPoint(point, options_.decimals);
     move("G1", target.x(), target.y(), target.z(), feed);
     previous_ = position_;
@@ -293,7 +295,7 @@ private:
   };
 
   std::optional<Lap> lapAt(std::size_t i) const {
-    if (!cut_ || *cut_ >= cuts_.size() || !position_ || cuts_[*cut_].geometry.curve == nullptr) {
+    if (!cut_ || *cut_ >= cuts_.size() || !exact_ || cuts_[*cut_].geometry.curve == nullptr) {
       return std::nullopt;
     }
     const geom::Curve& curve = *cuts_[*cut_].geometry.curve;
@@ -301,27 +303,41 @@ private:
     auto inPlane = [](const Eigen::Vector3d& point) {
       return Eigen::Vector2d(point.x(), point.y());
     };
-    if ((inPlane(*position_) - inPlane(curve.point(domain.t0))).norm() > kSamePoint * 100) {
+    if ((inPlane(*exact_) - inPlane(curve.point(domain.t0))).norm() > kSamePoint) {
       return std::nullopt;
     }
     const MachineEvent& first = path_.events[i];
-    if ((Eigen::Vector2d(first.x, first.y) - inPlane(*position_)).norm() <= kSamePoint) {
+    if ((Eigen::Vector2d(first.x, first.y) - inPlane(*exact_)).norm() <= kSamePoint) {
       return std::nullopt; // a plunge
     }
     Eigen::Vector2d finish = inPlane(curve.point(domain.t1));
     Lap lap;
+    lap.flat = isPlanar(curve);
     for (std::size_t j = i; j < path_.events.size(); ++j) {
       const MachineEvent& e = path_.events[j];
       if (e.kind != MachineEvent::Kind::Feed) {
         return std::nullopt;
       }
-      lap.flat = lap.flat && std::abs(e.z - position_->z()) <= kSameZ + 1e-9 * std::abs(e.z);
+      lap.flat = lap.flat && std::abs(e.z - exact_->z()) <= kSameZ + 1e-9 * std::abs(e.z);
       if ((Eigen::Vector2d(e.x, e.y) - finish).norm() <= kSamePoint) {
         lap.end = j + 1;
         return lap;
       }
     }
     return std::nullopt;
+  }
+
+  // Whether the curve lies in a plane z = constant (the spline axes are X, Y).
+  static bool isPlanar(const geom::Curve& curve) {
+    constexpr int kProbes = 16;
+    geom::ParameterRange domain = curve.domain();
+    double z = curve.point(domain.t0).z();
+    for (int k = 1; k <= kProbes; ++k) {
+      if (std::abs(curve.point(domain.t0 + domain.length() * k / kProbes).z() - z) > kSameZ) {
+        return false;
+      }
+    }
+    return true;
   }
 
   // The lap as G1 chords chosen again with the printed rounding taken off
@@ -343,14 +359,18 @@ private:
     for (std::size_t k = 1; k < samples.points.size(); ++k) {
       total += (samples.points[k] - samples.points[k - 1]).norm();
     }
-    double zFrom = position_->z();
-    double zTo = path_.events[lap.end - 1].z;
+    // The height the lap adds to the curve's own, at its start and end.
+    geom::ParameterRange domain = cut.geometry.curve->domain();
+    double zFrom = exact_->z() - cut.geometry.curve->point(domain.t0).z();
+    double zTo = path_.events[lap.end - 1].z - cut.geometry.curve->point(domain.t1).z();
     double done = 0;
     for (std::size_t k = 1; k < samples.points.size(); ++k) {
       done += (samples.points[k] - samples.points[k - 1]).norm();
-      double z = lap.flat ? zFrom : zFrom + (zTo - zFrom) * (total > 0 ? done / total : 1.0);
+      double z = zFrom + (zTo - zFrom) * (total > 0 ? done / total : 1.0);
       linear({samples.points[k].x(), samples.points[k].y(), z + samples.points[k].z()}, feed);
     }
+    const MachineEvent& last = path_.events[lap.end - 1];
+    exact_ = Eigen::Vector3d(last.x, last.y, last.z);
     SinumerikCutSummary& summary = program_.cuts[*cut_];
     if (summary.method.empty()) {
       summary.method = "linear";
@@ -387,7 +407,7 @@ private:
     request.curve = cut.geometry.curve.get();
     request.kind = kind;
     request.tolerance = cut.geometry.tolerance;
-    request.samples.push_back({position_->x(), position_->y(), 0.0});
+    request.samples.push_back({exact_->x(), exact_->y(), 0.0});
     for (std::size_t j = first; j < end; ++j) {
       request.samples.push_back({path_.events[j].x, path_.events[j].y, 0.0});
     }
@@ -440,6 +460,7 @@ private:
     }
     // The spline ends where the curve does, at the lap's height.
     const MachineEvent& last = path_.events[end - 1];
+    exact_ = Eigen::Vector3d(last.x, last.y, last.z);
     previous_ = std::nullopt;
     position_ = sinumerik::roundPoint({last.x, last.y, last.z}, options_.decimals);
     x_ = number(blocks.points.back().x());
@@ -486,6 +507,7 @@ private:
   SinumerikProgram program_;
   std::optional<std::size_t> cut_;
   std::optional<Eigen::Vector3d> position_, previous_;
+  std::optional<Eigen::Vector3d> exact_; // the tool path's position, unrounded
   bool lastWasFeed_ = false;
   bool spindleOn_ = false;
   bool pathModeWritten_ = false;

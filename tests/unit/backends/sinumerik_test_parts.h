@@ -45,12 +45,14 @@ inline std::string replaced(std::string text, const std::string& from, const std
 }
 
 inline std::unique_ptr<SinumerikPart> compileForSinumerik(const std::string& text,
-                                                          backends::SinumerikOptions options = {}) {
+                                                          backends::SinumerikOptions options = {},
+                                                          const std::string& partName = {}) {
   auto part = std::make_unique<SinumerikPart>();
   frontend::FileId file = part->sources.addFile("part.cdl", text);
   frontend::CheckOptions check;
   check.importPaths = {CNCC_STDLIB_DIR};
   check.requirePart = true;
+  check.partName = partName;
   part->program = frontend::checkProgram(part->sources, file, check, part->diagnostics);
   if (part->diagnostics.hasErrors() || part->program->selectedPart == nullptr) {
     ADD_FAILURE() << "the part does not check";

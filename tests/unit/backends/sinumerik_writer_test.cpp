@@ -29,7 +29,10 @@ struct Verified {
 };
 
 Verified verify(const SinumerikPart& part) {
-  sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(part.output.text);
+  // Chords sagging a thousandth of the tolerance, at least 1e-6 mm.
+  sinumerik::SinumerikRunOptions options;
+  options.sampleTolerance = std::max(1e-6, part.cuts.front().geometry.tolerance * 1e-3);
+  sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(part.output.text, options);
   EXPECT_FALSE(run.error) << (run.error ? run.error->what() : "");
   std::vector<ir::CutGeometry> cuts;
   for (const SinumerikCut& cut : part.cuts) {
@@ -201,6 +204,39 @@ TEST(SinumerikWriter, SubprogramLayoutRunsAsTheInlineOne) {
     ASSERT_TRUE(a.moves[i].end.isApprox(b.moves[i].end, 1e-12)) << i;
   }
   EXPECT_LE(verify(*layout).pathDeviation, 0.01);
+}
+
+// Every cut of a part within its tolerance in the virtual Sinumerik: loops,
+// transforms and method=cspline (the rosette, imports resolved against the
+// examples), and a helix, whose z is not the spline plane's (G1 chords).
+void expectEveryCutWithinTolerance(const SinumerikPart& part) {
+  sinumerik::SinumerikRunOptions options;
+  options.sampleTolerance = 1e-5; // the tightest tolerance here is 0.005 mm
+  sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(part.output.text, options);
+  ASSERT_FALSE(run.error) << run.error->what();
+  std::vector<ir::CutGeometry> cuts;
+  for (const SinumerikCut& cut : part.cuts) {
+    cuts.push_back(cut.geometry);
+  }
+  ExecutedProgram program{part.output.text, 0,
+                          sinumerik::executedPathOf(run, part.output.cutOfLine)};
+  PathStatistics statistics = measureProgram(program, cuts, {});
+  ASSERT_EQ(statistics.cuts.size(), cuts.size());
+  for (const CutDeviation& cut : statistics.cuts) {
+    EXPECT_GT(cut.feedMoves, 0u) << "cut " << cut.cut + 1;
+    EXPECT_TRUE(cut.withinTolerance()) << "cut " << cut.cut + 1 << ": " << cut.maxDeviation;
+  }
+}
+
+TEST(SinumerikWriter, RosetteAndHelixWithinTheirTolerances) {
+  auto rosette = compileForSinumerik(exampleText("rosette_plate.cdl"));
+  ASSERT_TRUE(rosette);
+  EXPECT_EQ(countLines(rosette->output.text, "CSPLINE "), 6u * 3); // 6 petals, 3 passes
+  expectEveryCutWithinTolerance(*rosette);
+  auto helix = compileForSinumerik(exampleText("helix_bore.cdl"), {}, "bore_plate_mm");
+  ASSERT_TRUE(helix);
+  EXPECT_EQ(helix->output.text.find("SPLINE"), std::string::npos);
+  expectEveryCutWithinTolerance(*helix);
 }
 
 } // namespace
