@@ -25,6 +25,11 @@ std::size_t placeAndVerify(const Curve& curve, InterpolatingSplineKind kind, dou
   EXPECT_EQ(knots.parameters.back(), curve.domain().t1);
   for (std::size_t i = 0; i < knots.points.size(); ++i)
     EXPECT_LT((knots.points[i] - curve.point(knots.parameters[i])).norm(), 1e-12);
+  // No two points almost on top of each other (a sliver before the end once
+  // left 7e-8 mm), which printed coordinates could not resolve.
+  for (std::size_t i = 1; i < knots.points.size(); ++i)
+    EXPECT_GT((knots.points[i] - knots.points[i - 1]).norm(), 1e-3)
+        << "points " << i - 1 << " and " << i;
   EXPECT_LE(knots.deviation, tolerance);
   PiecewisePolynomialCurve spline = modelSpline(kind, knots.points, knots.transitions);
   double measured = measureCurveDeviation(spline, curve, {tolerance * 1e-3}).maxDeviation();
