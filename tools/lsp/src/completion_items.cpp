@@ -132,6 +132,8 @@ const std::vector<ModifierInfo>& modifierInfos() {
        "how the controller interpolates: G01 chords, Sinumerik A/B/C splines, or G06.2 NURBS"},
       {"feed", "feed=${1:300}", "feed for this cut (default: the tool's)"},
       {"entry", "entry=${1|plunge,ramp|}", "straight plunge, or ramped descent along the curve"},
+      {"arcs", "arcs=${1|true,false|}",
+       "gcode: G02/G03 arcs fitted within the tolerance instead of G01 chords (also --arcs)"},
   };
   return infos;
 }
