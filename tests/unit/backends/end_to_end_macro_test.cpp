@@ -169,8 +169,9 @@ TEST_P(MacroEndToEnd, KeepsEveryCutWithinItsTolerance) {
 
 // Each example and part with its defaults and other parameter sets: `sets`
 // keep to every tolerance today; `pending` do not yet (the lowering of those
-// parts does not yet carry the parameters to the controller, or a block is
-// too long), and run as DISABLED_ tests until they do.
+// parts does not yet carry those parameters to the controller: radii, turns
+// and loop counts are still computed for the defaults), and run as DISABLED_
+// tests until they do.
 struct ExampleParameters {
   std::string file;
   std::string part;
@@ -181,7 +182,7 @@ struct ExampleParameters {
 const std::vector<ExampleParameters>& exampleParameters() {
   static const std::vector<ExampleParameters> examples = {
       {"archimedean_spiral.cdl", "", {{}, {{"a", 3}, {"b", 0.5}}, {{"a", 0.5}, {"b", 4}}}, {}},
-      {"cam_profile.cdl", "", {}, {{}, {{"base", 25}, {"lift", 5}}, {{"base", 18}, {"lift", 10}}}},
+      {"cam_profile.cdl", "", {{}}, {{{"base", 25}, {"lift", 5}}, {{"base", 18}, {"lift", 10}}}},
       {"helix_bore.cdl",
        "bore_plate_mm",
        {{}},
@@ -190,7 +191,7 @@ const std::vector<ExampleParameters>& exampleParameters() {
        "bore_plate_inch",
        {{}},
        {{{"bore_diameter", 0.4375}}, {{"depth", 0.5}, {"pitch", 0.05}}}},
-      {"polar_contour.cdl", "", {}, {{}, {{"depth", 3}}, {{"depth", 9}}}},
+      {"polar_contour.cdl", "", {{}}, {{{"depth", 3}}, {{"depth", 9}}}},
       {"rosette_plate.cdl",
        "",
        {{}},
