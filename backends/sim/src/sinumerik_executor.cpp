@@ -112,8 +112,8 @@ geom::CurveSamples sampleDensely(const geom::Curve& curve, double tolerance) {
       bend = std::max(bend, curve.secondDerivative(std::min(t, t1)).norm());
     }
     double step = bend > 0 ? std::sqrt(8.0 * tolerance / (kMargin * bend)) : (t1 - t0);
-    auto steps = static_cast<std::size_t>(std::ceil((t1 - t0) / step));
-    steps = std::clamp<std::size_t>(steps, 1, 10'000'000);
+    double count = std::clamp(std::ceil((t1 - t0) / step), 1.0, 1e7);
+    auto steps = static_cast<std::size_t>(count);
     for (std::size_t i = 1; i <= steps; ++i) {
       samples.parameters.push_back(i == steps ? t1 : t0 + (t1 - t0) * double(i) / double(steps));
     }
@@ -257,6 +257,9 @@ private:
 
   // True for a motion code.
   bool gCode(double value) {
+    if (!(value >= 0 && value <= 1000) || double(int(value)) != value) {
+      fail(fmt::format("G{:g} is not known to this model", value));
+    }
     int code = int(value);
     if (double(code) != value) {
       fail(fmt::format("G{:g} is not known to this model", value));
@@ -284,6 +287,9 @@ private:
 
   // True when the program ends.
   bool mCode(double value) {
+    if (!(value >= 0 && value <= 1000) || double(int(value)) != value) {
+      fail(fmt::format("M{:g} is not known to this model", value));
+    }
     int code = int(value);
     switch (code) {
     case 3:
