@@ -776,7 +776,7 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
         squares = math.add(squares, math.multiply(offset, offset));
       }
       distance.add(math.unary(Opcode::Sqrt, squares), 1);
-      radius.add(distance.terms.front().first, 1);
+      radius.add(distance, 1);
     }
     // The weights are positive (the bound divides by the smallest), so |w| = w.
     LinearForm size{wConstant[d] ? w[d].constant : 0, {}};
