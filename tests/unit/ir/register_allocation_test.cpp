@@ -224,3 +224,45 @@ TEST(RegisterAllocation, GivesOperationsWrittenAsStatementsAVariable) {
 
 } // namespace
 } // namespace cncc::ir
+
+namespace cncc::ir {
+namespace {
+
+// A statement `#n=expr` has its own length limit: the same chain of
+// additions splits in a move's address words, not in an assignment.
+TEST(RegisterAllocation, GivesAssignmentsTheirOwnLengthLimit) {
+  FunctionBuilder builder("long");
+  ValueId x = builder.parameter(builder.addParameter("x", 2));
+  ValueId sum = x;
+  std::vector<ValueId> chain;
+  for (int i = 0; i < 6; ++i) {
+    sum = builder.binary(Opcode::Add, sum, builder.binary(Opcode::Mul, x, x));
+    chain.push_back(sum);
+  }
+  ValueId zero = builder.constant(0);
+  builder.rapid(sum, sum, zero); // used twice: `#n=sum`, then X#n Y#n
+  Function function = builder.finish();
+
+  auto inVariables = [&](const AllocationResult& result) {
+    int count = 0;
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+      count += result.allocation.inVariable(chain[i]) ? 1 : 0;
+    }
+    return count;
+  };
+  AllocationOptions options = optionsWith({{1, 33}}, {1});
+  options.maximumBracketDepth = 100; // only the length limits count here
+  options.maximumInlineOperations = 4;
+  AllocationResult tight = allocateVariables(function, options);
+  ASSERT_TRUE(tight.ok());
+  EXPECT_GT(inVariables(tight), 0);
+
+  options.maximumAssignmentOperations = 100;
+  AllocationResult roomy = allocateVariables(function, options);
+  ASSERT_TRUE(roomy.ok());
+  EXPECT_TRUE(roomy.allocation.inVariable(sum));
+  EXPECT_EQ(inVariables(roomy), 0);
+}
+
+} // namespace
+} // namespace cncc::ir
