@@ -126,6 +126,22 @@ TEST(SinumerikWriter, WeightsOutsidePwAreRefittedNotClipped) {
   EXPECT_EQ(countLines(scaled->output.text, "X132.4671 Y35.1148 PW=3 PL=0.25"), 3u);
 }
 
+TEST(SinumerikWriter, QuadraticNurbsIsSdTwoWithRoundedWeights) {
+  // A quarter circle: the middle weight cos(45 degrees) becomes PW=0.7071,
+  // which moves the curve by about 1e-5 mm, well within the tolerance.
+  auto part = compileForSinumerik(
+      "part arc {\n  tool 1 diameter=6 feed=200\n  safe z=5\n"
+      "  curve nurbs(order=3, points=[(10,0),(10,10),(0,10)], weights=[1,0.70710678,1]) "
+      "tolerance=0.001 method=bspline\n}\n");
+  ASSERT_TRUE(part);
+  EXPECT_EQ(countLines(part->output.text, "BSPLINE SD=2 X10 Y10 PW=0.7071 PL=0"), 1u);
+  EXPECT_EQ(countLines(part->output.text, "X0 Y10 PW=1 PL=1"), 1u);
+  EXPECT_TRUE(part->output.cuts[0].exact);
+  Verified verified = verify(*part);
+  EXPECT_LT(verified.splineDeviation, 1e-4);
+  EXPECT_GT(verified.splineDeviation, 1e-7); // the rounded weight is what runs
+}
+
 // REFERENCE-CASES.md case 3: equally spaced knots need 106 (C spline) and
 // 128 (A spline), least-squares control points 96 at 0.01 mm.
 TEST(SinumerikWriter, PolarContourCSplineAtTenMicrometres) {
