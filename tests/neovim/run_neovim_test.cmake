@@ -46,7 +46,7 @@ string(JSON severity GET "${results}" diagnostics 0 severity)
 string(JSON source GET "${results}" diagnostics 0 source)
 expect("code STREQUAL \"weights-count\"" "the code weights-count, got '${code}'")
 expect("message STREQUAL \"'weights' has 6 entries but 'points' has 7\"" "the front end's message, got '${message}'")
-expect("line EQUAL 8 AND column EQUAL 41" "the span at line 8, column 41 (0-based), got ${line}:${column}")
+expect("line EQUAL 8 AND column EQUAL 33" "the span at line 8, column 33 (0-based), got ${line}:${column}")
 expect("severity EQUAL 1" "severity error (1), got ${severity}")
 expect("source STREQUAL \"cncc\"" "source cncc")
 

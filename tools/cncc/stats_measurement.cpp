@@ -25,8 +25,8 @@ std::optional<HostRun> runOnHost(const BackendRequest& request) {
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics);
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics, hostLoweringOptions(request));
   if (!lowered) {
     return std::nullopt;
   }

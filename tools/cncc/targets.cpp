@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <optional>
 
 namespace cncc::driver {
@@ -32,8 +33,8 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics);
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics, hostLoweringOptions(request));
   if (!lowered) {
     return std::nullopt;
   }
@@ -99,6 +100,18 @@ constexpr Target targetTable[] = {
 };
 
 } // namespace
+
+ir::LoweringOptions hostLoweringOptions(const BackendRequest& request) {
+  // The printed coordinates are rounded to the printed decimals (the CSV
+  // of jit has 6): the chords leave that rounding room inside the tolerance.
+  ir::LoweringOptions options;
+  if (request.options.target == "gcode") {
+    options.coordinateIncrement = std::pow(10.0, -gcodeOptionsFor(request).decimals);
+  } else if (request.options.target == "jit") {
+    options.coordinateIncrement = std::pow(10.0, -backends::toolPathCsvDecimals);
+  }
+  return options;
+}
 
 backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   const frontend::PartItem& part = *request.program.selectedPart;

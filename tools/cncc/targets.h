@@ -8,6 +8,7 @@
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
+#include "cncc/ir/lowering.h"
 
 #include <span>
 #include <string>
@@ -35,6 +36,10 @@ struct Target {
 
   bool available() const { return backend != nullptr; }
 };
+
+// How a host-side target (gcode, jit) lowers the request's part; --stats
+// lowers it the same way.
+ir::LoweringOptions hostLoweringOptions(const BackendRequest& request);
 
 // How the gcode target prints the request's part (also what --stats measures).
 backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request);

@@ -5,7 +5,7 @@
 namespace cncc::backends {
 
 std::string formatCsvNumber(double value) {
-  std::string text = fmt::format("{:.6f}", value);
+  std::string text = fmt::format("{:.{}f}", value, toolPathCsvDecimals);
   std::size_t point = text.find('.');
   if (point != std::string::npos) {
     std::size_t last = text.find_last_not_of('0');

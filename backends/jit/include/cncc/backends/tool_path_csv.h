@@ -8,6 +8,9 @@
 
 namespace cncc::backends {
 
+// The decimals a CSV number is printed with, at most.
+inline constexpr int toolPathCsvDecimals = 6;
+
 // Up to 6 decimals, trailing zeros and a bare trailing point trimmed: `25`,
 // `0.5`, `-1.25`; never `-0`.
 std::string formatCsvNumber(double value);
