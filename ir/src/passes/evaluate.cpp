@@ -1,91 +1,12 @@
-// Mirrors unaryResult, binaryResult, select and table.load in
-// ../interpreter.cpp; a test runs both on the same inputs.
+// Mirrors select and table.load in ../interpreter.cpp, and shares its
+// arithmetic (../arithmetic.h); a test runs both on the same inputs.
 #include "evaluate.h"
 
-#include <algorithm>
-#include <cmath>
+#include "arithmetic.h"
 
 namespace cncc::ir::passes {
 
 namespace {
-
-std::optional<double> unary(Opcode opcode, double a) {
-  switch (opcode) {
-  case Opcode::Neg:
-    return -a;
-  case Opcode::Abs:
-    return std::abs(a);
-  case Opcode::Sqrt:
-    return std::sqrt(a);
-  case Opcode::Sin:
-    return std::sin(a);
-  case Opcode::Cos:
-    return std::cos(a);
-  case Opcode::Tan:
-    return std::tan(a);
-  case Opcode::Asin:
-    return std::asin(a);
-  case Opcode::Acos:
-    return std::acos(a);
-  case Opcode::Atan:
-    return std::atan(a);
-  case Opcode::Exp:
-    return std::exp(a);
-  case Opcode::Ln:
-    return std::log(a);
-  case Opcode::Floor:
-    return std::floor(a);
-  case Opcode::Ceil:
-    return std::ceil(a);
-  case Opcode::Round:
-    return std::round(a);
-  case Opcode::Not:
-    return a != 0 ? 0 : 1;
-  default:
-    return std::nullopt;
-  }
-}
-
-std::optional<double> binary(Opcode opcode, double a, double b) {
-  switch (opcode) {
-  case Opcode::Add:
-    return a + b;
-  case Opcode::Sub:
-    return a - b;
-  case Opcode::Mul:
-    return a * b;
-  case Opcode::Div:
-    return a / b;
-  case Opcode::Rem:
-    return std::fmod(a, b);
-  case Opcode::Pow:
-    return std::pow(a, b);
-  case Opcode::Min:
-    return std::min(a, b);
-  case Opcode::Max:
-    return std::max(a, b);
-  case Opcode::Atan2:
-    return std::atan2(a, b);
-  case Opcode::Lt:
-    return a < b;
-  case Opcode::Le:
-    return a <= b;
-  case Opcode::Gt:
-    return a > b;
-  case Opcode::Ge:
-    return a >= b;
-  case Opcode::Eq:
-    return a == b;
-  case Opcode::Ne:
-    return a != b;
-  case Opcode::And:
-    return (a != 0) && (b != 0);
-  case Opcode::Or:
-    return (a != 0) || (b != 0);
-  default:
-    return std::nullopt;
-  }
-}
 
 std::optional<double> tableLoad(const Function& function, std::uint32_t table, double index) {
   if (table >= function.tables.size()) {
@@ -116,10 +37,10 @@ std::optional<double> evaluate(const Function& function, const Instruction& inst
     break;
   }
   if (operands.size() == 1) {
-    return unary(instruction.opcode, operands[0]);
+    return unaryResult(instruction.opcode, operands[0]);
   }
   if (operands.size() == 2) {
-    return binary(instruction.opcode, operands[0], operands[1]);
+    return binaryResult(instruction.opcode, operands[0], operands[1]);
   }
   return std::nullopt;
 }
