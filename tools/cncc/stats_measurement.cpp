@@ -18,30 +18,15 @@ struct HostRun {
   std::vector<ir::CutGeometry> cuts;
 };
 
-// The part lowered with its cut table and run on the host, as the gcode
-// and jit backends run it.
+// The part as the gcode and jit backends lower and run it, with its cut table.
 std::optional<HostRun> runOnHost(const BackendRequest& request) {
-  const frontend::PartItem* part = request.program.selectedPart;
-  if (part == nullptr) {
+  HostRun run;
+  std::optional<ir::ToolPath> path = hostToolPath(request, false, &run.cuts);
+  if (!path) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics, hostLoweringOptions(request));
-  if (!lowered) {
-    return std::nullopt;
-  }
-  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
-  if (!problems.empty()) {
-    throw InternalError("the lowered IR does not verify: " + problems.front());
-  }
-  try {
-    return HostRun{ir::interpret(lowered->function), std::move(lowered->cuts)};
-  } catch (const ir::InterpreterError& error) {
-    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
-                               fmt::format("the part cannot be run on the host: {}",
-                                           error.what()));
-    return std::nullopt;
-  }
+  run.toolPath = std::move(*path);
+  return run;
 }
 
 backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const HostRun& run) {
@@ -50,8 +35,8 @@ backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const Host
   addArcFits(options, run.cuts, request);
   std::string text = backends::writeGcode(path, options);
   // With arcs, the program reaches the ends of the arcs instead of the chords.
-  backends::ExecutedPath executed = backends::executeGcode(
-      text, backends::arcEndPoints(path, options.arcFits), options.decimals);
+  backends::ExecutedPath executed =
+      backends::executeGcode(text, backends::arcEndPoints(path, options.arcFits), options.decimals);
   std::size_t blocks = backends::countProgramBlocks(text);
   return {std::move(text), blocks, std::move(executed)};
 }

@@ -23,12 +23,43 @@ namespace cncc::driver {
 
 namespace {
 
-// The selected part's tool path, as the IR interpreter runs it; nullopt
-// after a diagnostic. A verifier failure or an interpreter error is an
-// internal error.
-// `cuts`, when given, receives the part's cut table.
-std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false,
-                                         std::vector<ir::CutGeometry>* cuts = nullptr) {
+
+void gcodeBackend(const BackendRequest& request) {
+  std::vector<ir::CutGeometry> cuts;
+  std::optional<ir::ToolPath> path = hostToolPath(request, false, &cuts);
+  if (!path) {
+    return;
+  }
+  backends::GcodeOptions options = gcodeOptionsFor(request);
+  addArcFits(options, cuts, request);
+  try {
+    request.output.write(backends::writeGcode(*path, options));
+  } catch (const std::logic_error& error) {
+    throw InternalError(std::string("the arcs do not fit the tool path: ") + error.what());
+  }
+}
+
+void jitBackend(const BackendRequest& request) {
+  std::optional<ir::ToolPath> path = hostToolPath(request, true);
+  if (path) {
+    request.output.write(backends::writeToolPathCsv(*path));
+  }
+}
+
+constexpr Target targetTable[] = {
+    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend},
+    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
+    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks",
+     sinumerikBackend},
+    {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
+    {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend},
+    {"jit", "run the part on the host and print the tool path", jitBackend},
+};
+
+} // namespace
+
+std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native,
+                                         std::vector<ir::CutGeometry>* cuts) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
@@ -66,40 +97,6 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
     return std::nullopt;
   }
 }
-
-void gcodeBackend(const BackendRequest& request) {
-  std::vector<ir::CutGeometry> cuts;
-  std::optional<ir::ToolPath> path = hostToolPath(request, false, &cuts);
-  if (!path) {
-    return;
-  }
-  backends::GcodeOptions options = gcodeOptionsFor(request);
-  addArcFits(options, cuts, request);
-  try {
-    request.output.write(backends::writeGcode(*path, options));
-  } catch (const std::logic_error& error) {
-    throw InternalError(std::string("the arcs do not fit the tool path: ") + error.what());
-  }
-}
-
-void jitBackend(const BackendRequest& request) {
-  std::optional<ir::ToolPath> path = hostToolPath(request, true);
-  if (path) {
-    request.output.write(backends::writeToolPathCsv(*path));
-  }
-}
-
-constexpr Target targetTable[] = {
-    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend},
-    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
-    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks",
-     sinumerikBackend},
-    {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
-    {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend},
-    {"jit", "run the part on the host and print the tool path", jitBackend},
-};
-
-} // namespace
 
 ir::LoweringOptions hostLoweringOptions(const BackendRequest& request) {
   // The printed coordinates are rounded to the printed decimals (the CSV

@@ -10,9 +10,11 @@
 #include "cncc/frontend/sema.h"
 #include "cncc/ir/lowering.h"
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cncc::driver {
 
@@ -37,9 +39,16 @@ struct Target {
   bool available() const { return backend != nullptr; }
 };
 
-// How a host-side target (gcode, jit) lowers the request's part; --stats
-// lowers it the same way.
+// How a host-side target (gcode, jit) lowers the request's part.
 ir::LoweringOptions hostLoweringOptions(const BackendRequest& request);
+
+// The selected part lowered so (and optimised, unless -O0) and run on the
+// host: by the LLVM JIT when `native` and it is built, else by the IR
+// interpreter; `cuts`, when given, receives the part's cut table. Nullopt
+// after a diagnostic; IR that does not verify is an internal error. What
+// the gcode and jit targets print, and what --stats measures.
+std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false,
+                                         std::vector<ir::CutGeometry>* cuts = nullptr);
 
 // How the gcode target prints the request's part (also what --stats measures).
 backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request);
