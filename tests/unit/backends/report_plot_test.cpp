@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <numbers>
-#include <regex>
 #include <string>
 
 namespace cncc {
@@ -35,10 +34,16 @@ std::vector<std::string> elementsWith(const std::string& svg, const std::string&
   return elements;
 }
 
+// The value of ` name="value"` in the element; empty without it.
 std::string attribute(const std::string& element, const std::string& name) {
-  std::smatch match;
-  std::regex pattern(" " + name + "=\"([^\"]*)\"");
-  return std::regex_search(element, match, pattern) ? match[1].str() : "";
+  std::string key = " " + name + "=\"";
+  std::size_t begin = element.find(key);
+  if (begin == std::string::npos) {
+    return "";
+  }
+  begin += key.size();
+  std::size_t end = element.find('"', begin);
+  return end == std::string::npos ? "" : element.substr(begin, end - begin);
 }
 
 TEST(ReportPlot, SegmentDeviationIsTheSagittaOfEachChord) {
