@@ -7,7 +7,7 @@ FunctionBuilder::FunctionBuilder(std::string name) {
 }
 
 std::uint32_t FunctionBuilder::addParameter(std::string name, double defaultValue) {
-  function_.parameters.push_back({std::move(name), defaultValue});
+  function_.parameters.push_back({std::move(name), defaultValue, false});
   return static_cast<std::uint32_t>(function_.parameters.size() - 1);
 }
 

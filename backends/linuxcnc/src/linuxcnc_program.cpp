@@ -175,8 +175,9 @@ private:
     }
     for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
       std::string where = options_.callable ? fmt::format("#{} = ", i + 1) : "";
-      line(commentLine(fmt::format("{}#<{}> {}, default {}", where, names_[i],
-                                   function_.parameters[i].name, parameterDefault(i))));
+      line(commentLine(fmt::format(
+          "{}#<{}> {}, {} {}", where, names_[i], function_.parameters[i].name,
+          function_.parameters[i].fixed ? "fixed at" : "default", parameterDefault(i))));
     }
     for (const auto& [base, tables] : tablesByBase()) {
       int count = static_cast<int>(function_.tables[tables.front()].size());
@@ -195,6 +196,24 @@ private:
     for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
       std::string value = options_.callable ? fmt::format("#{}", i + 1) : parameterDefault(i);
       line(fmt::format("#<{}> = {}", names_[i], value));
+    }
+    printFixedParameterChecks();
+  }
+
+  // A parameter whose default the compiler built into the program (a loop
+  // bound, a curve's points): any other value aborts the program rather
+  // than cutting a part the operator did not ask for. The value is compared
+  // with the literal the defaults assign, so the test is exact.
+  void printFixedParameterChecks() {
+    for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
+      if (!function_.parameters[i].fixed) {
+        continue;
+      }
+      int label = newLabel();
+      line(fmt::format("o{} if [#<{}> NE {}]", label, names_[i], parameterDefault(i)));
+      line(fmt::format("(abort, {} is fixed at {})", function_.parameters[i].name,
+                       parameterDefault(i)));
+      line(fmt::format("o{} endif", label));
     }
   }
 

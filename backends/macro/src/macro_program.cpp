@@ -134,6 +134,7 @@ public:
     printHeader();
     line(options_.inches ? "G20 G17 G90 G40 G49 G80" : "G21 G17 G90 G40 G49 G80");
     printParameterDefaults();
+    printFixedParameterChecks();
     printTables();
     printRegion(function_.body);
     if (spindleOn_) {
@@ -191,8 +192,9 @@ private:
       comment(call);
     }
     for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
-      comment(fmt::format("#{} {}, DEFAULT {}", allocation_.parameterVariables[i],
-                          function_.parameters[i].name, parameterDefault(i)));
+      comment(fmt::format(
+          "#{} {}, {} {}", allocation_.parameterVariables[i], function_.parameters[i].name,
+          function_.parameters[i].fixed ? "FIXED AT" : "DEFAULT", parameterDefault(i)));
     }
     for (const auto& [base, tables] : tablesByBase()) {
       int count = static_cast<int>(function_.tables[tables.front()].size());
@@ -271,6 +273,30 @@ private:
         conditional(fmt::format("[{} EQ #0]", variable), fmt::format("[{} NE #0]", variable),
                     assignment);
       }
+    }
+  }
+
+  // A parameter whose default the compiler built into the program (a loop
+  // bound, a curve's points): any other value raises alarm 3001 rather
+  // than cutting a part the operator did not ask for. The value is compared
+  // with the literal the defaults assign, so the test is exact.
+  void printFixedParameterChecks() {
+    for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
+      if (!function_.parameters[i].fixed) {
+        continue;
+      }
+      std::string variable = fmt::format("#{}", allocation_.parameterVariables[i]);
+      std::string literal = parameterDefault(i);
+      std::string condition = fmt::format("[{} NE {}]", variable, literal);
+      std::string alarm = "#3000=1";
+      std::string message =
+          gcodeCommentText(fmt::format("{} IS FIXED AT {}", function_.parameters[i].name, literal));
+      // The message is cut to what the block length leaves.
+      std::size_t used = alarm.size() + 3 + (profile_.hasThen ? condition.size() + 9 : 0);
+      std::size_t limit = static_cast<std::size_t>(std::max(0, profile_.maximumBlockLength));
+      std::size_t room = limit > used ? limit - used : 0;
+      conditional(condition, fmt::format("[{} EQ {}]", variable, literal),
+                  fmt::format("{} ({})", alarm, message.substr(0, room)));
     }
   }
 

@@ -340,7 +340,10 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
   bool sweep = depthExpression != nullptr || stepExpression != nullptr;
   Scalar z = Scalar::of(0);
   if (sweep) {
+    // The sweep itself is computed on the controller.
+    checkingDefaults_ = true;
     std::vector<double> checked = passDepths(cut); // the checks at the defaults
+    checkingDefaults_ = false;
     (void)checked;
     Scalar depth = number(*depthExpression);
     Scalar step = number(*stepExpression);

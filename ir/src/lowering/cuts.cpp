@@ -179,8 +179,11 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     return;
   }
   if (lowerControllerCut(cut)) {
+    fixControllerCurveParameters(*cut.curve);
     return;
   }
+  // The curve's points are chosen at its defaults, whatever IR evaluates it.
+  fixParameters(*cut.curve, cut.curve->span, "this curve's points");
   checkMethod(cut);
   bool ramp = rampEntry(cut);
   if (!safe_) {

@@ -98,6 +98,7 @@ double PartLowering::constantNumber(const Expr& expression, std::string_view wha
   if (value.type.kind != TypeKind::Num) {
     fail(expression.span, fmt::format("cannot evaluate {} for lowering", what));
   }
+  fixParameters(expression, expression.span, what);
   return value.number;
 }
 
@@ -129,6 +130,7 @@ std::optional<Lowered> PartLowering::tryLower(const Expr& expression, const Bind
     if (std::optional<Lowered> lowered = lowerDirect(expression, bindings, environment)) {
       return lowered;
     }
+    fixParameters(expression, expression.span, "this value");
   }
   return constantOf(evaluate(expression, environment));
 }

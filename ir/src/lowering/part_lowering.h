@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -145,6 +146,14 @@ private:
   void lowerFor(const frontend::ForStmt& loop);
   void lowerIf(const frontend::IfStmt& conditional);
 
+  // fixed_parameters.cpp
+  std::set<std::string> parametersOf(const frontend::Expr& expression) const;
+  // Records the parameters `expression` reads as fixed at their defaults by
+  // this use (`what`, such as "loop bound"), warning on controller targets.
+  void fixParameters(const frontend::Expr& expression, frontend::SourceSpan use,
+                     std::string_view what);
+  void fixControllerCurveParameters(const frontend::Expr& curve);
+
   // expressions.cpp
   frontend::Value evaluate(const frontend::Expr& expression,
                            const frontend::Environment& environment);
@@ -225,6 +234,13 @@ private:
   std::optional<Scalar> safe_;
   std::vector<CutGeometry> cuts_;
   std::size_t unrolledIterations_ = 0;
+  // The parameters each parameter or let declaration reads, and each let's
+  // value (for the transforms of a named curve).
+  std::map<const frontend::Declaration*, std::set<std::string>> parameterNames_;
+  std::map<const frontend::Declaration*, const frontend::Expr*> letValues_;
+  std::vector<FixedParameter> fixedParameters_;
+  // Set while the defaults are only checked, not built into the program.
+  bool checkingDefaults_ = false;
 };
 
 // Small helpers shared by the files.

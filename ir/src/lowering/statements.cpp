@@ -31,7 +31,13 @@ LoweredPart PartLowering::run() {
     builder_.comment(fmt::format("part {}", part_.name));
   }
   lowerBlock(part_.body);
-  return {builder_.finish(), std::move(cuts_)};
+  Function function = builder_.finish();
+  for (const FixedParameter& fixed : fixedParameters_) {
+    for (ir::Parameter& parameter : function.parameters) {
+      parameter.fixed = parameter.fixed || parameter.name == fixed.name;
+    }
+  }
+  return {std::move(function), std::move(fixedParameters_), std::move(cuts_)};
 }
 
 void PartLowering::unsupported(SourceSpan span, std::string_view what) {
@@ -69,6 +75,7 @@ void PartLowering::lowerParameters() {
     bindings_[parameter.declaration] = {TypeKind::Num,
                                         {Scalar::of(builder_.parameter(index), ValueType::F64)}};
     environment_[parameter.declaration] = Value::ofNumber(value);
+    parameterNames_[parameter.declaration] = {parameter.name};
   }
 }
 
@@ -137,6 +144,12 @@ void PartLowering::lowerLet(const LetStmt& let) {
   }
   environment_[let.declaration] = value;
   bindings_.erase(let.declaration); // a let in a loop body: the previous copy's
+  letValues_[let.declaration] = let.value.get();
+  if (std::set<std::string> parameters = parametersOf(*let.value); !parameters.empty()) {
+    parameterNames_[let.declaration] = std::move(parameters);
+  } else {
+    parameterNames_.erase(let.declaration);
+  }
   TypeKind kind = value.type.kind;
   if (kind == TypeKind::Num || kind == TypeKind::Bool || kind == TypeKind::Point) {
     std::optional<Lowered> lowered = tryLower(*let.value, bindings_, environment_);
@@ -155,6 +168,7 @@ void PartLowering::lowerLet(const LetStmt& let) {
 
 void PartLowering::lowerFor(const ForStmt& loop) {
   Value range = evaluate(*loop.range, environment_);
+  fixParameters(*loop.range, loop.range->span, "this loop bound");
   if (range.type.kind != TypeKind::Range || loop.declaration == nullptr) {
     fail(loop.range->span, "cannot evaluate this range for lowering");
   }
@@ -177,6 +191,7 @@ void PartLowering::lowerFor(const ForStmt& loop) {
 
 void PartLowering::lowerIf(const IfStmt& conditional) {
   Value condition = evaluate(*conditional.condition, environment_);
+  fixParameters(*conditional.condition, conditional.condition->span, "this condition");
   if (condition.type.kind != TypeKind::Bool) {
     fail(conditional.condition->span, "cannot evaluate this condition for lowering");
   }

@@ -124,19 +124,28 @@ std::vector<ParameterValue> parameterValues(const frontend::PartItem& part, cons
   return values;
 }
 
-class MacroEndToEnd : public ::testing::TestWithParam<MacroCase> {};
+// The case's program, compiled for the defaults, run with the case's
+// values and measured against the part with those values.
+struct CaseRun {
+  VerificationReport report;
+  std::vector<ir::CutGeometry> cuts;
+  std::string summary;
+};
 
-TEST_P(MacroEndToEnd, KeepsEveryCutWithinItsTolerance) {
-  const MacroCase& test = GetParam();
+std::optional<CaseRun> runCase(const MacroCase& test) {
   std::unique_ptr<CheckedExample> compiled = checkExample(test, {});
   std::unique_ptr<CheckedExample> truth = checkExample(test, test.parameters);
-  ASSERT_TRUE(compiled && truth);
+  if (!compiled || !truth) {
+    return std::nullopt;
+  }
   std::optional<std::string> text = macroProgram(*compiled, test);
-  ASSERT_TRUE(text);
   frontend::DiagnosticEngine diagnostics;
   std::optional<ir::LoweredPart> lowered =
       ir::lowerPartWithCuts(*truth->program, *truth->program->selectedPart, diagnostics);
-  ASSERT_TRUE(lowered);
+  if (!text || !lowered) {
+    ADD_FAILURE() << "the part does not compile";
+    return std::nullopt;
+  }
   ExecutedPath reference = executedPathOfToolPath(ir::interpret(lowered->function));
 
   ExecutionRequest execution;
@@ -148,18 +157,30 @@ TEST_P(MacroEndToEnd, KeepsEveryCutWithinItsTolerance) {
   StatisticsOptions options;
   options.unit =
       ir::partUnits(*truth->program->selectedPart) == ir::PartUnits::Inches ? "in" : "mm";
-  VerificationReport report = verifyProgram(
+  CaseRun run;
+  run.cuts = lowered->cuts;
+  run.report = verifyProgram(
       {test.target, std::move(execution), std::move(reference), lowered->cuts}, options);
-  std::string summary = formatVerification(report, options);
+  run.summary = formatVerification(run.report, options);
+  return run;
+}
+
+class MacroEndToEnd : public ::testing::TestWithParam<MacroCase> {};
+
+TEST_P(MacroEndToEnd, KeepsEveryCutWithinItsTolerance) {
+  std::optional<CaseRun> run = runCase(GetParam());
+  ASSERT_TRUE(run);
+  const VerificationReport& report = run->report;
+  const std::string& summary = run->summary;
 
   ASSERT_FALSE(report.failure) << summary;
   EXPECT_TRUE(report.missedCuts.empty()) << summary;
   EXPECT_EQ(report.stray.count, 0u) << summary;
-  ASSERT_EQ(report.statistics.cuts.size(), lowered->cuts.size());
+  ASSERT_EQ(report.statistics.cuts.size(), run->cuts.size());
   for (const CutDeviation& cut : report.statistics.cuts) {
     // NaN: samples= or spacing= chose the points, and the part promises no
     // tolerance; the cut must still lie on the part's path (stray above).
-    double tolerance = lowered->cuts[cut.cut].tolerance;
+    double tolerance = run->cuts[cut.cut].tolerance;
     if (!std::isnan(tolerance)) {
       EXPECT_LE(cut.maxDeviation, tolerance) << "cut " << cut.cut + 1 << "\n" << summary;
     }
@@ -167,16 +188,39 @@ TEST_P(MacroEndToEnd, KeepsEveryCutWithinItsTolerance) {
   EXPECT_TRUE(report.passed()) << summary;
 }
 
+class MacroFixedParameters : public ::testing::TestWithParam<MacroCase> {};
+
+// The program was compiled with these parameters' defaults built in (loop
+// counts, sampled curves): edited, it must stop with the alarm that names
+// one of them rather than cut a part for the defaults.
+TEST_P(MacroFixedParameters, RaisesTheAlarmInsteadOfCuttingTheDefaultPart) {
+  const MacroCase& test = GetParam();
+  std::optional<CaseRun> run = runCase(test);
+  ASSERT_TRUE(run);
+  ASSERT_TRUE(run->report.failure) << run->summary;
+  const std::string& message = run->report.failure->message;
+  EXPECT_NE(message.find("alarm 3001"), std::string::npos) << message;
+  bool named = false;
+  for (const auto& [name, value] : test.parameters) {
+    std::string upper;
+    for (char c : name) {
+      upper += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    }
+    named = named || message.find(upper + " IS FIXED AT") != std::string::npos;
+  }
+  EXPECT_TRUE(named) << message;
+  EXPECT_FALSE(run->report.passed());
+}
+
 // Each example and part with its defaults and other parameter sets: `sets`
-// keep to every tolerance today; `pending` do not yet (the lowering of those
-// parts does not yet carry those parameters to the controller: radii, turns
-// and loop counts are still computed for the defaults), and run as DISABLED_
-// tests until they do.
+// keep to every tolerance; `fixed` edit parameters the controller cannot
+// recompute (radii, turns and loop counts computed for the defaults), and
+// the program must refuse them with its alarm.
 struct ExampleParameters {
   std::string file;
   std::string part;
   std::vector<Parameters> sets;
-  std::vector<Parameters> pending;
+  std::vector<Parameters> fixed;
 };
 
 const std::vector<ExampleParameters>& exampleParameters() {
@@ -237,8 +281,8 @@ std::string caseName(const ::testing::TestParamInfo<MacroCase>& info) {
 
 INSTANTIATE_TEST_SUITE_P(Examples, MacroEndToEnd,
                          ::testing::ValuesIn(macroCases(&ExampleParameters::sets)), caseName);
-INSTANTIATE_TEST_SUITE_P(DISABLED_Pending, MacroEndToEnd,
-                         ::testing::ValuesIn(macroCases(&ExampleParameters::pending)), caseName);
+INSTANTIATE_TEST_SUITE_P(Examples, MacroFixedParameters,
+                         ::testing::ValuesIn(macroCases(&ExampleParameters::fixed)), caseName);
 
 } // namespace
 } // namespace cncc::backends

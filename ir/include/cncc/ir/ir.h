@@ -60,6 +60,9 @@ struct Instruction {
 struct Parameter {
   std::string name;
   double defaultValue = 0;
+  // Its default was read at compile time (a loop bound, a sampled curve...):
+  // a program that lets it be edited must refuse any other value.
+  bool fixed = false;
 };
 
 struct Function {

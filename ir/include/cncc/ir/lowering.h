@@ -57,8 +57,17 @@ struct CutGeometry {
   std::string method;
 };
 
+// A part parameter whose default the lowering read as a constant, and the
+// first use that did.
+struct FixedParameter {
+  std::string name;
+  frontend::SourceSpan use;
+};
+
 struct LoweredPart {
   Function function;
+  // In the order first fixed; each also has Parameter::fixed set.
+  std::vector<FixedParameter> fixedParameters;
   // Indexed by cut.begin; a cut in an unrolled loop has one per iteration.
   std::vector<CutGeometry> cuts;
 };
