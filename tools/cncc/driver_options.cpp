@@ -129,9 +129,10 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
                  "m80/fanuc: the controller profile (fanuc, fanuc-0i-small, m80)")
       ->type_name("NAME")
       ->check(CLI::IsMember({"fanuc", "fanuc-0i-small", "m80"}));
-  app.add_flag("--arcs", raw.arcs,
-               "gcode: cut planar curves as G02/G03 arcs within their tolerance "
-               "(as arcs=true on every cut)");
+  app.add_flag(
+      "--arcs", raw.arcs,
+      "gcode, linuxcnc, m80, fanuc: cut planar curves as G02/G03 arcs within their tolerance "
+      "(as arcs=true on every cut)");
   app.add_flag("--subprograms", raw.subprograms,
                "sinumerik: each cut's spline blocks in a subprogram NAME_CUTn.SPF called at "
                "every pass (after the main program, in archive form)");
@@ -380,8 +381,11 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (app.count("--rapid-rate") > 0 && !raw.stats) {
     throw UsageError("--rapid-rate only sets the time estimate of --stats");
   }
-  if (raw.arcs && (options.command != Command::Compile || raw.target != "gcode")) {
-    throw UsageError("--arcs is for the gcode target: it prints cuts as G02/G03 arcs");
+  bool printsArcs = raw.target == "gcode" || raw.target == "linuxcnc" || raw.target == "m80" ||
+                    raw.target == "fanuc";
+  if (raw.arcs && (options.command != Command::Compile || !printsArcs)) {
+    throw UsageError(
+        "--arcs is for the gcode, linuxcnc, m80 and fanuc targets: it prints cuts as G02/G03 arcs");
   }
   if ((raw.subprograms || !raw.splineEnds.empty()) && raw.target != "sinumerik") {
     throw UsageError("--subprograms and --spline-ends are for the sinumerik target");

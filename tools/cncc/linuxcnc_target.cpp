@@ -16,9 +16,11 @@ namespace {
 
 // The controller runs the curve loops; LinuxCNC computes in doubles, so no
 // input increment takes from the tolerance.
-ir::LoweringOptions loweringOptions() {
+ir::LoweringOptions loweringOptions(const BackendRequest& request) {
   ir::LoweringOptions options;
   options.controllerLoops = true;
+  options.arcBlocks = true;
+  options.arcsOnEveryCut = request.options.arcs;
   return options;
 }
 
@@ -30,7 +32,7 @@ void linuxcncBackend(const BackendRequest& request) {
     return;
   }
   std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, loweringOptions());
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, loweringOptions(request));
   if (!lowered) {
     return;
   }
@@ -46,6 +48,7 @@ void linuxcncBackend(const BackendRequest& request) {
   options.inches = names.inches;
   options.callable = request.options.macroCall;
   options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
+  options.cuts = lowered->cuts;
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
   for (const std::string& error : program.errors) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,

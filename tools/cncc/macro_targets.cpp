@@ -29,6 +29,7 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request,
   ir::LoweringOptions lowering =
       backends::macroLoweringOptions(profile, ir::partUnits(*part) == ir::PartUnits::Inches);
   lowering.nurbsBlocks = true; // method=nurbs as G06.2 blocks
+  lowering.arcsOnEveryCut = request.options.arcs;
   std::optional<ir::LoweredPart> lowered =
       ir::lowerPartWithCuts(request.program, *part, request.diagnostics, lowering);
   if (!lowered) {

@@ -19,6 +19,28 @@ double arcRoundingAllowance(int decimals) {
   return 3.0 * std::sqrt(2.0) * halfIncrement;
 }
 
+OneCutArcFit fitCutArc(const ir::CutGeometry& cut, int decimals) {
+  if (std::isnan(cut.tolerance)) {
+    return {std::nullopt,
+            "samples= or spacing= chose its points; arcs are fitted within a tolerance="};
+  }
+  if (std::optional<std::string> problem = geom::findArcFittingProblem(*cut.curve)) {
+    return {std::nullopt, *problem};
+  }
+  double allowance = arcRoundingAllowance(decimals);
+  if (!(cut.tolerance > 2.0 * allowance)) {
+    return {std::nullopt,
+            fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to "
+                        "{} decimals",
+                        cut.tolerance, decimals)};
+  }
+  try {
+    return {geom::fitArcs(*cut.curve, {cut.tolerance - allowance}), ""};
+  } catch (const geom::GeometryError& error) {
+    return {std::nullopt, error.what()};
+  }
+}
+
 CutArcFitting fitCutArcs(std::span<const ir::CutGeometry> cuts, bool allCuts, int decimals) {
   CutArcFitting fitting;
   fitting.fits.resize(cuts.size());
@@ -27,27 +49,11 @@ CutArcFitting fitCutArcs(std::span<const ir::CutGeometry> cuts, bool allCuts, in
     if (!cut.arcs.value_or(allCuts) || cut.curve == nullptr) {
       continue;
     }
-    if (std::isnan(cut.tolerance)) {
-      fitting.problems.push_back(
-          {i, "samples= or spacing= chose its points; arcs are fitted within a tolerance="});
-      continue;
-    }
-    if (std::optional<std::string> problem = geom::findArcFittingProblem(*cut.curve)) {
-      fitting.problems.push_back({i, *problem});
-      continue;
-    }
-    double allowance = arcRoundingAllowance(decimals);
-    if (!(cut.tolerance > 2.0 * allowance)) {
-      fitting.problems.push_back(
-          {i, fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to "
-                          "{} decimals",
-                          cut.tolerance, decimals)});
-      continue;
-    }
-    try {
-      fitting.fits[i] = geom::fitArcs(*cut.curve, {cut.tolerance - allowance});
-    } catch (const geom::GeometryError& error) {
-      fitting.problems.push_back({i, error.what()});
+    OneCutArcFit fit = fitCutArc(cut, decimals);
+    if (fit.fit) {
+      fitting.fits[i] = std::move(fit.fit);
+    } else {
+      fitting.problems.push_back({i, std::move(fit.problem)});
     }
   }
   return fitting;
@@ -175,31 +181,42 @@ bool printsAsLine(const geom::ArcSegment& segment, int decimals) {
 
 } // namespace
 
-std::vector<std::string> arcBlocks(std::span<const geom::ArcSegment> segments,
-                                   const ArcBlockFormat& format) {
-  std::vector<std::string> blocks;
+std::vector<ArcMotion> arcMotions(std::span<const geom::ArcSegment> segments,
+                                  const ArcBlockFormat& format) {
+  std::vector<ArcMotion> blocks;
   Eigen::Vector2d at = format.start;
   auto number = [&](double value) { return formatGcodeNumber(value, format.decimals); };
+  std::string zero = format.leadingZero ? "0" : "";
   for (const geom::ArcSegment& segment : segments) {
     Eigen::Vector2d end(printed(segment.end.x(), format.decimals),
                         printed(segment.end.y(), format.decimals));
     if (end == at) {
       continue; // rounds to no movement
     }
-    std::string block;
+    ArcMotion block;
     if (segment.kind == geom::ArcSegmentKind::Line || printsAsLine(segment, format.decimals)) {
-      block = fmt::format("G01 X{} Y{}", number(end.x()), number(end.y()));
+      block = {"G" + zero + "1", fmt::format(" X{} Y{}", number(end.x()), number(end.y()))};
     } else {
       bool clockwise = segment.direction == geom::ArcDirection::Clockwise;
-      block = fmt::format("{} X{} Y{} I{} J{}", clockwise ? "G02" : "G03", number(end.x()),
-                          number(end.y()), number(segment.centre.x() - at.x()),
-                          number(segment.centre.y() - at.y()));
+      block = {"G" + zero + (clockwise ? "2" : "3"),
+               fmt::format(" X{} Y{} I{} J{}", number(end.x()), number(end.y()),
+                           number(segment.centre.x() - at.x()),
+                           number(segment.centre.y() - at.y()))};
     }
     if (blocks.empty()) {
-      block += format.feedWord;
+      block.words += format.feedWord;
     }
     blocks.push_back(std::move(block));
     at = end;
+  }
+  return blocks;
+}
+
+std::vector<std::string> arcBlocks(std::span<const geom::ArcSegment> segments,
+                                   const ArcBlockFormat& format) {
+  std::vector<std::string> blocks;
+  for (ArcMotion& block : arcMotions(segments, format)) {
+    blocks.push_back(block.motion + block.words);
   }
   return blocks;
 }

@@ -58,4 +58,15 @@ void LinuxcncMoveWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::V
   z_ = expressions_.constantOf(z);
 }
 
+void LinuxcncMoveWriter::arcs(std::span<const geom::ArcSegment> segments, ArcBlockFormat format,
+                              ir::ValueId feedRate) {
+  format.leadingZero = false;
+  format.feedWord = word('F', feedRate, false);
+  for (const ArcMotion& motion : arcMotions(segments, format)) {
+    motionLine(motion.motion, motion.words);
+  }
+  literals_.erase('X'); // the position is the curve's end now
+  literals_.erase('Y');
+}
+
 } // namespace cncc::backends

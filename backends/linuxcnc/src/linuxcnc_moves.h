@@ -7,8 +7,11 @@
 
 #include "linuxcnc_expressions.h"
 
+#include "cncc/backends/gcode_arcs.h"
+
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,10 @@ public:
   // lowering's rapids climb to the safe height).
   void rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z);
   void feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate);
+  // A lap printed as arcs (arc_cuts.cpp): the G2/G3 blocks of `segments`
+  // from `format.start`, the feed word added to the first.
+  void arcs(std::span<const geom::ArcSegment> segments, ArcBlockFormat format,
+            ir::ValueId feedRate);
   void forget();
 
 private:

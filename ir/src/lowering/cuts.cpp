@@ -178,6 +178,9 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerNurbsCut(cut)) {
     return;
   }
+  if (lowerArcCut(cut)) {
+    return;
+  }
   if (lowerControllerCut(cut)) {
     fixControllerCurveParameters(*cut.curve);
     return;

@@ -203,6 +203,10 @@ private:
   bool lowerNurbsCut(const frontend::CutStmt& cut);
   std::vector<std::string> parameterWeights(const frontend::CutStmt& cut, const CutCurve& curve);
 
+  // arc_cuts.cpp
+  bool lowerArcCut(const frontend::CutStmt& cut);
+  std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
+
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut);
   std::optional<std::vector<ControllerSegment>>

@@ -32,6 +32,11 @@ struct LoweringOptions {
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;
+  // Controller-side targets that print host-fitted G02/G03 arcs: a cut that
+  // wants arcs (arcs=true, or arcsOnEveryCut without arcs=false) is lowered
+  // as one marked feed per pass that the printer prints as arcs (arc_cuts.cpp).
+  bool arcBlocks = false;
+  bool arcsOnEveryCut = false; // --arcs
   // Controller-side targets (macro programs): each cut becomes loops the
   // controller runs over uniform parameter steps, a pass loop over the sweep
   // and no constant tables; what depends on part parameters (step counts

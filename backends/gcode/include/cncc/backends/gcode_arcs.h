@@ -41,6 +41,14 @@ struct CutArcFitting {
   std::vector<ArcProblem> problems; // these cuts keep their chords
 };
 
+// One cut's arcs within its tolerance less arcRoundingAllowance(decimals),
+// or the problem that keeps its chords (the fit is empty then).
+struct OneCutArcFit {
+  std::optional<geom::ArcFit> fit;
+  std::string problem;
+};
+OneCutArcFit fitCutArc(const ir::CutGeometry& cut, int decimals);
+
 // Fits the cuts that want arcs: those with arcs=true, and with `allCuts`
 // (--arcs) those without arcs=false. A cut without a tolerance (samples=,
 // spacing=) or whose curve leaves its plane keeps its chords, with a problem.
@@ -73,7 +81,20 @@ struct ArcBlockFormat {
   // The printed (rounded) position the lap starts from; I J are taken from
   // it so that the centre the controller computes is the fitted one.
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  // G01 G02 G03, or G1 G2 G3 as the macro and LinuxCNC programs write them.
+  bool leadingZero = true;
 };
+
+// One block of a lap: its motion word and the rest (" X.. Y.. I.. J..").
+struct ArcMotion {
+  std::string motion;
+  std::string words;
+};
+
+// The blocks of arcBlocks, each split after its motion word, for a printer
+// that leaves out a motion word already in force.
+std::vector<ArcMotion> arcMotions(std::span<const geom::ArcSegment> segments,
+                                  const ArcBlockFormat& format);
 
 // `G02 X.. Y.. I.. J..` / `G03 ...` for arcs, `G01 X.. Y..` for lines, at the
 // current Z; a move that rounds to no movement is left out.
