@@ -45,6 +45,9 @@ DiagnosticOutput::DiagnosticOutput(DiagnosticsFormat format, ColourMode colour)
 void DiagnosticOutput::print(const frontend::DiagnosticEngine& diagnostics,
                              const frontend::SourceManager& sources) const {
   for (const frontend::Diagnostic& diagnostic : diagnostics.diagnostics()) {
+    if (errorsOnly_ && diagnostic.severity != frontend::Severity::Error) {
+      continue;
+    }
     if (format_ == DiagnosticsFormat::Json) {
       fmt::print(stderr, "{}\n", frontend::renderJson(diagnostic, sources));
     } else {
@@ -52,6 +55,12 @@ void DiagnosticOutput::print(const frontend::DiagnosticEngine& diagnostics,
     }
   }
   std::fflush(stderr);
+}
+
+DiagnosticOutput DiagnosticOutput::errorsOnly() const {
+  DiagnosticOutput output = *this;
+  output.errorsOnly_ = true;
+  return output;
 }
 
 void DiagnosticOutput::driverError(std::string_view message) const {

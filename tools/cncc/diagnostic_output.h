@@ -23,9 +23,14 @@ public:
   // has no backend in this version"): `cncc: error: message`.
   void driverError(std::string_view message) const;
 
+  // The same output printing errors only: for a second run of a phase whose
+  // warnings were printed already (--stats compiles the part again).
+  DiagnosticOutput errorsOnly() const;
+
 private:
   DiagnosticsFormat format_;
   bool colour_;
+  bool errorsOnly_ = false;
 };
 
 } // namespace cncc::driver

@@ -20,7 +20,9 @@ constexpr double kMillimetresPerInch = 25.4;
 
 int printStatistics(const BackendRequest& request) {
   const DriverOptions& options = request.options;
-  DiagnosticOutput output(options.diagnosticsFormat, options.colour);
+  // The compile before --stats printed the warnings.
+  DiagnosticOutput output =
+      DiagnosticOutput(options.diagnosticsFormat, options.colour).errorsOnly();
   frontend::DiagnosticEngine diagnostics(options.errorLimit);
   BackendRequest measuring{request.program, request.sources, options, diagnostics,
                            request.output};

@@ -265,7 +265,9 @@ int runVerify(const DriverOptions& options) {
 
 int printVerifiedStatistics(const BackendRequest& request) {
   const DriverOptions& options = request.options;
-  DiagnosticOutput output(options.diagnosticsFormat, options.colour);
+  // The compile before --stats printed the warnings.
+  DiagnosticOutput output =
+      DiagnosticOutput(options.diagnosticsFormat, options.colour).errorsOnly();
   std::optional<std::string> text = compiledText(request.program, request.sources, options, output);
   std::optional<HostReference> reference =
       text ? hostReference(request.program, request.sources, options, output) : std::nullopt;
