@@ -154,9 +154,8 @@ CheckOptions checkOptions() {
 
 void reportRates(benchmark::State& state, const std::string& text) {
   double lines = static_cast<double>(countLines(text));
-  state.counters["lines_per_second"] =
-      benchmark::Counter(lines * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate);
+  state.counters["lines_per_second"] = benchmark::Counter(
+      lines * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["lines"] = lines;
   state.SetBytesProcessed(static_cast<std::int64_t>(text.size()) * state.iterations());
 }
@@ -171,9 +170,9 @@ bool checksCleanly(benchmark::State& state, const std::string& text) {
     return true;
   }
   const Diagnostic& first = diagnostics.diagnostics().front();
-  std::string message = fmt::format("the generated file does not check cleanly ({} diagnostics): {}",
-                                    diagnostics.diagnostics().size(),
-                                    renderText(first, sources));
+  std::string message =
+      fmt::format("the generated file does not check cleanly ({} diagnostics): {}",
+                  diagnostics.diagnostics().size(), renderText(first, sources));
   state.SkipWithError(message.c_str());
   return false;
 }

@@ -78,8 +78,8 @@ void reportPoints(benchmark::State& state, std::size_t pointsPerRun) {
   double points = static_cast<double>(pointsPerRun) * static_cast<double>(state.iterations());
   state.counters["points"] = static_cast<double>(pointsPerRun);
   state.counters["points_per_second"] = benchmark::Counter(points, benchmark::Counter::kIsRate);
-  state.counters["ns_per_point"] = benchmark::Counter(
-      points / 1e9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_point"] =
+      benchmark::Counter(points / 1e9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void interpreter(benchmark::State& state) {

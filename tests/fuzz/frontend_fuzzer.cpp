@@ -154,8 +154,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (program.modules.empty() || program.modules.front().file != file) {
     fail("the checked program does not start with the main module");
   }
-  for (std::uint32_t offset : {std::uint32_t{0}, static_cast<std::uint32_t>(size / 2),
-                               static_cast<std::uint32_t>(size)}) {
+  for (std::uint32_t offset :
+       {std::uint32_t{0}, static_cast<std::uint32_t>(size / 2), static_cast<std::uint32_t>(size)}) {
     if (const Reference* reference = program.referenceAt(file, offset)) {
       checkSpan(sources, reference->span, "reference span outside its file");
     }

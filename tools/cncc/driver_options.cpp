@@ -208,11 +208,10 @@ CLI::App* addOptCommand(CLI::App& app, RawOptions& raw) {
 CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* simulate = app.add_subcommand(
       "sim", "Run an m80/fanuc program on the virtual controller and print its path as CSV");
-  simulate->add_option("PROGRAM", raw.simulateInput, "The program file")
-      ->type_name("")
-      ->required();
-  simulate->add_option("-a", raw.macroArguments,
-                       "Run the program as if called by G65 with this argument (A3.)")
+  simulate->add_option("PROGRAM", raw.simulateInput, "The program file")->type_name("")->required();
+  simulate
+      ->add_option("-a", raw.macroArguments,
+                   "Run the program as if called by G65 with this argument (A3.)")
       ->type_name("ARG")
       ->allow_extra_args(false);
   simulate->fallthrough();
@@ -288,8 +287,8 @@ double parseRapidRate(const std::string& text) {
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), rate);
   if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
       !std::isfinite(rate) || !(rate > 0)) {
-    throw UsageError(fmt::format("invalid --rapid-rate '{}': expected a positive number (mm/min)",
-                                 text));
+    throw UsageError(
+        fmt::format("invalid --rapid-rate '{}': expected a positive number (mm/min)", text));
   }
   return rate;
 }

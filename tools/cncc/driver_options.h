@@ -51,12 +51,12 @@ struct DriverOptions {
   bool optimise = true;
   std::vector<std::string> passes;
   std::string printAfter;
-  bool stats = false;      // --stats: measure the program, report on stderr
-  bool arcs = false;       // --arcs: G02/G03 arcs on every planar cut (gcode)
+  bool stats = false; // --stats: measure the program, report on stderr
+  bool arcs = false;  // --arcs: G02/G03 arcs on every planar cut (gcode)
   // Sinumerik: --subprograms (spline blocks in NAME_CUTn.SPF), --spline-ends.
   bool subprograms = false;
   std::string splineEnds = "tangent";
-  double rapidRate = 1e4;  // --rapid-rate, mm/min, for the time estimate
+  double rapidRate = 1e4; // --rapid-rate, mm/min, for the time estimate
   // Macro targets: --macro (a G65-callable macro ending M99), --params=common
   // (parameters in common variables), --profile=NAME (a controller profile).
   bool macroCall = false;

@@ -60,8 +60,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   const frontend::PartItem& part = *request.program.selectedPart;
   backends::GcodeOptions names = gcodeOptionsFor(request);
   backends::MacroProgramOptions options;
-  options.programNumber =
-      backends::programNumberFromFileName(request.output.path()).value_or(1000);
+  options.programNumber = backends::programNumberFromFileName(request.output.path()).value_or(1000);
   options.sourceName = names.sourceName;
   options.partName = names.partName;
   options.inches = names.inches;
@@ -70,9 +69,9 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.cuts = std::move(cuts);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
   for (const std::string& error : program.errors) {
-    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part.nameSpan,
-                               fmt::format("the part does not fit the {} profile: {}",
-                                           profile->name, error));
+    request.diagnostics.report(
+        frontend::DiagnosticKind::ProgramTooLarge, part.nameSpan,
+        fmt::format("the part does not fit the {} profile: {}", profile->name, error));
   }
   if (program.errors.empty()) {
     request.output.write(program.text);

@@ -78,8 +78,7 @@ int runOptimize(const DriverOptions& options) {
   optimise(*function, options);
   std::error_code writeError;
   if (!writeFileAtomically(options.output, ir::printFunction(*function), writeError)) {
-    output.driverError(
-        fmt::format("cannot write '{}': {}", options.output, writeError.message()));
+    output.driverError(fmt::format("cannot write '{}': {}", options.output, writeError.message()));
     return 1;
   }
   return 0;

@@ -24,8 +24,7 @@ int printStatistics(const BackendRequest& request) {
   DiagnosticOutput output =
       DiagnosticOutput(options.diagnosticsFormat, options.colour).errorsOnly();
   frontend::DiagnosticEngine diagnostics(options.errorLimit);
-  BackendRequest measuring{request.program, request.sources, options, diagnostics,
-                           request.output};
+  BackendRequest measuring{request.program, request.sources, options, diagnostics, request.output};
   std::optional<MeasuredPart> measured = measurePart(measuring);
   output.print(diagnostics, request.sources);
   if (!measured || diagnostics.hasErrors()) {
@@ -39,9 +38,8 @@ int printStatistics(const BackendRequest& request) {
   statisticsOptions.cutNames = measured->cutNames;
   backends::PathStatistics statistics =
       backends::measureProgram(measured->program, measured->cuts, statisticsOptions);
-  fmt::print(stderr, "statistics of part {} for target {}:\n{}",
-             request.program.selectedPart->name, options.target,
-             backends::formatStatistics(statistics, statisticsOptions));
+  fmt::print(stderr, "statistics of part {} for target {}:\n{}", request.program.selectedPart->name,
+             options.target, backends::formatStatistics(statistics, statisticsOptions));
   return 0;
 }
 

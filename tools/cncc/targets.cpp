@@ -23,7 +23,6 @@ namespace cncc::driver {
 
 namespace {
 
-
 void gcodeBackend(const BackendRequest& request) {
   std::vector<ir::CutGeometry> cuts;
   std::optional<ir::ToolPath> path = hostToolPath(request, false, &cuts);
@@ -49,8 +48,7 @@ void jitBackend(const BackendRequest& request) {
 constexpr Target targetTable[] = {
     {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend},
     {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
-    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks",
-     sinumerikBackend},
+    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", sinumerikBackend},
     {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
     {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend},
     {"jit", "run the part on the host and print the tool path", jitBackend},
@@ -92,8 +90,7 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
     return ir::interpret(*function);
   } catch (const ir::InterpreterError& error) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
-                               fmt::format("the part cannot be run on the host: {}",
-                                           error.what()));
+                               fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;
   }
 }
@@ -127,9 +124,9 @@ void addArcFits(backends::GcodeOptions& options, const std::vector<ir::CutGeomet
   backends::CutArcFitting fitting =
       backends::fitCutArcs(cuts, request.options.arcs, options.decimals);
   for (const backends::ArcProblem& problem : fitting.problems) {
-    request.diagnostics.report(frontend::DiagnosticKind::ArcsAsChords, cuts[problem.cut].span,
-                               fmt::format("this cut is printed as G01 chords, not arcs: {}",
-                                           problem.reason));
+    request.diagnostics.report(
+        frontend::DiagnosticKind::ArcsAsChords, cuts[problem.cut].span,
+        fmt::format("this cut is printed as G01 chords, not arcs: {}", problem.reason));
   }
   options.arcFits = std::move(fitting.fits);
 }

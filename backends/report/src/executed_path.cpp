@@ -99,7 +99,8 @@ public:
     while (!program.empty()) {
       std::size_t newline = program.find('\n');
       std::string_view line = program.substr(0, newline);
-      program = newline == std::string_view::npos ? std::string_view() : program.substr(newline + 1);
+      program =
+          newline == std::string_view::npos ? std::string_view() : program.substr(newline + 1);
       ++lineNumber;
       if (line.find('%') == std::string_view::npos) {
         readBlock(wordsOf(withoutComment(line), lineNumber), lineNumber);
@@ -224,8 +225,7 @@ public:
 private:
   bool isAt(const MachineEvent& event) const {
     auto same = [&](const std::optional<double>& axis, double target) {
-      return axis &&
-             formatGcodeNumber(*axis, decimals_) == formatGcodeNumber(target, decimals_);
+      return axis && formatGcodeNumber(*axis, decimals_) == formatGcodeNumber(target, decimals_);
     };
     return same(position_[0], event.x) && same(position_[1], event.y) &&
            same(position_[2], event.z);

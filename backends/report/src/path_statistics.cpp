@@ -69,14 +69,13 @@ std::string formatCutLine(const CutDeviation& cut, const StatisticsOptions& opti
   if (std::isnan(cut.maxDeviation)) {
     return fmt::format("  {}: no feed moves\n", name);
   }
-  std::string tolerance =
-      std::isnan(cut.tolerance)
-          ? "no tolerance (samples= or spacing= chose the points)"
-          : fmt::format("tolerance {:g} {}, {}", cut.tolerance, options.unit,
-                        cut.withinTolerance() ? "within" : "EXCEEDED");
-  return fmt::format("  {}: max deviation {:.5f} {} at ({:.4f}, {:.4f}), {}; {} feed moves\n",
-                     name, cut.maxDeviation, options.unit, cut.where.x(), cut.where.y(),
-                     tolerance, cut.feedMoves);
+  std::string tolerance = std::isnan(cut.tolerance)
+                              ? "no tolerance (samples= or spacing= chose the points)"
+                              : fmt::format("tolerance {:g} {}, {}", cut.tolerance, options.unit,
+                                            cut.withinTolerance() ? "within" : "EXCEEDED");
+  return fmt::format("  {}: max deviation {:.5f} {} at ({:.4f}, {:.4f}), {}; {} feed moves\n", name,
+                     cut.maxDeviation, options.unit, cut.where.x(), cut.where.y(), tolerance,
+                     cut.feedMoves);
 }
 
 } // namespace
@@ -142,16 +141,16 @@ PathStatistics measureProgram(const ExecutedProgram& program, std::span<const ir
 
 std::string formatStatistics(const PathStatistics& statistics, const StatisticsOptions& options) {
   const std::string& unit = options.unit;
-  std::string text = fmt::format("program: {} blocks, {} bytes\n", statistics.blocks,
-                                 statistics.bytes);
+  std::string text =
+      fmt::format("program: {} blocks, {} bytes\n", statistics.blocks, statistics.bytes);
   text += fmt::format("path: feed moves {:.3f} {} ({} moves), rapids {:.3f} {} ({} moves)\n",
                       statistics.feedLength, unit, statistics.feedMoves, statistics.rapidLength,
                       unit, statistics.rapidMoves);
-  text += fmt::format("time: {} (feed moves {}, rapids {}), at the programmed feeds and rapids at "
-                      "{:g} {}/min, without acceleration\n",
-                      formatMinutes(statistics.totalMinutes()),
-                      formatMinutes(statistics.feedMinutes), formatMinutes(statistics.rapidMinutes),
-                      options.rapidRate, unit);
+  text +=
+      fmt::format("time: {} (feed moves {}, rapids {}), at the programmed feeds and rapids at "
+                  "{:g} {}/min, without acceleration\n",
+                  formatMinutes(statistics.totalMinutes()), formatMinutes(statistics.feedMinutes),
+                  formatMinutes(statistics.rapidMinutes), options.rapidRate, unit);
   text += "deviation of the executed path from the true curve (in XY):\n";
   for (const CutDeviation& cut : statistics.cuts) {
     text += formatCutLine(cut, options);

@@ -252,11 +252,8 @@ ProgramExecution runSinumerik(const ExecutionRequest& request) {
 }
 
 constexpr TargetExecutor executorTable[] = {
-    {"m80", runM80},
-    {"fanuc", runFanuc},
-    {"gcode", runGcode},
-    {"jit", runJit},
-    {"sinumerik", runSinumerik},
+    {"m80", runM80}, {"fanuc", runFanuc},         {"gcode", runGcode},
+    {"jit", runJit}, {"sinumerik", runSinumerik},
 };
 
 } // namespace

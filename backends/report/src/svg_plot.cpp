@@ -15,8 +15,8 @@ namespace cncc::backends {
 
 namespace {
 
-constexpr double kMargin = 60;          // pixels around the drawing area, for the axes
-constexpr double kTitleHeight = 30;     // pixels above it
+constexpr double kMargin = 60;           // pixels around the drawing area, for the axes
+constexpr double kTitleHeight = 30;      // pixels above it
 constexpr double kLegendLineHeight = 18; // pixels per legend line
 constexpr int kSamplesPerSegment = 16;
 constexpr int kRefinementSteps = 40;
@@ -231,9 +231,10 @@ std::string cutPaths(const Frame& frame, const ExecutedPath& path,
 }
 
 std::string swatch(double x, double y, const std::string& colour, std::string_view label) {
-  return fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" "
-                     "stroke=\"{}\" stroke-width=\"3\"/><text x=\"{:.2f}\" y=\"{:.2f}\">{}</text>\n",
-                     x, y - 4, x + 20, y - 4, colour, x + 26, y, escaped(label));
+  return fmt::format(
+      "<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" "
+      "stroke=\"{}\" stroke-width=\"3\"/><text x=\"{:.2f}\" y=\"{:.2f}\">{}</text>\n",
+      x, y - 4, x + 20, y - 4, colour, x + 26, y, escaped(label));
 }
 
 std::string legend(double top, std::span<const ir::CutGeometry> cuts,
@@ -243,10 +244,10 @@ std::string legend(double top, std::span<const ir::CutGeometry> cuts,
   for (const CutDeviation& cut : deviations) {
     std::string name = cut.cut < options.cutNames.size() ? options.cutNames[cut.cut]
                                                          : fmt::format("cut {}", cut.cut + 1);
-    std::string deviation = std::isnan(cut.maxDeviation)
-                                ? "no feed moves"
-                                : fmt::format("max deviation {:.5f} {}", cut.maxDeviation,
-                                              options.unit);
+    std::string deviation =
+        std::isnan(cut.maxDeviation)
+            ? "no feed moves"
+            : fmt::format("max deviation {:.5f} {}", cut.maxDeviation, options.unit);
     std::string tolerance = std::isnan(cut.tolerance)
                                 ? "no tolerance (samples= or spacing=)"
                                 : fmt::format("tolerance {:g} {}{}", cut.tolerance, options.unit,
@@ -333,10 +334,10 @@ std::string plotSvg(const ExecutedPath& path, std::span<const ir::CutGeometry> c
   double legendTop = frame.bottom() + 66;
   double width = frame.right() + kMargin;
   double height = legendTop + kLegendLineHeight * double(cuts.size() + 1) + 10;
-  std::string out = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" "
-      "viewBox=\"0 0 {0:.0f} {1:.0f}\" font-family=\"sans-serif\">\n",
-      std::ceil(width), std::ceil(height));
+  std::string out =
+      fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" "
+                  "viewBox=\"0 0 {0:.0f} {1:.0f}\" font-family=\"sans-serif\">\n",
+                  std::ceil(width), std::ceil(height));
   out += fmt::format("<title>{}</title>\n", escaped(options.title));
   out += "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   out += fmt::format("<text class=\"title\" x=\"{:.2f}\" y=\"20\" font-size=\"14\">{}</text>\n",

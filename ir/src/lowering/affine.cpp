@@ -32,8 +32,7 @@ Affine Affine::after(const Affine& inner) const {
 }
 
 bool Affine::isIdentity() const {
-  return linear == Eigen::Matrix2d::Identity() && offset == Eigen::Vector2d::Zero() &&
-         zScale == 1;
+  return linear == Eigen::Matrix2d::Identity() && offset == Eigen::Vector2d::Zero() && zScale == 1;
 }
 
 Eigen::Vector3d Affine::apply(const Eigen::Vector3d& point) const {

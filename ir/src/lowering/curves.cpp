@@ -225,8 +225,8 @@ CurvePoint PartLowering::transformed(const Affine& transform, const CurvePoint& 
     }
     return sum;
   };
-  Scalar z = transform.zScale == 1 ? point.z
-                                   : arithmetic_.multiply(Scalar::of(transform.zScale), point.z);
+  Scalar z =
+      transform.zScale == 1 ? point.z : arithmetic_.multiply(Scalar::of(transform.zScale), point.z);
   return {row(0, transform.offset.x()), row(1, transform.offset.y()), z};
 }
 
@@ -259,9 +259,9 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
     Scalar coordinates[3];
     for (int i = 0; i < 3; ++i) {
       double change = curve.to[i] - curve.from[i];
-      coordinates[i] = change == 0 ? Scalar::of(curve.from[i])
-                                   : math.add(Scalar::of(curve.from[i]),
-                                              math.multiply(Scalar::of(change), s));
+      coordinates[i] =
+          change == 0 ? Scalar::of(curve.from[i])
+                      : math.add(Scalar::of(curve.from[i]), math.multiply(Scalar::of(change), s));
     }
     return {coordinates[0], coordinates[1], coordinates[2]};
   }
@@ -270,10 +270,8 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
     Scalar angle = math.add(Scalar::of(curve.startAngle),
                             math.multiply(Scalar::of(arc.sweep() / arc.length()), local));
     Scalar r = Scalar::of(curve.arcRadius);
-    return {math.add(Scalar::of(curve.center[0]),
-                     math.multiply(r, math.unary(Opcode::Cos, angle))),
-            math.add(Scalar::of(curve.center[1]),
-                     math.multiply(r, math.unary(Opcode::Sin, angle))),
+    return {math.add(Scalar::of(curve.center[0]), math.multiply(r, math.unary(Opcode::Cos, angle))),
+            math.add(Scalar::of(curve.center[1]), math.multiply(r, math.unary(Opcode::Sin, angle))),
             Scalar::of(0)};
   }
   case CurveKind::Nurbs:

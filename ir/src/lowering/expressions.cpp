@@ -117,8 +117,9 @@ std::optional<Lowered> PartLowering::constantOf(const Value& value) {
   case TypeKind::Bool:
     return Lowered{TypeKind::Bool, {Scalar::ofBool(value.boolean)}};
   case TypeKind::Point:
-    return Lowered{TypeKind::Point, {Scalar::of(value.point[0]), Scalar::of(value.point[1]),
-                                     Scalar::of(value.point[2])}};
+    return Lowered{
+        TypeKind::Point,
+        {Scalar::of(value.point[0]), Scalar::of(value.point[1]), Scalar::of(value.point[2])}};
   default:
     return std::nullopt;
   }
@@ -191,8 +192,7 @@ std::optional<Lowered> PartLowering::lowerUnary(const UnaryExpr& unary, const Bi
   return operand;
 }
 
-std::optional<Lowered> PartLowering::lowerIfElse(const IfElseExpr& choice,
-                                                 const Bindings& bindings,
+std::optional<Lowered> PartLowering::lowerIfElse(const IfElseExpr& choice, const Bindings& bindings,
                                                  const Environment& environment) {
   std::optional<Lowered> condition = tryLower(*choice.condition, bindings, environment);
   std::optional<Lowered> yes = tryLower(*choice.thenValue, bindings, environment);
@@ -207,8 +207,7 @@ std::optional<Lowered> PartLowering::lowerIfElse(const IfElseExpr& choice,
   return yes;
 }
 
-std::optional<Lowered> PartLowering::lowerBinary(const BinaryExpr& binary,
-                                                 const Bindings& bindings,
+std::optional<Lowered> PartLowering::lowerBinary(const BinaryExpr& binary, const Bindings& bindings,
                                                  const Environment& environment) {
   std::optional<Lowered> left = tryLower(*binary.left, bindings, environment);
   std::optional<Lowered> right = tryLower(*binary.right, bindings, environment);

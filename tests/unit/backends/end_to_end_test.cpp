@@ -55,11 +55,11 @@ std::unique_ptr<CompiledExample> compile(const std::string& name, const std::str
     ADD_FAILURE() << name << " does not check";
     return nullptr;
   }
-  result->lowered = ir::lowerPartWithCuts(*result->program, *result->program->selectedPart,
-                                          result->diagnostics);
+  result->lowered =
+      ir::lowerPartWithCuts(*result->program, *result->program->selectedPart, result->diagnostics);
   if (!result->lowered) {
-    ADD_FAILURE() << name << " does not lower: "
-                  << result->diagnostics.diagnostics().back().message;
+    ADD_FAILURE() << name
+                  << " does not lower: " << result->diagnostics.diagnostics().back().message;
     return nullptr;
   }
   std::vector<std::string> problems = ir::verifyFunction(result->lowered->function);
@@ -229,19 +229,17 @@ TEST_P(EveryExample, EveryCutStaysWithinItsTolerance) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, EveryExample,
-                         testing::Values(ExampleCase{"archimedean_spiral.cdl", ""},
-                                         ExampleCase{"cam_profile.cdl", ""},
-                                         ExampleCase{"helix_bore.cdl", "bore_plate_mm"},
-                                         ExampleCase{"helix_bore.cdl", "bore_plate_inch"},
-                                         ExampleCase{"polar_contour.cdl", ""},
-                                         ExampleCase{"rosette_plate.cdl", ""},
-                                         ExampleCase{"s_profile.cdl", ""}),
-                         [](const testing::TestParamInfo<ExampleCase>& info) {
-                           std::string name = info.param.part.empty() ? info.param.file
-                                                                      : info.param.part;
-                           return name.substr(0, name.find('.'));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Examples, EveryExample,
+    testing::Values(ExampleCase{"archimedean_spiral.cdl", ""}, ExampleCase{"cam_profile.cdl", ""},
+                    ExampleCase{"helix_bore.cdl", "bore_plate_mm"},
+                    ExampleCase{"helix_bore.cdl", "bore_plate_inch"},
+                    ExampleCase{"polar_contour.cdl", ""}, ExampleCase{"rosette_plate.cdl", ""},
+                    ExampleCase{"s_profile.cdl", ""}),
+    [](const testing::TestParamInfo<ExampleCase>& info) {
+      std::string name = info.param.part.empty() ? info.param.file : info.param.part;
+      return name.substr(0, name.find('.'));
+    });
 
 // The cut table follows the loops: the rosette's petals are one cut each,
 // its bolt holes too, and only the finishing branch the if chose is cut.
@@ -290,10 +288,10 @@ TEST(EndToEnd, ArchimedeanSpiralMeetsFiveMicronsInNinetyChords) {
 TEST(EndToEnd, SProfileNurbsWithinTolerance) {
   std::optional<ir::ToolPath> path = compileExample("s_profile.cdl");
   ASSERT_TRUE(path);
-  std::vector<Eigen::Vector3d> points = {{25, 50, 0},          {42.8735, 24.1467, 0},
-                                         {70.5832, 72.3597, 0}, {86.608, 165.3624, 0},
-                                         {112.4532, 38.3852, 0}, {132.4671, 35.1148, 0},
-                                         {175, 150, 0}};
+  std::vector<Eigen::Vector3d> points = {
+      {25, 50, 0},           {42.8735, 24.1467, 0},  {70.5832, 72.3597, 0},
+      {86.608, 165.3624, 0}, {112.4532, 38.3852, 0}, {132.4671, 35.1148, 0},
+      {175, 150, 0}};
   geom::NurbsCurve curve(geom::KnotVector::clampedUniform(3, 7), points, {1, 1, 1, 1, 1, 3, 1});
   std::vector<Eigen::Vector3d> polyline = lastPass(*path);
   geom::DeviationReport report = geom::measureDeviation(polyline, curve, {1e-6});

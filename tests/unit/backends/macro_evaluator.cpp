@@ -120,17 +120,21 @@ private:
 
   static double compare(std::string_view op, double a, double b) {
     if (op == " EQ " || op == " NE ") {
-      bool equal = (std::isnan(a) && std::isnan(b)) ||
-                   (!std::isnan(a) && !std::isnan(b) && a == b);
+      bool equal = (std::isnan(a) && std::isnan(b)) || (!std::isnan(a) && !std::isnan(b) && a == b);
       return (op == " EQ ") == equal ? 1 : 0;
     }
     a = arithmetic(a);
     b = arithmetic(b);
-    if (op == " LT ") return a < b;
-    if (op == " LE ") return a <= b;
-    if (op == " GT ") return a > b;
-    if (op == " GE ") return a >= b;
-    if (op == " AND ") return a != 0 && b != 0;
+    if (op == " LT ")
+      return a < b;
+    if (op == " LE ")
+      return a <= b;
+    if (op == " GT ")
+      return a > b;
+    if (op == " GE ")
+      return a >= b;
+    if (op == " AND ")
+      return a != 0 && b != 0;
     return a != 0 || b != 0;
   }
 
@@ -142,17 +146,28 @@ private:
       double angle = std::atan2(a, b) / degree;
       return angle < 0 ? angle + 360 : angle; // Fanuc's default range 0..360
     }
-    if (name == "SIN") return std::sin(a * degree);
-    if (name == "COS") return std::cos(a * degree);
-    if (name == "TAN") return std::tan(a * degree);
-    if (name == "ASIN") return std::asin(a) / degree;
-    if (name == "ACOS") return std::acos(a) / degree;
-    if (name == "SQRT") return std::sqrt(a);
-    if (name == "ABS") return std::abs(a);
-    if (name == "EXP") return std::exp(a);
-    if (name == "LN") return std::log(a);
-    if (name == "ROUND") return std::round(a);
-    if (name == "FIX") return std::trunc(a);
+    if (name == "SIN")
+      return std::sin(a * degree);
+    if (name == "COS")
+      return std::cos(a * degree);
+    if (name == "TAN")
+      return std::tan(a * degree);
+    if (name == "ASIN")
+      return std::asin(a) / degree;
+    if (name == "ACOS")
+      return std::acos(a) / degree;
+    if (name == "SQRT")
+      return std::sqrt(a);
+    if (name == "ABS")
+      return std::abs(a);
+    if (name == "EXP")
+      return std::exp(a);
+    if (name == "LN")
+      return std::log(a);
+    if (name == "ROUND")
+      return std::round(a);
+    if (name == "FIX")
+      return std::trunc(a);
     return a < 0 ? std::floor(a) : std::ceil(a); // FUP
   }
 
@@ -167,8 +182,8 @@ private:
     if (peek() == '[') {
       return bracket();
     }
-    for (std::string_view name :
-         {"SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "ABS", "EXP", "LN", "ROUND", "FIX", "FUP"}) {
+    for (std::string_view name : {"SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SQRT", "ABS", "EXP",
+                                  "LN", "ROUND", "FIX", "FUP"}) {
       if (text_.compare(position_, name.size() + 1, std::string(name) + "[") == 0) {
         position_ += name.size();
         return function(name);
@@ -219,9 +234,7 @@ private:
 
   // The value of the word starting at `text_[position_]`: a number, a
   // variable, a bracket, with an optional minus.
-  double wordValue() {
-    return arithmetic(primary());
-  }
+  double wordValue() { return arithmetic(primary()); }
 
   void motion(const std::string& block) {
     text_ = block;
@@ -240,10 +253,21 @@ private:
           rapid_ = value == 0;
         }
         break;
-      case 'X': x_ = value; moved = true; break;
-      case 'Y': y_ = value; moved = true; break;
-      case 'Z': z_ = value; moved = true; break;
-      case 'F': feed_ = value; break;
+      case 'X':
+        x_ = value;
+        moved = true;
+        break;
+      case 'Y':
+        y_ = value;
+        moved = true;
+        break;
+      case 'Z':
+        z_ = value;
+        moved = true;
+        break;
+      case 'F':
+        feed_ = value;
+        break;
       case 'M':
         if (value == 30 || value == 99) {
           finished_ = true;

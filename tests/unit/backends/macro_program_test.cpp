@@ -13,12 +13,12 @@
 namespace cncc::backends {
 namespace {
 
+using ir::Opcode;
+using ir::ValueId;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
 using ::testing::Not;
-using ir::Opcode;
-using ir::ValueId;
 
 const ControllerProfile& profileNamed(std::string_view name) {
   const ControllerProfile* profile = findControllerProfile(name);

@@ -66,8 +66,7 @@ void expectSameFeedMoves(const ir::ToolPath& expected, const testing::MacroEvalu
   double worst = 0;
   for (std::size_t i = 0; i < host.size(); ++i) {
     worst = std::max({worst, std::abs(controller[i].x - host[i].x),
-                      std::abs(controller[i].y - host[i].y),
-                      std::abs(controller[i].z - host[i].z),
+                      std::abs(controller[i].y - host[i].y), std::abs(controller[i].z - host[i].z),
                       std::abs(controller[i].feed - host[i].feed)});
   }
   EXPECT_LT(worst, 5e-4) << what;

@@ -39,9 +39,13 @@ TEST(ReportExecutedPath, HostRunStartsAtTheFirstTargetAndKeepsTheCuts) {
 
 TEST(ReportExecutedPath, GcodeRoundsToThePrintedDecimalsAndSplitsRapids) {
   ir::ToolPath toolPath;
-  toolPath.events = {rapid(0, 0, 5), cutBegin(0), feed(0, 0, -1, 100),
-                     feed(1.23456, 2.000049, -1, 100), feed(1.23456, 2.000049, -1, 100),
-                     rapid(1.23456, 2.000049, 5), rapid(7, 8, 3)};
+  toolPath.events = {rapid(0, 0, 5),
+                     cutBegin(0),
+                     feed(0, 0, -1, 100),
+                     feed(1.23456, 2.000049, -1, 100),
+                     feed(1.23456, 2.000049, -1, 100),
+                     rapid(1.23456, 2.000049, 5),
+                     rapid(7, 8, 3)};
   backends::GcodeOptions options;
   std::string program = backends::writeGcode(toolPath, options);
   ExecutedPath path = backends::executeGcode(program, toolPath, options.decimals);

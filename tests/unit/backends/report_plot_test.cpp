@@ -26,8 +26,7 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
 // The elements of `svg` whose opening tag contains `marker`.
 std::vector<std::string> elementsWith(const std::string& svg, const std::string& marker) {
   std::vector<std::string> elements;
-  for (std::size_t at = svg.find(marker); at != std::string::npos;
-       at = svg.find(marker, at + 1)) {
+  for (std::size_t at = svg.find(marker); at != std::string::npos; at = svg.find(marker, at + 1)) {
     std::size_t begin = svg.rfind('<', at);
     elements.push_back(svg.substr(begin, svg.find('>', at) - begin + 1));
   }

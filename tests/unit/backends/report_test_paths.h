@@ -37,8 +37,8 @@ inline ir::MachineEvent cutBegin(std::size_t index) {
 // A quarter circle of radius 10 about the origin, from (10, 0) to (0, 10).
 inline ir::CutGeometry quarterCircle(double tolerance) {
   ir::CutGeometry cut;
-  cut.curve = std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 10.0, 0.0,
-                                               std::numbers::pi / 2);
+  cut.curve =
+      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 10.0, 0.0, std::numbers::pi / 2);
   cut.tolerance = tolerance;
   return cut;
 }

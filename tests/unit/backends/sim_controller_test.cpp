@@ -265,7 +265,9 @@ struct LimitCase {
   const char* message;
 };
 
-void PrintTo(const LimitCase& limit, std::ostream* out) { *out << limit.name; }
+void PrintTo(const LimitCase& limit, std::ostream* out) {
+  *out << limit.name;
+}
 
 class SimLimit : public ::testing::TestWithParam<LimitCase> {};
 

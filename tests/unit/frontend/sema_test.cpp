@@ -48,7 +48,8 @@ std::unique_ptr<Checked> check(const std::string& text, CheckOptions options = {
 
 // A part around one body, with a tool and a feed so cuts are complete.
 std::string part(const std::string& body, const std::string& parameters = "") {
-  return "part p(" + parameters + ") {\n  tool 1 diameter=6 feed=200\n  safe z=5\n" + body + "\n}\n";
+  return "part p(" + parameters + ") {\n  tool 1 diameter=6 feed=200\n  safe z=5\n" + body +
+         "\n}\n";
 }
 
 TEST(SemaTest, LanguageContractExampleIsClean) {

@@ -113,8 +113,7 @@ TEST(Lowering, UnsupportedConstructIsAnErrorAtItsSpan) {
   EXPECT_FALSE(lowered->function);
   ASSERT_TRUE(lowered->diagnostics.hasErrors());
   const frontend::Diagnostic& diagnostic = lowered->diagnostics.diagnostics().back();
-  EXPECT_NE(diagnostic.message.find("not supported by this version's lowering"),
-            std::string::npos);
+  EXPECT_NE(diagnostic.message.find("not supported by this version's lowering"), std::string::npos);
   EXPECT_TRUE(diagnostic.span.valid());
 }
 

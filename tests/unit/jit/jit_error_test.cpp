@@ -68,9 +68,9 @@ TEST(JitErrors, LoopBoundThatIsNotFiniteIsTheInterpretersError) {
   builder.endLoop();
   ir::Function function = builder.finish();
   backends::CompiledFunction compiled(function);
-  for (double bound : {std::numeric_limits<double>::infinity(),
-                       -std::numeric_limits<double>::infinity(),
-                       std::numeric_limits<double>::quiet_NaN()}) {
+  for (double bound :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::quiet_NaN()}) {
     ir::InterpreterOptions options = withParameter("high", bound);
     jit_test::RunOutcome outcome = jit_test::outcomeOf([&] { return compiled.run(options); });
     EXPECT_EQ(outcome.error, "a loop bound is not a finite number");

@@ -91,8 +91,7 @@ TEST(JitExamples, SProfileRunsAgainWithOtherParameters) {
   options.requirePart = true;
   frontend::CheckedProgram program = frontend::checkProgram(sources, *file, options, diagnostics);
   ASSERT_NE(program.selectedPart, nullptr);
-  std::optional<ir::Function> function =
-      ir::lowerPart(program, *program.selectedPart, diagnostics);
+  std::optional<ir::Function> function = ir::lowerPart(program, *program.selectedPart, diagnostics);
   ASSERT_TRUE(function);
   backends::CompiledFunction compiled(*function);
   for (double depth : {1.0, 2.5, 6.0}) {

@@ -23,12 +23,11 @@ using ir::ValueId;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-const std::vector<double> kUnaryInputs = {-2.5, -1,   -0.75,  -0.5,      -0.0,      0,
-                                          0.3,  0.5,  0.999,  1,         1.5,       2.5,
-                                          3,    100,  1e300,  -1e-300,   kInfinity, -kInfinity,
-                                          kNaN, 7.25, -7.25,  3.1415926, 1e-8};
-const std::vector<double> kBinaryInputs = {-3,  -1.5, -0.5, -0.0, 0,         0.5,        1,
-                                           2,   2.5,  7,    1e10, kInfinity, -kInfinity, kNaN};
+const std::vector<double> kUnaryInputs = {
+    -2.5, -1,  -0.75, -0.5,    -0.0,      0,          0.3,  0.5,  0.999, 1,         1.5, 2.5,
+    3,    100, 1e300, -1e-300, kInfinity, -kInfinity, kNaN, 7.25, -7.25, 3.1415926, 1e-8};
+const std::vector<double> kBinaryInputs = {-3, -1.5, -0.5, -0.0, 0,         0.5,        1,
+                                           2,  2.5,  7,    1e10, kInfinity, -kInfinity, kNaN};
 
 struct OpcodeCase {
   std::string name;
@@ -54,8 +53,7 @@ OpcodeCase unaryCase(Opcode opcode) {
 }
 
 // (a, b) over every pair of inputs; `combine` makes the fed value.
-template <typename Combine>
-OpcodeCase pairCase(const std::string& name, Combine combine) {
+template <typename Combine> OpcodeCase pairCase(const std::string& name, Combine combine) {
   FunctionBuilder builder(name);
   ValueId a = beginTableLoop(builder, kBinaryInputs, "rows");
   ValueId b = beginTableLoop(builder, kBinaryInputs, "columns");
@@ -78,7 +76,8 @@ OpcodeCase comparisonCase(Opcode opcode) {
   ValueId a = beginTableLoop(builder, kBinaryInputs, "rows");
   ValueId b = beginTableLoop(builder, kBinaryInputs, "columns");
   ValueId holds = builder.binary(opcode, a, b);
-  ValueId chosen = builder.operation(Opcode::Select, {holds, builder.constant(1), builder.constant(2)});
+  ValueId chosen =
+      builder.operation(Opcode::Select, {holds, builder.constant(1), builder.constant(2)});
   builder.beginIf(holds);
   builder.feed(a, b, chosen, builder.constant(100));
   builder.beginElse();
@@ -97,8 +96,8 @@ OpcodeCase logicCase(Opcode opcode) {
                     ValueId right = builder.binary(Opcode::Gt, b, builder.constant(0));
                     ValueId combined = opcode == Opcode::Not ? builder.unary(Opcode::Not, left)
                                                              : builder.binary(opcode, left, right);
-                    return builder.operation(Opcode::Select,
-                                             {combined, builder.constant(10), builder.constant(20)});
+                    return builder.operation(
+                        Opcode::Select, {combined, builder.constant(10), builder.constant(20)});
                   });
 }
 
@@ -113,7 +112,8 @@ OpcodeCase effectsCase() {
   builder.cutBegin(0);
   ValueId never = builder.constantBool(false);
   ValueId always = builder.constantBool(true);
-  ValueId pick = builder.operation(Opcode::Select, {always, builder.constant(1), builder.constant(2)});
+  ValueId pick =
+      builder.operation(Opcode::Select, {always, builder.constant(1), builder.constant(2)});
   builder.beginIf(never);
   builder.comment("never");
   builder.beginElse();
@@ -131,10 +131,10 @@ OpcodeCase loopsCase() {
   std::uint32_t high = builder.addParameter("high", 3.7);
   ValueId outer = builder.beginLoop(builder.constant(-1.5), builder.parameter(high));
   ValueId inner = builder.beginLoop(outer, builder.constant(1));
-  ValueId odd = builder.binary(Opcode::Ne,
-                               builder.binary(Opcode::Rem, builder.unary(Opcode::Abs, inner),
-                                              builder.constant(2)),
-                               builder.constant(0.5));
+  ValueId odd = builder.binary(
+      Opcode::Ne,
+      builder.binary(Opcode::Rem, builder.unary(Opcode::Abs, inner), builder.constant(2)),
+      builder.constant(0.5));
   builder.beginIf(odd);
   builder.feed(outer, inner, builder.constant(-1), builder.constant(50));
   builder.endIf();
@@ -157,8 +157,7 @@ std::vector<OpcodeCase> opcodeCases() {
                         Opcode::Pow, Opcode::Min, Opcode::Max, Opcode::Atan2}) {
     cases.push_back(binaryCase(opcode));
   }
-  for (Opcode opcode :
-       {Opcode::Lt, Opcode::Le, Opcode::Gt, Opcode::Ge, Opcode::Eq, Opcode::Ne}) {
+  for (Opcode opcode : {Opcode::Lt, Opcode::Le, Opcode::Gt, Opcode::Ge, Opcode::Eq, Opcode::Ne}) {
     cases.push_back(comparisonCase(opcode));
   }
   for (Opcode opcode : {Opcode::And, Opcode::Or, Opcode::Not}) {

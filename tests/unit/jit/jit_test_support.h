@@ -57,8 +57,7 @@ struct RunOutcome {
   std::string error;
 };
 
-template <typename Run>
-RunOutcome outcomeOf(Run run) {
+template <typename Run> RunOutcome outcomeOf(Run run) {
   RunOutcome outcome;
   try {
     outcome.path = run();
@@ -80,8 +79,8 @@ inline ::testing::AssertionResult sameOutcome(const RunOutcome& interpreted,
   return samePaths(interpreted.path, compiled.path);
 }
 
-inline ::testing::AssertionResult jitMatchesInterpreter(const ir::Function& function,
-                                                        const ir::InterpreterOptions& options = {}) {
+inline ::testing::AssertionResult
+jitMatchesInterpreter(const ir::Function& function, const ir::InterpreterOptions& options = {}) {
   backends::CompiledFunction compiled(function);
   return sameOutcome(outcomeOf([&] { return ir::interpret(function, options); }),
                      outcomeOf([&] { return compiled.run(options); }));

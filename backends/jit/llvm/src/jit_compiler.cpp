@@ -27,8 +27,7 @@ std::string describe(llvm::Error error) {
   return llvm::toString(std::move(error));
 }
 
-template <typename T>
-T orThrow(llvm::Expected<T> expected, const char* doing) {
+template <typename T> T orThrow(llvm::Expected<T> expected, const char* doing) {
   if (!expected) {
     throw JitError(std::string(doing) + ": " + describe(expected.takeError()));
   }
@@ -48,16 +47,14 @@ void defineRuntimeSymbols(llvm::orc::LLJIT& jit) {
   for (const jit::RuntimeSymbol& symbol : jit::runtimeSymbols()) {
     symbols[jit.mangleAndIntern(llvm::StringRef(symbol.name.data(), symbol.name.size()))] =
         llvm::JITEvaluatedSymbol(llvm::pointerToJITTargetAddress(symbol.address),
-                                 llvm::JITSymbolFlags::Exported |
-                                     llvm::JITSymbolFlags::Callable);
+                                 llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable);
   }
   llvm::orc::JITDylib& library = jit.getMainJITDylib();
   orThrow(library.define(llvm::orc::absoluteSymbols(std::move(symbols))),
           "cannot define the runtime symbols");
-  library.addGenerator(
-      orThrow(llvm::orc::DynamicLibrarySearchGenerator::GetForCurrentProcess(
-                  jit.getDataLayout().getGlobalPrefix()),
-              "cannot search the process for symbols"));
+  library.addGenerator(orThrow(llvm::orc::DynamicLibrarySearchGenerator::GetForCurrentProcess(
+                                   jit.getDataLayout().getGlobalPrefix()),
+                               "cannot search the process for symbols"));
 }
 
 std::unique_ptr<llvm::Module> optimisedModule(const ir::Function& function,
@@ -77,7 +74,8 @@ std::unique_ptr<llvm::Module> optimisedModule(const ir::Function& function,
   module.setDataLayout(machine->createDataLayout());
   module.setTargetTriple(machine->getTargetTriple().str());
   jit::optimiseModule(module, *machine);
-  if (std::getenv("CNCC_JIT_DUMP_TEMP")) module.print(llvm::errs(), nullptr); // TEMP
+  if (std::getenv("CNCC_JIT_DUMP_TEMP"))
+    module.print(llvm::errs(), nullptr); // TEMP
   return std::move(generated.module);
 }
 
@@ -123,9 +121,9 @@ CompiledFunction::CompiledFunction(const ir::Function& function)
   orThrow(compiled_->jit->addIRModule(
               llvm::orc::ThreadSafeModule(std::move(module), std::move(context))),
           "cannot add the module");
-  llvm::JITEvaluatedSymbol entry = orThrow(
-      compiled_->jit->lookup(llvm::StringRef(jit::entryName.data(), jit::entryName.size())),
-      "cannot compile the function");
+  llvm::JITEvaluatedSymbol entry =
+      orThrow(compiled_->jit->lookup(llvm::StringRef(jit::entryName.data(), jit::entryName.size())),
+              "cannot compile the function");
   compiled_->entry = reinterpret_cast<jit::EntryFunction>(entry.getAddress());
 }
 

@@ -10,8 +10,7 @@ namespace {
 
 // Records an event; an exception (out of memory) must not unwind through the
 // native code, so it is kept for the caller and reported as a failure.
-template <typename MakeEvent>
-std::int32_t record(RunContext* context, MakeEvent makeEvent) {
+template <typename MakeEvent> std::int32_t record(RunContext* context, MakeEvent makeEvent) {
   try {
     context->events->push_back(makeEvent());
     return 0;
@@ -21,8 +20,7 @@ std::int32_t record(RunContext* context, MakeEvent makeEvent) {
   }
 }
 
-template <typename Fill>
-std::int32_t recordError(RunContext* context, Fill fill) {
+template <typename Fill> std::int32_t recordError(RunContext* context, Fill fill) {
   try {
     context->errorMessage = fill();
   } catch (...) {
@@ -46,8 +44,7 @@ static std::int32_t cncc_jit_rapid(RunContext* context, double x, double y, doub
   });
 }
 
-static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, double z,
-                                  double feed) {
+static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, double z, double feed) {
   return record(context, [&] {
     ir::MachineEvent event;
     event.kind = ir::MachineEvent::Kind::Feed;
@@ -109,9 +106,8 @@ static std::int32_t cncc_jit_loop_bound_error(RunContext* context) {
 }
 
 static std::int32_t cncc_jit_step_limit_error(RunContext* context, std::uint64_t maximumSteps) {
-  return recordError(context, [&] {
-    return fmt::format("the program takes more than {} steps", maximumSteps);
-  });
+  return recordError(
+      context, [&] { return fmt::format("the program takes more than {} steps", maximumSteps); });
 }
 
 } // extern "C"

@@ -75,11 +75,12 @@ private:
   void createEntry() {
     llvm::Type* opaque = builder_.getInt8PtrTy();
     auto* type = llvm::FunctionType::get(
-        i32_, {llvm::PointerType::getUnqual(f64_), opaque, i64_, llvm::PointerType::getUnqual(i64_)},
+        i32_,
+        {llvm::PointerType::getUnqual(f64_), opaque, i64_, llvm::PointerType::getUnqual(i64_)},
         false);
-    entry_ = llvm::Function::Create(type, llvm::Function::ExternalLinkage,
-                                    llvm::StringRef(entryName.data(), entryName.size()),
-                                    module_.get());
+    entry_ =
+        llvm::Function::Create(type, llvm::Function::ExternalLinkage,
+                               llvm::StringRef(entryName.data(), entryName.size()), module_.get());
     entry_->addFnAttr(llvm::Attribute::NoUnwind);
     // The parameters are read only, and by nothing the code calls.
     entry_->addParamAttr(0, llvm::Attribute::NoAlias);
@@ -134,8 +135,8 @@ private:
   }
 
   void emitStepCount(std::size_t count) {
-    llvm::Value* steps = builder_.CreateAdd(builder_.CreateLoad(i64_, steps_),
-                                            builder_.getInt64(count));
+    llvm::Value* steps =
+        builder_.CreateAdd(builder_.CreateLoad(i64_, steps_), builder_.getInt64(count));
     builder_.CreateStore(steps, steps_);
     llvm::Value* withinLimit = builder_.CreateICmpULE(steps, maximumSteps_);
     failUnless(withinLimit, "cncc_jit_step_limit_error", {i64_}, {maximumSteps_});
@@ -189,8 +190,8 @@ private:
       result = callLibm(instruction.opcode, {value(operands[0])});
       break;
     case Opcode::Select:
-      result = builder_.CreateSelect(truth(value(operands[0])), value(operands[1]),
-                                     value(operands[2]));
+      result =
+          builder_.CreateSelect(truth(value(operands[0])), value(operands[1]), value(operands[2]));
       break;
     case Opcode::Lt:
     case Opcode::Le:
@@ -300,8 +301,8 @@ private:
   // side effects: the code never reads errno.
   llvm::Value* callLibm(Opcode opcode, std::vector<llvm::Value*> arguments) {
     std::vector<llvm::Type*> types(arguments.size(), f64_);
-    llvm::FunctionCallee callee =
-        module_->getOrInsertFunction(libmFunction(opcode), llvm::FunctionType::get(f64_, types, false));
+    llvm::FunctionCallee callee = module_->getOrInsertFunction(
+        libmFunction(opcode), llvm::FunctionType::get(f64_, types, false));
     if (auto* declared = llvm::dyn_cast<llvm::Function>(callee.getCallee())) {
       declared->setDoesNotAccessMemory();
       declared->setDoesNotThrow();
@@ -429,8 +430,8 @@ private:
 
   // Continues where `condition` holds; otherwise records the error with the
   // named callback and returns the failure.
-  void failUnless(llvm::Value* condition, const char* errorCallback,
-                  std::vector<llvm::Type*> types, std::vector<llvm::Value*> arguments) {
+  void failUnless(llvm::Value* condition, const char* errorCallback, std::vector<llvm::Type*> types,
+                  std::vector<llvm::Value*> arguments) {
     auto* error = llvm::BasicBlock::Create(context_, "error", entry_);
     auto* next = llvm::BasicBlock::Create(context_, "checked", entry_);
     builder_.CreateCondBr(condition, next, error);

@@ -36,9 +36,9 @@ struct MacroProgramOptions {
 };
 
 struct MacroProgramStatistics {
-  int variables = 0;                   // distinct variables the program uses
-  int blocks = 0;                      // lines between the `%` lines
-  std::size_t bytes = 0;               // the whole text
+  int variables = 0;                    // distinct variables the program uses
+  int blocks = 0;                       // lines between the `%` lines
+  std::size_t bytes = 0;                // the whole text
   std::size_t bytesWithoutComments = 0; // without comments and comment-only lines
 };
 

@@ -55,9 +55,9 @@ struct ControllerProfile {
   // around the centre (mm) before the controller alarms (Fanuc parameter
   // 3410; its setting varies (?), this is a common value).
   double arcRadiusTolerance = 0.005;
-  bool hasIndirectVariables = true;     // `#[expression]`
-  bool hasThen = true;                  // `IF [..] THEN statement`
-  bool hasPowerFunction = false;        // `POW[a,b]` (30i)
+  bool hasIndirectVariables = true; // `#[expression]`
+  bool hasThen = true;              // `IF [..] THEN statement`
+  bool hasPowerFunction = false;    // `POW[a,b]` (30i)
 
   // The letter of the G65 argument that reaches local `variable`, if any.
   std::optional<char> letterForLocal(int variable) const;
