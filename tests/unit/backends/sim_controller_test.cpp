@@ -142,11 +142,12 @@ TEST(SimCall, CallErrors) {
   EXPECT_THAT(errorOf("%\nO1\nG65 P2\nM30\nO2\n#1 = 1\n%\n").what(), HasSubstr("without M99"));
 }
 
-const ExecutedEvent& onlyMove(const SimulationResult& result) {
+// The last move, as a copy: callers pass the result of a run that ends with
+// the statement.
+ExecutedEvent onlyMove(const SimulationResult& result) {
   EXPECT_FALSE(result.error) << (result.error ? result.error->what() : "");
-  static const ExecutedEvent none{};
   EXPECT_FALSE(result.path.events.empty());
-  return result.path.events.empty() ? none : result.path.events.back();
+  return result.path.events.empty() ? ExecutedEvent{} : result.path.events.back();
 }
 
 TEST(SimMotion, ArcFromCentreOffsets) {
