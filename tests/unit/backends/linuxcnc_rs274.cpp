@@ -3,12 +3,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace cncc::testing {
 
@@ -21,13 +21,14 @@ std::string readWhole(const std::filesystem::path& path) {
   return text.str();
 }
 
+// A fresh directory of its own for one rs274 run (mkdtemp: never shared with
+// another test process, nor with what an earlier run left behind).
 std::filesystem::path uniqueDirectory() {
-  static std::atomic<int> counter{0};
-  std::filesystem::path directory =
-      std::filesystem::temp_directory_path() /
-      ("cncc-rs274-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
-  std::filesystem::create_directories(directory);
-  return directory;
+  std::string pattern = (std::filesystem::temp_directory_path() / "cncc-rs274-XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) {
+    throw std::runtime_error("cannot create a directory for rs274 in " + pattern);
+  }
+  return pattern;
 }
 
 } // namespace
@@ -65,8 +66,12 @@ Rs274Run runRs274(const std::string& rs274, const std::string& program,
   std::ofstream(tools) << toolTable;
   std::filesystem::path output = directory / "canon.txt";
   std::filesystem::path errors = directory / "errors.txt";
-  std::string command = "'" + rs274 + "' -t '" + tools.string() + "' -g '" + input.string() +
-                        "' > '" + output.string() + "' 2> '" + errors.string() + "' < /dev/null";
+  // One rs274 at a time across the test processes: concurrent runs were seen
+  // to read each other's tool table ("tool not found").
+  std::string lock = (std::filesystem::temp_directory_path() / "cncc-rs274.lock").string();
+  std::string command = "flock '" + lock + "' '" + rs274 + "' -t '" + tools.string() + "' -g '" +
+                        input.string() + "' > '" + output.string() + "' 2> '" + errors.string() +
+                        "' < /dev/null";
   int status = std::system(command.c_str());
   Rs274Run run;
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
