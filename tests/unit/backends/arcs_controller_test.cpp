@@ -225,10 +225,7 @@ TEST(MacroArcs, PrintsTheSpiralAsAtMostThirtyArcs) {
 }
 
 TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
-  std::optional<std::string> rs274 = testing::findRs274();
-  if (!rs274) {
-    GTEST_SKIP() << "rs274 (LinuxCNC) is not installed";
-  }
+  CNCC_FIND_RS274_OR_SKIP(rs274);
   std::unique_ptr<Checked> checked = check(spiralFile, "");
   ASSERT_TRUE(checked);
   ir::LoweringOptions lowering;

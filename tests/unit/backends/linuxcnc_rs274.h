@@ -4,6 +4,7 @@
 
 #include "cncc/ir/tool_path.h"
 
+#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -11,6 +12,18 @@ namespace cncc::testing {
 
 // The rs274 executable on PATH; nullopt when LinuxCNC is not installed.
 std::optional<std::string> findRs274();
+
+// Declares `name`, the rs274 to run, or ends the test: skipped on a machine
+// without LinuxCNC, failed under CI (CI=true), which installs it.
+#define CNCC_FIND_RS274_OR_SKIP(name)                                                              \
+  std::optional<std::string> name = ::cncc::testing::findRs274();                                  \
+  if (!name) {                                                                                     \
+    const char* ci = std::getenv("CI");                                                            \
+    if (ci != nullptr && std::string(ci) == "true") {                                              \
+      FAIL() << "rs274 (Debian package linuxcnc-uspace) is not installed on CI";                   \
+    }                                                                                              \
+    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";                     \
+  }
 
 struct Rs274Run {
   int exitCode = -1;

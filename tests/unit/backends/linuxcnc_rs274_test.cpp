@@ -248,10 +248,7 @@ void PrintTo(const ExampleCase& example, std::ostream* out) {
 class EveryExampleOnLinuxcnc : public ::testing::TestWithParam<ExampleCase> {};
 
 TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
-  std::optional<std::string> rs274 = testing::findRs274();
-  if (!rs274) {
-    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
-  }
+  CNCC_FIND_RS274_OR_SKIP(rs274);
   std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part);
   ASSERT_TRUE(compiled);
   expectWithinTolerance(compiled->path, compiled->lowered->cuts, compiled->text, *rs274,
@@ -261,10 +258,7 @@ TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
 // The subroutine (--macro) of every example, called with the defaults as
 // its arguments, cuts the same part.
 TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItsSubroutineCalledWithTheDefaults) {
-  std::optional<std::string> rs274 = testing::findRs274();
-  if (!rs274) {
-    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
-  }
+  CNCC_FIND_RS274_OR_SKIP(rs274);
   std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part, {}, true);
   ASSERT_TRUE(compiled);
   const std::string end = "\nM2\n";
@@ -312,10 +306,7 @@ void PrintTo(const EditCase& edit, std::ostream* out) {
 class EditedParameterOnLinuxcnc : public ::testing::TestWithParam<EditCase> {};
 
 TEST_P(EditedParameterOnLinuxcnc, Rs274RunsTheEditedPartWithinTolerance) {
-  std::optional<std::string> rs274 = testing::findRs274();
-  if (!rs274) {
-    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
-  }
+  CNCC_FIND_RS274_OR_SKIP(rs274);
   const EditCase& edit = GetParam();
   std::unique_ptr<Compiled> compiled = compile(edit.file, "");
   ASSERT_TRUE(compiled);
@@ -397,10 +388,7 @@ std::string replaceOnce(std::string text, const std::string& from, const std::st
 // The program keeps its parameters symbolic: editing the line that sets
 // one at the top changes the path rs274 runs.
 TEST(LinuxcncOnRs274, EditingAParameterAtTheTopChangesThePart) {
-  std::optional<std::string> rs274 = testing::findRs274();
-  if (!rs274) {
-    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
-  }
+  CNCC_FIND_RS274_OR_SKIP(rs274);
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(circle(), {});
   ASSERT_TRUE(program.errors.empty());
   std::string edited = replaceOnce(program.text, "#<_r> = 5.\n", "#<_r> = 7.5\n");
@@ -423,10 +411,7 @@ TEST(LinuxcncOnRs274, EditingAParameterAtTheTopChangesThePart) {
 
 // A macro is a subroutine: called with arguments, it cuts what they say.
 TEST(LinuxcncOnRs274, TheSubroutineTakesTheParametersAsArguments) {
-  std::optional<std::string> rs274 = testing::findRs274();
-  if (!rs274) {
-    GTEST_SKIP() << "rs274 (Debian package linuxcnc-uspace) is not installed";
-  }
+  CNCC_FIND_RS274_OR_SKIP(rs274);
   backends::LinuxcncProgramOptions options;
   options.partName = "circle";
   options.callable = true;
