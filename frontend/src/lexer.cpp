@@ -1,8 +1,11 @@
 #include "cncc/frontend/lexer.h"
 
+#include <array>
 #include <charconv>
+#include <cstdint>
 #include <fmt/format.h>
 #include <numbers>
+#include <optional>
 
 namespace cncc::frontend {
 
@@ -34,14 +37,41 @@ std::string_view unitSuffixSpelling(UnitSuffix unit) {
 
 namespace {
 
+// Character classes, one table look-up per byte in the loops below.
+enum CharacterClass : std::uint8_t {
+  Space = 1,           // ' ', '\t', '\r', '\f', '\v'
+  IdentifierStart = 2, // a-z, A-Z, '_'
+  Digit = 4,           // 0-9
+  IdentifierContinue = IdentifierStart | Digit,
+};
+
+constexpr std::array<std::uint8_t, 256> characterClasses = [] {
+  std::array<std::uint8_t, 256> classes{};
+  for (unsigned char c : {' ', '\t', '\r', '\f', '\v'}) {
+    classes[c] = Space;
+  }
+  for (int c = 'a'; c <= 'z'; ++c) {
+    classes[static_cast<std::size_t>(c)] = IdentifierStart;
+    classes[static_cast<std::size_t>(c - 'a' + 'A')] = IdentifierStart;
+  }
+  classes['_'] = IdentifierStart;
+  for (int c = '0'; c <= '9'; ++c) {
+    classes[static_cast<std::size_t>(c)] = Digit;
+  }
+  return classes;
+}();
+
+bool hasClass(char c, std::uint8_t characterClass) {
+  return (characterClasses[static_cast<unsigned char>(c)] & characterClass) != 0;
+}
 bool isIdentifierStart(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+  return hasClass(c, IdentifierStart);
 }
 bool isDigit(char c) {
-  return c >= '0' && c <= '9';
+  return hasClass(c, Digit);
 }
 bool isIdentifierContinue(char c) {
-  return isIdentifierStart(c) || isDigit(c);
+  return hasClass(c, IdentifierContinue);
 }
 
 struct Keyword {
@@ -54,6 +84,51 @@ constexpr Keyword keywords[] = {
 #include "cncc/frontend/token_kinds.def"
 };
 
+// Keywords are 2 to 6 letters long: only those of the same length and first
+// letter are compared.
+TokenKind keywordOrIdentifier(std::string_view spelling) {
+  if (spelling.size() < 2 || spelling.size() > 6 || spelling[0] < 'c' || spelling[0] > 't') {
+    return TokenKind::Identifier;
+  }
+  for (const Keyword& keyword : keywords) {
+    if (keyword.spelling.size() == spelling.size() && keyword.spelling[0] == spelling[0] &&
+        keyword.spelling == spelling) {
+      return keyword.kind;
+    }
+  }
+  return TokenKind::Identifier;
+}
+
+// Exact decimal to double when the digits fit a double's mantissa and the
+// power of ten is exact (both operands exact, so the one division rounds
+// correctly, as std::from_chars does); nullopt sends the rest to from_chars.
+std::optional<double> fastDecimal(std::string_view digits) {
+  constexpr double powersOfTen[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                    1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  std::uint64_t mantissa = 0;
+  int significant = 0;
+  int fractionDigits = 0;
+  bool inFraction = false;
+  for (char c : digits) {
+    if (c == '.') {
+      inFraction = true;
+      continue;
+    }
+    if (!isDigit(c)) {
+      return std::nullopt; // an exponent
+    }
+    if (mantissa != 0 || c != '0') {
+      ++significant;
+    }
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+    fractionDigits += inFraction ? 1 : 0;
+  }
+  if (significant > 15 || fractionDigits > 15) {
+    return std::nullopt;
+  }
+  return static_cast<double>(mantissa) / powersOfTen[fractionDigits];
+}
+
 class Lexer {
 public:
   Lexer(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
@@ -63,13 +138,15 @@ public:
 
   std::vector<Token> run() {
     std::vector<Token> tokens;
+    // Dense sources hold about one token per 3 bytes.
+    tokens.reserve(text_.size() / 2 + 16);
     while (true) {
       bool startsLine = skipSpaceAndComments();
-      Token token = next();
-      token.startsLine = startsLine || tokens.empty();
-      bool done = token.kind == TokenKind::EndOfFile;
-      tokens.push_back(std::move(token));
-      if (done) {
+      tokens.emplace_back();
+      Token& token = tokens.back();
+      next(token);
+      token.startsLine = startsLine || tokens.size() == 1;
+      if (token.kind == TokenKind::EndOfFile) {
         return tokens;
       }
     }
@@ -87,18 +164,18 @@ private:
   // Returns true when a line break was crossed.
   bool skipSpaceAndComments() {
     bool crossedLine = false;
-    while (!atEnd()) {
-      char c = peek();
+    const std::size_t size = text_.size();
+    while (position_ < size) {
+      char c = text_[position_];
       if (c == '\n') {
         crossedLine = true;
         ++position_;
-      } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+      } else if (hasClass(c, Space)) {
         ++position_;
       } else if (c == '/' && peek(1) == '/') {
         std::size_t begin = position_;
-        while (!atEnd() && peek() != '\n') {
-          ++position_;
-        }
+        std::size_t lineEnd = text_.find('\n', position_);
+        position_ = lineEnd == std::string_view::npos ? size : lineEnd;
         recordComment(begin);
       } else if (c == '/' && peek(1) == '*') {
         crossedLine |= skipBlockComment();
@@ -135,55 +212,52 @@ private:
     }
   }
 
-  Token make(TokenKind kind, std::size_t begin) {
-    Token token;
+  void make(Token& token, TokenKind kind, std::size_t begin) {
     token.kind = kind;
     token.span = spanFrom(begin);
-    return token;
   }
 
-  Token next() {
+  void next(Token& token) {
     std::size_t begin = position_;
     if (atEnd()) {
-      return make(TokenKind::EndOfFile, begin);
+      make(token, TokenKind::EndOfFile, begin);
+      return;
     }
     char c = peek();
     if (isIdentifierStart(c)) {
-      return identifier();
+      identifier(token);
+    } else if (isDigit(c) || (c == '.' && isDigit(peek(1)))) {
+      number(token);
+    } else if (c == '"') {
+      string(token);
+    } else {
+      punctuator(token);
     }
-    if (isDigit(c) || (c == '.' && isDigit(peek(1)))) {
-      return number();
-    }
-    if (c == '"') {
-      return string();
-    }
-    return punctuator();
   }
 
-  Token identifier() {
-    std::size_t begin = position_;
-    while (isIdentifierContinue(peek())) {
+  void skipIdentifierCharacters() {
+    const std::size_t size = text_.size();
+    while (position_ < size && isIdentifierContinue(text_[position_])) {
       ++position_;
     }
+  }
+
+  void identifier(Token& token) {
+    std::size_t begin = position_;
+    skipIdentifierCharacters();
     std::string_view spelling = text_.substr(begin, position_ - begin);
-    TokenKind kind = TokenKind::Identifier;
-    for (const Keyword& keyword : keywords) {
-      if (keyword.spelling == spelling) {
-        kind = keyword.kind;
-      }
-    }
-    Token token = make(kind, begin);
-    token.text = std::string(spelling);
-    return token;
+    make(token, keywordOrIdentifier(spelling), begin);
+    token.text = spelling;
   }
 
   void skipDigits() {
-    while (isDigit(peek())) {
+    const std::size_t size = text_.size();
+    while (position_ < size && isDigit(text_[position_])) {
       ++position_;
     }
   }
 
-  Token number() {
+  void number(Token& token) {
     std::size_t begin = position_;
     skipDigits();
     // "1..5" is a range, not "1." followed by ".5".
@@ -205,31 +279,33 @@ private:
       malformed = true;
     }
     std::string_view digits = text_.substr(begin, position_ - begin);
-    Token token = make(TokenKind::Number, begin);
+    make(token, TokenKind::Number, begin);
     if (malformed) {
       diagnostics_.report(DiagnosticKind::MalformedNumber, token.span,
                           fmt::format("exponent of '{}' has no digits", digits));
       token.kind = TokenKind::Error;
-      return token;
+      return;
     }
-    auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), token.number);
-    if (error != std::errc() || end != digits.data() + digits.size()) {
-      diagnostics_.report(DiagnosticKind::MalformedNumber, token.span,
-                          fmt::format("number '{}' is out of range", digits));
-      token.kind = TokenKind::Error;
-      return token;
+    if (std::optional<double> value = fastDecimal(digits)) {
+      token.number = *value;
+    } else {
+      auto [end, error] =
+          std::from_chars(digits.data(), digits.data() + digits.size(), token.number);
+      if (error != std::errc() || end != digits.data() + digits.size()) {
+        diagnostics_.report(DiagnosticKind::MalformedNumber, token.span,
+                            fmt::format("number '{}' is out of range", digits));
+        token.kind = TokenKind::Error;
+        return;
+      }
     }
     if (isIdentifierStart(peek())) {
       applyUnitSuffix(token);
     }
-    return token;
   }
 
   void applyUnitSuffix(Token& token) {
     std::size_t suffixBegin = position_;
-    while (isIdentifierContinue(peek())) {
-      ++position_;
-    }
+    skipIdentifierCharacters();
     std::string_view suffix = text_.substr(suffixBegin, position_ - suffixBegin);
     token.span = spanFrom(token.span.begin);
     if (suffix == "mm") {
@@ -251,53 +327,69 @@ private:
     }
   }
 
-  Token string() {
+  void string(Token& token) {
     std::size_t begin = position_;
     ++position_;
     std::string value;
+    bool escaped = false;
     bool invalid = false; // the parser must not act on a string with an error
     while (!atEnd() && peek() != '"' && peek() != '\n') {
       if (peek() == '\\') {
-        char escaped = peek(1);
-        if (escaped == '"' || escaped == '\\') {
-          value.push_back(escaped);
+        char escapedCharacter = peek(1);
+        if (!escaped) {
+          // The text so far had no escape: copy it once.
+          value.assign(text_.substr(begin + 1, position_ - begin - 1));
+          escaped = true;
+        }
+        if (escapedCharacter == '"' || escapedCharacter == '\\') {
+          value.push_back(escapedCharacter);
           position_ += 2;
           continue;
         }
         std::size_t escapeBegin = position_;
-        position_ += (escaped == '\0' || escaped == '\n') ? 1 : 2;
+        position_ += (escapedCharacter == '\0' || escapedCharacter == '\n') ? 1 : 2;
         invalid = true;
         diagnostics_.report(DiagnosticKind::InvalidEscape, spanFrom(escapeBegin),
                             "invalid escape in string; only '\\\"' and '\\\\' are allowed");
         continue;
       }
-      value.push_back(peek());
+      if (escaped) {
+        value.push_back(peek());
+      }
       ++position_;
     }
     if (peek() != '"') {
-      Token token = make(TokenKind::String, begin);
+      make(token, TokenKind::String, begin);
       diagnostics_.report(DiagnosticKind::UnterminatedString, token.span,
                           "string is not closed; expected '\"' before the end of the line");
       token.kind = TokenKind::Error;
-      return token;
+      return;
     }
+    std::size_t contentEnd = position_;
     ++position_;
-    Token token = make(invalid ? TokenKind::Error : TokenKind::String, begin);
-    token.text = std::move(value);
-    return token;
+    make(token, invalid ? TokenKind::Error : TokenKind::String, begin);
+    if (invalid) {
+      return;
+    }
+    if (escaped) {
+      token.unescaped = std::make_shared<const std::string>(std::move(value));
+      token.text = *token.unescaped;
+    } else {
+      token.text = text_.substr(begin + 1, contentEnd - begin - 1);
+    }
   }
 
-  Token punctuator() {
+  void punctuator(Token& token) {
     std::size_t begin = position_;
     char c = peek();
     char following = peek(1);
     auto two = [&](TokenKind kind) {
       position_ += 2;
-      return make(kind, begin);
+      make(token, kind, begin);
     };
     auto one = [&](TokenKind kind) {
       position_ += 1;
-      return make(kind, begin);
+      make(token, kind, begin);
     };
     switch (c) {
     case '(':
@@ -351,7 +443,7 @@ private:
     default:
       break;
     }
-    return unexpectedCharacters();
+    unexpectedCharacters(token);
   }
 
   static bool startsToken(char c) {
@@ -360,13 +452,13 @@ private:
   }
 
   // A run of characters that start no token is one error, not one per byte.
-  Token unexpectedCharacters() {
+  void unexpectedCharacters(Token& token) {
     std::size_t begin = position_;
     ++position_;
     while (!atEnd() && !startsToken(peek())) {
       ++position_;
     }
-    Token token = make(TokenKind::Error, begin);
+    make(token, TokenKind::Error, begin);
     std::string_view run = text_.substr(begin, position_ - begin);
     std::string message;
     if (run == "&") {
@@ -382,7 +474,6 @@ private:
                     : fmt::format("unexpected control character 0x{:02x}", first);
     }
     diagnostics_.report(DiagnosticKind::UnexpectedCharacter, token.span, std::move(message));
-    return token;
   }
 
   FileId file_;

@@ -11,11 +11,11 @@ bool isStatementWord(const Token& token) {
   if (token.kind != TokenKind::Identifier) {
     return false;
   }
-  const std::string& word = token.text;
+  std::string_view word = token.text;
   return word == "units" || word == "tool" || word == "feed" || word == "spindle" || word == "safe";
 }
 
-bool isModifierName(const std::string& word) {
+bool isModifierName(std::string_view word) {
   const std::vector<std::string>& names = cutModifierNames();
   return std::find(names.begin(), names.end(), word) != names.end();
 }
@@ -140,7 +140,7 @@ private:
   std::string expectIdentifier(std::string_view what, SourceSpan& span) {
     span = peek().span;
     if (check(TokenKind::Identifier)) {
-      return advance().text;
+      return std::string(advance().text);
     }
     if (peek().kind >= TokenKind::KwPart && peek().kind <= TokenKind::KwFalse) {
       error(DiagnosticKind::ExpectedIdentifier, peek().span,
@@ -229,7 +229,7 @@ private:
       return std::make_unique<ErrorItem>(spanFrom(begin));
     }
     const Token& path = advance();
-    return std::make_unique<ImportItem>(spanFrom(begin), path.text, path.span);
+    return std::make_unique<ImportItem>(spanFrom(begin), std::string(path.text), path.span);
   }
 
   // const name = expr
@@ -390,14 +390,14 @@ private:
   StmtPtr parseSettingStatement() {
     const Token& word = advance();
     SourceSpan begin = word.span;
-    std::string text = word.text;
+    std::string_view text = word.text;
     if (text == "units") {
       SourceSpan unitSpan = peek().span;
       if (!check(TokenKind::Identifier)) {
         errorAtCurrent(DiagnosticKind::ExpectedIdentifier, "'mm' or 'inch' after 'units'");
         return std::make_unique<ErrorStmt>(spanFrom(begin));
       }
-      std::string unit = advance().text;
+      std::string unit(advance().text);
       if (unit != "mm" && unit != "inch") {
         error(DiagnosticKind::UnknownUnits, unitSpan,
               fmt::format("unknown units '{}'; expected 'mm' or 'inch'", unit));
@@ -720,7 +720,7 @@ private:
       return std::make_unique<NumberExpr>(token.span, token.number, token.unit);
     case TokenKind::String:
       advance();
-      return std::make_unique<StringExpr>(token.span, token.text);
+      return std::make_unique<StringExpr>(token.span, std::string(token.text));
     case TokenKind::KwTrue:
     case TokenKind::KwFalse:
       advance();
@@ -749,7 +749,7 @@ private:
   ExprPtr parseNameOrCall() {
     const Token& name = advance();
     if (!check(TokenKind::LeftParen)) {
-      return std::make_unique<NameExpr>(name.span, name.text);
+      return std::make_unique<NameExpr>(name.span, std::string(name.text));
     }
     SourceSpan opening = advance().span;
     std::vector<Argument> arguments;
@@ -772,11 +772,12 @@ private:
         break;
       }
     }
-    if (!panicking_) {
+    if (!panicking_ && !match(TokenKind::RightParen)) {
+      // Formatted only here: the message is rarely needed.
       expectClosing(TokenKind::RightParen, opening,
                     fmt::format("to close the arguments of '{}'", name.text));
     }
-    return std::make_unique<CallExpr>(spanFrom(name.span), name.text, name.span,
+    return std::make_unique<CallExpr>(spanFrom(name.span), std::string(name.text), name.span,
                                       std::move(arguments));
   }
 

@@ -62,7 +62,7 @@ std::optional<std::pair<TokenType, unsigned>> classifyDeclaration(const Referenc
   }
 }
 
-bool isStatementWord(const std::string& word) {
+bool isStatementWord(std::string_view word) {
   return word == "units" || word == "tool" || word == "feed" || word == "spindle" || word == "safe";
 }
 

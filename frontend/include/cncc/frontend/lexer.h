@@ -5,31 +5,35 @@
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/source_manager.h"
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace cncc::frontend {
 
-enum class TokenKind {
+enum class TokenKind : std::uint8_t {
 #define CNCC_TOKEN(identifier, spelling) identifier,
 #include "cncc/frontend/token_kinds.def"
 };
 
 // How a unit suffix scales a number ("2.5mm", "45deg"): to millimetres and
 // radians.
-enum class UnitSuffix { None, Millimetre, Inch, Degree, Radian };
+enum class UnitSuffix : std::uint8_t { None, Millimetre, Inch, Degree, Radian };
 
 struct Token {
   TokenKind kind = TokenKind::EndOfFile;
-  SourceSpan span;
-  // Number: the value with its unit applied; String: the unescaped text is in
-  // `text`; Identifier and keywords: `text` is the spelling.
-  double number = 0;
   UnitSuffix unit = UnitSuffix::None;
-  std::string text;
   // The first token on its line (used for error recovery).
   bool startsLine = false;
+  SourceSpan span;
+  // Number: the value with its unit applied.
+  double number = 0;
+  // Identifier and keywords: the spelling; String: the unescaped text. A view
+  // into the source text, which the SourceManager keeps for as long as it
+  // lives; only a string with escapes views its own copy in `unescaped`.
+  std::string_view text;
+  std::shared_ptr<const std::string> unescaped;
 };
 
 std::string_view tokenSpelling(TokenKind kind);
