@@ -53,9 +53,9 @@ std::vector<double> clampedUniformKnots(std::size_t pointCount, int order) {
 
 class CurveBuilder {
 public:
-  CurveBuilder(Evaluator& evaluator, const CallExpr& call, const Environment& environment)
-      : evaluator_(evaluator), call_(call), environment_(environment),
-        arguments_(Evaluator::bindArguments(call, parameterNames(call.callee))) {}
+  CurveBuilder(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings)
+      : evaluator_(evaluator), call_(call), bindings_(bindings),
+        names_(parameterNames(call.callee)), arguments_(Evaluator::bindArguments(call, names_)) {}
 
   Value build() {
     const std::string& name = call_.callee;
@@ -78,10 +78,9 @@ public:
   }
 
 private:
-  const Expr* argument(const std::string& name) const {
-    const std::vector<std::string>& names = parameterNames(call_.callee);
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (names[i] == name) {
+  const Expr* argument(std::string_view name) const {
+    for (std::size_t i = 0; i < names_.size(); ++i) {
+      if (names_[i] == name) {
         return arguments_[i];
       }
     }
@@ -99,12 +98,12 @@ private:
     return expression.span;
   }
 
-  std::optional<Value> value(const std::string& name, TypeKind kind) {
+  std::optional<Value> value(std::string_view name, TypeKind kind) {
     const Expr* expression = argument(name);
     if (expression == nullptr) {
       return std::nullopt;
     }
-    Value result = evaluator_.evaluate(*expression, environment_);
+    Value result = evaluator_.evaluate(*expression, bindings_);
     if (result.isError()) {
       failed_ = true;
       return std::nullopt;
@@ -119,17 +118,17 @@ private:
     return result;
   }
 
-  std::optional<double> number(const std::string& name) {
+  std::optional<double> number(std::string_view name) {
     std::optional<Value> result = value(name, TypeKind::Num);
     return result ? std::optional<double>(result->number) : std::nullopt;
   }
 
-  std::optional<std::array<double, 3>> point(const std::string& name) {
+  std::optional<std::array<double, 3>> point(std::string_view name) {
     std::optional<Value> result = value(name, TypeKind::Point);
     return result ? std::optional(result->point) : std::nullopt;
   }
 
-  std::optional<std::vector<double>> numbers(const std::string& name) {
+  std::optional<std::vector<double>> numbers(std::string_view name) {
     std::optional<Value> list = value(name, TypeKind::List);
     if (!list) {
       return std::nullopt;
@@ -148,7 +147,7 @@ private:
     return result;
   }
 
-  std::optional<std::vector<std::array<double, 3>>> points(const std::string& name) {
+  std::optional<std::vector<std::array<double, 3>>> points(std::string_view name) {
     std::optional<Value> list = value(name, TypeKind::List);
     if (!list) {
       return std::nullopt;
@@ -321,7 +320,7 @@ private:
     curve->low = range->low;
     curve->high = range->high;
     curve->parameter = found->second;
-    curve->environment = environment_;
+    curve->environment = bindings_.flatten();
     curve->radius = argument("r");
     curve->x = argument("x");
     curve->y = argument("y");
@@ -335,15 +334,15 @@ private:
   // now rather than a bad program later.
   void sampleExpressions(CurveValue& curve) {
     constexpr int samples = 16;
-    Environment environment = environment_;
+    Bindings sample(&bindings_);
     for (int i = 0; i <= samples && !failed_ && !evaluator_.exhausted(); ++i) {
       double t = curve.low + (curve.high - curve.low) * i / samples;
-      environment[curve.parameter] = Value::ofNumber(t);
+      sample.bind(curve.parameter, Value::ofNumber(t));
       for (const Expr* expression : {curve.radius, curve.x, curve.y, curve.z}) {
         if (expression == nullptr) {
           continue;
         }
-        Value result = evaluator_.evaluate(*expression, environment);
+        Value result = evaluator_.evaluate(*expression, sample);
         if (result.isError()) {
           failed_ = true;
         } else if (result.type.kind != TypeKind::Num) {
@@ -401,7 +400,7 @@ private:
     auto curve = std::make_shared<CurveValue>();
     curve->kind = CurveKind::Path;
     for (const Argument& argument : call_.arguments) {
-      Value piece = evaluator_.evaluate(*argument.value, environment_);
+      Value piece = evaluator_.evaluate(*argument.value, bindings_);
       if (piece.type.kind != TypeKind::Curve) {
         if (!piece.isError()) {
           report(
@@ -445,15 +444,16 @@ private:
 
   Evaluator& evaluator_;
   const CallExpr& call_;
-  const Environment& environment_;
+  const Bindings& bindings_;
+  const std::vector<std::string>& names_;
   std::vector<const Expr*> arguments_;
   bool failed_ = false;
 };
 
 } // namespace
 
-Value buildCurve(Evaluator& evaluator, const CallExpr& call, const Environment& environment) {
-  return CurveBuilder(evaluator, call, environment).build();
+Value buildCurve(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings) {
+  return CurveBuilder(evaluator, call, bindings).build();
 }
 
 } // namespace cncc::frontend

@@ -1,7 +1,9 @@
 #include "evaluator.h"
 
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <string_view>
 
 namespace cncc::frontend {
 
@@ -25,26 +27,60 @@ void Evaluator::reportNonFinite(SourceSpan span, const std::string& what) {
   report(DiagnosticKind::NonFiniteValue, span, fmt::format("{} is not a finite number", what));
 }
 
-std::vector<const Expr*> Evaluator::bindArguments(const CallExpr& call,
-                                                  const std::vector<std::string>& names) {
-  std::vector<const Expr*> bound(names.size(), nullptr);
-  std::size_t next = 0;
-  for (const Argument& argument : call.arguments) {
-    if (argument.name.empty()) {
-      while (next < names.size() && bound[next] != nullptr) {
-        ++next;
-      }
-      if (next < names.size()) {
-        bound[next++] = argument.value.get();
-      }
-      continue;
+void Bindings::bind(const Declaration* declaration, Value value) {
+  for (auto& [bound, boundValue] : local_) {
+    if (bound == declaration) {
+      boundValue = std::move(value);
+      return;
     }
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (names[i] == argument.name && bound[i] == nullptr) {
-        bound[i] = argument.value.get();
+  }
+  local_.emplace_back(declaration, std::move(value));
+}
+
+const Value* Bindings::find(const Declaration* declaration) const {
+  for (const Bindings* frame = this; frame != nullptr; frame = frame->outer_) {
+    for (const auto& [bound, value] : frame->local_) {
+      if (bound == declaration) {
+        return &value;
+      }
+    }
+    if (frame->environment_ != nullptr) {
+      auto found = frame->environment_->find(declaration);
+      if (found != frame->environment_->end()) {
+        return &found->second;
       }
     }
   }
+  return nullptr;
+}
+
+Environment Bindings::flatten() const {
+  Environment environment;
+  flattenInto(environment);
+  return environment;
+}
+
+// Outermost first, so inner bindings replace outer ones.
+void Bindings::flattenInto(Environment& environment) const {
+  if (outer_ != nullptr) {
+    outer_->flattenInto(environment);
+  }
+  if (environment_ != nullptr) {
+    for (const auto& [declaration, value] : *environment_) {
+      environment[declaration] = value;
+    }
+  }
+  for (const auto& [declaration, value] : local_) {
+    environment[declaration] = value;
+  }
+}
+
+std::vector<const Expr*> Evaluator::bindArguments(const CallExpr& call,
+                                                  const std::vector<std::string>& names) {
+  std::vector<const Expr*> bound(names.size(), nullptr);
+  bindArguments(
+      call, names.size(), [&](std::size_t i) -> const std::string& { return names[i]; },
+      bound.data());
   return bound;
 }
 
@@ -59,14 +95,71 @@ Value Evaluator::constantValue(const Declaration* declaration) {
   constantsInProgress_.insert(declaration);
   std::vector<SourceSpan> savedStack;
   std::swap(savedStack, callStack_);
-  Value value = evaluate(*as<ConstItem>(*item->second).value, {});
+  // Evaluated the ordinary way (with its fast path) even when a fast path
+  // asks, and the value is kept: its steps count whatever that path does.
+  bool fastPathEnabled = fastPathEnabled_;
+  int fastPathDepth = fastPathDepth_;
+  fastPathEnabled_ = true;
+  fastPathDepth_ = 0;
+  std::size_t steps = steps_;
+  Value value = evaluate(*as<ConstItem>(*item->second).value, Bindings());
+  fastPathEnabled_ = fastPathEnabled;
+  fastPathDepth_ = fastPathDepth;
+  if (fastPathDepth_ > 0) {
+    stepsKept_ += steps_ - steps;
+  }
   std::swap(savedStack, callStack_);
   constantsInProgress_.erase(declaration);
   context_.mutableDeclaration(declaration).value = value;
   return value;
 }
 
-Value Evaluator::evaluate(const Expr& expression, const Environment& environment) {
+namespace {
+
+// Expressions that may have a number as their value.
+bool mayBeNumber(const Expr& expression) {
+  if (expression.type.kind != TypeKind::Num && expression.type.kind != TypeKind::Any) {
+    return false;
+  }
+  switch (expression.kind) {
+  case ExprKind::Number:
+  case ExprKind::Name:
+  case ExprKind::Unary:
+  case ExprKind::Binary:
+  case ExprKind::Call:
+    return true;
+  default:
+    return false;
+  }
+}
+
+} // namespace
+
+Value Evaluator::evaluate(const Expr& expression, const Bindings& bindings) {
+  if (!fastPathEnabled_ || !mayBeNumber(expression)) {
+    return evaluateValue(expression, bindings);
+  }
+  std::size_t steps = steps_;
+  std::size_t outerKept = stepsKept_;
+  stepsKept_ = 0;
+  ++fastPathDepth_;
+  double number = 0;
+  bool evaluated = evaluateNumber(expression, bindings, number);
+  --fastPathDepth_;
+  std::size_t keptHere = stepsKept_;
+  stepsKept_ = outerKept;
+  if (evaluated) {
+    return Value::ofNumber(number);
+  }
+  // As if the fast path had not run, but for the constants it evaluated.
+  steps_ = steps + keptHere;
+  fastPathEnabled_ = false;
+  Value value = evaluateValue(expression, bindings);
+  fastPathEnabled_ = true;
+  return value;
+}
+
+Value Evaluator::evaluateValue(const Expr& expression, const Bindings& bindings) {
   if (++steps_ > maximumSteps || expression.type.kind == TypeKind::Error) {
     return {};
   }
@@ -78,39 +171,39 @@ Value Evaluator::evaluate(const Expr& expression, const Environment& environment
   case ExprKind::String:
     return Value::ofString(as<StringExpr>(expression).value);
   case ExprKind::Name:
-    return evaluateName(as<NameExpr>(expression), environment);
+    return evaluateName(as<NameExpr>(expression), bindings);
   case ExprKind::Unary:
-    return evaluateUnary(as<UnaryExpr>(expression), environment);
+    return evaluateUnary(as<UnaryExpr>(expression), bindings);
   case ExprKind::Binary:
-    return evaluateBinary(as<BinaryExpr>(expression), environment);
+    return evaluateBinary(as<BinaryExpr>(expression), bindings);
   case ExprKind::Call:
-    return evaluateCall(as<CallExpr>(expression), environment);
+    return evaluateCall(as<CallExpr>(expression), bindings);
   case ExprKind::Point:
-    return evaluatePoint(as<PointExpr>(expression), environment);
+    return evaluatePoint(as<PointExpr>(expression), bindings);
   case ExprKind::List:
-    return evaluateList(as<ListExpr>(expression), environment);
+    return evaluateList(as<ListExpr>(expression), bindings);
   case ExprKind::Range: {
     const auto& range = as<RangeExpr>(expression);
-    Value low = evaluate(*range.low, environment);
-    Value high = evaluate(*range.high, environment);
+    Value low = evaluate(*range.low, bindings);
+    Value high = evaluate(*range.high, bindings);
     if (low.type.kind != TypeKind::Num || high.type.kind != TypeKind::Num) {
       return {};
     }
     return Value::ofRange(low.number, high.number);
   }
   case ExprKind::Index:
-    return evaluateIndex(as<IndexExpr>(expression), environment);
+    return evaluateIndex(as<IndexExpr>(expression), bindings);
   case ExprKind::Member:
-    return evaluateMember(as<MemberExpr>(expression), environment);
+    return evaluateMember(as<MemberExpr>(expression), bindings);
   case ExprKind::IfElse: {
     const auto& choice = as<IfElseExpr>(expression);
-    Value condition = evaluate(*choice.condition, environment);
+    Value condition = evaluate(*choice.condition, bindings);
     if (condition.type.kind != TypeKind::Bool) {
       return condition.isError()
                  ? Value{}
                  : typeError(choice.condition->span, "the condition of 'if' must be a bool");
     }
-    return evaluate(condition.boolean ? *choice.thenValue : *choice.elseValue, environment);
+    return evaluate(condition.boolean ? *choice.thenValue : *choice.elseValue, bindings);
   }
   case ExprKind::Error:
     return {};
@@ -118,7 +211,7 @@ Value Evaluator::evaluate(const Expr& expression, const Environment& environment
   return {};
 }
 
-Value Evaluator::evaluateName(const NameExpr& name, const Environment& environment) {
+Value Evaluator::evaluateName(const NameExpr& name, const Bindings& bindings) {
   const Declaration* declaration = name.declaration;
   if (declaration == nullptr) {
     return {};
@@ -129,12 +222,12 @@ Value Evaluator::evaluateName(const NameExpr& name, const Environment& environme
   if (declaration->kind == DeclarationKind::Builtin) {
     return declaration->value.value_or(Value{});
   }
-  auto found = environment.find(declaration);
-  return found == environment.end() ? Value{} : found->second;
+  const Value* found = bindings.find(declaration);
+  return found == nullptr ? Value{} : *found;
 }
 
-Value Evaluator::evaluateUnary(const UnaryExpr& unary, const Environment& environment) {
-  Value operand = evaluate(*unary.operand, environment);
+Value Evaluator::evaluateUnary(const UnaryExpr& unary, const Bindings& bindings) {
+  Value operand = evaluate(*unary.operand, bindings);
   if (operand.isError()) {
     return {};
   }
@@ -155,8 +248,8 @@ Value Evaluator::evaluateUnary(const UnaryExpr& unary, const Environment& enviro
   return typeError(unary.span, fmt::format("cannot negate a {}", typeName(operand.type)));
 }
 
-Value Evaluator::evaluateBinary(const BinaryExpr& binary, const Environment& environment) {
-  Value left = evaluate(*binary.left, environment);
+Value Evaluator::evaluateBinary(const BinaryExpr& binary, const Bindings& bindings) {
+  Value left = evaluate(*binary.left, bindings);
   if (left.isError()) {
     return {};
   }
@@ -166,13 +259,13 @@ Value Evaluator::evaluateBinary(const BinaryExpr& binary, const Environment& env
     if (left.boolean == (binary.op == BinaryOperator::Or)) {
       return left;
     }
-    Value right = evaluate(*binary.right, environment);
+    Value right = evaluate(*binary.right, bindings);
     if (!right.isError() && right.type.kind != TypeKind::Bool) {
       return typeError(binary.right->span, "'&&' and '||' need bools");
     }
     return right;
   }
-  Value right = evaluate(*binary.right, environment);
+  Value right = evaluate(*binary.right, bindings);
   if (right.isError()) {
     return {};
   }
@@ -302,44 +395,50 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
   }
 }
 
-Value Evaluator::evaluateCall(const CallExpr& call, const Environment& environment) {
+Value Evaluator::evaluateCall(const CallExpr& call, const Bindings& bindings) {
   const Declaration* declaration = call.declaration;
   if (declaration == nullptr) {
     return {};
   }
   if (declaration->kind == DeclarationKind::Function) {
-    return evaluateFunctionCall(call, *declaration, environment);
+    return evaluateFunctionCall(call, *declaration, bindings);
   }
   if (declaration->kind != DeclarationKind::Builtin) {
     return {};
   }
   if (call.type.kind == TypeKind::Curve) {
-    return buildCurve(*this, call, environment);
+    return buildCurve(*this, call, bindings);
   }
-  return evaluateMathCall(call, environment);
+  return evaluateMathCall(call, bindings);
 }
 
 Value Evaluator::evaluateFunctionCall(const CallExpr& call, const Declaration& function,
-                                      const Environment& environment) {
+                                      const Bindings& bindings) {
   if (context_.invalidFunctions.contains(&function) || function.function == nullptr) {
     return {};
   }
   const FnItem& item = *function.function;
-  std::vector<std::string> names;
-  for (const Parameter& parameter : item.parameters) {
-    names.push_back(parameter.name);
-  }
-  std::vector<const Expr*> arguments = bindArguments(call, names);
-  Environment inner;
-  for (std::size_t i = 0; i < arguments.size(); ++i) {
-    if (arguments[i] == nullptr || item.parameters[i].declaration == nullptr) {
+  const std::vector<Parameter>& parameters = item.parameters;
+  std::size_t count = parameters.size();
+  // Most functions have a few parameters: no allocation for them.
+  constexpr std::size_t inlineCount = 8;
+  std::array<const Expr*, inlineCount> inlineArguments{};
+  std::vector<const Expr*> manyArguments(count > inlineCount ? count : 0, nullptr);
+  const Expr** arguments = count > inlineCount ? manyArguments.data() : inlineArguments.data();
+  bindArguments(
+      call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
+      arguments);
+  Bindings inner;
+  inner.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (arguments[i] == nullptr || parameters[i].declaration == nullptr) {
       return {};
     }
-    Value argument = evaluate(*arguments[i], environment);
+    Value argument = evaluate(*arguments[i], bindings);
     if (argument.isError()) {
       return {};
     }
-    inner[item.parameters[i].declaration] = argument;
+    inner.bind(parameters[i].declaration, std::move(argument));
   }
   if (callStack_.size() > 64) {
     return {};
@@ -350,85 +449,150 @@ Value Evaluator::evaluateFunctionCall(const CallExpr& call, const Declaration& f
   return result;
 }
 
-Value Evaluator::evaluateMathCall(const CallExpr& call, const Environment& environment) {
-  const std::string& name = call.callee;
-  std::vector<Value> values;
-  for (const Argument& argument : call.arguments) {
-    values.push_back(evaluate(*argument.value, environment));
-    if (values.back().isError()) {
+namespace arithmetic {
+
+MathFunction mathFunction(std::string_view name) {
+  struct Entry {
+    std::string_view name;
+    MathFunction function;
+  };
+  static constexpr Entry entries[] = {
+      {"len", MathFunction::Len},   {"atan2", MathFunction::Atan2},
+      {"pow", MathFunction::Pow},   {"min", MathFunction::Min},
+      {"max", MathFunction::Max},   {"sin", MathFunction::Sin},
+      {"cos", MathFunction::Cos},   {"tan", MathFunction::Tan},
+      {"asin", MathFunction::Asin}, {"acos", MathFunction::Acos},
+      {"atan", MathFunction::Atan}, {"sqrt", MathFunction::Sqrt},
+      {"abs", MathFunction::Abs},   {"exp", MathFunction::Exp},
+      {"ln", MathFunction::Ln},     {"floor", MathFunction::Floor},
+      {"ceil", MathFunction::Ceil}, {"round", MathFunction::Round},
+  };
+  for (const Entry& entry : entries) {
+    if (entry.name.size() == name.size() && entry.name[0] == name[0] && entry.name == name) {
+      return entry.function;
+    }
+  }
+  return MathFunction::Other;
+}
+
+double applyUnary(MathFunction function, double x) {
+  switch (function) {
+  case MathFunction::Sin:
+    return std::sin(x);
+  case MathFunction::Cos:
+    return std::cos(x);
+  case MathFunction::Tan:
+    return std::tan(x);
+  case MathFunction::Asin:
+    return std::asin(x);
+  case MathFunction::Acos:
+    return std::acos(x);
+  case MathFunction::Atan:
+    return std::atan(x);
+  case MathFunction::Sqrt:
+    return std::sqrt(x);
+  case MathFunction::Abs:
+    return std::abs(x);
+  case MathFunction::Exp:
+    return std::exp(x);
+  case MathFunction::Ln:
+    return x > 0 ? std::log(x) : NAN;
+  case MathFunction::Floor:
+    return std::floor(x);
+  case MathFunction::Ceil:
+    return std::ceil(x);
+  case MathFunction::Round:
+    return std::round(x);
+  default:
+    return 0;
+  }
+}
+
+double applyBinary(MathFunction function, double a, double b) {
+  switch (function) {
+  case MathFunction::Atan2:
+    return std::atan2(a, b);
+  case MathFunction::Pow:
+    return std::pow(a, b);
+  case MathFunction::Min:
+    return std::min(a, b);
+  default:
+    return std::max(a, b);
+  }
+}
+
+std::array<std::string_view, 2> binaryParameterNames(MathFunction function) {
+  switch (function) {
+  case MathFunction::Atan2:
+    return {"y", "x"};
+  case MathFunction::Pow:
+    return {"base", "exponent"};
+  default:
+    return {"a", "b"};
+  }
+}
+
+} // namespace arithmetic
+
+Value Evaluator::evaluateMathCall(const CallExpr& call, const Bindings& bindings) {
+  std::size_t count = call.arguments.size();
+  // Math functions take one or two arguments: no allocation for them.
+  std::array<Value, 2> fewValues;
+  std::vector<Value> manyValues(count > fewValues.size() ? count : 0);
+  Value* values = count > fewValues.size() ? manyValues.data() : fewValues.data();
+  for (std::size_t i = 0; i < count; ++i) {
+    values[i] = evaluate(*call.arguments[i].value, bindings);
+    if (values[i].isError()) {
       return {};
     }
   }
-  if (name == "len") {
-    if (values.size() != 1 || values[0].type.kind != TypeKind::List) {
+  return applyMathFunction(call, values, count);
+}
+
+Value Evaluator::applyMathFunction(const CallExpr& call, const Value* values, std::size_t count) {
+  using namespace arithmetic;
+  const std::string& name = call.callee;
+  MathFunction function = mathFunction(name);
+  if (function == MathFunction::Len) {
+    if (count != 1 || values[0].type.kind != TypeKind::List) {
       return typeError(call.span, "len(...) needs a list");
     }
     return Value::ofNumber(static_cast<double>(values[0].list->size()));
   }
-  for (std::size_t i = 0; i < values.size(); ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     if (values[i].type.kind != TypeKind::Num) {
       return typeError(call.arguments[i].value->span,
                        fmt::format("'{}' needs numbers, not a {}", name, typeName(values[i].type)));
     }
   }
-  if (values.size() == 2) {
+  if (count == 2) {
     // Named arguments may come in any order: put them in parameter order.
-    std::vector<std::string> names = name == "atan2" ? std::vector<std::string>{"y", "x"}
-                                     : name == "pow" ? std::vector<std::string>{"base", "exponent"}
-                                                     : std::vector<std::string>{"a", "b"};
-    std::vector<const Expr*> arguments = bindArguments(call, names);
+    std::array<std::string_view, 2> names = binaryParameterNames(function);
+    std::array<const Expr*, 2> arguments{};
+    bindArguments(
+        call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
     double a = values[0].number;
     double b = values[1].number;
     if (arguments[0] != call.arguments[0].value.get()) {
       std::swap(a, b);
     }
-    double result = name == "atan2" ? std::atan2(a, b)
-                    : name == "pow" ? std::pow(a, b)
-                    : name == "min" ? std::min(a, b)
-                                    : std::max(a, b);
+    double result = applyBinary(function, a, b);
     return checkedNumber(result, call.span,
                          [&] { return fmt::format("{}({:g}, {:g})", name, a, b); });
   }
-  if (values.size() != 1) {
+  if (count != 1) {
     return {};
   }
   double x = values[0].number;
-  double result = 0;
-  if (name == "sin") {
-    result = std::sin(x);
-  } else if (name == "cos") {
-    result = std::cos(x);
-  } else if (name == "tan") {
-    result = std::tan(x);
-  } else if (name == "asin") {
-    result = std::asin(x);
-  } else if (name == "acos") {
-    result = std::acos(x);
-  } else if (name == "atan") {
-    result = std::atan(x);
-  } else if (name == "sqrt") {
-    result = std::sqrt(x);
-  } else if (name == "abs") {
-    result = std::abs(x);
-  } else if (name == "exp") {
-    result = std::exp(x);
-  } else if (name == "ln") {
-    result = x > 0 ? std::log(x) : NAN;
-  } else if (name == "floor") {
-    result = std::floor(x);
-  } else if (name == "ceil") {
-    result = std::ceil(x);
-  } else if (name == "round") {
-    result = std::round(x);
-  }
+  double result = applyUnary(function, x);
   return checkedNumber(result, call.span, [&] { return fmt::format("{}({:g})", name, x); });
 }
 
-Value Evaluator::evaluatePoint(const PointExpr& point, const Environment& environment) {
+Value Evaluator::evaluatePoint(const PointExpr& point, const Bindings& bindings) {
   std::array<double, 3> coordinates{0, 0, 0};
   int dimensions = static_cast<int>(point.components.size());
   for (int i = 0; i < dimensions && i < 3; ++i) {
-    Value component = evaluate(*point.components[i], environment);
+    Value component = evaluate(*point.components[i], bindings);
     if (component.isError()) {
       return {};
     }
@@ -440,12 +604,12 @@ Value Evaluator::evaluatePoint(const PointExpr& point, const Environment& enviro
   return Value::ofPoint(coordinates, std::min(dimensions, 3));
 }
 
-Value Evaluator::evaluateList(const ListExpr& list, const Environment& environment) {
+Value Evaluator::evaluateList(const ListExpr& list, const Bindings& bindings) {
   ValueList elements;
   elements.reserve(list.elements.size());
   TypeKind element = TypeKind::Any;
   for (const ExprPtr& item : list.elements) {
-    Value value = evaluate(*item, environment);
+    Value value = evaluate(*item, bindings);
     if (value.isError()) {
       return {};
     }
@@ -462,9 +626,9 @@ Value Evaluator::evaluateList(const ListExpr& list, const Environment& environme
   return Value::ofList(std::move(elements), element);
 }
 
-Value Evaluator::evaluateIndex(const IndexExpr& index, const Environment& environment) {
-  Value base = evaluate(*index.base, environment);
-  Value position = evaluate(*index.index, environment);
+Value Evaluator::evaluateIndex(const IndexExpr& index, const Bindings& bindings) {
+  Value base = evaluate(*index.base, bindings);
+  Value position = evaluate(*index.index, bindings);
   if (base.isError() || position.isError()) {
     return {};
   }
@@ -489,8 +653,8 @@ Value Evaluator::evaluateIndex(const IndexExpr& index, const Environment& enviro
   return (*base.list)[static_cast<std::size_t>(number)];
 }
 
-Value Evaluator::evaluateMember(const MemberExpr& member, const Environment& environment) {
-  Value base = evaluate(*member.base, environment);
+Value Evaluator::evaluateMember(const MemberExpr& member, const Bindings& bindings) {
+  Value base = evaluate(*member.base, bindings);
   if (base.isError()) {
     return {};
   }

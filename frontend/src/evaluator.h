@@ -6,11 +6,43 @@
 
 #include "sema_context.h"
 
+#include <array>
 #include <cmath>
 #include <set>
+#include <string_view>
 #include <utility>
 
 namespace cncc::frontend {
+
+// Values bound to declarations while evaluating: a few bound in this frame
+// (a fn call's parameters, a block's lets), then the enclosing frames, and
+// under them all, optionally, an Environment given by the caller. Frames
+// live on the stack, so a fn call costs no map and no copy of its caller's
+// values.
+class Bindings {
+public:
+  Bindings() = default;
+  explicit Bindings(const Environment& environment) : environment_(&environment) {}
+  explicit Bindings(const Bindings* outer) : outer_(outer) {}
+  Bindings(const Bindings&) = delete;
+  Bindings& operator=(const Bindings&) = delete;
+
+  void reserve(std::size_t count) { local_.reserve(count); }
+  // Binds in this frame, replacing an earlier binding of the same declaration
+  // made here.
+  void bind(const Declaration* declaration, Value value);
+  // The innermost binding, or null.
+  const Value* find(const Declaration* declaration) const;
+  // Every visible binding as one Environment (what a curve value keeps).
+  Environment flatten() const;
+
+private:
+  void flattenInto(Environment& environment) const;
+
+  std::vector<std::pair<const Declaration*, Value>> local_;
+  const Bindings* outer_ = nullptr;
+  const Environment* environment_ = nullptr;
+};
 
 class Evaluator {
 public:
@@ -19,7 +51,10 @@ public:
   // Error values are returned silently when the expression already had a
   // diagnostic (its type is Error) or when evaluation found a new problem
   // (reported here).
-  Value evaluate(const Expr& expression, const Environment& environment);
+  Value evaluate(const Expr& expression, const Bindings& bindings);
+  Value evaluate(const Expr& expression, const Environment& environment) {
+    return evaluate(expression, Bindings(environment));
+  }
   Value constantValue(const Declaration* declaration);
 
   // Reports once per kind and place, with a note for each fn call that led
@@ -29,7 +64,30 @@ public:
   // spent; evaluation then returns Error values without diagnostics.
   bool exhausted() const { return steps_ > maximumSteps; }
 
-  // The argument expression bound to each parameter of a builtin or fn.
+  // The argument expression bound to each parameter of a builtin or fn:
+  // `bound` has one entry per parameter, null to start with; `nameAt(i)` is
+  // the name of parameter i.
+  template <typename NameAt>
+  static void bindArguments(const CallExpr& call, std::size_t count, NameAt nameAt,
+                            const Expr** bound) {
+    std::size_t next = 0;
+    for (const Argument& argument : call.arguments) {
+      if (argument.name.empty()) {
+        while (next < count && bound[next] != nullptr) {
+          ++next;
+        }
+        if (next < count) {
+          bound[next++] = argument.value.get();
+        }
+        continue;
+      }
+      for (std::size_t i = 0; i < count; ++i) {
+        if (bound[i] == nullptr && nameAt(i) == argument.name) {
+          bound[i] = argument.value.get();
+        }
+      }
+    }
+  }
   static std::vector<const Expr*> bindArguments(const CallExpr& call,
                                                 const std::vector<std::string>& parameterNames);
 
@@ -38,18 +96,30 @@ public:
   static constexpr std::size_t maximumSteps = 20'000'000;
 
 private:
-  Value evaluateName(const NameExpr& name, const Environment& environment);
-  Value evaluateUnary(const UnaryExpr& unary, const Environment& environment);
-  Value evaluateBinary(const BinaryExpr& binary, const Environment& environment);
+  Value evaluateValue(const Expr& expression, const Bindings& bindings);
+  // The fast path for numbers (number_evaluation.cpp): evaluates without
+  // building Values and reports nothing. False when the value is not a
+  // number or evaluation must report something; `evaluate` then evaluates
+  // that expression the ordinary way, which reports.
+  bool evaluateNumber(const Expr& expression, const Bindings& bindings, double& result);
+  bool numberOfName(const NameExpr& name, const Bindings& bindings, double& result);
+  bool numberOfBinary(const BinaryExpr& binary, const Bindings& bindings, double& result);
+  bool numberOfCall(const CallExpr& call, const Bindings& bindings, double& result);
+  bool numberOfFunctionCall(const CallExpr& call, const Declaration& function,
+                            const Bindings& bindings, double& result);
+  Value evaluateName(const NameExpr& name, const Bindings& bindings);
+  Value evaluateUnary(const UnaryExpr& unary, const Bindings& bindings);
+  Value evaluateBinary(const BinaryExpr& binary, const Bindings& bindings);
   Value evaluateArithmetic(const BinaryExpr& binary, const Value& left, const Value& right);
-  Value evaluateCall(const CallExpr& call, const Environment& environment);
+  Value evaluateCall(const CallExpr& call, const Bindings& bindings);
   Value evaluateFunctionCall(const CallExpr& call, const Declaration& function,
-                             const Environment& environment);
-  Value evaluateMathCall(const CallExpr& call, const Environment& environment);
-  Value evaluatePoint(const PointExpr& point, const Environment& environment);
-  Value evaluateList(const ListExpr& list, const Environment& environment);
-  Value evaluateIndex(const IndexExpr& index, const Environment& environment);
-  Value evaluateMember(const MemberExpr& member, const Environment& environment);
+                             const Bindings& bindings);
+  Value evaluateMathCall(const CallExpr& call, const Bindings& bindings);
+  Value applyMathFunction(const CallExpr& call, const Value* values, std::size_t count);
+  Value evaluatePoint(const PointExpr& point, const Bindings& bindings);
+  Value evaluateList(const ListExpr& list, const Bindings& bindings);
+  Value evaluateIndex(const IndexExpr& index, const Bindings& bindings);
+  Value evaluateMember(const MemberExpr& member, const Bindings& bindings);
   // `describe` is called only when the number is not finite: formatting a
   // message for every good value would dominate evaluation time.
   template <typename Describe>
@@ -68,10 +138,46 @@ private:
   std::set<std::pair<int, std::pair<std::uint32_t, std::uint32_t>>> reported_;
   std::set<const Declaration*> constantsInProgress_;
   std::size_t steps_ = 0;
+  // Off below an expression whose fast path failed, so no expression is
+  // tried twice; and the steps that a failed fast path must not give back
+  // (those of constants it evaluated, which stay evaluated).
+  bool fastPathEnabled_ = true;
+  int fastPathDepth_ = 0;
+  std::size_t stepsKept_ = 0;
 };
+
+// The arithmetic both evaluation paths share, so they agree to the bit.
+namespace arithmetic {
+enum class MathFunction {
+  Other,
+  Len,
+  Atan2,
+  Pow,
+  Min,
+  Max,
+  Sin,
+  Cos,
+  Tan,
+  Asin,
+  Acos,
+  Atan,
+  Sqrt,
+  Abs,
+  Exp,
+  Ln,
+  Floor,
+  Ceil,
+  Round,
+};
+MathFunction mathFunction(std::string_view name);
+double applyUnary(MathFunction function, double x);
+double applyBinary(MathFunction function, double a, double b);
+// The parameter names of a two-argument math function, in order.
+std::array<std::string_view, 2> binaryParameterNames(MathFunction function);
+} // namespace arithmetic
 
 // Builds the CurveValue of a curve constructor call (nurbs, polar, line, ...)
 // from its evaluated arguments, making the geometric checks.
-Value buildCurve(Evaluator& evaluator, const CallExpr& call, const Environment& environment);
+Value buildCurve(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings);
 
 } // namespace cncc::frontend

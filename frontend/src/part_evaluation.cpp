@@ -26,27 +26,30 @@ public:
       : evaluator_(evaluator), context_(evaluator.context()), part_(part) {}
 
   void run() {
-    Environment environment;
+    Bindings environment;
     for (const Parameter& parameter : part_.parameters) {
       if (parameter.declaration == nullptr) {
         continue;
       }
-      Value value =
-          parameter.defaultValue ? evaluator_.evaluate(*parameter.defaultValue, {}) : Value{};
+      Value value = parameter.defaultValue
+                        ? evaluator_.evaluate(*parameter.defaultValue, Bindings())
+                        : Value{};
       auto define = context_.options.defines.find(parameter.name);
       if (define != context_.options.defines.end()) {
         value = Value::ofNumber(define->second);
       }
       if (value.type.kind == TypeKind::Num) {
         context_.mutableDeclaration(parameter.declaration).value = value;
-        environment[parameter.declaration] = value;
+        environment.bind(parameter.declaration, value);
       }
     }
     walk(part_.body, environment);
   }
 
 private:
-  void walk(const Block& block, Environment environment) {
+  // Lets bind in the block's own frame, so they end with the block.
+  void walk(const Block& block, const Bindings& outer) {
+    Bindings environment(&outer);
     for (const StmtPtr& statement : block.statements) {
       if (evaluator_.exhausted() || ++statements_ > maximumCheckedStatements) {
         return;
@@ -55,7 +58,7 @@ private:
     }
   }
 
-  std::optional<double> number(const Expr& expression, const Environment& environment) {
+  std::optional<double> number(const Expr& expression, const Bindings& environment) {
     Value value = evaluator_.evaluate(expression, environment);
     if (value.type.kind != TypeKind::Num) {
       return std::nullopt;
@@ -63,20 +66,26 @@ private:
     return value.number;
   }
 
-  // Checks value > 0 (or >= 0) and reports `what` otherwise.
-  std::optional<double> positive(const Expr& expression, const Environment& environment,
-                                 std::string_view what,
-                                 DiagnosticKind kind = DiagnosticKind::ValueNotPositive) {
+  // Checks value > 0 and reports `what` otherwise.
+  std::optional<double> positive(const Expr& expression, const Bindings& environment,
+                                 std::string_view what) {
+    return positiveDescribed(expression, environment, [what] { return std::string(what); });
+  }
+
+  // `describe` names the value; called only for a message.
+  template <typename Describe>
+  std::optional<double> positiveDescribed(const Expr& expression, const Bindings& environment,
+                                          Describe describe) {
     std::optional<double> value = number(expression, environment);
     if (value && !(*value > 0)) {
-      evaluator_.report(kind, expression.span,
-                        fmt::format("{} is {:g}; it must be greater than 0", what, *value));
+      evaluator_.report(DiagnosticKind::ValueNotPositive, expression.span,
+                        fmt::format("{} is {:g}; it must be greater than 0", describe(), *value));
       return std::nullopt;
     }
     return value;
   }
 
-  std::optional<double> wholeNumber(const Expr& expression, const Environment& environment,
+  std::optional<double> wholeNumber(const Expr& expression, const Bindings& environment,
                                     std::string_view what) {
     std::optional<double> value = number(expression, environment);
     if (value && *value != std::floor(*value)) {
@@ -87,7 +96,7 @@ private:
     return value;
   }
 
-  void walkStatement(const Stmt& statement, Environment& environment) {
+  void walkStatement(const Stmt& statement, Bindings& environment) {
     switch (statement.kind) {
     case StmtKind::Units:
     case StmtKind::Error:
@@ -111,7 +120,7 @@ private:
       const auto& let = as<LetStmt>(statement);
       Value value = evaluator_.evaluate(*let.value, environment);
       if (let.declaration != nullptr) {
-        environment[let.declaration] = value;
+        environment.bind(let.declaration, value);
         Declaration& declaration = context_.mutableDeclaration(let.declaration);
         if (!declaration.value && !value.isError()) {
           declaration.value = value;
@@ -136,7 +145,7 @@ private:
     }
   }
 
-  void walkTool(const ToolStmt& tool, const Environment& environment) {
+  void walkTool(const ToolStmt& tool, const Bindings& environment) {
     toolKnown_ = true;
     std::optional<double> toolNumber = wholeNumber(*tool.number, environment, "the tool number");
     if (toolNumber && *toolNumber < 1) {
@@ -145,15 +154,15 @@ private:
           fmt::format("the tool number is {:g}; tools are numbered from 1", *toolNumber));
     }
     for (const Argument& setting : tool.settings) {
-      std::optional<double> value =
-          positive(*setting.value, environment, fmt::format("the tool's {}", setting.name));
+      std::optional<double> value = positiveDescribed(
+          *setting.value, environment, [&] { return fmt::format("the tool's {}", setting.name); });
       if (setting.name == "feed" && value) {
         feedKnown_ = true;
       }
     }
   }
 
-  void walkFor(const ForStmt& loop, Environment& environment) {
+  void walkFor(const ForStmt& loop, Bindings& environment) {
     Value range = evaluator_.evaluate(*loop.range, environment);
     if (range.type.kind != TypeKind::Range || loop.declaration == nullptr) {
       return;
@@ -177,27 +186,51 @@ private:
     double last = std::min(range.high, range.low + maximumCheckedIterations - 1);
     for (double i = range.low;
          i <= last && !evaluator_.exhausted() && statements_ <= maximumCheckedStatements; ++i) {
-      Environment body = environment;
-      body[loop.declaration] = Value::ofNumber(i);
+      Bindings body(&environment);
+      body.bind(loop.declaration, Value::ofNumber(i));
       walk(loop.body, body);
     }
   }
 
-  void walkCut(const CutStmt& cut, const Environment& environment) {
+  // The numeric modifiers of the cut being walked; a later one of the same
+  // name replaces an earlier one. Kept between cuts to reuse its storage.
+  struct ModifierValue {
+    std::string_view name;
+    std::pair<double, const Modifier*> value;
+  };
+  const std::pair<double, const Modifier*>* modifierValue(std::string_view name) const {
+    for (const ModifierValue& entry : modifierValues_) {
+      if (entry.name == name) {
+        return &entry.value;
+      }
+    }
+    return nullptr;
+  }
+  void setModifierValue(std::string_view name, double value, const Modifier* modifier) {
+    for (ModifierValue& entry : modifierValues_) {
+      if (entry.name == name) {
+        entry.value = {value, modifier};
+        return;
+      }
+    }
+    modifierValues_.push_back({name, {value, modifier}});
+  }
+
+  void walkCut(const CutStmt& cut, const Bindings& environment) {
     evaluator_.evaluate(*cut.curve, environment);
-    std::map<std::string, std::pair<double, const Modifier*>> values;
+    modifierValues_.clear();
     for (const Modifier& modifier : cut.modifiers) {
       if (!modifier.value || modifier.name == "method" || modifier.name == "entry" ||
           modifier.name == "arcs") {
         continue;
       }
       if (std::optional<double> value = number(*modifier.value, environment)) {
-        values[modifier.name] = {*value, &modifier};
+        setModifierValue(modifier.name, *value, &modifier);
       }
     }
-    checkSweep(values);
-    if (auto tolerance = values.find("tolerance"); tolerance != values.end()) {
-      auto [value, modifier] = tolerance->second;
+    checkSweep();
+    if (const auto* tolerance = modifierValue("tolerance")) {
+      auto [value, modifier] = *tolerance;
       if (!(value > 0)) {
         evaluator_.report(DiagnosticKind::InvalidTolerance, modifier->value->span,
                           fmt::format("the tolerance is {:g}; it must be greater than 0", value));
@@ -208,8 +241,8 @@ private:
                                       value, minimumTolerance));
       }
     }
-    if (auto samples = values.find("samples"); samples != values.end()) {
-      auto [value, modifier] = samples->second;
+    if (const auto* samples = modifierValue("samples")) {
+      auto [value, modifier] = *samples;
       if (value != std::floor(value) || value < 2 || value > maximumSamples) {
         evaluator_.report(DiagnosticKind::InvalidSamples, modifier->value->span,
                           fmt::format("samples={:g}: a cut needs a whole number of samples, from 2 "
@@ -218,10 +251,9 @@ private:
       }
     }
     for (const char* name : {"spacing", "feed"}) {
-      if (auto found = values.find(name); found != values.end() && !(found->second.first > 0)) {
-        evaluator_.report(
-            DiagnosticKind::ValueNotPositive, found->second.second->value->span,
-            fmt::format("{}={:g}: it must be greater than 0", name, found->second.first));
+      if (const auto* found = modifierValue(name); found != nullptr && !(found->first > 0)) {
+        evaluator_.report(DiagnosticKind::ValueNotPositive, found->second->value->span,
+                          fmt::format("{}={:g}: it must be greater than 0", name, found->first));
       }
     }
     // Reported once per part: the first cut shows what is missing.
@@ -247,21 +279,20 @@ private:
     }
   }
 
-  void checkSweep(const std::map<std::string, std::pair<double, const Modifier*>>& values) {
-    auto depth = values.find("depth");
-    auto step = values.find("step");
-    if (step != values.end() && !(step->second.first > 0)) {
+  void checkSweep() {
+    const auto* depth = modifierValue("depth");
+    const auto* step = modifierValue("step");
+    if (step != nullptr && !(step->first > 0)) {
       evaluator_.report(
-          DiagnosticKind::SweepStep, step->second.second->value->span,
-          fmt::format("the sweep step is {:g}; it must be greater than 0", step->second.first));
+          DiagnosticKind::SweepStep, step->second->value->span,
+          fmt::format("the sweep step is {:g}; it must be greater than 0", step->first));
       return;
     }
-    if (depth != values.end() && step != values.end() &&
-        !(depth->second.first >= step->second.first)) {
-      evaluator_.report(DiagnosticKind::SweepDepth, depth->second.second->value->span,
+    if (depth != nullptr && step != nullptr && !(depth->first >= step->first)) {
+      evaluator_.report(DiagnosticKind::SweepDepth, depth->second->value->span,
                         fmt::format("the sweep depth {:g} is less than its step {:g}; the depth "
                                     "must be at least one step",
-                                    depth->second.first, step->second.first));
+                                    depth->first, step->first));
     }
   }
 
@@ -275,6 +306,7 @@ private:
   bool safeKnown_ = false;
   bool safeReported_ = false;
   bool feedReported_ = false;
+  std::vector<ModifierValue> modifierValues_;
 };
 
 } // namespace

@@ -1,0 +1,184 @@
+// The fast path of compile-time evaluation: expressions whose value is a
+// number (most of what a part computes, and every sample of a polar or
+// parametric curve) evaluated to doubles, without Values. It computes
+// exactly what Evaluator::evaluateValue computes, with the same arithmetic,
+// and counts the same steps; wherever that path would report a problem or
+// produce something other than a number, this one gives up and the caller
+// evaluates the expression the ordinary way.
+#include "evaluator.h"
+
+#include <cmath>
+
+namespace cncc::frontend {
+
+bool Evaluator::evaluateNumber(const Expr& expression, const Bindings& bindings, double& result) {
+  if (++steps_ > maximumSteps || expression.type.kind == TypeKind::Error) {
+    return false;
+  }
+  switch (expression.kind) {
+  case ExprKind::Number:
+    result = as<NumberExpr>(expression).value;
+    return true;
+  case ExprKind::Name:
+    return numberOfName(as<NameExpr>(expression), bindings, result);
+  case ExprKind::Unary: {
+    const auto& unary = as<UnaryExpr>(expression);
+    double operand = 0;
+    if (unary.op != UnaryOperator::Negate || !evaluateNumber(*unary.operand, bindings, operand)) {
+      return false;
+    }
+    result = -operand;
+    return true;
+  }
+  case ExprKind::Binary:
+    return numberOfBinary(as<BinaryExpr>(expression), bindings, result);
+  case ExprKind::Call:
+    return numberOfCall(as<CallExpr>(expression), bindings, result);
+  default:
+    return false;
+  }
+}
+
+bool Evaluator::numberOfName(const NameExpr& name, const Bindings& bindings, double& result) {
+  const Declaration* declaration = name.declaration;
+  if (declaration == nullptr) {
+    return false;
+  }
+  const Value* value = nullptr;
+  Value constant;
+  if (declaration->kind == DeclarationKind::Constant) {
+    if (declaration->value) {
+      value = &*declaration->value;
+    } else {
+      constant = constantValue(declaration);
+      value = &constant;
+    }
+  } else if (declaration->kind == DeclarationKind::Builtin) {
+    value = declaration->value ? &*declaration->value : nullptr;
+  } else {
+    value = bindings.find(declaration);
+  }
+  if (value == nullptr || value->type.kind != TypeKind::Num) {
+    return false;
+  }
+  result = value->number;
+  return true;
+}
+
+bool Evaluator::numberOfBinary(const BinaryExpr& binary, const Bindings& bindings, double& result) {
+  BinaryOperator op = binary.op;
+  switch (op) {
+  case BinaryOperator::Add:
+  case BinaryOperator::Subtract:
+  case BinaryOperator::Multiply:
+  case BinaryOperator::Divide:
+  case BinaryOperator::Remainder:
+  case BinaryOperator::Power:
+    break;
+  default:
+    return false; // comparisons and logic give bools
+  }
+  double a = 0;
+  double b = 0;
+  if (!evaluateNumber(*binary.left, bindings, a) || !evaluateNumber(*binary.right, bindings, b)) {
+    return false;
+  }
+  switch (op) {
+  case BinaryOperator::Add:
+    result = a + 1 * b;
+    break;
+  case BinaryOperator::Subtract:
+    result = a + -1 * b;
+    break;
+  case BinaryOperator::Multiply:
+    result = a * b;
+    break;
+  case BinaryOperator::Divide:
+  case BinaryOperator::Remainder:
+    if (b == 0) {
+      return false;
+    }
+    result = op == BinaryOperator::Divide ? a / b : std::fmod(a, b);
+    break;
+  default:
+    result = std::pow(a, b);
+    break;
+  }
+  return std::isfinite(result);
+}
+
+bool Evaluator::numberOfCall(const CallExpr& call, const Bindings& bindings, double& result) {
+  using namespace arithmetic;
+  const Declaration* declaration = call.declaration;
+  if (declaration == nullptr) {
+    return false;
+  }
+  if (declaration->kind == DeclarationKind::Function) {
+    return numberOfFunctionCall(call, *declaration, bindings, result);
+  }
+  if (declaration->kind != DeclarationKind::Builtin || call.type.kind == TypeKind::Curve) {
+    return false;
+  }
+  std::size_t count = call.arguments.size();
+  if (count != 1 && count != 2) {
+    return false;
+  }
+  MathFunction function = mathFunction(call.callee);
+  if (function == MathFunction::Len) {
+    return false;
+  }
+  std::array<double, 2> values{};
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!evaluateNumber(*call.arguments[i].value, bindings, values[i])) {
+      return false;
+    }
+  }
+  if (count == 2) {
+    std::array<std::string_view, 2> names = binaryParameterNames(function);
+    std::array<const Expr*, 2> arguments{};
+    bindArguments(
+        call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
+    double a = values[0];
+    double b = values[1];
+    if (arguments[0] != call.arguments[0].value.get()) {
+      std::swap(a, b);
+    }
+    result = applyBinary(function, a, b);
+  } else {
+    result = applyUnary(function, values[0]);
+  }
+  return std::isfinite(result);
+}
+
+bool Evaluator::numberOfFunctionCall(const CallExpr& call, const Declaration& function,
+                                     const Bindings& bindings, double& result) {
+  if (function.function == nullptr || context_.invalidFunctions.contains(&function)) {
+    return false;
+  }
+  const std::vector<Parameter>& parameters = function.function->parameters;
+  std::size_t count = parameters.size();
+  constexpr std::size_t inlineCount = 8;
+  if (count > inlineCount || callStack_.size() > 64) {
+    return false;
+  }
+  std::array<const Expr*, inlineCount> arguments{};
+  bindArguments(
+      call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
+      arguments.data());
+  Bindings inner;
+  inner.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    double argument = 0;
+    if (arguments[i] == nullptr || parameters[i].declaration == nullptr ||
+        !evaluateNumber(*arguments[i], bindings, argument)) {
+      return false;
+    }
+    inner.bind(parameters[i].declaration, Value::ofNumber(argument));
+  }
+  callStack_.push_back(call.span);
+  bool evaluated = evaluateNumber(*function.function->body, inner, result);
+  callStack_.pop_back();
+  return evaluated;
+}
+
+} // namespace cncc::frontend
