@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace cncc::frontend {
@@ -71,6 +72,20 @@ private:
   void expectNumber(Expr& expression, const Scope& scope, std::string_view context);
   bool expectType(const Expr& expression, Type actual, TypeKind expected, std::string_view what,
                   TypeKind element = TypeKind::Any);
+  static bool typeFits(Type actual, TypeKind expected, TypeKind element);
+  // As expectType and expectNumber, with `describe()` naming what is checked:
+  // called only for a message, as most checks pass.
+  template <typename Describe>
+  bool expectTypeOf(const Expr& expression, Type actual, TypeKind expected, Describe describe,
+                    TypeKind element = TypeKind::Any) {
+    return typeFits(actual, expected, element) ||
+           expectType(expression, actual, expected, describe(), element);
+  }
+  template <typename Describe>
+  void expectNumberOf(Expr& expression, const Scope& scope, Describe describe) {
+    Type type = checkExpression(expression, scope);
+    expectTypeOf(expression, type, TypeKind::Num, describe);
+  }
   Type checkExpression(Expr& expression, const Scope& scope);
   Type computeType(Expr& expression, const Scope& scope);
   Type checkName(NameExpr& name, const Scope& scope);
@@ -104,6 +119,8 @@ private:
 
   SemaContext& context_;
   std::map<const Declaration*, ItemState> states_;
+  // Each fn's parameters as bindArguments takes them, built on its first call.
+  std::unordered_map<const FnItem*, std::vector<ParameterSpec>> functionParameters_;
 };
 
 } // namespace cncc::frontend

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <string_view>
+#include <unordered_map>
 
 namespace cncc::frontend {
 
@@ -133,10 +135,13 @@ void Checker::reportMissing(const CallExpr& call, const std::vector<ParameterSpe
 Type Checker::checkFunctionCall(CallExpr& call, const Declaration& declaration,
                                 const Scope& scope) {
   const FnItem& function = *declaration.function;
-  std::vector<ParameterSpec> parameters;
-  for (const Parameter& parameter : function.parameters) {
-    parameters.push_back({parameter.name, true});
+  auto [cached, inserted] = functionParameters_.try_emplace(&function);
+  if (inserted) {
+    for (const Parameter& parameter : function.parameters) {
+      cached->second.push_back({parameter.name, true});
+    }
   }
+  const std::vector<ParameterSpec>& parameters = cached->second;
   ArgumentBinding binding = bindArguments(call, parameters, false);
   reportMissing(call, parameters, binding);
   checkArgumentsAlone(call, scope);
@@ -153,17 +158,37 @@ Type Checker::checkFunctionCall(CallExpr& call, const Declaration& declaration,
   return binding.ok ? declaration.type : Type::error();
 }
 
-Type Checker::checkBuiltinCall(CallExpr& call, const Scope& scope) {
+namespace {
+
+// Each builtin function's parameters as the checker binds them, built once.
+struct BuiltinSpec {
   const BuiltinInfo* info = nullptr;
-  for (const BuiltinInfo& builtin : builtinFunctions()) {
-    if (builtin.name == call.callee) {
-      info = &builtin;
-    }
-  }
   std::vector<ParameterSpec> parameters;
-  for (const BuiltinParameter& parameter : info->parameters) {
-    parameters.push_back({parameter.name, parameter.required});
-  }
+};
+
+const BuiltinSpec& builtinSpec(const std::string& name) {
+  static const std::unordered_map<std::string_view, BuiltinSpec> specs = [] {
+    std::unordered_map<std::string_view, BuiltinSpec> table;
+    for (const BuiltinInfo& builtin : builtinFunctions()) {
+      // The last of a name wins, as a search through the list would find.
+      BuiltinSpec& spec = table[builtin.name];
+      spec.info = &builtin;
+      spec.parameters.clear();
+      for (const BuiltinParameter& parameter : builtin.parameters) {
+        spec.parameters.push_back({parameter.name, parameter.required});
+      }
+    }
+    return table;
+  }();
+  return specs.at(name);
+}
+
+} // namespace
+
+Type Checker::checkBuiltinCall(CallExpr& call, const Scope& scope) {
+  const BuiltinSpec& spec = builtinSpec(call.callee);
+  const BuiltinInfo* info = spec.info;
+  const std::vector<ParameterSpec>& parameters = spec.parameters;
   ArgumentBinding binding = bindArguments(call, parameters, info->variadic);
   reportMissing(call, parameters, binding);
   if (info->name == "nurbs" || info->name == "bspline") {
@@ -179,8 +204,8 @@ Type Checker::checkBuiltinCall(CallExpr& call, const Scope& scope) {
     }
   }
   for (const Argument* argument : binding.extra) {
-    ok &= expectType(*argument->value, checkExpression(*argument->value, scope), TypeKind::Curve,
-                     fmt::format("each argument of '{}'", info->name));
+    ok &= expectTypeOf(*argument->value, checkExpression(*argument->value, scope), TypeKind::Curve,
+                       [&] { return fmt::format("each argument of '{}'", info->name); });
   }
   if (info->variadic && binding.extra.empty()) {
     context_.report(DiagnosticKind::MissingArgument, call.calleeSpan,
@@ -210,32 +235,37 @@ void Checker::checkOrderOrDegree(const CallExpr& call, ArgumentBinding& binding)
 }
 
 Type Checker::builtinResultType(const std::string& name) {
-  static const std::set<std::string> curveBuiltins = {"nurbs",     "bspline", "bezier", "polar",
-                                                      "param",     "line",    "arc",    "path",
-                                                      "translate", "rotate",  "scale"};
-  return curveBuiltins.contains(name) ? Type::curve() : Type::num();
+  static constexpr std::string_view curveBuiltins[] = {"nurbs",     "bspline", "bezier", "polar",
+                                                       "param",     "line",    "arc",    "path",
+                                                       "translate", "rotate",  "scale"};
+  for (std::string_view curve : curveBuiltins) {
+    if (curve == name) {
+      return Type::curve();
+    }
+  }
+  return Type::num();
 }
 
 bool Checker::checkBuiltinArgument(const std::string& function, const std::string& parameter,
                                    Expr& value, const Scope& scope) {
   Type type = checkExpression(value, scope);
-  std::string what = fmt::format("argument '{}' of '{}'", parameter, function);
+  auto what = [&] { return fmt::format("argument '{}' of '{}'", parameter, function); };
   if (parameter == "points") {
-    return expectType(value, type, TypeKind::List, what, TypeKind::Point);
+    return expectTypeOf(value, type, TypeKind::List, what, TypeKind::Point);
   }
   if (parameter == "weights" || parameter == "knots") {
-    return expectType(value, type, TypeKind::List, what, TypeKind::Num);
+    return expectTypeOf(value, type, TypeKind::List, what, TypeKind::Num);
   }
   if (parameter == "list") {
-    return expectType(value, type, TypeKind::List, what);
+    return expectTypeOf(value, type, TypeKind::List, what);
   }
   if (parameter == "curve") {
-    return expectType(value, type, TypeKind::Curve, what);
+    return expectTypeOf(value, type, TypeKind::Curve, what);
   }
   if ((function == "line" && (parameter == "from" || parameter == "to")) || parameter == "center") {
-    return expectType(value, type, TypeKind::Point, what);
+    return expectTypeOf(value, type, TypeKind::Point, what);
   }
-  return expectType(value, type, TypeKind::Num, what);
+  return expectTypeOf(value, type, TypeKind::Num, what);
 }
 
 // polar(r = ..., t = a .. b) and param(x = ..., y = ..., z = ..., t = a .. b):
@@ -247,8 +277,9 @@ bool Checker::checkAnalyticCurve(CallExpr& call, const std::vector<ParameterSpec
   SourceSpan parameterSpan =
       range != nullptr && !range->name.empty() ? range->nameSpan : call.calleeSpan;
   if (range != nullptr) {
-    ok &= expectType(*range->value, checkExpression(*range->value, scope), TypeKind::Range,
-                     fmt::format("argument 't' of '{}' (write 't = a .. b')", call.callee));
+    ok &= expectTypeOf(*range->value, checkExpression(*range->value, scope), TypeKind::Range, [&] {
+      return fmt::format("argument 't' of '{}' (write 't = a .. b')", call.callee);
+    });
   }
   Declaration& parameter =
       context_.declare(DeclarationKind::CurveParameter, "t", parameterSpan, Type::num());
@@ -259,9 +290,9 @@ bool Checker::checkAnalyticCurve(CallExpr& call, const std::vector<ParameterSpec
   for (std::size_t i = 0; i + 1 < parameters.size(); ++i) {
     if (const Argument* argument = binding.bound[i]) {
       context_.program.scopeExtents.push_back({argument->value->span, &parameter});
-      ok &=
-          expectType(*argument->value, checkExpression(*argument->value, curveScope), TypeKind::Num,
-                     fmt::format("argument '{}' of '{}'", parameters[i].name, call.callee));
+      ok &= expectTypeOf(
+          *argument->value, checkExpression(*argument->value, curveScope), TypeKind::Num,
+          [&] { return fmt::format("argument '{}' of '{}'", parameters[i].name, call.callee); });
     }
   }
   context_.program.curveParameters[&call] = &parameter;

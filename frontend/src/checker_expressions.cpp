@@ -12,8 +12,7 @@ void Checker::expectNumber(Expr& expression, const Scope& scope, std::string_vie
 }
 
 // Reports when `actual` is not `expected`; returns whether it fits.
-bool Checker::expectType(const Expr& expression, Type actual, TypeKind expected,
-                         std::string_view what, TypeKind element) {
+bool Checker::typeFits(Type actual, TypeKind expected, TypeKind element) {
   if (actual.isLenient()) {
     return true;
   }
@@ -22,7 +21,12 @@ bool Checker::expectType(const Expr& expression, Type actual, TypeKind expected,
     fits = actual.element == element || actual.element == TypeKind::Any ||
            actual.element == TypeKind::Error;
   }
-  if (fits) {
+  return fits;
+}
+
+bool Checker::expectType(const Expr& expression, Type actual, TypeKind expected,
+                         std::string_view what, TypeKind element) {
+  if (typeFits(actual, expected, element)) {
     return true;
   }
   Type wanted = expected == TypeKind::List ? Type::listOf(element) : Type{expected};

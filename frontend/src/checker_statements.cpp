@@ -25,8 +25,8 @@ void Checker::checkPart(PartItem& part, const Scope& fileScope) {
                                   parameter.name, parameter.name));
     } else {
       Type type = checkExpression(*parameter.defaultValue, fileScope);
-      expectType(*parameter.defaultValue, type, TypeKind::Num,
-                 fmt::format("default of part parameter '{}'", parameter.name));
+      expectTypeOf(*parameter.defaultValue, type, TypeKind::Num,
+                   [&] { return fmt::format("default of part parameter '{}'", parameter.name); });
     }
     warnIfShadowing(parameter.name, parameter.nameSpan, fileScope);
     Declaration& declaration = context_.declare(DeclarationKind::PartParameter, parameter.name,
@@ -108,7 +108,8 @@ void Checker::checkSettings(std::vector<Argument>& settings,
     for (const ParameterSpec& spec : allowed) {
       known |= spec.name == setting.name;
     }
-    expectNumber(*setting.value, scope, fmt::format("'{}' of '{}'", setting.name, owner));
+    expectNumberOf(*setting.value, scope,
+                   [&] { return fmt::format("'{}' of '{}'", setting.name, owner); });
     if (!known) {
       context_.report(DiagnosticKind::UnknownArgument, setting.nameSpan,
                       fmt::format("'{}' has no setting '{}'; expected {}", owner, setting.name,
@@ -251,7 +252,7 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
                       "'arcs=' takes true or false");
     }
   } else {
-    expectNumber(*modifier.value, scope, fmt::format("'{}='", modifier.name));
+    expectNumberOf(*modifier.value, scope, [&] { return fmt::format("'{}='", modifier.name); });
   }
 }
 

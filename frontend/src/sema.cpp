@@ -49,9 +49,13 @@ const Declaration* Scope::find(const std::string& name) const {
 std::vector<std::string> Scope::visibleNames() const {
   std::vector<std::string> names;
   for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
+    // Each scope's names in alphabetical order, so suggestions do not depend
+    // on the hashing.
+    std::size_t first = names.size();
     for (const auto& entry : scope->names_) {
       names.push_back(entry.first);
     }
+    std::sort(names.begin() + static_cast<std::ptrdiff_t>(first), names.end());
   }
   return names;
 }

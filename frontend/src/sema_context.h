@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace cncc::frontend {
@@ -23,7 +24,8 @@ public:
 
 private:
   const Scope* parent_;
-  std::map<std::string, const Declaration*> names_;
+  // Hashed: a file scope holds thousands of names.
+  std::unordered_map<std::string, const Declaration*> names_;
 };
 
 struct SemaContext {
