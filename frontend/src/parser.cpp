@@ -1,5 +1,7 @@
 #include "cncc/frontend/parser.h"
 
+#include "node_arena.h"
+
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -52,6 +54,7 @@ public:
   Module parseModule() {
     Module module;
     module.file = file_;
+    module.arena = arena_;
     while (!check(TokenKind::EndOfFile)) {
       panicking_ = false;
       std::size_t before = position_;
@@ -218,7 +221,7 @@ private:
           fmt::format("expected 'part', 'fn', 'const' or 'import', found {}{}", describe(peek()),
                       hint));
     advance();
-    return std::make_unique<ErrorItem>(begin);
+    return arena_->make<ErrorItem>(begin);
   }
 
   // import "std/curves"
@@ -226,10 +229,10 @@ private:
     SourceSpan begin = advance().span;
     if (!check(TokenKind::String)) {
       errorAtCurrent(DiagnosticKind::ExpectedToken, "a module path in quotes after 'import'");
-      return std::make_unique<ErrorItem>(spanFrom(begin));
+      return arena_->make<ErrorItem>(spanFrom(begin));
     }
     const Token& path = advance();
-    return std::make_unique<ImportItem>(spanFrom(begin), std::string(path.text), path.span);
+    return arena_->make<ImportItem>(spanFrom(begin), std::string(path.text), path.span);
   }
 
   // const name = expr
@@ -241,10 +244,9 @@ private:
     if (!name.empty() && expect(TokenKind::Equal, "after the constant's name")) {
       value = parseExpression();
     } else {
-      value = std::make_unique<ErrorExpr>(peek().span);
+      value = arena_->make<ErrorExpr>(peek().span);
     }
-    return std::make_unique<ConstItem>(spanFrom(begin), std::move(name), nameSpan,
-                                       std::move(value));
+    return arena_->make<ConstItem>(spanFrom(begin), std::move(name), nameSpan, std::move(value));
   }
 
   // fn name(a, b) = expr
@@ -260,10 +262,10 @@ private:
     if (!panicking_ && expect(TokenKind::Equal, "before the function's body")) {
       body = parseExpression();
     } else {
-      body = std::make_unique<ErrorExpr>(peek().span);
+      body = arena_->make<ErrorExpr>(peek().span);
     }
-    return std::make_unique<FnItem>(spanFrom(begin), std::move(name), nameSpan,
-                                    std::move(parameters), std::move(body));
+    return arena_->make<FnItem>(spanFrom(begin), std::move(name), nameSpan, std::move(parameters),
+                                std::move(body));
   }
 
   // part name(p = 1, q = 2) { ... }
@@ -282,8 +284,8 @@ private:
       errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the part's body");
       body.span = peek().span;
     }
-    return std::make_unique<PartItem>(spanFrom(begin), std::move(name), nameSpan,
-                                      std::move(parameters), std::move(body));
+    return arena_->make<PartItem>(spanFrom(begin), std::move(name), nameSpan, std::move(parameters),
+                                  std::move(body));
   }
 
   // ( [name [= default] {, name [= default]}] )
@@ -369,7 +371,7 @@ private:
       return parseIf();
     case TokenKind::Semicolon:
       advance();
-      return std::make_unique<ErrorStmt>(begin);
+      return arena_->make<ErrorStmt>(begin);
     default:
       break;
     }
@@ -384,7 +386,7 @@ private:
           fmt::format("expected a statement (units, tool, feed, spindle, safe, let, curve, for, "
                       "if), found {}{}",
                       describe(peek()), hint));
-    return std::make_unique<ErrorStmt>(begin);
+    return arena_->make<ErrorStmt>(begin);
   }
 
   StmtPtr parseSettingStatement() {
@@ -395,30 +397,30 @@ private:
       SourceSpan unitSpan = peek().span;
       if (!check(TokenKind::Identifier)) {
         errorAtCurrent(DiagnosticKind::ExpectedIdentifier, "'mm' or 'inch' after 'units'");
-        return std::make_unique<ErrorStmt>(spanFrom(begin));
+        return arena_->make<ErrorStmt>(spanFrom(begin));
       }
       std::string unit(advance().text);
       if (unit != "mm" && unit != "inch") {
         error(DiagnosticKind::UnknownUnits, unitSpan,
               fmt::format("unknown units '{}'; expected 'mm' or 'inch'", unit));
       }
-      return std::make_unique<UnitsStmt>(spanFrom(begin), std::move(unit), unitSpan);
+      return arena_->make<UnitsStmt>(spanFrom(begin), std::move(unit), unitSpan);
     }
     if (text == "tool") {
       ExprPtr number = parseExpression();
       std::vector<Argument> settings = parseSettings({"diameter", "spindle", "feed"});
-      return std::make_unique<ToolStmt>(spanFrom(begin), std::move(number), std::move(settings));
+      return arena_->make<ToolStmt>(spanFrom(begin), std::move(number), std::move(settings));
     }
     if (text == "safe") {
       std::vector<Argument> settings = parseSettings({"z"});
       if (settings.empty() && !panicking_) {
         errorAtCurrent(DiagnosticKind::ExpectedToken, "'z=' after 'safe'");
       }
-      return std::make_unique<SafeStmt>(spanFrom(begin), std::move(settings));
+      return arena_->make<SafeStmt>(spanFrom(begin), std::move(settings));
     }
     StmtKind kind = text == "feed" ? StmtKind::Feed : StmtKind::Spindle;
     ExprPtr value = parseExpression();
-    return std::make_unique<ValueStmt>(kind, spanFrom(begin), std::move(value));
+    return arena_->make<ValueStmt>(kind, spanFrom(begin), std::move(value));
   }
 
   // { name = expr } while the next tokens read `identifier =`. A setting on a
@@ -458,9 +460,9 @@ private:
     if (!name.empty() && expect(TokenKind::Equal, "after the name in 'let'")) {
       value = parseExpression();
     } else {
-      value = std::make_unique<ErrorExpr>(peek().span);
+      value = arena_->make<ErrorExpr>(peek().span);
     }
-    return std::make_unique<LetStmt>(spanFrom(begin), std::move(name), nameSpan, std::move(value));
+    return arena_->make<LetStmt>(spanFrom(begin), std::move(name), nameSpan, std::move(value));
   }
 
   // curve <expr> { word | word = expr }
@@ -487,7 +489,7 @@ private:
       }
       modifiers.push_back(std::move(modifier));
     }
-    return std::make_unique<CutStmt>(spanFrom(begin), std::move(curve), std::move(modifiers));
+    return arena_->make<CutStmt>(spanFrom(begin), std::move(curve), std::move(modifiers));
   }
 
   // for i in a .. b { ... }
@@ -500,7 +502,7 @@ private:
     if (!panicking_ && expect(TokenKind::KwIn, "after the loop variable")) {
       range = parseExpression();
     } else {
-      range = std::make_unique<ErrorExpr>(peek().span);
+      range = arena_->make<ErrorExpr>(peek().span);
     }
     if (!panicking_ && check(TokenKind::LeftBrace)) {
       body = parseBlock();
@@ -508,8 +510,8 @@ private:
       errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the loop's body");
       body.span = peek().span;
     }
-    return std::make_unique<ForStmt>(spanFrom(begin), std::move(variable), variableSpan,
-                                     std::move(range), std::move(body));
+    return arena_->make<ForStmt>(spanFrom(begin), std::move(variable), variableSpan,
+                                 std::move(range), std::move(body));
   }
 
   // if cond { ... } [else if ... | else { ... }]
@@ -522,8 +524,8 @@ private:
     if (panicking_ || !check(TokenKind::LeftBrace)) {
       errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' after the condition of 'if'");
       thenBlock.span = peek().span;
-      return std::make_unique<IfStmt>(spanFrom(begin), std::move(condition), std::move(thenBlock),
-                                      std::move(elseBlock), false);
+      return arena_->make<IfStmt>(spanFrom(begin), std::move(condition), std::move(thenBlock),
+                                  std::move(elseBlock), false);
     }
     thenBlock = parseBlock();
     if (match(TokenKind::KwElse)) {
@@ -539,8 +541,8 @@ private:
         elseBlock.span = peek().span;
       }
     }
-    return std::make_unique<IfStmt>(spanFrom(begin), std::move(condition), std::move(thenBlock),
-                                    std::move(elseBlock), hasElse);
+    return arena_->make<IfStmt>(spanFrom(begin), std::move(condition), std::move(thenBlock),
+                                std::move(elseBlock), hasElse);
   }
 
   // ---------------------------------------------------------------- expressions
@@ -549,7 +551,7 @@ private:
     if (depth_ > maximumNestingDepth) {
       error(DiagnosticKind::NestingTooDeep, peek().span,
             fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
-      return std::make_unique<ErrorExpr>(peek().span);
+      return arena_->make<ErrorExpr>(peek().span);
     }
     if (check(TokenKind::KwIf)) {
       return parseIfElse();
@@ -570,13 +572,13 @@ private:
       elseValue = parseExpression();
     }
     if (!thenValue) {
-      thenValue = std::make_unique<ErrorExpr>(peek().span);
+      thenValue = arena_->make<ErrorExpr>(peek().span);
     }
     if (!elseValue) {
-      elseValue = std::make_unique<ErrorExpr>(peek().span);
+      elseValue = arena_->make<ErrorExpr>(peek().span);
     }
-    return std::make_unique<IfElseExpr>(spanFrom(begin), std::move(condition), std::move(thenValue),
-                                        std::move(elseValue));
+    return arena_->make<IfElseExpr>(spanFrom(begin), std::move(condition), std::move(thenValue),
+                                    std::move(elseValue));
   }
 
   ExprPtr parseRange() {
@@ -587,68 +589,84 @@ private:
     advance();
     ExprPtr high = parseOr();
     SourceSpan span = low->span.to(high->span);
-    return std::make_unique<RangeExpr>(span, std::move(low), std::move(high));
+    return arena_->make<RangeExpr>(span, std::move(low), std::move(high));
   }
 
-  template <typename Next>
-  ExprPtr
-  parseLeftAssociative(Next next,
-                       std::initializer_list<std::pair<TokenKind, BinaryOperator>> operators) {
-    ExprPtr left = (this->*next)();
-    // Every operator deepens the (left-leaning) tree that later phases walk
-    // recursively, so a chain is bounded like nesting is.
-    int chainLength = 0;
-    while (!panicking_) {
-      const std::pair<TokenKind, BinaryOperator>* found = nullptr;
-      for (const auto& entry : operators) {
-        if (check(entry.first)) {
-          found = &entry;
+  // Binary operators by precedence level: 0 is '||', then '&&', the
+  // comparisons, '+' and '-', and 4 is '*', '/' and '%'. -1: not one.
+  static int binaryLevel(TokenKind kind, BinaryOperator& op) {
+    switch (kind) {
+    case TokenKind::PipePipe:
+      op = BinaryOperator::Or;
+      return 0;
+    case TokenKind::AmpAmp:
+      op = BinaryOperator::And;
+      return 1;
+    case TokenKind::EqualEqual:
+      op = BinaryOperator::Equal;
+      return 2;
+    case TokenKind::BangEqual:
+      op = BinaryOperator::NotEqual;
+      return 2;
+    case TokenKind::Less:
+      op = BinaryOperator::Less;
+      return 2;
+    case TokenKind::LessEqual:
+      op = BinaryOperator::LessEqual;
+      return 2;
+    case TokenKind::Greater:
+      op = BinaryOperator::Greater;
+      return 2;
+    case TokenKind::GreaterEqual:
+      op = BinaryOperator::GreaterEqual;
+      return 2;
+    case TokenKind::Plus:
+      op = BinaryOperator::Add;
+      return 3;
+    case TokenKind::Minus:
+      op = BinaryOperator::Subtract;
+      return 3;
+    case TokenKind::Star:
+      op = BinaryOperator::Multiply;
+      return 4;
+    case TokenKind::Slash:
+      op = BinaryOperator::Divide;
+      return 4;
+    case TokenKind::Percent:
+      op = BinaryOperator::Remainder;
+      return 4;
+    default:
+      return -1;
+    }
+  }
+  static constexpr int deepestBinaryLevel = 4;
+
+  ExprPtr parseOr() { return parseBinary(0); }
+
+  // The operators of `level` and tighter, each level left associative: the
+  // operand is parsed once, then each level from the tightest out takes the
+  // operators of its own kind, parsing its right operands one level tighter.
+  ExprPtr parseBinary(int level) {
+    ExprPtr left = parseUnary();
+    for (int current = deepestBinaryLevel; current >= level; --current) {
+      // Every operator deepens the (left-leaning) tree that later phases walk
+      // recursively, so a chain is bounded like nesting is.
+      int chainLength = 0;
+      BinaryOperator op{};
+      while (!panicking_ && binaryLevel(peek().kind, op) == current) {
+        if (++chainLength > maximumChainLength) {
+          error(DiagnosticKind::NestingTooDeep, peek().span,
+                fmt::format("more than {} operators in a row; split the expression with 'let'",
+                            maximumChainLength));
+          return left;
         }
+        SourceSpan operatorSpan = advance().span;
+        ExprPtr right = current == deepestBinaryLevel ? parseUnary() : parseBinary(current + 1);
+        SourceSpan span = left->span.to(right->span);
+        left = arena_->make<BinaryExpr>(span, op, operatorSpan, std::move(left), std::move(right));
       }
-      if (found == nullptr) {
-        return left;
-      }
-      if (++chainLength > maximumChainLength) {
-        error(DiagnosticKind::NestingTooDeep, peek().span,
-              fmt::format("more than {} operators in a row; split the expression with 'let'",
-                          maximumChainLength));
-        return left;
-      }
-      SourceSpan operatorSpan = advance().span;
-      ExprPtr right = (this->*next)();
-      SourceSpan span = left->span.to(right->span);
-      left = std::make_unique<BinaryExpr>(span, found->second, operatorSpan, std::move(left),
-                                          std::move(right));
     }
     return left;
-  }
-
-  ExprPtr parseOr() {
-    return parseLeftAssociative(&Parser::parseAnd, {{TokenKind::PipePipe, BinaryOperator::Or}});
-  }
-  ExprPtr parseAnd() {
-    return parseLeftAssociative(&Parser::parseComparison,
-                                {{TokenKind::AmpAmp, BinaryOperator::And}});
-  }
-  ExprPtr parseComparison() {
-    return parseLeftAssociative(&Parser::parseAdditive,
-                                {{TokenKind::EqualEqual, BinaryOperator::Equal},
-                                 {TokenKind::BangEqual, BinaryOperator::NotEqual},
-                                 {TokenKind::Less, BinaryOperator::Less},
-                                 {TokenKind::LessEqual, BinaryOperator::LessEqual},
-                                 {TokenKind::Greater, BinaryOperator::Greater},
-                                 {TokenKind::GreaterEqual, BinaryOperator::GreaterEqual}});
-  }
-  ExprPtr parseAdditive() {
-    return parseLeftAssociative(
-        &Parser::parseMultiplicative,
-        {{TokenKind::Plus, BinaryOperator::Add}, {TokenKind::Minus, BinaryOperator::Subtract}});
-  }
-  ExprPtr parseMultiplicative() {
-    return parseLeftAssociative(&Parser::parseUnary,
-                                {{TokenKind::Star, BinaryOperator::Multiply},
-                                 {TokenKind::Slash, BinaryOperator::Divide},
-                                 {TokenKind::Percent, BinaryOperator::Remainder}});
   }
 
   ExprPtr parseUnary() {
@@ -657,14 +675,14 @@ private:
       if (depth_ > maximumNestingDepth) {
         error(DiagnosticKind::NestingTooDeep, peek().span,
               fmt::format("expression nested more than {} levels deep", maximumNestingDepth));
-        return std::make_unique<ErrorExpr>(peek().span);
+        return arena_->make<ErrorExpr>(peek().span);
       }
       SourceSpan begin = peek().span;
       UnaryOperator op =
           advance().kind == TokenKind::Minus ? UnaryOperator::Negate : UnaryOperator::Not;
       ExprPtr operand = parseUnary();
       SourceSpan span = begin.to(operand->span);
-      return std::make_unique<UnaryExpr>(span, op, std::move(operand));
+      return arena_->make<UnaryExpr>(span, op, std::move(operand));
     }
     return parsePower();
   }
@@ -685,8 +703,8 @@ private:
     SourceSpan operatorSpan = advance().span;
     ExprPtr exponent = parseUnary();
     SourceSpan span = base->span.to(exponent->span);
-    return std::make_unique<BinaryExpr>(span, BinaryOperator::Power, operatorSpan, std::move(base),
-                                        std::move(exponent));
+    return arena_->make<BinaryExpr>(span, BinaryOperator::Power, operatorSpan, std::move(base),
+                                    std::move(exponent));
   }
 
   ExprPtr parsePostfix() {
@@ -697,14 +715,14 @@ private:
         ExprPtr index = parseExpression();
         expectClosing(TokenKind::RightBracket, opening, "to close the index");
         SourceSpan span = spanFrom(expression->span);
-        expression = std::make_unique<IndexExpr>(span, std::move(expression), std::move(index));
+        expression = arena_->make<IndexExpr>(span, std::move(expression), std::move(index));
       } else if (check(TokenKind::Dot)) {
         advance();
         SourceSpan memberSpan;
         std::string member = expectIdentifier("a member name (x, y or z) after '.'", memberSpan);
         SourceSpan span = spanFrom(expression->span);
-        expression = std::make_unique<MemberExpr>(span, std::move(expression), std::move(member),
-                                                  memberSpan);
+        expression =
+            arena_->make<MemberExpr>(span, std::move(expression), std::move(member), memberSpan);
       } else {
         return expression;
       }
@@ -717,14 +735,14 @@ private:
     switch (token.kind) {
     case TokenKind::Number:
       advance();
-      return std::make_unique<NumberExpr>(token.span, token.number, token.unit);
+      return arena_->make<NumberExpr>(token.span, token.number, token.unit);
     case TokenKind::String:
       advance();
-      return std::make_unique<StringExpr>(token.span, std::string(token.text));
+      return arena_->make<StringExpr>(token.span, std::string(token.text));
     case TokenKind::KwTrue:
     case TokenKind::KwFalse:
       advance();
-      return std::make_unique<BoolExpr>(token.span, token.kind == TokenKind::KwTrue);
+      return arena_->make<BoolExpr>(token.span, token.kind == TokenKind::KwTrue);
     case TokenKind::Identifier:
       return parseNameOrCall();
     case TokenKind::LeftParen:
@@ -743,13 +761,13 @@ private:
         token.kind == TokenKind::Percent || token.kind == TokenKind::Equal) {
       advance();
     }
-    return std::make_unique<ErrorExpr>(span);
+    return arena_->make<ErrorExpr>(span);
   }
 
   ExprPtr parseNameOrCall() {
     const Token& name = advance();
     if (!check(TokenKind::LeftParen)) {
-      return std::make_unique<NameExpr>(name.span, std::string(name.text));
+      return arena_->make<NameExpr>(name.span, std::string(name.text));
     }
     SourceSpan opening = advance().span;
     std::vector<Argument> arguments;
@@ -777,8 +795,8 @@ private:
       expectClosing(TokenKind::RightParen, opening,
                     fmt::format("to close the arguments of '{}'", name.text));
     }
-    return std::make_unique<CallExpr>(spanFrom(name.span), std::string(name.text), name.span,
-                                      std::move(arguments));
+    return arena_->make<CallExpr>(spanFrom(name.span), std::string(name.text), name.span,
+                                  std::move(arguments));
   }
 
   // (e) is grouping; (x, y) and (x, y, z) are points.
@@ -802,7 +820,7 @@ private:
             fmt::format("a point has 2 or 3 components (x, y[, z]), this one has {}",
                         components.size()));
     }
-    return std::make_unique<PointExpr>(span, std::move(components));
+    return arena_->make<PointExpr>(span, std::move(components));
   }
 
   ExprPtr parseList() {
@@ -817,10 +835,11 @@ private:
     if (!panicking_) {
       expectClosing(TokenKind::RightBracket, opening, "to close the list");
     }
-    return std::make_unique<ListExpr>(spanFrom(opening), std::move(elements));
+    return arena_->make<ListExpr>(spanFrom(opening), std::move(elements));
   }
 
   std::vector<Token> tokens_;
+  std::shared_ptr<NodeArena> arena_ = std::make_shared<NodeArena>();
   FileId file_;
   DiagnosticEngine& diagnostics_;
   std::size_t position_ = 0;

@@ -18,6 +18,15 @@ namespace cncc::frontend {
 
 struct Declaration;
 
+// The parser places the nodes of one module in one arena (node_arena.h), a
+// few large blocks instead of an allocation per node. The pointers still own
+// their nodes: destroying one runs the node's destructor, and the module's
+// arena frees the memory after its items.
+class NodeArena;
+struct NodeDeleter {
+  template <typename Node> void operator()(Node* node) const { node->~Node(); }
+};
+
 // ----------------------------------------------------------------------------
 // Expressions
 
@@ -68,7 +77,7 @@ struct Expr {
   SourceSpan span;
   Type type; // set by the semantic checker
 };
-using ExprPtr = std::unique_ptr<Expr>;
+using ExprPtr = std::unique_ptr<Expr, NodeDeleter>;
 
 struct NumberExpr : Expr {
   NumberExpr(SourceSpan span, double value, UnitSuffix unit)
@@ -204,7 +213,7 @@ struct Stmt {
   StmtKind kind;
   SourceSpan span;
 };
-using StmtPtr = std::unique_ptr<Stmt>;
+using StmtPtr = std::unique_ptr<Stmt, NodeDeleter>;
 
 struct Block {
   SourceSpan span; // from '{' to '}'
@@ -305,7 +314,7 @@ struct Item {
   ItemKind kind;
   SourceSpan span;
 };
-using ItemPtr = std::unique_ptr<Item>;
+using ItemPtr = std::unique_ptr<Item, NodeDeleter>;
 
 struct ImportItem : Item {
   ImportItem(SourceSpan span, std::string path, SourceSpan pathSpan)
@@ -363,6 +372,7 @@ struct ErrorItem : Item {
 // One parsed file.
 struct Module {
   FileId file;
+  std::shared_ptr<NodeArena> arena; // declared first: it outlives the items
   std::vector<ItemPtr> items;
 };
 

@@ -1,0 +1,61 @@
+// The memory of one module's syntax tree (private to the front end): nodes
+// are placed one after another in large blocks, freed together when the
+// module goes. A file of 50,000 lines has about a million nodes; one
+// allocation each was a good part of the parser's time.
+#pragma once
+
+#include "cncc/frontend/ast.h"
+
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <utility>
+#include <vector>
+
+namespace cncc::frontend {
+
+class NodeArena {
+public:
+  NodeArena() = default;
+  NodeArena(const NodeArena&) = delete;
+  NodeArena& operator=(const NodeArena&) = delete;
+
+  template <typename Node, typename... Arguments>
+  std::unique_ptr<Node, NodeDeleter> make(Arguments&&... arguments) {
+    static_assert(alignof(Node) <= alignment);
+    void* memory = allocate(sizeof(Node));
+    return std::unique_ptr<Node, NodeDeleter>(new (memory)
+                                                  Node(std::forward<Arguments>(arguments)...));
+  }
+
+private:
+  static constexpr std::size_t alignment = alignof(std::max_align_t);
+  static constexpr std::size_t blockSize = 64 * 1024;
+
+  void* allocate(std::size_t size) {
+    size = (size + alignment - 1) / alignment * alignment;
+    if (size > available_) {
+      newBlock(size);
+    }
+    void* memory = next_;
+    next_ += size;
+    available_ -= size;
+    return memory;
+  }
+
+  void newBlock(std::size_t size) {
+    std::size_t bytes = size > blockSize ? size : blockSize;
+    blocks_.push_back(std::make_unique<Storage[]>(bytes / alignment));
+    next_ = reinterpret_cast<std::byte*>(blocks_.back().get());
+    available_ = bytes;
+  }
+
+  struct alignas(alignment) Storage {
+    std::byte bytes[alignment];
+  };
+  std::vector<std::unique_ptr<Storage[]>> blocks_;
+  std::byte* next_ = nullptr;
+  std::size_t available_ = 0;
+};
+
+} // namespace cncc::frontend
