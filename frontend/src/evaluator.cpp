@@ -54,6 +54,33 @@ const Value* Bindings::find(const Declaration* declaration) const {
   return nullptr;
 }
 
+bool Bindings::findNumber(const Declaration* declaration, double& number) const {
+  for (const Bindings* frame = this; frame != nullptr; frame = frame->outer_) {
+    for (std::size_t i = 0; i < frame->numberCount_; ++i) {
+      if (frame->numberDeclarations_[i] == declaration) {
+        number = frame->numbers_[i];
+        return true;
+      }
+    }
+    const Value* value = nullptr;
+    for (const auto& [bound, boundValue] : frame->local_) {
+      if (bound == declaration) {
+        value = &boundValue;
+        break;
+      }
+    }
+    if (value == nullptr && frame->environment_ != nullptr) {
+      auto found = frame->environment_->find(declaration);
+      value = found == frame->environment_->end() ? nullptr : &found->second;
+    }
+    if (value != nullptr) {
+      number = value->number;
+      return value->type.kind == TypeKind::Num;
+    }
+  }
+  return false;
+}
+
 Environment Bindings::flatten() const {
   Environment environment;
   flattenInto(environment);
@@ -452,27 +479,42 @@ Value Evaluator::evaluateFunctionCall(const CallExpr& call, const Declaration& f
 namespace arithmetic {
 
 MathFunction mathFunction(std::string_view name) {
-  struct Entry {
-    std::string_view name;
-    MathFunction function;
-  };
-  static constexpr Entry entries[] = {
-      {"len", MathFunction::Len},   {"atan2", MathFunction::Atan2},
-      {"pow", MathFunction::Pow},   {"min", MathFunction::Min},
-      {"max", MathFunction::Max},   {"sin", MathFunction::Sin},
-      {"cos", MathFunction::Cos},   {"tan", MathFunction::Tan},
-      {"asin", MathFunction::Asin}, {"acos", MathFunction::Acos},
-      {"atan", MathFunction::Atan}, {"sqrt", MathFunction::Sqrt},
-      {"abs", MathFunction::Abs},   {"exp", MathFunction::Exp},
-      {"ln", MathFunction::Ln},     {"floor", MathFunction::Floor},
-      {"ceil", MathFunction::Ceil}, {"round", MathFunction::Round},
-  };
-  for (const Entry& entry : entries) {
-    if (entry.name.size() == name.size() && entry.name[0] == name[0] && entry.name == name) {
-      return entry.function;
+  // By length, then by spelling: a few comparisons per call.
+  switch (name.size()) {
+  case 2:
+    return name == "ln" ? MathFunction::Ln : MathFunction::Other;
+  case 3: {
+    struct Entry {
+      std::string_view name;
+      MathFunction function;
+    };
+    static constexpr Entry entries[] = {
+        {"cos", MathFunction::Cos}, {"sin", MathFunction::Sin}, {"len", MathFunction::Len},
+        {"pow", MathFunction::Pow}, {"min", MathFunction::Min}, {"max", MathFunction::Max},
+        {"tan", MathFunction::Tan}, {"abs", MathFunction::Abs}, {"exp", MathFunction::Exp},
+    };
+    for (const Entry& entry : entries) {
+      if (entry.name[0] == name[0] && entry.name == name) {
+        return entry.function;
+      }
     }
+    return MathFunction::Other;
   }
-  return MathFunction::Other;
+  case 4:
+    return name == "sqrt"   ? MathFunction::Sqrt
+           : name == "atan" ? MathFunction::Atan
+           : name == "asin" ? MathFunction::Asin
+           : name == "acos" ? MathFunction::Acos
+           : name == "ceil" ? MathFunction::Ceil
+                            : MathFunction::Other;
+  case 5:
+    return name == "atan2"   ? MathFunction::Atan2
+           : name == "floor" ? MathFunction::Floor
+           : name == "round" ? MathFunction::Round
+                             : MathFunction::Other;
+  default:
+    return MathFunction::Other;
+  }
 }
 
 double applyUnary(MathFunction function, double x) {

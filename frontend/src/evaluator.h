@@ -28,6 +28,17 @@ public:
   Bindings& operator=(const Bindings&) = delete;
 
   void reserve(std::size_t count) { local_.reserve(count); }
+  // The fast path's fn calls bind numbers without Values (up to
+  // `maximumNumbers`), seen only by findNumber: such a frame is never handed
+  // to the ordinary evaluation.
+  static constexpr std::size_t maximumNumbers = 8;
+  void bindNumber(const Declaration* declaration, double number) {
+    numberDeclarations_[numberCount_] = declaration;
+    numbers_[numberCount_++] = number;
+  }
+  // The innermost binding's number: false when it is not a number (or there
+  // is none).
+  bool findNumber(const Declaration* declaration, double& number) const;
   // Binds in this frame, replacing an earlier binding of the same declaration
   // made here.
   void bind(const Declaration* declaration, Value value);
@@ -40,6 +51,9 @@ private:
   void flattenInto(Environment& environment) const;
 
   std::vector<std::pair<const Declaration*, Value>> local_;
+  std::array<const Declaration*, maximumNumbers> numberDeclarations_;
+  std::array<double, maximumNumbers> numbers_;
+  std::size_t numberCount_ = 0;
   const Bindings* outer_ = nullptr;
   const Environment* environment_ = nullptr;
 };

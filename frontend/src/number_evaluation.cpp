@@ -39,30 +39,29 @@ bool Evaluator::evaluateNumber(const Expr& expression, const Bindings& bindings,
   }
 }
 
+namespace {
+
+bool numberOf(const Value& value, double& result) {
+  result = value.number;
+  return value.type.kind == TypeKind::Num;
+}
+
+} // namespace
+
 bool Evaluator::numberOfName(const NameExpr& name, const Bindings& bindings, double& result) {
   const Declaration* declaration = name.declaration;
   if (declaration == nullptr) {
     return false;
   }
-  const Value* value = nullptr;
-  Value constant;
-  if (declaration->kind == DeclarationKind::Constant) {
-    if (declaration->value) {
-      value = &*declaration->value;
-    } else {
-      constant = constantValue(declaration);
-      value = &constant;
-    }
-  } else if (declaration->kind == DeclarationKind::Builtin) {
-    value = declaration->value ? &*declaration->value : nullptr;
-  } else {
-    value = bindings.find(declaration);
+  switch (declaration->kind) {
+  case DeclarationKind::Constant:
+    return declaration->value ? numberOf(*declaration->value, result)
+                              : numberOf(constantValue(declaration), result);
+  case DeclarationKind::Builtin:
+    return declaration->value && numberOf(*declaration->value, result);
+  default:
+    return bindings.findNumber(declaration, result);
   }
-  if (value == nullptr || value->type.kind != TypeKind::Num) {
-    return false;
-  }
-  result = value->number;
-  return true;
 }
 
 bool Evaluator::numberOfBinary(const BinaryExpr& binary, const Bindings& bindings, double& result) {
@@ -157,23 +156,21 @@ bool Evaluator::numberOfFunctionCall(const CallExpr& call, const Declaration& fu
   }
   const std::vector<Parameter>& parameters = function.function->parameters;
   std::size_t count = parameters.size();
-  constexpr std::size_t inlineCount = 8;
-  if (count > inlineCount || callStack_.size() > 64) {
+  if (count > Bindings::maximumNumbers || callStack_.size() > 64) {
     return false;
   }
-  std::array<const Expr*, inlineCount> arguments{};
+  std::array<const Expr*, Bindings::maximumNumbers> arguments{};
   bindArguments(
       call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
       arguments.data());
   Bindings inner;
-  inner.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     double argument = 0;
     if (arguments[i] == nullptr || parameters[i].declaration == nullptr ||
         !evaluateNumber(*arguments[i], bindings, argument)) {
       return false;
     }
-    inner.bind(parameters[i].declaration, Value::ofNumber(argument));
+    inner.bindNumber(parameters[i].declaration, argument);
   }
   callStack_.push_back(call.span);
   bool evaluated = evaluateNumber(*function.function->body, inner, result);
