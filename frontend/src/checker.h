@@ -118,7 +118,7 @@ private:
   static std::optional<Type> binaryResultType(BinaryOperator op, Type left, Type right);
 
   SemaContext& context_;
-  std::map<const Declaration*, ItemState> states_;
+  std::unordered_map<const Declaration*, ItemState> states_;
   // Each fn's parameters as bindArguments takes them, built on its first call.
   std::unordered_map<const FnItem*, std::vector<ParameterSpec>> functionParameters_;
 };

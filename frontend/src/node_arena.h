@@ -45,7 +45,8 @@ private:
 
   void newBlock(std::size_t size) {
     std::size_t bytes = size > blockSize ? size : blockSize;
-    blocks_.push_back(std::make_unique<Storage[]>(bytes / alignment));
+    // Not zeroed: every node is constructed in place.
+    blocks_.push_back(std::unique_ptr<Storage[]>(new Storage[bytes / alignment]));
     next_ = reinterpret_cast<std::byte*>(blocks_.back().get());
     available_ = bytes;
   }

@@ -771,6 +771,7 @@ private:
     }
     SourceSpan opening = advance().span;
     std::vector<Argument> arguments;
+    arguments.reserve(4); // most calls: one allocation
     bool sawNamed = false;
     while (!check(TokenKind::RightParen) && !check(TokenKind::EndOfFile) && !panicking_) {
       Argument argument;
@@ -803,6 +804,7 @@ private:
   ExprPtr parseParenthesisOrPoint() {
     SourceSpan opening = advance().span;
     std::vector<ExprPtr> components;
+    components.reserve(3);
     components.push_back(parseExpression());
     while (!panicking_ && match(TokenKind::Comma)) {
       components.push_back(parseExpression());

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace cncc::frontend {
@@ -41,13 +42,13 @@ struct SemaContext {
   Scope builtinScope;
   std::map<const Module*, Scope> fileScopes;
   // Functions that must not be evaluated (recursive, or broken).
-  std::set<const Declaration*> invalidFunctions;
+  std::unordered_set<const Declaration*> invalidFunctions;
   // Declarations whose name was used somewhere (for unused-let).
-  std::set<const Declaration*> usedDeclarations;
+  std::unordered_set<const Declaration*> usedDeclarations;
   // The constant or function item behind a declaration, and the file scope
   // it is checked in.
-  std::map<const Declaration*, const Item*> itemOf;
-  std::map<const Declaration*, const Scope*> itemScope;
+  std::unordered_map<const Declaration*, const Item*> itemOf;
+  std::unordered_map<const Declaration*, const Scope*> itemScope;
 
   Declaration& declare(DeclarationKind kind, std::string name, SourceSpan span, Type type);
   void reference(SourceSpan span, const Declaration* declaration, bool isDefinition);
