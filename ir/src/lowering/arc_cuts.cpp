@@ -45,6 +45,11 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
       continue;
     }
     std::set<std::string> parameters = parametersOf(*expression);
+    for (const std::string& name : parameters) {
+      if (isLoopVariableMarker(name)) {
+        throw NeedsUnrolling{}; // unrolled, each copy's arcs are fitted
+      }
+    }
     if (!parameters.empty()) {
       return fmt::format("its {} depends on parameter '{}'", what, *parameters.begin());
     }
@@ -63,8 +68,8 @@ bool PartLowering::lowerArcCut(const CutStmt& cut) {
     problem = geom::findArcFittingProblem(*curve.geometry);
   }
   if (problem) {
-    diagnostics_.report(DiagnosticKind::ArcsAsChords, cut.span,
-                        fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
+    diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
+                         fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
     return false;
   }
   if (!safe_) {

@@ -151,15 +151,6 @@ geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span) {
   return span;
 }
 
-double linearNorm(const Affine& transform) {
-  // The largest singular value of the 2x2 map (the z scale counts too).
-  Eigen::Matrix2d gram = transform.linear.transpose() * transform.linear;
-  double trace = gram.trace();
-  double determinant = gram(0, 0) * gram(1, 1) - gram(0, 1) * gram(1, 0);
-  double largest = trace / 2 + std::sqrt(std::max(0.0, trace * trace / 4 - determinant));
-  return std::max(std::sqrt(largest), std::abs(transform.zScale));
-}
-
 // constant + sum of coefficient * value: the bounds of a NURBS span, kept
 // in this form so that the controller computes each as one flat sum.
 struct LinearForm {
@@ -220,6 +211,10 @@ struct ControllerSegment {
   int steps = 0;
   std::optional<Scalar> stepCount;
   bool isNurbs = false;
+  // A line, arc, polar or param piece that depends on controller values:
+  // evaluated from its symbolic form over start .. end.
+  const SymbolicPiece* symbolic = nullptr;
+  Scalar start, end;
   // A NURBS span whose control points depend on parameters, split as
   //   W(u) = reference + Wc(u) + sum_d (w_d - reference) N_d(u),
   //   X(u) = Xc(u) + sum_d w_d x_d N_d(u)   (likewise y, z),
@@ -279,18 +274,20 @@ PartLowering::symbolicList(const Expr& expression) {
 }
 
 bool PartLowering::lowerControllerCut(const CutStmt& cut) {
-  if (!options_.controllerLoops || modifierValue(cut, "samples") != nullptr ||
-      modifierValue(cut, "spacing") != nullptr) {
+  if (!options_.controllerLoops || modifierValue(cut, "spacing") != nullptr) {
     return false;
   }
-  if (rampEntry(cut)) {
-    return false;
-  }
+  bool ramp = rampEntry(cut);
   if (!safe_) {
     fail(cut.span, "this cut has no safe height; write 'safe z=Z' before it",
          DiagnosticKind::NoSafeHeight);
   }
-  double tolerance = *chordTolerance(cut);
+  // samples=N: N - 1 equal steps of the parameter, whatever the tolerance.
+  std::optional<int> uniformSteps;
+  if (modifierValue(cut, "samples") != nullptr) {
+    uniformSteps = static_cast<int>(sampleCount(cut)) - 1;
+  }
+  double tolerance = uniformSteps ? std::numeric_limits<double>::quiet_NaN() : *chordTolerance(cut);
   CutCurve curve = cutCurve(cut);
   bool planar = true;
   for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
@@ -299,17 +296,42 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
   }
   double rounding = options_.coordinateIncrement / 2 * std::sqrt(planar ? 2.0 : 3.0);
   double budget = tolerance - rounding;
-  if (!(budget > 0)) {
+  if (!uniformSteps && !(budget > 0)) {
     fail(modifierValue(cut, "tolerance") ? modifierValue(cut, "tolerance")->span : cut.span,
          fmt::format("tolerance={:g} is not larger than the controller's rounding of the "
                      "coordinates ({:.6g}, half its increment {:g} on each axis)",
                      tolerance, rounding, options_.coordinateIncrement),
          DiagnosticKind::InvalidTolerance);
   }
+  if (ramp) {
+    geom::ParameterRange domain = curve.geometry->domain();
+    if (!((curve.geometry->point(domain.t0) - curve.geometry->point(domain.t1)).norm() <= 1e-6)) {
+      unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
+    }
+  }
+  // The pieces as the controller computes them; without them (a curve
+  // built in a way the walk does not follow) the pieces are planned at the
+  // defaults and what they read is fixed.
+  std::optional<std::vector<SymbolicPiece>> symbolic = symbolicPieces(*cut.curve);
+  if (symbolic && !symbolicPiecesUsable(*symbolic, curve, cut)) {
+    symbolic.reset();
+  }
+  if (!symbolic && !parametersOf(*cut.curve).empty()) {
+    return false; // the tables, with what the curve reads fixed
+  }
   std::optional<std::vector<ControllerSegment>> planned =
-      planControllerSegments(curve, cut, budget);
+      planControllerSegments(curve, cut, budget, symbolic ? &*symbolic : nullptr, uniformSteps);
   if (!planned) {
     return false;
+  }
+  if (ramp && planned->size() > 1) {
+    // The shares of the descent are lengths at the defaults: with pieces
+    // that change with parameters, they would not match the pieces cut.
+    for (const ControllerSegment& segment : *planned) {
+      if (segment.symbolic != nullptr || segment.split) {
+        return false;
+      }
+    }
   }
   checkMethod(cut);
   Scalar feed = cutFeed(cut);
@@ -326,7 +348,12 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
 
   const ControllerSegment& first = planned->front();
   const ControllerSegment& last = planned->back();
-  auto endPoint = [&](const ControllerSegment& segment, double local) {
+  auto endPoint = [&](const ControllerSegment& segment, bool atEnd) {
+    if (segment.symbolic != nullptr) {
+      return symbolicPointAt(*segment.symbolic, *curve.pieces[segment.piece].value,
+                             atEnd ? segment.end : segment.start);
+    }
+    double local = atEnd ? segment.to : segment.from;
     if (segment.split) {
       return splitSpanPoint(segment, Scalar::of(local));
     }
@@ -339,6 +366,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
   const Expr* stepExpression = modifierValue(cut, "step");
   bool sweep = depthExpression != nullptr || stepExpression != nullptr;
   Scalar z = Scalar::of(0);
+  Scalar previousZ = Scalar::of(0); // where a ramp starts: the pass above
   if (sweep) {
     // The sweep itself is computed on the controller.
     checkingDefaults_ = true;
@@ -351,25 +379,39 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
         Opcode::Round,
         arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step), Scalar::of(passCountOffset)));
     ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(passes));
-    // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one
-    // expression where the controller has no min.
-    Scalar reached = arithmetic_.multiply(Scalar::of(k, ValueType::F64), step);
-    Scalar gap = arithmetic_.unary(Opcode::Abs, arithmetic_.binary(Opcode::Sub, reached, depth));
-    z = arithmetic_.multiply(
-        Scalar::of(0.5),
-        arithmetic_.binary(Opcode::Sub, arithmetic_.binary(Opcode::Sub, gap, reached), depth));
+    z = passDepth(Scalar::of(k, ValueType::F64), step, depth);
+    if (ramp) {
+      previousZ =
+          passDepth(arithmetic_.binary(Opcode::Sub, Scalar::of(k, ValueType::F64), Scalar::of(1)),
+                    step, depth);
+    }
   } else {
     builder_.comment("cut");
   }
-  CurvePoint start = endPoint(first, first.from);
+  CurvePoint start = endPoint(first, false);
   ValueId startX = arithmetic_.value(start.x);
   ValueId startY = arithmetic_.value(start.y);
   builder_.rapid(startX, startY, safeValue);
-  builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(z, start.z)), feedValue);
-  for (const ControllerSegment& segment : *planned) {
-    emitControllerSegment(curve, segment, z, feedValue, cut);
+  builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
+                feedValue);
+  if (ramp) {
+    // One lap descending from the pass above (see RampSegment).
+    builder_.comment("ramp");
+    std::vector<RampSegment> shares = rampSegments(curve, cut);
+    for (const ControllerSegment& segment : *planned) {
+      RampLap lap{previousZ, z, {}};
+      for (const RampSegment& share : shares) {
+        if (share.piece == segment.piece && share.span == segment.span) {
+          lap.segment = share;
+        }
+      }
+      emitControllerSegment(curve, segment, z, feedValue, cut, &lap);
+    }
   }
-  CurvePoint finish = endPoint(last, last.to);
+  for (const ControllerSegment& segment : *planned) {
+    emitControllerSegment(curve, segment, z, feedValue, cut, nullptr);
+  }
+  CurvePoint finish = endPoint(last, true);
   builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
   if (sweep) {
     builder_.endLoop();
@@ -377,8 +419,50 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
   return true;
 }
 
+// z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one
+// expression where the controller has no min.
+Scalar PartLowering::passDepth(Scalar pass, Scalar step, Scalar depth) {
+  Scalar reached = arithmetic_.multiply(pass, step);
+  Scalar gap = arithmetic_.unary(Opcode::Abs, arithmetic_.binary(Opcode::Sub, reached, depth));
+  return arithmetic_.multiply(
+      Scalar::of(0.5),
+      arithmetic_.binary(Opcode::Sub, arithmetic_.binary(Opcode::Sub, gap, reached), depth));
+}
+
+Scalar PartLowering::stepsOf(const ControllerSegment& segment) {
+  return segment.steps > 0 ? Scalar::of(segment.steps) : *segment.stepCount;
+}
+
+// Every piece found, in the compile-time curve's order, and each dependent
+// one of a kind the controller can step through: a line, an arc, a polar or
+// param curve, or the only piece being a NURBS (its control points are
+// then treated by planSplitSpan).
+bool PartLowering::symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces,
+                                        const CutCurve& curve, const CutStmt& cut) {
+  if (pieces.size() != curve.pieces.size()) {
+    return false;
+  }
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    CurveKind kind = curve.pieces[p].value->kind;
+    const std::string& callee = pieces[p].call->callee;
+    bool nurbs = callee == "nurbs" || callee == "bspline" || callee == "bezier";
+    bool same = nurbs ? kind == CurveKind::Nurbs : callee == curve.pieces[p].value->constructor;
+    if (!same) {
+      return false;
+    }
+    if (nurbs && pieces[p].dependent &&
+        !(pieces.size() == 1 && pieces[p].call == cut.curve.get() &&
+          pieces[p].transform.isConstant() && curve.pieces[p].transform.isIdentity())) {
+      return false;
+    }
+  }
+  return true;
+}
+
 std::optional<std::vector<ControllerSegment>>
-PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, double budget) {
+PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, double budget,
+                                     const std::vector<SymbolicPiece>* symbolic,
+                                     std::optional<int> uniformSteps) {
   std::vector<ControllerSegment> segments;
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
     int steps = 0;
@@ -400,6 +484,10 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     }
     return steps;
   };
+  if (uniformSteps &&
+      (curve.pieces.size() != 1 || curve.pieces.front().value->kind == CurveKind::Nurbs)) {
+    return std::nullopt; // samples= over several pieces: the tables
+  }
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
     const CurvePiece& piece = curve.pieces[p];
     const CurveValue& value = *piece.value;
@@ -418,42 +506,33 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     geom::ParameterRange domain = piece.geometry->domain();
     segment.from = domain.t0;
     segment.to = domain.t1;
-    if (value.kind == CurveKind::Line) {
-      segment.steps = 1;
-    } else if (value.kind == CurveKind::Polar || value.kind == CurveKind::Param) {
-      // Parameter-dependent when the lowered point uses a parameter.
-      Scalar probe = Scalar::of(builder_.constant(domain.t0), ValueType::F64);
-      CurvePoint point = untransformedPointAt(piece, 0, probe, cut);
-      std::set<std::uint32_t> seen;
-      std::function<bool(ValueId)> usesParameter = [&](ValueId id) {
-        if (!id.valid() || !seen.insert(id.index).second) {
-          return false;
-        }
-        const Instruction& instruction = builder_.function().definition(id);
-        if (instruction.opcode == Opcode::Param) {
-          return true;
-        }
-        return std::any_of(instruction.operands.begin(), instruction.operands.end(), usesParameter);
-      };
-      bool dependent = usesParameter(point.x.value) || usesParameter(point.y.value) ||
-                       usesParameter(point.z.value);
-      if (dependent) {
-        if (value.kind != CurveKind::Polar) {
-          return std::nullopt;
-        }
-        segment.stepCount = polarStepCount(piece, budget, cut);
+    if (symbolic != nullptr && (*symbolic)[p].dependent) {
+      segment.symbolic = &(*symbolic)[p];
+      std::tie(segment.start, segment.end) = symbolicRange(*segment.symbolic);
+      if (uniformSteps) {
+        segment.steps = *uniformSteps;
+      } else {
+        segment.stepCount = symbolicStepCount(*segment.symbolic, value, budget);
         if (!segment.stepCount) {
           return std::nullopt;
         }
+        if (segment.stepCount->isConstant()) {
+          segment.steps = static_cast<int>(segment.stepCount->constant);
+          segment.stepCount.reset();
+        }
       }
+    } else if (value.kind == CurveKind::Line) {
+      segment.steps = 1;
+    } else if (uniformSteps) {
+      segment.steps = *uniformSteps;
     }
     segments.push_back(segment);
   }
   // Constant pieces: the fewest uniform steps, measured on the true curve.
   std::optional<SymbolicList> weights, points;
-  bool symbolic = curve.pieces.size() == 1 && curve.pieces.front().transform.isIdentity() &&
-                  curve.pieces.front().value->kind == CurveKind::Nurbs;
-  if (symbolic) {
+  bool splittable = curve.pieces.size() == 1 && curve.pieces.front().transform.isIdentity() &&
+                    curve.pieces.front().value->kind == CurveKind::Nurbs;
+  if (splittable) {
     if (const Expr* expression = curveArgument(cut, "weights")) {
       weights = symbolicList(*expression);
     }
@@ -471,7 +550,7 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       segment.steps = constantSteps(*moved, segment.from, segment.to);
       continue;
     }
-    if (symbolic) {
+    if (splittable) {
       planSplitSpan(piece, weights ? &*weights : nullptr, points ? &*points : nullptr, segment,
                     budget);
       if (segment.split) {
@@ -485,110 +564,6 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     segment.steps = constantSteps(moved, span.t0, span.t1);
   }
   return segments;
-}
-
-// A polar curve r(t) whose r is affine in t with parameter-dependent
-// coefficients (the Archimedean spiral r = a + b t). For C = r (cos t,
-// sin t): C'' = (r'' - r)(cos t, sin t) + 2 r' (-sin t, cos t), so
-// |C''|^2 = (r'' - r)^2 + 4 r'^2 = r^2 + 4 r'^2 when r'' = 0. |r| is convex
-// and r' constant, so over [t0, t1]
-//   |C''|^2 <= max(r(t0)^2, r(t1)^2) + 4 r'^2 <= r(t0)^2 + r(t1)^2 + 4 r'^2,
-// the bound the controller computes (the sum instead of the larger term
-// saves a comparison and costs at most a factor sqrt(2) in |C''|). An r
-// that is not affine in t returns an invalid scalar.
-std::optional<Scalar> PartLowering::polarStepCount(const CurvePiece& piece, double budget,
-                                                   const CutStmt& cut) {
-  const CurveValue& curve = *piece.value;
-  ValueId probe = builder_.constant(std::numeric_limits<double>::quiet_NaN());
-  auto lowerAt = [&](Scalar t) {
-    Bindings bindings = bindings_;
-    bindings[curve.parameter] = {TypeKind::Num, {t}};
-    std::optional<Lowered> value = tryLower(*curve.radius, bindings, curve.environment);
-    if (!value || value->kind != TypeKind::Num) {
-      unsupported(curve.radius->span, "this curve expression");
-    }
-    return value->values.front();
-  };
-  Scalar radius = lowerAt(Scalar::of(probe, ValueType::F64));
-  // d r / d t over the IR, or nullopt when r is not affine in t.
-  std::map<std::uint32_t, std::optional<Scalar>> derivatives;
-  std::function<std::optional<Scalar>(Scalar)> derivative =
-      [&](Scalar value) -> std::optional<Scalar> {
-    if (value.isConstant()) {
-      return Scalar::of(0);
-    }
-    if (value.value == probe) {
-      return Scalar::of(1);
-    }
-    if (auto found = derivatives.find(value.value.index); found != derivatives.end()) {
-      return found->second;
-    }
-    // A copy: the arithmetic below appends instructions.
-    Instruction instruction = builder_.function().definition(value.value);
-    std::vector<std::optional<Scalar>> operands;
-    for (ValueId operand : instruction.operands) {
-      operands.push_back(derivative(Scalar::of(operand, ValueType::F64)));
-      if (!operands.back()) {
-        return derivatives[value.value.index] = std::nullopt;
-      }
-    }
-    auto isZero = [](const std::optional<Scalar>& scalar) {
-      return scalar->isConstant() && scalar->constant == 0;
-    };
-    bool free = std::all_of(operands.begin(), operands.end(), isZero);
-    std::optional<Scalar> result;
-    if (free) {
-      result = Scalar::of(0);
-    } else {
-      auto operand = [&](std::size_t i) {
-        return Scalar::of(instruction.operands[i], ValueType::F64);
-      };
-      switch (instruction.opcode) {
-      case Opcode::Add:
-        result = arithmetic_.add(*operands[0], *operands[1]);
-        break;
-      case Opcode::Sub:
-        result = arithmetic_.binary(Opcode::Sub, *operands[0], *operands[1]);
-        break;
-      case Opcode::Neg:
-        result = arithmetic_.unary(Opcode::Neg, *operands[0]);
-        break;
-      case Opcode::Mul:
-        if (isZero(operands[0])) {
-          result = arithmetic_.multiply(operand(0), *operands[1]);
-        } else if (isZero(operands[1])) {
-          result = arithmetic_.multiply(*operands[0], operand(1));
-        }
-        break;
-      case Opcode::Div:
-        if (isZero(operands[1])) {
-          result = arithmetic_.binary(Opcode::Div, *operands[0], operand(1));
-        }
-        break;
-      default:
-        break;
-      }
-    }
-    return derivatives[value.value.index] = result;
-  };
-  std::optional<Scalar> slope = derivative(radius);
-  if (!slope) {
-    return std::nullopt;
-  }
-  (void)cut;
-  geom::ParameterRange domain = piece.geometry->domain();
-  Scalar r0 = lowerAt(Scalar::of(domain.t0));
-  Scalar r1 = lowerAt(Scalar::of(domain.t1));
-  auto square = [&](Scalar value) { return arithmetic_.multiply(value, value); };
-  Scalar sum = arithmetic_.add(arithmetic_.add(square(r0), square(r1)),
-                               arithmetic_.multiply(Scalar::of(4), square(*slope)));
-  double scale = linearNorm(piece.transform);
-  Scalar bound = arithmetic_.multiply(Scalar::of(scale), arithmetic_.unary(Opcode::Sqrt, sum));
-  // N >= (t1 - t0) sqrt(M / (8 budget)).
-  Scalar steps = arithmetic_.multiply(
-      Scalar::of(domain.length()),
-      arithmetic_.unary(Opcode::Sqrt, arithmetic_.multiply(bound, Scalar::of(1 / (8 * budget)))));
-  return arithmetic_.unary(Opcode::Round, arithmetic_.add(steps, Scalar::of(roundUpOffset)));
 }
 
 Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
@@ -862,36 +837,56 @@ CurvePoint PartLowering::splitSpanPoint(const ControllerSegment& segment, Scalar
 }
 
 void PartLowering::emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment,
-                                         Scalar z, ValueId feed, const CutStmt& cut) {
+                                         Scalar z, ValueId feed, const CutStmt& cut,
+                                         const RampLap* ramp) {
   const CurvePiece& piece = curve.pieces[segment.piece];
-  auto move = [&](const CurvePoint& point) {
+  ValueId count = arithmetic_.value(stepsOf(segment));
+  auto move = [&](const CurvePoint& point, Scalar index) {
+    Scalar height = z;
+    if (ramp != nullptr) {
+      // z = from + (to - from) (before + share index / steps).
+      Scalar share = arithmetic_.add(
+          Scalar::of(ramp->segment.before),
+          times(Scalar::of(ramp->segment.share),
+                arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))));
+      height = arithmetic_.add(ramp->from,
+                               times(arithmetic_.binary(Opcode::Sub, ramp->to, ramp->from), share));
+    }
     builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
-                  arithmetic_.value(arithmetic_.add(z, point.z)), feed);
+                  arithmetic_.value(arithmetic_.add(height, point.z)), feed);
   };
   if (segment.steps == 1) {
-    move(segment.split ? splitSpanPoint(segment, Scalar::of(segment.to))
-                       : pointAt(curve, segment.piece, segment.span, Scalar::of(segment.to), cut));
+    Scalar end = Scalar::of(segment.to);
+    move(segment.symbolic ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
+         : segment.split  ? splitSpanPoint(segment, end)
+                          : pointAt(curve, segment.piece, segment.span, end, cut),
+         Scalar::of(1));
     return;
   }
-  ValueId count =
-      segment.steps > 0 ? builder_.constant(segment.steps) : arithmetic_.value(*segment.stepCount);
   ValueId i = builder_.beginLoop(builder_.constant(1), count);
   Scalar index = Scalar::of(i, ValueType::F64);
-  if (segment.isNurbs && !segment.split) {
+  if (segment.symbolic != nullptr) {
+    Scalar step = arithmetic_.binary(
+        Opcode::Div, arithmetic_.binary(Opcode::Sub, segment.end, segment.start),
+        segment.steps > 0 ? Scalar::of(segment.steps) : Scalar::of(count, ValueType::F64));
+    Scalar t = arithmetic_.add(segment.start, arithmetic_.multiply(index, step));
+    move(symbolicPointAt(*segment.symbolic, *piece.value, t), index);
+  } else if (segment.isNurbs && !segment.split) {
     // u = i / steps, written as a product the printer can step by.
     geom::PolynomialSpan span = cleanedSpan(piece.spans[segment.span]);
     Scalar u = arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps));
-    move(transformed(piece.transform, spanPointAt(span, u)));
+    move(transformed(piece.transform, spanPointAt(span, u)), index);
   } else if (segment.split) {
     move(splitSpanPoint(segment,
-                        arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))));
+                        arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))),
+         index);
   } else {
     Scalar step = segment.steps > 0
                       ? Scalar::of((segment.to - segment.from) / segment.steps)
                       : arithmetic_.binary(Opcode::Div, Scalar::of(segment.to - segment.from),
                                            Scalar::of(count, ValueType::F64));
     Scalar t = arithmetic_.add(Scalar::of(segment.from), arithmetic_.multiply(index, step));
-    move(pointAt(curve, segment.piece, segment.span, t, cut));
+    move(pointAt(curve, segment.piece, segment.span, t, cut), index);
   }
   builder_.endLoop();
 }

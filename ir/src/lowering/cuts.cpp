@@ -26,7 +26,7 @@ struct SampleRun {
   std::size_t piece = 0;
   std::size_t span = 0;
   std::vector<double> locals;
-  // The share of the cut's chord length done at each sample (entry=ramp).
+  // The share of the descent done at each sample (entry=ramp).
   std::vector<double> progress;
   std::uint32_t localTable = 0;
   std::uint32_t progressTable = 0;
@@ -77,10 +77,10 @@ void PartLowering::checkMethod(const CutStmt& cut) {
   }
   // The IR has no spline moves yet: a spline target gets the same chords.
   if (!options_.splineInterpolation) {
-    diagnostics_.report(DiagnosticKind::SplineAsChords, method->span(),
-                        fmt::format("this target has no spline interpolation: method={} is cut "
-                                    "as straight feed moves within the cut's tolerance",
-                                    word));
+    diagnostics_->report(DiagnosticKind::SplineAsChords, method->span(),
+                         fmt::format("this target has no spline interpolation: method={} is cut "
+                                     "as straight feed moves within the cut's tolerance",
+                                     word));
   }
 }
 
@@ -115,17 +115,22 @@ std::optional<double> PartLowering::chordTolerance(const CutStmt& cut) {
                                : constantNumber(*expression, "this tolerance");
 }
 
+std::size_t PartLowering::sampleCount(const CutStmt& cut) {
+  const Expr* expression = modifierValue(cut, "samples");
+  double samples = constantNumber(*expression, "samples=");
+  if (!(samples >= 2 && samples <= maximumPointsPerCut) || samples != std::floor(samples)) {
+    fail(expression->span,
+         fmt::format("samples={:g} is not a whole number from 2 to {:g}", samples,
+                     maximumPointsPerCut),
+         DiagnosticKind::InvalidSamples);
+  }
+  return static_cast<std::size_t>(samples);
+}
+
 geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curve& curve) {
   try {
-    if (const Expr* expression = modifierValue(cut, "samples")) {
-      double samples = constantNumber(*expression, "samples=");
-      if (!(samples >= 2 && samples <= maximumPointsPerCut) || samples != std::floor(samples)) {
-        fail(expression->span,
-             fmt::format("samples={:g} is not a whole number from 2 to {:g}", samples,
-                         maximumPointsPerCut),
-             DiagnosticKind::InvalidSamples);
-      }
-      return geom::sampleUniformParameter(curve, static_cast<std::size_t>(samples));
+    if (modifierValue(cut, "samples") != nullptr) {
+      return geom::sampleUniformParameter(curve, sampleCount(cut));
     }
     if (const Expr* expression = modifierValue(cut, "spacing")) {
       double spacing = constantNumber(*expression, "spacing=");
@@ -174,6 +179,55 @@ std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
   }
 }
 
+std::vector<RampSegment> PartLowering::rampSegments(const CutCurve& curve, const CutStmt& cut) {
+  std::vector<RampSegment> segments;
+  std::vector<double> lengths;
+  double total = 0;
+  bool single = curve.pieces.size() == 1;
+  try {
+    for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+      const CurvePiece& piece = curve.pieces[p];
+      geom::ParameterRange domain = piece.geometry->domain();
+      // The piece's own parameter, and where it lies in the whole curve's.
+      auto global = [&](double own) {
+        return single ? own : curve.pieceStarts[p] + (own - domain.t0);
+      };
+      std::size_t spans = std::max<std::size_t>(piece.spans.size(), 1);
+      for (std::size_t s = 0; s < spans; ++s) {
+        double from = piece.spans.empty() ? domain.t0 : piece.spans[s].t0;
+        double to = piece.spans.empty() ? domain.t1 : piece.spans[s].t1;
+        segments.push_back({p, s, total, 0});
+        lengths.push_back(geom::arcLength(*curve.geometry, global(from), global(to)));
+        total += lengths.back();
+      }
+    }
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot measure this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
+  }
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    segments[i].before = total > 0 ? segments[i].before / total : 0;
+    segments[i].share = total > 0 ? lengths[i] / total : 1.0 / segments.size();
+  }
+  return segments;
+}
+
+double PartLowering::rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,
+                                  const SampleLocation& location) {
+  const CurvePiece& piece = curve.pieces[location.piece];
+  double fraction = location.local; // a NURBS span's u
+  if (piece.spans.empty()) {
+    geom::ParameterRange domain = piece.geometry->domain();
+    fraction = (location.local - domain.t0) / domain.length();
+  }
+  for (const RampSegment& segment : segments) {
+    if (segment.piece == location.piece && segment.span == location.span) {
+      return std::min(1.0, segment.before + segment.share * fraction);
+    }
+  }
+  return 1.0;
+}
+
 void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerNurbsCut(cut)) {
     return;
@@ -182,7 +236,6 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     return;
   }
   if (lowerControllerCut(cut)) {
-    fixControllerCurveParameters(*cut.curve);
     return;
   }
   // The curve's points are chosen at its defaults, whatever IR evaluates it.
@@ -224,20 +277,18 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   builder_.cutBegin(index);
 
   // The runs of samples after the first (the start, reached by the plunge).
-  double totalLength = 0;
-  for (std::size_t i = 1; i < samples.points.size(); ++i) {
-    totalLength += (samples.points[i] - samples.points[i - 1]).norm();
+  std::vector<RampSegment> rampShares;
+  if (ramp) {
+    rampShares = rampSegments(curve, cut);
   }
   std::vector<SampleRun> runs;
-  double done = 0;
   for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
     SampleLocation location = locate(curve, samples.parameters[i]);
     if (runs.empty() || runs.back().piece != location.piece || runs.back().span != location.span) {
       runs.push_back({location.piece, location.span, {}, {}, 0, 0});
     }
-    done += (samples.points[i] - samples.points[i - 1]).norm();
     runs.back().locals.push_back(location.local);
-    runs.back().progress.push_back(totalLength > 0 ? done / totalLength : 1.0);
+    runs.back().progress.push_back(ramp ? rampProgress(rampShares, curve, location) : 1.0);
   }
   for (SampleRun& run : runs) {
     run.localTable = builder_.addTable(run.locals);

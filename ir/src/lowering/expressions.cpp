@@ -28,7 +28,8 @@ const std::map<std::string, Opcode, std::less<>>& binaryMath() {
   return table;
 }
 
-// Whether the expression names a bound declaration anywhere inside.
+} // namespace
+
 bool dependsOn(const Expr& expression, const Bindings& bindings) {
   auto any = [&](const auto& children) {
     for (const auto& child : children) {
@@ -77,8 +78,6 @@ bool dependsOn(const Expr& expression, const Bindings& bindings) {
     return false;
   }
 }
-
-} // namespace
 
 Value RenewingEvaluator::evaluate(const Expr& expression, const Environment& environment) {
   if (!evaluator_ || ++evaluations_ > evaluationsPerEvaluator) {

@@ -79,6 +79,9 @@ void PartLowering::fixParameters(const Expr& expression, SourceSpan use, std::st
     return;
   }
   for (const std::string& name : parametersOf(expression)) {
+    if (isLoopVariableMarker(name)) {
+      throw NeedsUnrolling{};
+    }
     bool known = false;
     for (const FixedParameter& fixed : fixedParameters_) {
       known = known || fixed.name == name;
@@ -94,51 +97,11 @@ void PartLowering::fixParameters(const Expr& expression, SourceSpan use, std::st
       }
     }
     if (options_.controllerLoops) {
-      diagnostics_.report(DiagnosticKind::ParameterFixed, use,
-                          fmt::format("'{}' is fixed at its value {:g} in this program: the "
-                                      "controller cannot recompute {}; the program raises "
-                                      "an alarm if it is changed",
-                                      name, value, what));
-    }
-  }
-}
-
-// What the controller-side lowering of a curve takes from the compiler: the
-// offsets, angles and factors of the transforms around it, the arguments of
-// a fn that makes it (its body is evaluated with them as numbers) and the
-// parameter range of a builtin curve.
-void PartLowering::fixControllerCurveParameters(const Expr& curve) {
-  if (curve.kind == ExprKind::Name) {
-    const Declaration* declaration = as<NameExpr>(curve).declaration;
-    auto found = letValues_.find(declaration);
-    auto value = environment_.find(declaration);
-    if (found != letValues_.end() && value != environment_.end() &&
-        value->second.type.kind == TypeKind::Curve) {
-      fixControllerCurveParameters(*found->second);
-    }
-    return;
-  }
-  if (curve.kind != ExprKind::Call) {
-    return;
-  }
-  const auto& call = as<CallExpr>(curve);
-  bool userFunction = call.declaration != nullptr &&
-                      call.declaration->kind == DeclarationKind::Function &&
-                      call.declaration->function != nullptr;
-  bool transform = call.callee == "translate" || call.callee == "rotate" || call.callee == "scale";
-  for (std::size_t i = 0; i < call.arguments.size(); ++i) {
-    if (!call.arguments[i].value) {
-      continue;
-    }
-    const Expr& argument = *call.arguments[i].value;
-    if (userFunction) {
-      fixParameters(argument, argument.span, "this curve");
-    } else if (transform && i > 0) {
-      fixParameters(argument, argument.span, "this transform");
-    } else if (transform || call.callee == "path") {
-      fixControllerCurveParameters(argument);
-    } else if (argument.kind == ExprKind::Range) {
-      fixParameters(argument, argument.span, "this curve's range");
+      diagnostics_->report(DiagnosticKind::ParameterFixed, use,
+                           fmt::format("'{}' is fixed at its value {:g} in this program: the "
+                                       "controller cannot recompute {}; the program raises "
+                                       "an alarm if it is changed",
+                                       name, value, what));
     }
   }
 }

@@ -41,6 +41,29 @@ std::vector<std::string> PartLowering::parameterWeights(const CutStmt& cut, cons
   return notes;
 }
 
+// The blocks carry the host's control points and knots: every parameter
+// they read is fixed, except a weight that is a parameter itself (R#n).
+void PartLowering::fixNurbsBlockParameters(const CutStmt& cut) {
+  const Expr* weights = curveArgument(cut, "weights");
+  if (weights == nullptr || weights->kind != ExprKind::List) {
+    fixParameters(*cut.curve, cut.curve->span, "this curve's points");
+    return;
+  }
+  for (const Argument& argument : as<CallExpr>(*cut.curve).arguments) {
+    if (argument.value && argument.value.get() != weights) {
+      fixParameters(*argument.value, argument.value->span, "this curve's points");
+    }
+  }
+  for (const ExprPtr& element : as<ListExpr>(*weights).elements) {
+    std::optional<Lowered> weight = tryLower(*element, bindings_, environment_);
+    bool direct = weight && weight->values.size() == 1 && !weight->values[0].isConstant() &&
+                  builder_.function().definition(weight->values[0].value).opcode == Opcode::Param;
+    if (!direct) {
+      fixParameters(*element, element->span, "this curve's weights");
+    }
+  }
+}
+
 bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
@@ -64,6 +87,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   builder_.cutBegin(index);
 
   std::vector<std::string> weightNotes = parameterWeights(cut, curve);
+  fixNurbsBlockParameters(cut);
   geom::ParameterRange domain = curve.geometry->domain();
   Eigen::Vector3d start = curve.geometry->point(domain.t0);
   Eigen::Vector3d end = curve.geometry->point(domain.t1);

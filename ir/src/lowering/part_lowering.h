@@ -13,6 +13,7 @@
 #include "cncc/ir/builder.h"
 #include "cncc/ir/lowering.h"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -47,6 +48,14 @@ using Bindings = std::map<const frontend::Declaration*, Lowered>;
 
 // Thrown to abandon the lowering after its diagnostic has been reported.
 struct LoweringFailed {};
+
+// Thrown where a controller loop's body would need its variable as a
+// compile-time number: the loop is unrolled instead.
+struct NeedsUnrolling {};
+
+// The lowering's state, to go back to when a controller loop or branch
+// cannot be lowered as one (runtime_control.cpp).
+struct LoweringState;
 
 // A point of a curve.
 struct CurvePoint {
@@ -123,6 +132,57 @@ private:
 
 struct ControllerSegment; // controller_cuts.cpp
 
+// A smooth segment of a cut's curve (a piece, or a knot span of a NURBS
+// piece): a ramp lap descends along each segment in proportion to the
+// segment's own parameter, each taking a share of the descent in
+// proportion to its length (`before` and `share` as fractions of the
+// curve's length).
+struct RampSegment {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  double before = 0;
+  double share = 0;
+};
+
+// A ramp lap's descent from z = `from` to z = `to`, and where the current
+// segment lies in it.
+struct RampLap {
+  Scalar from, to;
+  RampSegment segment;
+};
+
+// A translate/rotate/scale chain as controller arithmetic:
+// p -> (linear * p.xy + offset, zScale * p.z), row-major linear.
+struct RuntimeTransform {
+  std::array<Scalar, 4> linear{Scalar::of(1), Scalar::of(0), Scalar::of(0), Scalar::of(1)};
+  std::array<Scalar, 2> offset{Scalar::of(0), Scalar::of(0)};
+  Scalar zScale = Scalar::of(1);
+  // At least the largest stretch of the linear part (the product of the
+  // scale factors' sizes; rotations and translations stretch nothing).
+  Scalar norm = Scalar::of(1);
+
+  bool isConstant() const;
+};
+
+// A smooth piece of a cut's curve as the controller computes it: the
+// builtin call that makes it (polar, param, line, arc, nurbs, ...), the
+// bindings its expressions lower under (the arguments of the fns around
+// it, as IR values where they depend on parameters) and its transform.
+struct SymbolicPiece {
+  const frontend::CallExpr* call = nullptr;
+  Bindings bindings;
+  frontend::Environment environment;
+  RuntimeTransform transform;
+  // Whether anything of the piece depends on a value the controller computes.
+  bool dependent = false;
+};
+
+// The argument of a builtin call bound to the parameter `name` (positional
+// arguments in the builtin's order), nullptr when not given.
+const frontend::Expr* builtinArgument(const frontend::CallExpr& call, std::string_view name);
+// Whether the expression names a bound declaration anywhere inside.
+bool dependsOn(const frontend::Expr& expression, const Bindings& bindings);
+
 class PartLowering {
 public:
   PartLowering(const frontend::CheckedProgram& program, const frontend::PartItem& part,
@@ -146,13 +206,22 @@ private:
   void lowerFor(const frontend::ForStmt& loop);
   void lowerIf(const frontend::IfStmt& conditional);
 
+  // runtime_control.cpp: `for` and `if` that the controller runs, when
+  // their bounds or condition depend on parameters.
+  bool lowerControllerFor(const frontend::ForStmt& loop);
+  bool lowerControllerIf(const frontend::IfStmt& conditional);
+  LoweringState saveState();
+  void restoreState(LoweringState& state);
+  // The name parametersOf gives a controller loop's variable.
+  static std::string loopVariableMarker(const frontend::Declaration* declaration);
+  static bool isLoopVariableMarker(std::string_view name);
+
   // fixed_parameters.cpp
   std::set<std::string> parametersOf(const frontend::Expr& expression) const;
   // Records the parameters `expression` reads as fixed at their defaults by
   // this use (`what`, such as "loop bound"), warning on controller targets.
   void fixParameters(const frontend::Expr& expression, frontend::SourceSpan use,
                      std::string_view what);
-  void fixControllerCurveParameters(const frontend::Expr& curve);
 
   // expressions.cpp
   frontend::Value evaluate(const frontend::Expr& expression,
@@ -196,12 +265,18 @@ private:
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
+  std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   std::vector<double> passDepths(const frontend::CutStmt& cut);
+  std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
+  // The share of the descent done at a sample (SampleLocation.local).
+  static double rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,
+                             const SampleLocation& location);
 
   // nurbs_cuts.cpp
   bool lowerNurbsCut(const frontend::CutStmt& cut);
   std::vector<std::string> parameterWeights(const frontend::CutStmt& cut, const CutCurve& curve);
+  void fixNurbsBlockParameters(const frontend::CutStmt& cut);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut);
@@ -210,22 +285,62 @@ private:
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut);
   std::optional<std::vector<ControllerSegment>>
-  planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget);
+  planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget,
+                         const std::vector<SymbolicPiece>* symbolic,
+                         std::optional<int> uniformSteps);
+  bool symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces, const CutCurve& curve,
+                            const frontend::CutStmt& cut);
+  Scalar passDepth(Scalar pass, Scalar step, Scalar depth);
+  Scalar stepsOf(const ControllerSegment& segment);
   std::optional<std::vector<std::optional<Lowered>>> symbolicList(const frontend::Expr& expression);
   const frontend::Expr* curveArgument(const frontend::CutStmt& cut, std::string_view name);
   void emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
-                             ValueId feed, const frontend::CutStmt& cut);
-  std::optional<Scalar> polarStepCount(const CurvePiece& piece, double budget,
-                                       const frontend::CutStmt& cut);
+                             ValueId feed, const frontend::CutStmt& cut, const RampLap* ramp);
+  std::optional<Scalar> polarStepCount(const SymbolicPiece& piece,
+                                       const frontend::CurveValue& value, double budget);
   using SymbolicList = std::vector<std::optional<Lowered>>;
   void planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
                      const SymbolicList* points, ControllerSegment& segment, double budget);
   Scalar hornerOf(const std::vector<double>& polynomial, Scalar u);
+
+  // symbolic_curves.cpp
+  std::optional<std::vector<SymbolicPiece>> symbolicPieces(const frontend::Expr& curve);
+  bool collectSymbolicPieces(const frontend::Expr& curve, const Bindings& bindings,
+                             const frontend::Environment& environment,
+                             const RuntimeTransform& outer, std::vector<SymbolicPiece>& pieces,
+                             int depth);
+  std::optional<RuntimeTransform> ownTransform(const frontend::CallExpr& call,
+                                               const Bindings& bindings,
+                                               const frontend::Environment& environment);
+  RuntimeTransform composed(const RuntimeTransform& outer, const RuntimeTransform& inner);
+  CurvePoint applied(const RuntimeTransform& transform, const CurvePoint& point);
+  std::optional<Scalar> symbolicNumber(const frontend::Expr* expression, const Bindings& bindings,
+                                       const frontend::Environment& environment);
+  // The point of a line or arc piece at s in [0, 1], of a polar or param
+  // piece at its own t; transformed.
+  CurvePoint symbolicPointAt(const SymbolicPiece& piece, const frontend::CurveValue& value,
+                             Scalar local);
+  // The parameter range the piece's loop runs over: t0 .. t1 of an analytic
+  // curve, 0 .. 1 for a line or an arc.
+  std::pair<Scalar, Scalar> symbolicRange(const SymbolicPiece& piece);
+  Scalar times(Scalar left, Scalar right);
+  Scalar magnitude(Scalar value);
+
+  // curvature_bounds.cpp
+  // The controller's step count for a dependent line, arc, polar or param
+  // piece, from a bound of |C''| over its range; nullopt when the piece's
+  // expressions are beyond the bounds this version derives.
+  std::optional<Scalar> symbolicStepCount(const SymbolicPiece& piece,
+                                          const frontend::CurveValue& value, double budget);
+  std::optional<Scalar> analyticCurvatureBound(const SymbolicPiece& piece,
+                                               const frontend::CurveValue& value);
   CurvePoint splitSpanPoint(const ControllerSegment& segment, Scalar u);
 
   const frontend::CheckedProgram& program_;
   const frontend::PartItem& part_;
-  frontend::DiagnosticEngine& diagnostics_;
+  // The program's diagnostics, or a buffer while a controller loop or
+  // branch is tried.
+  frontend::DiagnosticEngine* diagnostics_;
   const LoweringOptions& options_;
   // Diagnostics of speculative evaluations (their failures are handled here).
   frontend::DiagnosticEngine scratch_{0};

@@ -22,7 +22,7 @@ constexpr std::size_t maximumTableEntries = 20'000'000;
 
 PartLowering::PartLowering(const CheckedProgram& program, const PartItem& part,
                            DiagnosticEngine& diagnostics, const LoweringOptions& options)
-    : program_(program), part_(part), diagnostics_(diagnostics), options_(options),
+    : program_(program), part_(part), diagnostics_(&diagnostics), options_(options),
       evaluator_(program, scratch_), builder_(part.name) {}
 
 LoweredPart PartLowering::run() {
@@ -45,7 +45,7 @@ void PartLowering::unsupported(SourceSpan span, std::string_view what) {
 }
 
 void PartLowering::fail(SourceSpan span, std::string message, DiagnosticKind kind) {
-  diagnostics_.report(kind, span, std::move(message));
+  diagnostics_->report(kind, span, std::move(message));
   throw LoweringFailed{};
 }
 
@@ -167,6 +167,9 @@ void PartLowering::lowerLet(const LetStmt& let) {
 }
 
 void PartLowering::lowerFor(const ForStmt& loop) {
+  if (lowerControllerFor(loop)) {
+    return;
+  }
   Value range = evaluate(*loop.range, environment_);
   fixParameters(*loop.range, loop.range->span, "this loop bound");
   if (range.type.kind != TypeKind::Range || loop.declaration == nullptr) {
@@ -190,6 +193,9 @@ void PartLowering::lowerFor(const ForStmt& loop) {
 }
 
 void PartLowering::lowerIf(const IfStmt& conditional) {
+  if (lowerControllerIf(conditional)) {
+    return;
+  }
   Value condition = evaluate(*conditional.condition, environment_);
   fixParameters(*conditional.condition, conditional.condition->span, "this condition");
   if (condition.type.kind != TypeKind::Bool) {

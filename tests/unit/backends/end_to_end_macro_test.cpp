@@ -214,8 +214,9 @@ TEST_P(MacroFixedParameters, RaisesTheAlarmInsteadOfCuttingTheDefaultPart) {
 
 // Each example and part with its defaults and other parameter sets: `sets`
 // keep to every tolerance; `fixed` edit parameters the controller cannot
-// recompute (radii, turns and loop counts computed for the defaults), and
-// the program must refuse them with its alarm.
+// recompute (the cam's pieces, whose lengths share a ramp and whose points
+// are spaced by arc length at the defaults), and the program must refuse
+// them with its alarm.
 struct ExampleParameters {
   std::string file;
   std::string part;
@@ -229,17 +230,20 @@ const std::vector<ExampleParameters>& exampleParameters() {
       {"cam_profile.cdl", "", {{}}, {{{"base", 25}, {"lift", 5}}, {{"base", 18}, {"lift", 10}}}},
       {"helix_bore.cdl",
        "bore_plate_mm",
-       {{}},
-       {{{"bore_diameter", 10}, {"depth", 6}}, {{"depth", 12}, {"pitch", 1}}}},
+       {{}, {{"bore_diameter", 10}, {"depth", 6}}, {{"depth", 12}, {"pitch", 1}}},
+       {}},
       {"helix_bore.cdl",
        "bore_plate_inch",
-       {{}},
-       {{{"bore_diameter", 0.4375}}, {{"depth", 0.5}, {"pitch", 0.05}}}},
-      {"polar_contour.cdl", "", {{}}, {{{"depth", 3}}, {{"depth", 9}}}},
+       {{}, {{"bore_diameter", 0.4375}}, {{"depth", 0.5}, {"pitch", 0.05}}},
+       {}},
+      {"polar_contour.cdl", "", {{}, {{"depth", 3}}, {{"depth", 9}}}, {}},
       {"rosette_plate.cdl",
        "",
-       {{}},
-       {{{"petals", 8}, {"holes", 6}}, {{"petals", 4}, {"hole", 5}, {"finish", 0}}}},
+       {{},
+        {{"petals", 8}, {"holes", 6}},
+        {{"petals", 4}, {"hole", 5}, {"finish", 0}},
+        {{"petals", 2}, {"holes", 0}, {"finish", 1}}},
+       {}},
       {"s_profile.cdl", "", {{}, {{"w6", 1}}, {{"w6", 8}}, {{"depth", 2}, {"step", 0.5}}}, {}},
   };
   return examples;

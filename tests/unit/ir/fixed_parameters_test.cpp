@@ -6,11 +6,16 @@
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
+#include "cncc/geom/deviation.h"
+#include "cncc/geom/function_curve.h"
+#include "cncc/ir/interpreter.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace cncc::ir {
@@ -68,17 +73,19 @@ const char* const loopAndPolar = R"(part p(count = 3, radius = 10, depth = 2, un
   tool 1 diameter=6 feed=200
   safe z=5
   for i in 1 .. count {
-    curve line(from=(i, 0), to=(i, 5)) sweep depth=depth step=1
+    curve line(from=(i, 0), to=(i, 5)) sweep depth=depth step=1 tolerance=0.01*i
   }
-  curve polar(r = radius + cos(3*t)*sin(t), t = 0 .. 2*pi) tolerance=0.05
+  curve polar(r = radius + sqrt(2 + cos(3*t)), t = 0 .. 2*pi) tolerance=0.05
 }
 )";
 
+// The loop's body needs its variable as a number (a tolerance), so the
+// loop is unrolled; sqrt of t is beyond the bounds the controller computes.
 TEST(FixedParameters, LoopBoundAndSampledCurveFixTheirParametersOnController) {
   std::unique_ptr<Lowered> result = lower(loopAndPolar, true);
   ASSERT_TRUE(result->part);
   std::vector<std::string> names = fixedNames(*result->part);
-  EXPECT_EQ(names, (std::vector<std::string>{"count", "radius"}));
+  ASSERT_EQ(names, (std::vector<std::string>{"count", "radius"}));
   EXPECT_TRUE(parameterFlagged(*result->part, "count"));
   EXPECT_TRUE(parameterFlagged(*result->part, "radius"));
   // The sweep's passes are computed on the controller from depth.
@@ -111,6 +118,115 @@ TEST(FixedParameters, SymbolicSweepAndSpiralFixNothing) {
   ASSERT_TRUE(result->part);
   EXPECT_TRUE(result->part->fixedParameters.empty()) << fixedNames(*result->part).front();
   EXPECT_EQ(warningsOfKind(result->diagnostics), 0u);
+}
+
+} // namespace
+// Controller loops and branches: a `for` whose bounds and an `if` whose
+// condition read parameters run on the controller and fix nothing.
+namespace {
+
+std::vector<MachineEvent> feedsOf(const Function& function,
+                                  const std::map<std::string, double>& values) {
+  InterpreterOptions options;
+  options.parameters = values;
+  std::vector<MachineEvent> feeds;
+  for (const MachineEvent& event : interpret(function, options).events) {
+    if (event.kind == MachineEvent::Kind::Feed) {
+      feeds.push_back(event);
+    }
+  }
+  return feeds;
+}
+
+TEST(ControllerControlFlow, LoopOverAParameterRunsOnTheController) {
+  std::unique_ptr<Lowered> result = lower(R"(part p(count = 3, depth = 2) {
+  tool 1 diameter=6 feed=200
+  safe z=5
+  for i in 1 .. count {
+    curve line(from=(10*i, 0), to=(10*i, 5)) sweep depth=depth step=1
+  }
+}
+)",
+                                          true);
+  ASSERT_TRUE(result->part);
+  EXPECT_TRUE(fixedNames(*result->part).empty());
+  EXPECT_EQ(warningsOfKind(result->diagnostics), 0u);
+  for (double count : {0.0, 1.0, 5.0}) {
+    std::set<double> columns;
+    for (const MachineEvent& feed : feedsOf(result->part->function, {{"count", count}})) {
+      columns.insert(feed.x);
+    }
+    std::set<double> expected;
+    for (int i = 1; i <= count; ++i) {
+      expected.insert(10.0 * i);
+    }
+    EXPECT_EQ(columns, expected) << "count = " << count;
+  }
+}
+
+TEST(ControllerControlFlow, BranchIsChosenOnTheControllerWithItsFeed) {
+  std::unique_ptr<Lowered> result = lower(R"(part p(deep = 1) {
+  tool 1 diameter=6 feed=200
+  safe z=5
+  if deep > 0 {
+    feed 100
+    curve line(from=(0, 0), to=(5, 0)) sweep depth=4 step=2
+  } else {
+    curve line(from=(0, 0), to=(0, 5))
+  }
+  curve line(from=(20, 0), to=(25, 0))
+}
+)",
+                                          true);
+  ASSERT_TRUE(result->part);
+  EXPECT_TRUE(fixedNames(*result->part).empty());
+  std::vector<MachineEvent> deep = feedsOf(result->part->function, {{"deep", 1}});
+  std::vector<MachineEvent> flat = feedsOf(result->part->function, {{"deep", 0}});
+  ASSERT_FALSE(deep.empty());
+  ASSERT_FALSE(flat.empty());
+  EXPECT_EQ(deep.back().feed, 100) << "the branch's feed holds after the if";
+  EXPECT_EQ(flat.back().feed, 200);
+  double deepest = 0;
+  for (const MachineEvent& feed : deep) {
+    deepest = std::min(deepest, feed.z);
+    EXPECT_EQ(feed.y, 0);
+  }
+  EXPECT_EQ(deepest, -4);
+  bool alongY = false;
+  for (const MachineEvent& feed : flat) {
+    EXPECT_EQ(feed.z, 0);
+    alongY = alongY || feed.y == 5;
+  }
+  EXPECT_TRUE(alongY);
+}
+
+// The step count of a param curve whose coefficients are parameters,
+// computed on the controller from bounds of |C''|, keeps the tolerance for
+// values far from the defaults.
+TEST(ControllerControlFlow, ParamCurveOfParametersKeepsItsTolerance) {
+  std::unique_ptr<Lowered> result = lower(R"(part p(a = 10, b = 6, c = 1) {
+  tool 1 diameter=6 feed=200
+  safe z=5
+  curve param(x = a*cos(3*t), y = b*sin(2*t) + c*t, t = 0 .. 2*pi) tolerance=0.01
+}
+)",
+                                          true);
+  ASSERT_TRUE(result->part);
+  EXPECT_TRUE(fixedNames(*result->part).empty());
+  for (auto [a, b, c] : {std::array<double, 3>{10, 6, 1}, {40, 2, 0}, {3, 25, -4}}) {
+    std::vector<Eigen::Vector3d> points;
+    for (const MachineEvent& feed :
+         feedsOf(result->part->function, {{"a", a}, {"b", b}, {"c", c}})) {
+      points.emplace_back(feed.x, feed.y, feed.z);
+    }
+    geom::FunctionCurve truth = geom::FunctionCurve::fromCoordinates(
+        {0, 2 * M_PI}, [a = a](double t) { return a * std::cos(3 * t); },
+        [b = b, c = c](double t) { return b * std::sin(2 * t) + c * t; }, {});
+    ASSERT_GT(points.size(), 10u);
+    // The controller's rounding of the coordinates is the rest of the budget.
+    EXPECT_LE(geom::measureDeviation(points, truth).maxDeviation(), 0.01 - 0.0005 * std::sqrt(2))
+        << "a = " << a << ", b = " << b << ", c = " << c;
+  }
 }
 
 } // namespace

@@ -1,0 +1,274 @@
+// Step counts the controller computes for a piece whose geometry depends
+// on values it knows only when it runs (part parameters, its own loop
+// variables). A chord over a parameter step h deviates from a C2 curve by
+// at most h^2 M / 8, M >= |C''| over the chord, so N = |t1 - t0| sqrt(M /
+// (8 budget)) uniform steps, rounded up, keep every chord within the
+// budget. M is derived here as controller arithmetic:
+// - a line needs one step; an arc of radius r turning by a (over s in
+//   [0, 1]) has |C''| = |r| a^2;
+// - a polar r(t) affine in t has the tight bound of polarStepCount;
+// - any other polar or param curve gets bounds of |f|, |f'| and |f''| for
+//   every IR value f of its coordinates, propagated through sums,
+//   products, quotients by t-free values, sin and cos (the rules of
+//   differentiation with each term bounded by its size). Other functions
+//   of t are not bounded, and such a piece keeps the compile-time tables.
+// A transform multiplies M by its stretch.
+#include "lowering/part_lowering.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+// Added before rounding: round(x + 0.5) >= ceil(x), and >= 1 for x >= 0.
+constexpr double roundUpOffset = 0.5;
+
+// Bounds over the piece's range of |f|, |f'| and |f''| for one value f.
+struct DerivativeBounds {
+  Scalar value, slope, curvature;
+};
+
+bool isZero(const Scalar& scalar) {
+  return scalar.isConstant() && scalar.constant == 0;
+}
+
+} // namespace
+
+std::optional<Scalar> PartLowering::symbolicStepCount(const SymbolicPiece& piece,
+                                                      const CurveValue& value, double budget) {
+  Arithmetic& math = arithmetic_;
+  Scalar length;
+  Scalar bound;
+  if (value.kind == CurveKind::Line) {
+    return Scalar::of(1);
+  }
+  if (value.kind == CurveKind::Arc) {
+    Bindings bindings = piece.bindings;
+    std::optional<Scalar> radius =
+        symbolicNumber(builtinArgument(*piece.call, "radius"), bindings, piece.environment);
+    std::optional<Scalar> start =
+        symbolicNumber(builtinArgument(*piece.call, "from"), bindings, piece.environment);
+    std::optional<Scalar> end =
+        symbolicNumber(builtinArgument(*piece.call, "to"), bindings, piece.environment);
+    if (!radius || !start || !end) {
+      return std::nullopt;
+    }
+    length = magnitude(math.binary(Opcode::Sub, *end, *start));
+    bound = times(magnitude(*radius), piece.transform.norm);
+  } else if (value.kind == CurveKind::Polar || value.kind == CurveKind::Param) {
+    if (std::optional<Scalar> polar =
+            value.kind == CurveKind::Polar ? polarStepCount(piece, value, budget) : std::nullopt) {
+      return polar;
+    }
+    std::optional<Scalar> curvature = analyticCurvatureBound(piece, value);
+    if (!curvature) {
+      return std::nullopt;
+    }
+    auto [low, high] = symbolicRange(piece);
+    length = magnitude(math.binary(Opcode::Sub, high, low));
+    bound = times(*curvature, piece.transform.norm);
+  } else {
+    return std::nullopt;
+  }
+  // The arc's sweep appears squared in M: N = sweep sqrt(|r| / (8 budget)).
+  Scalar steps =
+      times(length, math.unary(Opcode::Sqrt, math.multiply(bound, Scalar::of(1 / (8 * budget)))));
+  return math.unary(Opcode::Round, math.add(steps, Scalar::of(roundUpOffset)));
+}
+
+std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& piece,
+                                                           const CurveValue& value) {
+  Arithmetic& math = arithmetic_;
+  ValueId probe = builder_.constant(std::numeric_limits<double>::quiet_NaN());
+  SymbolicPiece untransformed = piece;
+  untransformed.transform = RuntimeTransform{};
+  CurvePoint point = symbolicPointAt(untransformed, value, Scalar::of(probe, ValueType::F64));
+  auto [low, high] = symbolicRange(piece);
+  // |t| over the range, at most |t0| + |t1|.
+  Scalar reach = isZero(low)    ? magnitude(high)
+                 : isZero(high) ? magnitude(low)
+                                : math.add(magnitude(low), magnitude(high));
+
+  std::map<std::uint32_t, bool> varying;
+  std::function<bool(ValueId)> varies = [&](ValueId id) {
+    if (id == probe) {
+      return true;
+    }
+    if (auto found = varying.find(id.index); found != varying.end()) {
+      return found->second;
+    }
+    bool result = false;
+    for (ValueId operand : builder_.function().definition(id).operands) {
+      result = result || varies(operand);
+    }
+    return varying[id.index] = result;
+  };
+  std::map<std::uint32_t, std::optional<DerivativeBounds>> memo;
+  std::function<std::optional<DerivativeBounds>(Scalar)> bounds =
+      [&](Scalar scalar) -> std::optional<DerivativeBounds> {
+    if (scalar.isConstant() || !varies(scalar.value)) {
+      return DerivativeBounds{magnitude(scalar), Scalar::of(0), Scalar::of(0)};
+    }
+    if (scalar.value == probe) {
+      return DerivativeBounds{reach, Scalar::of(1), Scalar::of(0)};
+    }
+    if (auto found = memo.find(scalar.value.index); found != memo.end()) {
+      return found->second;
+    }
+    // A copy: the arithmetic below appends instructions.
+    Instruction instruction = builder_.function().definition(scalar.value);
+    std::vector<DerivativeBounds> operands;
+    for (ValueId operand : instruction.operands) {
+      std::optional<DerivativeBounds> own = bounds(Scalar::of(operand, ValueType::F64));
+      if (!own) {
+        return memo[scalar.value.index] = std::nullopt;
+      }
+      operands.push_back(*own);
+    }
+    std::optional<DerivativeBounds> result;
+    switch (instruction.opcode) {
+    case Opcode::Add:
+    case Opcode::Sub:
+      result = {math.add(operands[0].value, operands[1].value),
+                math.add(operands[0].slope, operands[1].slope),
+                math.add(operands[0].curvature, operands[1].curvature)};
+      break;
+    case Opcode::Neg:
+      result = operands[0];
+      break;
+    case Opcode::Mul: {
+      const DerivativeBounds& a = operands[0];
+      const DerivativeBounds& b = operands[1];
+      // (ab)' = a'b + ab', (ab)'' = a''b + 2a'b' + ab''.
+      result = {times(a.value, b.value), math.add(times(a.slope, b.value), times(a.value, b.slope)),
+                math.add(math.add(times(a.curvature, b.value),
+                                  times(Scalar::of(2), times(a.slope, b.slope))),
+                         times(a.value, b.curvature))};
+      break;
+    }
+    case Opcode::Div:
+      if (!varies(instruction.operands[1])) {
+        Scalar divisor = magnitude(Scalar::of(instruction.operands[1], ValueType::F64));
+        auto divided = [&](Scalar bound) {
+          return isZero(bound) ? bound : math.binary(Opcode::Div, bound, divisor);
+        };
+        result = {divided(operands[0].value), divided(operands[0].slope),
+                  divided(operands[0].curvature)};
+      }
+      break;
+    case Opcode::Sin:
+    case Opcode::Cos: {
+      // (sin g)'' = cos(g) g'' - sin(g) g'^2.
+      const DerivativeBounds& g = operands[0];
+      result = {Scalar::of(1), g.slope, math.add(g.curvature, times(g.slope, g.slope))};
+      break;
+    }
+    default:
+      break;
+    }
+    return memo[scalar.value.index] = result;
+  };
+  Scalar sum = Scalar::of(0);
+  for (const Scalar& coordinate : {point.x, point.y, point.z}) {
+    std::optional<DerivativeBounds> own = bounds(coordinate);
+    if (!own) {
+      return std::nullopt;
+    }
+    sum = math.add(sum, times(own->curvature, own->curvature));
+  }
+  return sum.isConstant() ? Scalar::of(std::sqrt(sum.constant)) : math.unary(Opcode::Sqrt, sum);
+}
+
+// A polar curve r(t) whose r is affine in t with parameter-dependent
+// coefficients (the Archimedean spiral r = a + b t). For C = r (cos t,
+// sin t): C'' = (r'' - r)(cos t, sin t) + 2 r' (-sin t, cos t), so
+// |C''|^2 = (r'' - r)^2 + 4 r'^2 = r^2 + 4 r'^2 when r'' = 0. |r| is convex
+// and r' constant, so over [t0, t1]
+//   |C''|^2 <= max(r(t0)^2, r(t1)^2) + 4 r'^2 <= r(t0)^2 + r(t1)^2 + 4 r'^2,
+// the bound the controller computes (the sum instead of the larger term
+// saves a comparison and costs at most a factor sqrt(2) in |C''|). An r
+// that is not affine in t gives nullopt.
+std::optional<Scalar> PartLowering::polarStepCount(const SymbolicPiece& piece,
+                                                   const CurveValue& curve, double budget) {
+  ValueId probe = builder_.constant(std::numeric_limits<double>::quiet_NaN());
+  auto lowerAt = [&](Scalar t) {
+    Bindings bindings = piece.bindings;
+    bindings[curve.parameter] = {TypeKind::Num, {t}};
+    std::optional<Scalar> value = symbolicNumber(curve.radius, bindings, piece.environment);
+    if (!value) {
+      unsupported(curve.radius->span, "this curve expression");
+    }
+    return *value;
+  };
+  Scalar radius = lowerAt(Scalar::of(probe, ValueType::F64));
+  // d r / d t over the IR, or nullopt when r is not affine in t.
+  std::map<std::uint32_t, std::optional<Scalar>> derivatives;
+  std::function<std::optional<Scalar>(Scalar)> derivative =
+      [&](Scalar value) -> std::optional<Scalar> {
+    if (value.isConstant()) {
+      return Scalar::of(0);
+    }
+    if (value.value == probe) {
+      return Scalar::of(1);
+    }
+    if (auto found = derivatives.find(value.value.index); found != derivatives.end()) {
+      return found->second;
+    }
+    // A copy: the arithmetic below appends instructions.
+    Instruction instruction = builder_.function().definition(value.value);
+    std::vector<std::optional<Scalar>> operands;
+    for (ValueId operand : instruction.operands) {
+      operands.push_back(derivative(Scalar::of(operand, ValueType::F64)));
+      if (!operands.back()) {
+        return derivatives[value.value.index] = std::nullopt;
+      }
+    }
+    bool free = std::all_of(operands.begin(), operands.end(),
+                            [](const std::optional<Scalar>& scalar) { return isZero(*scalar); });
+    std::optional<Scalar> result;
+    auto operand = [&](std::size_t i) {
+      return Scalar::of(instruction.operands[i], ValueType::F64);
+    };
+    if (free) {
+      result = Scalar::of(0);
+    } else if (instruction.opcode == Opcode::Add) {
+      result = arithmetic_.add(*operands[0], *operands[1]);
+    } else if (instruction.opcode == Opcode::Sub) {
+      result = arithmetic_.binary(Opcode::Sub, *operands[0], *operands[1]);
+    } else if (instruction.opcode == Opcode::Neg) {
+      result = arithmetic_.unary(Opcode::Neg, *operands[0]);
+    } else if (instruction.opcode == Opcode::Mul && isZero(*operands[0])) {
+      result = arithmetic_.multiply(operand(0), *operands[1]);
+    } else if (instruction.opcode == Opcode::Mul && isZero(*operands[1])) {
+      result = arithmetic_.multiply(*operands[0], operand(1));
+    } else if (instruction.opcode == Opcode::Div && isZero(*operands[1])) {
+      result = arithmetic_.binary(Opcode::Div, *operands[0], operand(1));
+    }
+    return derivatives[value.value.index] = result;
+  };
+  std::optional<Scalar> slope = derivative(radius);
+  if (!slope) {
+    return std::nullopt;
+  }
+  auto [low, high] = symbolicRange(piece);
+  Scalar r0 = lowerAt(low);
+  Scalar r1 = lowerAt(high);
+  auto square = [&](Scalar value) { return arithmetic_.multiply(value, value); };
+  Scalar sum = arithmetic_.add(arithmetic_.add(square(r0), square(r1)),
+                               arithmetic_.multiply(Scalar::of(4), square(*slope)));
+  Scalar bound = times(piece.transform.norm, arithmetic_.unary(Opcode::Sqrt, sum));
+  // N >= (t1 - t0) sqrt(M / (8 budget)).
+  Scalar length = magnitude(arithmetic_.binary(Opcode::Sub, high, low));
+  Scalar steps =
+      times(length, arithmetic_.unary(Opcode::Sqrt,
+                                      arithmetic_.multiply(bound, Scalar::of(1 / (8 * budget)))));
+  return arithmetic_.unary(Opcode::Round, arithmetic_.add(steps, Scalar::of(roundUpOffset)));
+}
+
+} // namespace cncc::ir::lowering

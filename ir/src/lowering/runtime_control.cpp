@@ -1,0 +1,172 @@
+// `for` and `if` for controllers that run loops themselves, when the bounds
+// or the condition depend on part parameters: a WHILE over the range and an
+// IF over the branches, so that the operator's edit reaches the part.
+//
+// The body is lowered once with the loop variable an IR value (and, for
+// the compile-time checks and the planning that needs numbers, its first
+// value). Where something in the body needs the variable as a number at
+// compile time (the points of a curve built from it that the controller
+// cannot compute, a tolerance, a tool number), NeedsUnrolling abandons the
+// attempt: the lowering goes back to its state before the loop and unrolls
+// it, fixing what the bounds read, as on the host targets. A branch is
+// likewise tried and, when either branch cannot be lowered, chosen at
+// compile time. Diagnostics of an attempt are held until it succeeds.
+#include "lowering/part_lowering.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+struct LoweringState {
+  FunctionBuilder builder;
+  Bindings bindings;
+  Environment environment;
+  std::optional<Scalar> feed, safe;
+  std::vector<CutGeometry> cuts;
+  std::size_t unrolledIterations = 0;
+  std::map<const Declaration*, std::set<std::string>> parameterNames;
+  std::map<const Declaration*, const Expr*> letValues;
+  std::vector<FixedParameter> fixedParameters;
+  DiagnosticEngine* diagnostics = nullptr;
+  DiagnosticEngine held{0};
+};
+
+namespace {
+
+constexpr std::string_view markerPrefix = "for-variable ";
+
+void replay(const DiagnosticEngine& from, DiagnosticEngine& to) {
+  for (const Diagnostic& diagnostic : from.diagnostics()) {
+    Diagnostic* copy = to.report(diagnostic.kind, diagnostic.span, diagnostic.message);
+    for (const DiagnosticNote& note : diagnostic.notes) {
+      if (copy != nullptr) {
+        to.addNote(copy, note.span, note.message);
+      }
+    }
+  }
+}
+
+} // namespace
+
+std::string PartLowering::loopVariableMarker(const Declaration* declaration) {
+  return fmt::format("{}{}@{}", markerPrefix, declaration->name,
+                     static_cast<const void*>(declaration));
+}
+
+bool PartLowering::isLoopVariableMarker(std::string_view name) {
+  return name.starts_with(markerPrefix);
+}
+
+LoweringState PartLowering::saveState() {
+  return {builder_,    bindings_,           environment_,    feed_,      safe_,
+          cuts_,       unrolledIterations_, parameterNames_, letValues_, fixedParameters_,
+          diagnostics_};
+}
+
+void PartLowering::restoreState(LoweringState& state) {
+  builder_ = std::move(state.builder);
+  bindings_ = std::move(state.bindings);
+  environment_ = std::move(state.environment);
+  feed_ = state.feed;
+  safe_ = state.safe;
+  cuts_ = std::move(state.cuts);
+  unrolledIterations_ = state.unrolledIterations;
+  parameterNames_ = std::move(state.parameterNames);
+  letValues_ = std::move(state.letValues);
+  fixedParameters_ = std::move(state.fixedParameters);
+  diagnostics_ = state.diagnostics;
+}
+
+bool PartLowering::lowerControllerFor(const ForStmt& loop) {
+  if (!options_.controllerLoops || checkingDefaults_ || loop.declaration == nullptr ||
+      loop.range->kind != ExprKind::Range || parametersOf(*loop.range).empty()) {
+    return false;
+  }
+  const auto& range = as<RangeExpr>(*loop.range);
+  Value defaults = evaluate(*loop.range, environment_);
+  if (defaults.type.kind != TypeKind::Range || defaults.low != std::floor(defaults.low) ||
+      defaults.high != std::floor(defaults.high)) {
+    return false; // the unrolling reports it
+  }
+  LoweringState state = saveState();
+  diagnostics_ = &state.held;
+  try {
+    Scalar low = number(*range.low);
+    Scalar high = number(*range.high);
+    ValueId variable = builder_.beginLoop(arithmetic_.value(low), arithmetic_.value(high));
+    bindings_[loop.declaration] = {TypeKind::Num, {Scalar::of(variable, ValueType::F64)}};
+    environment_[loop.declaration] = Value::ofNumber(defaults.low);
+    parameterNames_[loop.declaration] = {loopVariableMarker(loop.declaration)};
+    lowerBlock(loop.body);
+    builder_.endLoop();
+  } catch (const NeedsUnrolling&) {
+    restoreState(state);
+    return false;
+  } catch (const LoweringFailed&) {
+    // Unrolled, the body reports its error for the values it really takes.
+    restoreState(state);
+    return false;
+  }
+  diagnostics_ = state.diagnostics;
+  bindings_.erase(loop.declaration);
+  replay(state.held, *diagnostics_);
+  return true;
+}
+
+bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
+  if (!options_.controllerLoops || checkingDefaults_ ||
+      parametersOf(*conditional.condition).empty()) {
+    return false;
+  }
+  std::optional<Lowered> condition = tryLower(*conditional.condition, bindings_, environment_);
+  if (!condition || condition->kind != TypeKind::Bool || condition->values.front().isConstant()) {
+    return false;
+  }
+  LoweringState state = saveState();
+  diagnostics_ = &state.held;
+  try {
+    Scalar test = condition->values.front();
+    builder_.beginIf(arithmetic_.value(test));
+    lowerBlock(conditional.thenBlock);
+    std::optional<Scalar> thenFeed = feed_, thenSafe = safe_;
+    feed_ = state.feed;
+    safe_ = state.safe;
+    builder_.beginElse();
+    lowerBlock(conditional.elseBlock);
+    builder_.endIf();
+    // A feed or safe height set in a branch holds after the if: chosen by
+    // the condition when both are numbers, else the branch is decided here.
+    auto merged = [&](const std::optional<Scalar>& fromThen,
+                      const std::optional<Scalar>& fromElse) -> std::optional<Scalar> {
+      bool same = fromThen.has_value() == fromElse.has_value() &&
+                  (!fromThen || (fromThen->isConstant() && fromElse->isConstant()
+                                     ? fromThen->constant == fromElse->constant
+                                     : fromThen->value == fromElse->value));
+      if (same) {
+        return fromThen;
+      }
+      if (!fromThen || !fromElse || !fromThen->isConstant() || !fromElse->isConstant()) {
+        throw NeedsUnrolling{};
+      }
+      return arithmetic_.select(test, *fromThen, *fromElse);
+    };
+    feed_ = merged(thenFeed, feed_);
+    safe_ = merged(thenSafe, safe_);
+  } catch (const NeedsUnrolling&) {
+    restoreState(state);
+    return false;
+  } catch (const LoweringFailed&) {
+    // A branch the defaults do not take may not lower at the defaults.
+    restoreState(state);
+    return false;
+  }
+  diagnostics_ = state.diagnostics;
+  replay(state.held, *diagnostics_);
+  return true;
+}
+
+} // namespace cncc::ir::lowering
