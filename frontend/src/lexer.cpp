@@ -133,7 +133,7 @@ class Lexer {
 public:
   Lexer(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
         std::vector<SourceSpan>* comments)
-      : file_(file), text_(sources.file(file).text()), diagnostics_(diagnostics),
+      : fileId_(file), file_(sources.file(file)), text_(file_.text()), diagnostics_(diagnostics),
         comments_(comments) {}
 
   std::vector<Token> run() {
@@ -158,7 +158,7 @@ private:
   }
   bool atEnd() const { return position_ >= text_.size(); }
   SourceSpan spanFrom(std::size_t begin) const {
-    return {file_, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(position_)};
+    return {fileId_, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(position_)};
   }
 
   // Returns true when a line break was crossed.
@@ -197,7 +197,7 @@ private:
     if (atEnd()) {
       diagnostics_.report(
           DiagnosticKind::UnterminatedComment,
-          {file_, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(begin + 2)},
+          {fileId_, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(begin + 2)},
           "block comment is not closed; expected '*/' before the end of the file");
     } else {
       position_ += 2;
@@ -372,8 +372,7 @@ private:
       return;
     }
     if (escaped) {
-      token.unescaped = std::make_shared<const std::string>(std::move(value));
-      token.text = *token.unescaped;
+      token.text = file_.keepUnescaped(static_cast<std::uint32_t>(begin), std::move(value));
     } else {
       token.text = text_.substr(begin + 1, contentEnd - begin - 1);
     }
@@ -476,7 +475,8 @@ private:
     diagnostics_.report(DiagnosticKind::UnexpectedCharacter, token.span, std::move(message));
   }
 
-  FileId file_;
+  FileId fileId_;
+  const SourceFile& file_;
   std::string_view text_;
   DiagnosticEngine& diagnostics_;
   std::vector<SourceSpan>* comments_;

@@ -48,6 +48,11 @@ std::uint32_t SourceFile::offsetOf(std::uint32_t zeroBasedLine,
   return lineStarts_[zeroBasedLine] + std::min(zeroBasedColumn, lineLength);
 }
 
+std::string_view SourceFile::keepUnescaped(std::uint32_t offset, std::string unescaped) const {
+  std::lock_guard lock(unescapedMutex_);
+  return unescaped_.try_emplace(offset, std::move(unescaped)).first->second;
+}
+
 FileId SourceManager::addFile(std::string path, std::string text) {
   files_.push_back(std::make_unique<SourceFile>(std::move(path), std::move(text)));
   return FileId{static_cast<std::uint32_t>(files_.size())};

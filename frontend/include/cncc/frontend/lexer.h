@@ -5,7 +5,6 @@
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/source_manager.h"
 
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,10 +29,9 @@ struct Token {
   // Number: the value with its unit applied.
   double number = 0;
   // Identifier and keywords: the spelling; String: the unescaped text. A view
-  // into the source text, which the SourceManager keeps for as long as it
-  // lives; only a string with escapes views its own copy in `unescaped`.
+  // into the source file, which the SourceManager keeps for as long as it
+  // lives (a string with escapes views its unescaped copy kept by the file).
   std::string_view text;
-  std::shared_ptr<const std::string> unescaped;
 };
 
 std::string_view tokenSpelling(TokenKind kind);

@@ -4,9 +4,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace cncc::frontend {
@@ -50,11 +52,17 @@ public:
   // Byte offset of a zero-based line and a zero-based UTF-16-agnostic byte
   // column, clamped into the file (used by the language server).
   std::uint32_t offsetOf(std::uint32_t zeroBasedLine, std::uint32_t zeroBasedColumn) const;
+  // The unescaped text of the string literal at `offset`, kept for as long as
+  // the file so tokens can view it like the rest of the text (`unescaped` is
+  // computed the first time only; lexing the file again finds it).
+  std::string_view keepUnescaped(std::uint32_t offset, std::string unescaped) const;
 
 private:
   std::string path_;
   std::string text_;
   std::vector<std::uint32_t> lineStarts_;
+  mutable std::mutex unescapedMutex_;
+  mutable std::unordered_map<std::uint32_t, std::string> unescaped_;
 };
 
 class SourceManager {
