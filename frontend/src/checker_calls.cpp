@@ -9,6 +9,8 @@
 
 namespace cncc::frontend {
 
+using namespace std::string_view_literals;
+
 std::string joinNames(const std::vector<ParameterSpec>& parameters) {
   std::string text;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
@@ -39,7 +41,7 @@ Type Checker::checkCall(CallExpr& call, const Scope& scope) {
   if (declaration->kind == DeclarationKind::Function) {
     return checkFunctionCall(call, *declaration, scope);
   }
-  if (declaration->kind == DeclarationKind::Builtin && declaration->name != "pi") {
+  if (declaration->kind == DeclarationKind::Builtin && declaration->name != "pi"sv) {
     return checkBuiltinCall(call, scope);
   }
   context_.report(DiagnosticKind::NotCallable, call.calleeSpan,
@@ -191,10 +193,10 @@ Type Checker::checkBuiltinCall(CallExpr& call, const Scope& scope) {
   const std::vector<ParameterSpec>& parameters = spec.parameters;
   ArgumentBinding binding = bindArguments(call, parameters, info->variadic);
   reportMissing(call, parameters, binding);
-  if (info->name == "nurbs" || info->name == "bspline") {
+  if (info->name == "nurbs"sv || info->name == "bspline"sv) {
     checkOrderOrDegree(call, binding);
   }
-  if (info->name == "polar" || info->name == "param") {
+  if (info->name == "polar"sv || info->name == "param"sv) {
     return checkAnalyticCurve(call, parameters, binding, scope) ? Type::curve() : Type::error();
   }
   bool ok = binding.ok;
@@ -250,19 +252,20 @@ bool Checker::checkBuiltinArgument(const std::string& function, const std::strin
                                    Expr& value, const Scope& scope) {
   Type type = checkExpression(value, scope);
   auto what = [&] { return fmt::format("argument '{}' of '{}'", parameter, function); };
-  if (parameter == "points") {
+  if (parameter == "points"sv) {
     return expectTypeOf(value, type, TypeKind::List, what, TypeKind::Point);
   }
-  if (parameter == "weights" || parameter == "knots") {
+  if (parameter == "weights"sv || parameter == "knots"sv) {
     return expectTypeOf(value, type, TypeKind::List, what, TypeKind::Num);
   }
-  if (parameter == "list") {
+  if (parameter == "list"sv) {
     return expectTypeOf(value, type, TypeKind::List, what);
   }
-  if (parameter == "curve") {
+  if (parameter == "curve"sv) {
     return expectTypeOf(value, type, TypeKind::Curve, what);
   }
-  if ((function == "line" && (parameter == "from" || parameter == "to")) || parameter == "center") {
+  if ((function == "line"sv && (parameter == "from"sv || parameter == "to"sv)) ||
+      parameter == "center"sv) {
     return expectTypeOf(value, type, TypeKind::Point, what);
   }
   return expectTypeOf(value, type, TypeKind::Num, what);

@@ -6,6 +6,8 @@
 
 namespace cncc::frontend {
 
+using namespace std::string_view_literals;
+
 void Checker::expectNumber(Expr& expression, const Scope& scope, std::string_view context) {
   Type type = checkExpression(expression, scope);
   expectType(expression, type, TypeKind::Num, context);
@@ -84,7 +86,7 @@ Type Checker::computeType(Expr& expression, const Scope& scope) {
 Type Checker::checkName(NameExpr& name, const Scope& scope) {
   const Declaration* declaration = scope.find(name.name);
   if (declaration == nullptr) {
-    std::string hint = name.name == "t"
+    std::string hint = name.name == "t"sv
                            ? "; 't' is the curve parameter only inside polar(...) and param(...)"
                            : suggestion(name.name, scope.visibleNames());
     context_.report(DiagnosticKind::UndefinedName, name.span,
@@ -94,7 +96,7 @@ Type Checker::checkName(NameExpr& name, const Scope& scope) {
   name.declaration = declaration;
   context_.reference(name.span, declaration, false);
   if (declaration->kind == DeclarationKind::Function ||
-      (declaration->kind == DeclarationKind::Builtin && declaration->name != "pi")) {
+      (declaration->kind == DeclarationKind::Builtin && declaration->name != "pi"sv)) {
     context_.report(DiagnosticKind::TypeMismatch, name.span,
                     fmt::format("'{}' is a function; call it as {}(...)", name.name, name.name));
     return Type::error();
@@ -226,7 +228,7 @@ Type Checker::checkMember(MemberExpr& member, const Scope& scope) {
         fmt::format("only a point has .{}; this is a {}", member.member, typeName(base)));
     return Type::error();
   }
-  if (member.member != "x" && member.member != "y" && member.member != "z") {
+  if (member.member != "x"sv && member.member != "y"sv && member.member != "z"sv) {
     context_.report(DiagnosticKind::UnknownMember, member.memberSpan,
                     fmt::format("a point has no member '{}'; it has x, y and z{}", member.member,
                                 suggestion(member.member, {"x", "y", "z"})));

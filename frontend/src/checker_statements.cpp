@@ -7,6 +7,8 @@
 
 namespace cncc::frontend {
 
+using namespace std::string_view_literals;
+
 void Checker::checkPart(PartItem& part, const Scope& fileScope) {
   Scope scope(&fileScope);
   for (Parameter& parameter : part.parameters) {
@@ -228,7 +230,7 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
     return;
   }
   seen[modifier.name] = &modifier;
-  if (modifier.name == "sweep") {
+  if (modifier.name == "sweep"sv) {
     if (modifier.value) {
       context_.report(DiagnosticKind::ModifierValue, modifier.span(),
                       "'sweep' takes no value; write 'sweep depth=D step=S'");
@@ -241,11 +243,11 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
         fmt::format("modifier '{}' needs a value: '{}=...'", modifier.name, modifier.name));
     return;
   }
-  if (modifier.name == "method") {
+  if (modifier.name == "method"sv) {
     checkChoice(modifier, {"linear", "aspline", "bspline", "cspline", "nurbs"});
-  } else if (modifier.name == "entry") {
+  } else if (modifier.name == "entry"sv) {
     checkChoice(modifier, {"plunge", "ramp"});
-  } else if (modifier.name == "arcs") {
+  } else if (modifier.name == "arcs"sv) {
     // A switch of the printed program, so a literal rather than an expression.
     if (modifier.value->kind != ExprKind::Bool) {
       context_.report(DiagnosticKind::InvalidChoice, modifier.value->span,

@@ -9,6 +9,8 @@
 
 namespace cncc::frontend {
 
+using namespace std::string_view_literals;
+
 namespace {
 
 // The span of element `i` when the list is written out literally, else the
@@ -59,19 +61,19 @@ public:
 
   Value build() {
     const std::string& name = call_.callee;
-    if (name == "nurbs" || name == "bspline" || name == "bezier") {
+    if (name == "nurbs"sv || name == "bspline"sv || name == "bezier"sv) {
       return buildNurbs();
     }
-    if (name == "polar" || name == "param") {
+    if (name == "polar"sv || name == "param"sv) {
       return buildAnalytic();
     }
-    if (name == "line") {
+    if (name == "line"sv) {
       return buildLine();
     }
-    if (name == "arc") {
+    if (name == "arc"sv) {
       return buildArc();
     }
-    if (name == "path") {
+    if (name == "path"sv) {
       return buildPath();
     }
     return buildTransform();
@@ -80,7 +82,7 @@ public:
 private:
   const Expr* argument(std::string_view name) const {
     for (std::size_t i = 0; i < names_.size(); ++i) {
-      if (names_[i] == name) {
+      if (std::string_view(names_[i]) == name) {
         return arguments_[i];
       }
     }
@@ -181,7 +183,7 @@ private:
 
   // ------------------------------------------------------------ nurbs
   std::optional<int> order() {
-    if (call_.callee == "bezier") {
+    if (call_.callee == "bezier"sv) {
       return std::nullopt;
     }
     bool byDegree = argument("order") == nullptr;
@@ -217,7 +219,7 @@ private:
     }
     std::size_t n = controlPoints->size();
     const Expr& pointsExpression = *argument("points");
-    if (call_.callee == "bezier") {
+    if (call_.callee == "bezier"sv) {
       if (n < 2) {
         report(DiagnosticKind::TooFewPoints, pointsExpression.span,
                fmt::format("a Bezier segment needs at least 2 points, 'points' has {}", n));
@@ -302,7 +304,7 @@ private:
   // ------------------------------------------------------------ polar, param
   Value buildAnalytic() {
     auto curve = std::make_shared<CurveValue>();
-    bool polar = call_.callee == "polar";
+    bool polar = call_.callee == "polar"sv;
     curve->kind = polar ? CurveKind::Polar : CurveKind::Param;
     std::optional<Value> range = value("t", TypeKind::Range);
     auto found = evaluator_.context().program.curveParameters.find(&call_);
@@ -419,11 +421,11 @@ private:
     auto curve = std::make_shared<CurveValue>();
     std::optional<Value> piece = value("curve", TypeKind::Curve);
     const std::string& name = call_.callee;
-    if (name == "translate") {
+    if (name == "translate"sv) {
       curve->kind = CurveKind::Translate;
       curve->dx = number("dx").value_or(0);
       curve->dy = number("dy").value_or(0);
-    } else if (name == "rotate") {
+    } else if (name == "rotate"sv) {
       curve->kind = CurveKind::Rotate;
       curve->angle = number("angle").value_or(0);
     } else {

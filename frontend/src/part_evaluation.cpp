@@ -8,6 +8,8 @@
 
 namespace cncc::frontend {
 
+using namespace std::string_view_literals;
+
 namespace {
 
 // A loop runs at most this many times during checking; the checks of later
@@ -156,7 +158,7 @@ private:
     for (const Argument& setting : tool.settings) {
       std::optional<double> value = positiveDescribed(
           *setting.value, environment, [&] { return fmt::format("the tool's {}", setting.name); });
-      if (setting.name == "feed" && value) {
+      if (setting.name == "feed"sv && value) {
         feedKnown_ = true;
       }
     }
@@ -220,8 +222,8 @@ private:
     evaluator_.evaluate(*cut.curve, environment);
     modifierValues_.clear();
     for (const Modifier& modifier : cut.modifiers) {
-      if (!modifier.value || modifier.name == "method" || modifier.name == "entry" ||
-          modifier.name == "arcs") {
+      if (!modifier.value || modifier.name == "method"sv || modifier.name == "entry"sv ||
+          modifier.name == "arcs"sv) {
         continue;
       }
       if (std::optional<double> value = number(*modifier.value, environment)) {
@@ -269,7 +271,7 @@ private:
     }
     bool hasFeedModifier = false;
     for (const Modifier& modifier : cut.modifiers) {
-      hasFeedModifier |= modifier.name == "feed";
+      hasFeedModifier |= modifier.name == "feed"sv;
     }
     if (!feedKnown_ && !hasFeedModifier && !feedReported_) {
       feedReported_ = true;
