@@ -103,8 +103,8 @@ TokenKind keywordOrIdentifier(std::string_view spelling) {
 // power of ten is exact (both operands exact, so the one division rounds
 // correctly, as std::from_chars does); nullopt sends the rest to from_chars.
 std::optional<double> fastDecimal(std::string_view digits) {
-  constexpr double powersOfTen[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                    1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  static constexpr double powersOfTen[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                           1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
   std::uint64_t mantissa = 0;
   int significant = 0;
   int fractionDigits = 0;
