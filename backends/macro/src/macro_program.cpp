@@ -805,6 +805,7 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
   options.arcBlocks = true; // arcs=true, --arcs: host-fitted G02/G03 blocks
   options.coordinateIncrement =
       inches ? profile.leastInputIncrement / 10 : profile.leastInputIncrement;
+  options.maximumLoopNesting = std::min(profile.maximumLoopNesting, profile.maximumLoopIdentifier);
   return options;
 }
 

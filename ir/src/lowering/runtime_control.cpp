@@ -39,6 +39,18 @@ namespace {
 
 constexpr std::string_view markerPrefix = "for-variable ";
 
+int loopNesting(const Function& function, const Region& region) {
+  int deepest = 0;
+  for (InstructionId id : region.instructions) {
+    const Instruction& instruction = function.instructions[id];
+    for (const Region& inner : instruction.regions) {
+      int own = loopNesting(function, inner) + (instruction.opcode == Opcode::Loop ? 1 : 0);
+      deepest = std::max(deepest, own);
+    }
+  }
+  return deepest;
+}
+
 void replay(const DiagnosticEngine& from, DiagnosticEngine& to) {
   for (const Diagnostic& diagnostic : from.diagnostics()) {
     Diagnostic* copy = to.report(diagnostic.kind, diagnostic.span, diagnostic.message);
@@ -103,6 +115,10 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
     parameterNames_[loop.declaration] = {loopVariableMarker(loop.declaration)};
     lowerBlock(loop.body);
     builder_.endLoop();
+    if (options_.maximumLoopNesting > 0 &&
+        loopNesting(builder_.function(), builder_.function().body) > options_.maximumLoopNesting) {
+      throw NeedsUnrolling{};
+    }
   } catch (const NeedsUnrolling&) {
     restoreState(state);
     return false;

@@ -28,7 +28,8 @@ struct Lowered {
   std::optional<LoweredPart> part;
 };
 
-std::unique_ptr<Lowered> lower(const std::string& text, bool controllerLoops) {
+std::unique_ptr<Lowered> lower(const std::string& text, bool controllerLoops,
+                               int maximumLoopNesting = 0) {
   auto result = std::make_unique<Lowered>();
   frontend::FileId id = result->sources.addFile("fixed.cdl", text);
   frontend::CheckOptions options;
@@ -38,6 +39,7 @@ std::unique_ptr<Lowered> lower(const std::string& text, bool controllerLoops) {
   EXPECT_FALSE(result->diagnostics.hasErrors());
   LoweringOptions lowering;
   lowering.controllerLoops = controllerLoops;
+  lowering.maximumLoopNesting = maximumLoopNesting;
   lowering.coordinateIncrement = 0.001;
   if (result->program && result->program->selectedPart != nullptr) {
     result->part = lowerPartWithCuts(*result->program, *result->program->selectedPart,
@@ -198,6 +200,34 @@ TEST(ControllerControlFlow, BranchIsChosenOnTheControllerWithItsFeed) {
     alongY = alongY || feed.y == 5;
   }
   EXPECT_TRUE(alongY);
+}
+
+// Loops the controller cannot nest (a Fanuc has DO1 to DO3) are unrolled
+// from the innermost, which fixes its bound.
+TEST(ControllerControlFlow, LoopsDeeperThanTheControllerNestsAreUnrolled) {
+  const char* const grid = R"(part grid(rows = 2, columns = 3, depth = 2) {
+  tool 1 diameter=6 feed=200
+  safe z=5
+  for i in 1 .. rows {
+    for j in 1 .. columns {
+      curve translate(polar(r = 3 + 0.5*cos(5*t), t = 0 .. 2*pi), 10*i, 10*j) sweep depth=depth step=1
+    }
+  }
+}
+)";
+  std::unique_ptr<Lowered> limited = lower(grid, true, 3);
+  ASSERT_TRUE(limited->part);
+  EXPECT_EQ(fixedNames(*limited->part), std::vector<std::string>{"columns"});
+  std::unique_ptr<Lowered> unlimited = lower(grid, true);
+  ASSERT_TRUE(unlimited->part);
+  EXPECT_TRUE(fixedNames(*unlimited->part).empty());
+  // Each contour stays within 3.5 of its centre (10 i, 10 j): the cells
+  // cut, with rows edited, are three rows of three.
+  std::set<std::pair<double, double>> cells;
+  for (const MachineEvent& feed : feedsOf(limited->part->function, {{"rows", 3}})) {
+    cells.insert({std::round(feed.x / 10), std::round(feed.y / 10)});
+  }
+  EXPECT_EQ(cells.size(), 9u);
 }
 
 // The step count of a param curve whose coefficients are parameters,

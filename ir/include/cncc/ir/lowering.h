@@ -46,6 +46,9 @@ struct LoweringOptions {
   // rounding of every executed coordinate, half an increment per axis, is
   // taken from the tolerance before the chord error is chosen.
   double coordinateIncrement = 0;
+  // How deep the controller nests loops (0: no limit). A `for` run on the
+  // controller that would nest deeper is unrolled instead.
+  int maximumLoopNesting = 0;
 };
 
 // One cut of the part: what `cut.begin index` refers to.
