@@ -215,6 +215,8 @@ struct ControllerSegment {
   // evaluated from its symbolic form over start .. end.
   const SymbolicPiece* symbolic = nullptr;
   Scalar start, end;
+  // A NURBS span of constant shape moved by a transform of controller values.
+  const RuntimeTransform* moved = nullptr;
   // A NURBS span whose control points depend on parameters, split as
   //   W(u) = reference + Wc(u) + sum_d (w_d - reference) N_d(u),
   //   X(u) = Xc(u) + sum_d w_d x_d N_d(u)   (likewise y, z),
@@ -357,6 +359,9 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
     if (segment.split) {
       return splitSpanPoint(segment, Scalar::of(local));
     }
+    if (segment.isNurbs) {
+      return nurbsSegmentPoint(curve, segment, Scalar::of(local), cut);
+    }
     return pointAt(curve, segment.piece, segment.span, Scalar::of(local), cut);
   };
 
@@ -450,7 +455,7 @@ bool PartLowering::symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces
     if (!same) {
       return false;
     }
-    if (nurbs && pieces[p].dependent &&
+    if (nurbs && pieces[p].shapeDependent &&
         !(pieces.size() == 1 && pieces[p].call == cut.curve.get() &&
           pieces[p].transform.isConstant() && curve.pieces[p].transform.isIdentity())) {
       return false;
@@ -492,11 +497,36 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     const CurvePiece& piece = curve.pieces[p];
     const CurveValue& value = *piece.value;
     if (value.kind == CurveKind::Nurbs) {
+      const SymbolicPiece* own = symbolic != nullptr ? &(*symbolic)[p] : nullptr;
       for (std::size_t s = 0; s < piece.spans.size(); ++s) {
         ControllerSegment segment;
         segment.piece = p;
         segment.span = s;
         segment.isNurbs = true;
+        if (own != nullptr && own->dependent && !own->shapeDependent) {
+          segment.moved = &own->transform;
+          if (!segment.moved->norm.isConstant()) {
+            // A size the controller computes: the span's |C''| bound (its
+            // control points' hull) times the scale, over u in [0, 1].
+            geom::PolynomialSpan span = cleanedSpan(piece.spans[s]);
+            if (span.isRational()) {
+              return std::nullopt;
+            }
+            std::vector<Polynomial> curvature;
+            for (int c = 0; c < 3; ++c) {
+              Polynomial coordinate;
+              for (const geom::HomogeneousPoint& coefficient : span.coefficients) {
+                coordinate.push_back(coefficient[c]);
+              }
+              curvature.push_back(derivativeOf(derivativeOf(coordinate)));
+            }
+            Scalar bound = arithmetic_.multiply(
+                segment.moved->norm, Scalar::of(vectorSupremumBound(curvature) / (8 * budget)));
+            segment.stepCount = arithmetic_.unary(
+                Opcode::Round,
+                arithmetic_.add(arithmetic_.unary(Opcode::Sqrt, bound), Scalar::of(roundUpOffset)));
+          }
+        }
         segments.push_back(segment);
       }
       continue;
@@ -564,6 +594,15 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     segment.steps = constantSteps(moved, span.t0, span.t1);
   }
   return segments;
+}
+
+CurvePoint PartLowering::nurbsSegmentPoint(const CutCurve& curve, const ControllerSegment& segment,
+                                           Scalar u, const CutStmt& cut) {
+  if (segment.moved == nullptr) {
+    return pointAt(curve, segment.piece, segment.span, u, cut);
+  }
+  return applied(*segment.moved,
+                 untransformedPointAt(curve.pieces[segment.piece], segment.span, u, cut));
 }
 
 Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
@@ -857,9 +896,10 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
   };
   if (segment.steps == 1) {
     Scalar end = Scalar::of(segment.to);
-    move(segment.symbolic ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
-         : segment.split  ? splitSpanPoint(segment, end)
-                          : pointAt(curve, segment.piece, segment.span, end, cut),
+    move(segment.symbolic  ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
+         : segment.split   ? splitSpanPoint(segment, end)
+         : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
+                           : pointAt(curve, segment.piece, segment.span, end, cut),
          Scalar::of(1));
     return;
   }
@@ -874,8 +914,13 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
   } else if (segment.isNurbs && !segment.split) {
     // u = i / steps, written as a product the printer can step by.
     geom::PolynomialSpan span = cleanedSpan(piece.spans[segment.span]);
-    Scalar u = arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps));
-    move(transformed(piece.transform, spanPointAt(span, u)), index);
+    Scalar u = segment.steps > 0
+                   ? arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps))
+                   : arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64));
+    CurvePoint point = spanPointAt(span, u);
+    move(segment.moved != nullptr ? applied(*segment.moved, point)
+                                  : transformed(piece.transform, point),
+         index);
   } else if (segment.split) {
     move(splitSpanPoint(segment,
                         arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))),

@@ -173,8 +173,10 @@ struct SymbolicPiece {
   Bindings bindings;
   frontend::Environment environment;
   RuntimeTransform transform;
-  // Whether anything of the piece depends on a value the controller computes.
+  // Whether anything of the piece depends on a value the controller
+  // computes, and whether its own shape (not only its transform) does.
   bool dependent = false;
+  bool shapeDependent = false;
 };
 
 // The argument of a builtin call bound to the parameter `name` (positional
@@ -335,6 +337,9 @@ private:
   std::optional<Scalar> analyticCurvatureBound(const SymbolicPiece& piece,
                                                const frontend::CurveValue& value);
   CurvePoint splitSpanPoint(const ControllerSegment& segment, Scalar u);
+  // A NURBS segment's point at its span's u, moved by its transform.
+  CurvePoint nurbsSegmentPoint(const CutCurve& curve, const ControllerSegment& segment, Scalar u,
+                               const frontend::CutStmt& cut);
 
   const frontend::CheckedProgram& program_;
   const frontend::PartItem& part_;

@@ -248,10 +248,12 @@ bool PartLowering::collectSymbolicPieces(const Expr& curve, const Bindings& bind
   if (!isLeafCurve(call.callee)) {
     return false;
   }
-  SymbolicPiece piece{&call, bindings, environment, outer, !outer.isConstant()};
+  SymbolicPiece piece{&call, bindings, environment, outer, false, false};
   for (const Argument& argument : call.arguments) {
-    piece.dependent = piece.dependent || (argument.value && dependsOn(*argument.value, bindings));
+    piece.shapeDependent =
+        piece.shapeDependent || (argument.value && dependsOn(*argument.value, bindings));
   }
+  piece.dependent = piece.shapeDependent || !outer.isConstant();
   pieces.push_back(std::move(piece));
   return true;
 }
