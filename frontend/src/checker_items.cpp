@@ -101,7 +101,7 @@ void Checker::buildFileScope(Module& module) {
                                   builtin->name == "pi" ? "constant" : "function"));
       continue;
     }
-    scope.add(name, declaration);
+    scope.add(declaration->name, declaration); // `name` is a copy
     context_.itemScope[declaration] = &scope;
   }
 }

@@ -32,12 +32,12 @@ std::string_view declarationKindName(DeclarationKind kind) {
   return "name";
 }
 
-const Declaration* Scope::findLocal(const std::string& name) const {
+const Declaration* Scope::findLocal(std::string_view name) const {
   auto found = names_.find(name);
   return found == names_.end() ? nullptr : found->second;
 }
 
-const Declaration* Scope::find(const std::string& name) const {
+const Declaration* Scope::find(std::string_view name) const {
   for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
     if (const Declaration* declaration = scope->findLocal(name)) {
       return declaration;
@@ -53,7 +53,7 @@ std::vector<std::string> Scope::visibleNames() const {
     // on the hashing.
     std::size_t first = names.size();
     for (const auto& entry : scope->names_) {
-      names.push_back(entry.first);
+      names.emplace_back(entry.first);
     }
     std::sort(names.begin() + static_cast<std::ptrdiff_t>(first), names.end());
   }

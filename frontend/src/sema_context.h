@@ -6,19 +6,22 @@
 #include <map>
 #include <set>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 namespace cncc::frontend {
 
-// A lexical scope: names to declarations, with a parent.
+// A lexical scope: names to declarations, with a parent. The names are
+// views: of the declarations' names and the syntax trees' (and builtins'),
+// which the program keeps for longer than any scope.
 class Scope {
 public:
   explicit Scope(const Scope* parent = nullptr) : parent_(parent) {}
-  const Declaration* find(const std::string& name) const;
-  const Declaration* findLocal(const std::string& name) const;
-  void add(const std::string& name, const Declaration* declaration) { names_[name] = declaration; }
+  const Declaration* find(std::string_view name) const;
+  const Declaration* findLocal(std::string_view name) const;
+  void add(std::string_view name, const Declaration* declaration) { names_[name] = declaration; }
   const Scope* parent() const { return parent_; }
   // Every name visible from here, innermost first (for suggestions).
   std::vector<std::string> visibleNames() const;
@@ -26,7 +29,7 @@ public:
 private:
   const Scope* parent_;
   // Hashed: a file scope holds thousands of names.
-  std::unordered_map<std::string, const Declaration*> names_;
+  std::unordered_map<std::string_view, const Declaration*> names_;
 };
 
 struct SemaContext {
