@@ -251,6 +251,12 @@ const Expr* PartLowering::curveArgument(const CutStmt& cut, std::string_view nam
 // one; nullopt where the list is not written out.
 std::optional<std::vector<std::optional<Lowered>>>
 PartLowering::symbolicList(const Expr& expression) {
+  return symbolicList(expression, bindings_, environment_);
+}
+
+std::optional<std::vector<std::optional<Lowered>>>
+PartLowering::symbolicList(const Expr& expression, const Bindings& bindings,
+                           const Environment& environment) {
   if (expression.kind == ExprKind::Name) {
     const Declaration* declaration = as<NameExpr>(expression).declaration;
     const LetStmt* found = nullptr;
@@ -263,14 +269,14 @@ PartLowering::symbolicList(const Expr& expression) {
       }
     };
     search(part_.body);
-    return found == nullptr ? std::nullopt : symbolicList(*found->value);
+    return found == nullptr ? std::nullopt : symbolicList(*found->value, bindings, environment);
   }
   if (expression.kind != ExprKind::List) {
     return std::nullopt;
   }
   std::vector<std::optional<Lowered>> elements;
   for (const ExprPtr& element : as<ListExpr>(expression).elements) {
-    elements.push_back(tryLower(*element, bindings_, environment_));
+    elements.push_back(tryLower(*element, bindings, environment));
   }
   return elements;
 }
@@ -315,7 +321,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
   // built in a way the walk does not follow) the pieces are planned at the
   // defaults and what they read is fixed.
   std::optional<std::vector<SymbolicPiece>> symbolic = symbolicPieces(*cut.curve);
-  if (symbolic && !symbolicPiecesUsable(*symbolic, curve, cut)) {
+  if (symbolic && !symbolicPiecesUsable(*symbolic, curve)) {
     symbolic.reset();
   }
   if (!symbolic && !parametersOf(*cut.curve).empty()) {
@@ -357,7 +363,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
     }
     double local = atEnd ? segment.to : segment.from;
     if (segment.split) {
-      return splitSpanPoint(segment, Scalar::of(local));
+      return movedSplitSpanPoint(segment, Scalar::of(local));
     }
     if (segment.isNurbs) {
       return nurbsSegmentPoint(curve, segment, Scalar::of(local), cut);
@@ -438,12 +444,9 @@ Scalar PartLowering::stepsOf(const ControllerSegment& segment) {
   return segment.steps > 0 ? Scalar::of(segment.steps) : *segment.stepCount;
 }
 
-// Every piece found, in the compile-time curve's order, and each dependent
-// one of a kind the controller can step through: a line, an arc, a polar or
-// param curve, or the only piece being a NURBS (its control points are
-// then treated by planSplitSpan).
+// Every piece found, in the compile-time curve's order and of the same kind.
 bool PartLowering::symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces,
-                                        const CutCurve& curve, const CutStmt& cut) {
+                                        const CutCurve& curve) {
   if (pieces.size() != curve.pieces.size()) {
     return false;
   }
@@ -453,11 +456,6 @@ bool PartLowering::symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces
     bool nurbs = callee == "nurbs" || callee == "bspline" || callee == "bezier";
     bool same = nurbs ? kind == CurveKind::Nurbs : callee == curve.pieces[p].value->constructor;
     if (!same) {
-      return false;
-    }
-    if (nurbs && pieces[p].shapeDependent &&
-        !(pieces.size() == 1 && pieces[p].call == cut.curve.get() &&
-          pieces[p].transform.isConstant() && curve.pieces[p].transform.isIdentity())) {
       return false;
     }
   }
@@ -558,18 +556,10 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     }
     segments.push_back(segment);
   }
-  // Constant pieces: the fewest uniform steps, measured on the true curve.
-  std::optional<SymbolicList> weights, points;
-  bool splittable = curve.pieces.size() == 1 && curve.pieces.front().transform.isIdentity() &&
-                    curve.pieces.front().value->kind == CurveKind::Nurbs;
-  if (splittable) {
-    if (const Expr* expression = curveArgument(cut, "weights")) {
-      weights = symbolicList(*expression);
-    }
-    if (const Expr* expression = curveArgument(cut, "points")) {
-      points = symbolicList(*expression);
-    }
-  }
+  // NURBS spans whose control points depend on parameters are split (see
+  // ControllerSegment); constant pieces and spans take the fewest uniform
+  // steps, measured on the true curve.
+  std::map<std::size_t, NurbsLists> lists;
   for (ControllerSegment& segment : segments) {
     const CurvePiece& piece = curve.pieces[segment.piece];
     if (segment.steps != 0 || segment.stepCount) {
@@ -580,11 +570,26 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       segment.steps = constantSteps(*moved, segment.from, segment.to);
       continue;
     }
-    if (splittable) {
+    if (symbolic != nullptr && (*symbolic)[segment.piece].shapeDependent) {
+      const SymbolicPiece& own = (*symbolic)[segment.piece];
+      auto found = lists.find(segment.piece);
+      if (found == lists.end()) {
+        std::optional<NurbsLists> pointsAndWeights = nurbsLists(own);
+        if (!pointsAndWeights) {
+          return std::nullopt;
+        }
+        found = lists.emplace(segment.piece, std::move(*pointsAndWeights)).first;
+      }
+      const std::optional<SymbolicList>& points = found->second.points;
+      const std::optional<SymbolicList>& weights = found->second.weights;
+      segment.moved = &own.transform;
       planSplitSpan(piece, weights ? &*weights : nullptr, points ? &*points : nullptr, segment,
-                    budget);
+                    budget, own.transform.norm);
       if (segment.split) {
         continue;
+      }
+      if (!own.transform.norm.isConstant()) {
+        return std::nullopt; // a constant span of a scaled piece
       }
     }
     geom::PolynomialSpan span = piece.spans[segment.span];
@@ -594,6 +599,39 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     segment.steps = constantSteps(moved, span.t0, span.t1);
   }
   return segments;
+}
+
+// The control points and weights of a NURBS piece as the controller
+// computes them; nullopt when what depends on parameters is not written out
+// as lists (or is the degree or the knots, which shape the spans).
+std::optional<PartLowering::NurbsLists> PartLowering::nurbsLists(const SymbolicPiece& piece) {
+  NurbsLists result;
+  for (const Argument& argument : piece.call->arguments) {
+    if (!argument.value || !dependsOn(*argument.value, piece.bindings)) {
+      continue;
+    }
+    const Expr* points = builtinArgument(*piece.call, "points");
+    const Expr* weights = builtinArgument(*piece.call, "weights");
+    if (argument.value.get() != points && argument.value.get() != weights) {
+      return std::nullopt;
+    }
+  }
+  for (auto [name, list] : {std::pair{"points", &result.points}, {"weights", &result.weights}}) {
+    const Expr* expression = builtinArgument(*piece.call, name);
+    if (expression == nullptr) {
+      continue;
+    }
+    *list = symbolicList(*expression, piece.bindings, piece.environment);
+    if (!*list && dependsOn(*expression, piece.bindings)) {
+      return std::nullopt;
+    }
+  }
+  return result;
+}
+
+CurvePoint PartLowering::movedSplitSpanPoint(const ControllerSegment& segment, Scalar u) {
+  CurvePoint point = splitSpanPoint(segment, u);
+  return segment.moved != nullptr ? applied(*segment.moved, point) : point;
 }
 
 CurvePoint PartLowering::nurbsSegmentPoint(const CutCurve& curve, const ControllerSegment& segment,
@@ -637,7 +675,7 @@ Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
 // weights W' = W'' = 0 and the bound is P2 / w.
 void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
                                  const SymbolicList* points, ControllerSegment& segment,
-                                 double budget) {
+                                 double budget, Scalar norm) {
   const CurveValue& value = *piece.value;
   std::size_t count = value.points.size();
   if ((weights != nullptr && weights->size() != count) ||
@@ -840,8 +878,8 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
   } else {
     scaledBound = math.binary(Opcode::Div, curveNumerator.scalar(math), smallestWeight);
   }
-  // N >= sqrt(M / (8 budget)) steps of u.
-  Scalar steps = math.unary(Opcode::Sqrt, scaledBound);
+  // N >= sqrt(M / (8 budget)) steps of u; a transform stretches M by its norm.
+  Scalar steps = math.unary(Opcode::Sqrt, times(scaledBound, norm));
   segment.stepCount = math.unary(Opcode::Round, math.add(steps, Scalar::of(roundUpOffset)));
 }
 
@@ -897,7 +935,7 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
   if (segment.steps == 1) {
     Scalar end = Scalar::of(segment.to);
     move(segment.symbolic  ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
-         : segment.split   ? splitSpanPoint(segment, end)
+         : segment.split   ? movedSplitSpanPoint(segment, end)
          : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
                            : pointAt(curve, segment.piece, segment.span, end, cut),
          Scalar::of(1));
@@ -922,8 +960,8 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
                                   : transformed(piece.transform, point),
          index);
   } else if (segment.split) {
-    move(splitSpanPoint(segment,
-                        arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))),
+    move(movedSplitSpanPoint(
+             segment, arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))),
          index);
   } else {
     Scalar step = segment.steps > 0

@@ -290,11 +290,13 @@ private:
   planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget,
                          const std::vector<SymbolicPiece>* symbolic,
                          std::optional<int> uniformSteps);
-  bool symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces, const CutCurve& curve,
-                            const frontend::CutStmt& cut);
+  bool symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces, const CutCurve& curve);
   Scalar passDepth(Scalar pass, Scalar step, Scalar depth);
   Scalar stepsOf(const ControllerSegment& segment);
   std::optional<std::vector<std::optional<Lowered>>> symbolicList(const frontend::Expr& expression);
+  std::optional<std::vector<std::optional<Lowered>>>
+  symbolicList(const frontend::Expr& expression, const Bindings& bindings,
+               const frontend::Environment& environment);
   const frontend::Expr* curveArgument(const frontend::CutStmt& cut, std::string_view name);
   void emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
                              ValueId feed, const frontend::CutStmt& cut, const RampLap* ramp);
@@ -302,7 +304,13 @@ private:
                                        const frontend::CurveValue& value, double budget);
   using SymbolicList = std::vector<std::optional<Lowered>>;
   void planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
-                     const SymbolicList* points, ControllerSegment& segment, double budget);
+                     const SymbolicList* points, ControllerSegment& segment, double budget,
+                     Scalar norm);
+  struct NurbsLists {
+    std::optional<SymbolicList> points, weights;
+  };
+  std::optional<NurbsLists> nurbsLists(const SymbolicPiece& piece);
+  CurvePoint movedSplitSpanPoint(const ControllerSegment& segment, Scalar u);
   Scalar hornerOf(const std::vector<double>& polynomial, Scalar u);
 
   // symbolic_curves.cpp
