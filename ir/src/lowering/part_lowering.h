@@ -14,6 +14,7 @@
 #include "cncc/ir/lowering.h"
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -212,6 +213,7 @@ private:
   // their bounds or condition depend on parameters.
   bool lowerControllerFor(const frontend::ForStmt& loop);
   bool lowerControllerIf(const frontend::IfStmt& conditional);
+  bool attempt(const std::function<void(LoweringState&)>& lowering);
   LoweringState saveState();
   void restoreState(LoweringState& state);
   // The name parametersOf gives a controller loop's variable.

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 
 namespace cncc::ir::lowering {
 
@@ -93,6 +94,27 @@ void PartLowering::restoreState(LoweringState& state) {
   diagnostics_ = state.diagnostics;
 }
 
+// Runs `lowering` as an attempt: its diagnostics are held, and when it
+// throws NeedsUnrolling or LoweringFailed (an error the unrolled or
+// compile-time lowering reports for the values really taken), the lowering
+// goes back to where it was and the attempt returns false.
+bool PartLowering::attempt(const std::function<void(LoweringState&)>& lowering) {
+  LoweringState state = saveState();
+  diagnostics_ = &state.held;
+  try {
+    lowering(state);
+  } catch (const NeedsUnrolling&) {
+    restoreState(state);
+    return false;
+  } catch (const LoweringFailed&) {
+    restoreState(state);
+    return false;
+  }
+  diagnostics_ = state.diagnostics;
+  replay(state.held, *diagnostics_);
+  return true;
+}
+
 bool PartLowering::lowerControllerFor(const ForStmt& loop) {
   if (!options_.controllerLoops || checkingDefaults_ || loop.declaration == nullptr ||
       loop.range->kind != ExprKind::Range || parametersOf(*loop.range).empty()) {
@@ -104,9 +126,7 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
       defaults.high != std::floor(defaults.high)) {
     return false; // the unrolling reports it
   }
-  LoweringState state = saveState();
-  diagnostics_ = &state.held;
-  try {
+  bool lowered = attempt([&](LoweringState&) {
     Scalar low = number(*range.low);
     Scalar high = number(*range.high);
     ValueId variable = builder_.beginLoop(arithmetic_.value(low), arithmetic_.value(high));
@@ -119,18 +139,11 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
         loopNesting(builder_.function(), builder_.function().body) > options_.maximumLoopNesting) {
       throw NeedsUnrolling{};
     }
-  } catch (const NeedsUnrolling&) {
-    restoreState(state);
-    return false;
-  } catch (const LoweringFailed&) {
-    // Unrolled, the body reports its error for the values it really takes.
-    restoreState(state);
-    return false;
+  });
+  if (lowered) {
+    bindings_.erase(loop.declaration);
   }
-  diagnostics_ = state.diagnostics;
-  bindings_.erase(loop.declaration);
-  replay(state.held, *diagnostics_);
-  return true;
+  return lowered;
 }
 
 bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
@@ -142,15 +155,13 @@ bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
   if (!condition || condition->kind != TypeKind::Bool || condition->values.front().isConstant()) {
     return false;
   }
-  LoweringState state = saveState();
-  diagnostics_ = &state.held;
-  try {
+  return attempt([&](LoweringState& before) {
     Scalar test = condition->values.front();
     builder_.beginIf(arithmetic_.value(test));
     lowerBlock(conditional.thenBlock);
     std::optional<Scalar> thenFeed = feed_, thenSafe = safe_;
-    feed_ = state.feed;
-    safe_ = state.safe;
+    feed_ = before.feed;
+    safe_ = before.safe;
     builder_.beginElse();
     lowerBlock(conditional.elseBlock);
     builder_.endIf();
@@ -172,17 +183,7 @@ bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
     };
     feed_ = merged(thenFeed, feed_);
     safe_ = merged(thenSafe, safe_);
-  } catch (const NeedsUnrolling&) {
-    restoreState(state);
-    return false;
-  } catch (const LoweringFailed&) {
-    // A branch the defaults do not take may not lower at the defaults.
-    restoreState(state);
-    return false;
-  }
-  diagnostics_ = state.diagnostics;
-  replay(state.held, *diagnostics_);
-  return true;
+  });
 }
 
 } // namespace cncc::ir::lowering
