@@ -4,6 +4,7 @@
 #include "evaluator.h"
 
 #include <cmath>
+#include <cstring>
 #include <fmt/format.h>
 #include <map>
 
@@ -39,6 +40,62 @@ const std::vector<std::string>& parameterNames(const std::string& builtin) {
   static const std::vector<std::string> none;
   auto found = table.find(builtin);
   return found == table.end() ? none : found->second;
+}
+
+bool sameNumber(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0; // -0 and 0 differ, as atan2 shows
+}
+
+// Whether evaluating with either gives the same: the same numbers to the
+// bit, the same list contents, the very same curve.
+bool sameValue(const Value& a, const Value& b) {
+  if (a.type != b.type) {
+    return false;
+  }
+  switch (a.type.kind) {
+  case TypeKind::Num:
+    return sameNumber(a.number, b.number);
+  case TypeKind::Bool:
+    return a.boolean == b.boolean;
+  case TypeKind::String:
+    return a.string == b.string;
+  case TypeKind::Point:
+    return a.pointDimensions == b.pointDimensions && sameNumber(a.point[0], b.point[0]) &&
+           sameNumber(a.point[1], b.point[1]) && sameNumber(a.point[2], b.point[2]);
+  case TypeKind::Range:
+    return sameNumber(a.low, b.low) && sameNumber(a.high, b.high);
+  case TypeKind::List:
+    if (a.list == b.list) {
+      return true;
+    }
+    if (!a.list || !b.list || a.list->size() != b.list->size()) {
+      return false;
+    }
+    for (std::size_t i = 0; i < a.list->size(); ++i) {
+      if (!sameValue((*a.list)[i], (*b.list)[i])) {
+        return false;
+      }
+    }
+    return true;
+  case TypeKind::Curve:
+    return a.curve == b.curve;
+  case TypeKind::Error:
+  case TypeKind::Any:
+    break;
+  }
+  return false;
+}
+
+bool sameEnvironment(const Environment& a, const Environment& b) {
+  if (a.size() != b.size()) {
+    return false;
+  }
+  for (auto left = a.begin(), right = b.begin(); left != a.end(); ++left, ++right) {
+    if (left->first != right->first || !sameValue(left->second, right->second)) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // Clamped uniform knots: `order` zeros, evenly spaced interior knots,
@@ -333,8 +390,28 @@ private:
 
   // Evaluates the curve's expressions along its range, so a curve that is
   // undefined somewhere (sqrt of a negative, a division by zero) is an error
-  // now rather than a bad program later.
+  // now rather than a bad program later. The same call with the same values
+  // (a curve made by a fn called in a loop) is evaluated once: a sampling
+  // that reported nothing and computed no constant would do nothing else
+  // again, and spends its steps again.
   void sampleExpressions(CurveValue& curve) {
+    Evaluator::Progress before = evaluator_.progress();
+    auto& samplings = evaluator_.samplings();
+    if (auto found = samplings.find(&call_);
+        found != samplings.end() && found->second.callDepth == before.callDepth &&
+        sameEnvironment(found->second.environment, curve.environment) &&
+        evaluator_.spendSteps(found->second.steps)) {
+      return;
+    }
+    sampleAll(curve);
+    Evaluator::Progress after = evaluator_.progress();
+    if (!failed_ && !evaluator_.exhausted() && after.reports == before.reports &&
+        after.constants == before.constants) {
+      samplings[&call_] = {curve.environment, before.callDepth, after.steps - before.steps};
+    }
+  }
+
+  void sampleAll(CurveValue& curve) {
     constexpr int samples = 16;
     Bindings sample(&bindings_);
     for (int i = 0; i <= samples && !failed_ && !evaluator_.exhausted(); ++i) {

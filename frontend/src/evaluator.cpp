@@ -8,6 +8,7 @@
 namespace cncc::frontend {
 
 void Evaluator::report(DiagnosticKind kind, SourceSpan span, std::string message) {
+  ++reports_;
   auto key = std::make_pair(static_cast<int>(kind), std::make_pair(span.begin, span.end));
   if (!reported_.insert(key).second) {
     return;
@@ -120,6 +121,7 @@ Value Evaluator::constantValue(const Declaration* declaration) {
     return {};
   }
   constantsInProgress_.insert(declaration);
+  ++constants_;
   std::vector<SourceSpan> savedStack;
   std::swap(savedStack, callStack_);
   // Evaluated the ordinary way (with its fast path) even when a fast path

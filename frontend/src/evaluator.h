@@ -10,6 +10,7 @@
 #include <cmath>
 #include <set>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 
 namespace cncc::frontend {
@@ -107,6 +108,35 @@ public:
 
   SemaContext& context() { return context_; }
 
+  // What evaluation has done so far, for the sampling of analytic curves
+  // (curve_values.cpp), which evaluates a curve met again with the same
+  // values only once: steps spent, reports made, constants computed, fn
+  // calls open.
+  struct Progress {
+    std::size_t steps = 0;
+    std::size_t reports = 0;
+    std::size_t constants = 0;
+    std::size_t callDepth = 0;
+  };
+  Progress progress() const { return {steps_, reports_, constants_, callStack_.size()}; }
+  // The last sampling of each curve call that reported nothing: the values
+  // it ran with, at what fn call depth, and the steps it took.
+  struct Sampling {
+    Environment environment;
+    std::size_t callDepth = 0;
+    std::size_t steps = 0;
+  };
+  std::unordered_map<const CallExpr*, Sampling>& samplings() { return samplings_; }
+  // Spends `steps` as evaluating again would; false (and nothing spent) when
+  // that would exhaust the budget.
+  bool spendSteps(std::size_t steps) {
+    if (steps_ + steps > maximumSteps) {
+      return false;
+    }
+    steps_ += steps;
+    return true;
+  }
+
   static constexpr std::size_t maximumSteps = 20'000'000;
 
 private:
@@ -152,6 +182,9 @@ private:
   std::set<std::pair<int, std::pair<std::uint32_t, std::uint32_t>>> reported_;
   std::set<const Declaration*> constantsInProgress_;
   std::size_t steps_ = 0;
+  std::size_t reports_ = 0;
+  std::size_t constants_ = 0;
+  std::unordered_map<const CallExpr*, Sampling> samplings_;
   // Off below an expression whose fast path failed, so no expression is
   // tried twice; and the steps that a failed fast path must not give back
   // (those of constants it evaluated, which stay evaluated).
