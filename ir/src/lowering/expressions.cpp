@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace cncc::ir::lowering {
 
 using namespace frontend;
@@ -126,10 +128,13 @@ std::optional<Lowered> PartLowering::constantOf(const Value& value) {
 
 std::optional<Lowered> PartLowering::tryLower(const Expr& expression, const Bindings& bindings,
                                               const Environment& environment) {
-  if (dependsOn(expression, bindings)) {
+  // Bound to IR values, or reading parameters through a name the lowering
+  // keeps no IR value for (a list of points computed from them).
+  if (dependsOn(expression, bindings) || !parametersOf(expression).empty()) {
     if (std::optional<Lowered> lowered = lowerDirect(expression, bindings, environment)) {
       return lowered;
     }
+    // Taken at its default.
     fixParameters(expression, expression.span, "this value");
   }
   return constantOf(evaluate(expression, environment));
@@ -173,9 +178,28 @@ std::optional<Lowered> PartLowering::lowerDirect(const Expr& expression, const B
     return lowerIfElse(as<IfElseExpr>(expression), bindings, environment);
   case ExprKind::Call:
     return lowerCall(as<CallExpr>(expression), bindings, environment);
+  case ExprKind::Index:
+    return lowerIndex(as<IndexExpr>(expression), bindings, environment);
   default:
     return std::nullopt;
   }
+}
+
+// An element of a list written out (or the let naming one) at an index
+// known here: the element's own expression, lowered.
+std::optional<Lowered> PartLowering::lowerIndex(const IndexExpr& index, const Bindings& bindings,
+                                                const Environment& environment) {
+  if (dependsOn(*index.index, bindings)) {
+    return std::nullopt;
+  }
+  Value position = evaluate(*index.index, environment);
+  std::optional<SymbolicList> elements = symbolicList(*index.base, bindings, environment);
+  if (position.type.kind != TypeKind::Num || !elements || position.number < 0 ||
+      position.number != std::floor(position.number) ||
+      position.number >= static_cast<double>(elements->size())) {
+    return std::nullopt;
+  }
+  return (*elements)[static_cast<std::size_t>(position.number)];
 }
 
 std::optional<Lowered> PartLowering::lowerUnary(const UnaryExpr& unary, const Bindings& bindings,

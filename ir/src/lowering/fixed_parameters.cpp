@@ -28,6 +28,9 @@ void collectNames(const Expr& expression, std::vector<const Declaration*>& names
     visit(as<BinaryExpr>(expression).left);
     return visit(as<BinaryExpr>(expression).right);
   case ExprKind::Call:
+    if (as<CallExpr>(expression).callee == "len") {
+      return; // a list literal's length is no parameter's
+    }
     for (const Argument& argument : as<CallExpr>(expression).arguments) {
       visit(argument.value);
     }

@@ -245,6 +245,8 @@ private:
                                      const frontend::Environment& environment);
   std::optional<Lowered> lowerCall(const frontend::CallExpr& call, const Bindings& bindings,
                                    const frontend::Environment& environment);
+  std::optional<Lowered> lowerIndex(const frontend::IndexExpr& index, const Bindings& bindings,
+                                    const frontend::Environment& environment);
 
   // curves.cpp
   CutCurve cutCurve(const frontend::CutStmt& cut);

@@ -249,9 +249,12 @@ bool PartLowering::collectSymbolicPieces(const Expr& curve, const Bindings& bind
     return false;
   }
   SymbolicPiece piece{&call, bindings, environment, outer, false, false};
+  // Bound to IR values, or read through names the lowering keeps no IR
+  // value for (a list of points computed from parameters).
   for (const Argument& argument : call.arguments) {
     piece.shapeDependent =
-        piece.shapeDependent || (argument.value && dependsOn(*argument.value, bindings));
+        piece.shapeDependent || (argument.value && (dependsOn(*argument.value, bindings) ||
+                                                    !parametersOf(*argument.value).empty()));
   }
   piece.dependent = piece.shapeDependent || !outer.isConstant();
   pieces.push_back(std::move(piece));

@@ -230,6 +230,32 @@ TEST(ControllerControlFlow, LoopsDeeperThanTheControllerNestsAreUnrolled) {
   EXPECT_EQ(cells.size(), 9u);
 }
 
+// A list of points computed from a parameter: an element at a known index
+// lowers to its own expression; what the lowering cannot follow (a length
+// of a list stays a number) fixes nothing it does not read.
+TEST(ControllerControlFlow, ListElementsOfParametersStaySymbolic) {
+  std::unique_ptr<Lowered> result = lower(R"(part p(a = 10) {
+  tool 1 diameter=6 feed=300
+  safe z=5
+  let P = [(0, 0), (a, 5)]
+  for i in 0 .. len(P) - 1 {
+    curve line(from=P[0], to=P[1] + (0, 10*i)) tolerance=0.01
+  }
+}
+)",
+                                          true);
+  ASSERT_TRUE(result->part);
+  EXPECT_TRUE(fixedNames(*result->part).empty());
+  std::vector<MachineEvent> feeds = feedsOf(result->part->function, {{"a", 25}});
+  ASSERT_FALSE(feeds.empty());
+  std::set<std::pair<double, double>> ends;
+  for (const MachineEvent& feed : feeds) {
+    ends.insert({feed.x, feed.y});
+  }
+  EXPECT_TRUE(ends.contains({25, 5}));
+  EXPECT_TRUE(ends.contains({25, 15}));
+}
+
 // The step count of a param curve whose coefficients are parameters,
 // computed on the controller from bounds of |C''|, keeps the tolerance for
 // values far from the defaults.
