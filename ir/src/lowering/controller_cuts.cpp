@@ -18,10 +18,15 @@
 //   count of the piece, once per cut, from a bound M >= |C''| over the
 //   piece: a chord over a parameter step h deviates at most h^2 M / 8, so
 //   N = (length of the domain) * sqrt(M / (8 budget)) steps, rounded up,
-//   suffice. The bounds are derived with the functions that compute them.
-// A cut this mode cannot treat (samples=, spacing=, entry=ramp, an
-// analytic curve depending on parameters other than a polar r affine in
-// t) is lowered by the table-driven lowering of cuts.cpp.
+//   suffice. The bounds are derived with the functions that compute them
+//   (here for NURBS spans, in curvature_bounds.cpp for the others); the
+//   pieces' symbolic forms come from symbolic_curves.cpp.
+// samples=N gives N - 1 equal steps of a single piece's parameter, and
+// entry=ramp a first lap descending along each segment (RampSegment). A cut
+// this mode cannot treat (spacing=, samples= over several pieces, a curve
+// whose dependence on parameters the bounds do not follow, a ramp whose
+// shares would change with the parameters) is lowered by the table-driven
+// lowering of cuts.cpp, and what it reads is fixed.
 #include "lowering/part_lowering.h"
 
 #include "cncc/geom/deviation.h"

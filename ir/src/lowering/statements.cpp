@@ -1,7 +1,9 @@
 // The part and its statements. Control flow is decided here, at compile
 // time, from the values the host backends run with: a `for` is unrolled
 // with its variable a constant in each copy, an `if` lowers only the branch
-// its condition chooses.
+// its condition chooses. For controllers that run loops themselves, a `for`
+// or `if` over parameters is tried as a controller loop or branch first
+// (runtime_control.cpp).
 #include "lowering/part_lowering.h"
 
 #include <fmt/format.h>
