@@ -4,6 +4,8 @@
 #include "cncc/frontend/lexer.h"
 #include "cncc/frontend/sema.h"
 
+#include "checked_source.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -16,38 +18,9 @@ namespace {
 
 using ::testing::ElementsAre;
 
-struct Checked {
-  SourceManager sources;
-  DiagnosticEngine diagnostics{0};
-  CheckedProgram program;
-
-  std::vector<std::string> names() const {
-    std::vector<std::string> result;
-    for (const Diagnostic& diagnostic : diagnostics.diagnostics()) {
-      result.emplace_back(diagnosticName(diagnostic.kind));
-    }
-    return result;
-  }
-  const Declaration* find(const std::string& name) const {
-    for (const Declaration& declaration : program.declarations) {
-      if (declaration.name == name && declaration.kind != DeclarationKind::Builtin) {
-        return &declaration;
-      }
-    }
-    return nullptr;
-  }
-};
-
-std::unique_ptr<Checked> check(const std::string& text) {
-  auto checked = std::make_unique<Checked>();
-  FileId file = checked->sources.addFile("test.cdl", text);
-  checked->program = checkProgram(checked->sources, file, {}, checked->diagnostics);
-  return checked;
-}
-
-std::string part(const std::string& body) {
-  return "part p() {\n  tool 1 diameter=6 feed=200\n  safe z=5\n" + body + "\n}\n";
-}
+using test_support::check;
+using test_support::Checked;
+using test_support::part;
 
 TEST(EvaluationTest, ACurveCalledAgainWithOtherValuesIsSampledAgain) {
   // The first three iterations make the same curve; the fourth one's

@@ -2,6 +2,8 @@
 // compile-time evaluation, the geometric checks, imports and parts.
 #include "cncc/frontend/sema.h"
 
+#include "checked_source.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -15,42 +17,9 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-struct Checked {
-  SourceManager sources;
-  DiagnosticEngine diagnostics{0};
-  CheckedProgram program;
-  FileId file;
-
-  std::vector<std::string> names() const {
-    std::vector<std::string> result;
-    for (const Diagnostic& diagnostic : diagnostics.diagnostics()) {
-      result.emplace_back(diagnosticName(diagnostic.kind));
-    }
-    return result;
-  }
-  const Declaration* find(const std::string& name) const {
-    for (const Declaration& declaration : program.declarations) {
-      if (declaration.name == name && declaration.kind != DeclarationKind::Builtin) {
-        return &declaration;
-      }
-    }
-    return nullptr;
-  }
-};
-
-std::unique_ptr<Checked> check(const std::string& text, CheckOptions options = {}) {
-  auto checked = std::make_unique<Checked>();
-  checked->file = checked->sources.addFile("test.cdl", text);
-  options.importPaths.push_back(CNCC_STDLIB_DIR);
-  checked->program = checkProgram(checked->sources, checked->file, options, checked->diagnostics);
-  return checked;
-}
-
-// A part around one body, with a tool and a feed so cuts are complete.
-std::string part(const std::string& body, const std::string& parameters = "") {
-  return "part p(" + parameters + ") {\n  tool 1 diameter=6 feed=200\n  safe z=5\n" + body +
-         "\n}\n";
-}
+using test_support::check;
+using test_support::Checked;
+using test_support::part;
 
 TEST(SemaTest, LanguageContractExampleIsClean) {
   auto checked = check(R"(part s_profile(depth = 3, step = 1, w6 = 3) {
