@@ -55,8 +55,10 @@ struct CheckedExample {
 
 std::unique_ptr<CheckedExample> checkExample(const MacroCase& test, const Parameters& defines) {
   auto example = std::make_unique<CheckedExample>();
+  // An example, or a test part given by its path in the source tree.
+  std::string path = test.file.starts_with("tests/") ? test.file : "examples/" + test.file;
   std::optional<frontend::FileId> file =
-      example->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + test.file);
+      example->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/" + path);
   if (!file) {
     ADD_FAILURE() << "cannot read " << test.file;
     return nullptr;
@@ -95,7 +97,7 @@ std::optional<std::string> macroProgram(const CheckedExample& example, const Mac
   std::vector<std::string> problems = ir::verifyFunction(lowered->function);
   EXPECT_TRUE(problems.empty()) << problems.front();
   MacroProgramOptions options;
-  options.sourceName = test.file;
+  options.sourceName = test.file.substr(test.file.rfind('/') + 1);
   options.partName = part.name;
   options.inches = inches;
   options.callable = test.callable;
@@ -214,9 +216,8 @@ TEST_P(MacroFixedParameters, RaisesTheAlarmInsteadOfCuttingTheDefaultPart) {
 
 // Each example and part with its defaults and other parameter sets: `sets`
 // keep to every tolerance; `fixed` edit parameters the controller cannot
-// recompute (the cam's pieces, whose lengths share a ramp and whose points
-// are spaced by arc length at the defaults), and the program must refuse
-// them with its alarm.
+// recompute, and the program must refuse them with its alarm (every
+// example keeps its parameters editable; a test part shows the alarm).
 struct ExampleParameters {
   std::string file;
   std::string part;
@@ -227,7 +228,10 @@ struct ExampleParameters {
 const std::vector<ExampleParameters>& exampleParameters() {
   static const std::vector<ExampleParameters> examples = {
       {"archimedean_spiral.cdl", "", {{}, {{"a", 3}, {"b", 0.5}}, {{"a", 0.5}, {"b", 4}}}, {}},
-      {"cam_profile.cdl", "", {{}}, {{{"base", 25}, {"lift", 5}}, {{"base", 18}, {"lift", 10}}}},
+      {"cam_profile.cdl",
+       "",
+       {{}, {{"base", 25}, {"lift", 5}}, {{"base", 18}, {"lift", 10}, {"top_end", 2.5}}},
+       {}},
       {"helix_bore.cdl",
        "bore_plate_mm",
        {{}, {{"bore_diameter", 10}, {"depth", 6}}, {{"depth", 12}, {"pitch", 1}}},
@@ -245,6 +249,10 @@ const std::vector<ExampleParameters>& exampleParameters() {
         {{"petals", 2}, {"holes", 0}, {"finish", 1}}},
        {}},
       {"s_profile.cdl", "", {{}, {{"w6", 1}}, {{"w6", 8}}, {{"depth", 2}, {"step", 0.5}}}, {}},
+      {"tests/unit/backends/parts/fixed_loop_bound.cdl",
+       "",
+       {{}, {{"depth", 3}}},
+       {{{"count", 4}}, {{"count", 2}, {"depth", 1}}}},
   };
   return examples;
 }
@@ -272,8 +280,9 @@ std::vector<MacroCase> macroCases(std::vector<Parameters> ExampleParameters::*wh
 
 std::string caseName(const ::testing::TestParamInfo<MacroCase>& info) {
   const MacroCase& test = info.param;
-  std::string name = test.file.substr(0, test.file.find('.')) + "_" + test.part + "_" +
-                     test.target + (test.callable ? "_macro" : "");
+  std::string stem = test.file.substr(test.file.rfind('/') + 1);
+  std::string name = stem.substr(0, stem.find('.')) + "_" + test.part + "_" + test.target +
+                     (test.callable ? "_macro" : "");
   for (const auto& [parameter, value] : test.parameters) {
     name += "_" + parameter + std::to_string(static_cast<int>(value * 10000));
   }
