@@ -531,6 +531,17 @@ private:
 
 } // namespace
 
+const Expr* builtinArgument(const CallExpr& call, std::string_view name) {
+  const std::vector<std::string>& names = parameterNames(call.callee);
+  std::vector<const Expr*> bound = Evaluator::bindArguments(call, names);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) {
+      return bound[i];
+    }
+  }
+  return nullptr;
+}
+
 Value buildCurve(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings) {
   return CurveBuilder(evaluator, call, bindings).build();
 }

@@ -45,11 +45,7 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
       continue;
     }
     std::set<std::string> parameters = parametersOf(*expression);
-    for (const std::string& name : parameters) {
-      if (isLoopVariableMarker(name)) {
-        throw NeedsUnrolling{}; // unrolled, each copy's arcs are fitted
-      }
-    }
+    unrollForLoopVariables(parameters); // unrolled, each copy's arcs are fitted
     if (!parameters.empty()) {
       return fmt::format("its {} depends on parameter '{}'", what, *parameters.begin());
     }

@@ -38,7 +38,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <map>
 #include <set>
@@ -52,9 +51,6 @@ namespace {
 constexpr int maximumStepsPerPiece = 100'000;
 // The share of the increment kept for the rounding of printed literals.
 constexpr double literalShare = 0.02;
-// Added before rounding: round(x + 0.5) = floor(x) + 1 >= ceil(x) and >= 1
-// for x >= 0, written as one inline ROUND on the controller.
-constexpr double roundUpOffset = 0.5;
 // ceil(depth / step) for the pass count, as round(x + offset): a ratio
 // within 1e-8 above a whole number counts as that number (as cuts.cpp's
 // 1e-9 relative rule does), and the literal fits 8 significant digits.
@@ -244,12 +240,7 @@ const Expr* PartLowering::curveArgument(const CutStmt& cut, std::string_view nam
   if (call.callee != "nurbs" && call.callee != "bspline" && call.callee != "bezier") {
     return nullptr;
   }
-  for (const Argument& argument : call.arguments) {
-    if (argument.name == name) {
-      return argument.value.get();
-    }
-  }
-  return nullptr;
+  return builtinArgument(call, name);
 }
 
 // The elements of a list literal (or of the let it names) lowered one by
@@ -263,18 +254,9 @@ std::optional<std::vector<std::optional<Lowered>>>
 PartLowering::symbolicList(const Expr& expression, const Bindings& bindings,
                            const Environment& environment) {
   if (expression.kind == ExprKind::Name) {
-    const Declaration* declaration = as<NameExpr>(expression).declaration;
-    const LetStmt* found = nullptr;
-    std::function<void(const Block&)> search = [&](const Block& block) {
-      for (const StmtPtr& statement : block.statements) {
-        if (statement->kind == StmtKind::Let &&
-            as<LetStmt>(*statement).declaration == declaration) {
-          found = &as<LetStmt>(*statement);
-        }
-      }
-    };
-    search(part_.body);
-    return found == nullptr ? std::nullopt : symbolicList(*found->value, bindings, environment);
+    auto found = letValues_.find(as<NameExpr>(expression).declaration);
+    return found == letValues_.end() ? std::nullopt
+                                     : symbolicList(*found->second, bindings, environment);
   }
   if (expression.kind != ExprKind::List) {
     return std::nullopt;
@@ -317,10 +299,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
          DiagnosticKind::InvalidTolerance);
   }
   if (ramp) {
-    geom::ParameterRange domain = curve.geometry->domain();
-    if (!((curve.geometry->point(domain.t0) - curve.geometry->point(domain.t1)).norm() <= 1e-6)) {
-      unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
-    }
+    checkRampCloses(curve, cut);
   }
   // The pieces as the controller computes them; without them (a curve
   // built in a way the walk does not follow) the pieces are planned at the
@@ -415,12 +394,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
     builder_.comment("ramp");
     std::vector<RampSegment> shares = rampSegments(curve, cut);
     for (const ControllerSegment& segment : *planned) {
-      RampLap lap{previousZ, z, {}};
-      for (const RampSegment& share : shares) {
-        if (share.piece == segment.piece && share.span == segment.span) {
-          lap.segment = share;
-        }
-      }
+      RampLap lap{previousZ, z, rampSegmentOf(shares, segment.piece, segment.span)};
       emitControllerSegment(curve, segment, z, feedValue, cut, &lap);
     }
   }
@@ -525,9 +499,7 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
             }
             Scalar bound = arithmetic_.multiply(
                 segment.moved->norm, Scalar::of(vectorSupremumBound(curvature) / (8 * budget)));
-            segment.stepCount = arithmetic_.unary(
-                Opcode::Round,
-                arithmetic_.add(arithmetic_.unary(Opcode::Sqrt, bound), Scalar::of(roundUpOffset)));
+            segment.stepCount = roundedUpSteps(arithmetic_.unary(Opcode::Sqrt, bound));
           }
         }
         segments.push_back(segment);
@@ -611,18 +583,16 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
 // as lists (or is the degree or the knots, which shape the spans).
 std::optional<PartLowering::NurbsLists> PartLowering::nurbsLists(const SymbolicPiece& piece) {
   NurbsLists result;
+  const Expr* points = builtinArgument(*piece.call, "points");
+  const Expr* weights = builtinArgument(*piece.call, "weights");
   for (const Argument& argument : piece.call->arguments) {
-    if (!argument.value || !dependsOn(*argument.value, piece.bindings)) {
-      continue;
-    }
-    const Expr* points = builtinArgument(*piece.call, "points");
-    const Expr* weights = builtinArgument(*piece.call, "weights");
-    if (argument.value.get() != points && argument.value.get() != weights) {
+    if (argument.value && dependsOn(*argument.value, piece.bindings) &&
+        argument.value.get() != points && argument.value.get() != weights) {
       return std::nullopt;
     }
   }
-  for (auto [name, list] : {std::pair{"points", &result.points}, {"weights", &result.weights}}) {
-    const Expr* expression = builtinArgument(*piece.call, name);
+  for (auto [expression, list] :
+       {std::pair{points, &result.points}, std::pair{weights, &result.weights}}) {
     if (expression == nullptr) {
       continue;
     }
@@ -885,7 +855,7 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
   }
   // N >= sqrt(M / (8 budget)) steps of u; a transform stretches M by its norm.
   Scalar steps = math.unary(Opcode::Sqrt, times(scaledBound, norm));
-  segment.stepCount = math.unary(Opcode::Round, math.add(steps, Scalar::of(roundUpOffset)));
+  segment.stepCount = roundedUpSteps(steps);
 }
 
 CurvePoint PartLowering::splitSpanPoint(const ControllerSegment& segment, Scalar u) {
@@ -922,15 +892,14 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
                                          Scalar z, ValueId feed, const CutStmt& cut,
                                          const RampLap* ramp) {
   const CurvePiece& piece = curve.pieces[segment.piece];
-  ValueId count = arithmetic_.value(stepsOf(segment));
   auto move = [&](const CurvePoint& point, Scalar index) {
     Scalar height = z;
     if (ramp != nullptr) {
       // z = from + (to - from) (before + share index / steps).
-      Scalar share = arithmetic_.add(
-          Scalar::of(ramp->segment.before),
-          times(Scalar::of(ramp->segment.share),
-                arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))));
+      Scalar share =
+          arithmetic_.add(Scalar::of(ramp->segment.before),
+                          times(Scalar::of(ramp->segment.share),
+                                arithmetic_.binary(Opcode::Div, index, stepsOf(segment))));
       height = arithmetic_.add(ramp->from,
                                times(arithmetic_.binary(Opcode::Sub, ramp->to, ramp->from), share));
     }
@@ -946,6 +915,7 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
          Scalar::of(1));
     return;
   }
+  ValueId count = arithmetic_.value(stepsOf(segment));
   ValueId i = builder_.beginLoop(builder_.constant(1), count);
   Scalar index = Scalar::of(i, ValueType::F64);
   if (segment.symbolic != nullptr) {

@@ -40,6 +40,10 @@ bool isZero(const Scalar& scalar) {
 
 } // namespace
 
+Scalar PartLowering::roundedUpSteps(Scalar steps) {
+  return arithmetic_.unary(Opcode::Round, arithmetic_.add(steps, Scalar::of(roundUpOffset)));
+}
+
 std::optional<Scalar> PartLowering::symbolicStepCount(const SymbolicPiece& piece,
                                                       const CurveValue& value, double budget) {
   Arithmetic& math = arithmetic_;
@@ -49,13 +53,12 @@ std::optional<Scalar> PartLowering::symbolicStepCount(const SymbolicPiece& piece
     return Scalar::of(1);
   }
   if (value.kind == CurveKind::Arc) {
-    Bindings bindings = piece.bindings;
-    std::optional<Scalar> radius =
-        symbolicNumber(builtinArgument(*piece.call, "radius"), bindings, piece.environment);
-    std::optional<Scalar> start =
-        symbolicNumber(builtinArgument(*piece.call, "from"), bindings, piece.environment);
-    std::optional<Scalar> end =
-        symbolicNumber(builtinArgument(*piece.call, "to"), bindings, piece.environment);
+    auto argument = [&](std::string_view name) {
+      return symbolicNumber(builtinArgument(*piece.call, name), piece.bindings, piece.environment);
+    };
+    std::optional<Scalar> radius = argument("radius");
+    std::optional<Scalar> start = argument("from");
+    std::optional<Scalar> end = argument("to");
     if (!radius || !start || !end) {
       return std::nullopt;
     }
@@ -79,7 +82,7 @@ std::optional<Scalar> PartLowering::symbolicStepCount(const SymbolicPiece& piece
   // The arc's sweep appears squared in M: N = sweep sqrt(|r| / (8 budget)).
   Scalar steps =
       times(length, math.unary(Opcode::Sqrt, math.multiply(bound, Scalar::of(1 / (8 * budget)))));
-  return math.unary(Opcode::Round, math.add(steps, Scalar::of(roundUpOffset)));
+  return roundedUpSteps(steps);
 }
 
 std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& piece,
@@ -268,7 +271,7 @@ std::optional<Scalar> PartLowering::polarStepCount(const SymbolicPiece& piece,
   Scalar steps =
       times(length, arithmetic_.unary(Opcode::Sqrt,
                                       arithmetic_.multiply(bound, Scalar::of(1 / (8 * budget)))));
-  return arithmetic_.unary(Opcode::Round, arithmetic_.add(steps, Scalar::of(roundUpOffset)));
+  return roundedUpSteps(steps);
 }
 
 } // namespace cncc::ir::lowering

@@ -212,6 +212,16 @@ std::vector<RampSegment> PartLowering::rampSegments(const CutCurve& curve, const
   return segments;
 }
 
+RampSegment PartLowering::rampSegmentOf(const std::vector<RampSegment>& segments, std::size_t piece,
+                                        std::size_t span) {
+  for (const RampSegment& segment : segments) {
+    if (segment.piece == piece && segment.span == span) {
+      return segment;
+    }
+  }
+  return {piece, span, 1.0, 0.0}; // not reached: every segment is listed
+}
+
 double PartLowering::rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,
                                   const SampleLocation& location) {
   const CurvePiece& piece = curve.pieces[location.piece];
@@ -220,12 +230,15 @@ double PartLowering::rampProgress(const std::vector<RampSegment>& segments, cons
     geom::ParameterRange domain = piece.geometry->domain();
     fraction = (location.local - domain.t0) / domain.length();
   }
-  for (const RampSegment& segment : segments) {
-    if (segment.piece == location.piece && segment.span == location.span) {
-      return std::min(1.0, segment.before + segment.share * fraction);
-    }
+  RampSegment segment = rampSegmentOf(segments, location.piece, location.span);
+  return std::min(1.0, segment.before + segment.share * fraction);
+}
+
+void PartLowering::checkRampCloses(const CutCurve& curve, const CutStmt& cut) {
+  geom::ParameterRange domain = curve.geometry->domain();
+  if (!((curve.geometry->point(domain.t0) - curve.geometry->point(domain.t1)).norm() <= 1e-6)) {
+    unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
   }
-  return 1.0;
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
@@ -259,8 +272,8 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
   }
   std::vector<double> depths = passDepths(cut);
-  if (ramp && !((samples.points.front() - samples.points.back()).norm() <= 1e-6)) {
-    unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
+  if (ramp) {
+    checkRampCloses(curve, cut);
   }
 
   // Feed and safe height once, visible in every loop of the cut.

@@ -77,14 +77,21 @@ std::set<std::string> PartLowering::parametersOf(const Expr& expression) const {
   return parameters;
 }
 
+void PartLowering::unrollForLoopVariables(const std::set<std::string>& names) {
+  for (const std::string& name : names) {
+    if (isLoopVariableMarker(name)) {
+      throw NeedsUnrolling{};
+    }
+  }
+}
+
 void PartLowering::fixParameters(const Expr& expression, SourceSpan use, std::string_view what) {
   if (checkingDefaults_) {
     return;
   }
-  for (const std::string& name : parametersOf(expression)) {
-    if (isLoopVariableMarker(name)) {
-      throw NeedsUnrolling{};
-    }
+  std::set<std::string> parameters = parametersOf(expression);
+  unrollForLoopVariables(parameters);
+  for (const std::string& name : parameters) {
     bool known = false;
     for (const FixedParameter& fixed : fixedParameters_) {
       known = known || fixed.name == name;

@@ -180,9 +180,6 @@ struct SymbolicPiece {
   bool shapeDependent = false;
 };
 
-// The argument of a builtin call bound to the parameter `name` (positional
-// arguments in the builtin's order), nullptr when not given.
-const frontend::Expr* builtinArgument(const frontend::CallExpr& call, std::string_view name);
 // Whether the expression names a bound declaration anywhere inside.
 bool dependsOn(const frontend::Expr& expression, const Bindings& bindings);
 
@@ -226,6 +223,9 @@ private:
   // this use (`what`, such as "loop bound"), warning on controller targets.
   void fixParameters(const frontend::Expr& expression, frontend::SourceSpan use,
                      std::string_view what);
+  // Throws NeedsUnrolling when `names` hold a controller loop's variable:
+  // what reads it as a number needs the loop unrolled.
+  static void unrollForLoopVariables(const std::set<std::string>& names);
 
   // expressions.cpp
   frontend::Value evaluate(const frontend::Expr& expression,
@@ -278,6 +278,9 @@ private:
   // The share of the descent done at a sample (SampleLocation.local).
   static double rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,
                              const SampleLocation& location);
+  static RampSegment rampSegmentOf(const std::vector<RampSegment>& segments, std::size_t piece,
+                                   std::size_t span);
+  void checkRampCloses(const CutCurve& curve, const frontend::CutStmt& cut);
 
   // nurbs_cuts.cpp
   bool lowerNurbsCut(const frontend::CutStmt& cut);
@@ -344,6 +347,9 @@ private:
   // The controller's step count for a dependent line, arc, polar or param
   // piece, from a bound of |C''| over its range; nullopt when the piece's
   // expressions are beyond the bounds this version derives.
+  // round(steps + 0.5): at least ceil(steps), and 1 for no steps; one
+  // inline ROUND on the controller.
+  Scalar roundedUpSteps(Scalar steps);
   std::optional<Scalar> symbolicStepCount(const SymbolicPiece& piece,
                                           const frontend::CurveValue& value, double budget);
   std::optional<Scalar> analyticCurvatureBound(const SymbolicPiece& piece,

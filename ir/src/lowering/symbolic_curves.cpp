@@ -36,49 +36,6 @@ bool RuntimeTransform::isConstant() const {
   return constant;
 }
 
-const Expr* builtinArgument(const CallExpr& call, std::string_view name) {
-  const BuiltinInfo* info = nullptr;
-  for (const BuiltinInfo& builtin : builtinFunctions()) {
-    if (builtin.name == call.callee) {
-      info = &builtin;
-    }
-  }
-  if (info == nullptr) {
-    return nullptr;
-  }
-  for (const Argument& argument : call.arguments) {
-    if (argument.name == name) {
-      return argument.value.get();
-    }
-  }
-  // Positional arguments fill the parameters that no named one took.
-  std::size_t next = 0;
-  for (const Argument& argument : call.arguments) {
-    if (!argument.name.empty()) {
-      continue;
-    }
-    auto taken = [&](std::size_t i) {
-      for (const Argument& other : call.arguments) {
-        if (other.name == info->parameters[i].name) {
-          return true;
-        }
-      }
-      return false;
-    };
-    while (next < info->parameters.size() && taken(next)) {
-      ++next;
-    }
-    if (next >= info->parameters.size()) {
-      return nullptr;
-    }
-    if (info->parameters[next].name == name) {
-      return argument.value.get();
-    }
-    ++next;
-  }
-  return nullptr;
-}
-
 Scalar PartLowering::times(Scalar left, Scalar right) {
   bool zero =
       (left.isConstant() && left.constant == 0) || (right.isConstant() && right.constant == 0);

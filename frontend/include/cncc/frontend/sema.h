@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cncc::frontend {
@@ -128,5 +129,10 @@ struct BuiltinInfo {
   std::string description;
 };
 const std::vector<BuiltinInfo>& builtinFunctions();
+
+// The argument expression a call of a builtin binds to its parameter
+// `name` (by name, or by position in the builtin's order), as evaluation
+// binds them; nullptr when the call does not give it.
+const Expr* builtinArgument(const CallExpr& call, std::string_view name);
 
 } // namespace cncc::frontend
