@@ -4,7 +4,7 @@
 // path in step with rs274's; every pass of every cut must stay within the
 // cut's tolerance. rs274 prints four decimals, so the measurement allows
 // for that rounding (half a unit of the last digit on each axis) and for
-// nothing else. Skipped, with a message, only where rs274 is not installed.
+// nothing else. Without rs274 installed the tests fail (CNCC_FIND_RS274).
 #include "linuxcnc_rs274.h"
 
 #include "cncc/backends/linuxcnc_canon.h"
@@ -265,7 +265,7 @@ void PrintTo(const ExampleCase& example, std::ostream* out) {
 class EveryExampleOnLinuxcnc : public ::testing::TestWithParam<ExampleCase> {};
 
 TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
-  CNCC_FIND_RS274_OR_SKIP(rs274);
+  CNCC_FIND_RS274(rs274);
   std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part);
   ASSERT_TRUE(compiled);
   expectWithinTolerance(compiled->path, *compiled, compiled->text, *rs274,
@@ -275,7 +275,7 @@ TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItWithinEveryCutsTolerance) {
 // The subroutine (--macro) of every example, called with the defaults as
 // its arguments, cuts the same part.
 TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItsSubroutineCalledWithTheDefaults) {
-  CNCC_FIND_RS274_OR_SKIP(rs274);
+  CNCC_FIND_RS274(rs274);
   std::unique_ptr<Compiled> compiled = compile(GetParam().file, GetParam().part, {}, true);
   ASSERT_TRUE(compiled);
   const std::string end = "\nM2\n";
@@ -323,7 +323,7 @@ void PrintTo(const EditCase& edit, std::ostream* out) {
 class EditedParameterOnLinuxcnc : public ::testing::TestWithParam<EditCase> {};
 
 TEST_P(EditedParameterOnLinuxcnc, Rs274RunsTheEditedPartWithinTolerance) {
-  CNCC_FIND_RS274_OR_SKIP(rs274);
+  CNCC_FIND_RS274(rs274);
   const EditCase& edit = GetParam();
   std::unique_ptr<Compiled> compiled = compile(edit.file, "");
   ASSERT_TRUE(compiled);
@@ -408,7 +408,7 @@ std::string replaceOnce(std::string text, const std::string& from, const std::st
 // The program keeps its parameters symbolic: editing the line that sets
 // one at the top changes the path rs274 runs.
 TEST(LinuxcncOnRs274, EditingAParameterAtTheTopChangesThePart) {
-  CNCC_FIND_RS274_OR_SKIP(rs274);
+  CNCC_FIND_RS274(rs274);
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(circle(), {});
   ASSERT_TRUE(program.errors.empty());
   std::string edited = replaceOnce(program.text, "#<_r> = 5.\n", "#<_r> = 7.5\n");
@@ -431,7 +431,7 @@ TEST(LinuxcncOnRs274, EditingAParameterAtTheTopChangesThePart) {
 
 // A macro is a subroutine: called with arguments, it cuts what they say.
 TEST(LinuxcncOnRs274, TheSubroutineTakesTheParametersAsArguments) {
-  CNCC_FIND_RS274_OR_SKIP(rs274);
+  CNCC_FIND_RS274(rs274);
   backends::LinuxcncProgramOptions options;
   options.partName = "circle";
   options.callable = true;
