@@ -131,15 +131,17 @@ std::optional<double> fastDecimal(std::string_view digits) {
 
 class Lexer {
 public:
-  Lexer(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
-        std::vector<SourceSpan>* comments)
-      : fileId_(file), file_(sources.file(file)), text_(file_.text()), diagnostics_(diagnostics),
-        comments_(comments) {}
+  // Lexes the bytes [begin, end) of the file as if they were all of it: the
+  // text ends at `end`, offsets stay those of the file.
+  Lexer(const SourceManager& sources, FileId file, std::uint32_t begin, std::uint32_t end,
+        DiagnosticEngine& diagnostics, std::vector<SourceSpan>* comments)
+      : fileId_(file), file_(sources.file(file)), text_(file_.text().substr(0, end)),
+        diagnostics_(diagnostics), comments_(comments), position_(begin) {}
 
   std::vector<Token> run() {
     std::vector<Token> tokens;
     // Dense sources hold about one token per 3 bytes.
-    tokens.reserve(text_.size() / 2 + 16);
+    tokens.reserve((text_.size() - position_) / 2 + 16);
     while (true) {
       bool startsLine = skipSpaceAndComments();
       tokens.emplace_back();
@@ -487,7 +489,14 @@ private:
 
 std::vector<Token> lex(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
                        std::vector<SourceSpan>* comments) {
-  return Lexer(sources, file, diagnostics, comments).run();
+  auto size = static_cast<std::uint32_t>(sources.file(file).text().size());
+  return Lexer(sources, file, 0, size, diagnostics, comments).run();
+}
+
+std::vector<Token> lexRange(const SourceManager& sources, FileId file, std::uint32_t begin,
+                            std::uint32_t end, DiagnosticEngine& diagnostics,
+                            std::vector<SourceSpan>* comments) {
+  return Lexer(sources, file, begin, end, diagnostics, comments).run();
 }
 
 } // namespace cncc::frontend

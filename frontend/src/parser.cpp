@@ -54,7 +54,7 @@ public:
   Module parseModule() {
     Module module;
     module.file = file_;
-    module.arena = arena_;
+    module.arenas.push_back(arena_);
     while (!check(TokenKind::EndOfFile)) {
       panicking_ = false;
       std::size_t before = position_;
@@ -857,6 +857,23 @@ Module parse(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnosti
 
 Module parseFile(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics) {
   return parse(lex(sources, file, diagnostics), file, diagnostics);
+}
+
+Module parseFileRange(const SourceManager& sources, FileId file, std::uint32_t begin,
+                      std::uint32_t end, DiagnosticEngine& diagnostics) {
+  return parse(lexRange(sources, file, begin, end, diagnostics), file, diagnostics);
+}
+
+void appendModule(Module& into, Module&& from) {
+  for (std::shared_ptr<NodeArena>& arena : from.arenas) {
+    into.arenas.push_back(std::move(arena));
+  }
+  from.arenas.clear();
+  into.items.reserve(into.items.size() + from.items.size());
+  for (ItemPtr& item : from.items) {
+    into.items.push_back(std::move(item));
+  }
+  from.items.clear();
 }
 
 } // namespace cncc::frontend

@@ -372,9 +372,15 @@ struct ErrorItem : Item {
 // One parsed file.
 struct Module {
   FileId file;
-  std::shared_ptr<NodeArena> arena; // declared first: it outlives the items
+  // Declared first: they outlive the items. A module joined from several
+  // parsed ranges (appendModule) holds one arena per range.
+  std::vector<std::shared_ptr<NodeArena>> arenas;
   std::vector<ItemPtr> items;
 };
+
+// Joins two modules of the same file: `from`'s items follow `into`'s, and
+// `into` takes `from`'s arenas so the items stay valid (parser.cpp).
+void appendModule(Module& into, Module&& from);
 
 // Casts a node to its concrete class after checking its kind.
 template <typename Node, typename Base> const Node& as(const Base& node) {

@@ -41,5 +41,11 @@ std::string_view unitSuffixSpelling(UnitSuffix unit);
 // `comments` when asked, for the formatter.
 std::vector<Token> lex(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
                        std::vector<SourceSpan>* comments = nullptr);
+// Lexes the bytes [begin, end) of one file as if they were the whole file:
+// spans keep the file's offsets, the first token starts a line and
+// EndOfFile is at `end`. lex() is lexRange() of [0, size).
+std::vector<Token> lexRange(const SourceManager& sources, FileId file, std::uint32_t begin,
+                            std::uint32_t end, DiagnosticEngine& diagnostics,
+                            std::vector<SourceSpan>* comments = nullptr);
 
 } // namespace cncc::frontend

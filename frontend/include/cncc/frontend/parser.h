@@ -24,4 +24,9 @@ Module parse(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnosti
 // Lexes and parses one file of `sources`.
 Module parseFile(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics);
 
+// Parses only the bytes [begin, end) of the file as if they were the whole
+// file (see lexRange). parseFile() is parseFileRange() of [0, size).
+Module parseFileRange(const SourceManager& sources, FileId file, std::uint32_t begin,
+                      std::uint32_t end, DiagnosticEngine& diagnostics);
+
 } // namespace cncc::frontend
