@@ -10,6 +10,7 @@
 
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -37,7 +38,7 @@ std::string joinNames(const std::vector<ParameterSpec>& parameters);
 
 class Checker {
 public:
-  explicit Checker(SemaContext& context) : context_(context) {}
+  explicit Checker(SemaContext& context) : context_(context), states_(ownStates_) {}
   void run();
 
 private:
@@ -48,8 +49,18 @@ private:
   void buildFileScope(Module& module);
   void addImportedNames(Scope& scope, const ImportItem& import,
                         std::map<std::string, const ImportItem*>& importedFrom);
-  void checkItems(Module& module);
+  void checkConstantsAndFunctions(Module& module);
+  void checkParts(Module& module, std::span<PartItem* const> parts);
+  void checkPartsOnTwoThreads(const Scope& scope, std::span<PartItem* const> first,
+                              std::span<PartItem* const> second);
   void checkUnnamedItem(Item& item, const Scope& scope);
+  // A checker for parts on another thread: it reads this one's states, all
+  // Checked by then, and reports to `context`.
+  Checker(SemaContext& context, const Checker& main) : context_(context), states_(main.states_) {}
+  ItemState stateOf(const Declaration* declaration) const {
+    auto found = states_.find(declaration);
+    return found == states_.end() ? ItemState::Unchecked : found->second;
+  }
   void ensureChecked(const Declaration* declaration);
   Type checkFunction(FnItem& function, const Scope& fileScope);
 
@@ -118,7 +129,8 @@ private:
   static std::optional<Type> binaryResultType(BinaryOperator op, Type left, Type right);
 
   SemaContext& context_;
-  std::unordered_map<const Declaration*, ItemState> states_;
+  std::unordered_map<const Declaration*, ItemState> ownStates_;
+  std::unordered_map<const Declaration*, ItemState>& states_;
   // Each fn's parameters as bindArguments takes them, built on its first call.
   std::unordered_map<const FnItem*, std::vector<ParameterSpec>> functionParameters_;
 };

@@ -147,7 +147,7 @@ Type Checker::checkFunctionCall(CallExpr& call, const Declaration& declaration,
   ArgumentBinding binding = bindArguments(call, parameters, false);
   reportMissing(call, parameters, binding);
   checkArgumentsAlone(call, scope);
-  if (states_[&declaration] == ItemState::InProgress) {
+  if (stateOf(&declaration) == ItemState::InProgress) {
     Diagnostic* diagnostic = context_.report(
         DiagnosticKind::RecursiveFunction, call.calleeSpan,
         fmt::format("'{}' calls itself; functions are inlined and cannot be recursive",

@@ -102,7 +102,7 @@ Type Checker::checkName(NameExpr& name, const Scope& scope) {
     return Type::error();
   }
   if (declaration->kind == DeclarationKind::Constant) {
-    if (states_[declaration] == ItemState::InProgress) {
+    if (stateOf(declaration) == ItemState::InProgress) {
       context_.report(DiagnosticKind::CircularConstant, name.span,
                       fmt::format("constant '{}' depends on itself", name.name));
       return Type::error();

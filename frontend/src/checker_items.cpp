@@ -2,11 +2,15 @@
 // scopes with imported names, and checking items on first use.
 #include "checker.h"
 
+#include "parallel_work.h"
+
 #include <algorithm>
 #include <fmt/format.h>
 
 namespace cncc::frontend {
 
+// Constants and functions first, so that parts, which only use them, can be
+// checked on two threads.
 void Checker::run() {
   for (Module& module : context_.program.modules) {
     declareItems(module);
@@ -15,7 +19,16 @@ void Checker::run() {
     buildFileScope(module);
   }
   for (Module& module : context_.program.modules) {
-    checkItems(module);
+    checkConstantsAndFunctions(module);
+  }
+  for (Module& module : context_.program.modules) {
+    std::vector<PartItem*> parts;
+    for (ItemPtr& item : module.items) {
+      if (item->kind == ItemKind::Part) {
+        parts.push_back(&as<PartItem>(*item));
+      }
+    }
+    checkParts(module, parts);
   }
 }
 
@@ -133,17 +146,50 @@ void Checker::addImportedNames(Scope& scope, const ImportItem& import,
   }
 }
 
-void Checker::checkItems(Module& module) {
+void Checker::checkConstantsAndFunctions(Module& module) {
   const Scope& scope = context_.fileScopes.at(&module);
   for (ItemPtr& item : module.items) {
     if (const Declaration* declaration = itemDeclaration(*item)) {
       ensureChecked(declaration);
     } else if (item->kind == ItemKind::Fn || item->kind == ItemKind::Const) {
       checkUnnamedItem(*item, scope);
-    } else if (item->kind == ItemKind::Part) {
-      checkPart(as<PartItem>(*item), scope);
     }
   }
+}
+
+void Checker::checkParts(Module& module, std::span<PartItem* const> parts) {
+  const Scope& scope = context_.fileScopes.at(&module);
+  std::size_t split = partSplit({parts.data(), parts.size()}, context_.options);
+  if (split != 0) {
+    checkPartsOnTwoThreads(scope, parts.first(split), parts.subspan(split));
+    return;
+  }
+  for (PartItem* part : parts) {
+    checkPart(*part, scope);
+  }
+}
+
+// The second run of parts is checked on another thread into a program and
+// diagnostics of its own, which are then added to this program's as if the
+// parts had been checked here after the first run.
+void Checker::checkPartsOnTwoThreads(const Scope& scope, std::span<PartItem* const> first,
+                                     std::span<PartItem* const> second) {
+  CheckedProgram secondProgram;
+  DiagnosticEngine secondDiagnostics(0);
+  SemaContext secondContext(context_.sources, secondDiagnostics, secondProgram, context_.options);
+  Checker secondChecker(secondContext, *this);
+  runAlongside(
+      [&] {
+        for (PartItem* part : second) {
+          secondChecker.checkPart(*part, scope);
+        }
+      },
+      [&] {
+        for (PartItem* part : first) {
+          checkPart(*part, scope);
+        }
+      });
+  context_.adopt(secondContext);
 }
 
 // An item whose name did not parse: still check its body for the editor.
@@ -156,10 +202,10 @@ void Checker::checkUnnamedItem(Item& item, const Scope& scope) {
 // Constants and functions are checked on first use, so they may be used
 // before the line that defines them; a cycle is an error.
 void Checker::ensureChecked(const Declaration* declaration) {
-  ItemState& state = states_[declaration];
-  if (state != ItemState::Unchecked) {
+  if (stateOf(declaration) != ItemState::Unchecked) {
     return;
   }
+  ItemState& state = states_[declaration];
   state = ItemState::InProgress;
   const Item* item = context_.itemOf.at(declaration);
   auto scopeEntry = context_.itemScope.find(declaration);

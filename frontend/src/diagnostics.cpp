@@ -84,6 +84,15 @@ void DiagnosticEngine::addNote(Diagnostic* diagnostic, SourceSpan span, std::str
   }
 }
 
+void DiagnosticEngine::reportAll(const DiagnosticEngine& other) {
+  for (const Diagnostic& reported : other.diagnostics()) {
+    Diagnostic* diagnostic = report(reported.kind, reported.span, reported.message);
+    for (const DiagnosticNote& note : reported.notes) {
+      addNote(diagnostic, note.span, note.message);
+    }
+  }
+}
+
 void DiagnosticEngine::sortByLocation() {
   std::stable_sort(diagnostics_.begin(), diagnostics_.end(), [](const auto& a, const auto& b) {
     if (a.kind == DiagnosticKind::TooManyErrors || b.kind == DiagnosticKind::TooManyErrors) {

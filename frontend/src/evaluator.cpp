@@ -9,13 +9,25 @@ namespace cncc::frontend {
 
 void Evaluator::report(DiagnosticKind kind, SourceSpan span, std::string message) {
   ++reports_;
-  auto key = std::make_pair(static_cast<int>(kind), std::make_pair(span.begin, span.end));
-  if (!reported_.insert(key).second) {
+  if (!reported_.insert(reportKey(kind, span)).second) {
     return;
   }
-  Diagnostic* diagnostic = context_.report(kind, span, std::move(message));
+  Diagnostic* diagnostic = diagnostics_->report(kind, span, std::move(message));
   for (auto call = callStack_.rbegin(); call != callStack_.rend(); ++call) {
-    context_.diagnostics.addNote(diagnostic, *call, "in this call");
+    diagnostics_->addNote(diagnostic, *call, "in this call");
+  }
+}
+
+void Evaluator::addReportsOf(const DiagnosticEngine& diagnostics) {
+  for (const Diagnostic& reported : diagnostics.diagnostics()) {
+    ++reports_;
+    if (!reported_.insert(reportKey(reported.kind, reported.span)).second) {
+      continue;
+    }
+    Diagnostic* diagnostic = diagnostics_->report(reported.kind, reported.span, reported.message);
+    for (const DiagnosticNote& note : reported.notes) {
+      diagnostics_->addNote(diagnostic, note.span, note.message);
+    }
   }
 }
 

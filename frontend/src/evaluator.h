@@ -61,7 +61,22 @@ private:
 
 class Evaluator {
 public:
-  explicit Evaluator(SemaContext& context) : context_(context) {}
+  explicit Evaluator(SemaContext& context)
+      : maximumSteps(context.options.evaluationSteps), context_(context),
+        diagnostics_(&context.diagnostics) {}
+  // This evaluator as it stands (steps spent, kinds and places reported,
+  // samplings), reporting to `diagnostics` from now on: for evaluating some
+  // parts on another thread.
+  Evaluator copyReportingTo(DiagnosticEngine& diagnostics) const {
+    Evaluator copy(*this);
+    copy.diagnostics_ = &diagnostics;
+    return copy;
+  }
+  // Reports what a copy reported to its own `diagnostics`, in order, as this
+  // evaluator would have reported it had it done the copy's work: each kind
+  // and place once.
+  void addReportsOf(const DiagnosticEngine& diagnostics);
+  std::size_t stepsSpent() const { return steps_; }
 
   // Error values are returned silently when the expression already had a
   // diagnostic (its type is Error) or when evaluation found a new problem
@@ -137,7 +152,8 @@ public:
     return true;
   }
 
-  static constexpr std::size_t maximumSteps = 20'000'000;
+  // The step budget (CheckOptions::evaluationSteps).
+  const std::size_t maximumSteps;
 
 private:
   Value evaluateValue(const Expr& expression, const Bindings& bindings);
@@ -178,8 +194,13 @@ private:
   Value typeError(SourceSpan span, std::string message);
 
   SemaContext& context_;
+  DiagnosticEngine* diagnostics_;
   std::vector<SourceSpan> callStack_;
-  std::set<std::pair<int, std::pair<std::uint32_t, std::uint32_t>>> reported_;
+  using ReportKey = std::pair<int, std::pair<std::uint32_t, std::uint32_t>>;
+  static ReportKey reportKey(DiagnosticKind kind, SourceSpan span) {
+    return {static_cast<int>(kind), {span.begin, span.end}};
+  }
+  std::set<ReportKey> reported_;
   std::set<const Declaration*> constantsInProgress_;
   std::size_t steps_ = 0;
   std::size_t reports_ = 0;

@@ -2,9 +2,11 @@
 // defaults (or -D values), the way the machine will run it, and checks what
 // only values show: feeds, tools, sweeps, tolerances, loop bounds.
 #include "evaluator.h"
+#include "parallel_work.h"
 
 #include <cmath>
 #include <fmt/format.h>
+#include <span>
 
 namespace cncc::frontend {
 
@@ -24,8 +26,10 @@ constexpr double maximumSamples = 1'000'000;
 
 class PartEvaluator {
 public:
-  PartEvaluator(Evaluator& evaluator, const PartItem& part)
-      : evaluator_(evaluator), context_(evaluator.context()), part_(part) {}
+  // `assigned`, when given, collects the declarations whose values are set.
+  PartEvaluator(Evaluator& evaluator, const PartItem& part,
+                std::vector<const Declaration*>* assigned = nullptr)
+      : evaluator_(evaluator), context_(evaluator.context()), part_(part), assigned_(assigned) {}
 
   void run() {
     Bindings environment;
@@ -41,7 +45,7 @@ public:
         value = Value::ofNumber(define->second);
       }
       if (value.type.kind == TypeKind::Num) {
-        context_.mutableDeclaration(parameter.declaration).value = value;
+        assign(parameter.declaration, value);
         environment.bind(parameter.declaration, value);
       }
     }
@@ -49,6 +53,13 @@ public:
   }
 
 private:
+  void assign(const Declaration* declaration, const Value& value) {
+    context_.mutableDeclaration(declaration).value = value;
+    if (assigned_ != nullptr) {
+      assigned_->push_back(declaration);
+    }
+  }
+
   // Lets bind in the block's own frame, so they end with the block.
   void walk(const Block& block, const Bindings& outer) {
     Bindings environment(&outer);
@@ -123,9 +134,8 @@ private:
       Value value = evaluator_.evaluate(*let.value, environment);
       if (let.declaration != nullptr) {
         environment.bind(let.declaration, value);
-        Declaration& declaration = context_.mutableDeclaration(let.declaration);
-        if (!declaration.value && !value.isError()) {
-          declaration.value = value;
+        if (!let.declaration->value && !value.isError()) {
+          assign(let.declaration, value);
         }
       }
       return;
@@ -301,6 +311,7 @@ private:
   Evaluator& evaluator_;
   SemaContext& context_;
   const PartItem& part_;
+  std::vector<const Declaration*>* assigned_;
   bool toolKnown_ = false;
   bool feedKnown_ = false;
   std::size_t statements_ = 0;
@@ -313,6 +324,43 @@ private:
 
 } // namespace
 
+namespace {
+
+void evaluateParts(Evaluator& evaluator, std::span<const PartItem* const> parts,
+                   std::vector<const Declaration*>* assigned = nullptr) {
+  for (const PartItem* part : parts) {
+    PartEvaluator(evaluator, *part, assigned).run();
+  }
+}
+
+// The parts of a large file are evaluated on two threads: the first ones
+// here, the others by a copy of the evaluator on a second thread, with
+// diagnostics of its own. The outcome is the one evaluating them in order
+// gives: the copy's diagnostics follow the first parts', and when the two
+// together spent more than the step budget (which evaluating in order would
+// have run out of part-way), the other parts are evaluated again here, after
+// the first, as in order.
+void evaluatePartsOnTwoThreads(Evaluator& evaluator, std::span<const PartItem* const> first,
+                               std::span<const PartItem* const> second) {
+  DiagnosticEngine secondDiagnostics(0);
+  Evaluator secondEvaluator = evaluator.copyReportingTo(secondDiagnostics);
+  std::vector<const Declaration*> secondAssigned;
+  std::size_t stepsBefore = evaluator.stepsSpent();
+  runAlongside([&] { evaluateParts(secondEvaluator, second, &secondAssigned); },
+               [&] { evaluateParts(evaluator, first); });
+  std::size_t steps = evaluator.stepsSpent() + (secondEvaluator.stepsSpent() - stepsBefore);
+  if (steps <= evaluator.maximumSteps) {
+    evaluator.addReportsOf(secondDiagnostics);
+    return;
+  }
+  for (const Declaration* declaration : secondAssigned) {
+    evaluator.context().mutableDeclaration(declaration).value.reset();
+  }
+  evaluateParts(evaluator, second);
+}
+
+} // namespace
+
 void evaluateProgram(SemaContext& context) {
   Evaluator evaluator(context);
   for (const Module& module : context.program.modules) {
@@ -322,8 +370,12 @@ void evaluateProgram(SemaContext& context) {
       }
     }
   }
-  for (const PartItem* part : context.program.parts) {
-    PartEvaluator(evaluator, *part).run();
+  std::span<const PartItem* const> parts = context.program.parts;
+  std::size_t split = partSplit(parts, context.options);
+  if (split == 0) {
+    evaluateParts(evaluator, parts);
+  } else {
+    evaluatePartsOnTwoThreads(evaluator, parts.first(split), parts.subspan(split));
   }
 }
 

@@ -73,6 +73,18 @@ Declaration& SemaContext::declare(DeclarationKind kind, std::string name, Source
   return declaration;
 }
 
+void SemaContext::adopt(SemaContext& other) {
+  CheckedProgram& from = other.program;
+  program.declarations.splice(program.declarations.end(), from.declarations);
+  program.references.insert(program.references.end(), from.references.begin(),
+                            from.references.end());
+  program.scopeExtents.insert(program.scopeExtents.end(), from.scopeExtents.begin(),
+                              from.scopeExtents.end());
+  program.curveParameters.merge(from.curveParameters);
+  usedDeclarations.merge(other.usedDeclarations);
+  diagnostics.reportAll(other.diagnostics);
+}
+
 void SemaContext::reference(SourceSpan span, const Declaration* declaration, bool isDefinition) {
   usedDeclarations.insert(declaration);
   if (span.valid()) {

@@ -54,6 +54,10 @@ struct SemaContext {
   std::unordered_map<const Declaration*, const Scope*> itemScope;
 
   Declaration& declare(DeclarationKind kind, std::string name, SourceSpan span, Type type);
+  // Takes what a context for part of the work on another thread collected:
+  // its declarations, references, scopes and uses, and reports its
+  // diagnostics here after this context's own.
+  void adopt(SemaContext& other);
   void reference(SourceSpan span, const Declaration* declaration, bool isDefinition);
   Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message);
   Declaration& mutableDeclaration(const Declaration* declaration) {

@@ -48,6 +48,8 @@ public:
   // nullptr when it was dropped (duplicate, or past the error limit).
   Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message);
   void addNote(Diagnostic* diagnostic, SourceSpan span, std::string message);
+  // Reports each of `other`'s diagnostics here, in order, with its notes.
+  void reportAll(const DiagnosticEngine& other);
 
   // A deque, so a Diagnostic* from report() stays valid while more arrive.
   const std::deque<Diagnostic>& diagnostics() const { return diagnostics_; }

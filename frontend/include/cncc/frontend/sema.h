@@ -13,6 +13,7 @@
 #include "cncc/frontend/value.h"
 
 #include <deque>
+#include <list>
 #include <map>
 #include <memory>
 #include <optional>
@@ -70,11 +71,19 @@ struct CheckOptions {
   // Whether a missing or ambiguous part is an error (compiling needs one
   // part; `cncc check` checks every part).
   bool requirePart = false;
+  // Threads for a large file: 0 uses a second one when the machine has two
+  // cores, 1 none, 2 a second one always. The result is the same in every
+  // case.
+  unsigned threads = 0;
+  // The steps compile-time evaluation may take in all before it stops
+  // (silently: it guards against pathological sources).
+  std::size_t evaluationSteps = 20'000'000;
 };
 
 struct CheckedProgram {
   std::deque<Module> modules; // the main file first, then its imports
-  std::deque<Declaration> declarations;
+  // A list: declarations made on two threads are joined without moving.
+  std::list<Declaration> declarations;
   std::vector<Reference> references;
   std::vector<const PartItem*> parts;     // of the main file
   const PartItem* selectedPart = nullptr; // per CheckOptions::partName
