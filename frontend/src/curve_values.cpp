@@ -2,15 +2,17 @@
 // user needs before anything is generated: order against the number of
 // points, weights, knot vectors, empty ranges, degenerate shapes.
 #include "evaluator.h"
+#include "number_sampling.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
-#include <map>
+#include <span>
+#include <string_view>
 
 namespace cncc::frontend {
-
-using namespace std::string_view_literals;
 
 namespace {
 
@@ -26,20 +28,89 @@ SourceSpan elementSpan(const Expr& list, std::size_t i) {
   return list.span;
 }
 
-// The parameter names of each builtin, built once.
-const std::vector<std::string>& parameterNames(const std::string& builtin) {
-  static const std::map<std::string, std::vector<std::string>> table = [] {
-    std::map<std::string, std::vector<std::string>> names;
+// The curve constructors, told apart once per call.
+enum class Constructor {
+  Nurbs,
+  Bspline,
+  Bezier,
+  Polar,
+  Param,
+  Line,
+  Arc,
+  Path,
+  Translate,
+  Rotate,
+  Scale,
+  Other,
+};
+constexpr std::size_t constructorCount = static_cast<std::size_t>(Constructor::Other);
+
+Constructor constructorOf(std::string_view name) {
+  static constexpr std::array<std::string_view, constructorCount> names = {
+      "nurbs", "bspline", "bezier",    "polar",  "param", "line",
+      "arc",   "path",    "translate", "rotate", "scale"};
+  for (std::size_t i = 0; i < constructorCount; ++i) {
+    if (names[i].size() == name.size() && names[i] == name) {
+      return static_cast<Constructor>(i);
+    }
+  }
+  return Constructor::Other;
+}
+
+// A builtin's parameter names, in order: views of builtinFunctions()'s,
+// which live as long as the program.
+using ParameterNames = std::vector<std::string_view>;
+
+ParameterNames parameterNamesOf(const BuiltinInfo& info) {
+  ParameterNames names;
+  for (const BuiltinParameter& parameter : info.parameters) {
+    names.push_back(parameter.name);
+  }
+  return names;
+}
+
+// Built once: the curve constructors' by Constructor, the others by name.
+const ParameterNames& parameterNames(std::string_view builtin, Constructor constructor) {
+  struct Table {
+    std::array<ParameterNames, constructorCount> constructors;
+    std::vector<std::pair<std::string_view, ParameterNames>> others;
+  };
+  static const Table table = [] {
+    Table result;
     for (const BuiltinInfo& info : builtinFunctions()) {
-      for (const BuiltinParameter& parameter : info.parameters) {
-        names[info.name].push_back(parameter.name);
+      Constructor of = constructorOf(info.name);
+      if (of == Constructor::Other) {
+        result.others.emplace_back(info.name, parameterNamesOf(info));
+      } else {
+        result.constructors[static_cast<std::size_t>(of)] = parameterNamesOf(info);
       }
     }
-    return names;
+    return result;
   }();
-  static const std::vector<std::string> none;
-  auto found = table.find(builtin);
-  return found == table.end() ? none : found->second;
+  if (constructor != Constructor::Other) {
+    return table.constructors[static_cast<std::size_t>(constructor)];
+  }
+  for (const auto& [name, names] : table.others) {
+    if (name == builtin) {
+      return names;
+    }
+  }
+  static const ParameterNames none;
+  return none;
+}
+
+// More parameters than any builtin has (nurbs has the most: five).
+constexpr std::size_t maximumParameters = 8;
+using BoundArguments = std::array<const Expr*, maximumParameters>;
+
+// The argument bound to each parameter, as the evaluator binds them;
+// parameters past `maximumParameters` (no builtin has them) stay unbound.
+BoundArguments bindBuiltinArguments(const CallExpr& call, const ParameterNames& names) {
+  BoundArguments bound{};
+  Evaluator::bindArguments(
+      call, std::min(names.size(), maximumParameters), [&](std::size_t i) { return names[i]; },
+      bound.data());
+  return bound;
 }
 
 bool sameNumber(double a, double b) {
@@ -114,32 +185,33 @@ class CurveBuilder {
 public:
   CurveBuilder(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings)
       : evaluator_(evaluator), call_(call), bindings_(bindings),
-        names_(parameterNames(call.callee)), arguments_(Evaluator::bindArguments(call, names_)) {}
+        constructor_(constructorOf(call.callee)), names_(parameterNames(call.callee, constructor_)),
+        arguments_(bindBuiltinArguments(call, names_)) {}
 
   Value build() {
-    const std::string& name = call_.callee;
-    if (name == "nurbs"sv || name == "bspline"sv || name == "bezier"sv) {
+    switch (constructor_) {
+    case Constructor::Nurbs:
+    case Constructor::Bspline:
+    case Constructor::Bezier:
       return buildNurbs();
-    }
-    if (name == "polar"sv || name == "param"sv) {
+    case Constructor::Polar:
+    case Constructor::Param:
       return buildAnalytic();
-    }
-    if (name == "line"sv) {
+    case Constructor::Line:
       return buildLine();
-    }
-    if (name == "arc"sv) {
+    case Constructor::Arc:
       return buildArc();
-    }
-    if (name == "path"sv) {
+    case Constructor::Path:
       return buildPath();
+    default:
+      return buildTransform();
     }
-    return buildTransform();
   }
 
 private:
   const Expr* argument(std::string_view name) const {
-    for (std::size_t i = 0; i < names_.size(); ++i) {
-      if (std::string_view(names_[i]) == name) {
+    for (std::size_t i = 0; i < names_.size() && i < maximumParameters; ++i) {
+      if (names_[i] == name) {
         return arguments_[i];
       }
     }
@@ -157,72 +229,115 @@ private:
     return expression.span;
   }
 
-  std::optional<Value> value(std::string_view name, TypeKind kind) {
+  // The argument's value when it was given, evaluated without an error and
+  // is a `kind`; else an Error value (and `failed_`, but for a missing
+  // argument, which the checker has reported).
+  Value value(std::string_view name, TypeKind kind) {
     const Expr* expression = argument(name);
     if (expression == nullptr) {
-      return std::nullopt;
+      return {};
     }
     Value result = evaluator_.evaluate(*expression, bindings_);
-    if (result.isError()) {
-      failed_ = true;
-      return std::nullopt;
-    }
-    if (result.type.kind != kind) {
+    if (!result.isError() && result.type.kind != kind) {
       evaluator_.report(DiagnosticKind::TypeMismatch, expression->span,
                         fmt::format("argument '{}' of '{}' must be a {}, not a {}", name,
                                     call_.callee, typeKindName(kind), typeName(result.type)));
-      failed_ = true;
-      return std::nullopt;
+      result = {};
     }
+    failed_ = failed_ || result.isError();
     return result;
   }
 
   std::optional<double> number(std::string_view name) {
-    std::optional<Value> result = value(name, TypeKind::Num);
-    return result ? std::optional<double>(result->number) : std::nullopt;
+    Value result = value(name, TypeKind::Num);
+    return result.isError() ? std::nullopt : std::optional<double>(result.number);
   }
 
   std::optional<std::array<double, 3>> point(std::string_view name) {
-    std::optional<Value> result = value(name, TypeKind::Point);
-    return result ? std::optional(result->point) : std::nullopt;
+    Value result = value(name, TypeKind::Point);
+    return result.isError() ? std::nullopt : std::optional(result.point);
   }
 
-  std::optional<std::vector<double>> numbers(std::string_view name) {
-    std::optional<Value> list = value(name, TypeKind::List);
-    if (!list) {
-      return std::nullopt;
+  // The elements of a list argument, each of which must be a `kind`
+  // (`'name' must hold <what>` otherwise), appended to `into` by `take`;
+  // false when the argument is missing or anything failed.
+  template <typename Take>
+  bool elements(std::string_view name, TypeKind kind, std::string_view what, Take take) {
+    const Expr* expression = argument(name);
+    if (expression == nullptr) {
+      return false;
     }
-    std::vector<double> result;
-    for (std::size_t i = 0; i < list->list->size(); ++i) {
-      const Value& element = (*list->list)[i];
-      if (element.type.kind != TypeKind::Num) {
-        evaluator_.report(DiagnosticKind::TypeMismatch, elementSpan(*argument(name), i),
-                          fmt::format("'{}' must hold numbers", name));
-        failed_ = true;
-        return std::nullopt;
+    if (expression->kind == ExprKind::List && expression->type.kind != TypeKind::Error &&
+        evaluator_.spendSteps(1)) {
+      return writtenElements(name, as<ListExpr>(*expression), kind, what, take);
+    }
+    Value list = value(name, TypeKind::List);
+    if (list.isError()) {
+      return false;
+    }
+    for (std::size_t i = 0; i < list.list->size(); ++i) {
+      const Value& element = (*list.list)[i];
+      if (element.type.kind != kind) {
+        report(DiagnosticKind::TypeMismatch, elementSpan(*expression, i),
+               fmt::format("'{}' must hold {}", name, what));
+        return false;
       }
-      result.push_back(element.number);
+      take(element);
     }
-    return result;
+    return true;
   }
 
-  std::optional<std::vector<std::array<double, 3>>> points(std::string_view name) {
-    std::optional<Value> list = value(name, TypeKind::List);
-    if (!list) {
-      return std::nullopt;
-    }
-    std::vector<std::array<double, 3>> result;
-    for (std::size_t i = 0; i < list->list->size(); ++i) {
-      const Value& element = (*list->list)[i];
-      if (element.type.kind != TypeKind::Point) {
-        evaluator_.report(DiagnosticKind::TypeMismatch, elementSpan(*argument(name), i),
-                          fmt::format("'{}' must hold points", name));
+  // A list written out in the call, evaluated element by element as the
+  // evaluator evaluates a list (its step spent by the caller), with the same
+  // checks in the same order, but without building the list's Value.
+  template <typename Take>
+  bool writtenElements(std::string_view name, const ListExpr& list, TypeKind kind,
+                       std::string_view what, Take take) {
+    TypeKind first = TypeKind::Any;
+    for (const ExprPtr& item : list.elements) {
+      Value element = elementValue(*item);
+      if (element.isError()) {
         failed_ = true;
-        return std::nullopt;
+        return false;
       }
-      result.push_back(element.point);
+      if (first == TypeKind::Any) {
+        first = element.type.kind;
+      } else if (element.type.kind != first) {
+        report(DiagnosticKind::MixedList, item->span,
+               fmt::format("a list holds one type: this element is a {}, the first is a {}",
+                           typeName(element.type), typeKindName(first)));
+        return false;
+      }
+      if (element.type.kind == kind) {
+        take(element);
+      }
     }
-    return result;
+    if (!list.elements.empty() && first != kind) {
+      report(DiagnosticKind::TypeMismatch, elementSpan(list, 0),
+             fmt::format("'{}' must hold {}", name, what));
+      return false;
+    }
+    return true;
+  }
+
+  // A number written out costs the one step evaluating it would; anything
+  // else (or a number when the step budget is spent) is evaluated.
+  Value elementValue(const Expr& item) {
+    if (item.kind == ExprKind::Number && item.type.kind != TypeKind::Error &&
+        evaluator_.spendSteps(1)) {
+      return Value::ofNumber(as<NumberExpr>(item).value);
+    }
+    return evaluator_.evaluate(item, bindings_);
+  }
+
+  bool numbers(std::string_view name, std::vector<double>& into) {
+    return elements(name, TypeKind::Num, "numbers",
+                    [&](const Value& element) { into.push_back(element.number); });
+  }
+
+  bool points(std::string_view name, std::vector<std::array<double, 3>>& into) {
+    return elements(name, TypeKind::Point, "points",
+                    [&](const Value& element) { into.push_back(element.point); });
   }
 
   void report(DiagnosticKind kind, SourceSpan span, std::string message) {
@@ -240,7 +355,7 @@ private:
 
   // ------------------------------------------------------------ nurbs
   std::optional<int> order() {
-    if (call_.callee == "bezier"sv) {
+    if (constructor_ == Constructor::Bezier) {
       return std::nullopt;
     }
     bool byDegree = argument("order") == nullptr;
@@ -269,14 +384,17 @@ private:
     auto curve = std::make_shared<CurveValue>();
     curve->kind = CurveKind::Nurbs;
     std::optional<int> k = order();
-    std::optional<std::vector<std::array<double, 3>>> controlPoints = points("points");
-    if (!controlPoints) {
+    std::vector<std::array<double, 3>>& controlPoints = curve->points;
+    if (const Expr* given = argument("points"); given != nullptr && given->kind == ExprKind::List) {
+      controlPoints.reserve(as<ListExpr>(*given).elements.size());
+    }
+    if (!points("points", controlPoints)) {
       failed_ = true;
       return {};
     }
-    std::size_t n = controlPoints->size();
+    std::size_t n = controlPoints.size();
     const Expr& pointsExpression = *argument("points");
-    if (call_.callee == "bezier"sv) {
+    if (constructor_ == Constructor::Bezier) {
       if (n < 2) {
         report(DiagnosticKind::TooFewPoints, pointsExpression.span,
                fmt::format("a Bezier segment needs at least 2 points, 'points' has {}", n));
@@ -295,89 +413,91 @@ private:
       return {};
     }
     curve->degree = *k - 1;
-    curve->points = *controlPoints;
-    curve->weights = checkWeights(n);
-    curve->knots = checkKnots(n, *k);
+    checkWeights(n, curve->weights);
+    checkKnots(n, *k, curve->knots);
     return finish(std::move(curve));
   }
 
-  std::vector<double> checkWeights(std::size_t n) {
-    if (argument("weights") == nullptr) {
-      return std::vector<double>(n, 1.0);
+  // The weights (all 1 when not given) into `weights`; what is there when a
+  // check fails does not matter, as the curve is not kept.
+  void checkWeights(std::size_t n, std::vector<double>& weights) {
+    const Expr* given = argument("weights");
+    if (given == nullptr) {
+      weights.assign(n, 1.0);
+      return;
     }
-    std::optional<std::vector<double>> weights = numbers("weights");
-    if (!weights) {
-      return {};
+    weights.reserve(n);
+    if (!numbers("weights", weights)) {
+      return;
     }
-    const Expr& expression = *argument("weights");
-    if (weights->size() != n) {
-      report(DiagnosticKind::WeightsCount, argumentSpan(expression),
-             fmt::format("'weights' has {} entries but 'points' has {}", weights->size(), n));
-      return {};
+    if (weights.size() != n) {
+      report(DiagnosticKind::WeightsCount, argumentSpan(*given),
+             fmt::format("'weights' has {} entries but 'points' has {}", weights.size(), n));
+      return;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (!((*weights)[i] > 0)) {
-        report(
-            DiagnosticKind::WeightNotPositive, elementSpan(expression, i),
-            fmt::format("weight {} is {:g}; every weight must be positive", i + 1, (*weights)[i]));
+      if (!(weights[i] > 0)) {
+        report(DiagnosticKind::WeightNotPositive, elementSpan(*given, i),
+               fmt::format("weight {} is {:g}; every weight must be positive", i + 1, weights[i]));
       }
     }
-    return *weights;
   }
 
-  std::vector<double> checkKnots(std::size_t n, int k) {
+  // The knots (clamped uniform when not given) into `knots`.
+  void checkKnots(std::size_t n, int k, std::vector<double>& knots) {
     std::size_t order = static_cast<std::size_t>(k);
-    if (argument("knots") == nullptr) {
-      return clampedUniformKnots(n, k);
+    const Expr* given = argument("knots");
+    if (given == nullptr) {
+      knots = clampedUniformKnots(n, k);
+      return;
     }
-    std::optional<std::vector<double>> knots = numbers("knots");
-    if (!knots) {
-      return {};
+    knots.reserve(n + order);
+    if (!numbers("knots", knots)) {
+      return;
     }
-    const Expr& expression = *argument("knots");
-    if (knots->size() != n + order) {
+    const Expr& expression = *given;
+    if (knots.size() != n + order) {
       report(DiagnosticKind::KnotsCount, expression.span,
-             fmt::format("'knots' has {} entries but needs {} ({} points + order {})",
-                         knots->size(), n + order, n, k));
-      return {};
+             fmt::format("'knots' has {} entries but needs {} ({} points + order {})", knots.size(),
+                         n + order, n, k));
+      return;
     }
-    for (std::size_t i = 1; i < knots->size(); ++i) {
-      if ((*knots)[i] < (*knots)[i - 1]) {
+    for (std::size_t i = 1; i < knots.size(); ++i) {
+      if (knots[i] < knots[i - 1]) {
         report(DiagnosticKind::KnotsNotMonotonic, elementSpan(expression, i),
                fmt::format("knot {} ({:g}) is smaller than knot {} ({:g}); knots must not "
                            "decrease",
-                           i + 1, (*knots)[i], i, (*knots)[i - 1]));
-        return {};
+                           i + 1, knots[i], i, knots[i - 1]));
+        return;
       }
     }
-    if (!((*knots)[order - 1] < (*knots)[n])) {
+    if (!(knots[order - 1] < knots[n])) {
       report(DiagnosticKind::DegenerateCurve, expression.span,
              fmt::format("the knots leave the curve no parameter range (knot {} equals knot {})", k,
                          n + 1));
     }
-    return *knots;
   }
 
   // ------------------------------------------------------------ polar, param
   Value buildAnalytic() {
     auto curve = std::make_shared<CurveValue>();
-    bool polar = call_.callee == "polar"sv;
+    bool polar = constructor_ == Constructor::Polar;
     curve->kind = polar ? CurveKind::Polar : CurveKind::Param;
-    std::optional<Value> range = value("t", TypeKind::Range);
+    Value range = value("t", TypeKind::Range);
     auto found = evaluator_.context().program.curveParameters.find(&call_);
-    if (!range || found == evaluator_.context().program.curveParameters.end()) {
+    if (range.isError() || found == evaluator_.context().program.curveParameters.end()) {
       failed_ = true;
       return {};
     }
     const Expr& rangeExpression = *argument("t");
-    if (!(range->low < range->high)) {
+    if (!(range.low < range.high)) {
       report(DiagnosticKind::EmptyRange, rangeExpression.span,
              fmt::format("the range {:g} .. {:g} is empty; a curve's parameter needs start < end",
-                         range->low, range->high));
+                         range.low, range.high));
       return {};
     }
-    curve->low = range->low;
-    curve->high = range->high;
+    curve->low = range.low;
+    curve->high = range.high;
     curve->parameter = found->second;
     curve->environment = bindings_.flatten();
     curve->radius = argument("r");
@@ -412,12 +532,16 @@ private:
   }
 
   void sampleAll(CurveValue& curve) {
-    constexpr int samples = 16;
+    std::array<const Expr*, 4> expressions = {curve.radius, curve.x, curve.y, curve.z};
+    if (sampledAtOnce(curve, expressions)) {
+      return;
+    }
+    constexpr int samples = curveSampleIntervals;
     Bindings sample(&bindings_);
     for (int i = 0; i <= samples && !failed_ && !evaluator_.exhausted(); ++i) {
       double t = curve.low + (curve.high - curve.low) * i / samples;
       sample.bind(curve.parameter, Value::ofNumber(t));
-      for (const Expr* expression : {curve.radius, curve.x, curve.y, curve.z}) {
+      for (const Expr* expression : expressions) {
         if (expression == nullptr) {
           continue;
         }
@@ -430,6 +554,20 @@ private:
         }
       }
     }
+  }
+
+  // Every sample a finite number by the fast path, as the loop above would
+  // find one by one, with the steps it would spend: then the loop has
+  // nothing to report and nothing else to do. Not when the budget would run
+  // out on the way, so the loop stops where it did.
+  bool sampledAtOnce(const CurveValue& curve, std::span<const Expr* const> expressions) {
+    if (evaluator_.exhausted()) {
+      return false;
+    }
+    std::optional<std::size_t> steps =
+        fastPathSampleSteps(evaluator_.context(), evaluator_.progress().callDepth, bindings_,
+                            {curve.parameter, curve.low, curve.high, expressions});
+    return steps && evaluator_.spendSteps(*steps);
   }
 
   // ------------------------------------------------------------ others
@@ -478,6 +616,7 @@ private:
   Value buildPath() {
     auto curve = std::make_shared<CurveValue>();
     curve->kind = CurveKind::Path;
+    curve->pieces.reserve(call_.arguments.size());
     for (const Argument& argument : call_.arguments) {
       Value piece = evaluator_.evaluate(*argument.value, bindings_);
       if (piece.type.kind != TypeKind::Curve) {
@@ -489,20 +628,19 @@ private:
         failed_ = true;
         continue;
       }
-      curve->pieces.push_back(piece.curve);
+      curve->pieces.push_back(std::move(piece.curve));
     }
     return finish(std::move(curve));
   }
 
   Value buildTransform() {
     auto curve = std::make_shared<CurveValue>();
-    std::optional<Value> piece = value("curve", TypeKind::Curve);
-    const std::string& name = call_.callee;
-    if (name == "translate"sv) {
+    Value piece = value("curve", TypeKind::Curve);
+    if (constructor_ == Constructor::Translate) {
       curve->kind = CurveKind::Translate;
       curve->dx = number("dx").value_or(0);
       curve->dy = number("dy").value_or(0);
-    } else if (name == "rotate"sv) {
+    } else if (constructor_ == Constructor::Rotate) {
       curve->kind = CurveKind::Rotate;
       curve->angle = number("angle").value_or(0);
     } else {
@@ -514,27 +652,28 @@ private:
       }
       curve->factor = factor.value_or(1);
     }
-    if (!piece) {
+    if (piece.isError()) {
       return {};
     }
-    curve->pieces.push_back(piece->curve);
+    curve->pieces.push_back(std::move(piece.curve));
     return finish(std::move(curve));
   }
 
   Evaluator& evaluator_;
   const CallExpr& call_;
   const Bindings& bindings_;
-  const std::vector<std::string>& names_;
-  std::vector<const Expr*> arguments_;
+  Constructor constructor_;
+  const ParameterNames& names_;
+  BoundArguments arguments_;
   bool failed_ = false;
 };
 
 } // namespace
 
 const Expr* builtinArgument(const CallExpr& call, std::string_view name) {
-  const std::vector<std::string>& names = parameterNames(call.callee);
-  std::vector<const Expr*> bound = Evaluator::bindArguments(call, names);
-  for (std::size_t i = 0; i < names.size(); ++i) {
+  const ParameterNames& names = parameterNames(call.callee, constructorOf(call.callee));
+  BoundArguments bound = bindBuiltinArguments(call, names);
+  for (std::size_t i = 0; i < names.size() && i < maximumParameters; ++i) {
     if (names[i] == name) {
       return bound[i];
     }

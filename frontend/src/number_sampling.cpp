@@ -1,0 +1,307 @@
+#include "number_sampling.h"
+
+#include <array>
+#include <cmath>
+
+namespace cncc::frontend {
+
+namespace {
+
+constexpr std::size_t sampleCount = curveSampleIntervals + 1;
+
+// A number at every sample; one number when it is the same at all of them
+// (it does not depend on `t`).
+struct Samples {
+  bool uniform = true;
+  std::array<double, sampleCount> values{};
+
+  double at(std::size_t i) const { return uniform ? values[0] : values[i]; }
+  static Samples of(double number) {
+    Samples samples;
+    samples.values[0] = number;
+    return samples;
+  }
+};
+
+// The names a frame binds: a fn call's parameters (as the fast path binds
+// them, with nothing outside), or, outermost, `t` over the bindings the
+// curve is evaluated in.
+struct Frame {
+  std::span<const Declaration* const> declarations;
+  const Samples* samples = nullptr;
+  const Bindings* outer = nullptr;
+};
+
+// Far more than any curve needs, and a bound on the work for a pathological
+// one (the fast path itself stops only at the step budget).
+constexpr std::size_t maximumStepsPerSample = std::size_t{1} << 20;
+
+// The fast path's largest fn call depth, as Evaluator::numberOfFunctionCall
+// checks it.
+constexpr std::size_t maximumCallDepth = 64;
+
+class Sampler {
+public:
+  Sampler(const SemaContext& context, std::size_t callDepth)
+      : context_(context), callDepth_(callDepth) {}
+
+  // What Evaluator::evaluateNumber does, at every sample.
+  bool evaluate(const Expr& expression, const Frame& frame, Samples& result) {
+    if (++steps_ > maximumStepsPerSample || expression.type.kind == TypeKind::Error) {
+      return false;
+    }
+    switch (expression.kind) {
+    case ExprKind::Number:
+      result = Samples::of(as<NumberExpr>(expression).value);
+      return true;
+    case ExprKind::Name:
+      return name(as<NameExpr>(expression), frame, result);
+    case ExprKind::Unary:
+      return unary(as<UnaryExpr>(expression), frame, result);
+    case ExprKind::Binary:
+      return binary(as<BinaryExpr>(expression), frame, result);
+    case ExprKind::Call:
+      return call(as<CallExpr>(expression), frame, result);
+    default:
+      return false;
+    }
+  }
+
+  std::size_t steps() const { return steps_; }
+
+private:
+  // Applies `operation` (false when the fast path would fail) at every
+  // sample, once when both operands are uniform.
+  template <typename Operation>
+  static bool combine(const Samples& a, const Samples& b, Samples& result, Operation operation) {
+    result.uniform = a.uniform && b.uniform;
+    std::size_t count = result.uniform ? 1 : sampleCount;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!operation(a.at(i), b.at(i), result.values[i])) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  template <typename Operation>
+  static bool apply(const Samples& a, Samples& result, Operation operation) {
+    return combine(a, a, result, [&](double x, double, double& out) { return operation(x, out); });
+  }
+
+  bool name(const NameExpr& name, const Frame& frame, Samples& result) {
+    const Declaration* declaration = name.declaration;
+    if (declaration == nullptr) {
+      return false;
+    }
+    switch (declaration->kind) {
+    case DeclarationKind::Constant:
+    case DeclarationKind::Builtin:
+      // A constant not evaluated yet is left to the ordinary sampling.
+      if (!declaration->value || declaration->value->type.kind != TypeKind::Num) {
+        return false;
+      }
+      result = Samples::of(declaration->value->number);
+      return true;
+    default:
+      break;
+    }
+    for (std::size_t i = 0; i < frame.declarations.size(); ++i) {
+      if (frame.declarations[i] == declaration) {
+        result = frame.samples[i];
+        return true;
+      }
+    }
+    double number = 0;
+    if (frame.outer == nullptr || !frame.outer->findNumber(declaration, number)) {
+      return false;
+    }
+    result = Samples::of(number);
+    return true;
+  }
+
+  bool unary(const UnaryExpr& unary, const Frame& frame, Samples& result) {
+    Samples operand;
+    if (unary.op != UnaryOperator::Negate || !evaluate(*unary.operand, frame, operand)) {
+      return false;
+    }
+    return apply(operand, result, [](double x, double& out) {
+      out = -x;
+      return true;
+    });
+  }
+
+  // As Evaluator::numberOfBinary.
+  bool binary(const BinaryExpr& binary, const Frame& frame, Samples& result) {
+    BinaryOperator op = binary.op;
+    switch (op) {
+    case BinaryOperator::Add:
+    case BinaryOperator::Subtract:
+    case BinaryOperator::Multiply:
+    case BinaryOperator::Divide:
+    case BinaryOperator::Remainder:
+    case BinaryOperator::Power:
+      break;
+    default:
+      return false;
+    }
+    Samples left;
+    Samples right;
+    if (!evaluate(*binary.left, frame, left) || !evaluate(*binary.right, frame, right)) {
+      return false;
+    }
+    return combine(left, right, result, [op](double a, double b, double& out) {
+      switch (op) {
+      case BinaryOperator::Add:
+        out = a + 1 * b;
+        break;
+      case BinaryOperator::Subtract:
+        out = a + -1 * b;
+        break;
+      case BinaryOperator::Multiply:
+        out = a * b;
+        break;
+      case BinaryOperator::Divide:
+      case BinaryOperator::Remainder:
+        if (b == 0) {
+          return false;
+        }
+        out = op == BinaryOperator::Divide ? a / b : std::fmod(a, b);
+        break;
+      default:
+        out = std::pow(a, b);
+        break;
+      }
+      return std::isfinite(out);
+    });
+  }
+
+  // As Evaluator::numberOfCall.
+  bool call(const CallExpr& call, const Frame& frame, Samples& result) {
+    using namespace arithmetic;
+    const Declaration* declaration = call.declaration;
+    if (declaration == nullptr) {
+      return false;
+    }
+    if (declaration->kind == DeclarationKind::Function) {
+      return functionCall(call, *declaration, frame, result);
+    }
+    if (declaration->kind != DeclarationKind::Builtin || call.type.kind == TypeKind::Curve) {
+      return false;
+    }
+    std::size_t count = call.arguments.size();
+    if (count != 1 && count != 2) {
+      return false;
+    }
+    MathFunction function = mathFunction(call.callee);
+    if (function == MathFunction::Len) {
+      return false;
+    }
+    std::array<Samples, 2> values;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!evaluate(*call.arguments[i].value, frame, values[i])) {
+        return false;
+      }
+    }
+    if (count == 1) {
+      return apply(values[0], result, [function](double x, double& out) {
+        out = applyUnary(function, x);
+        return std::isfinite(out);
+      });
+    }
+    std::array<std::string_view, 2> names = binaryParameterNames(function);
+    std::array<const Expr*, 2> arguments{};
+    Evaluator::bindArguments(
+        call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
+    bool swapped = arguments[0] != call.arguments[0].value.get();
+    return combine(values[0], values[1], result, [&](double a, double b, double& out) {
+      if (swapped) {
+        std::swap(a, b);
+      }
+      out = applyBinary(function, a, b);
+      return std::isfinite(out);
+    });
+  }
+
+  // As Evaluator::numberOfFunctionCall: the arguments in the caller's frame,
+  // the body in a frame of the parameters alone.
+  bool functionCall(const CallExpr& call, const Declaration& function, const Frame& frame,
+                    Samples& result) {
+    if (function.function == nullptr || context_.invalidFunctions.contains(&function)) {
+      return false;
+    }
+    const std::vector<Parameter>& parameters = function.function->parameters;
+    std::size_t count = parameters.size();
+    if (count > Bindings::maximumNumbers || callDepth_ > maximumCallDepth) {
+      return false;
+    }
+    std::array<const Expr*, Bindings::maximumNumbers> arguments{};
+    Evaluator::bindArguments(
+        call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
+        arguments.data());
+    std::array<const Declaration*, Bindings::maximumNumbers> declarations{};
+    std::array<Samples, Bindings::maximumNumbers> values;
+    for (std::size_t i = 0; i < count; ++i) {
+      declarations[i] = parameters[i].declaration;
+      if (arguments[i] == nullptr || declarations[i] == nullptr ||
+          !evaluate(*arguments[i], frame, values[i])) {
+        return false;
+      }
+    }
+    ++callDepth_;
+    bool evaluated = evaluate(*function.function->body,
+                              Frame{std::span(declarations.data(), count), values.data()}, result);
+    --callDepth_;
+    return evaluated;
+  }
+
+  const SemaContext& context_;
+  std::size_t callDepth_;
+  std::size_t steps_ = 0;
+};
+
+// Whether Evaluator::evaluate tries the fast path on the expression.
+bool mayBeNumber(const Expr& expression) {
+  if (expression.type.kind != TypeKind::Num && expression.type.kind != TypeKind::Any) {
+    return false;
+  }
+  switch (expression.kind) {
+  case ExprKind::Number:
+  case ExprKind::Name:
+  case ExprKind::Unary:
+  case ExprKind::Binary:
+  case ExprKind::Call:
+    return true;
+  default:
+    return false;
+  }
+}
+
+} // namespace
+
+std::optional<std::size_t> fastPathSampleSteps(const SemaContext& context, std::size_t callDepth,
+                                               const Bindings& bindings,
+                                               const CurveSamples& samples) {
+  Samples t;
+  t.uniform = false;
+  for (int i = 0; i <= curveSampleIntervals; ++i) {
+    // As the samples are taken one by one (curve_values.cpp).
+    t.values[static_cast<std::size_t>(i)] =
+        samples.low + (samples.high - samples.low) * i / curveSampleIntervals;
+  }
+  const Declaration* parameter = samples.parameter;
+  Frame frame{std::span(&parameter, 1), &t, &bindings};
+  Sampler sampler(context, callDepth);
+  for (const Expr* expression : samples.expressions) {
+    if (expression == nullptr) {
+      continue;
+    }
+    Samples result;
+    if (!mayBeNumber(*expression) || !sampler.evaluate(*expression, frame, result)) {
+      return std::nullopt;
+    }
+  }
+  return sampler.steps() * sampleCount;
+}
+
+} // namespace cncc::frontend
