@@ -45,16 +45,34 @@ enum class Constructor {
 };
 constexpr std::size_t constructorCount = static_cast<std::size_t>(Constructor::Other);
 
+// By length, then by spelling: a comparison or two per call.
 Constructor constructorOf(std::string_view name) {
-  static constexpr std::array<std::string_view, constructorCount> names = {
-      "nurbs", "bspline", "bezier",    "polar",  "param", "line",
-      "arc",   "path",    "translate", "rotate", "scale"};
-  for (std::size_t i = 0; i < constructorCount; ++i) {
-    if (names[i].size() == name.size() && names[i] == name) {
-      return static_cast<Constructor>(i);
+  auto is = [&](std::string_view spelling, Constructor constructor) {
+    return name == spelling ? constructor : Constructor::Other;
+  };
+  switch (name.size()) {
+  case 3:
+    return is("arc", Constructor::Arc);
+  case 4:
+    return name[1] == 'i' ? is("line", Constructor::Line) : is("path", Constructor::Path);
+  case 5:
+    switch (name[0]) {
+    case 'n':
+      return is("nurbs", Constructor::Nurbs);
+    case 'p':
+      return name[1] == 'o' ? is("polar", Constructor::Polar) : is("param", Constructor::Param);
+    default:
+      return is("scale", Constructor::Scale);
     }
+  case 6:
+    return name[0] == 'b' ? is("bezier", Constructor::Bezier) : is("rotate", Constructor::Rotate);
+  case 7:
+    return is("bspline", Constructor::Bspline);
+  case 9:
+    return is("translate", Constructor::Translate);
+  default:
+    return Constructor::Other;
   }
-  return Constructor::Other;
 }
 
 // A builtin's parameter names, in order: views of builtinFunctions()'s,
@@ -237,7 +255,7 @@ private:
     if (expression == nullptr) {
       return {};
     }
-    Value result = evaluator_.evaluate(*expression, bindings_);
+    Value result = argumentValue(*expression);
     if (!result.isError() && result.type.kind != kind) {
       evaluator_.report(DiagnosticKind::TypeMismatch, expression->span,
                         fmt::format("argument '{}' of '{}' must be a {}, not a {}", name,
@@ -295,7 +313,7 @@ private:
                        std::string_view what, Take take) {
     TypeKind first = TypeKind::Any;
     for (const ExprPtr& item : list.elements) {
-      Value element = elementValue(*item);
+      Value element = argumentValue(*item);
       if (element.isError()) {
         failed_ = true;
         return false;
@@ -320,14 +338,39 @@ private:
     return true;
   }
 
-  // A number written out costs the one step evaluating it would; anything
-  // else (or a number when the step budget is spent) is evaluated.
-  Value elementValue(const Expr& item) {
-    if (item.kind == ExprKind::Number && item.type.kind != TypeKind::Error &&
-        evaluator_.spendSteps(1)) {
-      return Value::ofNumber(as<NumberExpr>(item).value);
+  // What evaluating an argument gives. A number or a point written out is
+  // evaluated here as the evaluator would, with a step for each node (when
+  // the budget has it), but without its detours: most arguments are these.
+  Value argumentValue(const Expr& expression) {
+    if (expression.type.kind != TypeKind::Error) {
+      if (expression.kind == ExprKind::Number && evaluator_.spendSteps(1)) {
+        return Value::ofNumber(as<NumberExpr>(expression).value);
+      }
+      if (expression.kind == ExprKind::Point && evaluator_.spendSteps(1)) {
+        return pointValue(as<PointExpr>(expression));
+      }
     }
-    return evaluator_.evaluate(item, bindings_);
+    return evaluator_.evaluate(expression, bindings_);
+  }
+
+  // As Evaluator::evaluatePoint.
+  Value pointValue(const PointExpr& point) {
+    std::array<double, 3> coordinates{0, 0, 0};
+    int dimensions = static_cast<int>(point.components.size());
+    for (int i = 0; i < dimensions && i < 3; ++i) {
+      const Expr& component = *point.components[static_cast<std::size_t>(i)];
+      Value coordinate = argumentValue(component);
+      if (coordinate.isError()) {
+        return {};
+      }
+      if (coordinate.type.kind != TypeKind::Num) {
+        evaluator_.report(DiagnosticKind::TypeMismatch, component.span,
+                          "a point's coordinates must be numbers");
+        return {};
+      }
+      coordinates[static_cast<std::size_t>(i)] = coordinate.number;
+    }
+    return Value::ofPoint(coordinates, std::min(dimensions, 3));
   }
 
   bool numbers(std::string_view name, std::vector<double>& into) {
