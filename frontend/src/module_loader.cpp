@@ -2,6 +2,7 @@
 // imports that cannot be found or that form a cycle.
 #include "cncc/frontend/parser.h"
 
+#include "parallel_work.h"
 #include "sema_context.h"
 
 #include <filesystem>
@@ -28,7 +29,7 @@ private:
       }
     }
     Module& module = context_.program.modules.emplace_back(
-        parseFile(context_.sources, file, context_.diagnostics));
+        parseModule(context_.sources, file, context_.diagnostics, context_.options));
     std::string canonicalPath = canonical(context_.sources.file(file).path());
     loadedFiles_[canonicalPath] = file;
     stack_.push_back({file, canonicalPath, nullptr});

@@ -32,6 +32,13 @@ template <typename Other, typename Here> void runAlongside(Other&& other, Here&&
   }
 }
 
+// Lexes and parses `file`; a large one as two halves on two threads, split
+// before a file-level item near the middle. The module is the one parsing
+// the whole file gives: when either half has a problem (which near the
+// split could read differently), the whole file is parsed again here.
+Module parseModule(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
+                   const CheckOptions& options);
+
 // Whether `options` and the machine allow a second thread.
 bool twoThreadsAllowed(const CheckOptions& options);
 

@@ -2,6 +2,7 @@
 // one finds: the same diagnostics in the same order (also past the error
 // limit and when the evaluation budget runs out), the same declarations
 // with the same values, the same references.
+#include "cncc/frontend/ast_printer.h"
 #include "cncc/frontend/sema.h"
 
 #include <gmock/gmock.h>
@@ -20,6 +21,7 @@ struct Outcome {
   std::vector<std::string> references;
   std::size_t scopeExtents = 0;
   std::size_t curveParameters = 0;
+  std::string syntaxTree;
 };
 
 std::string describe(const Declaration& declaration) {
@@ -56,6 +58,7 @@ Outcome checkWith(const std::string& text, unsigned threads, std::size_t errorLi
   }
   outcome.scopeExtents = program.scopeExtents.size();
   outcome.curveParameters = program.curveParameters.size();
+  outcome.syntaxTree = dumpAst(program.modules.front(), sources);
   return outcome;
 }
 
@@ -65,6 +68,7 @@ void expectSame(const Outcome& oneThread, const Outcome& twoThreads) {
   EXPECT_EQ(oneThread.references, twoThreads.references);
   EXPECT_EQ(oneThread.scopeExtents, twoThreads.scopeExtents);
   EXPECT_EQ(oneThread.curveParameters, twoThreads.curveParameters);
+  EXPECT_EQ(oneThread.syntaxTree, twoThreads.syntaxTree);
 }
 
 // Parts of several shapes; every `faultEvery`-th one has mistakes of the
@@ -121,6 +125,38 @@ TEST(ParallelCheckTest, TheErrorLimitStopsAtTheSameDiagnostic) {
   Outcome oneThread = checkWith(text, 1, 50);
   ASSERT_EQ(oneThread.diagnostics.size(), 50u + 1 + 200); // errors, the note, the warnings
   expectSame(oneThread, checkWith(text, 2, 50));
+}
+
+// The file is parsed as two halves split before an item past the middle;
+// a problem in a half, or a split that lands in a comment or a part's
+// braces, parses the whole file again.
+TEST(ParallelCheckTest, ASyntaxErrorInEitherHalfIsReportedOnce) {
+  std::string clean = manyParts(40, 0);
+  for (std::size_t at : {clean.size() / 4, clean.size() * 3 / 4}) {
+    std::string text = clean;
+    text.insert(text.find("  safe z=", at), "  let = 4\n");
+    Outcome oneThread = checkWith(text, 1, 50);
+    ASSERT_EQ(oneThread.diagnostics.size(), 1u);
+    expectSame(oneThread, checkWith(text, 2, 50));
+  }
+}
+
+TEST(ParallelCheckTest, ASplitInsideACommentOrBracesParsesTheWholeFile) {
+  // The middle third is a comment, with lines that would start parts; then
+  // a part with such a line inside its braces.
+  std::string parts = manyParts(60, 0);
+  std::size_t third = parts.find("\npart ", parts.size() / 3) + 1;
+  std::size_t twoThirds = parts.find("\npart ", parts.size() * 2 / 3) + 1;
+  std::string commented = parts.substr(0, third) + "/* the old parts:\n" +
+                          parts.substr(third, twoThirds - third) + "*/\n" + parts.substr(twoThirds);
+  std::string nested =
+      parts.substr(0, parts.size() / 2) + "\npart inner() {}\n" + parts.substr(parts.size() / 2);
+  for (const std::string& text : {commented, nested}) {
+    Outcome oneThread = checkWith(text, 1, 50);
+    expectSame(oneThread, checkWith(text, 2, 50));
+  }
+  EXPECT_TRUE(checkWith(commented, 1, 50).diagnostics.empty());
+  EXPECT_FALSE(checkWith(nested, 1, 50).diagnostics.empty());
 }
 
 // The 60 parts take some 55,000 steps. Evaluating in order with a smaller
