@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <string_view>
+#include <unordered_map>
 
 namespace cncc::frontend {
 
@@ -86,12 +88,15 @@ void Checker::buildFileScope(Module& module) {
       addImportedNames(scope, as<ImportItem>(*item), importedFrom);
     }
   }
-  std::map<std::string, const Item*> seen;
+  // Views of the items' and declarations' names, which outlive the map.
+  std::unordered_map<std::string_view, const Item*> seen;
+  seen.reserve(module.items.size());
   for (ItemPtr& item : module.items) {
     const Declaration* declaration = itemDeclaration(*item);
-    std::string name = item->kind == ItemKind::Part ? as<PartItem>(*item).name
-                       : declaration != nullptr     ? declaration->name
-                                                    : "";
+    std::string_view name = item->kind == ItemKind::Part
+                                ? std::string_view(as<PartItem>(*item).name)
+                            : declaration != nullptr ? std::string_view(declaration->name)
+                                                     : std::string_view();
     if (name.empty()) {
       continue;
     }
@@ -104,7 +109,7 @@ void Checker::buildFileScope(Module& module) {
                                    "the first definition is here");
       continue;
     }
-    seen[name] = item.get();
+    seen.emplace(name, item.get());
     if (declaration == nullptr) {
       continue; // parts are not values
     }
