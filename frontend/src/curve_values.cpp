@@ -123,11 +123,20 @@ using BoundArguments = std::array<const Expr*, maximumParameters>;
 
 // The argument bound to each parameter, as the evaluator binds them;
 // parameters past `maximumParameters` (no builtin has them) stay unbound.
+// A parameter's name, compared with an argument's by length and first
+// letter before the whole spelling (a call of memcmp).
+struct ParameterName {
+  std::string_view name;
+  bool operator==(std::string_view other) const {
+    return name.size() == other.size() && (name.empty() || name[0] == other[0]) && name == other;
+  }
+};
+
 BoundArguments bindBuiltinArguments(const CallExpr& call, const ParameterNames& names) {
   BoundArguments bound{};
   Evaluator::bindArguments(
-      call, std::min(names.size(), maximumParameters), [&](std::size_t i) { return names[i]; },
-      bound.data());
+      call, std::min(names.size(), maximumParameters),
+      [&](std::size_t i) { return ParameterName{names[i]}; }, bound.data());
   return bound;
 }
 
@@ -229,7 +238,7 @@ public:
 private:
   const Expr* argument(std::string_view name) const {
     for (std::size_t i = 0; i < names_.size() && i < maximumParameters; ++i) {
-      if (names_[i] == name) {
+      if (ParameterName{names_[i]} == name) {
         return arguments_[i];
       }
     }

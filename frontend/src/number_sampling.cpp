@@ -9,19 +9,67 @@ namespace {
 
 constexpr std::size_t sampleCount = curveSampleIntervals + 1;
 
-// A number at every sample; one number when it is the same at all of them
-// (it does not depend on `t`).
+// A number at every sample; one number, the first, when it is the same at
+// all of them (it does not depend on `t`). Only the values in use are set.
 struct Samples {
   bool uniform = true;
-  std::array<double, sampleCount> values{};
+  std::array<double, sampleCount> values;
 
-  double at(std::size_t i) const { return uniform ? values[0] : values[i]; }
+  std::size_t count() const { return uniform ? 1 : sampleCount; }
   static Samples of(double number) {
     Samples samples;
     samples.values[0] = number;
     return samples;
   }
 };
+
+// `operation` at every sample: once when both operands are uniform. Every
+// sample is computed, and the caller checks the results: nothing else
+// happens on the way, and any failure gives up the whole sampling.
+template <typename Operation>
+void combine(const Samples& a, const Samples& b, Samples& result, Operation operation) {
+  result.uniform = a.uniform && b.uniform;
+  if (result.uniform) {
+    result.values[0] = operation(a.values[0], b.values[0]);
+  } else if (a.uniform) {
+    for (std::size_t i = 0; i < sampleCount; ++i) {
+      result.values[i] = operation(a.values[0], b.values[i]);
+    }
+  } else if (b.uniform) {
+    for (std::size_t i = 0; i < sampleCount; ++i) {
+      result.values[i] = operation(a.values[i], b.values[0]);
+    }
+  } else {
+    for (std::size_t i = 0; i < sampleCount; ++i) {
+      result.values[i] = operation(a.values[i], b.values[i]);
+    }
+  }
+}
+
+template <typename Operation> void apply(const Samples& a, Samples& result, Operation operation) {
+  result.uniform = a.uniform;
+  for (std::size_t i = 0; i < a.count(); ++i) {
+    result.values[i] = operation(a.values[i]);
+  }
+}
+
+bool allFinite(const Samples& samples) {
+  for (std::size_t i = 0; i < samples.count(); ++i) {
+    if (!std::isfinite(samples.values[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool anyZero(const Samples& samples) {
+  for (std::size_t i = 0; i < samples.count(); ++i) {
+    if (samples.values[i] == 0) {
+      return true;
+    }
+  }
+  return false;
+}
 
 // The names a frame binds: a fn call's parameters (as the fast path binds
 // them, with nothing outside), or, outermost, `t` over the bindings the
@@ -70,25 +118,6 @@ public:
   std::size_t steps() const { return steps_; }
 
 private:
-  // Applies `operation` (false when the fast path would fail) at every
-  // sample, once when both operands are uniform.
-  template <typename Operation>
-  static bool combine(const Samples& a, const Samples& b, Samples& result, Operation operation) {
-    result.uniform = a.uniform && b.uniform;
-    std::size_t count = result.uniform ? 1 : sampleCount;
-    for (std::size_t i = 0; i < count; ++i) {
-      if (!operation(a.at(i), b.at(i), result.values[i])) {
-        return false;
-      }
-    }
-    return true;
-  }
-
-  template <typename Operation>
-  static bool apply(const Samples& a, Samples& result, Operation operation) {
-    return combine(a, a, result, [&](double x, double, double& out) { return operation(x, out); });
-  }
-
   bool name(const NameExpr& name, const Frame& frame, Samples& result) {
     const Declaration* declaration = name.declaration;
     if (declaration == nullptr) {
@@ -125,10 +154,8 @@ private:
     if (unary.op != UnaryOperator::Negate || !evaluate(*unary.operand, frame, operand)) {
       return false;
     }
-    return apply(operand, result, [](double x, double& out) {
-      out = -x;
-      return true;
-    });
+    apply(operand, result, [](double x) { return -x; });
+    return true;
   }
 
   // As Evaluator::numberOfBinary.
@@ -150,30 +177,33 @@ private:
     if (!evaluate(*binary.left, frame, left) || !evaluate(*binary.right, frame, right)) {
       return false;
     }
-    return combine(left, right, result, [op](double a, double b, double& out) {
-      switch (op) {
-      case BinaryOperator::Add:
-        out = a + 1 * b;
-        break;
-      case BinaryOperator::Subtract:
-        out = a + -1 * b;
-        break;
-      case BinaryOperator::Multiply:
-        out = a * b;
-        break;
-      case BinaryOperator::Divide:
-      case BinaryOperator::Remainder:
-        if (b == 0) {
-          return false;
-        }
-        out = op == BinaryOperator::Divide ? a / b : std::fmod(a, b);
-        break;
-      default:
-        out = std::pow(a, b);
-        break;
+    switch (op) {
+    case BinaryOperator::Add:
+      combine(left, right, result, [](double a, double b) { return a + 1 * b; });
+      break;
+    case BinaryOperator::Subtract:
+      combine(left, right, result, [](double a, double b) { return a + -1 * b; });
+      break;
+    case BinaryOperator::Multiply:
+      combine(left, right, result, [](double a, double b) { return a * b; });
+      break;
+    case BinaryOperator::Divide:
+      if (anyZero(right)) {
+        return false;
       }
-      return std::isfinite(out);
-    });
+      combine(left, right, result, [](double a, double b) { return a / b; });
+      break;
+    case BinaryOperator::Remainder:
+      if (anyZero(right)) {
+        return false;
+      }
+      combine(left, right, result, [](double a, double b) { return std::fmod(a, b); });
+      break;
+    default:
+      combine(left, right, result, [](double a, double b) { return std::pow(a, b); });
+      break;
+    }
+    return allFinite(result);
   }
 
   // As Evaluator::numberOfCall.
@@ -204,23 +234,19 @@ private:
       }
     }
     if (count == 1) {
-      return apply(values[0], result, [function](double x, double& out) {
-        out = applyUnary(function, x);
-        return std::isfinite(out);
-      });
+      apply(values[0], result, [function](double x) { return applyUnary(function, x); });
+      return allFinite(result);
     }
     std::array<std::string_view, 2> names = binaryParameterNames(function);
     std::array<const Expr*, 2> arguments{};
     Evaluator::bindArguments(
         call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
     bool swapped = arguments[0] != call.arguments[0].value.get();
-    return combine(values[0], values[1], result, [&](double a, double b, double& out) {
-      if (swapped) {
-        std::swap(a, b);
-      }
-      out = applyBinary(function, a, b);
-      return std::isfinite(out);
-    });
+    const Samples& first = swapped ? values[1] : values[0];
+    const Samples& second = swapped ? values[0] : values[1];
+    combine(first, second, result,
+            [function](double a, double b) { return applyBinary(function, a, b); });
+    return allFinite(result);
   }
 
   // As Evaluator::numberOfFunctionCall: the arguments in the caller's frame,
