@@ -1,9 +1,13 @@
 #include "cncc/frontend/parser.h"
 
 #include "node_arena.h"
+#include "scanner.h"
 
 #include <algorithm>
+#include <array>
+#include <deque>
 #include <fmt/format.h>
+#include <limits>
 
 namespace cncc::frontend {
 
@@ -46,10 +50,37 @@ std::string describe(const Token& token) {
   }
 }
 
-class Parser {
+// Where the parser's tokens come from: read from the file as the parser goes
+// (parseFile), so the tokens of a whole file are never all in memory...
+class ScannerSource {
 public:
-  Parser(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnostics)
-      : tokens_(std::move(tokens)), file_(file), diagnostics_(diagnostics) {}
+  ScannerSource(const SourceManager& sources, FileId file, std::uint32_t begin, std::uint32_t end,
+                DiagnosticEngine& diagnostics)
+      : scanner_(sources, file, begin, end, diagnostics, nullptr) {}
+  void read(Token& token) { scanner_.read(token); }
+
+private:
+  Scanner scanner_;
+};
+
+// ... or from a vector lexed before (parse), ending in EndOfFile.
+class VectorSource {
+public:
+  explicit VectorSource(std::vector<Token> tokens) : tokens_(std::move(tokens)) {}
+  void read(Token& token) {
+    token = tokens_[next_ < tokens_.size() ? next_ : tokens_.size() - 1];
+    ++next_;
+  }
+
+private:
+  std::vector<Token> tokens_;
+  std::size_t next_ = 0;
+};
+
+template <typename Source> class Parser {
+public:
+  Parser(Source source, FileId file, DiagnosticEngine& diagnostics)
+      : source_(std::move(source)), file_(file), diagnostics_(diagnostics) {}
 
   Module parseModule() {
     Module module;
@@ -63,6 +94,7 @@ public:
         synchroniseItem();
       }
     }
+    reportPending();
     return module;
   }
 
@@ -75,15 +107,41 @@ private:
   };
 
   // ---------------------------------------------------------------- tokens
-  const Token& peek(std::size_t ahead = 0) const {
+  // The tokens are read in batches into a window of the last few: the parser
+  // looks one token ahead and back at the previous one. A token returned by
+  // advance() stays valid for `windowSize - batchSize - 1` more.
+  static constexpr std::size_t windowSize = 64;
+  static constexpr std::size_t batchSize = 32;
+
+  [[gnu::always_inline]] const Token& peek(std::size_t ahead = 0) {
     std::size_t index = position_ + ahead;
-    return index < tokens_.size() ? tokens_[index] : tokens_.back();
+    if (index < read_) [[likely]] {
+      return window_[index % windowSize];
+    }
+    return readUpTo(index);
   }
-  bool check(TokenKind kind) const { return peek().kind == kind; }
-  bool checkWord(std::string_view word) const {
+  // Out of line: peek() is the parser's most frequent call.
+  [[gnu::noinline]] const Token& readUpTo(std::size_t index) {
+    while (read_ <= index && read_ <= endOfFile_) {
+      std::size_t batchEnd = read_ + batchSize;
+      while (read_ < batchEnd) {
+        Token& token = window_[read_ % windowSize];
+        source_.read(token);
+        if (token.kind == TokenKind::EndOfFile) {
+          endOfFile_ = read_++;
+          break;
+        }
+        ++read_;
+      }
+    }
+    // Past the end, every token is the EndOfFile.
+    return window_[std::min(index, endOfFile_) % windowSize];
+  }
+  [[gnu::always_inline]] bool check(TokenKind kind) { return peek().kind == kind; }
+  bool checkWord(std::string_view word) {
     return check(TokenKind::Identifier) && peek().text == word;
   }
-  const Token& advance() {
+  [[gnu::always_inline]] const Token& advance() {
     const Token& token = peek();
     if (token.kind != TokenKind::EndOfFile) {
       ++position_;
@@ -97,10 +155,10 @@ private:
     advance();
     return true;
   }
-  SourceSpan previousSpan() const {
-    return position_ == 0 ? peek().span : tokens_[position_ - 1].span;
+  SourceSpan previousSpan() {
+    return position_ == 0 ? peek().span : window_[(position_ - 1) % windowSize].span;
   }
-  SourceSpan spanFrom(SourceSpan begin) const { return begin.to(previousSpan()); }
+  SourceSpan spanFrom(SourceSpan begin) { return begin.to(previousSpan()); }
 
   // ---------------------------------------------------------------- errors
   Diagnostic* error(DiagnosticKind kind, SourceSpan span, std::string message) {
@@ -112,7 +170,30 @@ private:
     if (check(TokenKind::Error) && span == peek().span) {
       return nullptr;
     }
-    return diagnostics_.report(kind, span, std::move(message));
+    return report(kind, span, std::move(message));
+  }
+
+  // The parser's diagnostics are kept until the end, so that all of the
+  // lexer's reach the engine first (and its error limit) as when the whole
+  // file was lexed before parsing.
+  Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message) {
+    return &pending_.emplace_back(
+        Diagnostic{kind, diagnosticSeverity(kind), span, std::move(message), {}});
+  }
+  static void addNote(Diagnostic* diagnostic, SourceSpan span, std::string message) {
+    if (diagnostic != nullptr) {
+      diagnostic->notes.push_back({span, std::move(message)});
+    }
+  }
+  void reportPending() {
+    for (Diagnostic& pending : pending_) {
+      Diagnostic* reported =
+          diagnostics_.report(pending.kind, pending.span, std::move(pending.message));
+      for (DiagnosticNote& note : pending.notes) {
+        diagnostics_.addNote(reported, note.span, std::move(note.message));
+      }
+    }
+    pending_.clear();
   }
 
   Diagnostic* errorAtCurrent(DiagnosticKind kind, std::string_view expected) {
@@ -136,7 +217,7 @@ private:
     }
     Diagnostic* diagnostic = errorAtCurrent(DiagnosticKind::ExpectedToken,
                                             fmt::format("'{}' {}", tokenSpelling(kind), context));
-    diagnostics_.addNote(diagnostic, opening, "to match this");
+    addNote(diagnostic, opening, "to match this");
     return false;
   }
 
@@ -349,7 +430,7 @@ private:
       Diagnostic* diagnostic =
           error(DiagnosticKind::ExpectedToken, peek().span,
                 fmt::format("expected '}}' to close the block, found {}", describe(peek())));
-      diagnostics_.addNote(diagnostic, opening, "the block begins here");
+      addNote(diagnostic, opening, "the block begins here");
       block.span = spanFrom(opening);
       return block;
     }
@@ -440,7 +521,7 @@ private:
     return settings;
   }
 
-  bool continuesStatement(std::initializer_list<std::string_view> knownNames) const {
+  bool continuesStatement(std::initializer_list<std::string_view> knownNames) {
     if (!peek().startsLine) {
       return true;
     }
@@ -765,7 +846,8 @@ private:
   }
 
   ExprPtr parseNameOrCall() {
-    const Token& name = advance();
+    // Copied: the arguments read more tokens than the window keeps.
+    const Token name = advance();
     if (!check(TokenKind::LeftParen)) {
       return arena_->make<NameExpr>(name.span, std::string(name.text));
     }
@@ -782,8 +864,8 @@ private:
         sawNamed = true;
       } else if (sawNamed) {
         // Not a syntax error: the parser stays in step.
-        diagnostics_.report(DiagnosticKind::PositionalAfterNamed, peek().span,
-                            "a positional argument cannot follow a named one");
+        report(DiagnosticKind::PositionalAfterNamed, peek().span,
+               "a positional argument cannot follow a named one");
       }
       argument.value = parseExpression();
       arguments.push_back(std::move(argument));
@@ -840,7 +922,11 @@ private:
     return arena_->make<ListExpr>(spanFrom(opening), std::move(elements));
   }
 
-  std::vector<Token> tokens_;
+  Source source_;
+  std::array<Token, windowSize> window_;
+  std::size_t read_ = 0; // tokens read into the window so far
+  std::size_t endOfFile_ = std::numeric_limits<std::size_t>::max(); // its index once read
+  std::deque<Diagnostic> pending_;
   std::shared_ptr<NodeArena> arena_ = std::make_shared<NodeArena>();
   FileId file_;
   DiagnosticEngine& diagnostics_;
@@ -852,16 +938,18 @@ private:
 } // namespace
 
 Module parse(std::vector<Token> tokens, FileId file, DiagnosticEngine& diagnostics) {
-  return Parser(std::move(tokens), file, diagnostics).parseModule();
+  return Parser<VectorSource>(VectorSource(std::move(tokens)), file, diagnostics).parseModule();
 }
 
 Module parseFile(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics) {
-  return parse(lex(sources, file, diagnostics), file, diagnostics);
+  auto size = static_cast<std::uint32_t>(sources.file(file).text().size());
+  return parseFileRange(sources, file, 0, size, diagnostics);
 }
 
 Module parseFileRange(const SourceManager& sources, FileId file, std::uint32_t begin,
                       std::uint32_t end, DiagnosticEngine& diagnostics) {
-  return parse(lexRange(sources, file, begin, end, diagnostics), file, diagnostics);
+  ScannerSource source(sources, file, begin, end, diagnostics);
+  return Parser<ScannerSource>(std::move(source), file, diagnostics).parseModule();
 }
 
 void appendModule(Module& into, Module&& from) {
