@@ -25,19 +25,24 @@ struct Samples {
 
 // `operation` at every sample: once when both operands are uniform. Every
 // sample is computed, and the caller checks the results: nothing else
-// happens on the way, and any failure gives up the whole sampling.
+// happens on the way, and any failure gives up the whole sampling. `result`
+// may be `a` or `b`.
 template <typename Operation>
 void combine(const Samples& a, const Samples& b, Samples& result, Operation operation) {
-  result.uniform = a.uniform && b.uniform;
+  bool aUniform = a.uniform;
+  bool bUniform = b.uniform;
+  double aFirst = a.values[0];
+  double bFirst = b.values[0];
+  result.uniform = aUniform && bUniform;
   if (result.uniform) {
-    result.values[0] = operation(a.values[0], b.values[0]);
-  } else if (a.uniform) {
+    result.values[0] = operation(aFirst, bFirst);
+  } else if (aUniform) {
     for (std::size_t i = 0; i < sampleCount; ++i) {
-      result.values[i] = operation(a.values[0], b.values[i]);
+      result.values[i] = operation(aFirst, b.values[i]);
     }
-  } else if (b.uniform) {
+  } else if (bUniform) {
     for (std::size_t i = 0; i < sampleCount; ++i) {
-      result.values[i] = operation(a.values[i], b.values[0]);
+      result.values[i] = operation(a.values[i], bFirst);
     }
   } else {
     for (std::size_t i = 0; i < sampleCount; ++i) {
@@ -88,6 +93,10 @@ constexpr std::size_t maximumStepsPerSample = std::size_t{1} << 20;
 // checks it.
 constexpr std::size_t maximumCallDepth = 64;
 
+// Deeper expressions (through fn bodies too) are left to the sampling one by
+// one: a bound on the stack this takes.
+constexpr std::size_t maximumNesting = 200;
+
 class Sampler {
 public:
   Sampler(const SemaContext& context, std::size_t callDepth)
@@ -95,9 +104,20 @@ public:
 
   // What Evaluator::evaluateNumber does, at every sample.
   bool evaluate(const Expr& expression, const Frame& frame, Samples& result) {
-    if (++steps_ > maximumStepsPerSample || expression.type.kind == TypeKind::Error) {
+    if (++steps_ > maximumStepsPerSample || expression.type.kind == TypeKind::Error ||
+        nesting_ == maximumNesting) {
       return false;
     }
+    ++nesting_;
+    bool evaluated = evaluateNode(expression, frame, result);
+    --nesting_;
+    return evaluated;
+  }
+
+  std::size_t steps() const { return steps_; }
+
+private:
+  bool evaluateNode(const Expr& expression, const Frame& frame, Samples& result) {
     switch (expression.kind) {
     case ExprKind::Number:
       result = Samples::of(as<NumberExpr>(expression).value);
@@ -115,9 +135,6 @@ public:
     }
   }
 
-  std::size_t steps() const { return steps_; }
-
-private:
   bool name(const NameExpr& name, const Frame& frame, Samples& result) {
     const Declaration* declaration = name.declaration;
     if (declaration == nullptr) {
@@ -172,7 +189,9 @@ private:
     default:
       return false;
     }
-    Samples left;
+    // The left operand is evaluated into `result`, which then takes the
+    // combination: one set of samples less on the stack per level.
+    Samples& left = result;
     Samples right;
     if (!evaluate(*binary.left, frame, left) || !evaluate(*binary.right, frame, right)) {
       return false;
@@ -284,6 +303,7 @@ private:
   const SemaContext& context_;
   std::size_t callDepth_;
   std::size_t steps_ = 0;
+  std::size_t nesting_ = 0;
 };
 
 // Whether Evaluator::evaluate tries the fast path on the expression.

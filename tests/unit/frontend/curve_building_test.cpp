@@ -68,6 +68,29 @@ TEST(CurveBuildingTest, SamplesThroughFunctionsUseTheirOwnParameters) {
               ElementsAre());
 }
 
+std::string chainOf(const std::string& term, int count) {
+  std::string chain = term;
+  for (int i = 1; i < count; ++i) {
+    chain += " + " + term;
+  }
+  return chain;
+}
+
+TEST(CurveBuildingTest, DeepExpressionsAreSampledAsWell) {
+  // 300 operators deep: beyond what is sampled at once.
+  std::string deep = chainOf("t", 300);
+  EXPECT_THAT(namesOf("  curve polar(r = " + deep + " + sqrt(t - 0.5), t = 0 .. 1)"),
+              ElementsAre("non-finite-value"));
+  EXPECT_THAT(namesOf("  curve polar(r = 1 + " + deep + ", t = 0 .. 1)"), ElementsAre());
+  // Through nested fns.
+  std::string functions = "fn f1(x) = " + chainOf("x", 60) + "\nfn f2(x) = f1(x) + " +
+                          chainOf("x", 60) + "\nfn f3(x) = f2(x) + " + chainOf("x", 60) +
+                          "\nfn f4(x) = f3(x) + sqrt(x - 0.25)\n";
+  EXPECT_THAT(namesOf("  curve polar(r = f4(t), t = 0 .. 1)", functions),
+              ElementsAre("non-finite-value"));
+  EXPECT_THAT(namesOf("  curve polar(r = 1 + f3(t), t = 0 .. 1)", functions), ElementsAre());
+}
+
 TEST(CurveBuildingTest, AnExpressionThatIsNoNumberIsReported) {
   EXPECT_THAT(namesOf("  curve param(x = t, y = (t, 1), t = 0 .. 1)"),
               ElementsAre("type-mismatch"));
