@@ -87,28 +87,96 @@ ParameterNames parameterNamesOf(const BuiltinInfo& info) {
   return names;
 }
 
-// Built once: the curve constructors' by Constructor, the others by name.
-const ParameterNames& parameterNames(std::string_view builtin, Constructor constructor) {
-  struct Table {
-    std::array<ParameterNames, constructorCount> constructors;
-    std::vector<std::pair<std::string_view, ParameterNames>> others;
-  };
-  static const Table table = [] {
-    Table result;
+// More parameters than any builtin has (nurbs has the most: five).
+constexpr std::size_t maximumParameters = 8;
+using BoundArguments = std::array<const Expr*, maximumParameters>;
+
+// The parameters the curve constructors read, so the builder finds an
+// argument by its position in the constructor's list rather than by
+// comparing names.
+enum class Parameter {
+  Order,
+  Degree,
+  Points,
+  Weights,
+  Knots,
+  R,
+  T,
+  X,
+  Y,
+  Z,
+  From,
+  To,
+  Center,
+  Radius,
+  Curve,
+  Dx,
+  Dy,
+  Angle,
+  Factor,
+};
+constexpr std::array<std::string_view, 19> parameterSpellings = {
+    "order", "degree", "points", "weights", "knots", "r",  "t",  "x",     "y",     "z",
+    "from",  "to",     "center", "radius",  "curve", "dx", "dy", "angle", "factor"};
+
+std::string_view spelling(Parameter parameter) {
+  return parameterSpellings[static_cast<std::size_t>(parameter)];
+}
+
+// A curve constructor's parameters: their names, in order, and where in
+// that order each Parameter is (-1: it has none of that name).
+struct ConstructorParameters {
+  ParameterNames names;
+  std::array<int, parameterSpellings.size()> positions{};
+};
+
+ConstructorParameters constructorParametersOf(const BuiltinInfo& info) {
+  ConstructorParameters result{parameterNamesOf(info), {}};
+  for (std::size_t p = 0; p < parameterSpellings.size(); ++p) {
+    result.positions[p] = -1;
+    for (std::size_t i = 0; i < result.names.size() && i < maximumParameters; ++i) {
+      if (result.names[i] == parameterSpellings[p]) {
+        result.positions[p] = static_cast<int>(i);
+        break;
+      }
+    }
+  }
+  return result;
+}
+
+// Built once: the curve constructors' by Constructor (Other: none), the
+// other builtins' by name.
+struct ParameterTable {
+  std::array<ConstructorParameters, constructorCount + 1> constructors;
+  std::vector<std::pair<std::string_view, ParameterNames>> others;
+};
+
+const ParameterTable& parameterTable() {
+  static const ParameterTable table = [] {
+    ParameterTable result;
+    result.constructors[constructorCount].positions.fill(-1);
     for (const BuiltinInfo& info : builtinFunctions()) {
       Constructor of = constructorOf(info.name);
       if (of == Constructor::Other) {
         result.others.emplace_back(info.name, parameterNamesOf(info));
       } else {
-        result.constructors[static_cast<std::size_t>(of)] = parameterNamesOf(info);
+        result.constructors[static_cast<std::size_t>(of)] = constructorParametersOf(info);
       }
     }
     return result;
   }();
+  return table;
+}
+
+const ConstructorParameters& constructorParameters(Constructor constructor) {
+  return parameterTable().constructors[static_cast<std::size_t>(constructor)];
+}
+
+const ParameterNames& parameterNames(std::string_view builtin, Constructor constructor) {
   if (constructor != Constructor::Other) {
-    return table.constructors[static_cast<std::size_t>(constructor)];
+    return constructorParameters(constructor).names;
   }
-  for (const auto& [name, names] : table.others) {
+  for (const auto& [name, names] : parameterTable().others) {
     if (name == builtin) {
       return names;
     }
@@ -117,21 +185,25 @@ const ParameterNames& parameterNames(std::string_view builtin, Constructor const
   return none;
 }
 
-// More parameters than any builtin has (nurbs has the most: five).
-constexpr std::size_t maximumParameters = 8;
-using BoundArguments = std::array<const Expr*, maximumParameters>;
-
-// The argument bound to each parameter, as the evaluator binds them;
-// parameters past `maximumParameters` (no builtin has them) stay unbound.
-// A parameter's name, compared with an argument's by length and first
-// letter before the whole spelling (a call of memcmp).
+// A parameter's name compared with an argument's, by length and then
+// letter by letter (names are short: no call of memcmp).
 struct ParameterName {
   std::string_view name;
   bool operator==(std::string_view other) const {
-    return name.size() == other.size() && (name.empty() || name[0] == other[0]) && name == other;
+    if (name.size() != other.size()) {
+      return false;
+    }
+    for (std::size_t i = 0; i < name.size(); ++i) {
+      if (name[i] != other[i]) {
+        return false;
+      }
+    }
+    return true;
   }
 };
 
+// The argument bound to each parameter, as the evaluator binds them;
+// parameters past `maximumParameters` (no builtin has them) stay unbound.
 BoundArguments bindBuiltinArguments(const CallExpr& call, const ParameterNames& names) {
   BoundArguments bound{};
   Evaluator::bindArguments(
@@ -212,8 +284,8 @@ class CurveBuilder {
 public:
   CurveBuilder(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings)
       : evaluator_(evaluator), call_(call), bindings_(bindings),
-        constructor_(constructorOf(call.callee)), names_(parameterNames(call.callee, constructor_)),
-        arguments_(bindBuiltinArguments(call, names_)) {}
+        constructor_(constructorOf(call.callee)), parameters_(constructorParameters(constructor_)),
+        arguments_(bindBuiltinArguments(call, parameters_.names)) {}
 
   Value build() {
     switch (constructor_) {
@@ -236,13 +308,9 @@ public:
   }
 
 private:
-  const Expr* argument(std::string_view name) const {
-    for (std::size_t i = 0; i < names_.size() && i < maximumParameters; ++i) {
-      if (ParameterName{names_[i]} == name) {
-        return arguments_[i];
-      }
-    }
-    return nullptr;
+  const Expr* argument(Parameter parameter) const {
+    int position = parameters_.positions[static_cast<std::size_t>(parameter)];
+    return position < 0 ? nullptr : arguments_[static_cast<std::size_t>(position)];
   }
 
   // The whole `name=value` of an argument (just the value when positional),
@@ -259,29 +327,30 @@ private:
   // The argument's value when it was given, evaluated without an error and
   // is a `kind`; else an Error value (and `failed_`, but for a missing
   // argument, which the checker has reported).
-  Value value(std::string_view name, TypeKind kind) {
-    const Expr* expression = argument(name);
+  Value value(Parameter parameter, TypeKind kind) {
+    const Expr* expression = argument(parameter);
     if (expression == nullptr) {
       return {};
     }
     Value result = argumentValue(*expression);
     if (!result.isError() && result.type.kind != kind) {
       evaluator_.report(DiagnosticKind::TypeMismatch, expression->span,
-                        fmt::format("argument '{}' of '{}' must be a {}, not a {}", name,
-                                    call_.callee, typeKindName(kind), typeName(result.type)));
+                        fmt::format("argument '{}' of '{}' must be a {}, not a {}",
+                                    spelling(parameter), call_.callee, typeKindName(kind),
+                                    typeName(result.type)));
       result = {};
     }
     failed_ = failed_ || result.isError();
     return result;
   }
 
-  std::optional<double> number(std::string_view name) {
-    Value result = value(name, TypeKind::Num);
+  std::optional<double> number(Parameter parameter) {
+    Value result = value(parameter, TypeKind::Num);
     return result.isError() ? std::nullopt : std::optional<double>(result.number);
   }
 
-  std::optional<std::array<double, 3>> point(std::string_view name) {
-    Value result = value(name, TypeKind::Point);
+  std::optional<std::array<double, 3>> point(Parameter parameter) {
+    Value result = value(parameter, TypeKind::Point);
     return result.isError() ? std::nullopt : std::optional(result.point);
   }
 
@@ -289,16 +358,16 @@ private:
   // (`'name' must hold <what>` otherwise), appended to `into` by `take`;
   // false when the argument is missing or anything failed.
   template <typename Take>
-  bool elements(std::string_view name, TypeKind kind, std::string_view what, Take take) {
-    const Expr* expression = argument(name);
+  bool elements(Parameter parameter, TypeKind kind, std::string_view what, Take take) {
+    const Expr* expression = argument(parameter);
     if (expression == nullptr) {
       return false;
     }
     if (expression->kind == ExprKind::List && expression->type.kind != TypeKind::Error &&
         evaluator_.spendSteps(1)) {
-      return writtenElements(name, as<ListExpr>(*expression), kind, what, take);
+      return writtenElements(parameter, as<ListExpr>(*expression), kind, what, take);
     }
-    Value list = value(name, TypeKind::List);
+    Value list = value(parameter, TypeKind::List);
     if (list.isError()) {
       return false;
     }
@@ -306,7 +375,7 @@ private:
       const Value& element = (*list.list)[i];
       if (element.type.kind != kind) {
         report(DiagnosticKind::TypeMismatch, elementSpan(*expression, i),
-               fmt::format("'{}' must hold {}", name, what));
+               fmt::format("'{}' must hold {}", spelling(parameter), what));
         return false;
       }
       take(element);
@@ -318,7 +387,7 @@ private:
   // evaluator evaluates a list (its step spent by the caller), with the same
   // checks in the same order, but without building the list's Value.
   template <typename Take>
-  bool writtenElements(std::string_view name, const ListExpr& list, TypeKind kind,
+  bool writtenElements(Parameter parameter, const ListExpr& list, TypeKind kind,
                        std::string_view what, Take take) {
     TypeKind first = TypeKind::Any;
     for (const ExprPtr& item : list.elements) {
@@ -341,7 +410,7 @@ private:
     }
     if (!list.elements.empty() && first != kind) {
       report(DiagnosticKind::TypeMismatch, elementSpan(list, 0),
-             fmt::format("'{}' must hold {}", name, what));
+             fmt::format("'{}' must hold {}", spelling(parameter), what));
       return false;
     }
     return true;
@@ -382,13 +451,13 @@ private:
     return Value::ofPoint(coordinates, std::min(dimensions, 3));
   }
 
-  bool numbers(std::string_view name, std::vector<double>& into) {
-    return elements(name, TypeKind::Num, "numbers",
+  bool numbers(Parameter parameter, std::vector<double>& into) {
+    return elements(parameter, TypeKind::Num, "numbers",
                     [&](const Value& element) { into.push_back(element.number); });
   }
 
-  bool points(std::string_view name, std::vector<std::array<double, 3>>& into) {
-    return elements(name, TypeKind::Point, "points",
+  bool points(Parameter parameter, std::vector<std::array<double, 3>>& into) {
+    return elements(parameter, TypeKind::Point, "points",
                     [&](const Value& element) { into.push_back(element.point); });
   }
 
@@ -410,13 +479,14 @@ private:
     if (constructor_ == Constructor::Bezier) {
       return std::nullopt;
     }
-    bool byDegree = argument("order") == nullptr;
-    const char* name = byDegree ? "degree" : "order";
-    std::optional<double> given = number(name);
+    bool byDegree = argument(Parameter::Order) == nullptr;
+    Parameter parameter = byDegree ? Parameter::Degree : Parameter::Order;
+    std::string_view name = spelling(parameter);
+    std::optional<double> given = number(parameter);
     if (!given) {
       return std::nullopt;
     }
-    const Expr& expression = *argument(name);
+    const Expr& expression = *argument(parameter);
     if (*given != std::floor(*given)) {
       report(DiagnosticKind::NotInteger, expression.span,
              fmt::format("'{}' must be a whole number, not {:g}", name, *given));
@@ -437,15 +507,16 @@ private:
     curve->kind = CurveKind::Nurbs;
     std::optional<int> k = order();
     std::vector<std::array<double, 3>>& controlPoints = curve->points;
-    if (const Expr* given = argument("points"); given != nullptr && given->kind == ExprKind::List) {
+    if (const Expr* given = argument(Parameter::Points);
+        given != nullptr && given->kind == ExprKind::List) {
       controlPoints.reserve(as<ListExpr>(*given).elements.size());
     }
-    if (!points("points", controlPoints)) {
+    if (!points(Parameter::Points, controlPoints)) {
       failed_ = true;
       return {};
     }
     std::size_t n = controlPoints.size();
-    const Expr& pointsExpression = *argument("points");
+    const Expr& pointsExpression = *argument(Parameter::Points);
     if (constructor_ == Constructor::Bezier) {
       if (n < 2) {
         report(DiagnosticKind::TooFewPoints, pointsExpression.span,
@@ -473,13 +544,13 @@ private:
   // The weights (all 1 when not given) into `weights`; what is there when a
   // check fails does not matter, as the curve is not kept.
   void checkWeights(std::size_t n, std::vector<double>& weights) {
-    const Expr* given = argument("weights");
+    const Expr* given = argument(Parameter::Weights);
     if (given == nullptr) {
       weights.assign(n, 1.0);
       return;
     }
     weights.reserve(n);
-    if (!numbers("weights", weights)) {
+    if (!numbers(Parameter::Weights, weights)) {
       return;
     }
     if (weights.size() != n) {
@@ -498,13 +569,13 @@ private:
   // The knots (clamped uniform when not given) into `knots`.
   void checkKnots(std::size_t n, int k, std::vector<double>& knots) {
     std::size_t order = static_cast<std::size_t>(k);
-    const Expr* given = argument("knots");
+    const Expr* given = argument(Parameter::Knots);
     if (given == nullptr) {
       knots = clampedUniformKnots(n, k);
       return;
     }
     knots.reserve(n + order);
-    if (!numbers("knots", knots)) {
+    if (!numbers(Parameter::Knots, knots)) {
       return;
     }
     const Expr& expression = *given;
@@ -535,13 +606,13 @@ private:
     auto curve = std::make_shared<CurveValue>();
     bool polar = constructor_ == Constructor::Polar;
     curve->kind = polar ? CurveKind::Polar : CurveKind::Param;
-    Value range = value("t", TypeKind::Range);
+    Value range = value(Parameter::T, TypeKind::Range);
     auto found = evaluator_.context().program.curveParameters.find(&call_);
     if (range.isError() || found == evaluator_.context().program.curveParameters.end()) {
       failed_ = true;
       return {};
     }
-    const Expr& rangeExpression = *argument("t");
+    const Expr& rangeExpression = *argument(Parameter::T);
     if (!(range.low < range.high)) {
       report(DiagnosticKind::EmptyRange, rangeExpression.span,
              fmt::format("the range {:g} .. {:g} is empty; a curve's parameter needs start < end",
@@ -552,10 +623,10 @@ private:
     curve->high = range.high;
     curve->parameter = found->second;
     curve->environment = bindings_.flatten();
-    curve->radius = argument("r");
-    curve->x = argument("x");
-    curve->y = argument("y");
-    curve->z = argument("z");
+    curve->radius = argument(Parameter::R);
+    curve->x = argument(Parameter::X);
+    curve->y = argument(Parameter::Y);
+    curve->z = argument(Parameter::Z);
     sampleExpressions(*curve);
     return finish(std::move(curve));
   }
@@ -626,8 +697,8 @@ private:
   Value buildLine() {
     auto curve = std::make_shared<CurveValue>();
     curve->kind = CurveKind::Line;
-    std::optional<std::array<double, 3>> from = point("from");
-    std::optional<std::array<double, 3>> to = point("to");
+    std::optional<std::array<double, 3>> from = point(Parameter::From);
+    std::optional<std::array<double, 3>> to = point(Parameter::To);
     if (!from || !to) {
       return {};
     }
@@ -643,15 +714,15 @@ private:
   Value buildArc() {
     auto curve = std::make_shared<CurveValue>();
     curve->kind = CurveKind::Arc;
-    std::optional<std::array<double, 3>> center = point("center");
-    std::optional<double> radius = number("radius");
-    std::optional<double> from = number("from");
-    std::optional<double> to = number("to");
+    std::optional<std::array<double, 3>> center = point(Parameter::Center);
+    std::optional<double> radius = number(Parameter::Radius);
+    std::optional<double> from = number(Parameter::From);
+    std::optional<double> to = number(Parameter::To);
     if (!center || !radius || !from || !to) {
       return {};
     }
     if (!(*radius > 0)) {
-      report(DiagnosticKind::ValueNotPositive, argument("radius")->span,
+      report(DiagnosticKind::ValueNotPositive, argument(Parameter::Radius)->span,
              fmt::format("the arc's radius is {:g}; it must be positive", *radius));
     }
     if (*from == *to) {
@@ -687,19 +758,19 @@ private:
 
   Value buildTransform() {
     auto curve = std::make_shared<CurveValue>();
-    Value piece = value("curve", TypeKind::Curve);
+    Value piece = value(Parameter::Curve, TypeKind::Curve);
     if (constructor_ == Constructor::Translate) {
       curve->kind = CurveKind::Translate;
-      curve->dx = number("dx").value_or(0);
-      curve->dy = number("dy").value_or(0);
+      curve->dx = number(Parameter::Dx).value_or(0);
+      curve->dy = number(Parameter::Dy).value_or(0);
     } else if (constructor_ == Constructor::Rotate) {
       curve->kind = CurveKind::Rotate;
-      curve->angle = number("angle").value_or(0);
+      curve->angle = number(Parameter::Angle).value_or(0);
     } else {
       curve->kind = CurveKind::Scale;
-      std::optional<double> factor = number("factor");
+      std::optional<double> factor = number(Parameter::Factor);
       if (factor && *factor == 0) {
-        report(DiagnosticKind::DegenerateCurve, argument("factor")->span,
+        report(DiagnosticKind::DegenerateCurve, argument(Parameter::Factor)->span,
                "scaling by 0 collapses the curve to a point");
       }
       curve->factor = factor.value_or(1);
@@ -715,7 +786,7 @@ private:
   const CallExpr& call_;
   const Bindings& bindings_;
   Constructor constructor_;
-  const ParameterNames& names_;
+  const ConstructorParameters& parameters_;
   BoundArguments arguments_;
   bool failed_ = false;
 };
