@@ -281,7 +281,7 @@ private:
   }
 
   // `name = value` pairs as Argument nodes; positional values as they are.
-  void printArguments(const std::vector<Argument>& arguments) {
+  template <typename Arguments> void printArguments(const Arguments& arguments) {
     Indent indent(depth_);
     for (const Argument& argument : arguments) {
       if (argument.name.empty()) {
@@ -400,7 +400,7 @@ private:
     }
   }
 
-  void printChildren(const std::vector<ExprPtr>& expressions) {
+  void printChildren(const NodeList<ExprPtr>& expressions) {
     Indent indent(depth_);
     for (const ExprPtr& expression : expressions) {
       printExpression(*expression);

@@ -28,6 +28,23 @@ public:
                                                   Node(std::forward<Arguments>(arguments)...));
   }
 
+  // Moves the elements of `stack` from `first` on into a list of their own
+  // in the arena, and removes them from the stack (where the parser
+  // collects the children of the nodes it is in).
+  template <typename Element>
+  NodeList<Element> takeList(std::vector<Element>& stack, std::size_t first) {
+    static_assert(alignof(Element) <= alignment);
+    std::size_t size = stack.size() - first;
+    if (size == 0) {
+      return {};
+    }
+    auto* elements = static_cast<Element*>(allocate(size * sizeof(Element)));
+    std::uninitialized_move(stack.begin() + static_cast<std::ptrdiff_t>(first), stack.end(),
+                            elements);
+    stack.resize(first);
+    return NodeList<Element>(elements, size);
+  }
+
 private:
   static constexpr std::size_t alignment = alignof(std::max_align_t);
   static constexpr std::size_t blockSize = 64 * 1024;

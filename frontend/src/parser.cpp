@@ -408,13 +408,15 @@ private:
       block.span = spanFrom(opening);
       return block;
     }
+    std::size_t first = statementStack_.size();
     while (!check(TokenKind::RightBrace) && !check(TokenKind::EndOfFile)) {
       if (peek().startsLine && isItemKeyword(peek().kind)) {
         break; // a missing '}': let the item loop take over
       }
       panicking_ = false;
       std::size_t before = position_;
-      block.statements.push_back(parseStatement());
+      StmtPtr statement = parseStatement();
+      statementStack_.push_back(std::move(statement));
       if (panicking_ || position_ == before) {
         synchroniseStatement();
       }
@@ -425,6 +427,7 @@ private:
         synchroniseStatement();
       }
     }
+    block.statements = arena_->takeList(statementStack_, first);
     panicking_ = false;
     if (!check(TokenKind::RightBrace)) {
       Diagnostic* diagnostic =
@@ -613,7 +616,9 @@ private:
       hasElse = true;
       if (check(TokenKind::KwIf)) {
         SourceSpan elseBegin = peek().span;
-        elseBlock.statements.push_back(parseIf());
+        StmtPtr elseIf = parseIf();
+        statementStack_.push_back(std::move(elseIf));
+        elseBlock.statements = arena_->takeList(statementStack_, statementStack_.size() - 1);
         elseBlock.span = spanFrom(elseBegin);
       } else if (check(TokenKind::LeftBrace)) {
         elseBlock = parseBlock();
@@ -852,8 +857,7 @@ private:
       return arena_->make<NameExpr>(name.span, std::string(name.text));
     }
     SourceSpan opening = advance().span;
-    std::vector<Argument> arguments;
-    arguments.reserve(4); // most calls: one allocation
+    std::size_t first = argumentStack_.size();
     bool sawNamed = false;
     while (!check(TokenKind::RightParen) && !check(TokenKind::EndOfFile) && !panicking_) {
       Argument argument;
@@ -868,11 +872,12 @@ private:
                "a positional argument cannot follow a named one");
       }
       argument.value = parseExpression();
-      arguments.push_back(std::move(argument));
+      argumentStack_.push_back(std::move(argument));
       if (!match(TokenKind::Comma)) {
         break;
       }
     }
+    NodeList<Argument> arguments = arena_->takeList(argumentStack_, first);
     if (!panicking_ && !match(TokenKind::RightParen)) {
       // Formatted only here: the message is rarely needed.
       expectClosing(TokenKind::RightParen, opening,
@@ -885,37 +890,42 @@ private:
   // (e) is grouping; (x, y) and (x, y, z) are points.
   ExprPtr parseParenthesisOrPoint() {
     SourceSpan opening = advance().span;
-    std::vector<ExprPtr> components;
-    components.reserve(3);
-    components.push_back(parseExpression());
+    std::size_t first = expressionStack_.size();
+    ExprPtr component = parseExpression();
+    expressionStack_.push_back(std::move(component));
     while (!panicking_ && match(TokenKind::Comma)) {
-      components.push_back(parseExpression());
+      component = parseExpression();
+      expressionStack_.push_back(std::move(component));
     }
+    std::size_t count = expressionStack_.size() - first;
     if (!panicking_) {
       expectClosing(TokenKind::RightParen, opening,
-                    components.size() == 1 ? "to close the parenthesis" : "to close the point");
+                    count == 1 ? "to close the parenthesis" : "to close the point");
     }
     SourceSpan span = spanFrom(opening);
-    if (components.size() == 1) {
-      return std::move(components.front());
+    if (count == 1) {
+      ExprPtr grouped = std::move(expressionStack_.back());
+      expressionStack_.pop_back();
+      return grouped;
     }
-    if (components.size() > 3) {
+    if (count > 3) {
       error(DiagnosticKind::PointComponents, span,
-            fmt::format("a point has 2 or 3 components (x, y[, z]), this one has {}",
-                        components.size()));
+            fmt::format("a point has 2 or 3 components (x, y[, z]), this one has {}", count));
     }
-    return arena_->make<PointExpr>(span, std::move(components));
+    return arena_->make<PointExpr>(span, arena_->takeList(expressionStack_, first));
   }
 
   ExprPtr parseList() {
     SourceSpan opening = advance().span;
-    std::vector<ExprPtr> elements;
+    std::size_t first = expressionStack_.size();
     while (!check(TokenKind::RightBracket) && !check(TokenKind::EndOfFile) && !panicking_) {
-      elements.push_back(parseExpression());
+      ExprPtr element = parseExpression();
+      expressionStack_.push_back(std::move(element));
       if (!match(TokenKind::Comma)) {
         break;
       }
     }
+    NodeList<ExprPtr> elements = arena_->takeList(expressionStack_, first);
     if (!panicking_) {
       expectClosing(TokenKind::RightBracket, opening, "to close the list");
     }
@@ -927,6 +937,10 @@ private:
   std::size_t read_ = 0; // tokens read into the window so far
   std::size_t endOfFile_ = std::numeric_limits<std::size_t>::max(); // its index once read
   std::deque<Diagnostic> pending_;
+  // The children of the lists being parsed, innermost last (node_arena.h).
+  std::vector<ExprPtr> expressionStack_;
+  std::vector<Argument> argumentStack_;
+  std::vector<StmtPtr> statementStack_;
   std::shared_ptr<NodeArena> arena_ = std::make_shared<NodeArena>();
   FileId file_;
   DiagnosticEngine& diagnostics_;

@@ -19,7 +19,7 @@ namespace {
 // An expression as a compact S-expression: `(+ 1 (* 2 3))`.
 std::string sexpr(const Expr& expression);
 
-std::string argumentsText(const std::vector<Argument>& arguments) {
+template <typename Arguments> std::string argumentsText(const Arguments& arguments) {
   std::string text;
   for (const Argument& argument : arguments) {
     text += " ";
@@ -29,7 +29,7 @@ std::string argumentsText(const std::vector<Argument>& arguments) {
   return text;
 }
 
-std::string listText(const std::vector<ExprPtr>& expressions) {
+std::string listText(const NodeList<ExprPtr>& expressions) {
   std::string text;
   for (const ExprPtr& expression : expressions) {
     text += " " + sexpr(*expression);
@@ -108,7 +108,7 @@ protected:
   }
 
   // The statements of the one part in `body`'s `part p() { body }`.
-  const std::vector<StmtPtr>& statements(const std::string& body) {
+  const NodeList<StmtPtr>& statements(const std::string& body) {
     const Module& module = parseText("part p() {\n" + body + "\n}\n");
     EXPECT_EQ(module.items.size(), 1u);
     EXPECT_EQ(module.items[0]->kind, ItemKind::Part);
@@ -134,7 +134,7 @@ protected:
 
 using Names = std::vector<std::string>;
 
-std::vector<StmtKind> kindsOf(const std::vector<StmtPtr>& statements) {
+std::vector<StmtKind> kindsOf(const NodeList<StmtPtr>& statements) {
   std::vector<StmtKind> kinds;
   for (const StmtPtr& statement : statements) {
     kinds.push_back(statement->kind);
@@ -151,6 +151,28 @@ TEST_F(ParserTest, ArithmeticPrecedenceAndLeftAssociativity) {
   EXPECT_EQ(expression("8 / 4 / 2"), "(/ (/ 8 4) 2)");
   EXPECT_EQ(expression("a % b * c"), "(* (% a b) c)");
   EXPECT_EQ(expression("(1 + 2) * 3"), "(* (+ 1 2) 3)");
+  EXPECT_TRUE(clean());
+}
+
+TEST_F(ParserTest, NestedListsKeepTheirOwnChildren) {
+  EXPECT_EQ(expression("f(a, [1, (2, 3), g(4, [5, (6, 7, 8)]), []], 10, k = (9))"),
+            "(f a [1 (point 2 3) (g 4 [5 (point 6 7 8)]) []] 10 k=9)");
+  EXPECT_EQ(expression("[[[1], [2, 3]], ((4), 5)]"), "[[[1] [2 3]] (point 4 5)]");
+  EXPECT_TRUE(clean());
+}
+
+TEST_F(ParserTest, AListLargerThanAnArenaBlockIsKept) {
+  std::string elements = "0";
+  for (int i = 1; i < 20000; ++i) {
+    elements += fmt::format(", {}", i);
+  }
+  const Module& module = parseText("const x = [" + elements + "]\nconst y = [1, 2]\n");
+  ASSERT_EQ(module.items.size(), 2u);
+  const auto& list = as<ListExpr>(*as<ConstItem>(*module.items[0]).value);
+  ASSERT_EQ(list.elements.size(), 20000u);
+  EXPECT_EQ(as<NumberExpr>(*list.elements.back()).value, 19999);
+  EXPECT_EQ(as<NumberExpr>(*list.elements[12345]).value, 12345);
+  EXPECT_EQ(sexpr(*as<ConstItem>(*module.items[1]).value), "[1 2]");
   EXPECT_TRUE(clean());
 }
 

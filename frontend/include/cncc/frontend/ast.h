@@ -10,8 +10,10 @@
 #include "cncc/frontend/source_manager.h"
 #include "cncc/frontend/types.h"
 
+#include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cncc::frontend {
@@ -25,6 +27,46 @@ struct Declaration;
 class NodeArena;
 struct NodeDeleter {
   template <typename Node> void operator()(Node* node) const { node->~Node(); }
+};
+
+// The children of a node (arguments, components, statements), placed in the
+// module's arena at their final number: read like a vector, and the
+// elements can be changed, but none added or removed. Destroying the list
+// destroys the elements; the arena frees the memory.
+template <typename Element> class NodeList {
+public:
+  NodeList() = default;
+  NodeList(Element* elements, std::size_t size) : elements_(elements), size_(size) {}
+  NodeList(NodeList&& other) noexcept
+      : elements_(std::exchange(other.elements_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+  NodeList& operator=(NodeList&& other) noexcept {
+    if (this != &other) {
+      std::destroy_n(elements_, size_);
+      elements_ = std::exchange(other.elements_, nullptr);
+      size_ = std::exchange(other.size_, 0);
+    }
+    return *this;
+  }
+  NodeList(const NodeList&) = delete;
+  NodeList& operator=(const NodeList&) = delete;
+  ~NodeList() { std::destroy_n(elements_, size_); }
+
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  Element* begin() { return elements_; }
+  Element* end() { return elements_ + size_; }
+  const Element* begin() const { return elements_; }
+  const Element* end() const { return elements_ + size_; }
+  Element& operator[](std::size_t index) { return elements_[index]; }
+  const Element& operator[](std::size_t index) const { return elements_[index]; }
+  Element& front() { return elements_[0]; }
+  const Element& front() const { return elements_[0]; }
+  Element& back() { return elements_[size_ - 1]; }
+  const Element& back() const { return elements_[size_ - 1]; }
+
+private:
+  Element* elements_ = nullptr;
+  std::size_t size_ = 0;
 };
 
 // ----------------------------------------------------------------------------
@@ -130,26 +172,25 @@ struct Argument {
 };
 
 struct CallExpr : Expr {
-  CallExpr(SourceSpan span, std::string callee, SourceSpan calleeSpan,
-           std::vector<Argument> arguments)
+  CallExpr(SourceSpan span, std::string callee, SourceSpan calleeSpan, NodeList<Argument> arguments)
       : Expr(ExprKind::Call, span), callee(std::move(callee)), calleeSpan(calleeSpan),
         arguments(std::move(arguments)) {}
   std::string callee;
   SourceSpan calleeSpan;
-  std::vector<Argument> arguments;
+  NodeList<Argument> arguments;
   const Declaration* declaration = nullptr; // the fn or builtin, set by the checker
 };
 
 struct PointExpr : Expr {
-  PointExpr(SourceSpan span, std::vector<ExprPtr> components)
+  PointExpr(SourceSpan span, NodeList<ExprPtr> components)
       : Expr(ExprKind::Point, span), components(std::move(components)) {}
-  std::vector<ExprPtr> components; // two or three
+  NodeList<ExprPtr> components; // two or three
 };
 
 struct ListExpr : Expr {
-  ListExpr(SourceSpan span, std::vector<ExprPtr> elements)
+  ListExpr(SourceSpan span, NodeList<ExprPtr> elements)
       : Expr(ExprKind::List, span), elements(std::move(elements)) {}
-  std::vector<ExprPtr> elements;
+  NodeList<ExprPtr> elements;
 };
 
 struct RangeExpr : Expr {
@@ -217,7 +258,7 @@ using StmtPtr = std::unique_ptr<Stmt, NodeDeleter>;
 
 struct Block {
   SourceSpan span; // from '{' to '}'
-  std::vector<StmtPtr> statements;
+  NodeList<StmtPtr> statements;
 };
 
 struct UnitsStmt : Stmt {
