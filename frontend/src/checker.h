@@ -8,10 +8,12 @@
 
 #include "sema_context.h"
 
+#include <array>
 #include <map>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -20,21 +22,43 @@ namespace cncc::frontend {
 // Constants and functions are checked on first use.
 enum class ItemState { Unchecked, InProgress, Checked };
 
-// Binds call arguments to parameters: positional ones in order, named ones
-// by name. Reports unknown, duplicate, surplus and missing arguments.
-struct ArgumentBinding {
-  std::vector<const Argument*> bound; // one per parameter, null when absent
-  std::vector<const Argument*> extra; // for variadic functions
-  bool ok = true;
-  bool unknownName = false; // a misspelt name: missing arguments are its echo
-};
-
 struct ParameterSpec {
-  std::string name;
+  std::string_view name; // of a builtin's, a fn's or a statement's parameter
   bool required;
 };
 
-std::string joinNames(const std::vector<ParameterSpec>& parameters);
+std::string joinNames(std::span<const ParameterSpec> parameters);
+
+// Binds call arguments to parameters: positional ones in order, named ones
+// by name. Reports unknown, duplicate, surplus and missing arguments.
+class ArgumentBinding {
+public:
+  explicit ArgumentBinding(std::size_t parameters) {
+    if (parameters <= fewParameters) {
+      bound = std::span<const Argument*>(few_.data(), parameters);
+    } else {
+      many_.assign(parameters, nullptr);
+      bound = many_;
+    }
+  }
+  ArgumentBinding(const ArgumentBinding&) = delete;
+  ArgumentBinding& operator=(const ArgumentBinding&) = delete;
+
+  std::span<const Argument*> bound; // one per parameter, null when absent
+  std::size_t extra = 0;            // positional arguments of a variadic function
+  bool ok = true;
+  bool unknownName = false; // a misspelt name: missing arguments are its echo
+
+private:
+  // Every builtin has at most this many parameters.
+  static constexpr std::size_t fewParameters = 8;
+  std::array<const Argument*, fewParameters> few_{};
+  std::vector<const Argument*> many_;
+};
+
+// A builtin function's parameters and types, as its calls are checked
+// (checker_calls.cpp).
+struct BuiltinSpec;
 
 class Checker {
 public:
@@ -69,28 +93,47 @@ private:
   void checkBlock(Block& block, const Scope& parent);
   void checkStatement(Stmt& statement, Scope& scope, Block& block,
                       std::vector<const Declaration*>& lets);
-  void checkSettings(std::vector<Argument>& settings, const std::vector<ParameterSpec>& allowed,
+  void checkSettings(std::vector<Argument>& settings, std::span<const ParameterSpec> allowed,
                      const Scope& scope, std::string_view owner, SourceSpan ownerSpan);
   void checkLet(LetStmt& let, Scope& scope, Block& block, std::vector<const Declaration*>& lets);
-  void warnIfShadowing(const std::string& name, SourceSpan span, const Scope& outer);
+  void warnIfShadowing(std::string_view name, SourceSpan span, const Scope& outer);
   void checkFor(ForStmt& loop, const Scope& scope);
   void checkCut(CutStmt& cut, const Scope& scope);
-  void checkModifier(Modifier& modifier, const Scope& scope,
-                     std::map<std::string, const Modifier*>& seen);
-  void checkChoice(Modifier& modifier, const std::vector<std::string>& choices);
+  // `seen` holds, by their place in cutModifierNames(), the modifiers
+  // already given.
+  void checkModifier(Modifier& modifier, const Scope& scope, std::span<const Modifier*> seen);
+  void checkChoice(Modifier& modifier, std::span<const std::string_view> choices);
 
   // expressions (checker_expressions.cpp)
-  void expectNumber(Expr& expression, const Scope& scope, std::string_view context);
+  void expectNumber(Expr& expression, const Scope& scope, std::string_view context) {
+    Type type = checkExpression(expression, scope);
+    expectType(expression, type, TypeKind::Num, context);
+  }
+  // Reports when `actual` is not `expected`; returns whether it fits.
   bool expectType(const Expr& expression, Type actual, TypeKind expected, std::string_view what,
-                  TypeKind element = TypeKind::Any);
-  static bool typeFits(Type actual, TypeKind expected, TypeKind element);
+                  TypeKind element = TypeKind::Any) {
+    return typeFits(actual, expected, element) ||
+           reportMismatch(expression, actual, expected, what, element);
+  }
+  static bool typeFits(Type actual, TypeKind expected, TypeKind element) {
+    if (actual.isLenient()) {
+      return true;
+    }
+    if (actual.kind != expected) {
+      return false;
+    }
+    return expected != TypeKind::List || element == TypeKind::Any || actual.element == element ||
+           actual.element == TypeKind::Any || actual.element == TypeKind::Error;
+  }
+  bool reportMismatch(const Expr& expression, Type actual, TypeKind expected, std::string_view what,
+                      TypeKind element);
   // As expectType and expectNumber, with `describe()` naming what is checked:
   // called only for a message, as most checks pass.
   template <typename Describe>
   bool expectTypeOf(const Expr& expression, Type actual, TypeKind expected, Describe describe,
                     TypeKind element = TypeKind::Any) {
     return typeFits(actual, expected, element) ||
-           expectType(expression, actual, expected, describe(), element);
+           reportMismatch(expression, actual, expected, describe(), element);
   }
   template <typename Describe>
   void expectNumberOf(Expr& expression, const Scope& scope, Describe describe) {
@@ -111,20 +154,21 @@ private:
   // calls (checker_calls.cpp)
   Type checkCall(CallExpr& call, const Scope& scope);
   void checkArgumentsAlone(CallExpr& call, const Scope& scope);
-  ArgumentBinding bindArguments(const CallExpr& call, const std::vector<ParameterSpec>& parameters,
-                                bool variadic);
+  void bindArguments(const CallExpr& call, std::span<const ParameterSpec> parameters, bool variadic,
+                     ArgumentBinding& binding);
   void bindNamedArgument(const CallExpr& call, const Argument& argument,
-                         const std::vector<ParameterSpec>& parameters, ArgumentBinding& binding);
-  void reportMissing(const CallExpr& call, const std::vector<ParameterSpec>& parameters,
+                         std::span<const ParameterSpec> parameters, ArgumentBinding& binding);
+  void reportMissing(const CallExpr& call, std::span<const ParameterSpec> parameters,
                      ArgumentBinding& binding);
   Type checkFunctionCall(CallExpr& call, const Declaration& declaration, const Scope& scope);
-  Type checkBuiltinCall(CallExpr& call, const Scope& scope);
+  // The spec of a builtin function's declaration; null for `pi`.
+  const BuiltinSpec* builtinSpecOf(const Declaration& declaration);
+  Type checkBuiltinCall(CallExpr& call, const BuiltinSpec& spec, const Scope& scope);
   void checkOrderOrDegree(const CallExpr& call, ArgumentBinding& binding);
-  static Type builtinResultType(const std::string& name);
-  bool checkBuiltinArgument(const std::string& function, const std::string& parameter, Expr& value,
+  bool checkBuiltinArgument(const BuiltinSpec& spec, std::size_t parameter, Expr& value,
                             const Scope& scope);
-  bool checkAnalyticCurve(CallExpr& call, const std::vector<ParameterSpec>& parameters,
-                          const ArgumentBinding& binding, const Scope& scope);
+  bool checkAnalyticCurve(CallExpr& call, const BuiltinSpec& spec, const ArgumentBinding& binding,
+                          const Scope& scope);
 
   static std::optional<Type> binaryResultType(BinaryOperator op, Type left, Type right);
 
@@ -133,6 +177,11 @@ private:
   std::unordered_map<const Declaration*, ItemState>& states_;
   // Each fn's parameters as bindArguments takes them, built on its first call.
   std::unordered_map<const FnItem*, std::vector<ParameterSpec>> functionParameters_;
+  // Each builtin declaration's spec, looked up by name on its first call.
+  std::unordered_map<const Declaration*, const BuiltinSpec*> builtinSpecs_;
+  // checkCut's modifiers seen, by their place in cutModifierNames() (cuts do
+  // not nest, so one buffer serves them all).
+  std::vector<const Modifier*> seenModifiers_;
 };
 
 } // namespace cncc::frontend

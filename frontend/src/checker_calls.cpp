@@ -11,7 +11,7 @@ namespace cncc::frontend {
 
 using namespace std::string_view_literals;
 
-std::string joinNames(const std::vector<ParameterSpec>& parameters) {
+std::string joinNames(std::span<const ParameterSpec> parameters) {
   std::string text;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     text += fmt::format("{}'{}'", i == 0 ? "" : ", ", parameters[i].name);
@@ -41,8 +41,10 @@ Type Checker::checkCall(CallExpr& call, const Scope& scope) {
   if (declaration->kind == DeclarationKind::Function) {
     return checkFunctionCall(call, *declaration, scope);
   }
-  if (declaration->kind == DeclarationKind::Builtin && declaration->name != "pi"sv) {
-    return checkBuiltinCall(call, scope);
+  if (declaration->kind == DeclarationKind::Builtin) {
+    if (const BuiltinSpec* spec = builtinSpecOf(*declaration)) {
+      return checkBuiltinCall(call, *spec, scope);
+    }
   }
   context_.report(DiagnosticKind::NotCallable, call.calleeSpan,
                   fmt::format("'{}' is a {} ({}), not a function", call.callee,
@@ -57,16 +59,13 @@ void Checker::checkArgumentsAlone(CallExpr& call, const Scope& scope) {
   }
 }
 
-ArgumentBinding Checker::bindArguments(const CallExpr& call,
-                                       const std::vector<ParameterSpec>& parameters,
-                                       bool variadic) {
-  ArgumentBinding binding;
-  binding.bound.assign(parameters.size(), nullptr);
+void Checker::bindArguments(const CallExpr& call, std::span<const ParameterSpec> parameters,
+                            bool variadic, ArgumentBinding& binding) {
   std::size_t nextPositional = 0;
   for (const Argument& argument : call.arguments) {
     if (argument.name.empty()) {
       if (variadic) {
-        binding.extra.push_back(&argument);
+        ++binding.extra;
         continue;
       }
       while (nextPositional < parameters.size() && binding.bound[nextPositional] != nullptr) {
@@ -84,14 +83,13 @@ ArgumentBinding Checker::bindArguments(const CallExpr& call,
     }
     bindNamedArgument(call, argument, parameters, binding);
   }
-  return binding;
 }
 
 void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
-                                const std::vector<ParameterSpec>& parameters,
+                                std::span<const ParameterSpec> parameters,
                                 ArgumentBinding& binding) {
   for (std::size_t i = 0; i < parameters.size(); ++i) {
-    if (parameters[i].name != argument.name) {
+    if (!sameName(parameters[i].name, argument.name)) {
       continue;
     }
     if (binding.bound[i] != nullptr) {
@@ -107,7 +105,7 @@ void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
   }
   std::vector<std::string> names;
   for (const ParameterSpec& parameter : parameters) {
-    names.push_back(parameter.name);
+    names.emplace_back(parameter.name);
   }
   std::string expected = parameters.empty()
                              ? fmt::format("'{}' takes no named arguments", call.callee)
@@ -119,7 +117,7 @@ void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
   binding.unknownName = true;
 }
 
-void Checker::reportMissing(const CallExpr& call, const std::vector<ParameterSpec>& parameters,
+void Checker::reportMissing(const CallExpr& call, std::span<const ParameterSpec> parameters,
                             ArgumentBinding& binding) {
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     if (binding.unknownName) {
@@ -144,10 +142,12 @@ Type Checker::checkFunctionCall(CallExpr& call, const Declaration& declaration,
     }
   }
   const std::vector<ParameterSpec>& parameters = cached->second;
-  ArgumentBinding binding = bindArguments(call, parameters, false);
+  ArgumentBinding binding(parameters.size());
+  bindArguments(call, parameters, false, binding);
   reportMissing(call, parameters, binding);
   checkArgumentsAlone(call, scope);
-  if (stateOf(&declaration) == ItemState::InProgress) {
+  ItemState state = stateOf(&declaration);
+  if (state == ItemState::InProgress) {
     Diagnostic* diagnostic = context_.report(
         DiagnosticKind::RecursiveFunction, call.calleeSpan,
         fmt::format("'{}' calls itself; functions are inlined and cannot be recursive",
@@ -156,19 +156,65 @@ Type Checker::checkFunctionCall(CallExpr& call, const Declaration& declaration,
     context_.invalidFunctions.insert(&declaration);
     return Type::error();
   }
-  ensureChecked(&declaration);
+  if (state == ItemState::Unchecked) {
+    ensureChecked(&declaration);
+  }
   return binding.ok ? declaration.type : Type::error();
 }
 
-namespace {
+// The type an argument of a builtin must have.
+struct ArgumentType {
+  TypeKind kind;
+  TypeKind element = TypeKind::Any; // of a list
+};
 
-// Each builtin function's parameters as the checker binds them, built once.
+// Each builtin function's parameters as the checker binds them, with the
+// types their arguments must have and the type of a call's value.
 struct BuiltinSpec {
   const BuiltinInfo* info = nullptr;
   std::vector<ParameterSpec> parameters;
+  std::vector<ArgumentType> argumentTypes; // one per parameter
+  Type result;
+  bool orderOrDegree = false; // nurbs and bspline
+  bool analytic = false;      // polar and param
 };
 
-const BuiltinSpec& builtinSpec(const std::string& name) {
+namespace {
+
+ArgumentType builtinArgumentType(std::string_view function, std::string_view parameter) {
+  if (parameter == "points"sv) {
+    return {TypeKind::List, TypeKind::Point};
+  }
+  if (parameter == "weights"sv || parameter == "knots"sv) {
+    return {TypeKind::List, TypeKind::Num};
+  }
+  if (parameter == "list"sv) {
+    return {TypeKind::List};
+  }
+  if (parameter == "curve"sv) {
+    return {TypeKind::Curve};
+  }
+  if ((function == "line"sv && (parameter == "from"sv || parameter == "to"sv)) ||
+      parameter == "center"sv) {
+    return {TypeKind::Point};
+  }
+  return {TypeKind::Num};
+}
+
+Type builtinResultType(std::string_view name) {
+  static constexpr std::string_view curveBuiltins[] = {"nurbs",     "bspline", "bezier", "polar",
+                                                       "param",     "line",    "arc",    "path",
+                                                       "translate", "rotate",  "scale"};
+  for (std::string_view curve : curveBuiltins) {
+    if (curve == name) {
+      return Type::curve();
+    }
+  }
+  return Type::num();
+}
+
+// Built once, by name.
+const std::unordered_map<std::string_view, BuiltinSpec>& builtinSpecs() {
   static const std::unordered_map<std::string_view, BuiltinSpec> specs = [] {
     std::unordered_map<std::string_view, BuiltinSpec> table;
     for (const BuiltinInfo& builtin : builtinFunctions()) {
@@ -176,40 +222,61 @@ const BuiltinSpec& builtinSpec(const std::string& name) {
       BuiltinSpec& spec = table[builtin.name];
       spec.info = &builtin;
       spec.parameters.clear();
+      spec.argumentTypes.clear();
       for (const BuiltinParameter& parameter : builtin.parameters) {
         spec.parameters.push_back({parameter.name, parameter.required});
+        spec.argumentTypes.push_back(builtinArgumentType(builtin.name, parameter.name));
       }
+      spec.result = builtinResultType(builtin.name);
+      spec.orderOrDegree = builtin.name == "nurbs"sv || builtin.name == "bspline"sv;
+      spec.analytic = builtin.name == "polar"sv || builtin.name == "param"sv;
     }
     return table;
   }();
-  return specs.at(name);
+  return specs;
 }
 
 } // namespace
 
-Type Checker::checkBuiltinCall(CallExpr& call, const Scope& scope) {
-  const BuiltinSpec& spec = builtinSpec(call.callee);
+const BuiltinSpec* Checker::builtinSpecOf(const Declaration& declaration) {
+  auto [cached, inserted] = builtinSpecs_.try_emplace(&declaration, nullptr);
+  if (inserted) {
+    const auto& specs = builtinSpecs();
+    auto found = specs.find(declaration.name);
+    cached->second = found == specs.end() ? nullptr : &found->second;
+  }
+  return cached->second;
+}
+
+Type Checker::checkBuiltinCall(CallExpr& call, const BuiltinSpec& spec, const Scope& scope) {
   const BuiltinInfo* info = spec.info;
-  const std::vector<ParameterSpec>& parameters = spec.parameters;
-  ArgumentBinding binding = bindArguments(call, parameters, info->variadic);
+  std::span<const ParameterSpec> parameters = spec.parameters;
+  ArgumentBinding binding(parameters.size());
+  bindArguments(call, parameters, info->variadic, binding);
   reportMissing(call, parameters, binding);
-  if (info->name == "nurbs"sv || info->name == "bspline"sv) {
+  if (spec.orderOrDegree) {
     checkOrderOrDegree(call, binding);
   }
-  if (info->name == "polar"sv || info->name == "param"sv) {
-    return checkAnalyticCurve(call, parameters, binding, scope) ? Type::curve() : Type::error();
+  if (spec.analytic) {
+    return checkAnalyticCurve(call, spec, binding, scope) ? Type::curve() : Type::error();
   }
   bool ok = binding.ok;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     if (binding.bound[i] != nullptr) {
-      ok &= checkBuiltinArgument(info->name, parameters[i].name, *binding.bound[i]->value, scope);
+      ok &= checkBuiltinArgument(spec, i, *binding.bound[i]->value, scope);
     }
   }
-  for (const Argument* argument : binding.extra) {
-    ok &= expectTypeOf(*argument->value, checkExpression(*argument->value, scope), TypeKind::Curve,
-                       [&] { return fmt::format("each argument of '{}'", info->name); });
+  if (binding.extra != 0) {
+    // The positional arguments of a variadic builtin, in order.
+    for (Argument& argument : call.arguments) {
+      if (argument.name.empty()) {
+        ok &=
+            expectTypeOf(*argument.value, checkExpression(*argument.value, scope), TypeKind::Curve,
+                         [&] { return fmt::format("each argument of '{}'", info->name); });
+      }
+    }
   }
-  if (info->variadic && binding.extra.empty()) {
+  if (info->variadic && binding.extra == 0) {
     context_.report(DiagnosticKind::MissingArgument, call.calleeSpan,
                     fmt::format("'{}' needs at least one curve", info->name));
     ok = false;
@@ -217,7 +284,7 @@ Type Checker::checkBuiltinCall(CallExpr& call, const Scope& scope) {
   if (!ok) {
     return Type::error();
   }
-  return builtinResultType(info->name);
+  return spec.result;
 }
 
 void Checker::checkOrderOrDegree(const CallExpr& call, ArgumentBinding& binding) {
@@ -236,45 +303,24 @@ void Checker::checkOrderOrDegree(const CallExpr& call, ArgumentBinding& binding)
   }
 }
 
-Type Checker::builtinResultType(const std::string& name) {
-  static constexpr std::string_view curveBuiltins[] = {"nurbs",     "bspline", "bezier", "polar",
-                                                       "param",     "line",    "arc",    "path",
-                                                       "translate", "rotate",  "scale"};
-  for (std::string_view curve : curveBuiltins) {
-    if (curve == name) {
-      return Type::curve();
-    }
-  }
-  return Type::num();
-}
-
-bool Checker::checkBuiltinArgument(const std::string& function, const std::string& parameter,
-                                   Expr& value, const Scope& scope) {
+bool Checker::checkBuiltinArgument(const BuiltinSpec& spec, std::size_t parameter, Expr& value,
+                                   const Scope& scope) {
   Type type = checkExpression(value, scope);
-  auto what = [&] { return fmt::format("argument '{}' of '{}'", parameter, function); };
-  if (parameter == "points"sv) {
-    return expectTypeOf(value, type, TypeKind::List, what, TypeKind::Point);
-  }
-  if (parameter == "weights"sv || parameter == "knots"sv) {
-    return expectTypeOf(value, type, TypeKind::List, what, TypeKind::Num);
-  }
-  if (parameter == "list"sv) {
-    return expectTypeOf(value, type, TypeKind::List, what);
-  }
-  if (parameter == "curve"sv) {
-    return expectTypeOf(value, type, TypeKind::Curve, what);
-  }
-  if ((function == "line"sv && (parameter == "from"sv || parameter == "to"sv)) ||
-      parameter == "center"sv) {
-    return expectTypeOf(value, type, TypeKind::Point, what);
-  }
-  return expectTypeOf(value, type, TypeKind::Num, what);
+  ArgumentType wanted = spec.argumentTypes[parameter];
+  return expectTypeOf(
+      value, type, wanted.kind,
+      [&] {
+        return fmt::format("argument '{}' of '{}'", spec.parameters[parameter].name,
+                           spec.info->name);
+      },
+      wanted.element);
 }
 
 // polar(r = ..., t = a .. b) and param(x = ..., y = ..., z = ..., t = a .. b):
 // the expressions see the curve parameter `t`; the range does not.
-bool Checker::checkAnalyticCurve(CallExpr& call, const std::vector<ParameterSpec>& parameters,
+bool Checker::checkAnalyticCurve(CallExpr& call, const BuiltinSpec& spec,
                                  const ArgumentBinding& binding, const Scope& scope) {
+  std::span<const ParameterSpec> parameters = spec.parameters;
   bool ok = binding.ok;
   const Argument* range = binding.bound.back();
   SourceSpan parameterSpan =
@@ -286,8 +332,9 @@ bool Checker::checkAnalyticCurve(CallExpr& call, const std::vector<ParameterSpec
   }
   Declaration& parameter =
       context_.declare(DeclarationKind::CurveParameter, "t", parameterSpan, Type::num());
-  parameter.description = fmt::format("the parameter of this {} curve", call.callee);
-  context_.usedDeclarations.insert(&parameter);
+  std::string& description = parameter.description;
+  description.reserve(28 + call.callee.size());
+  description.append("the parameter of this ").append(call.callee).append(" curve");
   Scope curveScope(&scope);
   curveScope.add("t", &parameter);
   for (std::size_t i = 0; i + 1 < parameters.size(); ++i) {

@@ -8,29 +8,8 @@ namespace cncc::frontend {
 
 using namespace std::string_view_literals;
 
-void Checker::expectNumber(Expr& expression, const Scope& scope, std::string_view context) {
-  Type type = checkExpression(expression, scope);
-  expectType(expression, type, TypeKind::Num, context);
-}
-
-// Reports when `actual` is not `expected`; returns whether it fits.
-bool Checker::typeFits(Type actual, TypeKind expected, TypeKind element) {
-  if (actual.isLenient()) {
-    return true;
-  }
-  bool fits = actual.kind == expected;
-  if (fits && expected == TypeKind::List && element != TypeKind::Any) {
-    fits = actual.element == element || actual.element == TypeKind::Any ||
-           actual.element == TypeKind::Error;
-  }
-  return fits;
-}
-
-bool Checker::expectType(const Expr& expression, Type actual, TypeKind expected,
-                         std::string_view what, TypeKind element) {
-  if (typeFits(actual, expected, element)) {
-    return true;
-  }
+bool Checker::reportMismatch(const Expr& expression, Type actual, TypeKind expected,
+                             std::string_view what, TypeKind element) {
   Type wanted = expected == TypeKind::List ? Type::listOf(element) : Type{expected};
   context_.report(
       DiagnosticKind::TypeMismatch, expression.span,
@@ -102,12 +81,15 @@ Type Checker::checkName(NameExpr& name, const Scope& scope) {
     return Type::error();
   }
   if (declaration->kind == DeclarationKind::Constant) {
-    if (stateOf(declaration) == ItemState::InProgress) {
+    ItemState state = stateOf(declaration);
+    if (state == ItemState::InProgress) {
       context_.report(DiagnosticKind::CircularConstant, name.span,
                       fmt::format("constant '{}' depends on itself", name.name));
       return Type::error();
     }
-    ensureChecked(declaration);
+    if (state == ItemState::Unchecked) {
+      ensureChecked(declaration);
+    }
   }
   return declaration->type;
 }

@@ -9,6 +9,43 @@ namespace cncc::frontend {
 
 using namespace std::string_view_literals;
 
+namespace {
+
+// The settings of `tool` and `safe`.
+constexpr ParameterSpec toolSettings[] = {{"diameter", true}, {"spindle", false}, {"feed", false}};
+constexpr ParameterSpec safeSettings[] = {{"z", true}};
+// checkSettings keeps the settings seen in an array of this size.
+constexpr std::size_t maxSettings = 4;
+static_assert(std::size(toolSettings) <= maxSettings && std::size(safeSettings) <= maxSettings);
+
+constexpr std::string_view methodChoices[] = {"linear", "aspline", "bspline", "cspline", "nurbs"};
+constexpr std::string_view entryChoices[] = {"plunge", "ramp"};
+
+// Where the modifiers checkCut and checkModifier look at are in
+// cutModifierNames(); the number of names for one that is not there.
+struct ModifierPlaces {
+  std::size_t sweep, depth, step, samples, spacing, method, entry, arcs;
+};
+
+const ModifierPlaces& modifierPlaces() {
+  static const ModifierPlaces places = [] {
+    const std::vector<std::string>& names = cutModifierNames();
+    auto place = [&](std::string_view name) {
+      return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+    };
+    return ModifierPlaces{place("sweep"),   place("depth"),  place("step"),  place("samples"),
+                          place("spacing"), place("method"), place("entry"), place("arcs")};
+  }();
+  return places;
+}
+
+// The modifier seen at `place`, null when none (or no such modifier).
+const Modifier* seenAt(std::span<const Modifier*> seen, std::size_t place) {
+  return place < seen.size() ? seen[place] : nullptr;
+}
+
+} // namespace
+
 void Checker::checkPart(PartItem& part, const Scope& fileScope) {
   Scope scope(&fileScope);
   for (Parameter& parameter : part.parameters) {
@@ -66,8 +103,7 @@ void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block,
   case StmtKind::Tool: {
     auto& tool = as<ToolStmt>(statement);
     expectNumber(*tool.number, scope, "tool number");
-    checkSettings(tool.settings, {{"diameter", true}, {"spindle", false}, {"feed", false}}, scope,
-                  "tool", tool.span);
+    checkSettings(tool.settings, toolSettings, scope, "tool", tool.span);
     return;
   }
   case StmtKind::Feed:
@@ -78,7 +114,7 @@ void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block,
     return;
   case StmtKind::Safe: {
     auto& safe = as<SafeStmt>(statement);
-    checkSettings(safe.settings, {{"z", true}}, scope, "safe", safe.span);
+    checkSettings(safe.settings, safeSettings, scope, "safe", safe.span);
     return;
   }
   case StmtKind::Let:
@@ -101,33 +137,35 @@ void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block,
   }
 }
 
-void Checker::checkSettings(std::vector<Argument>& settings,
-                            const std::vector<ParameterSpec>& allowed, const Scope& scope,
-                            std::string_view owner, SourceSpan ownerSpan) {
-  std::map<std::string, const Argument*> seen;
+void Checker::checkSettings(std::vector<Argument>& settings, std::span<const ParameterSpec> allowed,
+                            const Scope& scope, std::string_view owner, SourceSpan ownerSpan) {
+  // The first setting given for each allowed one.
+  std::array<const Argument*, maxSettings> seen{};
   for (Argument& setting : settings) {
-    bool known = false;
-    for (const ParameterSpec& spec : allowed) {
-      known |= spec.name == setting.name;
+    std::size_t place = allowed.size();
+    for (std::size_t i = 0; i < allowed.size() && place == allowed.size(); ++i) {
+      if (sameName(allowed[i].name, setting.name)) {
+        place = i;
+      }
     }
     expectNumberOf(*setting.value, scope,
                    [&] { return fmt::format("'{}' of '{}'", setting.name, owner); });
-    if (!known) {
+    if (place == allowed.size()) {
       context_.report(DiagnosticKind::UnknownArgument, setting.nameSpan,
                       fmt::format("'{}' has no setting '{}'; expected {}", owner, setting.name,
                                   joinNames(allowed)));
-    } else if (auto previous = seen.find(setting.name); previous != seen.end()) {
+    } else if (const Argument* previous = seen[place]) {
       Diagnostic* diagnostic = context_.report(DiagnosticKind::DuplicateArgument, setting.nameSpan,
                                                fmt::format("'{}' is given twice", setting.name));
-      context_.diagnostics.addNote(diagnostic, previous->second->nameSpan, "first given here");
+      context_.diagnostics.addNote(diagnostic, previous->nameSpan, "first given here");
     } else {
-      seen[setting.name] = &setting;
+      seen[place] = &setting;
     }
   }
-  for (const ParameterSpec& spec : allowed) {
-    if (spec.required && !seen.contains(spec.name)) {
+  for (std::size_t i = 0; i < allowed.size(); ++i) {
+    if (allowed[i].required && seen[i] == nullptr) {
       context_.report(DiagnosticKind::MissingArgument, ownerSpan,
-                      fmt::format("'{}' needs '{}='", owner, spec.name));
+                      fmt::format("'{}' needs '{}='", owner, allowed[i].name));
     }
   }
 }
@@ -154,7 +192,7 @@ void Checker::checkLet(LetStmt& let, Scope& scope, Block& block,
       {SourceSpan{let.span.file, let.span.end, block.span.end}, &declaration});
 }
 
-void Checker::warnIfShadowing(const std::string& name, SourceSpan span, const Scope& outer) {
+void Checker::warnIfShadowing(std::string_view name, SourceSpan span, const Scope& outer) {
   const Declaration* shadowed = outer.find(name);
   if (shadowed == nullptr) {
     return;
@@ -185,35 +223,47 @@ void Checker::checkFor(ForStmt& loop, const Scope& scope) {
 void Checker::checkCut(CutStmt& cut, const Scope& scope) {
   Type type = checkExpression(*cut.curve, scope);
   expectType(*cut.curve, type, TypeKind::Curve, "'curve' statement");
-  std::map<std::string, const Modifier*> seen;
+  seenModifiers_.assign(cutModifierNames().size(), nullptr);
+  std::span<const Modifier*> seen = seenModifiers_;
   for (Modifier& modifier : cut.modifiers) {
     checkModifier(modifier, scope, seen);
   }
-  bool sweep = seen.contains("sweep");
-  for (const char* needed : {"depth", "step"}) {
-    if (sweep && !seen.contains(needed)) {
-      context_.report(DiagnosticKind::SweepIncomplete, seen.at("sweep")->nameSpan,
-                      fmt::format("'sweep' needs '{}='; write 'sweep depth=D step=S'", needed));
+  const ModifierPlaces& places = modifierPlaces();
+  const Modifier* sweep = seenAt(seen, places.sweep);
+  struct Needed {
+    std::size_t place;
+    std::string_view name;
+  };
+  for (Needed needed : {Needed{places.depth, "depth"}, Needed{places.step, "step"}}) {
+    const Modifier* given = seenAt(seen, needed.place);
+    std::string_view name = needed.name;
+    if (sweep != nullptr && given == nullptr) {
+      context_.report(DiagnosticKind::SweepIncomplete, sweep->nameSpan,
+                      fmt::format("'sweep' needs '{}='; write 'sweep depth=D step=S'", name));
     }
-    if (!sweep && seen.contains(needed)) {
-      context_.report(
-          DiagnosticKind::SweepIncomplete, seen.at(needed)->nameSpan,
-          fmt::format("'{}=' belongs to a sweep; write 'sweep depth=D step=S'", needed));
+    if (sweep == nullptr && given != nullptr) {
+      context_.report(DiagnosticKind::SweepIncomplete, given->nameSpan,
+                      fmt::format("'{}=' belongs to a sweep; write 'sweep depth=D step=S'", name));
     }
   }
-  if (seen.contains("samples") && seen.contains("spacing")) {
+  const Modifier* samples = seenAt(seen, places.samples);
+  const Modifier* spacing = seenAt(seen, places.spacing);
+  if (samples != nullptr && spacing != nullptr) {
     Diagnostic* diagnostic =
-        context_.report(DiagnosticKind::ConflictingModifiers, seen.at("spacing")->nameSpan,
+        context_.report(DiagnosticKind::ConflictingModifiers, spacing->nameSpan,
                         "'samples=' and 'spacing=' both choose the points; give only one");
-    context_.diagnostics.addNote(diagnostic, seen.at("samples")->nameSpan,
-                                 "'samples=' is given here");
+    context_.diagnostics.addNote(diagnostic, samples->nameSpan, "'samples=' is given here");
   }
 }
 
 void Checker::checkModifier(Modifier& modifier, const Scope& scope,
-                            std::map<std::string, const Modifier*>& seen) {
+                            std::span<const Modifier*> seen) {
   const std::vector<std::string>& names = cutModifierNames();
-  if (std::find(names.begin(), names.end(), modifier.name) == names.end()) {
+  std::size_t place = 0;
+  while (place < names.size() && !sameName(names[place], modifier.name)) {
+    ++place;
+  }
+  if (place == names.size()) {
     context_.report(DiagnosticKind::UnknownModifier, modifier.nameSpan,
                     fmt::format("unknown modifier '{}' after 'curve'{}", modifier.name,
                                 suggestion(modifier.name, names)));
@@ -222,15 +272,16 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
     }
     return;
   }
-  if (auto previous = seen.find(modifier.name); previous != seen.end()) {
+  if (const Modifier* previous = seen[place]) {
     Diagnostic* diagnostic =
         context_.report(DiagnosticKind::DuplicateModifier, modifier.nameSpan,
                         fmt::format("modifier '{}' is given twice", modifier.name));
-    context_.diagnostics.addNote(diagnostic, previous->second->nameSpan, "first given here");
+    context_.diagnostics.addNote(diagnostic, previous->nameSpan, "first given here");
     return;
   }
-  seen[modifier.name] = &modifier;
-  if (modifier.name == "sweep"sv) {
+  seen[place] = &modifier;
+  const ModifierPlaces& places = modifierPlaces();
+  if (place == places.sweep) {
     if (modifier.value) {
       context_.report(DiagnosticKind::ModifierValue, modifier.span(),
                       "'sweep' takes no value; write 'sweep depth=D step=S'");
@@ -243,11 +294,11 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
         fmt::format("modifier '{}' needs a value: '{}=...'", modifier.name, modifier.name));
     return;
   }
-  if (modifier.name == "method"sv) {
-    checkChoice(modifier, {"linear", "aspline", "bspline", "cspline", "nurbs"});
-  } else if (modifier.name == "entry"sv) {
-    checkChoice(modifier, {"plunge", "ramp"});
-  } else if (modifier.name == "arcs"sv) {
+  if (place == places.method) {
+    checkChoice(modifier, methodChoices);
+  } else if (place == places.entry) {
+    checkChoice(modifier, entryChoices);
+  } else if (place == places.arcs) {
     // A switch of the printed program, so a literal rather than an expression.
     if (modifier.value->kind != ExprKind::Bool) {
       context_.report(DiagnosticKind::InvalidChoice, modifier.value->span,
@@ -259,21 +310,25 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
 }
 
 // `method=linear`: the value is a word from a fixed list, not a name.
-void Checker::checkChoice(Modifier& modifier, const std::vector<std::string>& choices) {
-  std::string list;
-  for (const std::string& choice : choices) {
-    list += (list.empty() ? "" : ", ") + choice;
-  }
+void Checker::checkChoice(Modifier& modifier, std::span<const std::string_view> choices) {
+  auto list = [&] {
+    std::string text;
+    for (std::string_view choice : choices) {
+      text.append(text.empty() ? "" : ", ").append(choice);
+    }
+    return text;
+  };
   if (modifier.value->kind != ExprKind::Name) {
     context_.report(DiagnosticKind::InvalidChoice, modifier.value->span,
-                    fmt::format("'{}=' takes one of: {}", modifier.name, list));
+                    fmt::format("'{}=' takes one of: {}", modifier.name, list()));
     return;
   }
   const std::string& word = as<NameExpr>(*modifier.value).name;
   if (std::find(choices.begin(), choices.end(), word) == choices.end()) {
+    std::vector<std::string> candidates(choices.begin(), choices.end());
     context_.report(DiagnosticKind::InvalidChoice, modifier.value->span,
                     fmt::format("'{}' is not a valid {}; expected one of: {}{}", word,
-                                modifier.name, list, suggestion(word, choices)));
+                                modifier.name, list(), suggestion(word, candidates)));
   }
 }
 

@@ -32,18 +32,111 @@ std::string_view declarationKindName(DeclarationKind kind) {
   return "name";
 }
 
-const Declaration* Scope::findLocal(std::string_view name) const {
-  auto found = names_.find(name);
-  return found == names_.end() ? nullptr : found->second;
+// FNV-1a, with the high bits folded into the low ones the index uses.
+std::uint32_t Scope::hashOf(std::string_view name) {
+  std::uint32_t hash = 2166136261u;
+  for (char c : name) {
+    hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+  }
+  return hash ^ (hash >> 16);
 }
 
-const Declaration* Scope::find(std::string_view name) const {
-  for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
-    if (const Declaration* declaration = scope->findLocal(name)) {
-      return declaration;
+const Scope::Entry* Scope::scan(std::string_view name) const {
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (sameName(few_[i].view(), name)) {
+      return &few_[i];
     }
   }
   return nullptr;
+}
+
+const Scope::Entry* Scope::lookUp(std::string_view name, std::uint32_t hash) const {
+  std::size_t mask = slots_.size() - 1;
+  for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+    std::uint32_t index = slots_[slot];
+    if (index == 0) {
+      return nullptr;
+    }
+    const Entry& entry = many_[index - 1];
+    if (entry.hash == hash && sameName(entry.view(), name)) {
+      return &entry;
+    }
+  }
+}
+
+const Declaration* Scope::findLocal(std::string_view name) const {
+  const Entry* entry = findEntry(name, indexed() ? hashOf(name) : 0);
+  return entry == nullptr ? nullptr : entry->declaration;
+}
+
+const Declaration* Scope::find(std::string_view name) const {
+  std::uint32_t hash = 0;
+  bool hashed = false;
+  for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
+    if (scope->indexed() && !hashed) {
+      hash = hashOf(name);
+      hashed = true;
+    }
+    if (const Entry* entry = scope->findEntry(name, hash)) {
+      return entry->declaration;
+    }
+  }
+  return nullptr;
+}
+
+// A name added again is bound to the new declaration.
+void Scope::add(std::string_view name, const Declaration* declaration) {
+  std::uint32_t hash = indexed() ? hashOf(name) : 0;
+  if (const Entry* existing = findEntry(name, hash)) {
+    Entry* entries = indexed() ? many_.data() : few_.data();
+    entries[existing - entries].declaration = declaration;
+    return;
+  }
+  Entry entry{name.data(), static_cast<std::uint32_t>(name.size()), hash, declaration};
+  if (!indexed()) {
+    if (count_ < fewNames) {
+      few_[count_++] = entry;
+      return;
+    }
+    many_.assign(few_.begin(), few_.end());
+    many_.push_back(entry);
+    ++count_;
+    buildIndex();
+    return;
+  }
+  many_.push_back(entry);
+  ++count_;
+  if (count_ * 2 > slots_.size()) {
+    buildIndex();
+  } else {
+    insertSlot(static_cast<std::uint32_t>(count_ - 1));
+  }
+}
+
+void Scope::insertSlot(std::uint32_t entry) {
+  std::size_t mask = slots_.size() - 1;
+  std::size_t slot = many_[entry].hash & mask;
+  while (slots_[slot] != 0) {
+    slot = (slot + 1) & mask;
+  }
+  slots_[slot] = entry + 1;
+}
+
+// Sizes the index for the entries in many_ and fills it, hashing the names
+// the first time.
+void Scope::buildIndex() {
+  bool hashed = indexed();
+  std::size_t size = 16;
+  while (size < count_ * 2) {
+    size *= 2;
+  }
+  slots_.assign(size, 0);
+  for (std::uint32_t i = 0; i < count_; ++i) {
+    if (!hashed) {
+      many_[i].hash = hashOf(many_[i].view());
+    }
+    insertSlot(i);
+  }
 }
 
 std::vector<std::string> Scope::visibleNames() const {
@@ -52,19 +145,19 @@ std::vector<std::string> Scope::visibleNames() const {
     // Each scope's names in alphabetical order, so suggestions do not depend
     // on the hashing.
     std::size_t first = names.size();
-    for (const auto& entry : scope->names_) {
-      names.emplace_back(entry.first);
+    for (const Entry& entry : scope->entries()) {
+      names.emplace_back(entry.view());
     }
     std::sort(names.begin() + static_cast<std::ptrdiff_t>(first), names.end());
   }
   return names;
 }
 
-Declaration& SemaContext::declare(DeclarationKind kind, std::string name, SourceSpan span,
+Declaration& SemaContext::declare(DeclarationKind kind, std::string_view name, SourceSpan span,
                                   Type type) {
   Declaration& declaration = program.declarations.emplace_back();
   declaration.kind = kind;
-  declaration.name = std::move(name);
+  declaration.name = name;
   declaration.span = span;
   declaration.type = type;
   if (span.valid()) {
@@ -86,7 +179,10 @@ void SemaContext::adopt(SemaContext& other) {
 }
 
 void SemaContext::reference(SourceSpan span, const Declaration* declaration, bool isDefinition) {
-  usedDeclarations.insert(declaration);
+  // Only a let can be reported unused.
+  if (declaration->kind == DeclarationKind::Let) {
+    usedDeclarations.insert(declaration);
+  }
   if (span.valid()) {
     program.references.push_back({span, declaration, isDefinition});
   }

@@ -3,8 +3,11 @@
 
 #include "cncc/frontend/sema.h"
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -13,23 +16,68 @@
 
 namespace cncc::frontend {
 
+// Whether two names are spelt the same. Names are short: comparing their
+// characters in a loop costs less than a call of memcmp.
+inline bool sameName(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) {
+    return false;
+  }
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != b[i]) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // A lexical scope: names to declarations, with a parent. The names are
 // views: of the declarations' names and the syntax trees' (and builtins'),
 // which the program keeps for longer than any scope.
+//
+// Most scopes (a part's parameters, a block's lets, a loop variable, `t`)
+// hold a few names: they are kept in the scope itself and searched in order.
+// A scope with more (a file, the builtins) moves them to the heap with a hash
+// index. A search through the scopes outwards hashes the name at most once.
 class Scope {
 public:
   explicit Scope(const Scope* parent = nullptr) : parent_(parent) {}
   const Declaration* find(std::string_view name) const;
   const Declaration* findLocal(std::string_view name) const;
-  void add(std::string_view name, const Declaration* declaration) { names_[name] = declaration; }
+  void add(std::string_view name, const Declaration* declaration);
   const Scope* parent() const { return parent_; }
   // Every name visible from here, innermost first (for suggestions).
   std::vector<std::string> visibleNames() const;
 
 private:
+  struct Entry {
+    const char* name;
+    std::uint32_t size;
+    std::uint32_t hash; // set once the scope is indexed
+    const Declaration* declaration;
+    std::string_view view() const { return {name, size}; }
+  };
+  // Up to this many names a scope keeps them in itself, unindexed.
+  static constexpr std::size_t fewNames = 8;
+  static std::uint32_t hashOf(std::string_view name);
+  bool indexed() const { return !slots_.empty(); }
+  std::span<const Entry> entries() const {
+    return indexed() ? std::span<const Entry>(many_) : std::span<const Entry>(few_.data(), count_);
+  }
+  const Entry* scan(std::string_view name) const;
+  const Entry* lookUp(std::string_view name, std::uint32_t hash) const;
+  const Entry* findEntry(std::string_view name, std::uint32_t hash) const {
+    return indexed() ? lookUp(name, hash) : scan(name);
+  }
+  void insertSlot(std::uint32_t entry);
+  void buildIndex();
+
   const Scope* parent_;
-  // Hashed: a file scope holds thousands of names.
-  std::unordered_map<std::string_view, const Declaration*> names_;
+  std::size_t count_ = 0;
+  std::array<Entry, fewNames> few_{};
+  std::vector<Entry> many_;
+  // Open addressing with linear probing: each slot holds an index in many_
+  // plus one, or 0 when free; a power of two in size, at most half full.
+  std::vector<std::uint32_t> slots_;
 };
 
 struct SemaContext {
@@ -46,14 +94,14 @@ struct SemaContext {
   std::map<const Module*, Scope> fileScopes;
   // Functions that must not be evaluated (recursive, or broken).
   std::unordered_set<const Declaration*> invalidFunctions;
-  // Declarations whose name was used somewhere (for unused-let).
+  // Lets whose name was used somewhere (for unused-let).
   std::unordered_set<const Declaration*> usedDeclarations;
   // The constant or function item behind a declaration, and the file scope
   // it is checked in.
   std::unordered_map<const Declaration*, const Item*> itemOf;
   std::unordered_map<const Declaration*, const Scope*> itemScope;
 
-  Declaration& declare(DeclarationKind kind, std::string name, SourceSpan span, Type type);
+  Declaration& declare(DeclarationKind kind, std::string_view name, SourceSpan span, Type type);
   // Takes what a context for part of the work on another thread collected:
   // its declarations, references, scopes and uses, and reports its
   // diagnostics here after this context's own.
