@@ -20,12 +20,28 @@ endif()
 message(STATUS "LLVM ${LLVM_PACKAGE_VERSION} found: building the LLVM JIT")
 
 file(GLOB jit_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/llvm/src/*.cpp)
-add_library(cncc_jit ${jit_sources})
-target_include_directories(cncc_jit PUBLIC ${CMAKE_CURRENT_LIST_DIR}/llvm/include)
+# Compiled once, position-independent, for both the static library and the
+# loadable module.
+add_library(cncc_jit_objects OBJECT ${jit_sources})
+set_target_properties(cncc_jit_objects PROPERTIES POSITION_INDEPENDENT_CODE ON)
+target_include_directories(cncc_jit_objects PUBLIC ${CMAKE_CURRENT_LIST_DIR}/llvm/include)
 # LLVM's headers do not build warning-free under our flags.
-target_include_directories(cncc_jit SYSTEM PRIVATE ${LLVM_INCLUDE_DIRS})
+target_include_directories(cncc_jit_objects SYSTEM PRIVATE ${LLVM_INCLUDE_DIRS})
 separate_arguments(jit_llvm_definitions NATIVE_COMMAND "${LLVM_DEFINITIONS}")
-target_compile_definitions(cncc_jit PRIVATE ${jit_llvm_definitions})
+target_compile_definitions(cncc_jit_objects PRIVATE ${jit_llvm_definitions})
+# An object library takes only cncc_ir's usage requirements (its headers).
+target_link_libraries(cncc_jit_objects PUBLIC cncc_ir PRIVATE fmt::fmt)
+
+# The static library, for the unit tests and benchmarks.
+add_library(cncc_jit STATIC $<TARGET_OBJECTS:cncc_jit_objects>)
+target_include_directories(cncc_jit PUBLIC ${CMAKE_CURRENT_LIST_DIR}/llvm/include)
 # The shared libLLVM-14 (target LLVM), not the static component libraries:
 # linking stays fast.
 target_link_libraries(cncc_jit PUBLIC cncc_ir PRIVATE LLVM fmt::fmt)
+
+# The module the driver loads when it runs the JIT (tools/cncc/jit_module.h),
+# so that no other command loads LLVM. It holds no cncc_ir or cncc_geom: their
+# symbols come from the executable that loads it (ENABLE_EXPORTS there).
+add_library(cncc_jit_module MODULE $<TARGET_OBJECTS:cncc_jit_objects>)
+set_target_properties(cncc_jit_module PROPERTIES PREFIX "" OUTPUT_NAME cncc_jit)
+target_link_libraries(cncc_jit_module PRIVATE LLVM fmt::fmt)

@@ -1,6 +1,7 @@
 #include "targets.h"
 
 #include "commands.h"
+#include "jit_module.h"
 #include "linuxcnc_target.h"
 #include "macro_targets.h"
 #include "sinumerik_target.h"
@@ -10,9 +11,6 @@
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
-#ifdef CNCC_HAVE_JIT
-#include "cncc/backends/jit_compiler.h"
-#endif
 
 #include <fmt/format.h>
 
@@ -77,16 +75,12 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   }
   optimise(*function, request.options); // the IR optimiser, unless -O0
   try {
-#ifdef CNCC_HAVE_JIT
     // `native`: compiled by the LLVM JIT, which runs as the interpreter does.
-    if (native && backends::jitAvailable()) {
-      try {
-        return backends::runJit(*function);
-      } catch (const backends::JitError& error) {
-        throw InternalError(std::string("the LLVM JIT failed: ") + error.what());
+    if (native) {
+      if (std::optional<ir::ToolPath> path = runOnJit(*function)) {
+        return path;
       }
     }
-#endif
     return ir::interpret(*function);
   } catch (const ir::InterpreterError& error) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,

@@ -43,10 +43,10 @@ struct Target {
 ir::LoweringOptions hostLoweringOptions(const BackendRequest& request);
 
 // The selected part lowered so (and optimised, unless -O0) and run on the
-// host: by the LLVM JIT when `native` and it is built, else by the IR
-// interpreter; `cuts`, when given, receives the part's cut table. Nullopt
-// after a diagnostic; IR that does not verify is an internal error. What
-// the gcode and jit targets print, and what --stats measures.
+// host: by the LLVM JIT when `native` and its module loads (jit_module.h),
+// else by the IR interpreter; `cuts`, when given, receives the part's cut
+// table. Nullopt after a diagnostic; IR that does not verify is an internal
+// error. What the gcode and jit targets print, and what --stats measures.
 std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false,
                                          std::vector<ir::CutGeometry>* cuts = nullptr);
 

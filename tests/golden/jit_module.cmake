@@ -1,0 +1,67 @@
+# How cncc loads the LLVM JIT from its module (tools/cncc/jit_module.h), run
+# as `cmake -DMODE=... -DCNCC=<cncc> -DMODULE=<cncc_jit.so> [-DPYTHON=...
+# -DWORK=<folder>] -P jit_module.cmake` in the repository root:
+#   loading:  `--version` does not load LLVM; `-t jit` initialises the module.
+#   absent:   a link to cncc in a folder without the module runs every
+#             `-t jit` golden case with the interpreter, to the same
+#             expectations.
+cmake_minimum_required(VERSION 3.25)
+set(golden_dir ${CMAKE_CURRENT_LIST_DIR})
+set(jit_case tests/golden/cli/target_jit_without_backend.cdl)
+
+# The dynamic loader's record of the files it loads and initialises.
+function(loaded_files output)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env LD_DEBUG=files ${ARGN}
+                  OUTPUT_QUIET ERROR_VARIABLE record RESULT_VARIABLE result)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${ARGN} exits with ${result}")
+  endif()
+  set(${output} "${record}" PARENT_SCOPE)
+endfunction()
+
+if(MODE STREQUAL "loading")
+  loaded_files(record ${CNCC} --version)
+  if(record MATCHES "libLLVM")
+    message(FATAL_ERROR "`cncc --version` loads LLVM")
+  endif()
+  loaded_files(record ${CNCC} ${jit_case} -t jit)
+  string(FIND "${record}" "calling init: ${MODULE}" found)
+  if(found EQUAL -1 OR NOT record MATCHES "calling init: [^\n]*libLLVM")
+    message(FATAL_ERROR "`cncc -t jit` does not load ${MODULE}:\n${record}")
+  endif()
+elseif(MODE STREQUAL "absent")
+  file(GLOB suites LIST_DIRECTORIES true ${golden_dir}/*)
+  set(cases)
+  foreach(suite IN LISTS suites)
+    file(GLOB suite_cases ${suite}/*.cdl)
+    foreach(case IN LISTS suite_cases)
+      file(STRINGS ${case} first_line LIMIT_COUNT 1)
+      if(first_line MATCHES "^// *ARGS:.* -t jit( |$)")
+        file(RELATIVE_PATH relative ${golden_dir} ${case})
+        list(APPEND cases ${relative})
+      endif()
+    endforeach()
+  endforeach()
+  if(NOT cases)
+    message(FATAL_ERROR "no `-t jit` golden case")
+  endif()
+  get_filename_component(module_name ${MODULE} NAME)
+  file(REMOVE_RECURSE ${WORK})
+  file(MAKE_DIRECTORY ${WORK})
+  file(CREATE_LINK ${CNCC} ${WORK}/cncc COPY_ON_ERROR)
+  if(EXISTS ${WORK}/${module_name})
+    message(FATAL_ERROR "${WORK} holds ${module_name}")
+  endif()
+  loaded_files(record ${WORK}/cncc ${jit_case} -t jit)
+  if(record MATCHES "libLLVM")
+    message(FATAL_ERROR "cncc without its module still loads LLVM")
+  endif()
+  execute_process(COMMAND ${PYTHON} ${golden_dir}/run_golden.py --cncc ${WORK}/cncc ${cases}
+                  RESULT_VARIABLE result)
+  file(REMOVE_RECURSE ${WORK})
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "the `-t jit` cases fail without the module")
+  endif()
+else()
+  message(FATAL_ERROR "MODE is loading or absent")
+endif()
