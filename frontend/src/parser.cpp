@@ -373,9 +373,12 @@ private:
   std::vector<Parameter> parseParameters(std::string_view owner) {
     std::vector<Parameter> parameters;
     SourceSpan opening = peek().span;
-    if (!expect(TokenKind::LeftParen, fmt::format("to begin the {}'s parameters", owner))) {
+    // Formatted only when missing: the message is rarely needed.
+    if (!check(TokenKind::LeftParen)) {
+      expect(TokenKind::LeftParen, fmt::format("to begin the {}'s parameters", owner));
       return parameters;
     }
+    advance();
     while (!check(TokenKind::RightParen) && !check(TokenKind::EndOfFile) && !panicking_) {
       Parameter parameter;
       parameter.name = expectIdentifier("a parameter name", parameter.nameSpan);
@@ -735,10 +738,18 @@ private:
   ExprPtr parseBinary(int level) {
     ExprPtr left = parseUnary();
     for (int current = deepestBinaryLevel; current >= level; --current) {
+      BinaryOperator op{};
+      // The levels down to the next token's take none of it: skipped. Once
+      // the token is not an operator of this level or a looser one, no
+      // level below takes it either.
+      int next = binaryLevel(peek().kind, op);
+      if (panicking_ || next < level || next > current) {
+        return left;
+      }
+      current = next;
       // Every operator deepens the (left-leaning) tree that later phases walk
       // recursively, so a chain is bounded like nesting is.
       int chainLength = 0;
-      BinaryOperator op{};
       while (!panicking_ && binaryLevel(peek().kind, op) == current) {
         if (++chainLength > maximumChainLength) {
           error(DiagnosticKind::NestingTooDeep, peek().span,
