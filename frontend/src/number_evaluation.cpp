@@ -46,6 +46,18 @@ bool numberOf(const Value& value, double& result) {
   return value.type.kind == TypeKind::Num;
 }
 
+// What evaluateNumber does for a number written out (the most common
+// operand), for its callers to do in place of the call: the step, the
+// checks, the value.
+bool writtenNumber(const Expr& expression, std::size_t& steps, std::size_t maximumSteps,
+                   double& result) {
+  if (++steps > maximumSteps || expression.type.kind == TypeKind::Error) {
+    return false;
+  }
+  result = as<NumberExpr>(expression).value;
+  return true;
+}
+
 } // namespace
 
 bool Evaluator::numberOfName(const NameExpr& name, const Bindings& bindings, double& result) {
@@ -79,7 +91,20 @@ bool Evaluator::numberOfBinary(const BinaryExpr& binary, const Bindings& binding
   }
   double a = 0;
   double b = 0;
-  if (!evaluateNumber(*binary.left, bindings, a) || !evaluateNumber(*binary.right, bindings, b)) {
+  // Numbers written out and names, the most common operands, evaluated as
+  // evaluateNumber would (a step, the checks), without the call.
+  auto operand = [&](const Expr& expression, double& result) {
+    switch (expression.kind) {
+    case ExprKind::Number:
+      return writtenNumber(expression, steps_, maximumSteps, result);
+    case ExprKind::Name:
+      return ++steps_ <= maximumSteps && expression.type.kind != TypeKind::Error &&
+             numberOfName(as<NameExpr>(expression), bindings, result);
+    default:
+      return evaluateNumber(expression, bindings, result);
+    }
+  };
+  if (!operand(*binary.left, a) || !operand(*binary.right, b)) {
     return false;
   }
   switch (op) {
