@@ -60,7 +60,8 @@ private:
     return memory;
   }
 
-  void newBlock(std::size_t size) {
+  // Out of line: allocate() is inlined into every node's construction.
+  [[gnu::noinline]] void newBlock(std::size_t size) {
     std::size_t bytes = size > blockSize ? size : blockSize;
     // Not zeroed: every node is constructed in place.
     blocks_.push_back(std::unique_ptr<Storage[]>(new Storage[bytes / alignment]));

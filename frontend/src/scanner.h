@@ -25,6 +25,8 @@ enum CharacterClass : std::uint8_t {
   IdentifierStart = 2, // a-z, A-Z, '_'
   Digit = 4,           // 0-9
   IdentifierContinue = IdentifierStart | Digit,
+  LineBreak = 8, // '\n'
+  SpaceOrLineBreak = Space | LineBreak,
 };
 
 inline constexpr std::array<std::uint8_t, 256> characterClasses = [] {
@@ -32,6 +34,7 @@ inline constexpr std::array<std::uint8_t, 256> characterClasses = [] {
   for (unsigned char c : {' ', '\t', '\r', '\f', '\v'}) {
     classes[c] = Space;
   }
+  classes['\n'] = LineBreak;
   for (int c = 'a'; c <= 'z'; ++c) {
     classes[static_cast<std::size_t>(c)] = IdentifierStart;
     classes[static_cast<std::size_t>(c - 'a' + 'A')] = IdentifierStart;
@@ -94,8 +97,18 @@ inline constexpr KeywordTable keywordTable = [] {
   return table;
 }();
 
+// Compared in a loop: a keyword is a few letters, fewer than a call costs.
 inline bool isKeyword(std::string_view spelling, std::uint8_t candidate) {
-  return candidate != 0 && keywords[candidate - 1].spelling == spelling;
+  if (candidate == 0) {
+    return false;
+  }
+  std::string_view keyword = keywords[candidate - 1].spelling;
+  for (std::size_t i = 1; i < spelling.size(); ++i) {
+    if (spelling[i] != keyword[i]) {
+      return false;
+    }
+  }
+  return true; // the length and first letter chose the candidate
 }
 
 inline TokenKind keywordOrIdentifier(std::string_view spelling) {
@@ -184,15 +197,21 @@ private:
     const std::size_t size = text_.size();
     const char* text = text_.data();
     while (position_ < size) {
-      char c = text[position_];
-      if (c == '\n') {
-        crossedLine = true;
-        ++position_;
-      } else if (scanning::hasClass(c, scanning::Space)) {
-        ++position_;
-      } else if (c != '/') {
+      // Spaces and line breaks in a local loop, the usual case.
+      std::size_t position = position_;
+      char c = text[position];
+      while (scanning::hasClass(c, scanning::SpaceOrLineBreak)) {
+        crossedLine |= c == '\n';
+        if (++position == size) {
+          break;
+        }
+        c = text[position];
+      }
+      position_ = position;
+      if (position == size || c != '/') {
         break;
-      } else if (peek(1) == '/') {
+      }
+      if (peek(1) == '/') {
         std::size_t begin = position_;
         std::size_t lineEnd = text_.find('\n', position_);
         position_ = lineEnd == std::string_view::npos ? size : lineEnd;
@@ -239,14 +258,16 @@ private:
 
   void next(Token& token) {
     std::size_t begin = position_;
-    if (atEnd()) {
+    if (begin >= text_.size()) {
       make(token, TokenKind::EndOfFile, begin);
       return;
     }
-    char c = peek();
-    if (scanning::isIdentifierStart(c)) {
+    char c = text_[begin];
+    std::uint8_t characterClass = scanning::characterClasses[static_cast<unsigned char>(c)];
+    if ((characterClass & scanning::IdentifierStart) != 0) {
       identifier(token);
-    } else if (scanning::isDigit(c) || (c == '.' && scanning::isDigit(peek(1)))) {
+    } else if ((characterClass & scanning::Digit) != 0 ||
+               (c == '.' && scanning::isDigit(peek(1)))) {
       number(token);
     } else if (c == '"') {
       string(token);
