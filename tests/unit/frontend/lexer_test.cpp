@@ -81,6 +81,30 @@ TEST_F(LexerTest, EveryKeywordIsItsOwnKind) {
   EXPECT_TRUE(diagnostics_.diagnostics().empty());
 }
 
+// Names of a keyword's length and first letter, or a keyword's letters
+// with one more or one fewer, are names.
+TEST_F(LexerTest, NamesCloseToKeywordsAreNames) {
+  for (const Spelled& keyword : keywords) {
+    std::string spelling(keyword.spelling);
+    std::string lastChanged = spelling.substr(0, spelling.size() - 1) + "x";
+    std::string secondChanged = spelling.substr(0, 1) + "x" + spelling.substr(2);
+    for (const std::string& name :
+         {spelling + "s", spelling.substr(0, spelling.size() - 1), lastChanged, secondChanged,
+          "_" + spelling, spelling.substr(0, 1) + "0" + spelling.substr(1)}) {
+      std::vector<Token> tokens = lexText(name);
+      ASSERT_EQ(tokens.size(), 2u) << name;
+      EXPECT_EQ(tokens[0].kind, TokenKind::Identifier) << name;
+      EXPECT_EQ(tokens[0].text, name);
+    }
+  }
+  EXPECT_EQ(kindsOf("i f in if fn ff Part PART x"),
+            (std::vector<TokenKind>{TokenKind::Identifier, TokenKind::Identifier, TokenKind::KwIn,
+                                    TokenKind::KwIf, TokenKind::KwFn, TokenKind::Identifier,
+                                    TokenKind::Identifier, TokenKind::Identifier,
+                                    TokenKind::Identifier}));
+  EXPECT_TRUE(diagnostics_.diagnostics().empty());
+}
+
 TEST_F(LexerTest, EveryPunctuatorIsItsOwnKind) {
   for (const Spelled& punctuator : punctuators) {
     std::vector<Token> tokens = lexText(std::string(punctuator.spelling));
