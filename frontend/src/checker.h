@@ -27,7 +27,25 @@ struct ParameterSpec {
   bool required;
 };
 
-std::string joinNames(std::span<const ParameterSpec> parameters);
+// The parameters a call binds its arguments to: a builtin's or a
+// statement's specs, or a fn's parameters, which are all required.
+class ParameterList {
+public:
+  ParameterList(std::span<const ParameterSpec> specs) : specs_(specs) {}
+  ParameterList(std::span<const Parameter> function) : function_(function) {}
+  std::size_t size() const { return specs_.size() + function_.size(); }
+  bool empty() const { return size() == 0; }
+  std::string_view name(std::size_t i) const {
+    return function_.empty() ? specs_[i].name : std::string_view(function_[i].name);
+  }
+  bool required(std::size_t i) const { return function_.empty() ? specs_[i].required : true; }
+
+private:
+  std::span<const ParameterSpec> specs_; // empty for a fn
+  std::span<const Parameter> function_;
+};
+
+std::string joinNames(ParameterList parameters);
 
 // Binds call arguments to parameters: positional ones in order, named ones
 // by name. Reports unknown, duplicate, surplus and missing arguments.
@@ -140,8 +158,14 @@ private:
     Type type = checkExpression(expression, scope);
     expectTypeOf(expression, type, TypeKind::Num, describe);
   }
-  Type checkExpression(Expr& expression, const Scope& scope);
+  // Numbers, the most common expressions, are typed without a call.
+  Type checkExpression(Expr& expression, const Scope& scope) {
+    Type type = expression.kind == ExprKind::Number ? Type::num() : computeType(expression, scope);
+    expression.type = type;
+    return type;
+  }
   Type computeType(Expr& expression, const Scope& scope);
+  Type checkRange(RangeExpr& range, const Scope& scope);
   Type checkName(NameExpr& name, const Scope& scope);
   Type checkUnary(UnaryExpr& unary, const Scope& scope);
   Type checkBinary(BinaryExpr& binary, const Scope& scope);
@@ -154,12 +178,11 @@ private:
   // calls (checker_calls.cpp)
   Type checkCall(CallExpr& call, const Scope& scope);
   void checkArgumentsAlone(CallExpr& call, const Scope& scope);
-  void bindArguments(const CallExpr& call, std::span<const ParameterSpec> parameters, bool variadic,
+  void bindArguments(const CallExpr& call, ParameterList parameters, bool variadic,
                      ArgumentBinding& binding);
-  void bindNamedArgument(const CallExpr& call, const Argument& argument,
-                         std::span<const ParameterSpec> parameters, ArgumentBinding& binding);
-  void reportMissing(const CallExpr& call, std::span<const ParameterSpec> parameters,
-                     ArgumentBinding& binding);
+  void bindNamedArgument(const CallExpr& call, const Argument& argument, ParameterList parameters,
+                         ArgumentBinding& binding);
+  void reportMissing(const CallExpr& call, ParameterList parameters, ArgumentBinding& binding);
   Type checkFunctionCall(CallExpr& call, const Declaration& declaration, const Scope& scope);
   // The spec of a builtin function's declaration; null for `pi`.
   const BuiltinSpec* builtinSpecOf(const Declaration& declaration);
@@ -175,8 +198,7 @@ private:
   SemaContext& context_;
   std::unordered_map<const Declaration*, ItemState> ownStates_;
   std::unordered_map<const Declaration*, ItemState>& states_;
-  // Each fn's parameters as bindArguments takes them, built on its first call.
-  std::unordered_map<const FnItem*, std::vector<ParameterSpec>> functionParameters_;
+
   // Each builtin declaration's spec, looked up by name on its first call.
   std::unordered_map<const Declaration*, const BuiltinSpec*> builtinSpecs_;
   // checkCut's modifiers seen, by their place in cutModifierNames() (cuts do

@@ -11,10 +11,10 @@ namespace cncc::frontend {
 
 using namespace std::string_view_literals;
 
-std::string joinNames(std::span<const ParameterSpec> parameters) {
+std::string joinNames(ParameterList parameters) {
   std::string text;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
-    text += fmt::format("{}'{}'", i == 0 ? "" : ", ", parameters[i].name);
+    text += fmt::format("{}'{}'", i == 0 ? "" : ", ", parameters.name(i));
   }
   return text;
 }
@@ -59,8 +59,8 @@ void Checker::checkArgumentsAlone(CallExpr& call, const Scope& scope) {
   }
 }
 
-void Checker::bindArguments(const CallExpr& call, std::span<const ParameterSpec> parameters,
-                            bool variadic, ArgumentBinding& binding) {
+void Checker::bindArguments(const CallExpr& call, ParameterList parameters, bool variadic,
+                            ArgumentBinding& binding) {
   std::size_t nextPositional = 0;
   for (const Argument& argument : call.arguments) {
     if (argument.name.empty()) {
@@ -86,10 +86,9 @@ void Checker::bindArguments(const CallExpr& call, std::span<const ParameterSpec>
 }
 
 void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
-                                std::span<const ParameterSpec> parameters,
-                                ArgumentBinding& binding) {
+                                ParameterList parameters, ArgumentBinding& binding) {
   for (std::size_t i = 0; i < parameters.size(); ++i) {
-    if (!sameName(parameters[i].name, argument.name)) {
+    if (!sameName(parameters.name(i), argument.name)) {
       continue;
     }
     if (binding.bound[i] != nullptr) {
@@ -104,8 +103,8 @@ void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
     return;
   }
   std::vector<std::string> names;
-  for (const ParameterSpec& parameter : parameters) {
-    names.emplace_back(parameter.name);
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    names.emplace_back(parameters.name(i));
   }
   std::string expected = parameters.empty()
                              ? fmt::format("'{}' takes no named arguments", call.callee)
@@ -117,16 +116,16 @@ void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
   binding.unknownName = true;
 }
 
-void Checker::reportMissing(const CallExpr& call, std::span<const ParameterSpec> parameters,
+void Checker::reportMissing(const CallExpr& call, ParameterList parameters,
                             ArgumentBinding& binding) {
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     if (binding.unknownName) {
       binding.ok = false;
       return;
     }
-    if (parameters[i].required && binding.bound[i] == nullptr) {
+    if (parameters.required(i) && binding.bound[i] == nullptr) {
       context_.report(DiagnosticKind::MissingArgument, call.calleeSpan,
-                      fmt::format("'{}' needs the argument '{}'", call.callee, parameters[i].name));
+                      fmt::format("'{}' needs the argument '{}'", call.callee, parameters.name(i)));
       binding.ok = false;
     }
   }
@@ -135,13 +134,7 @@ void Checker::reportMissing(const CallExpr& call, std::span<const ParameterSpec>
 Type Checker::checkFunctionCall(CallExpr& call, const Declaration& declaration,
                                 const Scope& scope) {
   const FnItem& function = *declaration.function;
-  auto [cached, inserted] = functionParameters_.try_emplace(&function);
-  if (inserted) {
-    for (const Parameter& parameter : function.parameters) {
-      cached->second.push_back({parameter.name, true});
-    }
-  }
-  const std::vector<ParameterSpec>& parameters = cached->second;
+  ParameterList parameters(function.parameters);
   ArgumentBinding binding(parameters.size());
   bindArguments(call, parameters, false, binding);
   reportMissing(call, parameters, binding);

@@ -17,11 +17,6 @@ bool Checker::reportMismatch(const Expr& expression, Type actual, TypeKind expec
   return false;
 }
 
-Type Checker::checkExpression(Expr& expression, const Scope& scope) {
-  expression.type = computeType(expression, scope);
-  return expression.type;
-}
-
 Type Checker::computeType(Expr& expression, const Scope& scope) {
   switch (expression.kind) {
   case ExprKind::Number:
@@ -44,14 +39,8 @@ Type Checker::computeType(Expr& expression, const Scope& scope) {
     return checkPoint(as<PointExpr>(expression), scope);
   case ExprKind::List:
     return checkList(as<ListExpr>(expression), scope);
-  case ExprKind::Range: {
-    auto& range = as<RangeExpr>(expression);
-    bool ok = expectType(*range.low, checkExpression(*range.low, scope), TypeKind::Num,
-                         "start of a range");
-    ok &= expectType(*range.high, checkExpression(*range.high, scope), TypeKind::Num,
-                     "end of a range");
-    return ok ? Type::range() : Type::error();
-  }
+  case ExprKind::Range:
+    return checkRange(as<RangeExpr>(expression), scope);
   case ExprKind::Index:
     return checkIndex(as<IndexExpr>(expression), scope);
   case ExprKind::Member:
@@ -60,6 +49,14 @@ Type Checker::computeType(Expr& expression, const Scope& scope) {
     return checkIfElse(as<IfElseExpr>(expression), scope);
   }
   return Type::error();
+}
+
+Type Checker::checkRange(RangeExpr& range, const Scope& scope) {
+  bool ok =
+      expectType(*range.low, checkExpression(*range.low, scope), TypeKind::Num, "start of a range");
+  ok &=
+      expectType(*range.high, checkExpression(*range.high, scope), TypeKind::Num, "end of a range");
+  return ok ? Type::range() : Type::error();
 }
 
 Type Checker::checkName(NameExpr& name, const Scope& scope) {

@@ -24,6 +24,7 @@ constexpr std::string_view entryChoices[] = {"plunge", "ramp"};
 // Where the modifiers checkCut and checkModifier look at are in
 // cutModifierNames(); the number of names for one that is not there.
 struct ModifierPlaces {
+  const std::vector<std::string>* names;
   std::size_t sweep, depth, step, samples, spacing, method, entry, arcs;
 };
 
@@ -33,8 +34,9 @@ const ModifierPlaces& modifierPlaces() {
     auto place = [&](std::string_view name) {
       return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
     };
-    return ModifierPlaces{place("sweep"),   place("depth"),  place("step"),  place("samples"),
-                          place("spacing"), place("method"), place("entry"), place("arcs")};
+    return ModifierPlaces{&names,          place("sweep"),   place("depth"),
+                          place("step"),   place("samples"), place("spacing"),
+                          place("method"), place("entry"),   place("arcs")};
   }();
   return places;
 }
@@ -223,12 +225,12 @@ void Checker::checkFor(ForStmt& loop, const Scope& scope) {
 void Checker::checkCut(CutStmt& cut, const Scope& scope) {
   Type type = checkExpression(*cut.curve, scope);
   expectType(*cut.curve, type, TypeKind::Curve, "'curve' statement");
-  seenModifiers_.assign(cutModifierNames().size(), nullptr);
+  const ModifierPlaces& places = modifierPlaces();
+  seenModifiers_.assign(places.names->size(), nullptr);
   std::span<const Modifier*> seen = seenModifiers_;
   for (Modifier& modifier : cut.modifiers) {
     checkModifier(modifier, scope, seen);
   }
-  const ModifierPlaces& places = modifierPlaces();
   const Modifier* sweep = seenAt(seen, places.sweep);
   struct Needed {
     std::size_t place;
@@ -258,7 +260,8 @@ void Checker::checkCut(CutStmt& cut, const Scope& scope) {
 
 void Checker::checkModifier(Modifier& modifier, const Scope& scope,
                             std::span<const Modifier*> seen) {
-  const std::vector<std::string>& names = cutModifierNames();
+  const ModifierPlaces& places = modifierPlaces();
+  const std::vector<std::string>& names = *places.names;
   std::size_t place = 0;
   while (place < names.size() && !sameName(names[place], modifier.name)) {
     ++place;
@@ -280,7 +283,6 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
     return;
   }
   seen[place] = &modifier;
-  const ModifierPlaces& places = modifierPlaces();
   if (place == places.sweep) {
     if (modifier.value) {
       context_.report(DiagnosticKind::ModifierValue, modifier.span(),

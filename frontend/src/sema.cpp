@@ -3,6 +3,7 @@
 #include "sema_context.h"
 
 #include <algorithm>
+#include <cstring>
 #include <fmt/format.h>
 #include <numbers>
 
@@ -32,13 +33,55 @@ std::string_view declarationKindName(DeclarationKind kind) {
   return "name";
 }
 
-// FNV-1a, with the high bits folded into the low ones the index uses.
-std::uint32_t Scope::hashOf(std::string_view name) {
-  std::uint32_t hash = 2166136261u;
-  for (char c : name) {
-    hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+namespace {
+
+std::uint64_t read8(const char* data) {
+  std::uint64_t word;
+  std::memcpy(&word, data, sizeof word);
+  return word;
+}
+
+std::uint64_t read4(const char* data) {
+  std::uint32_t word;
+  std::memcpy(&word, data, sizeof word);
+  return word;
+}
+
+// A name's bytes as one number: all of them when it is shorter than 8 (the
+// first and the last four overlap, or three of the bytes when shorter
+// than 4), else its last 8.
+std::uint64_t tailWord(std::string_view name) {
+  std::size_t size = name.size();
+  const char* data = name.data();
+  if (size >= 8) {
+    return read8(data + size - 8);
   }
-  return hash ^ (hash >> 16);
+  if (size >= 4) {
+    return read4(data) << 32 | read4(data + size - 4);
+  }
+  if (size == 0) {
+    return 0;
+  }
+  auto byte = [&](std::size_t i) { return std::uint64_t{static_cast<unsigned char>(data[i])}; };
+  return byte(0) << 16 | byte(size / 2) << 8 | byte(size - 1);
+}
+
+std::uint64_t mix(std::uint64_t hash, std::uint64_t word) {
+  hash = (hash ^ word) * 0x9E3779B97F4A7C15u;
+  return hash ^ (hash >> 29);
+}
+
+} // namespace
+
+// Eight bytes at a time; names are compared in full after a matching hash.
+std::uint32_t Scope::hashOf(std::string_view name) {
+  std::uint64_t hash = mix(0xC2B2AE3D27D4EB4Fu, name.size());
+  std::size_t i = 0;
+  for (; i + 8 < name.size(); i += 8) {
+    hash = mix(hash, read8(name.data() + i));
+  }
+  hash = mix(hash, tailWord(name));
+  return static_cast<std::uint32_t>(hash ^ (hash >> 32));
 }
 
 const Scope::Entry* Scope::scan(std::string_view name) const {
@@ -70,14 +113,23 @@ const Declaration* Scope::findLocal(std::string_view name) const {
 }
 
 const Declaration* Scope::find(std::string_view name) const {
+  std::uint64_t bit = filterBit(name);
   std::uint32_t hash = 0;
   bool hashed = false;
   for (const Scope* scope = this; scope != nullptr; scope = scope->parent_) {
-    if (scope->indexed() && !hashed) {
-      hash = hashOf(name);
-      hashed = true;
+    const Entry* entry = nullptr;
+    if (!scope->indexed()) {
+      if ((scope->filter_ & bit) != 0) {
+        entry = scope->scan(name);
+      }
+    } else {
+      if (!hashed) {
+        hash = hashOf(name);
+        hashed = true;
+      }
+      entry = scope->lookUp(name, hash);
     }
-    if (const Entry* entry = scope->findEntry(name, hash)) {
+    if (entry != nullptr) {
       return entry->declaration;
     }
   }
@@ -96,18 +148,19 @@ void Scope::add(std::string_view name, const Declaration* declaration) {
   if (!indexed()) {
     if (count_ < fewNames) {
       few_[count_++] = entry;
+      filter_ |= filterBit(name);
       return;
     }
     many_.assign(few_.begin(), few_.end());
     many_.push_back(entry);
     ++count_;
-    buildIndex();
+    buildIndex(true);
     return;
   }
   many_.push_back(entry);
   ++count_;
   if (count_ * 2 > slots_.size()) {
-    buildIndex();
+    buildIndex(false);
   } else {
     insertSlot(static_cast<std::uint32_t>(count_ - 1));
   }
@@ -124,15 +177,14 @@ void Scope::insertSlot(std::uint32_t entry) {
 
 // Sizes the index for the entries in many_ and fills it, hashing the names
 // the first time.
-void Scope::buildIndex() {
-  bool hashed = indexed();
+void Scope::buildIndex(bool hashNames) {
   std::size_t size = 16;
   while (size < count_ * 2) {
     size *= 2;
   }
   slots_.assign(size, 0);
   for (std::uint32_t i = 0; i < count_; ++i) {
-    if (!hashed) {
+    if (hashNames) {
       many_[i].hash = hashOf(many_[i].view());
     }
     insertSlot(i);
@@ -176,16 +228,6 @@ void SemaContext::adopt(SemaContext& other) {
   program.curveParameters.merge(from.curveParameters);
   usedDeclarations.merge(other.usedDeclarations);
   diagnostics.reportAll(other.diagnostics);
-}
-
-void SemaContext::reference(SourceSpan span, const Declaration* declaration, bool isDefinition) {
-  // Only a let can be reported unused.
-  if (declaration->kind == DeclarationKind::Let) {
-    usedDeclarations.insert(declaration);
-  }
-  if (span.valid()) {
-    program.references.push_back({span, declaration, isDefinition});
-  }
 }
 
 Diagnostic* SemaContext::report(DiagnosticKind kind, SourceSpan span, std::string message) {

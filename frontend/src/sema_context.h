@@ -59,20 +59,31 @@ private:
   // Up to this many names a scope keeps them in itself, unindexed.
   static constexpr std::size_t fewNames = 8;
   static std::uint32_t hashOf(std::string_view name);
-  bool indexed() const { return !slots_.empty(); }
+  // One of 64 bits, by a name's first letter and length: a scope of a few
+  // names is searched only when its filter has the bit of the name.
+  static std::uint64_t filterBit(std::string_view name) {
+    unsigned first = name.empty() ? 0 : static_cast<unsigned char>(name[0]);
+    return std::uint64_t{1} << ((first * 8 + name.size()) & 63);
+  }
+  bool indexed() const { return count_ > fewNames; }
   std::span<const Entry> entries() const {
     return indexed() ? std::span<const Entry>(many_) : std::span<const Entry>(few_.data(), count_);
   }
   const Entry* scan(std::string_view name) const;
   const Entry* lookUp(std::string_view name, std::uint32_t hash) const;
+  // `hash` is used only when the scope is indexed.
   const Entry* findEntry(std::string_view name, std::uint32_t hash) const {
-    return indexed() ? lookUp(name, hash) : scan(name);
+    if (indexed()) {
+      return lookUp(name, hash);
+    }
+    return (filter_ & filterBit(name)) != 0 ? scan(name) : nullptr;
   }
   void insertSlot(std::uint32_t entry);
-  void buildIndex();
+  void buildIndex(bool hashNames);
 
   const Scope* parent_;
   std::size_t count_ = 0;
+  std::uint64_t filter_ = 0; // the filter bits of the names in few_
   std::array<Entry, fewNames> few_{};
   std::vector<Entry> many_;
   // Open addressing with linear probing: each slot holds an index in many_
@@ -106,7 +117,15 @@ struct SemaContext {
   // its declarations, references, scopes and uses, and reports its
   // diagnostics here after this context's own.
   void adopt(SemaContext& other);
-  void reference(SourceSpan span, const Declaration* declaration, bool isDefinition);
+  void reference(SourceSpan span, const Declaration* declaration, bool isDefinition) {
+    // Only a let can be reported unused.
+    if (declaration->kind == DeclarationKind::Let) {
+      usedDeclarations.insert(declaration);
+    }
+    if (span.valid()) {
+      program.references.push_back({span, declaration, isDefinition});
+    }
+  }
   Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message);
   Declaration& mutableDeclaration(const Declaration* declaration) {
     return const_cast<Declaration&>(*declaration);
