@@ -7,6 +7,7 @@
 #include <array>
 #include <deque>
 #include <fmt/format.h>
+#include <iterator>
 #include <limits>
 
 namespace cncc::frontend {
@@ -371,14 +372,14 @@ private:
 
   // ( [name [= default] {, name [= default]}] )
   std::vector<Parameter> parseParameters(std::string_view owner) {
-    std::vector<Parameter> parameters;
     SourceSpan opening = peek().span;
     // Formatted only when missing: the message is rarely needed.
     if (!check(TokenKind::LeftParen)) {
       expect(TokenKind::LeftParen, fmt::format("to begin the {}'s parameters", owner));
-      return parameters;
+      return {};
     }
     advance();
+    std::size_t first = parameterStack_.size();
     while (!check(TokenKind::RightParen) && !check(TokenKind::EndOfFile) && !panicking_) {
       Parameter parameter;
       parameter.name = expectIdentifier("a parameter name", parameter.nameSpan);
@@ -388,11 +389,12 @@ private:
       if (match(TokenKind::Equal)) {
         parameter.defaultValue = parseExpression();
       }
-      parameters.push_back(std::move(parameter));
+      parameterStack_.push_back(std::move(parameter));
       if (!match(TokenKind::Comma)) {
         break;
       }
     }
+    std::vector<Parameter> parameters = takeVector(parameterStack_, first);
     if (!panicking_) {
       expectClosing(TokenKind::RightParen, opening, "to close the parameter list");
     }
@@ -514,7 +516,7 @@ private:
   // later line must be one of `knownNames`; anything else starts a new
   // statement (so `x = 3` on the next line is not taken for a setting).
   std::vector<Argument> parseSettings(std::initializer_list<std::string_view> knownNames) {
-    std::vector<Argument> settings;
+    std::size_t first = argumentStack_.size();
     while (!panicking_ && check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal &&
            continuesStatement(knownNames)) {
       Argument setting;
@@ -522,9 +524,9 @@ private:
       setting.name = advance().text;
       advance(); // '='
       setting.value = parseExpression();
-      settings.push_back(std::move(setting));
+      argumentStack_.push_back(std::move(setting));
     }
-    return settings;
+    return takeVector(argumentStack_, first);
   }
 
   bool continuesStatement(std::initializer_list<std::string_view> knownNames) {
@@ -556,7 +558,7 @@ private:
   StmtPtr parseCut() {
     SourceSpan begin = advance().span;
     ExprPtr curve = parseExpression();
-    std::vector<Modifier> modifiers;
+    std::size_t first = modifierStack_.size();
     while (!panicking_ && check(TokenKind::Identifier)) {
       bool assigned = peek(1).kind == TokenKind::Equal;
       // A word on the same line is a modifier (`sweep`, `tolerance=0.01`); on
@@ -574,9 +576,10 @@ private:
         advance();
         modifier.value = parseExpression();
       }
-      modifiers.push_back(std::move(modifier));
+      modifierStack_.push_back(std::move(modifier));
     }
-    return arena_->make<CutStmt>(spanFrom(begin), std::move(curve), std::move(modifiers));
+    return arena_->make<CutStmt>(spanFrom(begin), std::move(curve),
+                                 takeVector(modifierStack_, first));
   }
 
   // for i in a .. b { ... }
@@ -952,6 +955,19 @@ private:
   std::vector<ExprPtr> expressionStack_;
   std::vector<Argument> argumentStack_;
   std::vector<StmtPtr> statementStack_;
+  std::vector<Parameter> parameterStack_;
+  std::vector<Modifier> modifierStack_;
+
+  // The elements of `stack` from `first` on, moved into a vector of their
+  // own (one allocation at the final size) and removed from the stack.
+  template <typename Element>
+  static std::vector<Element> takeVector(std::vector<Element>& stack, std::size_t first) {
+    auto begin = stack.begin() + static_cast<std::ptrdiff_t>(first);
+    std::vector<Element> taken(std::make_move_iterator(begin),
+                               std::make_move_iterator(stack.end()));
+    stack.erase(begin, stack.end());
+    return taken;
+  }
   std::shared_ptr<NodeArena> arena_ = std::make_shared<NodeArena>();
   FileId file_;
   DiagnosticEngine& diagnostics_;
