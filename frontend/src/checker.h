@@ -109,11 +109,10 @@ private:
   // parts (checker_statements.cpp)
   void checkPart(PartItem& part, const Scope& fileScope);
   void checkBlock(Block& block, const Scope& parent);
-  void checkStatement(Stmt& statement, Scope& scope, Block& block,
-                      std::vector<const Declaration*>& lets);
+  void checkStatement(Stmt& statement, Scope& scope, Block& block);
   void checkSettings(std::vector<Argument>& settings, std::span<const ParameterSpec> allowed,
                      const Scope& scope, std::string_view owner, SourceSpan ownerSpan);
-  void checkLet(LetStmt& let, Scope& scope, Block& block, std::vector<const Declaration*>& lets);
+  void checkLet(LetStmt& let, Scope& scope, Block& block);
   void warnIfShadowing(std::string_view name, SourceSpan span, const Scope& outer);
   void checkFor(ForStmt& loop, const Scope& scope);
   void checkCut(CutStmt& cut, const Scope& scope);
@@ -204,6 +203,9 @@ private:
   // checkCut's modifiers seen, by their place in cutModifierNames() (cuts do
   // not nest, so one buffer serves them all).
   std::vector<const Modifier*> seenModifiers_;
+  // The lets of the blocks being checked, innermost last: checkBlock looks
+  // at its own for unused ones, then drops them.
+  std::vector<const Declaration*> lets_;
 };
 
 } // namespace cncc::frontend

@@ -82,11 +82,12 @@ void Checker::checkPart(PartItem& part, const Scope& fileScope) {
 
 void Checker::checkBlock(Block& block, const Scope& parent) {
   Scope scope(&parent);
-  std::vector<const Declaration*> lets;
+  std::size_t firstLet = lets_.size();
   for (StmtPtr& statement : block.statements) {
-    checkStatement(*statement, scope, block, lets);
+    checkStatement(*statement, scope, block);
   }
-  for (const Declaration* let : lets) {
+  for (std::size_t i = firstLet; i < lets_.size(); ++i) {
+    const Declaration* let = lets_[i];
     // A let whose value had an error is already reported.
     if (!context_.usedDeclarations.contains(let) && !let->name.starts_with("_") &&
         let->type.kind != TypeKind::Error) {
@@ -94,10 +95,10 @@ void Checker::checkBlock(Block& block, const Scope& parent) {
                       fmt::format("'{}' is never used", let->name));
     }
   }
+  lets_.resize(firstLet);
 }
 
-void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block,
-                             std::vector<const Declaration*>& lets) {
+void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block) {
   switch (statement.kind) {
   case StmtKind::Units:
   case StmtKind::Error:
@@ -120,7 +121,7 @@ void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block,
     return;
   }
   case StmtKind::Let:
-    checkLet(as<LetStmt>(statement), scope, block, lets);
+    checkLet(as<LetStmt>(statement), scope, block);
     return;
   case StmtKind::Cut:
     checkCut(as<CutStmt>(statement), scope);
@@ -172,8 +173,7 @@ void Checker::checkSettings(std::vector<Argument>& settings, std::span<const Par
   }
 }
 
-void Checker::checkLet(LetStmt& let, Scope& scope, Block& block,
-                       std::vector<const Declaration*>& lets) {
+void Checker::checkLet(LetStmt& let, Scope& scope, Block& block) {
   Type type = checkExpression(*let.value, scope);
   if (let.name.empty()) {
     return;
@@ -189,7 +189,7 @@ void Checker::checkLet(LetStmt& let, Scope& scope, Block& block,
   Declaration& declaration = context_.declare(DeclarationKind::Let, let.name, let.nameSpan, type);
   let.declaration = &declaration;
   scope.add(let.name, &declaration);
-  lets.push_back(&declaration);
+  lets_.push_back(&declaration);
   context_.program.scopeExtents.push_back(
       {SourceSpan{let.span.file, let.span.end, block.span.end}, &declaration});
 }
@@ -232,13 +232,8 @@ void Checker::checkCut(CutStmt& cut, const Scope& scope) {
     checkModifier(modifier, scope, seen);
   }
   const Modifier* sweep = seenAt(seen, places.sweep);
-  struct Needed {
-    std::size_t place;
-    std::string_view name;
-  };
-  for (Needed needed : {Needed{places.depth, "depth"}, Needed{places.step, "step"}}) {
-    const Modifier* given = seenAt(seen, needed.place);
-    std::string_view name = needed.name;
+  auto checkSweepPart = [&](std::size_t place, std::string_view name) {
+    const Modifier* given = seenAt(seen, place);
     if (sweep != nullptr && given == nullptr) {
       context_.report(DiagnosticKind::SweepIncomplete, sweep->nameSpan,
                       fmt::format("'sweep' needs '{}='; write 'sweep depth=D step=S'", name));
@@ -247,7 +242,9 @@ void Checker::checkCut(CutStmt& cut, const Scope& scope) {
       context_.report(DiagnosticKind::SweepIncomplete, given->nameSpan,
                       fmt::format("'{}=' belongs to a sweep; write 'sweep depth=D step=S'", name));
     }
-  }
+  };
+  checkSweepPart(places.depth, "depth");
+  checkSweepPart(places.step, "step");
   const Modifier* samples = seenAt(seen, places.samples);
   const Modifier* spacing = seenAt(seen, places.spacing);
   if (samples != nullptr && spacing != nullptr) {
