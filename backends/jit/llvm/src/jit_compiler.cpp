@@ -74,8 +74,6 @@ std::unique_ptr<llvm::Module> optimisedModule(const ir::Function& function,
   module.setDataLayout(machine->createDataLayout());
   module.setTargetTriple(machine->getTargetTriple().str());
   jit::optimiseModule(module, *machine);
-  if (std::getenv("CNCC_JIT_DUMP_TEMP"))
-    module.print(llvm::errs(), nullptr); // TEMP
   return std::move(generated.module);
 }
 
