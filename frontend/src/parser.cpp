@@ -648,7 +648,31 @@ private:
     if (check(TokenKind::KwIf)) {
       return parseIfElse();
     }
+    if (ExprPtr leaf = parseLeaf()) {
+      return leaf;
+    }
     return parseRange();
+  }
+
+  // A number or a name that is a whole expression, such as an argument or
+  // a list element: what parseRange() would return, without descending
+  // through every level of operators for it. Null for anything else.
+  ExprPtr parseLeaf() {
+    TokenKind following = peek(1).kind;
+    if (following != TokenKind::Comma && following != TokenKind::RightParen &&
+        following != TokenKind::RightBracket) {
+      return nullptr;
+    }
+    const Token& token = peek();
+    if (token.kind == TokenKind::Number) {
+      advance();
+      return arena_->make<NumberExpr>(token.span, token.number, token.unit);
+    }
+    if (token.kind == TokenKind::Identifier) {
+      advance();
+      return arena_->make<NameExpr>(token.span, std::string(token.text));
+    }
+    return nullptr;
   }
 
   // if c then a else b
