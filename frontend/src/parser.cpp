@@ -654,13 +654,20 @@ private:
     return parseRange();
   }
 
-  // A number or a name that is a whole expression, such as an argument or
-  // a list element: what parseRange() would return, without descending
-  // through every level of operators for it. Null for anything else.
+  // Whether `kind` after an operand continues the expression: an operator,
+  // '..', or what follows a name in a call, an index or a member.
+  static bool continuesOperand(TokenKind kind) {
+    BinaryOperator op{};
+    return binaryLevel(kind, op) >= 0 || kind == TokenKind::Caret || kind == TokenKind::DotDot ||
+           kind == TokenKind::LeftParen || kind == TokenKind::LeftBracket || kind == TokenKind::Dot;
+  }
+
+  // A number or a name that is a whole expression, such as an argument, a
+  // list element or a setting: what parseRange() would return, without
+  // descending through every level of operators for it. Null for anything
+  // else.
   ExprPtr parseLeaf() {
-    TokenKind following = peek(1).kind;
-    if (following != TokenKind::Comma && following != TokenKind::RightParen &&
-        following != TokenKind::RightBracket) {
+    if (continuesOperand(peek(1).kind)) {
       return nullptr;
     }
     const Token& token = peek();
