@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <functional>
+#include <iterator>
 #include <string_view>
 #include <unordered_map>
 
@@ -338,7 +340,15 @@ bool Checker::checkAnalyticCurve(CallExpr& call, const BuiltinSpec& spec,
           [&] { return fmt::format("argument '{}' of '{}'", parameters[i].name, call.callee); });
     }
   }
-  context_.program.curveParameters[&call] = &parameter;
+  // Calls are mostly met in the order of their addresses: one after the
+  // last is put at the end without a search.
+  auto& curveParameters = context_.program.curveParameters;
+  if (curveParameters.empty() ||
+      std::less<const CallExpr*>()(std::prev(curveParameters.end())->first, &call)) {
+    curveParameters.emplace_hint(curveParameters.end(), &call, &parameter);
+  } else {
+    curveParameters[&call] = &parameter;
+  }
   return ok;
 }
 

@@ -159,7 +159,7 @@ void Scope::add(std::string_view name, const Declaration* declaration) {
   }
   many_.push_back(entry);
   ++count_;
-  if (count_ * 2 > slots_.size()) {
+  if (count_ * 4 > slots_.size()) {
     buildIndex(false);
   } else {
     insertSlot(static_cast<std::uint32_t>(count_ - 1));
@@ -179,7 +179,7 @@ void Scope::insertSlot(std::uint32_t entry) {
 // the first time.
 void Scope::buildIndex(bool hashNames) {
   std::size_t size = 16;
-  while (size < count_ * 2) {
+  while (size < count_ * 4) {
     size *= 2;
   }
   slots_.assign(size, 0);

@@ -110,7 +110,8 @@ private:
   std::array<Entry, fewNames> few_{};
   std::vector<Entry> many_;
   // Open addressing with linear probing: each slot holds an index in many_
-  // plus one, or 0 when free; a power of two in size, at most half full.
+  // plus one, or 0 when free; a power of two in size, at most a quarter full
+  // (a search for a name not there, the common case, stops sooner).
   std::vector<std::uint32_t> slots_;
 };
 
