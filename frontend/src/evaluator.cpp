@@ -100,18 +100,18 @@ Environment Bindings::flatten() const {
   return environment;
 }
 
-// Outermost first, so inner bindings replace outer ones.
+// Innermost first: a binding already there shadows the ones outside it,
+// which are not copied.
 void Bindings::flattenInto(Environment& environment) const {
-  if (outer_ != nullptr) {
-    outer_->flattenInto(environment);
-  }
-  if (environment_ != nullptr) {
-    for (const auto& [declaration, value] : *environment_) {
-      environment[declaration] = value;
+  for (const Bindings* frame = this; frame != nullptr; frame = frame->outer_) {
+    for (const auto& [declaration, value] : frame->local_) {
+      environment.emplace(declaration, value);
     }
-  }
-  for (const auto& [declaration, value] : local_) {
-    environment[declaration] = value;
+    if (frame->environment_ != nullptr) {
+      for (const auto& [declaration, value] : *frame->environment_) {
+        environment.emplace(declaration, value);
+      }
+    }
   }
 }
 

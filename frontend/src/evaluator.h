@@ -8,6 +8,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <memory_resource>
 #include <set>
 #include <string_view>
 #include <unordered_map>
@@ -51,7 +53,13 @@ public:
 private:
   void flattenInto(Environment& environment) const;
 
-  std::vector<std::pair<const Declaration*, Value>> local_;
+  // A fn call's parameters and a block's lets are few: the first ones live
+  // in the frame itself, without an allocation.
+  static constexpr std::size_t inlineBindings = 4;
+  using Binding = std::pair<const Declaration*, Value>;
+  alignas(Binding) std::array<std::byte, inlineBindings * sizeof(Binding)> localStorage_;
+  std::pmr::monotonic_buffer_resource localResource_{localStorage_.data(), localStorage_.size()};
+  std::pmr::vector<Binding> local_{&localResource_};
   std::array<const Declaration*, maximumNumbers> numberDeclarations_;
   std::array<double, maximumNumbers> numbers_;
   std::size_t numberCount_ = 0;
