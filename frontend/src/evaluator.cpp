@@ -155,9 +155,6 @@ Value Evaluator::constantValue(const Declaration* declaration) {
   return value;
 }
 
-namespace {
-
-// Expressions that may have a number as their value.
 bool mayBeNumber(const Expr& expression) {
   if (expression.type.kind != TypeKind::Num && expression.type.kind != TypeKind::Any) {
     return false;
@@ -173,8 +170,6 @@ bool mayBeNumber(const Expr& expression) {
     return false;
   }
 }
-
-} // namespace
 
 Value Evaluator::evaluate(const Expr& expression, const Bindings& bindings) {
   // A number written out, as the fast path takes it, without its
@@ -597,6 +592,31 @@ std::array<std::string_view, 2> binaryParameterNames(MathFunction function) {
 
 } // namespace arithmetic
 
+std::optional<arithmetic::MathFunction> numericMathCall(const CallExpr& call) {
+  const Declaration* declaration = call.declaration;
+  if (declaration == nullptr || declaration->kind != DeclarationKind::Builtin ||
+      call.type.kind == TypeKind::Curve) {
+    return std::nullopt;
+  }
+  std::size_t count = call.arguments.size();
+  if (count != 1 && count != 2) {
+    return std::nullopt;
+  }
+  arithmetic::MathFunction function = arithmetic::mathFunction(call.callee);
+  if (function == arithmetic::MathFunction::Len) {
+    return std::nullopt;
+  }
+  return function;
+}
+
+bool binaryArgumentsSwapped(const CallExpr& call, arithmetic::MathFunction function) {
+  std::array<std::string_view, 2> names = arithmetic::binaryParameterNames(function);
+  std::array<const Expr*, 2> arguments{};
+  Evaluator::bindArguments(
+      call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
+  return arguments[0] != call.arguments[0].value.get();
+}
+
 Value Evaluator::evaluateMathCall(const CallExpr& call, const Bindings& bindings) {
   std::size_t count = call.arguments.size();
   // Math functions take one or two arguments: no allocation for them.
@@ -630,13 +650,9 @@ Value Evaluator::applyMathFunction(const CallExpr& call, const Value* values, st
   }
   if (count == 2) {
     // Named arguments may come in any order: put them in parameter order.
-    std::array<std::string_view, 2> names = binaryParameterNames(function);
-    std::array<const Expr*, 2> arguments{};
-    bindArguments(
-        call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
     double a = values[0].number;
     double b = values[1].number;
-    if (arguments[0] != call.arguments[0].value.get()) {
+    if (binaryArgumentsSwapped(call, function)) {
       std::swap(a, b);
     }
     double result = applyBinary(function, a, b);

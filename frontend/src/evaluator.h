@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <memory_resource>
+#include <optional>
 #include <set>
 #include <string_view>
 #include <unordered_map>
@@ -251,6 +252,17 @@ double applyBinary(MathFunction function, double a, double b);
 // The parameter names of a two-argument math function, in order.
 std::array<std::string_view, 2> binaryParameterNames(MathFunction function);
 } // namespace arithmetic
+
+// What the number fast paths (number_evaluation.cpp, number_sampling.cpp)
+// share with the ordinary evaluation. Whether Evaluator::evaluate tries the
+// fast path on an expression:
+bool mayBeNumber(const Expr& expression);
+// The math function of a call those paths evaluate (a builtin of one or two
+// arguments other than len); nullopt for any other call.
+std::optional<arithmetic::MathFunction> numericMathCall(const CallExpr& call);
+// Whether a two-argument math call names its arguments in the other order
+// (atan2(x = 1, y = 2)): its values then swap into parameter order.
+bool binaryArgumentsSwapped(const CallExpr& call, arithmetic::MathFunction function);
 
 // Builds the CurveValue of a curve constructor call (nurbs, polar, line, ...)
 // from its evaluated arguments, making the geometric checks.

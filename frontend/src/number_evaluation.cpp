@@ -134,23 +134,14 @@ bool Evaluator::numberOfBinary(const BinaryExpr& binary, const Bindings& binding
 bool Evaluator::numberOfCall(const CallExpr& call, const Bindings& bindings, double& result) {
   using namespace arithmetic;
   const Declaration* declaration = call.declaration;
-  if (declaration == nullptr) {
-    return false;
-  }
-  if (declaration->kind == DeclarationKind::Function) {
+  if (declaration != nullptr && declaration->kind == DeclarationKind::Function) {
     return numberOfFunctionCall(call, *declaration, bindings, result);
   }
-  if (declaration->kind != DeclarationKind::Builtin || call.type.kind == TypeKind::Curve) {
+  std::optional<MathFunction> function = numericMathCall(call);
+  if (!function) {
     return false;
   }
   std::size_t count = call.arguments.size();
-  if (count != 1 && count != 2) {
-    return false;
-  }
-  MathFunction function = mathFunction(call.callee);
-  if (function == MathFunction::Len) {
-    return false;
-  }
   std::array<double, 2> values{};
   for (std::size_t i = 0; i < count; ++i) {
     if (!evaluateNumber(*call.arguments[i].value, bindings, values[i])) {
@@ -158,18 +149,14 @@ bool Evaluator::numberOfCall(const CallExpr& call, const Bindings& bindings, dou
     }
   }
   if (count == 2) {
-    std::array<std::string_view, 2> names = binaryParameterNames(function);
-    std::array<const Expr*, 2> arguments{};
-    bindArguments(
-        call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
     double a = values[0];
     double b = values[1];
-    if (arguments[0] != call.arguments[0].value.get()) {
+    if (binaryArgumentsSwapped(call, *function)) {
       std::swap(a, b);
     }
-    result = applyBinary(function, a, b);
+    result = applyBinary(*function, a, b);
   } else {
-    result = applyUnary(function, values[0]);
+    result = applyUnary(*function, values[0]);
   }
   return std::isfinite(result);
 }

@@ -229,23 +229,15 @@ private:
   bool call(const CallExpr& call, const Frame& frame, Samples& result) {
     using namespace arithmetic;
     const Declaration* declaration = call.declaration;
-    if (declaration == nullptr) {
-      return false;
-    }
-    if (declaration->kind == DeclarationKind::Function) {
+    if (declaration != nullptr && declaration->kind == DeclarationKind::Function) {
       return functionCall(call, *declaration, frame, result);
     }
-    if (declaration->kind != DeclarationKind::Builtin || call.type.kind == TypeKind::Curve) {
+    std::optional<MathFunction> numeric = numericMathCall(call);
+    if (!numeric) {
       return false;
     }
+    MathFunction function = *numeric;
     std::size_t count = call.arguments.size();
-    if (count != 1 && count != 2) {
-      return false;
-    }
-    MathFunction function = mathFunction(call.callee);
-    if (function == MathFunction::Len) {
-      return false;
-    }
     std::array<Samples, 2> values;
     for (std::size_t i = 0; i < count; ++i) {
       if (!evaluate(*call.arguments[i].value, frame, values[i])) {
@@ -256,11 +248,7 @@ private:
       apply(values[0], result, [function](double x) { return applyUnary(function, x); });
       return allFinite(result);
     }
-    std::array<std::string_view, 2> names = binaryParameterNames(function);
-    std::array<const Expr*, 2> arguments{};
-    Evaluator::bindArguments(
-        call, 2, [&](std::size_t i) { return names[i]; }, arguments.data());
-    bool swapped = arguments[0] != call.arguments[0].value.get();
+    bool swapped = binaryArgumentsSwapped(call, function);
     const Samples& first = swapped ? values[1] : values[0];
     const Samples& second = swapped ? values[0] : values[1];
     combine(first, second, result,
@@ -305,23 +293,6 @@ private:
   std::size_t steps_ = 0;
   std::size_t nesting_ = 0;
 };
-
-// Whether Evaluator::evaluate tries the fast path on the expression.
-bool mayBeNumber(const Expr& expression) {
-  if (expression.type.kind != TypeKind::Num && expression.type.kind != TypeKind::Any) {
-    return false;
-  }
-  switch (expression.kind) {
-  case ExprKind::Number:
-  case ExprKind::Name:
-  case ExprKind::Unary:
-  case ExprKind::Binary:
-  case ExprKind::Call:
-    return true;
-  default:
-    return false;
-  }
-}
 
 } // namespace
 
