@@ -592,6 +592,20 @@ std::array<std::string_view, 2> binaryParameterNames(MathFunction function) {
 
 } // namespace arithmetic
 
+bool isArithmetic(BinaryOperator op) {
+  switch (op) {
+  case BinaryOperator::Add:
+  case BinaryOperator::Subtract:
+  case BinaryOperator::Multiply:
+  case BinaryOperator::Divide:
+  case BinaryOperator::Remainder:
+  case BinaryOperator::Power:
+    return true;
+  default:
+    return false;
+  }
+}
+
 std::optional<arithmetic::MathFunction> numericMathCall(const CallExpr& call) {
   const Declaration* declaration = call.declaration;
   if (declaration == nullptr || declaration->kind != DeclarationKind::Builtin ||

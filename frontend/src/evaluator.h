@@ -257,6 +257,9 @@ std::array<std::string_view, 2> binaryParameterNames(MathFunction function);
 // share with the ordinary evaluation. Whether Evaluator::evaluate tries the
 // fast path on an expression:
 bool mayBeNumber(const Expr& expression);
+// Whether a binary operator computes a number from numbers (not a
+// comparison or logic, which give bools).
+bool isArithmetic(BinaryOperator op);
 // The math function of a call those paths evaluate (a builtin of one or two
 // arguments other than len); nullopt for any other call.
 std::optional<arithmetic::MathFunction> numericMathCall(const CallExpr& call);

@@ -78,16 +78,8 @@ bool Evaluator::numberOfName(const NameExpr& name, const Bindings& bindings, dou
 
 bool Evaluator::numberOfBinary(const BinaryExpr& binary, const Bindings& bindings, double& result) {
   BinaryOperator op = binary.op;
-  switch (op) {
-  case BinaryOperator::Add:
-  case BinaryOperator::Subtract:
-  case BinaryOperator::Multiply:
-  case BinaryOperator::Divide:
-  case BinaryOperator::Remainder:
-  case BinaryOperator::Power:
-    break;
-  default:
-    return false; // comparisons and logic give bools
+  if (!isArithmetic(op)) {
+    return false;
   }
   double a = 0;
   double b = 0;

@@ -178,15 +178,7 @@ private:
   // As Evaluator::numberOfBinary.
   bool binary(const BinaryExpr& binary, const Frame& frame, Samples& result) {
     BinaryOperator op = binary.op;
-    switch (op) {
-    case BinaryOperator::Add:
-    case BinaryOperator::Subtract:
-    case BinaryOperator::Multiply:
-    case BinaryOperator::Divide:
-    case BinaryOperator::Remainder:
-    case BinaryOperator::Power:
-      break;
-    default:
+    if (!isArithmetic(op)) {
       return false;
     }
     // The left operand is evaluated into `result`, which then takes the
