@@ -14,6 +14,9 @@ namespace {
 // more than it saves.
 constexpr std::size_t minimumParallelBytes = 64 * 1024;
 
+// Below this many items freeing them costs less than a thread.
+constexpr std::size_t minimumItemsFreedOnTwoThreads = 512;
+
 // Below this size a file is parsed on one thread.
 constexpr std::size_t minimumParallelFileBytes = 128 * 1024;
 // How far past the middle a split is looked for.
@@ -56,10 +59,9 @@ std::size_t itemLineNearMiddle(std::string_view text) {
 Module parseModule(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
                    const CheckOptions& options) {
   std::string_view text = sources.file(file).text();
-  std::size_t split = text.size() >= minimumParallelFileBytes || options.threads >= 2
-                          ? itemLineNearMiddle(text)
-                          : 0;
-  if (split == 0 || !twoThreadsAllowed(options)) {
+  bool large = text.size() >= minimumParallelFileBytes || options.threads >= 2;
+  std::size_t split = large && twoThreadsAllowed(options) ? itemLineNearMiddle(text) : 0;
+  if (split == 0) {
     return parseFile(sources, file, diagnostics);
   }
   auto middle = static_cast<std::uint32_t>(split);
@@ -75,6 +77,19 @@ Module parseModule(const SourceManager& sources, FileId file, DiagnosticEngine& 
   }
   appendModule(first, std::move(second));
   return first;
+}
+
+void freeItemsOnTwoThreads(std::vector<ItemPtr>& items) {
+  if (items.size() < minimumItemsFreedOnTwoThreads || !twoThreadsAllowed(CheckOptions())) {
+    return;
+  }
+  std::size_t half = items.size() / 2;
+  auto freeRange = [&items](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      items[i].reset();
+    }
+  };
+  runAlongside([&] { freeRange(half, items.size()); }, [&] { freeRange(0, half); });
 }
 
 bool twoThreadsAllowed(const CheckOptions& options) {

@@ -9,6 +9,7 @@
 #include <exception>
 #include <span>
 #include <thread>
+#include <vector>
 
 namespace cncc::frontend {
 
@@ -38,6 +39,10 @@ template <typename Other, typename Here> void runAlongside(Other&& other, Here&&
 // split could read differently), the whole file is parsed again here.
 Module parseModule(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
                    const CheckOptions& options);
+
+// Frees a large module's items as two halves on two threads (a small one's
+// are left to be freed with the module).
+void freeItemsOnTwoThreads(std::vector<ItemPtr>& items);
 
 // Whether `options` and the machine allow a second thread.
 bool twoThreadsAllowed(const CheckOptions& options);

@@ -361,26 +361,10 @@ CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const Check
   return program;
 }
 
-namespace {
-
-// Below this many items freeing a module costs less than a thread.
-constexpr std::size_t minimumItemsFreedOnTwoThreads = 512;
-
-} // namespace
-
 CheckedProgram::~CheckedProgram() {
-  if (modules.empty() || modules.front().items.size() < minimumItemsFreedOnTwoThreads ||
-      !twoThreadsAllowed(CheckOptions())) {
-    return;
+  if (!modules.empty()) {
+    freeItemsOnTwoThreads(modules.front().items);
   }
-  std::vector<ItemPtr>& items = modules.front().items;
-  std::size_t half = items.size() / 2;
-  auto freeItems = [&items](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      items[i].reset();
-    }
-  };
-  runAlongside([&] { freeItems(half, items.size()); }, [&] { freeItems(0, half); });
 }
 
 namespace {
