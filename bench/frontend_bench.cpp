@@ -211,6 +211,7 @@ void lexParseAndCheck(benchmark::State& state) {
     return;
   }
   CheckOptions options = checkOptions();
+  options.threads = static_cast<unsigned>(state.range(0));
   for (auto _ : state) {
     SourceManager sources;
     FileId file = sources.addFile("generated.cdl", text);
@@ -220,8 +221,13 @@ void lexParseAndCheck(benchmark::State& state) {
   }
   reportRates(state, text);
 }
+// Threads 0: as many as the machine allows (the figure); 1: one thread, to
+// see what the split gains.
 BENCHMARK(lexParseAndCheck)
     ->Name("frontend/lex+parse+check")
+    ->ArgName("threads")
+    ->Arg(0)
+    ->Arg(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
