@@ -126,6 +126,36 @@ inline TokenKind keywordOrIdentifier(std::string_view spelling) {
   return TokenKind::Identifier;
 }
 
+// What a byte starts as a punctuator: its one-byte token (Error: none) and
+// the two-byte one when the next byte is `second` ("==", "..", "&&").
+struct PunctuatorStart {
+  TokenKind single = TokenKind::Error;
+  char second = '\0';
+  TokenKind pair = TokenKind::Error;
+};
+
+inline constexpr std::array<PunctuatorStart, 256> punctuatorStarts = [] {
+  struct Punctuator {
+    std::string_view spelling;
+    TokenKind kind;
+  };
+  constexpr Punctuator punctuators[] = {
+#define CNCC_PUNCTUATOR(identifier, spelling) {spelling, TokenKind::identifier},
+#include "cncc/frontend/token_kinds.def"
+  };
+  std::array<PunctuatorStart, 256> starts{};
+  for (const Punctuator& punctuator : punctuators) {
+    PunctuatorStart& start = starts[static_cast<unsigned char>(punctuator.spelling[0])];
+    if (punctuator.spelling.size() == 1) {
+      start.single = punctuator.kind;
+    } else {
+      start.second = punctuator.spelling[1];
+      start.pair = punctuator.kind;
+    }
+  }
+  return starts;
+}();
+
 // Exact decimal to double when the digits fit a double's mantissa and the
 // power of ten is exact (both operands exact, so the one division rounds
 // correctly, as std::from_chars does); nullopt sends the rest to from_chars.
@@ -196,32 +226,33 @@ private:
     bool crossedLine = false;
     const std::size_t size = text_.size();
     const char* text = text_.data();
-    while (position_ < size) {
-      // Spaces and line breaks in a local loop, the usual case.
-      std::size_t position = position_;
-      char c = text[position];
-      while (scanning::hasClass(c, scanning::SpaceOrLineBreak)) {
-        crossedLine |= c == '\n';
-        if (++position == size) {
-          break;
-        }
-        c = text[position];
+    std::size_t position = position_;
+    while (position < size) {
+      // Spaces and line breaks one class look-up each, the usual case.
+      std::uint8_t characterClass =
+          scanning::characterClasses[static_cast<unsigned char>(text[position])];
+      if ((characterClass & scanning::SpaceOrLineBreak) != 0) {
+        crossedLine |= (characterClass & scanning::LineBreak) != 0;
+        ++position;
+        continue;
       }
-      position_ = position;
-      if (position == size || c != '/') {
+      if (text[position] != '/' || position + 1 == size) {
         break;
       }
-      if (peek(1) == '/') {
-        std::size_t begin = position_;
-        std::size_t lineEnd = text_.find('\n', position_);
+      char following = text[position + 1];
+      if (following == '/') {
+        std::size_t lineEnd = text_.find('\n', position);
         position_ = lineEnd == std::string_view::npos ? size : lineEnd;
-        recordComment(begin);
-      } else if (peek(1) == '*') {
+        recordComment(position);
+      } else if (following == '*') {
+        position_ = position;
         crossedLine |= skipBlockComment();
       } else {
         break;
       }
+      position = position_;
     }
+    position_ = position;
     return crossedLine;
   }
 
@@ -469,69 +500,20 @@ private:
     }
   }
 
+  // One table look-up: the punctuators are a byte or two.
   void punctuator(Token& token) {
     std::size_t begin = position_;
-    char c = peek();
-    char following = peek(1);
-    auto two = [&](TokenKind kind) {
+    const scanning::PunctuatorStart& start =
+        scanning::punctuatorStarts[static_cast<unsigned char>(text_[begin])];
+    if (start.second != '\0' && peek(1) == start.second) {
       position_ += 2;
-      make(token, kind, begin);
-    };
-    auto one = [&](TokenKind kind) {
+      make(token, start.pair, begin);
+      return;
+    }
+    if (start.single != TokenKind::Error) {
       position_ += 1;
-      make(token, kind, begin);
-    };
-    switch (c) {
-    case '(':
-      return one(TokenKind::LeftParen);
-    case ')':
-      return one(TokenKind::RightParen);
-    case '[':
-      return one(TokenKind::LeftBracket);
-    case ']':
-      return one(TokenKind::RightBracket);
-    case '{':
-      return one(TokenKind::LeftBrace);
-    case '}':
-      return one(TokenKind::RightBrace);
-    case ',':
-      return one(TokenKind::Comma);
-    case ';':
-      return one(TokenKind::Semicolon);
-    case '.':
-      return following == '.' ? two(TokenKind::DotDot) : one(TokenKind::Dot);
-    case '+':
-      return one(TokenKind::Plus);
-    case '-':
-      return one(TokenKind::Minus);
-    case '*':
-      return one(TokenKind::Star);
-    case '/':
-      return one(TokenKind::Slash);
-    case '%':
-      return one(TokenKind::Percent);
-    case '^':
-      return one(TokenKind::Caret);
-    case '=':
-      return following == '=' ? two(TokenKind::EqualEqual) : one(TokenKind::Equal);
-    case '!':
-      return following == '=' ? two(TokenKind::BangEqual) : one(TokenKind::Bang);
-    case '<':
-      return following == '=' ? two(TokenKind::LessEqual) : one(TokenKind::Less);
-    case '>':
-      return following == '=' ? two(TokenKind::GreaterEqual) : one(TokenKind::Greater);
-    case '&':
-      if (following == '&') {
-        return two(TokenKind::AmpAmp);
-      }
-      break;
-    case '|':
-      if (following == '|') {
-        return two(TokenKind::PipePipe);
-      }
-      break;
-    default:
-      break;
+      make(token, start.single, begin);
+      return;
     }
     unexpectedCharacters(token);
   }
