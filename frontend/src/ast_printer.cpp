@@ -187,7 +187,7 @@ private:
     printBlock("Body", part.body);
   }
 
-  void printParameters(const std::vector<Parameter>& parameters) {
+  void printParameters(const NodeList<Parameter>& parameters) {
     for (const Parameter& parameter : parameters) {
       node("Parameter", parameter.nameSpan, name(parameter.name),
            declaredType(parameter.declaration));

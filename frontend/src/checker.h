@@ -110,7 +110,7 @@ private:
   void checkPart(PartItem& part, const Scope& fileScope);
   void checkBlock(Block& block, const Scope& parent);
   void checkStatement(Stmt& statement, Scope& scope, Block& block);
-  void checkSettings(std::vector<Argument>& settings, std::span<const ParameterSpec> allowed,
+  void checkSettings(NodeList<Argument>& settings, std::span<const ParameterSpec> allowed,
                      const Scope& scope, std::string_view owner, SourceSpan ownerSpan);
   void checkLet(LetStmt& let, Scope& scope, Block& block);
   void warnIfShadowing(std::string_view name, SourceSpan span, const Scope& outer);

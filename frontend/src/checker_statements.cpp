@@ -140,7 +140,7 @@ void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block) {
   }
 }
 
-void Checker::checkSettings(std::vector<Argument>& settings, std::span<const ParameterSpec> allowed,
+void Checker::checkSettings(NodeList<Argument>& settings, std::span<const ParameterSpec> allowed,
                             const Scope& scope, std::string_view owner, SourceSpan ownerSpan) {
   // The first setting given for each allowed one.
   std::array<const Argument*, maxSettings> seen{};

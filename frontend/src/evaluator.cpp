@@ -461,7 +461,7 @@ Value Evaluator::evaluateFunctionCall(const CallExpr& call, const Declaration& f
     return {};
   }
   const FnItem& item = *function.function;
-  const std::vector<Parameter>& parameters = item.parameters;
+  const NodeList<Parameter>& parameters = item.parameters;
   std::size_t count = parameters.size();
   // Most functions have a few parameters: no allocation for them.
   constexpr std::size_t inlineCount = 8;

@@ -111,7 +111,7 @@ Doc TreeFormatter::partItem(const PartItem& part) {
   return Doc::concat(std::move(parts));
 }
 
-Doc TreeFormatter::parameters(const std::vector<Parameter>& parameters, std::uint32_t after) {
+Doc TreeFormatter::parameters(const NodeList<Parameter>& parameters, std::uint32_t after) {
   const Token& open = source_.find(TokenKind::LeftParen, after);
   return bracketed(
       open, parameters.size(),
@@ -267,7 +267,7 @@ Doc TreeFormatter::ifStatement(const IfStmt& choice) {
 
 // Settings of `tool` and `safe`: a known one may continue the statement on
 // the next line, so the line breaks before those only.
-Doc TreeFormatter::settings(const std::vector<Argument>& settings,
+Doc TreeFormatter::settings(const NodeList<Argument>& settings,
                             const std::vector<std::string>& known) {
   std::vector<Doc> pieces{Doc::concat({})};
   for (const Argument& argument : settings) {
@@ -279,7 +279,7 @@ Doc TreeFormatter::settings(const std::vector<Argument>& settings,
 }
 
 // Modifiers of `curve`: only a known `name=value` may begin a later line.
-Doc TreeFormatter::modifiers(const std::vector<Modifier>& modifiers) {
+Doc TreeFormatter::modifiers(const NodeList<Modifier>& modifiers) {
   const std::vector<std::string>& known = cutModifierNames();
   std::vector<Doc> pieces{Doc::concat({})};
   for (const Modifier& modifier : modifiers) {

@@ -30,7 +30,7 @@ private:
   Doc constItem(const ConstItem& constant);
   Doc fnItem(const FnItem& function);
   Doc partItem(const PartItem& part);
-  Doc parameters(const std::vector<Parameter>& parameters, std::uint32_t after);
+  Doc parameters(const NodeList<Parameter>& parameters, std::uint32_t after);
   Doc parameter(const Parameter& parameter);
   Doc assignment(std::vector<Doc> head, const Expr& value);
 
@@ -45,8 +45,8 @@ private:
   Doc cutStatement(const CutStmt& cut);
   Doc forStatement(const ForStmt& loop);
   Doc ifStatement(const IfStmt& choice);
-  Doc settings(const std::vector<Argument>& settings, const std::vector<std::string>& known);
-  Doc modifiers(const std::vector<Modifier>& modifiers);
+  Doc settings(const NodeList<Argument>& settings, const std::vector<std::string>& known);
+  Doc modifiers(const NodeList<Modifier>& modifiers);
   Doc setting(SourceSpan nameSpan, const Expr* value);
 
   // expressions (formatter_expressions.cpp)

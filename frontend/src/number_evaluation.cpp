@@ -158,7 +158,7 @@ bool Evaluator::numberOfFunctionCall(const CallExpr& call, const Declaration& fu
   if (function.function == nullptr || context_.invalidFunctions.contains(&function)) {
     return false;
   }
-  const std::vector<Parameter>& parameters = function.function->parameters;
+  const NodeList<Parameter>& parameters = function.function->parameters;
   std::size_t count = parameters.size();
   if (count > Bindings::maximumNumbers || callStack_.size() > 64) {
     return false;

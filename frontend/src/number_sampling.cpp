@@ -255,7 +255,7 @@ private:
     if (function.function == nullptr || context_.invalidFunctions.contains(&function)) {
       return false;
     }
-    const std::vector<Parameter>& parameters = function.function->parameters;
+    const NodeList<Parameter>& parameters = function.function->parameters;
     std::size_t count = parameters.size();
     if (count > Bindings::maximumNumbers || callDepth_ > maximumCallDepth) {
       return false;

@@ -336,7 +336,7 @@ private:
     SourceSpan begin = advance().span;
     SourceSpan nameSpan;
     std::string name = expectIdentifier("a function name after 'fn'", nameSpan);
-    std::vector<Parameter> parameters;
+    NodeList<Parameter> parameters;
     if (!name.empty()) {
       parameters = parseParameters("function");
     }
@@ -355,7 +355,7 @@ private:
     SourceSpan begin = advance().span;
     SourceSpan nameSpan;
     std::string name = expectIdentifier("a part name after 'part'", nameSpan);
-    std::vector<Parameter> parameters;
+    NodeList<Parameter> parameters;
     if (!name.empty() && check(TokenKind::LeftParen)) {
       parameters = parseParameters("part");
     }
@@ -371,7 +371,7 @@ private:
   }
 
   // ( [name [= default] {, name [= default]}] )
-  std::vector<Parameter> parseParameters(std::string_view owner) {
+  NodeList<Parameter> parseParameters(std::string_view owner) {
     SourceSpan opening = peek().span;
     // Formatted only when missing: the message is rarely needed.
     if (!check(TokenKind::LeftParen)) {
@@ -394,7 +394,7 @@ private:
         break;
       }
     }
-    std::vector<Parameter> parameters = takeVector(parameterStack_, first);
+    NodeList<Parameter> parameters = arena_->takeList(parameterStack_, first);
     if (!panicking_) {
       expectClosing(TokenKind::RightParen, opening, "to close the parameter list");
     }
@@ -497,11 +497,11 @@ private:
     }
     if (text == "tool") {
       ExprPtr number = parseExpression();
-      std::vector<Argument> settings = parseSettings({"diameter", "spindle", "feed"});
+      NodeList<Argument> settings = parseSettings({"diameter", "spindle", "feed"});
       return arena_->make<ToolStmt>(spanFrom(begin), std::move(number), std::move(settings));
     }
     if (text == "safe") {
-      std::vector<Argument> settings = parseSettings({"z"});
+      NodeList<Argument> settings = parseSettings({"z"});
       if (settings.empty() && !panicking_) {
         errorAtCurrent(DiagnosticKind::ExpectedToken, "'z=' after 'safe'");
       }
@@ -515,7 +515,7 @@ private:
   // { name = expr } while the next tokens read `identifier =`. A setting on a
   // later line must be one of `knownNames`; anything else starts a new
   // statement (so `x = 3` on the next line is not taken for a setting).
-  std::vector<Argument> parseSettings(std::initializer_list<std::string_view> knownNames) {
+  NodeList<Argument> parseSettings(std::initializer_list<std::string_view> knownNames) {
     std::size_t first = argumentStack_.size();
     while (!panicking_ && check(TokenKind::Identifier) && peek(1).kind == TokenKind::Equal &&
            continuesStatement(knownNames)) {
@@ -526,7 +526,7 @@ private:
       setting.value = parseExpression();
       argumentStack_.push_back(std::move(setting));
     }
-    return takeVector(argumentStack_, first);
+    return arena_->takeList(argumentStack_, first);
   }
 
   bool continuesStatement(std::initializer_list<std::string_view> knownNames) {
@@ -579,7 +579,7 @@ private:
       modifierStack_.push_back(std::move(modifier));
     }
     return arena_->make<CutStmt>(spanFrom(begin), std::move(curve),
-                                 takeVector(modifierStack_, first));
+                                 arena_->takeList(modifierStack_, first));
   }
 
   // for i in a .. b { ... }
@@ -989,16 +989,6 @@ private:
   std::vector<Parameter> parameterStack_;
   std::vector<Modifier> modifierStack_;
 
-  // The elements of `stack` from `first` on, moved into a vector of their
-  // own (one allocation at the final size) and removed from the stack.
-  template <typename Element>
-  static std::vector<Element> takeVector(std::vector<Element>& stack, std::size_t first) {
-    auto begin = stack.begin() + static_cast<std::ptrdiff_t>(first);
-    std::vector<Element> taken(std::make_move_iterator(begin),
-                               std::make_move_iterator(stack.end()));
-    stack.erase(begin, stack.end());
-    return taken;
-  }
   std::shared_ptr<NodeArena> arena_ = std::make_shared<NodeArena>();
   FileId file_;
   DiagnosticEngine& diagnostics_;

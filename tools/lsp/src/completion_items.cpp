@@ -216,7 +216,7 @@ std::string builtinSnippet(const frontend::BuiltinInfo& builtin) {
 std::string functionSnippet(const Declaration& declaration) {
   std::string text = declaration.name + "(";
   if (declaration.function != nullptr) {
-    const std::vector<frontend::Parameter>& parameters = declaration.function->parameters;
+    const frontend::NodeList<frontend::Parameter>& parameters = declaration.function->parameters;
     for (std::size_t i = 0; i < parameters.size(); ++i) {
       text += fmt::format("{}${{{}:{}}}", i == 0 ? "" : ", ", i + 1, parameters[i].name);
     }

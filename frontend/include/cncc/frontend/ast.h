@@ -269,10 +269,10 @@ struct UnitsStmt : Stmt {
 };
 
 struct ToolStmt : Stmt {
-  ToolStmt(SourceSpan span, ExprPtr number, std::vector<Argument> settings)
+  ToolStmt(SourceSpan span, ExprPtr number, NodeList<Argument> settings)
       : Stmt(StmtKind::Tool, span), number(std::move(number)), settings(std::move(settings)) {}
   ExprPtr number;
-  std::vector<Argument> settings; // diameter=, spindle=, feed=
+  NodeList<Argument> settings; // diameter=, spindle=, feed=
 };
 
 // `feed F` and `spindle S`.
@@ -283,9 +283,9 @@ struct ValueStmt : Stmt {
 };
 
 struct SafeStmt : Stmt {
-  SafeStmt(SourceSpan span, std::vector<Argument> settings)
+  SafeStmt(SourceSpan span, NodeList<Argument> settings)
       : Stmt(StmtKind::Safe, span), settings(std::move(settings)) {}
-  std::vector<Argument> settings; // z=
+  NodeList<Argument> settings; // z=
 };
 
 struct LetStmt : Stmt {
@@ -310,10 +310,10 @@ struct Modifier {
 const std::vector<std::string>& cutModifierNames();
 
 struct CutStmt : Stmt {
-  CutStmt(SourceSpan span, ExprPtr curve, std::vector<Modifier> modifiers)
+  CutStmt(SourceSpan span, ExprPtr curve, NodeList<Modifier> modifiers)
       : Stmt(StmtKind::Cut, span), curve(std::move(curve)), modifiers(std::move(modifiers)) {}
   ExprPtr curve;
-  std::vector<Modifier> modifiers;
+  NodeList<Modifier> modifiers;
 };
 
 struct ForStmt : Stmt {
@@ -384,25 +384,25 @@ struct Parameter {
 };
 
 struct FnItem : Item {
-  FnItem(SourceSpan span, std::string name, SourceSpan nameSpan, std::vector<Parameter> parameters,
+  FnItem(SourceSpan span, std::string name, SourceSpan nameSpan, NodeList<Parameter> parameters,
          ExprPtr body)
       : Item(ItemKind::Fn, span), name(std::move(name)), nameSpan(nameSpan),
         parameters(std::move(parameters)), body(std::move(body)) {}
   std::string name;
   SourceSpan nameSpan;
-  std::vector<Parameter> parameters;
+  NodeList<Parameter> parameters;
   ExprPtr body;
   const Declaration* declaration = nullptr;
 };
 
 struct PartItem : Item {
-  PartItem(SourceSpan span, std::string name, SourceSpan nameSpan,
-           std::vector<Parameter> parameters, Block body)
+  PartItem(SourceSpan span, std::string name, SourceSpan nameSpan, NodeList<Parameter> parameters,
+           Block body)
       : Item(ItemKind::Part, span), name(std::move(name)), nameSpan(nameSpan),
         parameters(std::move(parameters)), body(std::move(body)) {}
   std::string name;
   SourceSpan nameSpan;
-  std::vector<Parameter> parameters;
+  NodeList<Parameter> parameters;
   Block body;
 };
 
