@@ -35,6 +35,7 @@ void Checker::run() {
 }
 
 void Checker::declareItems(Module& module) {
+  context_.fileItems.reserve(context_.fileItems.size() + module.items.size());
   for (ItemPtr& item : module.items) {
     if (item->kind == ItemKind::Const) {
       auto& constant = as<ConstItem>(*item);
@@ -42,7 +43,7 @@ void Checker::declareItems(Module& module) {
         Declaration& declaration = context_.declare(DeclarationKind::Constant, constant.name,
                                                     constant.nameSpan, Type::error());
         constant.declaration = &declaration;
-        context_.itemOf[&declaration] = &constant;
+        context_.fileItems[&declaration].item = &constant;
       }
     } else if (item->kind == ItemKind::Fn) {
       auto& function = as<FnItem>(*item);
@@ -52,7 +53,7 @@ void Checker::declareItems(Module& module) {
         declaration.function = &function;
         declaration.signature = functionSignature(function);
         function.declaration = &declaration;
-        context_.itemOf[&declaration] = &function;
+        context_.fileItems[&declaration].item = &function;
       }
     } else if (item->kind == ItemKind::Part && &module == &context_.program.modules.front()) {
       auto& part = as<PartItem>(*item);
@@ -62,11 +63,21 @@ void Checker::declareItems(Module& module) {
 }
 
 std::string Checker::functionSignature(const FnItem& function) {
-  std::string text = function.name + "(";
-  for (std::size_t i = 0; i < function.parameters.size(); ++i) {
-    text += (i == 0 ? "" : ", ") + function.parameters[i].name;
+  std::size_t length = function.name.size() + 2;
+  for (const Parameter& parameter : function.parameters) {
+    length += parameter.name.size() + 2;
   }
-  return text + ")";
+  std::string text;
+  text.reserve(length);
+  text.append(function.name).push_back('(');
+  for (std::size_t i = 0; i < function.parameters.size(); ++i) {
+    if (i != 0) {
+      text.append(", ");
+    }
+    text.append(function.parameters[i].name);
+  }
+  text.push_back(')');
+  return text;
 }
 
 const Declaration* Checker::itemDeclaration(const Item& item) {
@@ -120,7 +131,7 @@ void Checker::buildFileScope(Module& module) {
       continue;
     }
     scope.add(declaration->name, declaration); // `name` is a copy
-    context_.itemScope[declaration] = &scope;
+    context_.fileItems[declaration].scope = &scope;
   }
 }
 
@@ -212,10 +223,10 @@ void Checker::ensureChecked(const Declaration* declaration) {
   }
   ItemState& state = states_[declaration];
   state = ItemState::InProgress;
-  const Item* item = context_.itemOf.at(declaration);
-  auto scopeEntry = context_.itemScope.find(declaration);
+  const SemaContext::FileItem& fileItem = context_.fileItems.at(declaration);
+  const Item* item = fileItem.item;
   Scope detached(&context_.builtinScope);
-  const Scope& scope = scopeEntry != context_.itemScope.end() ? *scopeEntry->second : detached;
+  const Scope& scope = fileItem.scope != nullptr ? *fileItem.scope : detached;
   Declaration& mutableDeclaration = context_.mutableDeclaration(declaration);
   if (item->kind == ItemKind::Const) {
     auto& constant = const_cast<ConstItem&>(as<ConstItem>(*item));

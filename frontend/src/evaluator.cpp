@@ -128,8 +128,8 @@ Value Evaluator::constantValue(const Declaration* declaration) {
   if (declaration->value) {
     return *declaration->value;
   }
-  auto item = context_.itemOf.find(declaration);
-  if (item == context_.itemOf.end() || constantsInProgress_.contains(declaration)) {
+  auto item = context_.fileItems.find(declaration);
+  if (item == context_.fileItems.end() || constantsInProgress_.contains(declaration)) {
     return {};
   }
   constantsInProgress_.insert(declaration);
@@ -143,7 +143,7 @@ Value Evaluator::constantValue(const Declaration* declaration) {
   fastPathEnabled_ = true;
   fastPathDepth_ = 0;
   std::size_t steps = steps_;
-  Value value = evaluate(*as<ConstItem>(*item->second).value, Bindings());
+  Value value = evaluate(*as<ConstItem>(*item->second.item).value, Bindings());
   fastPathEnabled_ = fastPathEnabled;
   fastPathDepth_ = fastPathDepth;
   if (fastPathDepth_ > 0) {

@@ -132,9 +132,12 @@ struct SemaContext {
   // Lets whose name was used somewhere (for unused-let).
   std::unordered_set<const Declaration*> usedDeclarations;
   // The constant or function item behind a declaration, and the file scope
-  // it is checked in.
-  std::unordered_map<const Declaration*, const Item*> itemOf;
-  std::unordered_map<const Declaration*, const Scope*> itemScope;
+  // it is checked in (none when its name redefines another).
+  struct FileItem {
+    const Item* item = nullptr;
+    const Scope* scope = nullptr;
+  };
+  std::unordered_map<const Declaration*, FileItem> fileItems;
 
   Declaration& declare(DeclarationKind kind, std::string_view name, SourceSpan span, Type type);
   // Takes what a context for part of the work on another thread collected:
