@@ -120,7 +120,9 @@ private:
     out_ += '\n';
   }
 
-  static std::string name(const std::string& text) { return text.empty() ? "<missing>" : text; }
+  static std::string name(std::string_view text) {
+    return text.empty() ? "<missing>" : std::string(text);
+  }
 
   // ` -> part-parameter depth at 2:13` for a resolved name.
   std::string resolution(const Declaration* declaration) const {

@@ -32,9 +32,9 @@ Type Checker::checkCall(CallExpr& call, const Scope& scope) {
         callable.push_back(name);
       }
     }
-    context_.report(
-        DiagnosticKind::UnknownFunction, call.calleeSpan,
-        fmt::format("there is no function '{}'{}", call.callee, suggestion(call.callee, callable)));
+    context_.report(DiagnosticKind::UnknownFunction, call.calleeSpan,
+                    fmt::format("there is no function '{}'{}", call.callee,
+                                suggestion(std::string(call.callee), callable)));
     checkArgumentsAlone(call, scope);
     return Type::error();
   }
@@ -113,7 +113,7 @@ void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
                              : fmt::format("'{}' takes {}", call.callee, joinNames(parameters));
   context_.report(DiagnosticKind::UnknownArgument, argument.nameSpan,
                   fmt::format("unknown argument '{}'; {}{}", argument.name, expected,
-                              suggestion(argument.name, names)));
+                              suggestion(std::string(argument.name), names)));
   binding.ok = false;
   binding.unknownName = true;
 }

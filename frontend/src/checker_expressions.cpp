@@ -64,7 +64,7 @@ Type Checker::checkName(NameExpr& name, const Scope& scope) {
   if (declaration == nullptr) {
     std::string hint = name.name == "t"sv
                            ? "; 't' is the curve parameter only inside polar(...) and param(...)"
-                           : suggestion(name.name, scope.visibleNames());
+                           : suggestion(std::string(name.name), scope.visibleNames());
     context_.report(DiagnosticKind::UndefinedName, name.span,
                     fmt::format("'{}' is not defined{}", name.name, hint));
     return Type::error();
@@ -210,7 +210,7 @@ Type Checker::checkMember(MemberExpr& member, const Scope& scope) {
   if (member.member != "x"sv && member.member != "y"sv && member.member != "z"sv) {
     context_.report(DiagnosticKind::UnknownMember, member.memberSpan,
                     fmt::format("a point has no member '{}'; it has x, y and z{}", member.member,
-                                suggestion(member.member, {"x", "y", "z"})));
+                                suggestion(std::string(member.member), {"x", "y", "z"})));
     return Type::error();
   }
   return Type::num();

@@ -266,7 +266,7 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
   if (place == names.size()) {
     context_.report(DiagnosticKind::UnknownModifier, modifier.nameSpan,
                     fmt::format("unknown modifier '{}' after 'curve'{}", modifier.name,
-                                suggestion(modifier.name, names)));
+                                suggestion(std::string(modifier.name), names)));
     if (modifier.value) {
       checkExpression(*modifier.value, scope);
     }
@@ -322,12 +322,12 @@ void Checker::checkChoice(Modifier& modifier, std::span<const std::string_view> 
                     fmt::format("'{}=' takes one of: {}", modifier.name, list()));
     return;
   }
-  const std::string& word = as<NameExpr>(*modifier.value).name;
+  std::string_view word = as<NameExpr>(*modifier.value).name;
   if (std::find(choices.begin(), choices.end(), word) == choices.end()) {
     std::vector<std::string> candidates(choices.begin(), choices.end());
     context_.report(DiagnosticKind::InvalidChoice, modifier.value->span,
                     fmt::format("'{}' is not a valid {}; expected one of: {}{}", word,
-                                modifier.name, list(), suggestion(word, candidates)));
+                                modifier.name, list(), suggestion(std::string(word), candidates)));
   }
 }
 

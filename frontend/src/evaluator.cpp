@@ -469,7 +469,7 @@ Value Evaluator::evaluateFunctionCall(const CallExpr& call, const Declaration& f
   std::vector<const Expr*> manyArguments(count > inlineCount ? count : 0, nullptr);
   const Expr** arguments = count > inlineCount ? manyArguments.data() : inlineArguments.data();
   bindArguments(
-      call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
+      call, count, [&](std::size_t i) -> std::string_view { return parameters[i].name; },
       arguments);
   Bindings inner;
   inner.reserve(count);
@@ -648,7 +648,7 @@ Value Evaluator::evaluateMathCall(const CallExpr& call, const Bindings& bindings
 
 Value Evaluator::applyMathFunction(const CallExpr& call, const Value* values, std::size_t count) {
   using namespace arithmetic;
-  const std::string& name = call.callee;
+  std::string_view name = call.callee;
   MathFunction function = mathFunction(name);
   if (function == MathFunction::Len) {
     if (count != 1 || values[0].type.kind != TypeKind::List) {

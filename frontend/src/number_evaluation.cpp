@@ -165,7 +165,7 @@ bool Evaluator::numberOfFunctionCall(const CallExpr& call, const Declaration& fu
   }
   std::array<const Expr*, Bindings::maximumNumbers> arguments{};
   bindArguments(
-      call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
+      call, count, [&](std::size_t i) -> std::string_view { return parameters[i].name; },
       arguments.data());
   Bindings inner;
   for (std::size_t i = 0; i < count; ++i) {

@@ -262,7 +262,7 @@ private:
     }
     std::array<const Expr*, Bindings::maximumNumbers> arguments{};
     Evaluator::bindArguments(
-        call, count, [&](std::size_t i) -> const std::string& { return parameters[i].name; },
+        call, count, [&](std::size_t i) -> std::string_view { return parameters[i].name; },
         arguments.data());
     std::array<const Declaration*, Bindings::maximumNumbers> declarations{};
     std::array<Samples, Bindings::maximumNumbers> values;

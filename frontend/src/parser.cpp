@@ -222,10 +222,10 @@ private:
     return false;
   }
 
-  std::string expectIdentifier(std::string_view what, SourceSpan& span) {
+  std::string_view expectIdentifier(std::string_view what, SourceSpan& span) {
     span = peek().span;
     if (check(TokenKind::Identifier)) {
-      return std::string(advance().text);
+      return advance().text;
     }
     if (peek().kind >= TokenKind::KwPart && peek().kind <= TokenKind::KwFalse) {
       error(DiagnosticKind::ExpectedIdentifier, peek().span,
@@ -321,21 +321,21 @@ private:
   ItemPtr parseConst() {
     SourceSpan begin = advance().span;
     SourceSpan nameSpan;
-    std::string name = expectIdentifier("a constant name after 'const'", nameSpan);
+    std::string_view name = expectIdentifier("a constant name after 'const'", nameSpan);
     ExprPtr value;
     if (!name.empty() && expect(TokenKind::Equal, "after the constant's name")) {
       value = parseExpression();
     } else {
       value = arena_->make<ErrorExpr>(peek().span);
     }
-    return arena_->make<ConstItem>(spanFrom(begin), std::move(name), nameSpan, std::move(value));
+    return arena_->make<ConstItem>(spanFrom(begin), name, nameSpan, std::move(value));
   }
 
   // fn name(a, b) = expr
   ItemPtr parseFn() {
     SourceSpan begin = advance().span;
     SourceSpan nameSpan;
-    std::string name = expectIdentifier("a function name after 'fn'", nameSpan);
+    std::string_view name = expectIdentifier("a function name after 'fn'", nameSpan);
     NodeList<Parameter> parameters;
     if (!name.empty()) {
       parameters = parseParameters("function");
@@ -346,7 +346,7 @@ private:
     } else {
       body = arena_->make<ErrorExpr>(peek().span);
     }
-    return arena_->make<FnItem>(spanFrom(begin), std::move(name), nameSpan, std::move(parameters),
+    return arena_->make<FnItem>(spanFrom(begin), name, nameSpan, std::move(parameters),
                                 std::move(body));
   }
 
@@ -354,7 +354,7 @@ private:
   ItemPtr parsePart() {
     SourceSpan begin = advance().span;
     SourceSpan nameSpan;
-    std::string name = expectIdentifier("a part name after 'part'", nameSpan);
+    std::string_view name = expectIdentifier("a part name after 'part'", nameSpan);
     NodeList<Parameter> parameters;
     if (!name.empty() && check(TokenKind::LeftParen)) {
       parameters = parseParameters("part");
@@ -366,7 +366,7 @@ private:
       errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the part's body");
       body.span = peek().span;
     }
-    return arena_->make<PartItem>(spanFrom(begin), std::move(name), nameSpan, std::move(parameters),
+    return arena_->make<PartItem>(spanFrom(begin), name, nameSpan, std::move(parameters),
                                   std::move(body));
   }
 
@@ -544,14 +544,14 @@ private:
   StmtPtr parseLet() {
     SourceSpan begin = advance().span;
     SourceSpan nameSpan;
-    std::string name = expectIdentifier("a name after 'let'", nameSpan);
+    std::string_view name = expectIdentifier("a name after 'let'", nameSpan);
     ExprPtr value;
     if (!name.empty() && expect(TokenKind::Equal, "after the name in 'let'")) {
       value = parseExpression();
     } else {
       value = arena_->make<ErrorExpr>(peek().span);
     }
-    return arena_->make<LetStmt>(spanFrom(begin), std::move(name), nameSpan, std::move(value));
+    return arena_->make<LetStmt>(spanFrom(begin), name, nameSpan, std::move(value));
   }
 
   // curve <expr> { word | word = expr }
@@ -586,7 +586,7 @@ private:
   StmtPtr parseFor() {
     SourceSpan begin = advance().span;
     SourceSpan variableSpan;
-    std::string variable = expectIdentifier("a loop variable after 'for'", variableSpan);
+    std::string_view variable = expectIdentifier("a loop variable after 'for'", variableSpan);
     ExprPtr range;
     Block body;
     if (!panicking_ && expect(TokenKind::KwIn, "after the loop variable")) {
@@ -600,8 +600,8 @@ private:
       errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the loop's body");
       body.span = peek().span;
     }
-    return arena_->make<ForStmt>(spanFrom(begin), std::move(variable), variableSpan,
-                                 std::move(range), std::move(body));
+    return arena_->make<ForStmt>(spanFrom(begin), variable, variableSpan, std::move(range),
+                                 std::move(body));
   }
 
   // if cond { ... } [else if ... | else { ... }]
@@ -677,7 +677,7 @@ private:
     }
     if (token.kind == TokenKind::Identifier) {
       advance();
-      return arena_->make<NameExpr>(token.span, std::string(token.text));
+      return arena_->make<NameExpr>(token.span, token.text);
     }
     return nullptr;
   }
@@ -850,10 +850,10 @@ private:
       } else if (check(TokenKind::Dot)) {
         advance();
         SourceSpan memberSpan;
-        std::string member = expectIdentifier("a member name (x, y or z) after '.'", memberSpan);
+        std::string_view member =
+            expectIdentifier("a member name (x, y or z) after '.'", memberSpan);
         SourceSpan span = spanFrom(expression->span);
-        expression =
-            arena_->make<MemberExpr>(span, std::move(expression), std::move(member), memberSpan);
+        expression = arena_->make<MemberExpr>(span, std::move(expression), member, memberSpan);
       } else {
         return expression;
       }
@@ -899,7 +899,7 @@ private:
     // Copied: the arguments read more tokens than the window keeps.
     const Token name = advance();
     if (!check(TokenKind::LeftParen)) {
-      return arena_->make<NameExpr>(name.span, std::string(name.text));
+      return arena_->make<NameExpr>(name.span, name.text);
     }
     SourceSpan opening = advance().span;
     std::size_t first = argumentStack_.size();
@@ -928,8 +928,7 @@ private:
       expectClosing(TokenKind::RightParen, opening,
                     fmt::format("to close the arguments of '{}'", name.text));
     }
-    return arena_->make<CallExpr>(spanFrom(name.span), std::string(name.text), name.span,
-                                  std::move(arguments));
+    return arena_->make<CallExpr>(spanFrom(name.span), name.text, name.span, std::move(arguments));
   }
 
   // (e) is grouping; (x, y) and (x, y, z) are points.

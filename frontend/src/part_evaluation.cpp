@@ -40,7 +40,7 @@ public:
       Value value = parameter.defaultValue
                         ? evaluator_.evaluate(*parameter.defaultValue, Bindings())
                         : Value{};
-      auto define = context_.options.defines.find(parameter.name);
+      auto define = context_.options.defines.find(std::string(parameter.name));
       if (define != context_.options.defines.end()) {
         value = Value::ofNumber(define->second);
       }

@@ -298,7 +298,7 @@ void selectPart(SemaContext& context) {
     }
     std::vector<std::string> names;
     for (const PartItem* part : program.parts) {
-      names.push_back(part->name);
+      names.emplace_back(part->name);
     }
     context.report(DiagnosticKind::UnknownPart, {},
                    fmt::format("no part named '{}' in this file{}", options.partName,

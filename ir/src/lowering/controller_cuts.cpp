@@ -431,7 +431,7 @@ bool PartLowering::symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces
   }
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     CurveKind kind = curve.pieces[p].value->kind;
-    const std::string& callee = pieces[p].call->callee;
+    std::string_view callee = pieces[p].call->callee;
     bool nurbs = callee == "nurbs" || callee == "bspline" || callee == "bezier";
     bool same = nurbs ? kind == CurveKind::Nurbs : callee == curve.pieces[p].value->constructor;
     if (!same) {

@@ -50,7 +50,7 @@ const Expr* modifierValue(const CutStmt& cut, std::string_view name) {
 
 std::string wordOf(const Expr& expression) {
   if (expression.kind == ExprKind::Name) {
-    return as<NameExpr>(expression).name;
+    return std::string(as<NameExpr>(expression).name);
   }
   if (expression.kind == ExprKind::String) {
     return as<StringExpr>(expression).value;

@@ -25,7 +25,7 @@ constexpr std::size_t maximumTableEntries = 20'000'000;
 PartLowering::PartLowering(const CheckedProgram& program, const PartItem& part,
                            DiagnosticEngine& diagnostics, const LoweringOptions& options)
     : program_(program), part_(part), diagnostics_(&diagnostics), options_(options),
-      evaluator_(program, scratch_), builder_(part.name) {}
+      evaluator_(program, scratch_), builder_(std::string(part.name)) {}
 
 LoweredPart PartLowering::run() {
   lowerParameters();
@@ -73,11 +73,11 @@ void PartLowering::lowerParameters() {
       unsupported(parameter.nameSpan, "a parameter without a numeric value");
     }
     double value = parameter.declaration->value->number;
-    std::uint32_t index = builder_.addParameter(parameter.name, value);
+    std::uint32_t index = builder_.addParameter(std::string(parameter.name), value);
     bindings_[parameter.declaration] = {TypeKind::Num,
                                         {Scalar::of(builder_.parameter(index), ValueType::F64)}};
     environment_[parameter.declaration] = Value::ofNumber(value);
-    parameterNames_[parameter.declaration] = {parameter.name};
+    parameterNames_[parameter.declaration] = {std::string(parameter.name)};
   }
 }
 

@@ -117,7 +117,7 @@ std::vector<ParameterValue> parameterValues(const frontend::PartItem& part, cons
   EXPECT_TRUE(errors.empty());
   std::vector<ParameterValue> values;
   for (std::size_t i = 0; i < part.parameters.size() && i < variables.size(); ++i) {
-    auto found = test.parameters.find(part.parameters[i].name);
+    auto found = test.parameters.find(std::string(part.parameters[i].name));
     if (found != test.parameters.end()) {
       values.push_back({found->first, variables[i], found->second});
     }

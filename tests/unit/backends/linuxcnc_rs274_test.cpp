@@ -281,7 +281,7 @@ TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItsSubroutineCalledWithTheDefaults) {
   const std::string end = "\nM2\n";
   ASSERT_TRUE(compiled->text.ends_with(end));
   std::string program = compiled->text.substr(0, compiled->text.size() - end.size() + 1);
-  std::string name = compiled->program->selectedPart->name;
+  std::string name(compiled->program->selectedPart->name);
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   program += "o<" + name + "> call";

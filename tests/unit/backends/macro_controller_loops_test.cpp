@@ -119,7 +119,7 @@ VerificationReport run(const std::string& text, const std::string& target, const
                                : ParameterPassing::EditedDefaults;
   execution.callable = callable;
   for (std::size_t i = 0; i < part.parameters.size(); ++i) {
-    auto found = values.find(part.parameters[i].name);
+    auto found = values.find(std::string(part.parameters[i].name));
     if (found != values.end()) {
       execution.parameters.push_back({found->first, variables[i], found->second});
     }

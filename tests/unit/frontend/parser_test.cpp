@@ -23,7 +23,7 @@ template <typename Arguments> std::string argumentsText(const Arguments& argumen
   std::string text;
   for (const Argument& argument : arguments) {
     text += " ";
-    text += argument.name.empty() ? "" : argument.name + "=";
+    text += argument.name.empty() ? "" : std::string(argument.name) + "=";
     text += sexpr(*argument.value);
   }
   return text;
@@ -46,7 +46,7 @@ std::string sexpr(const Expr& expression) {
   case ExprKind::String:
     return "\"" + as<StringExpr>(expression).value + "\"";
   case ExprKind::Name:
-    return as<NameExpr>(expression).name;
+    return std::string(as<NameExpr>(expression).name);
   case ExprKind::Unary: {
     const auto& unary = as<UnaryExpr>(expression);
     return fmt::format("({} {})", unary.op == UnaryOperator::Negate ? "-" : "!",
@@ -59,7 +59,7 @@ std::string sexpr(const Expr& expression) {
   }
   case ExprKind::Call: {
     const auto& call = as<CallExpr>(expression);
-    return "(" + call.callee + argumentsText(call.arguments) + ")";
+    return "(" + std::string(call.callee) + argumentsText(call.arguments) + ")";
   }
   case ExprKind::Point:
     return "(point" + listText(as<PointExpr>(expression).components) + ")";
@@ -421,7 +421,7 @@ TEST_F(ParserTest, SemicolonsSeparateStatementsOnOneLine) {
 std::string modifiersText(const CutStmt& cut) {
   std::string text;
   for (const Modifier& modifier : cut.modifiers) {
-    text += " " + modifier.name + (modifier.value ? "=" + sexpr(*modifier.value) : "");
+    text += " " + std::string(modifier.name) + (modifier.value ? "=" + sexpr(*modifier.value) : "");
   }
   return text;
 }

@@ -33,7 +33,7 @@ void compareExample(const std::filesystem::path& path, ExampleParts& parts) {
   ASSERT_FALSE(diagnostics.hasErrors()) << path << " does not check";
   ASSERT_FALSE(program.parts.empty()) << path << " has no part";
   for (const frontend::PartItem* part : program.parts) {
-    std::string name = path.filename().string() + ":" + part->name;
+    std::string name = path.filename().string() + ":" + std::string(part->name);
     frontend::DiagnosticEngine partDiagnostics;
     std::optional<ir::Function> function = ir::lowerPart(program, *part, partDiagnostics);
     if (!function) {

@@ -12,7 +12,7 @@ using namespace frontend;
 // The protocol's SymbolKind values used here.
 enum class SymbolKind { Class = 5, Property = 7, Function = 12, Variable = 13, Constant = 14 };
 
-Json symbol(const Analysis& analysis, const std::string& name, SymbolKind kind, SourceSpan range,
+Json symbol(const Analysis& analysis, std::string_view name, SymbolKind kind, SourceSpan range,
             SourceSpan selection, const std::string& detail) {
   Json result = {{"name", name},
                  {"kind", static_cast<int>(kind)},

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -20,6 +21,10 @@ namespace cncc::frontend {
 
 struct Declaration;
 
+// Names (of declarations, references, arguments, members) view the text of
+// their file, which its SourceManager keeps: a tree must not outlive the
+// SourceManager it was parsed from.
+//
 // The parser places the nodes of one module in one arena (node_arena.h), a
 // few large blocks instead of an allocation per node. The pointers still own
 // their nodes: destroying one runs the node's destructor, and the module's
@@ -140,8 +145,8 @@ struct StringExpr : Expr {
 };
 
 struct NameExpr : Expr {
-  NameExpr(SourceSpan span, std::string name) : Expr(ExprKind::Name, span), name(std::move(name)) {}
-  std::string name;
+  NameExpr(SourceSpan span, std::string_view name) : Expr(ExprKind::Name, span), name(name) {}
+  std::string_view name;
   const Declaration* declaration = nullptr; // set by the semantic checker
 };
 
@@ -165,17 +170,18 @@ struct BinaryExpr : Expr {
 
 // `name = value` or a positional `value`, in a call or a statement.
 struct Argument {
-  std::string name; // empty when positional
+  std::string_view name; // empty when positional
   SourceSpan nameSpan;
   ExprPtr value;
   SourceSpan span() const { return name.empty() ? value->span : nameSpan.to(value->span); }
 };
 
 struct CallExpr : Expr {
-  CallExpr(SourceSpan span, std::string callee, SourceSpan calleeSpan, NodeList<Argument> arguments)
-      : Expr(ExprKind::Call, span), callee(std::move(callee)), calleeSpan(calleeSpan),
+  CallExpr(SourceSpan span, std::string_view callee, SourceSpan calleeSpan,
+           NodeList<Argument> arguments)
+      : Expr(ExprKind::Call, span), callee(callee), calleeSpan(calleeSpan),
         arguments(std::move(arguments)) {}
-  std::string callee;
+  std::string_view callee;
   SourceSpan calleeSpan;
   NodeList<Argument> arguments;
   const Declaration* declaration = nullptr; // the fn or builtin, set by the checker
@@ -208,11 +214,11 @@ struct IndexExpr : Expr {
 };
 
 struct MemberExpr : Expr {
-  MemberExpr(SourceSpan span, ExprPtr base, std::string member, SourceSpan memberSpan)
-      : Expr(ExprKind::Member, span), base(std::move(base)), member(std::move(member)),
+  MemberExpr(SourceSpan span, ExprPtr base, std::string_view member, SourceSpan memberSpan)
+      : Expr(ExprKind::Member, span), base(std::move(base)), member(member),
         memberSpan(memberSpan) {}
   ExprPtr base;
-  std::string member;
+  std::string_view member;
   SourceSpan memberSpan;
 };
 
@@ -289,10 +295,9 @@ struct SafeStmt : Stmt {
 };
 
 struct LetStmt : Stmt {
-  LetStmt(SourceSpan span, std::string name, SourceSpan nameSpan, ExprPtr value)
-      : Stmt(StmtKind::Let, span), name(std::move(name)), nameSpan(nameSpan),
-        value(std::move(value)) {}
-  std::string name;
+  LetStmt(SourceSpan span, std::string_view name, SourceSpan nameSpan, ExprPtr value)
+      : Stmt(StmtKind::Let, span), name(name), nameSpan(nameSpan), value(std::move(value)) {}
+  std::string_view name;
   SourceSpan nameSpan;
   ExprPtr value;
   const Declaration* declaration = nullptr;
@@ -300,7 +305,7 @@ struct LetStmt : Stmt {
 
 // A modifier after `curve <expr>`: a word alone (`sweep`) or `word=value`.
 struct Modifier {
-  std::string name;
+  std::string_view name;
   SourceSpan nameSpan;
   ExprPtr value; // null for a bare word
   SourceSpan span() const { return value ? nameSpan.to(value->span) : nameSpan; }
@@ -317,10 +322,11 @@ struct CutStmt : Stmt {
 };
 
 struct ForStmt : Stmt {
-  ForStmt(SourceSpan span, std::string variable, SourceSpan variableSpan, ExprPtr range, Block body)
-      : Stmt(StmtKind::For, span), variable(std::move(variable)), variableSpan(variableSpan),
+  ForStmt(SourceSpan span, std::string_view variable, SourceSpan variableSpan, ExprPtr range,
+          Block body)
+      : Stmt(StmtKind::For, span), variable(variable), variableSpan(variableSpan),
         range(std::move(range)), body(std::move(body)) {}
-  std::string variable;
+  std::string_view variable;
   SourceSpan variableSpan;
   ExprPtr range;
   Block body;
@@ -366,10 +372,9 @@ struct ImportItem : Item {
 };
 
 struct ConstItem : Item {
-  ConstItem(SourceSpan span, std::string name, SourceSpan nameSpan, ExprPtr value)
-      : Item(ItemKind::Const, span), name(std::move(name)), nameSpan(nameSpan),
-        value(std::move(value)) {}
-  std::string name;
+  ConstItem(SourceSpan span, std::string_view name, SourceSpan nameSpan, ExprPtr value)
+      : Item(ItemKind::Const, span), name(name), nameSpan(nameSpan), value(std::move(value)) {}
+  std::string_view name;
   SourceSpan nameSpan;
   ExprPtr value;
   const Declaration* declaration = nullptr;
@@ -377,18 +382,18 @@ struct ConstItem : Item {
 
 // A parameter of a fn (no default) or of a part (with a default).
 struct Parameter {
-  std::string name;
+  std::string_view name;
   SourceSpan nameSpan;
   ExprPtr defaultValue; // null when absent
   const Declaration* declaration = nullptr;
 };
 
 struct FnItem : Item {
-  FnItem(SourceSpan span, std::string name, SourceSpan nameSpan, NodeList<Parameter> parameters,
-         ExprPtr body)
-      : Item(ItemKind::Fn, span), name(std::move(name)), nameSpan(nameSpan),
-        parameters(std::move(parameters)), body(std::move(body)) {}
-  std::string name;
+  FnItem(SourceSpan span, std::string_view name, SourceSpan nameSpan,
+         NodeList<Parameter> parameters, ExprPtr body)
+      : Item(ItemKind::Fn, span), name(name), nameSpan(nameSpan), parameters(std::move(parameters)),
+        body(std::move(body)) {}
+  std::string_view name;
   SourceSpan nameSpan;
   NodeList<Parameter> parameters;
   ExprPtr body;
@@ -396,11 +401,11 @@ struct FnItem : Item {
 };
 
 struct PartItem : Item {
-  PartItem(SourceSpan span, std::string name, SourceSpan nameSpan, NodeList<Parameter> parameters,
-           Block body)
-      : Item(ItemKind::Part, span), name(std::move(name)), nameSpan(nameSpan),
+  PartItem(SourceSpan span, std::string_view name, SourceSpan nameSpan,
+           NodeList<Parameter> parameters, Block body)
+      : Item(ItemKind::Part, span), name(name), nameSpan(nameSpan),
         parameters(std::move(parameters)), body(std::move(body)) {}
-  std::string name;
+  std::string_view name;
   SourceSpan nameSpan;
   NodeList<Parameter> parameters;
   Block body;
