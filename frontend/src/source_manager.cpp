@@ -9,6 +9,7 @@ namespace cncc::frontend {
 
 SourceFile::SourceFile(std::string path, std::string text)
     : path_(std::move(path)), text_(std::move(text)) {
+  lineStarts_.reserve(text_.size() / 32 + 1); // a guess: lines are rarely shorter
   lineStarts_.push_back(0);
   // find() is memchr: many bytes per step.
   std::string_view contents = text_;
@@ -79,12 +80,23 @@ std::optional<FileId> SourceManager::loadFile(const std::string& path) {
   if (!stream) {
     return std::nullopt;
   }
-  std::ostringstream contents;
-  contents << stream.rdbuf();
+  // Read at once into a string of the file's size; the size is only a hint
+  // (the file may change meanwhile), so whatever is left is read after it.
+  std::uintmax_t size = std::filesystem::file_size(path, error);
+  std::string contents(error ? 0 : static_cast<std::size_t>(size), '\0');
+  stream.read(contents.data(), static_cast<std::streamsize>(contents.size()));
+  contents.resize(static_cast<std::size_t>(stream.gcount()));
+  if (stream.eof()) {
+    stream.clear();
+  } else {
+    std::ostringstream rest;
+    rest << stream.rdbuf();
+    contents += rest.str();
+  }
   if (stream.bad()) {
     return std::nullopt;
   }
-  return addFile(path, contents.str());
+  return addFile(path, std::move(contents));
 }
 
 std::string_view SourceManager::text(SourceSpan span) const {
