@@ -212,7 +212,7 @@ Value Evaluator::evaluateValue(const Expr& expression, const Bindings& bindings)
   case ExprKind::Bool:
     return Value::ofBool(as<BoolExpr>(expression).value);
   case ExprKind::String:
-    return Value::ofString(as<StringExpr>(expression).value);
+    return Value::ofString(std::string(as<StringExpr>(expression).value));
   case ExprKind::Name:
     return evaluateName(as<NameExpr>(expression), bindings);
   case ExprKind::Unary:

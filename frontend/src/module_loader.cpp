@@ -43,7 +43,7 @@ private:
   }
 
   void loadImport(ImportItem& import, FileId importingFile) {
-    std::optional<std::string> path = resolve(import.path, importingFile);
+    std::optional<std::string> path = resolve(std::string(import.path), importingFile);
     if (!path) {
       context_.report(DiagnosticKind::ImportNotFound, import.pathSpan,
                       fmt::format("cannot find module \"{}\" (searched beside this file{})",

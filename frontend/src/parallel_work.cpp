@@ -14,9 +14,6 @@ namespace {
 // more than it saves.
 constexpr std::size_t minimumParallelBytes = 64 * 1024;
 
-// Below this many items freeing them costs less than a thread.
-constexpr std::size_t minimumItemsFreedOnTwoThreads = 512;
-
 // Below this size a file is parsed on one thread.
 constexpr std::size_t minimumParallelFileBytes = 128 * 1024;
 // How far past the middle a split is looked for.
@@ -77,19 +74,6 @@ Module parseModule(const SourceManager& sources, FileId file, DiagnosticEngine& 
   }
   appendModule(first, std::move(second));
   return first;
-}
-
-void freeItemsOnTwoThreads(std::vector<ItemPtr>& items) {
-  if (items.size() < minimumItemsFreedOnTwoThreads || !twoThreadsAllowed(CheckOptions())) {
-    return;
-  }
-  std::size_t half = items.size() / 2;
-  auto freeRange = [&items](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      items[i].reset();
-    }
-  };
-  runAlongside([&] { freeRange(half, items.size()); }, [&] { freeRange(0, half); });
 }
 
 bool twoThreadsAllowed(const CheckOptions& options) {

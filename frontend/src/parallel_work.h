@@ -40,10 +40,6 @@ template <typename Other, typename Here> void runAlongside(Other&& other, Here&&
 Module parseModule(const SourceManager& sources, FileId file, DiagnosticEngine& diagnostics,
                    const CheckOptions& options);
 
-// Frees a large module's items as two halves on two threads (a small one's
-// are left to be freed with the module).
-void freeItemsOnTwoThreads(std::vector<ItemPtr>& items);
-
 // Whether `options` and the machine allow a second thread.
 bool twoThreadsAllowed(const CheckOptions& options);
 

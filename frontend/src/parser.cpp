@@ -314,7 +314,7 @@ private:
       return arena_->make<ErrorItem>(spanFrom(begin));
     }
     const Token& path = advance();
-    return arena_->make<ImportItem>(spanFrom(begin), std::string(path.text), path.span);
+    return arena_->make<ImportItem>(spanFrom(begin), path.text, path.span);
   }
 
   // const name = expr
@@ -488,12 +488,12 @@ private:
         errorAtCurrent(DiagnosticKind::ExpectedIdentifier, "'mm' or 'inch' after 'units'");
         return arena_->make<ErrorStmt>(spanFrom(begin));
       }
-      std::string unit(advance().text);
+      std::string_view unit = advance().text;
       if (unit != "mm" && unit != "inch") {
         error(DiagnosticKind::UnknownUnits, unitSpan,
               fmt::format("unknown units '{}'; expected 'mm' or 'inch'", unit));
       }
-      return arena_->make<UnitsStmt>(spanFrom(begin), std::move(unit), unitSpan);
+      return arena_->make<UnitsStmt>(spanFrom(begin), unit, unitSpan);
     }
     if (text == "tool") {
       ExprPtr number = parseExpression();
@@ -869,7 +869,7 @@ private:
       return arena_->make<NumberExpr>(token.span, token.number, token.unit);
     case TokenKind::String:
       advance();
-      return arena_->make<StringExpr>(token.span, std::string(token.text));
+      return arena_->make<StringExpr>(token.span, token.text);
     case TokenKind::KwTrue:
     case TokenKind::KwFalse:
       advance();

@@ -361,12 +361,6 @@ CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const Check
   return program;
 }
 
-CheckedProgram::~CheckedProgram() {
-  if (!modules.empty()) {
-    freeItemsOnTwoThreads(modules.front().items);
-  }
-}
-
 namespace {
 
 bool contains(SourceSpan span, FileId file, std::uint32_t offset) {

@@ -53,7 +53,7 @@ std::string wordOf(const Expr& expression) {
     return std::string(as<NameExpr>(expression).name);
   }
   if (expression.kind == ExprKind::String) {
-    return as<StringExpr>(expression).value;
+    return std::string(as<StringExpr>(expression).value);
   }
   return {};
 }

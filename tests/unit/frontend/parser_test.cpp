@@ -44,7 +44,7 @@ std::string sexpr(const Expr& expression) {
   case ExprKind::Bool:
     return as<BoolExpr>(expression).value ? "true" : "false";
   case ExprKind::String:
-    return "\"" + as<StringExpr>(expression).value + "\"";
+    return "\"" + std::string(as<StringExpr>(expression).value) + "\"";
   case ExprKind::Name:
     return std::string(as<NameExpr>(expression).name);
   case ExprKind::Unary: {

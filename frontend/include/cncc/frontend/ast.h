@@ -21,23 +21,26 @@ namespace cncc::frontend {
 
 struct Declaration;
 
-// Names (of declarations, references, arguments, members) view the text of
-// their file, which its SourceManager keeps: a tree must not outlive the
-// SourceManager it was parsed from.
-//
-// The parser places the nodes of one module in one arena (node_arena.h), a
-// few large blocks instead of an allocation per node. The pointers still own
-// their nodes: destroying one runs the node's destructor, and the module's
-// arena frees the memory after its items.
+// The nodes of one module hold no resources of their own, so that freeing
+// a tree is freeing its module's arena, without a visit of every node:
+//  - names and strings (of declarations, references, arguments, members,
+//    string literals, imports) view the text of their file, or the
+//    unescaped copy of a string the file keeps, which its SourceManager
+//    keeps: a tree must not outlive the SourceManager it was parsed from;
+//  - children are in the module's arena (node_arena.h): a few large blocks
+//    instead of an allocation per node, freed when the module goes.
+// A pointer to a node or a list of nodes marks the parent-child relation
+// and moves like a unique_ptr, but destroys nothing: a member that must be
+// destroyed (a std::string, a std::vector) would leak.
 class NodeArena;
 struct NodeDeleter {
-  template <typename Node> void operator()(Node* node) const { node->~Node(); }
+  template <typename Node> void operator()(Node* /*node*/) const {}
 };
 
 // The children of a node (arguments, components, statements), placed in the
 // module's arena at their final number: read like a vector, and the
-// elements can be changed, but none added or removed. Destroying the list
-// destroys the elements; the arena frees the memory.
+// elements can be changed, but none added or removed. The arena frees the
+// memory; the elements are not destroyed (see NodeDeleter).
 template <typename Element> class NodeList {
 public:
   NodeList() = default;
@@ -46,7 +49,6 @@ public:
       : elements_(std::exchange(other.elements_, nullptr)), size_(std::exchange(other.size_, 0)) {}
   NodeList& operator=(NodeList&& other) noexcept {
     if (this != &other) {
-      std::destroy_n(elements_, size_);
       elements_ = std::exchange(other.elements_, nullptr);
       size_ = std::exchange(other.size_, 0);
     }
@@ -54,7 +56,7 @@ public:
   }
   NodeList(const NodeList&) = delete;
   NodeList& operator=(const NodeList&) = delete;
-  ~NodeList() { std::destroy_n(elements_, size_); }
+  ~NodeList() = default;
 
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
@@ -139,9 +141,9 @@ struct BoolExpr : Expr {
 };
 
 struct StringExpr : Expr {
-  StringExpr(SourceSpan span, std::string value)
-      : Expr(ExprKind::String, span), value(std::move(value)) {}
-  std::string value;
+  StringExpr(SourceSpan span, std::string_view value)
+      : Expr(ExprKind::String, span), value(value) {}
+  std::string_view value;
 };
 
 struct NameExpr : Expr {
@@ -268,9 +270,9 @@ struct Block {
 };
 
 struct UnitsStmt : Stmt {
-  UnitsStmt(SourceSpan span, std::string unit, SourceSpan unitSpan)
-      : Stmt(StmtKind::Units, span), unit(std::move(unit)), unitSpan(unitSpan) {}
-  std::string unit; // "mm" or "inch"
+  UnitsStmt(SourceSpan span, std::string_view unit, SourceSpan unitSpan)
+      : Stmt(StmtKind::Units, span), unit(unit), unitSpan(unitSpan) {}
+  std::string_view unit; // "mm" or "inch"
   SourceSpan unitSpan;
 };
 
@@ -364,9 +366,9 @@ struct Item {
 using ItemPtr = std::unique_ptr<Item, NodeDeleter>;
 
 struct ImportItem : Item {
-  ImportItem(SourceSpan span, std::string path, SourceSpan pathSpan)
-      : Item(ItemKind::Import, span), path(std::move(path)), pathSpan(pathSpan) {}
-  std::string path;
+  ImportItem(SourceSpan span, std::string_view path, SourceSpan pathSpan)
+      : Item(ItemKind::Import, span), path(path), pathSpan(pathSpan) {}
+  std::string_view path;
   SourceSpan pathSpan;
   FileId resolvedFile; // set by the module loader
 };

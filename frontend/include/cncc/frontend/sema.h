@@ -84,9 +84,6 @@ struct CheckedProgram {
   CheckedProgram() = default;
   CheckedProgram(CheckedProgram&&) = default;
   CheckedProgram& operator=(CheckedProgram&&) = default;
-  // A large main module's syntax tree is freed on two threads, as it was
-  // built.
-  ~CheckedProgram();
 
   std::deque<Module> modules; // the main file first, then its imports
   // A list: declarations made on two threads are joined without moving.
