@@ -8,31 +8,38 @@
 namespace cncc::frontend {
 
 SourceFile::SourceFile(std::string path, std::string text)
-    : path_(std::move(path)), text_(std::move(text)) {
-  lineStarts_.reserve(text_.size() / 32 + 1); // a guess: lines are rarely shorter
-  lineStarts_.push_back(0);
-  // find() is memchr: many bytes per step.
-  std::string_view contents = text_;
-  for (std::size_t lineEnd = contents.find('\n'); lineEnd != std::string_view::npos;
-       lineEnd = contents.find('\n', lineEnd + 1)) {
-    lineStarts_.push_back(static_cast<std::uint32_t>(lineEnd + 1));
-  }
+    : path_(std::move(path)), text_(std::move(text)) {}
+
+const std::vector<std::uint32_t>& SourceFile::lineStarts() const {
+  std::call_once(lineStartsFound_, [this] {
+    lineStarts_.reserve(text_.size() / 32 + 1); // a guess: lines are rarely shorter
+    lineStarts_.push_back(0);
+    // find() is memchr: many bytes per step.
+    std::string_view contents = text_;
+    for (std::size_t lineEnd = contents.find('\n'); lineEnd != std::string_view::npos;
+         lineEnd = contents.find('\n', lineEnd + 1)) {
+      lineStarts_.push_back(static_cast<std::uint32_t>(lineEnd + 1));
+    }
+  });
+  return lineStarts_;
 }
 
 LineColumn SourceFile::lineColumn(std::uint32_t offset) const {
+  const std::vector<std::uint32_t>& starts = lineStarts();
   offset = std::min<std::uint32_t>(offset, static_cast<std::uint32_t>(text_.size()));
-  auto next = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
-  auto lineIndex = static_cast<std::uint32_t>(next - lineStarts_.begin()) - 1;
-  return {lineIndex + 1, offset - lineStarts_[lineIndex] + 1};
+  auto next = std::upper_bound(starts.begin(), starts.end(), offset);
+  auto lineIndex = static_cast<std::uint32_t>(next - starts.begin()) - 1;
+  return {lineIndex + 1, offset - starts[lineIndex] + 1};
 }
 
 std::string_view SourceFile::lineText(std::uint32_t line) const {
-  if (line == 0 || line > lineStarts_.size()) {
+  const std::vector<std::uint32_t>& starts = lineStarts();
+  if (line == 0 || line > starts.size()) {
     return {};
   }
-  std::uint32_t begin = lineStarts_[line - 1];
+  std::uint32_t begin = starts[line - 1];
   std::uint32_t end =
-      line < lineStarts_.size() ? lineStarts_[line] : static_cast<std::uint32_t>(text_.size());
+      line < starts.size() ? starts[line] : static_cast<std::uint32_t>(text_.size());
   std::string_view result(text_.data() + begin, end - begin);
   while (!result.empty() && (result.back() == '\n' || result.back() == '\r')) {
     result.remove_suffix(1);
@@ -42,11 +49,12 @@ std::string_view SourceFile::lineText(std::uint32_t line) const {
 
 std::uint32_t SourceFile::offsetOf(std::uint32_t zeroBasedLine,
                                    std::uint32_t zeroBasedColumn) const {
-  if (zeroBasedLine >= lineStarts_.size()) {
+  const std::vector<std::uint32_t>& starts = lineStarts();
+  if (zeroBasedLine >= starts.size()) {
     return static_cast<std::uint32_t>(text_.size());
   }
   auto lineLength = static_cast<std::uint32_t>(lineText(zeroBasedLine + 1).size());
-  return lineStarts_[zeroBasedLine] + std::min(zeroBasedColumn, lineLength);
+  return starts[zeroBasedLine] + std::min(zeroBasedColumn, lineLength);
 }
 
 std::string_view SourceFile::keepUnescaped(std::uint32_t offset, std::string unescaped) const {

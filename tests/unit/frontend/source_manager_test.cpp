@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace cncc::frontend {
@@ -72,6 +73,25 @@ TEST(SourceFileLines, LineTextWithoutItsBreak) {
   EXPECT_EQ(file.lineText(2), "  units mm");
   EXPECT_EQ(file.lineText(3), "}");
   EXPECT_EQ(file.lineText(4), "");
+}
+
+TEST(SourceFileLines, FoundOnceWhenTwoThreadsAskFirst) {
+  // The line table is built on first use; two threads asking at once must
+  // both see the whole of it.
+  std::string text;
+  for (int i = 0; i < 20000; ++i) {
+    text += "curve line((0, 0), (" + std::to_string(i) + ", 0))\n";
+  }
+  SourceFile file("text.cdl", text);
+  auto last = static_cast<std::uint32_t>(text.size() - 1);
+  LineColumn seenByOther{};
+  std::thread other([&] { seenByOther = file.lineColumn(last); });
+  LineColumn seenHere = file.lineColumn(last);
+  other.join();
+  EXPECT_EQ(seenHere.line, 20000u);
+  EXPECT_EQ(seenByOther.line, 20000u);
+  EXPECT_EQ(seenHere.column, seenByOther.column);
+  EXPECT_EQ(file.lineCount(), 20001u);
 }
 
 TEST(SourceManagerLoading, ReadsTheWholeFile) {

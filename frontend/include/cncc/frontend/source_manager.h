@@ -48,7 +48,7 @@ public:
   LineColumn lineColumn(std::uint32_t offset) const;
   // The text of a one-based line, without its line break.
   std::string_view lineText(std::uint32_t line) const;
-  std::uint32_t lineCount() const { return static_cast<std::uint32_t>(lineStarts_.size()); }
+  std::uint32_t lineCount() const { return static_cast<std::uint32_t>(lineStarts().size()); }
   // Byte offset of a zero-based line and a zero-based UTF-16-agnostic byte
   // column, clamped into the file (used by the language server).
   std::uint32_t offsetOf(std::uint32_t zeroBasedLine, std::uint32_t zeroBasedColumn) const;
@@ -58,9 +58,14 @@ public:
   std::string_view keepUnescaped(std::uint32_t offset, std::string unescaped) const;
 
 private:
+  // Where each line begins, found the first time it is asked for (from any
+  // thread): a check that reports nothing never needs it.
+  const std::vector<std::uint32_t>& lineStarts() const;
+
   std::string path_;
   std::string text_;
-  std::vector<std::uint32_t> lineStarts_;
+  mutable std::once_flag lineStartsFound_;
+  mutable std::vector<std::uint32_t> lineStarts_;
   mutable std::mutex unescapedMutex_;
   mutable std::unordered_map<std::uint32_t, std::string> unescaped_;
 };
