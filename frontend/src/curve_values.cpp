@@ -228,7 +228,7 @@ bool sameValue(const Value& a, const Value& b) {
   case TypeKind::Bool:
     return a.boolean == b.boolean;
   case TypeKind::String:
-    return a.string == b.string;
+    return a.string == b.string || (a.string && b.string && *a.string == *b.string);
   case TypeKind::Point:
     return a.pointDimensions == b.pointDimensions && sameNumber(a.point[0], b.point[0]) &&
            sameNumber(a.point[1], b.point[1]) && sameNumber(a.point[2], b.point[2]);
@@ -344,9 +344,25 @@ private:
     return result;
   }
 
+  // As value(parameter, TypeKind::Num), without a Value for a number.
   std::optional<double> number(Parameter parameter) {
-    Value result = value(parameter, TypeKind::Num);
-    return result.isError() ? std::nullopt : std::optional<double>(result.number);
+    const Expr* expression = argument(parameter);
+    if (expression == nullptr) {
+      return std::nullopt;
+    }
+    double result = 0;
+    Value other;
+    if (argumentNumber(*expression, result, other)) {
+      return result;
+    }
+    if (!other.isError()) {
+      evaluator_.report(DiagnosticKind::TypeMismatch, expression->span,
+                        fmt::format("argument '{}' of '{}' must be a {}, not a {}",
+                                    spelling(parameter), call_.callee, typeKindName(TypeKind::Num),
+                                    typeName(other.type)));
+    }
+    failed_ = true;
+    return std::nullopt;
   }
 
   std::optional<std::array<double, 3>> point(Parameter parameter) {
@@ -431,22 +447,37 @@ private:
     return evaluator_.evaluate(expression, bindings_);
   }
 
+  // As argumentValue, without a Value for a number: true with `number`
+  // set then; else false with `value` set to what argumentValue gives.
+  bool argumentNumber(const Expr& expression, double& number, Value& value) {
+    if (expression.type.kind != TypeKind::Error && expression.kind == ExprKind::Number &&
+        evaluator_.spendSteps(1)) {
+      number = as<NumberExpr>(expression).value;
+      return true;
+    }
+    if (expression.type.kind != TypeKind::Error && expression.kind == ExprKind::Point &&
+        evaluator_.spendSteps(1)) {
+      value = pointValue(as<PointExpr>(expression));
+      return false;
+    }
+    return evaluator_.evaluateAsNumber(expression, bindings_, number, value);
+  }
+
   // As Evaluator::evaluatePoint.
   Value pointValue(const PointExpr& point) {
     std::array<double, 3> coordinates{0, 0, 0};
     int dimensions = static_cast<int>(point.components.size());
     for (int i = 0; i < dimensions && i < 3; ++i) {
       const Expr& component = *point.components[static_cast<std::size_t>(i)];
-      Value coordinate = argumentValue(component);
-      if (coordinate.isError()) {
-        return {};
+      Value coordinate;
+      if (argumentNumber(component, coordinates[static_cast<std::size_t>(i)], coordinate)) {
+        continue;
       }
-      if (coordinate.type.kind != TypeKind::Num) {
+      if (!coordinate.isError()) {
         evaluator_.report(DiagnosticKind::TypeMismatch, component.span,
                           "a point's coordinates must be numbers");
-        return {};
       }
-      coordinates[static_cast<std::size_t>(i)] = coordinate.number;
+      return {};
     }
     return Value::ofPoint(coordinates, std::min(dimensions, 3));
   }
@@ -627,7 +658,7 @@ private:
     curve->x = argument(Parameter::X);
     curve->y = argument(Parameter::Y);
     curve->z = argument(Parameter::Z);
-    sampleExpressions(*curve);
+    sampleExpressions(curve);
     return finish(std::move(curve));
   }
 
@@ -637,20 +668,20 @@ private:
   // (a curve made by a fn called in a loop) is evaluated once: a sampling
   // that reported nothing and computed no constant would do nothing else
   // again, and spends its steps again.
-  void sampleExpressions(CurveValue& curve) {
+  void sampleExpressions(const std::shared_ptr<CurveValue>& curve) {
     Evaluator::Progress before = evaluator_.progress();
     auto& samplings = evaluator_.samplings();
     if (auto found = samplings.find(&call_);
         found != samplings.end() && found->second.callDepth == before.callDepth &&
-        sameEnvironment(found->second.environment, curve.environment) &&
+        sameEnvironment(found->second.curve->environment, curve->environment) &&
         evaluator_.spendSteps(found->second.steps)) {
       return;
     }
-    sampleAll(curve);
+    sampleAll(*curve);
     Evaluator::Progress after = evaluator_.progress();
     if (!failed_ && !evaluator_.exhausted() && after.reports == before.reports &&
         after.constants == before.constants) {
-      samplings[&call_] = {curve.environment, before.callDepth, after.steps - before.steps};
+      samplings[&call_] = {curve, before.callDepth, after.steps - before.steps};
     }
   }
 

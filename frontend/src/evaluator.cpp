@@ -40,22 +40,52 @@ void Evaluator::reportNonFinite(SourceSpan span, const std::string& what) {
   report(DiagnosticKind::NonFiniteValue, span, fmt::format("{} is not a finite number", what));
 }
 
+Bindings::~Bindings() {
+  for (std::size_t i = 0; i < inlineCount_; ++i) {
+    inlineBinding(i)->~Binding();
+  }
+}
+
 void Bindings::bind(const Declaration* declaration, Value value) {
-  for (auto& [bound, boundValue] : local_) {
+  for (std::size_t i = 0; i < inlineCount_; ++i) {
+    if (inlineBinding(i)->first == declaration) {
+      inlineBinding(i)->second = std::move(value);
+      return;
+    }
+  }
+  for (auto& [bound, boundValue] : more_) {
     if (bound == declaration) {
       boundValue = std::move(value);
       return;
     }
   }
-  local_.emplace_back(declaration, std::move(value));
+  if (inlineCount_ < inlineBindings) {
+    new (inlineStorage_.data() + inlineCount_ * sizeof(Binding))
+        Binding(declaration, std::move(value));
+    ++inlineCount_;
+    return;
+  }
+  more_.emplace_back(declaration, std::move(value));
+}
+
+const Value* Bindings::findLocal(const Declaration* declaration) const {
+  for (std::size_t i = 0; i < inlineCount_; ++i) {
+    if (inlineBinding(i)->first == declaration) {
+      return &inlineBinding(i)->second;
+    }
+  }
+  for (const auto& [bound, value] : more_) {
+    if (bound == declaration) {
+      return &value;
+    }
+  }
+  return nullptr;
 }
 
 const Value* Bindings::find(const Declaration* declaration) const {
   for (const Bindings* frame = this; frame != nullptr; frame = frame->outer_) {
-    for (const auto& [bound, value] : frame->local_) {
-      if (bound == declaration) {
-        return &value;
-      }
+    if (const Value* value = frame->findLocal(declaration)) {
+      return value;
     }
     if (frame->environment_ != nullptr) {
       auto found = frame->environment_->find(declaration);
@@ -75,13 +105,7 @@ bool Bindings::findNumber(const Declaration* declaration, double& number) const 
         return true;
       }
     }
-    const Value* value = nullptr;
-    for (const auto& [bound, boundValue] : frame->local_) {
-      if (bound == declaration) {
-        value = &boundValue;
-        break;
-      }
-    }
+    const Value* value = frame->findLocal(declaration);
     if (value == nullptr && frame->environment_ != nullptr) {
       auto found = frame->environment_->find(declaration);
       value = found == frame->environment_->end() ? nullptr : &found->second;
@@ -104,7 +128,10 @@ Environment Bindings::flatten() const {
 // which are not copied.
 void Bindings::flattenInto(Environment& environment) const {
   for (const Bindings* frame = this; frame != nullptr; frame = frame->outer_) {
-    for (const auto& [declaration, value] : frame->local_) {
+    for (std::size_t i = 0; i < frame->inlineCount_; ++i) {
+      environment.emplace(frame->inlineBinding(i)->first, frame->inlineBinding(i)->second);
+    }
+    for (const auto& [declaration, value] : frame->more_) {
       environment.emplace(declaration, value);
     }
     if (frame->environment_ != nullptr) {
@@ -171,35 +198,68 @@ bool mayBeNumber(const Expr& expression) {
   }
 }
 
-Value Evaluator::evaluate(const Expr& expression, const Bindings& bindings) {
-  // A number written out, as the fast path takes it, without its
-  // bookkeeping.
+// A number written out, as the fast path takes it, without its bookkeeping.
+bool Evaluator::numberWrittenOut(const Expr& expression, double& number) {
   if (expression.kind == ExprKind::Number && fastPathEnabled_ && steps_ < maximumSteps &&
       expression.type.kind == TypeKind::Num) {
     ++steps_;
-    return Value::ofNumber(as<NumberExpr>(expression).value);
+    number = as<NumberExpr>(expression).value;
+    return true;
   }
-  if (!fastPathEnabled_ || !mayBeNumber(expression)) {
-    return evaluateValue(expression, bindings);
-  }
+  return false;
+}
+
+bool Evaluator::fastPathNumber(const Expr& expression, const Bindings& bindings, double& number) {
   std::size_t steps = steps_;
   std::size_t outerKept = stepsKept_;
   stepsKept_ = 0;
   ++fastPathDepth_;
-  double number = 0;
   bool evaluated = evaluateNumber(expression, bindings, number);
   --fastPathDepth_;
   std::size_t keptHere = stepsKept_;
   stepsKept_ = outerKept;
-  if (evaluated) {
-    return Value::ofNumber(number);
+  if (!evaluated) {
+    // As if the fast path had not run, but for the constants it evaluated.
+    steps_ = steps + keptHere;
   }
-  // As if the fast path had not run, but for the constants it evaluated.
-  steps_ = steps + keptHere;
+  return evaluated;
+}
+
+Value Evaluator::evaluateWithoutFastPath(const Expr& expression, const Bindings& bindings) {
   fastPathEnabled_ = false;
   Value value = evaluateValue(expression, bindings);
   fastPathEnabled_ = true;
   return value;
+}
+
+Value Evaluator::evaluate(const Expr& expression, const Bindings& bindings) {
+  double number = 0;
+  if (numberWrittenOut(expression, number)) {
+    return Value::ofNumber(number);
+  }
+  if (!fastPathEnabled_ || !mayBeNumber(expression)) {
+    return evaluateValue(expression, bindings);
+  }
+  if (fastPathNumber(expression, bindings, number)) {
+    return Value::ofNumber(number);
+  }
+  return evaluateWithoutFastPath(expression, bindings);
+}
+
+bool Evaluator::evaluateAsNumber(const Expr& expression, const Bindings& bindings, double& number,
+                                 Value& value) {
+  if (numberWrittenOut(expression, number)) {
+    return true;
+  }
+  if (!fastPathEnabled_ || !mayBeNumber(expression)) {
+    value = evaluateValue(expression, bindings);
+  } else if (fastPathNumber(expression, bindings, number)) {
+    return true;
+  } else {
+    value = evaluateWithoutFastPath(expression, bindings);
+  }
+  number = value.number;
+  return value.type.kind == TypeKind::Num;
 }
 
 Value Evaluator::evaluateValue(const Expr& expression, const Bindings& bindings) {
@@ -227,12 +287,14 @@ Value Evaluator::evaluateValue(const Expr& expression, const Bindings& bindings)
     return evaluateList(as<ListExpr>(expression), bindings);
   case ExprKind::Range: {
     const auto& range = as<RangeExpr>(expression);
-    Value low = evaluate(*range.low, bindings);
-    Value high = evaluate(*range.high, bindings);
-    if (low.type.kind != TypeKind::Num || high.type.kind != TypeKind::Num) {
+    double low = 0;
+    double high = 0;
+    Value other;
+    bool lowNumber = evaluateAsNumber(*range.low, bindings, low, other);
+    if (!evaluateAsNumber(*range.high, bindings, high, other) || !lowNumber) {
       return {};
     }
-    return Value::ofRange(low.number, high.number);
+    return Value::ofRange(low, high);
   }
   case ExprKind::Index:
     return evaluateIndex(as<IndexExpr>(expression), bindings);
@@ -685,14 +747,14 @@ Value Evaluator::evaluatePoint(const PointExpr& point, const Bindings& bindings)
   std::array<double, 3> coordinates{0, 0, 0};
   int dimensions = static_cast<int>(point.components.size());
   for (int i = 0; i < dimensions && i < 3; ++i) {
-    Value component = evaluate(*point.components[i], bindings);
+    Value component;
+    if (evaluateAsNumber(*point.components[i], bindings, coordinates[i], component)) {
+      continue;
+    }
     if (component.isError()) {
       return {};
     }
-    if (component.type.kind != TypeKind::Num) {
-      return typeError(point.components[i]->span, "a point's coordinates must be numbers");
-    }
-    coordinates[i] = component.number;
+    return typeError(point.components[i]->span, "a point's coordinates must be numbers");
   }
   return Value::ofPoint(coordinates, std::min(dimensions, 3));
 }

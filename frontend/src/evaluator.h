@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <memory_resource>
+#include <new>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -30,8 +30,13 @@ public:
   explicit Bindings(const Bindings* outer) : outer_(outer) {}
   Bindings(const Bindings&) = delete;
   Bindings& operator=(const Bindings&) = delete;
+  ~Bindings();
 
-  void reserve(std::size_t count) { local_.reserve(count); }
+  void reserve(std::size_t count) {
+    if (count > inlineBindings) {
+      more_.reserve(count - inlineBindings);
+    }
+  }
   // The fast path's fn calls bind numbers without Values (up to
   // `maximumNumbers`), seen only by findNumber: such a frame is never handed
   // to the ordinary evaluation.
@@ -52,15 +57,23 @@ public:
   Environment flatten() const;
 
 private:
+  using Binding = std::pair<const Declaration*, Value>;
   void flattenInto(Environment& environment) const;
+  // This frame's binding of `declaration`, or null.
+  const Value* findLocal(const Declaration* declaration) const;
+  Binding* inlineBinding(std::size_t i) {
+    return std::launder(reinterpret_cast<Binding*>(inlineStorage_.data()) + i);
+  }
+  const Binding* inlineBinding(std::size_t i) const {
+    return std::launder(reinterpret_cast<const Binding*>(inlineStorage_.data()) + i);
+  }
 
   // A fn call's parameters and a block's lets are few: the first ones live
-  // in the frame itself, without an allocation.
+  // in the frame itself (constructed only when bound), the others in `more_`.
   static constexpr std::size_t inlineBindings = 4;
-  using Binding = std::pair<const Declaration*, Value>;
-  alignas(Binding) std::array<std::byte, inlineBindings * sizeof(Binding)> localStorage_;
-  std::pmr::monotonic_buffer_resource localResource_{localStorage_.data(), localStorage_.size()};
-  std::pmr::vector<Binding> local_{&localResource_};
+  alignas(Binding) std::array<std::byte, inlineBindings * sizeof(Binding)> inlineStorage_;
+  std::size_t inlineCount_ = 0;
+  std::vector<Binding> more_;
   std::array<const Declaration*, maximumNumbers> numberDeclarations_;
   std::array<double, maximumNumbers> numbers_;
   std::size_t numberCount_ = 0;
@@ -94,6 +107,11 @@ public:
   Value evaluate(const Expr& expression, const Environment& environment) {
     return evaluate(expression, Bindings(environment));
   }
+  // What `evaluate` gives, without building a Value when it is a number:
+  // true with `number` set then; else false with `value` set to what
+  // `evaluate` gives.
+  bool evaluateAsNumber(const Expr& expression, const Bindings& bindings, double& number,
+                        Value& value);
   Value constantValue(const Declaration* declaration);
 
   // Reports once per kind and place, with a note for each fn call that led
@@ -146,7 +164,9 @@ public:
   // The last sampling of each curve call that reported nothing: the values
   // it ran with, at what fn call depth, and the steps it took.
   struct Sampling {
-    Environment environment;
+    // The curve sampled: the values it ran with are its environment, shared
+    // rather than copied.
+    std::shared_ptr<const CurveValue> curve;
     std::size_t callDepth = 0;
     std::size_t steps = 0;
   };
@@ -165,6 +185,12 @@ public:
   const std::size_t maximumSteps;
 
 private:
+  // The three ways `evaluate` takes: a number written out (when the fast
+  // path is on); the fast path, which leaves the steps as if it had not run
+  // when it fails; the ordinary evaluation below such a failure.
+  bool numberWrittenOut(const Expr& expression, double& number);
+  bool fastPathNumber(const Expr& expression, const Bindings& bindings, double& number);
+  Value evaluateWithoutFastPath(const Expr& expression, const Bindings& bindings);
   Value evaluateValue(const Expr& expression, const Bindings& bindings);
   // The fast path for numbers (number_evaluation.cpp): evaluates without
   // building Values and reports nothing. False when the value is not a

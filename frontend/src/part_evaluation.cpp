@@ -46,7 +46,7 @@ public:
       }
       if (value.type.kind == TypeKind::Num) {
         assign(parameter.declaration, value);
-        environment.bind(parameter.declaration, value);
+        environment.bind(parameter.declaration, std::move(value));
       }
     }
     walk(part_.body, environment);
@@ -72,11 +72,12 @@ private:
   }
 
   std::optional<double> number(const Expr& expression, const Bindings& environment) {
-    Value value = evaluator_.evaluate(expression, environment);
-    if (value.type.kind != TypeKind::Num) {
+    double result = 0;
+    Value other;
+    if (!evaluator_.evaluateAsNumber(expression, environment, result, other)) {
       return std::nullopt;
     }
-    return value.number;
+    return result;
   }
 
   // Checks value > 0 and reports `what` otherwise.
@@ -133,10 +134,10 @@ private:
       const auto& let = as<LetStmt>(statement);
       Value value = evaluator_.evaluate(*let.value, environment);
       if (let.declaration != nullptr) {
-        environment.bind(let.declaration, value);
         if (!let.declaration->value && !value.isError()) {
           assign(let.declaration, value);
         }
+        environment.bind(let.declaration, std::move(value));
       }
       return;
     }

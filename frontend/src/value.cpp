@@ -4,13 +4,6 @@
 
 namespace cncc::frontend {
 
-Value Value::ofNumber(double number) {
-  Value value;
-  value.type = Type::num();
-  value.number = number;
-  return value;
-}
-
 Value Value::ofBool(bool boolean) {
   Value value;
   value.type = Type::boolean();
@@ -21,15 +14,7 @@ Value Value::ofBool(bool boolean) {
 Value Value::ofString(std::string text) {
   Value value;
   value.type = Type::string();
-  value.string = std::move(text);
-  return value;
-}
-
-Value Value::ofPoint(std::array<double, 3> coordinates, int dimensions) {
-  Value value;
-  value.type = Type::point();
-  value.point = coordinates;
-  value.pointDimensions = dimensions;
+  value.string = std::make_shared<const std::string>(std::move(text));
   return value;
 }
 
@@ -97,7 +82,7 @@ std::string describeValue(const Value& value) {
   case TypeKind::Bool:
     return value.boolean ? "true" : "false";
   case TypeKind::String:
-    return fmt::format("\"{}\"", value.string);
+    return fmt::format("\"{}\"", value.string ? *value.string : std::string());
   case TypeKind::Point:
     return describePoint(value);
   case TypeKind::List: {

@@ -57,6 +57,36 @@ TEST(EvaluationTest, NumbersThroughFunctionsMatchTheOrdinaryArithmetic) {
             1.5 * 1.5 + -1 * (2.0 / 3) + std::pow(2.0, 1.5) + std::atan2(2, 1));
 }
 
+TEST(EvaluationTest, ABlockWithMoreLetsThanItsFrameHoldsFindsEachOne) {
+  // The later lets live past the frame's own room; `f` is 0 only when each
+  // let before it has its value.
+  auto checked = check(part("  let a = 1\n  let b = a + 1\n  let c = b + 1\n  let d = c + 1\n"
+                            "  let e = d + 1\n  let f = e - 5\n"
+                            "  curve line((0, 0), (1 / f, a + e))"));
+  EXPECT_THAT(checked->names(), ElementsAre("division-by-zero"));
+  const Declaration* e = checked->find("e");
+  ASSERT_NE(e, nullptr);
+  ASSERT_TRUE(e->value.has_value());
+  EXPECT_EQ(e->value->number, 5);
+}
+
+TEST(EvaluationTest, AFunctionWithManyParametersBindsEachOne) {
+  // Six parameters: more than a frame holds in itself, and named ones in
+  // another order than declared.
+  auto checked = check("fn f(a, b, c, d, e, g) = line((a, b), (c + d, e / g))\n" +
+                       part("  curve f(1, 2, 3, g = 0, e = 4, d = 5)"));
+  EXPECT_THAT(checked->names(), ElementsAre("division-by-zero"));
+}
+
+TEST(EvaluationTest, NumbersOffTheFastPathAreNumbersAndAPointIsNot) {
+  // A coordinate given by `if` and a point added up are evaluated the
+  // ordinary way; only the point given as a radius is a mismatch.
+  auto checked = check("fn f(k) = line((0, 0), (if k > 1 then 1 else 2, 1))\n" +
+                       part("  let r = (1, 2) + (3, 4)\n  curve line((0, 0), r)\n"
+                            "  curve f(2)\n  curve arc(center=(0, 0), radius=r, from=0, to=1)"));
+  EXPECT_THAT(checked->names(), ElementsAre("type-mismatch"));
+}
+
 TEST(EvaluationTest, AFastPathProblemIsReportedByTheOrdinaryPath) {
   // Every number but one: the division by zero inside the fn still gets
   // its message and the note for the call.

@@ -26,17 +26,31 @@ struct Value {
   Type type = Type::error();
   double number = 0;
   bool boolean = false;
-  std::string string;
+  // Strings are rare and Values are copied and moved all the time: a
+  // shared pointer moves without copying characters.
+  std::shared_ptr<const std::string> string;
   std::array<double, 3> point{0, 0, 0};
   int pointDimensions = 0;               // 2 or 3 for points
   std::shared_ptr<const ValueList> list; // lists
   double low = 0, high = 0;              // ranges
   std::shared_ptr<const CurveValue> curve;
 
-  static Value ofNumber(double number);
+  // Inline: evaluation makes one for nearly every number it computes.
+  static Value ofNumber(double number) {
+    Value value;
+    value.type = Type::num();
+    value.number = number;
+    return value;
+  }
   static Value ofBool(bool value);
   static Value ofString(std::string text);
-  static Value ofPoint(std::array<double, 3> coordinates, int dimensions);
+  static Value ofPoint(std::array<double, 3> coordinates, int dimensions) {
+    Value value;
+    value.type = Type::point();
+    value.point = coordinates;
+    value.pointDimensions = dimensions;
+    return value;
+  }
   static Value ofList(ValueList elements, TypeKind elementType);
   static Value ofRange(double low, double high);
   static Value ofCurve(std::shared_ptr<const CurveValue> curve);
