@@ -5,7 +5,9 @@
 # far fewer instructions than the C library's malloc. Its shared library,
 # linked before the C library, takes the place of malloc for the whole
 # process. Without the package, or under the sanitizers (which bring their
-# own allocator), the C library's malloc serves.
+# own allocator), the C library's malloc serves; so it does when configured
+# with -DCMAKE_DISABLE_FIND_PACKAGE_mimalloc=ON, which valgrind's memcheck
+# needs (it sees mimalloc's delete of the C++ library's new as mismatched).
 add_library(cncc_allocator INTERFACE)
 find_package(mimalloc 2.0 QUIET GLOBAL)
 if(mimalloc_FOUND AND NOT CNCC_SANITIZE)
