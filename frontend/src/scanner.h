@@ -199,14 +199,13 @@ public:
 
   // The next token; after the last one, EndOfFile at the end of the range
   // (every call). Lexer diagnostics are reported as their tokens are read.
+  // `token` may hold an earlier token (the parser reuses its window): every
+  // token gets its kind, span, line start and text, a number its value and
+  // unit; the value and unit of other kinds are left as they were (no reader
+  // looks at them).
   void read(Token& token) {
-    bool startsLine = skipSpaceAndComments();
-    token.unit = UnitSuffix::None;
-    token.number = 0;
-    token.text = {};
+    token.startsLine = skipSpaceAndComments();
     next(token);
-    token.startsLine = startsLine || first_;
-    first_ = false;
   }
 
   // The bytes left to read, for sizing a vector of the tokens.
@@ -221,9 +220,10 @@ private:
     return {fileId_, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(position_)};
   }
 
-  // Returns true when a line break was crossed.
+  // Returns true when a line break was crossed or this is the first token.
   bool skipSpaceAndComments() {
-    bool crossedLine = false;
+    bool crossedLine = first_;
+    first_ = false;
     const std::size_t size = text_.size();
     const char* text = text_.data();
     std::size_t position = position_;
@@ -282,9 +282,18 @@ private:
     }
   }
 
+  // The text is cleared here for every kind: identifiers and strings set it
+  // again after.
   void make(Token& token, TokenKind kind, std::size_t begin) {
     token.kind = kind;
     token.span = spanFrom(begin);
+    token.text = {};
+  }
+
+  void makeNumber(Token& token, std::size_t begin, double value) {
+    make(token, TokenKind::Number, begin);
+    token.number = value;
+    token.unit = UnitSuffix::None;
   }
 
   void next(Token& token) {
@@ -371,8 +380,7 @@ private:
       return;
     }
     position_ = position;
-    make(token, TokenKind::Number, begin);
-    token.number = static_cast<double>(mantissa) / powersOfTen[fractionDigits];
+    makeNumber(token, begin, static_cast<double>(mantissa) / powersOfTen[fractionDigits]);
     if (scanning::isIdentifierStart(following)) {
       applyUnitSuffix(token);
     }
@@ -402,6 +410,7 @@ private:
     }
     std::string_view digits = text_.substr(begin, position_ - begin);
     make(token, TokenKind::Number, begin);
+    token.unit = UnitSuffix::None;
     if (malformed) {
       diagnostics_.report(DiagnosticKind::MalformedNumber, token.span,
                           fmt::format("exponent of '{}' has no digits", digits));
