@@ -199,13 +199,14 @@ public:
 
   // The next token; after the last one, EndOfFile at the end of the range
   // (every call). Lexer diagnostics are reported as their tokens are read.
-  // `token` may hold an earlier token (the parser reuses its window): every
-  // token gets its kind, span, line start and text, a number its value and
-  // unit; the value and unit of other kinds are left as they were (no reader
-  // looks at them).
   void read(Token& token) {
-    token.startsLine = skipSpaceAndComments();
-    next(token);
+    // Scanned into a fresh local token, so that a field a kind does not use
+    // keeps its default, and stores to it cannot alias the scanner's members,
+    // which then stay in registers.
+    Token scanned;
+    scanned.startsLine = skipSpaceAndComments();
+    next(scanned);
+    token = scanned;
   }
 
   // The bytes left to read, for sizing a vector of the tokens.
@@ -282,18 +283,14 @@ private:
     }
   }
 
-  // The text is cleared here for every kind: identifiers and strings set it
-  // again after.
   void make(Token& token, TokenKind kind, std::size_t begin) {
     token.kind = kind;
     token.span = spanFrom(begin);
-    token.text = {};
   }
 
   void makeNumber(Token& token, std::size_t begin, double value) {
     make(token, TokenKind::Number, begin);
     token.number = value;
-    token.unit = UnitSuffix::None;
   }
 
   void next(Token& token) {
@@ -410,7 +407,6 @@ private:
     }
     std::string_view digits = text_.substr(begin, position_ - begin);
     make(token, TokenKind::Number, begin);
-    token.unit = UnitSuffix::None;
     if (malformed) {
       diagnostics_.report(DiagnosticKind::MalformedNumber, token.span,
                           fmt::format("exponent of '{}' has no digits", digits));
