@@ -352,16 +352,14 @@ private:
     const char* text = text_.data();
     std::size_t position = begin;
     std::uint64_t mantissa = 0;
-    int significant = 0;
     auto digits = [&] {
       while (position < size && scanning::isDigit(text[position])) {
-        auto digit = static_cast<std::uint64_t>(text[position] - '0');
-        significant += (mantissa != 0 || digit != 0) ? 1 : 0;
-        mantissa = mantissa * 10 + digit;
+        mantissa = mantissa * 10 + static_cast<std::uint64_t>(text[position] - '0');
         ++position;
       }
     };
     digits();
+    std::size_t integerDigits = position - begin;
     std::size_t fractionBegin = position;
     // "1..5" is a range, not "1." followed by ".5".
     if (position < size && text[position] == '.' &&
@@ -370,9 +368,12 @@ private:
       fractionBegin = position;
       digits();
     }
-    auto fractionDigits = static_cast<int>(position - fractionBegin);
+    std::size_t fractionDigits = position - fractionBegin;
     char following = position < size ? text[position] : '\0';
-    if (following == 'e' || following == 'E' || significant > 15 || fractionDigits > 15) {
+    // At most 15 digits keep the mantissa and the power of ten exact; longer
+    // ones (leading zeros too) are left to the general path, which converts
+    // the same way when they allow it.
+    if (following == 'e' || following == 'E' || integerDigits + fractionDigits > 15) {
       generalNumber(token);
       return;
     }

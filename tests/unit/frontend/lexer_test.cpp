@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -175,6 +176,26 @@ TEST_F(LexerTest, NumbersAndUnitSuffixes) {
     EXPECT_DOUBLE_EQ(tokens[0].number, expected.value) << expected.text;
     EXPECT_EQ(tokens[0].unit, expected.unit) << expected.text;
     EXPECT_EQ(textOf(tokens[0].span), expected.text) << "the span includes the unit";
+  }
+  EXPECT_TRUE(diagnostics_.diagnostics().empty());
+}
+
+// Up to 15 digits are converted by the lexer itself, longer numbers by
+// from_chars: either way the value is the correctly rounded one.
+TEST_F(LexerTest, LongNumbersAreConvertedAsFromChars) {
+  const std::string cases[] = {
+      "123456789012345",       "1234567890123456",        "0.00000000000001",
+      "0.000000000000001",     "0.0000000000000001",      "000000000000000012.5",
+      "9007199254740993",      "3.14159265358979",        "3.141592653589793238",
+      "0.1234567890123456789", "12345678901234567890123", "100000000000000000000.0",
+  };
+  for (const std::string& text : cases) {
+    double expected = 0;
+    std::from_chars(text.data(), text.data() + text.size(), expected);
+    std::vector<Token> tokens = lexText(text);
+    ASSERT_EQ(tokens.size(), 2u) << text;
+    EXPECT_EQ(tokens[0].kind, TokenKind::Number) << text;
+    EXPECT_EQ(tokens[0].number, expected) << text;
   }
   EXPECT_TRUE(diagnostics_.diagnostics().empty());
 }
