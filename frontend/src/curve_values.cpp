@@ -185,30 +185,97 @@ const ParameterNames& parameterNames(std::string_view builtin, Constructor const
   return none;
 }
 
-// A parameter's name compared with an argument's, by length and then
-// letter by letter (names are short: no call of memcmp).
-struct ParameterName {
-  std::string_view name;
-  bool operator==(std::string_view other) const {
-    if (name.size() != other.size()) {
-      return false;
+// The Parameter an argument names, by length, then a letter or two, then
+// one comparison of the whole name: an argument costs no search through the
+// constructor's parameter names.
+std::optional<Parameter> parameterNamed(std::string_view name) {
+  auto is = [&](Parameter parameter) -> std::optional<Parameter> {
+    if (name == spelling(parameter)) {
+      return parameter;
     }
-    for (std::size_t i = 0; i < name.size(); ++i) {
-      if (name[i] != other[i]) {
-        return false;
-      }
+    return std::nullopt;
+  };
+  switch (name.size()) {
+  case 1:
+    switch (name[0]) {
+    case 'r':
+      return Parameter::R;
+    case 't':
+      return Parameter::T;
+    case 'x':
+      return Parameter::X;
+    case 'y':
+      return Parameter::Y;
+    case 'z':
+      return Parameter::Z;
+    default:
+      return std::nullopt;
     }
-    return true;
+  case 2:
+    return name[0] == 't'   ? is(Parameter::To)
+           : name[1] == 'x' ? is(Parameter::Dx)
+                            : is(Parameter::Dy);
+  case 4:
+    return is(Parameter::From);
+  case 5:
+    switch (name[0]) {
+    case 'o':
+      return is(Parameter::Order);
+    case 'k':
+      return is(Parameter::Knots);
+    case 'a':
+      return is(Parameter::Angle);
+    default:
+      return is(Parameter::Curve);
+    }
+  case 6:
+    switch (name[0]) {
+    case 'd':
+      return is(Parameter::Degree);
+    case 'p':
+      return is(Parameter::Points);
+    case 'c':
+      return is(Parameter::Center);
+    case 'r':
+      return is(Parameter::Radius);
+    default:
+      return is(Parameter::Factor);
+    }
+  case 7:
+    return is(Parameter::Weights);
+  default:
+    return std::nullopt;
   }
-};
+}
 
-// The argument bound to each parameter, as the evaluator binds them;
-// parameters past `maximumParameters` (no builtin has them) stay unbound.
+// The argument bound to each parameter, as the evaluator binds them (a
+// constructor's parameter names are distinct, so a named argument binds at
+// most one); parameters past `maximumParameters` (no builtin has them) stay
+// unbound.
+BoundArguments bindConstructorArguments(const CallExpr& call,
+                                        const ConstructorParameters& parameters) {
+  BoundArguments bound{};
+  Evaluator::bindArgumentsWith(
+      call, std::min(parameters.names.size(), maximumParameters), bound.data(),
+      [&](const Argument& argument) {
+        std::optional<Parameter> parameter = parameterNamed(argument.name);
+        if (!parameter) {
+          return;
+        }
+        int position = parameters.positions[static_cast<std::size_t>(*parameter)];
+        if (position >= 0 && bound[static_cast<std::size_t>(position)] == nullptr) {
+          bound[static_cast<std::size_t>(position)] = argument.value.get();
+        }
+      });
+  return bound;
+}
+
+// The same for any builtin, by comparing names.
 BoundArguments bindBuiltinArguments(const CallExpr& call, const ParameterNames& names) {
   BoundArguments bound{};
   Evaluator::bindArguments(
-      call, std::min(names.size(), maximumParameters),
-      [&](std::size_t i) { return ParameterName{names[i]}; }, bound.data());
+      call, std::min(names.size(), maximumParameters), [&](std::size_t i) { return names[i]; },
+      bound.data());
   return bound;
 }
 
@@ -285,7 +352,7 @@ public:
   CurveBuilder(Evaluator& evaluator, const CallExpr& call, const Bindings& bindings)
       : evaluator_(evaluator), call_(call), bindings_(bindings),
         constructor_(constructorOf(call.callee)), parameters_(constructorParameters(constructor_)),
-        arguments_(bindBuiltinArguments(call, parameters_.names)) {}
+        arguments_(bindConstructorArguments(call, parameters_)) {}
 
   Value build() {
     switch (constructor_) {

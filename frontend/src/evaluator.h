@@ -127,21 +127,30 @@ public:
   template <typename NameAt>
   static void bindArguments(const CallExpr& call, std::size_t count, NameAt nameAt,
                             const Expr** bound) {
-    std::size_t next = 0;
-    for (const Argument& argument : call.arguments) {
-      if (argument.name.empty()) {
-        while (next < count && bound[next] != nullptr) {
-          ++next;
-        }
-        if (next < count) {
-          bound[next++] = argument.value.get();
-        }
-        continue;
-      }
+    bindArgumentsWith(call, count, bound, [&](const Argument& argument) {
       for (std::size_t i = 0; i < count; ++i) {
         if (bound[i] == nullptr && nameAt(i) == argument.name) {
           bound[i] = argument.value.get();
         }
+      }
+    });
+  }
+  // As bindArguments, with `bindNamed(argument)` binding each named argument
+  // in turn (for parameters found without comparing every name).
+  template <typename BindNamed>
+  static void bindArgumentsWith(const CallExpr& call, std::size_t count, const Expr** bound,
+                                BindNamed bindNamed) {
+    std::size_t next = 0;
+    for (const Argument& argument : call.arguments) {
+      if (!argument.name.empty()) {
+        bindNamed(argument);
+        continue;
+      }
+      while (next < count && bound[next] != nullptr) {
+        ++next;
+      }
+      if (next < count) {
+        bound[next++] = argument.value.get();
       }
     }
   }
