@@ -57,6 +57,28 @@ TEST(EvaluationTest, NumbersThroughFunctionsMatchTheOrdinaryArithmetic) {
             1.5 * 1.5 + -1 * (2.0 / 3) + std::pow(2.0, 1.5) + std::atan2(2, 1));
 }
 
+TEST(EvaluationTest, ACurveConstructorBindsNamedArgumentsInAnyOrder) {
+  // Named arguments out of order, alone and after a positional one.
+  auto checked = check("const a = arc(to = 1, center = (3, 4), radius = 2, from = 0.5)\n"
+                       "const b = translate(line((0, 0), (1, 0)), dy = 3, dx = 2)\n" +
+                       part("  curve a\n  curve b"));
+  ASSERT_THAT(checked->names(), ElementsAre());
+  const Declaration* arc = checked->find("a");
+  ASSERT_TRUE(arc != nullptr && arc->value && arc->value->curve);
+  EXPECT_EQ(arc->value->curve->center[0], 3);
+  EXPECT_EQ(arc->value->curve->center[1], 4);
+  EXPECT_EQ(arc->value->curve->arcRadius, 2);
+  EXPECT_EQ(arc->value->curve->startAngle, 0.5);
+  EXPECT_EQ(arc->value->curve->endAngle, 1);
+  const Declaration* moved = checked->find("b");
+  ASSERT_TRUE(moved != nullptr && moved->value && moved->value->curve);
+  EXPECT_EQ(moved->value->curve->kind, CurveKind::Translate);
+  EXPECT_EQ(moved->value->curve->dx, 2);
+  EXPECT_EQ(moved->value->curve->dy, 3);
+  ASSERT_EQ(moved->value->curve->pieces.size(), 1u);
+  EXPECT_EQ(moved->value->curve->pieces.front()->kind, CurveKind::Line);
+}
+
 TEST(EvaluationTest, ABlockWithMoreLetsThanItsFrameHoldsFindsEachOne) {
   // The later lets live past the frame's own room; `f` is 0 only when each
   // let before it has its value.
