@@ -51,7 +51,7 @@ std::vector<Token> lexRange(const SourceManager& sources, FileId file, std::uint
   // Dense sources hold about one token per 3 bytes.
   tokens.reserve(scanner.remaining() / 2 + 16);
   do {
-    scanner.read(tokens.emplace_back());
+    tokens.push_back(scanner.read());
   } while (tokens.back().kind != TokenKind::EndOfFile);
   return tokens;
 }

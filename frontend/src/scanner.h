@@ -199,15 +199,16 @@ public:
 
   // The next token; after the last one, EndOfFile at the end of the range
   // (every call). Lexer diagnostics are reported as their tokens are read.
-  void read(Token& token) {
-    // Scanned into a fresh local token, so that a field a kind does not use
-    // keeps its default, and stores to it cannot alias the scanner's members,
-    // which then stay in registers.
+  // Scanned into a fresh local token, so that a field a kind does not use
+  // keeps its default, and stores to it cannot alias the scanner's members,
+  // which then stay in registers.
+  Token read() {
     Token scanned;
     scanned.startsLine = skipSpaceAndComments();
     next(scanned);
-    token = scanned;
+    return scanned;
   }
+  void read(Token& token) { token = read(); }
 
   // The bytes left to read, for sizing a vector of the tokens.
   std::size_t remaining() const { return text_.size() - position_; }
