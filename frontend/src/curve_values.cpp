@@ -126,12 +126,13 @@ std::string_view spelling(Parameter parameter) {
 // A curve constructor's parameters: their names, in order, and where in
 // that order each Parameter is (-1: it has none of that name).
 struct ConstructorParameters {
+  std::string_view name; // the builtin's, which lives as long as the program
   ParameterNames names;
   std::array<int, parameterSpellings.size()> positions{};
 };
 
 ConstructorParameters constructorParametersOf(const BuiltinInfo& info) {
-  ConstructorParameters result{parameterNamesOf(info), {}};
+  ConstructorParameters result{info.name, parameterNamesOf(info), {}};
   for (std::size_t p = 0; p < parameterSpellings.size(); ++p) {
     result.positions[p] = -1;
     for (std::size_t i = 0; i < result.names.size() && i < maximumParameters; ++i) {
@@ -568,7 +569,7 @@ private:
     if (failed_) {
       return {};
     }
-    curve->constructor = call_.callee;
+    curve->constructor = parameters_.name;
     return Value::ofCurve(std::move(curve));
   }
 

@@ -5,9 +5,11 @@
 #include "cncc/frontend/types.h"
 
 #include <array>
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cncc::frontend {
@@ -60,11 +62,48 @@ struct Value {
 
 enum class CurveKind { Nurbs, Polar, Param, Line, Arc, Path, Translate, Rotate, Scale };
 
+// A curve's pieces: a path's, or the one a translate, rotate or scale moves.
+// Read like a vector. Most curves with pieces are transforms of one, which is
+// kept without allocating a vector.
+class CurvePieces {
+public:
+  using Piece = std::shared_ptr<const CurveValue>;
+  void reserve(std::size_t count) {
+    if (count > 1) {
+      many_.reserve(count);
+    }
+  }
+  void push_back(Piece piece) {
+    if (count_ == 0) {
+      single_ = std::move(piece);
+    } else {
+      if (count_ == 1) {
+        many_.push_back(std::move(single_));
+      }
+      many_.push_back(std::move(piece));
+    }
+    ++count_;
+  }
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const Piece* begin() const { return count_ <= 1 ? &single_ : many_.data(); }
+  const Piece* end() const { return begin() + count_; }
+  const Piece& front() const { return *begin(); }
+  const Piece& operator[](std::size_t i) const { return begin()[i]; }
+
+private:
+  std::size_t count_ = 0;
+  Piece single_;            // the piece, while there is only one
+  std::vector<Piece> many_; // every piece, once there are more
+};
+
 // A curve with every number it needs. Analytic curves keep their expressions
 // in `t` and the environment to evaluate them in.
 struct CurveValue {
   CurveKind kind = CurveKind::Nurbs;
-  std::string constructor; // the name the source used: nurbs, bspline, bezier, ...
+  // The name the source used: nurbs, bspline, bezier, ... (a view of the
+  // builtin's name, which lives as long as the program).
+  std::string_view constructor;
 
   // Nurbs, bspline, bezier: the control polygon and its knot vector
   // (clamped uniform when the source gave none).
@@ -90,7 +129,7 @@ struct CurveValue {
   double startAngle = 0, endAngle = 0;
 
   // Path: the pieces. Translate/rotate/scale: one piece and the amounts.
-  std::vector<std::shared_ptr<const CurveValue>> pieces;
+  CurvePieces pieces;
   double dx = 0, dy = 0, angle = 0, factor = 1;
 };
 
