@@ -186,67 +186,49 @@ const ParameterNames& parameterNames(std::string_view builtin, Constructor const
   return none;
 }
 
-// The Parameter an argument names, by length, then a letter or two, then
-// one comparison of the whole name: an argument costs no search through the
-// constructor's parameter names.
+// The Parameters by length and first letter, at most two of each (the
+// table fails to compile otherwise; 0: none, else the Parameter plus one):
+// an argument's name is compared with one or two spellings, not with every
+// parameter name.
+constexpr std::size_t longestParameter = 7;
+struct ParameterCandidates {
+  std::uint8_t first = 0;
+  std::uint8_t second = 0;
+};
+using CandidatesByLengthAndLetter =
+    std::array<std::array<ParameterCandidates, 26>, longestParameter + 1>;
+
+constexpr CandidatesByLengthAndLetter parametersByLengthAndLetter = [] {
+  CandidatesByLengthAndLetter table{};
+  for (std::size_t i = 0; i < parameterSpellings.size(); ++i) {
+    std::string_view name = parameterSpellings[i];
+    ParameterCandidates& candidates =
+        table.at(name.size()).at(static_cast<std::size_t>(name[0] - 'a'));
+    auto candidate = static_cast<std::uint8_t>(i + 1);
+    if (candidates.first == 0) {
+      candidates.first = candidate;
+    } else if (candidates.second == 0) {
+      candidates.second = candidate;
+    } else {
+      throw "a third parameter of the same length and first letter"; // fails to compile
+    }
+  }
+  return table;
+}();
+
+// The Parameter an argument names, if any.
 std::optional<Parameter> parameterNamed(std::string_view name) {
-  auto is = [&](Parameter parameter) -> std::optional<Parameter> {
-    if (name == spelling(parameter)) {
-      return parameter;
-    }
-    return std::nullopt;
-  };
-  switch (name.size()) {
-  case 1:
-    switch (name[0]) {
-    case 'r':
-      return Parameter::R;
-    case 't':
-      return Parameter::T;
-    case 'x':
-      return Parameter::X;
-    case 'y':
-      return Parameter::Y;
-    case 'z':
-      return Parameter::Z;
-    default:
-      return std::nullopt;
-    }
-  case 2:
-    return name[0] == 't'   ? is(Parameter::To)
-           : name[1] == 'x' ? is(Parameter::Dx)
-                            : is(Parameter::Dy);
-  case 4:
-    return is(Parameter::From);
-  case 5:
-    switch (name[0]) {
-    case 'o':
-      return is(Parameter::Order);
-    case 'k':
-      return is(Parameter::Knots);
-    case 'a':
-      return is(Parameter::Angle);
-    default:
-      return is(Parameter::Curve);
-    }
-  case 6:
-    switch (name[0]) {
-    case 'd':
-      return is(Parameter::Degree);
-    case 'p':
-      return is(Parameter::Points);
-    case 'c':
-      return is(Parameter::Center);
-    case 'r':
-      return is(Parameter::Radius);
-    default:
-      return is(Parameter::Factor);
-    }
-  case 7:
-    return is(Parameter::Weights);
-  default:
+  if (name.empty() || name.size() > longestParameter || name[0] < 'a' || name[0] > 'z') {
     return std::nullopt;
   }
+  const ParameterCandidates& candidates =
+      parametersByLengthAndLetter[name.size()][static_cast<std::size_t>(name[0] - 'a')];
+  for (std::uint8_t candidate : {candidates.first, candidates.second}) {
+    if (candidate != 0 && name == parameterSpellings[candidate - 1U]) {
+      return static_cast<Parameter>(candidate - 1);
+    }
+  }
+  return std::nullopt;
 }
 
 // The argument bound to each parameter, as the evaluator binds them (a
