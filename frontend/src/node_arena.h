@@ -46,7 +46,10 @@ public:
   }
 
 private:
-  static constexpr std::size_t alignment = alignof(std::max_align_t);
+  // Every node's members are at most pointers and doubles; a larger
+  // alignment would pad the small nodes.
+  static constexpr std::size_t alignment = alignof(double) > alignof(void*) ? alignof(double)
+                                                                            : alignof(void*);
   static constexpr std::size_t blockSize = 64 * 1024;
 
   void* allocate(std::size_t size) {

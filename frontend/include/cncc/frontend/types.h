@@ -1,11 +1,12 @@
 // The types of CDL values, as the semantic checker assigns them.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace cncc::frontend {
 
-enum class TypeKind {
+enum class TypeKind : std::uint8_t {
   Error, // an expression that already produced a diagnostic; accepted anywhere
   Any,   // a parameter of a generic `fn`, checked again at each call
   Num,
