@@ -81,7 +81,17 @@ struct BuiltinSpec;
 class Checker {
 public:
   explicit Checker(SemaContext& context) : context_(context), states_(ownStates_) {}
-  void run();
+  // A checker for parts on another thread: it reads `main`'s states, all
+  // Checked by then, and reports to `context`.
+  Checker(SemaContext& context, const Checker& main) : context_(context), states_(main.states_) {}
+
+  // Every module's declarations, file scopes, constants and functions: what
+  // parts use, so that parts can be checked after, each on its own.
+  void checkItems();
+  // A part of the main module, in its file scope (checker_statements.cpp).
+  void checkPart(PartItem& part, const Scope& fileScope);
+  // The parts of the imported modules, which are checked but not run.
+  void checkImportedParts();
 
 private:
   // file level (checker_items.cpp)
@@ -92,13 +102,7 @@ private:
   void addImportedNames(Scope& scope, const ImportItem& import,
                         std::map<std::string, const ImportItem*>& importedFrom);
   void checkConstantsAndFunctions(Module& module);
-  void checkParts(Module& module, std::span<PartItem* const> parts);
-  void checkPartsOnTwoThreads(const Scope& scope, std::span<PartItem* const> first,
-                              std::span<PartItem* const> second);
   void checkUnnamedItem(Item& item, const Scope& scope);
-  // A checker for parts on another thread: it reads this one's states, all
-  // Checked by then, and reports to `context`.
-  Checker(SemaContext& context, const Checker& main) : context_(context), states_(main.states_) {}
   ItemState stateOf(const Declaration* declaration) const {
     auto found = states_.find(declaration);
     return found == states_.end() ? ItemState::Unchecked : found->second;
@@ -107,7 +111,6 @@ private:
   Type checkFunction(FnItem& function, const Scope& fileScope);
 
   // parts (checker_statements.cpp)
-  void checkPart(PartItem& part, const Scope& fileScope);
   void checkBlock(Block& block, const Scope& parent);
   void checkStatement(Stmt& statement, Scope& scope, Block& block);
   void checkSettings(NodeList<Argument>& settings, std::span<const ParameterSpec> allowed,

@@ -340,15 +340,7 @@ bool Checker::checkAnalyticCurve(CallExpr& call, const BuiltinSpec& spec,
           [&] { return fmt::format("argument '{}' of '{}'", parameters[i].name, call.callee); });
     }
   }
-  // Calls are mostly met in the order of their addresses: one after the
-  // last is put at the end without a search.
-  auto& curveParameters = context_.program.curveParameters;
-  if (curveParameters.empty() ||
-      std::less<const CallExpr*>()(std::prev(curveParameters.end())->first, &call)) {
-    curveParameters.emplace_hint(curveParameters.end(), &call, &parameter);
-  } else {
-    curveParameters[&call] = &parameter;
-  }
+  call.curveParameter = &parameter;
   return ok;
 }
 

@@ -2,9 +2,8 @@
 // scopes with imported names, and checking items on first use.
 #include "checker.h"
 
-#include "parallel_work.h"
-
 #include <algorithm>
+#include <deque>
 #include <fmt/format.h>
 #include <string_view>
 #include <unordered_map>
@@ -12,8 +11,8 @@
 namespace cncc::frontend {
 
 // Constants and functions first, so that parts, which only use them, can be
-// checked on two threads.
-void Checker::run() {
+// checked one by one, on two threads and each just before it is run.
+void Checker::checkItems() {
   for (Module& module : context_.program.modules) {
     declareItems(module);
   }
@@ -23,14 +22,18 @@ void Checker::run() {
   for (Module& module : context_.program.modules) {
     checkConstantsAndFunctions(module);
   }
-  for (Module& module : context_.program.modules) {
-    std::vector<PartItem*> parts;
+}
+
+void Checker::checkImportedParts() {
+  std::deque<Module>& modules = context_.program.modules;
+  for (std::size_t i = 1; i < modules.size(); ++i) {
+    Module& module = modules[i];
+    const Scope& scope = context_.fileScopes.at(&module);
     for (ItemPtr& item : module.items) {
       if (item->kind == ItemKind::Part) {
-        parts.push_back(&as<PartItem>(*item));
+        checkPart(as<PartItem>(*item), scope);
       }
     }
-    checkParts(module, parts);
   }
 }
 
@@ -173,41 +176,6 @@ void Checker::checkConstantsAndFunctions(Module& module) {
   }
 }
 
-void Checker::checkParts(Module& module, std::span<PartItem* const> parts) {
-  const Scope& scope = context_.fileScopes.at(&module);
-  std::size_t split = partSplit({parts.data(), parts.size()}, context_.options);
-  if (split != 0) {
-    checkPartsOnTwoThreads(scope, parts.first(split), parts.subspan(split));
-    return;
-  }
-  for (PartItem* part : parts) {
-    checkPart(*part, scope);
-  }
-}
-
-// The second run of parts is checked on another thread into a program and
-// diagnostics of its own, which are then added to this program's as if the
-// parts had been checked here after the first run.
-void Checker::checkPartsOnTwoThreads(const Scope& scope, std::span<PartItem* const> first,
-                                     std::span<PartItem* const> second) {
-  CheckedProgram secondProgram;
-  DiagnosticEngine secondDiagnostics(0);
-  SemaContext secondContext(context_.sources, secondDiagnostics, secondProgram, context_.options);
-  Checker secondChecker(secondContext, *this);
-  runAlongside(
-      [&] {
-        for (PartItem* part : second) {
-          secondChecker.checkPart(*part, scope);
-        }
-      },
-      [&] {
-        for (PartItem* part : first) {
-          checkPart(*part, scope);
-        }
-      });
-  context_.adopt(secondContext);
-}
-
 // An item whose name did not parse: still check its body for the editor.
 void Checker::checkUnnamedItem(Item& item, const Scope& scope) {
   if (item.kind == ItemKind::Const) {
@@ -257,10 +225,6 @@ Type Checker::checkFunction(FnItem& function, const Scope& fileScope) {
     context_.program.scopeExtents.push_back({function.body->span, &declaration});
   }
   return checkExpression(*function.body, scope);
-}
-
-void checkNamesAndTypes(SemaContext& context) {
-  Checker(context).run();
 }
 
 } // namespace cncc::frontend

@@ -688,8 +688,7 @@ private:
     bool polar = constructor_ == Constructor::Polar;
     curve->kind = polar ? CurveKind::Polar : CurveKind::Param;
     Value range = value(Parameter::T, TypeKind::Range);
-    auto found = evaluator_.context().program.curveParameters.find(&call_);
-    if (range.isError() || found == evaluator_.context().program.curveParameters.end()) {
+    if (range.isError() || call_.curveParameter == nullptr) {
       failed_ = true;
       return {};
     }
@@ -702,7 +701,7 @@ private:
     }
     curve->low = range.low;
     curve->high = range.high;
-    curve->parameter = found->second;
+    curve->parameter = call_.curveParameter;
     curve->environment = bindings_.flatten();
     curve->radius = argument(Parameter::R);
     curve->x = argument(Parameter::X);

@@ -84,8 +84,10 @@ void DiagnosticEngine::addNote(Diagnostic* diagnostic, SourceSpan span, std::str
   }
 }
 
-void DiagnosticEngine::reportAll(const DiagnosticEngine& other) {
-  for (const Diagnostic& reported : other.diagnostics()) {
+void DiagnosticEngine::reportRange(const DiagnosticEngine& other, std::size_t first,
+                                   std::size_t last) {
+  for (std::size_t i = first; i < last; ++i) {
+    const Diagnostic& reported = other.diagnostics()[i];
     Diagnostic* diagnostic = report(reported.kind, reported.span, reported.message);
     for (const DiagnosticNote& note : reported.notes) {
       addNote(diagnostic, note.span, note.message);

@@ -18,8 +18,10 @@ void Evaluator::report(DiagnosticKind kind, SourceSpan span, std::string message
   }
 }
 
-void Evaluator::addReportsOf(const DiagnosticEngine& diagnostics) {
-  for (const Diagnostic& reported : diagnostics.diagnostics()) {
+void Evaluator::addReportsOf(const DiagnosticEngine& diagnostics, std::size_t first,
+                             std::size_t last) {
+  for (std::size_t i = first; i < last; ++i) {
+    const Diagnostic& reported = diagnostics.diagnostics()[i];
     ++reports_;
     if (!reported_.insert(reportKey(reported.kind, reported.span)).second) {
       continue;

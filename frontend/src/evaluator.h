@@ -94,10 +94,10 @@ public:
     copy.diagnostics_ = &diagnostics;
     return copy;
   }
-  // Reports what a copy reported to its own `diagnostics`, in order, as this
-  // evaluator would have reported it had it done the copy's work: each kind
-  // and place once.
-  void addReportsOf(const DiagnosticEngine& diagnostics);
+  // Reports what a copy reported to its own `diagnostics` ([first, last) of
+  // them), in order, as this evaluator would have reported it had it done
+  // the copy's work: each kind and place once.
+  void addReportsOf(const DiagnosticEngine& diagnostics, std::size_t first, std::size_t last);
   std::size_t stepsSpent() const { return steps_; }
 
   // Error values are returned silently when the expression already had a

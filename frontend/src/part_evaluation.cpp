@@ -1,12 +1,10 @@
 // Runs each part's body at compile time with its parameters at their
 // defaults (or -D values), the way the machine will run it, and checks what
 // only values show: feeds, tools, sweeps, tolerances, loop bounds.
-#include "evaluator.h"
-#include "parallel_work.h"
+#include "part_evaluation.h"
 
 #include <cmath>
 #include <fmt/format.h>
-#include <span>
 
 namespace cncc::frontend {
 
@@ -40,7 +38,7 @@ public:
       Value value = parameter.defaultValue
                         ? evaluator_.evaluate(*parameter.defaultValue, Bindings())
                         : Value{};
-      auto define = context_.options.defines.find(std::string(parameter.name));
+      auto define = context_.options.defines.find(parameter.name);
       if (define != context_.options.defines.end()) {
         value = Value::ofNumber(define->second);
       }
@@ -325,59 +323,19 @@ private:
 
 } // namespace
 
-namespace {
-
-void evaluateParts(Evaluator& evaluator, std::span<const PartItem* const> parts,
-                   std::vector<const Declaration*>* assigned = nullptr) {
-  for (const PartItem* part : parts) {
-    PartEvaluator(evaluator, *part, assigned).run();
-  }
-}
-
-// The parts of a large file are evaluated on two threads: the first ones
-// here, the others by a copy of the evaluator on a second thread, with
-// diagnostics of its own. The outcome is the one evaluating them in order
-// gives: the copy's diagnostics follow the first parts', and when the two
-// together spent more than the step budget (which evaluating in order would
-// have run out of part-way), the other parts are evaluated again here, after
-// the first, as in order.
-void evaluatePartsOnTwoThreads(Evaluator& evaluator, std::span<const PartItem* const> first,
-                               std::span<const PartItem* const> second) {
-  DiagnosticEngine secondDiagnostics(0);
-  Evaluator secondEvaluator = evaluator.copyReportingTo(secondDiagnostics);
-  std::vector<const Declaration*> secondAssigned;
-  std::size_t stepsBefore = evaluator.stepsSpent();
-  runAlongside([&] { evaluateParts(secondEvaluator, second, &secondAssigned); },
-               [&] { evaluateParts(evaluator, first); });
-  std::size_t steps = evaluator.stepsSpent() + (secondEvaluator.stepsSpent() - stepsBefore);
-  if (steps <= evaluator.maximumSteps) {
-    evaluator.addReportsOf(secondDiagnostics);
-    return;
-  }
-  for (const Declaration* declaration : secondAssigned) {
-    evaluator.context().mutableDeclaration(declaration).value.reset();
-  }
-  evaluateParts(evaluator, second);
-}
-
-} // namespace
-
-void evaluateProgram(SemaContext& context) {
-  Evaluator evaluator(context);
-  for (const Module& module : context.program.modules) {
+void evaluateConstants(Evaluator& evaluator) {
+  for (const Module& module : evaluator.context().program.modules) {
     for (const ItemPtr& item : module.items) {
       if (item->kind == ItemKind::Const && as<ConstItem>(*item).declaration != nullptr) {
         evaluator.constantValue(as<ConstItem>(*item).declaration);
       }
     }
   }
-  std::span<const PartItem* const> parts = context.program.parts;
-  std::size_t split = partSplit(parts, context.options);
-  if (split == 0) {
-    evaluateParts(evaluator, parts);
-  } else {
-    evaluatePartsOnTwoThreads(evaluator, parts.first(split), parts.subspan(split));
-  }
+}
+
+void evaluatePart(Evaluator& evaluator, const PartItem& part,
+                  std::vector<const Declaration*>* assigned) {
+  PartEvaluator(evaluator, part, assigned).run();
 }
 
 } // namespace cncc::frontend

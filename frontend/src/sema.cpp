@@ -1,6 +1,9 @@
 #include "cncc/frontend/sema.h"
 
+#include "checker.h"
 #include "parallel_work.h"
+#include "part_evaluation.h"
+#include "part_pipeline.h"
 #include "sema_context.h"
 
 #include <algorithm>
@@ -226,9 +229,7 @@ void SemaContext::adopt(SemaContext& other) {
                             from.references.end());
   program.scopeExtents.insert(program.scopeExtents.end(), from.scopeExtents.begin(),
                               from.scopeExtents.end());
-  program.curveParameters.merge(from.curveParameters);
   usedDeclarations.merge(other.usedDeclarations);
-  diagnostics.reportAll(other.diagnostics);
 }
 
 Diagnostic* SemaContext::report(DiagnosticKind kind, SourceSpan span, std::string message) {
@@ -353,10 +354,14 @@ CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const Check
   SemaContext context(sources, diagnostics, program, options);
   declareBuiltins(context);
   loadModules(context, mainFile);
-  checkNamesAndTypes(context);
+  Checker checker(context);
+  checker.checkItems();
   selectPart(context);
   checkDefines(context);
-  evaluateProgram(context);
+  Evaluator evaluator(context);
+  evaluateConstants(evaluator);
+  checkAndEvaluateParts(context, checker, evaluator);
+  checker.checkImportedParts();
   diagnostics.sortByLocation();
   return program;
 }

@@ -141,8 +141,8 @@ struct SemaContext {
 
   Declaration& declare(DeclarationKind kind, std::string_view name, SourceSpan span, Type type);
   // Takes what a context for part of the work on another thread collected:
-  // its declarations, references, scopes and uses, and reports its
-  // diagnostics here after this context's own.
+  // its declarations, references, scopes and uses (its diagnostics are the
+  // caller's to report, in the order the work would have reported them).
   void adopt(SemaContext& other);
   void reference(SourceSpan span, const Declaration* declaration, bool isDefinition) {
     // Only a let can be reported unused.
@@ -164,12 +164,5 @@ std::string suggestion(const std::string& name, const std::vector<std::string>& 
 
 // Loads the main module and, recursively, its imports (cycles reported).
 void loadModules(SemaContext& context, FileId mainFile);
-
-// Names, scopes and types of every module; records references.
-void checkNamesAndTypes(SemaContext& context);
-
-// Evaluates constants and, for each part, the body with its parameters at
-// their defaults (or -D values), reporting what evaluation finds.
-void evaluateProgram(SemaContext& context);
 
 } // namespace cncc::frontend

@@ -260,8 +260,8 @@ bool isIdentifier(std::string_view text) {
   return true;
 }
 
-std::map<std::string, double> parseDefines(const std::vector<std::string>& defines) {
-  std::map<std::string, double> values;
+std::map<std::string, double, std::less<>> parseDefines(const std::vector<std::string>& defines) {
+  std::map<std::string, double, std::less<>> values;
   for (const std::string& define : defines) {
     std::size_t equals = define.find('=');
     std::string name = define.substr(0, equals);

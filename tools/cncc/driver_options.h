@@ -37,8 +37,8 @@ struct DriverOptions {
   std::string target;              // a name from the target table
   std::string output = "-";        // "-" is standard output
   EmitKind emit = EmitKind::Ast;
-  std::map<std::string, double> defines; // -D name=value
-  std::string partName;                  // -p NAME
+  std::map<std::string, double, std::less<>> defines; // -D name=value
+  std::string partName;                               // -p NAME
   // -I directories in order, then the standard library directory.
   std::vector<std::string> importPaths;
   DiagnosticsFormat diagnosticsFormat = DiagnosticsFormat::Text;

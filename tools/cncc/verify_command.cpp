@@ -172,7 +172,7 @@ parameterValues(const frontend::PartItem& part, const DriverOptions& options,
   }
   std::vector<backends::ParameterValue> values;
   for (std::size_t i = 0; i < part.parameters.size() && i < variables.size(); ++i) {
-    auto define = options.defines.find(std::string(part.parameters[i].name));
+    auto define = options.defines.find(part.parameters[i].name);
     if (define != options.defines.end()) {
       values.push_back({define->first, variables[i], define->second});
     }

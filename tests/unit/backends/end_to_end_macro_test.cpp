@@ -27,7 +27,7 @@
 namespace cncc::backends {
 namespace {
 
-using Parameters = std::map<std::string, double>;
+using Parameters = frontend::ParameterDefines;
 
 struct MacroCase {
   std::string file;

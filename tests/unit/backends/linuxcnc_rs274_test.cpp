@@ -53,7 +53,7 @@ struct Compiled {
 };
 
 std::unique_ptr<Compiled> compile(const std::string& file, const std::string& part,
-                                  const std::map<std::string, double>& defines = {},
+                                  const frontend::ParameterDefines& defines = {},
                                   bool callable = false) {
   auto result = std::make_unique<Compiled>();
   std::optional<frontend::FileId> id =

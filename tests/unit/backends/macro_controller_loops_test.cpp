@@ -25,7 +25,7 @@
 namespace cncc::backends {
 namespace {
 
-using Parameters = std::map<std::string, double>;
+using Parameters = frontend::ParameterDefines;
 
 struct CheckedPart {
   frontend::SourceManager sources;

@@ -129,9 +129,18 @@ TEST(CurveBuildingTest, AListGivenByNameIsCheckedAsWell) {
       ElementsAre("type-mismatch", "order-vs-points"));
 }
 
+// The curve of the part's only cut, a polar or param call whose `t` the
+// checker declared.
 const CallExpr& onlyAnalyticCall(const test_support::Checked& checked) {
-  EXPECT_EQ(checked.program.curveParameters.size(), 1u);
-  return *checked.program.curveParameters.begin()->first;
+  std::vector<const CallExpr*> curves;
+  for (const StmtPtr& statement : checked.program.parts.at(0)->body.statements) {
+    if (statement->kind == StmtKind::Cut) {
+      curves.push_back(&as<CallExpr>(*as<CutStmt>(*statement).curve));
+    }
+  }
+  EXPECT_EQ(curves.size(), 1u);
+  EXPECT_NE(curves.at(0)->curveParameter, nullptr);
+  return *curves.at(0);
 }
 
 TEST(CurveBuildingTest, BuiltinArgumentsAreBoundByNameAndPosition) {

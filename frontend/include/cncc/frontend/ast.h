@@ -189,6 +189,8 @@ struct CallExpr : Expr {
   SourceSpan calleeSpan;
   NodeList<Argument> arguments;
   const Declaration* declaration = nullptr; // the fn or builtin, set by the checker
+  // polar(...) and param(...): the declaration of their `t`, set by the checker.
+  const Declaration* curveParameter = nullptr;
 };
 
 struct PointExpr : Expr {

@@ -48,8 +48,9 @@ public:
   // nullptr when it was dropped (duplicate, or past the error limit).
   Diagnostic* report(DiagnosticKind kind, SourceSpan span, std::string message);
   void addNote(Diagnostic* diagnostic, SourceSpan span, std::string message);
-  // Reports each of `other`'s diagnostics here, in order, with its notes.
-  void reportAll(const DiagnosticEngine& other);
+  // Reports `other`'s diagnostics [first, last) here, in order, with their
+  // notes.
+  void reportRange(const DiagnosticEngine& other, std::size_t first, std::size_t last);
 
   // A deque, so a Diagnostic* from report() stays valid while more arrive.
   const std::deque<Diagnostic>& diagnostics() const { return diagnostics_; }

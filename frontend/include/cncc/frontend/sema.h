@@ -60,12 +60,16 @@ struct Reference {
   bool isDefinition;
 };
 
+// -D name=value overrides of part parameter defaults, found by a view of
+// the parameter's name.
+using ParameterDefines = std::map<std::string, double, std::less<>>;
+
 struct CheckOptions {
   // Directories searched for `import "..."` after the importing file's own
   // directory, in order (-I dirs, then the stdlib directory).
   std::vector<std::string> importPaths;
   // -D name=value overrides of part parameter defaults.
-  std::map<std::string, double> defines;
+  ParameterDefines defines;
   // -p NAME; when empty and the file holds one part, that part.
   std::string partName;
   // Whether a missing or ambiguous part is an error (compiling needs one
@@ -105,8 +109,6 @@ struct CheckedProgram {
     const Declaration* declaration;
   };
   std::vector<ScopeExtent> scopeExtents;
-  // The declaration of `t` made for each polar(...) and param(...) call.
-  std::map<const CallExpr*, const Declaration*> curveParameters;
 };
 
 CheckedProgram checkProgram(SourceManager& sources, FileId mainFile, const CheckOptions& options,
