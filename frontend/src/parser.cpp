@@ -86,7 +86,8 @@ public:
   Module parseModule() {
     Module module;
     module.file = file_;
-    module.arenas.push_back(arena_);
+    module.arenas.push_back(itemArena_);
+    module.arenas.push_back(partBodyArena_);
     while (!check(TokenKind::EndOfFile)) {
       panicking_ = false;
       std::size_t before = position_;
@@ -361,7 +362,9 @@ private:
     }
     Block body;
     if (!panicking_ && check(TokenKind::LeftBrace)) {
+      arena_ = partBodyArena_.get();
       body = parseBlock();
+      arena_ = itemArena_.get();
     } else {
       errorAtCurrent(DiagnosticKind::ExpectedToken, "'{' to begin the part's body");
       body.span = peek().span;
@@ -988,7 +991,12 @@ private:
   std::vector<Parameter> parameterStack_;
   std::vector<Modifier> modifierStack_;
 
-  std::shared_ptr<NodeArena> arena_ = std::make_shared<NodeArena>();
+  // The file-level items (constants, functions, the parts' headers) apart
+  // from the parts' bodies: checking the items, which parts use, reads one
+  // compact run of memory instead of nodes scattered among the parts'.
+  std::shared_ptr<NodeArena> itemArena_ = std::make_shared<NodeArena>();
+  std::shared_ptr<NodeArena> partBodyArena_ = std::make_shared<NodeArena>();
+  NodeArena* arena_ = itemArena_.get(); // where nodes are made now
   FileId file_;
   DiagnosticEngine& diagnostics_;
   std::size_t position_ = 0;
