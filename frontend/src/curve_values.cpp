@@ -3,6 +3,7 @@
 // points, weights, knot vectors, empty ranges, degenerate shapes.
 #include "evaluator.h"
 #include "number_sampling.h"
+#include "spelling_table.h"
 
 #include <algorithm>
 #include <array>
@@ -186,44 +187,20 @@ const ParameterNames& parameterNames(std::string_view builtin, Constructor const
   return none;
 }
 
-// The Parameters by length and first letter, at most two of each (the
-// table fails to compile otherwise; 0: none, else the Parameter plus one):
-// an argument's name is compared with one or two spellings, not with every
-// parameter name.
+// The Parameters by length and first letter: an argument's name is
+// compared with one or two spellings, not with every parameter name.
 constexpr std::size_t longestParameter = 7;
-struct ParameterCandidates {
-  std::uint8_t first = 0;
-  std::uint8_t second = 0;
-};
-using CandidatesByLengthAndLetter =
-    std::array<std::array<ParameterCandidates, 26>, longestParameter + 1>;
-
-constexpr CandidatesByLengthAndLetter parametersByLengthAndLetter = [] {
-  CandidatesByLengthAndLetter table{};
-  for (std::size_t i = 0; i < parameterSpellings.size(); ++i) {
-    std::string_view name = parameterSpellings[i];
-    ParameterCandidates& candidates =
-        table.at(name.size()).at(static_cast<std::size_t>(name[0] - 'a'));
-    auto candidate = static_cast<std::uint8_t>(i + 1);
-    if (candidates.first == 0) {
-      candidates.first = candidate;
-    } else if (candidates.second == 0) {
-      candidates.second = candidate;
-    } else {
-      throw "a third parameter of the same length and first letter"; // fails to compile
-    }
-  }
-  return table;
-}();
+constexpr SpellingTable<longestParameter> parameterTableBySpelling =
+    makeSpellingTable<longestParameter>(parameterSpellings.size(),
+                                        [](std::size_t i) { return parameterSpellings[i]; });
 
 // The Parameter an argument names, if any.
 std::optional<Parameter> parameterNamed(std::string_view name) {
-  if (name.empty() || name.size() > longestParameter || name[0] < 'a' || name[0] > 'z') {
+  const SpellingCandidates* candidates = spellingCandidates(parameterTableBySpelling, name);
+  if (candidates == nullptr) {
     return std::nullopt;
   }
-  const ParameterCandidates& candidates =
-      parametersByLengthAndLetter[name.size()][static_cast<std::size_t>(name[0] - 'a')];
-  for (std::uint8_t candidate : {candidates.first, candidates.second}) {
+  for (std::uint8_t candidate : {candidates->first, candidates->second}) {
     if (candidate != 0 && name == parameterSpellings[candidate - 1U]) {
       return static_cast<Parameter>(candidate - 1);
     }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "cncc/frontend/lexer.h"
+#include "spelling_table.h"
 
 #include <array>
 #include <charconv>
@@ -69,33 +70,9 @@ inline constexpr Keyword keywords[] = {
 #include "cncc/frontend/token_kinds.def"
 };
 
-// The keywords by length and first letter, at most two of each (0: none,
-// else the index in `keywords` plus one): most identifiers are told apart by
-// one look-up.
 inline constexpr std::size_t longestKeyword = 6;
-struct KeywordCandidates {
-  std::uint8_t first = 0;
-  std::uint8_t second = 0;
-};
-using KeywordTable = std::array<std::array<KeywordCandidates, 26>, longestKeyword + 1>;
-
-inline constexpr KeywordTable keywordTable = [] {
-  KeywordTable table{};
-  for (std::size_t i = 0; i < std::size(keywords); ++i) {
-    std::string_view spelling = keywords[i].spelling;
-    KeywordCandidates& candidates =
-        table[spelling.size()][static_cast<std::size_t>(spelling[0] - 'a')];
-    auto index = static_cast<std::uint8_t>(i + 1);
-    if (candidates.first == 0) {
-      candidates.first = index;
-    } else if (candidates.second == 0) {
-      candidates.second = index;
-    } else {
-      throw "a third keyword of the same length and first letter"; // fails to compile
-    }
-  }
-  return table;
-}();
+inline constexpr SpellingTable<longestKeyword> keywordTable = makeSpellingTable<longestKeyword>(
+    std::size(keywords), [](std::size_t i) { return keywords[i].spelling; });
 
 // Compared in a loop: a keyword is a few letters, fewer than a call costs.
 inline bool isKeyword(std::string_view spelling, std::uint8_t candidate) {
@@ -112,16 +89,15 @@ inline bool isKeyword(std::string_view spelling, std::uint8_t candidate) {
 }
 
 inline TokenKind keywordOrIdentifier(std::string_view spelling) {
-  if (spelling.size() > longestKeyword || spelling[0] < 'a' || spelling[0] > 'z') {
+  const SpellingCandidates* candidates = spellingCandidates(keywordTable, spelling);
+  if (candidates == nullptr) {
     return TokenKind::Identifier;
   }
-  const KeywordCandidates& candidates =
-      keywordTable[spelling.size()][static_cast<std::size_t>(spelling[0] - 'a')];
-  if (isKeyword(spelling, candidates.first)) {
-    return keywords[candidates.first - 1].kind;
+  if (isKeyword(spelling, candidates->first)) {
+    return keywords[candidates->first - 1].kind;
   }
-  if (isKeyword(spelling, candidates.second)) {
-    return keywords[candidates.second - 1].kind;
+  if (isKeyword(spelling, candidates->second)) {
+    return keywords[candidates->second - 1].kind;
   }
   return TokenKind::Identifier;
 }
