@@ -1,7 +1,6 @@
 #include "cncc/frontend/sema.h"
 
 #include "checker.h"
-#include "parallel_work.h"
 #include "part_evaluation.h"
 #include "part_pipeline.h"
 #include "sema_context.h"
