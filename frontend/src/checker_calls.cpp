@@ -193,6 +193,9 @@ ArgumentType builtinArgumentType(std::string_view function, std::string_view par
       parameter == "center"sv) {
     return {TypeKind::Point};
   }
+  if (function == "arc"sv && parameter == "z"sv) {
+    return {TypeKind::Range};
+  }
   return {TypeKind::Num};
 }
 

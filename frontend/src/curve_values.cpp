@@ -786,6 +786,15 @@ private:
       report(DiagnosticKind::DegenerateCurve, call_.span,
              fmt::format("the arc starts and ends at angle {:g}; it has no length", *from));
     }
+    if (argument(Parameter::Z) != nullptr) {
+      Value heights = value(Parameter::Z, TypeKind::Range);
+      if (heights.isError()) {
+        failed_ = true;
+        return {};
+      }
+      curve->startZ = heights.low;
+      curve->endZ = heights.high;
+    }
     curve->center = *center;
     curve->arcRadius = *radius;
     curve->startAngle = *from;

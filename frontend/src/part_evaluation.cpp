@@ -31,6 +31,10 @@ public:
 
   void run() {
     Bindings environment;
+    // -D sets the chosen part's parameters; the file's other parts are
+    // checked with their defaults.
+    const PartItem* selected = context_.program.selectedPart;
+    bool takesDefines = selected == nullptr || selected == &part_;
     for (const Parameter& parameter : part_.parameters) {
       if (parameter.declaration == nullptr) {
         continue;
@@ -39,7 +43,7 @@ public:
                         ? evaluator_.evaluate(*parameter.defaultValue, Bindings())
                         : Value{};
       auto define = context_.options.defines.find(parameter.name);
-      if (define != context_.options.defines.end()) {
+      if (takesDefines && define != context_.options.defines.end()) {
         value = Value::ofNumber(define->second);
       }
       if (value.type.kind == TypeKind::Num) {

@@ -111,6 +111,15 @@ void FunctionBuilder::feed(ValueId x, ValueId y, ValueId z, ValueId feedRate) {
   operation(Opcode::Feed, {x, y, z, feedRate});
 }
 
+void FunctionBuilder::arc(ArcTurn turn, ValueId x, ValueId y, ValueId z, ValueId i, ValueId j,
+                          ValueId feedRate) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Arc;
+  instruction.index = static_cast<std::uint32_t>(turn);
+  instruction.operands = {x, y, z, i, j, feedRate};
+  append(std::move(instruction), ValueType::None);
+}
+
 void FunctionBuilder::spindle(ValueId speed) {
   operation(Opcode::Spindle, {speed});
 }
@@ -126,6 +135,13 @@ void FunctionBuilder::tool(double number, ValueId diameter) {
 void FunctionBuilder::comment(std::string text) {
   Instruction instruction;
   instruction.opcode = Opcode::Comment;
+  instruction.text = std::move(text);
+  append(std::move(instruction), ValueType::None);
+}
+
+void FunctionBuilder::alarm(std::string text) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Alarm;
   instruction.text = std::move(text);
   append(std::move(instruction), ValueType::None);
 }

@@ -2,6 +2,7 @@
 
 #include "arithmetic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -61,6 +62,11 @@ private:
     case Opcode::If:
       runRegion(instruction.regions[value(operands[0]) != 0 ? 0 : 1]);
       return;
+    case Opcode::Arc:
+      recordArc(instruction);
+      return;
+    case Opcode::Alarm:
+      throw InterpreterError("alarm: " + instruction.text);
     case Opcode::Rapid:
     case Opcode::Feed:
     case Opcode::Spindle:
@@ -113,6 +119,7 @@ private:
       event.y = value(operands[1]);
       event.z = value(operands[2]);
       event.feed = instruction.opcode == Opcode::Feed ? value(operands[3]) : 0;
+      position_ = {event.x, event.y, event.z};
       break;
     case Opcode::Spindle:
       event.kind = MachineEvent::Kind::Spindle;
@@ -135,15 +142,49 @@ private:
     path_.events.push_back(std::move(event));
   }
 
+  void recordArc(const Instruction& instruction) {
+    auto operand = [&](std::size_t k) { return value(instruction.operands[k]); };
+    MachineEvent event = arcMove(position_, static_cast<ArcTurn>(instruction.index), operand(0),
+                                 operand(1), operand(2), operand(3), operand(4), operand(5));
+    position_ = {event.x, event.y, event.z};
+    path_.events.push_back(std::move(event));
+  }
+
   const Function& function_;
   const InterpreterOptions& options_;
+  std::array<double, 3> position_{0, 0, 0};
   std::vector<double> values_;
   std::vector<double> parameters_;
   ToolPath path_;
   std::size_t steps_ = 0;
 };
 
+// How far an arc's end may lie off its circle (mm, relative above 1 mm).
+constexpr double arcRadiusTolerance = 1e-5;
+
 } // namespace
+
+MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x, double y, double z,
+                     double i, double j, double feed) {
+  MachineEvent event;
+  event.kind = MachineEvent::Kind::Arc;
+  event.x = x;
+  event.y = y;
+  event.z = z;
+  event.centreX = start[0] + i;
+  event.centreY = start[1] + j;
+  event.feed = feed;
+  event.clockwise = turn == ArcTurn::Clockwise;
+  double startRadius = std::hypot(i, j);
+  double endRadius = std::hypot(x - event.centreX, y - event.centreY);
+  if (!(startRadius > arcRadiusTolerance) ||
+      !(std::abs(endRadius - startRadius) <= arcRadiusTolerance * std::max(1.0, startRadius))) {
+    throw InterpreterError(fmt::format("an arc from ({:g}, {:g}) to ({:g}, {:g}) has radius {:g} "
+                                       "at its start and {:g} at its end",
+                                       start[0], start[1], x, y, startRadius, endRadius));
+  }
+  return event;
+}
 
 ToolPath interpret(const Function& function, const InterpreterOptions& options) {
   return Interpreter(function, options).run();

@@ -7,8 +7,8 @@ namespace cncc::ir {
 namespace {
 
 constexpr OpcodeInfo opcodeTable[] = {
-#define CNCC_IR_OP(identifier, spelling, operands, result, meaning)                                \
-  {spelling, operands, ValueType::result, meaning},
+#define CNCC_IR_OP(identifier, spelling, operands, result, traits, meaning)                        \
+  {spelling, operands, ValueType::result, OpcodeTraits::traits, meaning},
 #include "cncc/ir/ir_ops.def"
 };
 

@@ -221,8 +221,14 @@ private:
     case Opcode::Comment:
       builder_->comment(unquote(rest));
       return;
+    case Opcode::Alarm:
+      builder_->alarm(unquote(rest));
+      return;
     case Opcode::CutBegin:
       builder_->cutBegin(parseCutIndex(rest));
+      return;
+    case Opcode::Arc:
+      parseArc(rest);
       return;
     case Opcode::Loop: {
       if (rest.empty() || rest.back() != '{') {
@@ -259,6 +265,23 @@ private:
     } else if (!result.empty()) {
       throw Failure{fmt::format("'{}' has no result", spelling)};
     }
+  }
+
+  // `move.arc cw|ccw %x, %y, %z, %i, %j, %f`
+  void parseArc(std::string_view rest) {
+    std::size_t space = rest.find(' ');
+    std::string_view turn = rest.substr(0, space);
+    if (turn != "cw" && turn != "ccw") {
+      throw Failure{"expected 'move.arc cw' or 'move.arc ccw'"};
+    }
+    std::vector<ValueId> operands =
+        operandList(space == std::string_view::npos ? "" : rest.substr(space + 1));
+    if (operands.size() != 6) {
+      throw Failure{
+          fmt::format("'move.arc' takes 6 operands (x, y, z, i, j, f), not {}", operands.size())};
+    }
+    builder_->arc(turn == "cw" ? ArcTurn::Clockwise : ArcTurn::CounterClockwise, operands[0],
+                  operands[1], operands[2], operands[3], operands[4], operands[5]);
   }
 
   static std::string unquote(std::string_view text) {

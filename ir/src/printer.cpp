@@ -82,10 +82,17 @@ private:
       out_ += fmt::format("{}tool {}, {}\n", indent, instruction.number, operandText);
       return;
     case Opcode::Comment:
-      out_ += fmt::format("{}comment {}\n", indent, quoted(instruction.text));
+    case Opcode::Alarm:
+      out_ += fmt::format("{}{} {}\n", indent, spelling, quoted(instruction.text));
       return;
     case Opcode::CutBegin:
       out_ += fmt::format("{}cut.begin {}\n", indent, instruction.index);
+      return;
+    case Opcode::Arc:
+      out_ += fmt::format(
+          "{}move.arc {} {}\n", indent,
+          instruction.index == static_cast<std::uint32_t>(ArcTurn::Clockwise) ? "cw" : "ccw",
+          operandText);
       return;
     case Opcode::Loop:
       out_ += fmt::format("{}{}loop {} {{\n", indent, result, operandText);

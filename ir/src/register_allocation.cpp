@@ -60,22 +60,6 @@ void layOutRegion(const Function& function, const Region& region,
   }
 }
 
-bool isPure(Opcode opcode) {
-  switch (opcode) {
-  case Opcode::Loop:
-  case Opcode::If:
-  case Opcode::Rapid:
-  case Opcode::Feed:
-  case Opcode::Spindle:
-  case Opcode::Tool:
-  case Opcode::Comment:
-  case Opcode::CutBegin:
-    return false;
-  default:
-    return true;
-  }
-}
-
 class Allocator {
 public:
   Allocator(const Function& function, const AllocationOptions& options)

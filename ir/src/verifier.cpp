@@ -131,6 +131,10 @@ private:
     if (instruction.opcode == Opcode::Param && instruction.index >= function_.parameters.size()) {
       problem(fmt::format("{} names parameter {}, which does not exist", where, instruction.index));
     }
+    if (instruction.opcode == Opcode::Arc &&
+        instruction.index > static_cast<std::uint32_t>(ArcTurn::CounterClockwise)) {
+      problem(fmt::format("{} turns neither clockwise nor counter-clockwise", where));
+    }
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
     }

@@ -19,7 +19,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 namespace cncc::driver {
@@ -120,7 +123,15 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
   }
   try {
     ir::ToolPath path = ir::interpret(lowered->function);
-    return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path)};
+    // The reference only tells the cuts apart (within twice their
+    // tolerance): its arcs need not be finer than a tenth of the smallest.
+    double sagitta = std::numeric_limits<double>::infinity();
+    for (const ir::CutGeometry& cut : lowered->cuts) {
+      sagitta = std::min(sagitta, cut.tolerance / 10); // NaN (samples=) is left out
+    }
+    sagitta = std::isfinite(sagitta) ? std::max(sagitta, backends::executedArcSagitta)
+                                     : backends::executedArcSagitta;
+    return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta)};
   } catch (const ir::InterpreterError& error) {
     output.driverError(fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;

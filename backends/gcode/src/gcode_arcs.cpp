@@ -46,7 +46,8 @@ CutArcFitting fitCutArcs(std::span<const ir::CutGeometry> cuts, bool allCuts, in
   fitting.fits.resize(cuts.size());
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     const ir::CutGeometry& cut = cuts[i];
-    if (!cut.arcs.value_or(allCuts) || cut.curve == nullptr) {
+    // A cut with arc pieces has its circles already (move.arc).
+    if (!cut.arcs.value_or(allCuts) || cut.curve == nullptr || cut.nativeArcs) {
       continue;
     }
     OneCutArcFit fit = fitCutArc(cut, decimals);

@@ -110,6 +110,31 @@ public:
     y_ = formatGcodeNumber(segments.back().end.y(), decimals_);
   }
 
+  // A native arc (move.arc): X and Y always (a full turn ends where it
+  // starts), Z when it climbs or descends (a helix), I J from the start as
+  // printed.
+  void arc(const ir::MachineEvent& event) {
+    double startX = x_.empty() ? 0.0 : std::stod(x_);
+    double startY = y_.empty() ? 0.0 : std::stod(y_);
+    x_ = formatGcodeNumber(event.x, decimals_);
+    y_ = formatGcodeNumber(event.y, decimals_);
+    std::string words = fmt::format("{} X{} Y{}", event.clockwise ? "G02" : "G03", x_, y_);
+    std::string z = formatGcodeNumber(event.z, decimals_);
+    if (z != zText_) {
+      words += " Z" + z;
+      zText_ = z;
+      z_ = event.z;
+    }
+    words += fmt::format(" I{} J{}", formatGcodeNumber(event.centreX - startX, decimals_),
+                         formatGcodeNumber(event.centreY - startY, decimals_));
+    std::string feed = formatGcodeNumber(event.feed, decimals_);
+    if (feed != feed_) {
+      words += " F" + feed;
+      feed_ = feed;
+    }
+    line(std::move(words));
+  }
+
   std::string take() { return std::move(out_); }
 
 private:
@@ -183,6 +208,9 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
     case ir::MachineEvent::Kind::Feed:
       writer.move(event.kind == ir::MachineEvent::Kind::Rapid, event.x, event.y, event.z,
                   event.feed);
+      break;
+    case ir::MachineEvent::Kind::Arc:
+      writer.arc(event);
       break;
     case ir::MachineEvent::Kind::Spindle:
       writer.line(fmt::format("S{} M03", static_cast<long long>(std::llround(event.number))));

@@ -17,7 +17,7 @@ std::string formatCsvNumber(double value) {
 
 std::string writeToolPathCsv(const ir::ToolPath& path) {
   std::string out = "x,y,z,feed,rapid\n";
-  for (const ir::MachineEvent& event : path.events) {
+  for (const ir::MachineEvent& event : ir::flattenArcs(path, toolPathCsvArcSagitta).events) {
     bool rapid = event.kind == ir::MachineEvent::Kind::Rapid;
     if (!rapid && event.kind != ir::MachineEvent::Kind::Feed) {
       continue;

@@ -58,6 +58,19 @@ void LinuxcncMoveWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::V
   z_ = expressions_.constantOf(z);
 }
 
+void LinuxcncMoveWriter::arc(bool clockwise, std::span<const ir::ValueId> operands) {
+  for (char always : {'X', 'Y', 'I', 'J'}) {
+    literals_.erase(always);
+  }
+  std::string words = word('X', operands[0]) + word('Y', operands[1]) + word('Z', operands[2]) +
+                      word('I', operands[3]) + word('J', operands[4]) +
+                      word('F', operands[5], false);
+  literals_.erase('I');
+  literals_.erase('J');
+  motionLine(clockwise ? "G2" : "G3", words);
+  z_ = expressions_.constantOf(operands[2]);
+}
+
 void LinuxcncMoveWriter::arcs(std::span<const geom::ArcSegment> segments, ArcBlockFormat format,
                               ir::ValueId feedRate) {
   format.leadingZero = false;

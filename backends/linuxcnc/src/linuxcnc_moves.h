@@ -31,6 +31,9 @@ public:
   // from `format.start`, the feed word added to the first.
   void arcs(std::span<const geom::ArcSegment> segments, ArcBlockFormat format,
             ir::ValueId feedRate);
+  // move.arc: G2/G3 with X and Y always (a full turn ends where it starts),
+  // Z when it changes (a helix), the centre's I J from the start always.
+  void arc(bool clockwise, std::span<const ir::ValueId> operands);
   void forget();
 
 private:

@@ -266,11 +266,18 @@ private:
       moves_.feed(instruction.operands[0], instruction.operands[1], instruction.operands[2],
                   instruction.operands[3]);
       return;
+    case Opcode::Arc:
+      moves_.arc(instruction.index == static_cast<std::uint32_t>(ir::ArcTurn::Clockwise),
+                 instruction.operands);
+      return;
     case Opcode::Spindle:
       printSpindle(instruction);
       return;
     case Opcode::Tool:
       printTool(instruction);
+      return;
+    case Opcode::Alarm:
+      line(fmt::format("(abort, {})", gcodeCommentText(instruction.text)));
       return;
     case Opcode::Comment:
       if (instruction.text == "ARCS") { // the next feed is a lap printed as arcs

@@ -375,6 +375,9 @@ private:
       }
       printFeed(instruction);
       return;
+    case Opcode::Arc:
+      printArc(instruction);
+      return;
     case Opcode::Spindle:
       line(fmt::format("S{} M3", spindleSpeed(instruction.operands[0])));
       spindleOn_ = true;
@@ -382,6 +385,14 @@ private:
     case Opcode::Tool:
       printTool(instruction);
       return;
+    case Opcode::Alarm: {
+      // Alarm 3001 with the message, cut to what the block length leaves.
+      std::string message = gcodeCommentText(instruction.text);
+      auto limit = static_cast<std::size_t>(std::max(0, profile_.maximumBlockLength));
+      std::size_t used = std::string_view("#3000=1 ()").size();
+      line(fmt::format("#3000=1 ({})", message.substr(0, limit > used ? limit - used : 0)));
+      return;
+    }
     case Opcode::Comment:
       if (instruction.text == "NURBS") { // the next feed is a method=nurbs lap
         nurbsNext_ = true;
@@ -658,6 +669,23 @@ private:
     }
     block("G1", words);
     rememberZ(instruction.operands[2]);
+  }
+
+  // move.arc: G2/G3 with X and Y always (a full turn ends where it starts),
+  // Z when it changes (a helix), the centre's I J from the start always.
+  void printArc(const ir::Instruction& instruction) {
+    const std::vector<ValueId>& operands = instruction.operands;
+    for (char always : {'X', 'Y', 'I', 'J'}) {
+      modal_.words.erase(always);
+    }
+    std::string words = word('X', operands[0]) + word('Y', operands[1]) + word('Z', operands[2]) +
+                        word('I', operands[3]) + word('J', operands[4]) +
+                        word('F', operands[5], false);
+    modal_.words.erase('I');
+    modal_.words.erase('J');
+    bool clockwise = instruction.index == static_cast<std::uint32_t>(ir::ArcTurn::Clockwise);
+    block(clockwise ? "G2" : "G3", words);
+    rememberZ(operands[2]);
   }
 
   void nurbsWeight(const std::string& note) {

@@ -1,5 +1,7 @@
 #include "cncc/backends/verification.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <limits>
 #include <map>
@@ -21,28 +23,70 @@ double distanceToSegment(const Eigen::Vector3d& point, const Segment& segment) {
   return (segment.start + along * direction - point).norm();
 }
 
-double distanceToPath(const Eigen::Vector3d& point, const std::vector<Segment>& segments) {
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const Segment& segment : segments) {
-    nearest = std::min(nearest, distanceToSegment(point, segment));
+// A path's segments in runs of a few, each run with its bounding box, so
+// that a point is measured only against the runs that could hold a nearer
+// segment than the nearest found so far (arcs flattened into thousands of
+// chords make the plain search quadratic).
+class SegmentPath {
+public:
+  void add(const Segment& segment) {
+    if (runs_.empty() || runs_.back().segments.size() == segmentsPerRun) {
+      runs_.emplace_back();
+    }
+    Run& run = runs_.back();
+    run.segments.push_back(segment);
+    run.box.extend(segment.start);
+    run.box.extend(segment.end);
+    box_.extend(segment.start);
+    box_.extend(segment.end);
   }
-  return nearest;
-}
 
-// How far a move is from a path: the farthest of its start, middle and end
-// from it. A move where two cuts meet (a plunge onto the end of a helix) is
-// told apart by where it starts.
-double distanceToPath(const Segment& move, const std::vector<Segment>& segments) {
-  Eigen::Vector3d middle = (move.start + move.end) / 2.0;
-  return std::max({distanceToPath(move.start, segments), distanceToPath(middle, segments),
-                   distanceToPath(move.end, segments)});
-}
+  // At most the distance to the path; infinity for an empty path.
+  double lowerBound(const Eigen::Vector3d& point) const {
+    return runs_.empty() ? std::numeric_limits<double>::infinity() : box_.exteriorDistance(point);
+  }
+
+  double distance(const Eigen::Vector3d& point) const {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Run& run : runs_) {
+      if (run.box.exteriorDistance(point) >= nearest) {
+        continue;
+      }
+      for (const Segment& segment : run.segments) {
+        nearest = std::min(nearest, distanceToSegment(point, segment));
+      }
+    }
+    return nearest;
+  }
+
+  // How far a move is from the path: the farthest of its start, middle and
+  // end from it. A move where two cuts meet (a plunge onto the end of a
+  // helix) is told apart by where it starts. Nullopt when the path's box
+  // shows it is not nearer than `better`.
+  std::optional<double> distance(const Segment& move, double better) const {
+    Eigen::Vector3d middle = (move.start + move.end) / 2.0;
+    double bound = std::max({lowerBound(move.start), lowerBound(middle), lowerBound(move.end)});
+    if (bound >= better) {
+      return std::nullopt;
+    }
+    return std::max({distance(move.start), distance(middle), distance(move.end)});
+  }
+
+private:
+  static constexpr std::size_t segmentsPerRun = 32;
+  struct Run {
+    std::vector<Segment> segments;
+    Eigen::AlignedBox3d box;
+  };
+  std::vector<Run> runs_;
+  Eigen::AlignedBox3d box_;
+};
 
 // The reference's feed moves by cut, the cuts in the order they start.
 struct ReferenceCuts {
   std::vector<std::size_t> order;
-  std::map<std::size_t, std::vector<Segment>> byCut;
-  std::vector<Segment> outsideCuts;
+  std::map<std::size_t, SegmentPath> byCut;
+  SegmentPath outsideCuts;
 
   explicit ReferenceCuts(const ExecutedPath& reference) {
     for (std::size_t i = 0; i < reference.moves.size(); ++i) {
@@ -52,14 +96,14 @@ struct ReferenceCuts {
       }
       Segment segment{reference.startOf(i), move.end};
       if (!move.cut) {
-        outsideCuts.push_back(segment);
+        outsideCuts.add(segment);
         continue;
       }
       auto [found, isNew] = byCut.try_emplace(*move.cut);
       if (isNew) {
         order.push_back(*move.cut);
       }
-      found->second.push_back(segment);
+      found->second.add(segment);
     }
   }
 };
@@ -87,15 +131,15 @@ StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
     std::optional<std::size_t> chosen;
     std::size_t last = std::min(cuts.order.size(), current + kLookAhead + 1);
     for (std::size_t k = current; k < last; ++k) {
-      double distance = distanceToPath(executed, cuts.byCut[cuts.order[k]]);
-      if (distance < best - kTie) {
-        best = distance;
+      std::optional<double> distance = cuts.byCut[cuts.order[k]].distance(executed, best - kTie);
+      if (distance && *distance < best - kTie) {
+        best = *distance;
         chosen = k;
       }
     }
-    double outside = distanceToPath(executed, cuts.outsideCuts);
-    if (outside < best - kTie) {
-      best = outside;
+    std::optional<double> outside = cuts.outsideCuts.distance(executed, best - kTie);
+    if (outside && *outside < best - kTie) {
+      best = *outside;
       chosen.reset();
     }
     double limit = outsideAllowance;

@@ -212,8 +212,8 @@ public:
       if (event.kind == MachineEvent::Kind::CutBegin) {
         cut = static_cast<std::size_t>(event.number);
       } else if (event.kind == MachineEvent::Kind::Rapid ||
-                 event.kind == MachineEvent::Kind::Feed) {
-        follow(event, cut);
+                 event.kind == MachineEvent::Kind::Feed || event.kind == MachineEvent::Kind::Arc) {
+        follow(event, cut); // the reader has an arc's blocks as chords of one line
       }
     }
     if (next_ != blocks_.size()) {
@@ -233,7 +233,10 @@ private:
 
   void follow(const MachineEvent& event, std::optional<std::size_t> cut) {
     bool rapid = event.kind == MachineEvent::Kind::Rapid;
-    while (!isAt(event)) {
+    // An arc moves even when it ends where it starts (a full circle).
+    bool mustMove = event.kind == MachineEvent::Kind::Arc;
+    while (mustMove || !isAt(event)) {
+      mustMove = false;
       if (next_ == blocks_.size() || blocks_[next_].rapid != rapid) {
         throw ExecutionMismatch(fmt::format(
             "the program has no {} to ({}, {}, {})", rapid ? "rapid" : "feed move",
@@ -259,11 +262,11 @@ private:
 
 } // namespace
 
-ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath) {
+ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath, double arcSagitta) {
   ExecutedPath path;
   bool started = false;
   std::optional<std::size_t> cut;
-  for (const MachineEvent& event : toolPath.events) {
+  for (const MachineEvent& event : ir::flattenArcs(toolPath, arcSagitta).events) {
     if (event.kind == MachineEvent::Kind::CutBegin) {
       cut = static_cast<std::size_t>(event.number);
       continue;

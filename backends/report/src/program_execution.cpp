@@ -14,9 +14,11 @@ namespace cncc::backends {
 
 namespace {
 
-// Arcs are flattened this finely: far below any tolerance, so the chords do
-// not add to the deviation measured.
-constexpr double kArcSagitta = 1e-6;
+// Arcs are flattened this finely (mm): below a tenth of the rounding room
+// the arc output leaves inside a tolerance, so the chords add little to the
+// deviation measured, and coarse enough that the many turns of a helix
+// stay quick to measure.
+constexpr double kArcSagitta = 2e-5;
 
 ProgramExecution failed(std::string text, int line, std::string message) {
   ProgramExecution execution;
@@ -132,7 +134,8 @@ ProgramExecution runOnController(const ExecutionRequest& request,
         ControllerFailure{result.error->line(), result.error->what(), result.error->lineText()};
     return execution;
   }
-  execution.path = executedPathOfToolPath(sim::flattenPath(result.path, kArcSagitta));
+  double sagitta = result.path.inches ? kArcSagitta / 25.4 : kArcSagitta;
+  execution.path = executedPathOfToolPath(sim::flattenPath(result.path, sagitta));
   sim::ProgramText program = sim::readProgram(execution.text, profile);
   sim::LoopOperationCounts operations = sim::countLoopOperations(program, result);
   if (operations.feedMoves > 0) {

@@ -5,6 +5,7 @@
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/knot_vector.h"
+#include "cncc/ir/tool_path.h"
 
 #include <fmt/format.h>
 
@@ -57,7 +58,7 @@ constexpr double kNoDirection = 1e-9;
 
 using Vector = Eigen::Vector3d;
 
-enum class Motion { Rapid, Linear, BSpline, CSpline, ASpline };
+enum class Motion { Rapid, Linear, ClockwiseArc, CounterClockwiseArc, BSpline, CSpline, ASpline };
 
 // The points of a spline group, gathered until the motion changes.
 struct PendingSpline {
@@ -79,6 +80,8 @@ MotionKind kindOf(Motion motion) {
   case Motion::Rapid:
     return MotionKind::Rapid;
   case Motion::Linear:
+  case Motion::ClockwiseArc: // recorded as its chords
+  case Motion::CounterClockwiseArc:
     return MotionKind::Linear;
   case Motion::BSpline:
     return MotionKind::BSpline;
@@ -177,6 +180,7 @@ private:
   // False when the block ends the program.
   bool executeBlock(const SinumerikBlock& block) {
     std::array<std::optional<double>, 3> axes;
+    std::array<std::optional<double>, 2> centre; // I J, from the start
     std::optional<double> weight, interval;
     bool motionWord = false;
     bool ends = false;
@@ -184,6 +188,8 @@ private:
       const std::string& a = word.address;
       if (a == "X" || a == "Y" || a == "Z") {
         axes[std::size_t(a[0] - 'X')] = needNumber(word);
+      } else if (a == "I" || a == "J") {
+        centre[std::size_t(a[0] - 'I')] = needNumber(word);
       } else if (a == "G") {
         motionWord |= gCode(needNumber(word));
       } else if (a == "M") {
@@ -240,7 +246,13 @@ private:
     if ((weight || interval) && (motion_ != Motion::BSpline || !hasAxis)) {
       fail("PW and PL belong in a BSPLINE block with a point");
     }
-    if (hasAxis) {
+    bool arc = motion_ == Motion::ClockwiseArc || motion_ == Motion::CounterClockwiseArc;
+    if ((centre[0] || centre[1]) && !arc) {
+      fail("I and J belong in a G2 or G3 block");
+    }
+    if (arc && hasAxis) {
+      arcTo(axes, centre);
+    } else if (hasAxis) {
       moveTo(axes, weight, interval);
     } else if (motionWord && !isSpline(motion_)) {
       finishSpline(std::nullopt);
@@ -270,6 +282,10 @@ private:
       return true;
     case 1:
       setMotion(Motion::Linear);
+      return true;
+    case 2:
+    case 3:
+      setMotion(code == 2 ? Motion::ClockwiseArc : Motion::CounterClockwiseArc);
       return true;
     case 17:
     case 90:
@@ -359,6 +375,52 @@ private:
     }
     lastLinear_ = motion_ == Motion::Linear;
   }
+
+  // G2/G3 in the XY plane with the centre at I J from the start
+  // (incremental, the default), Z along for a helix; ending where it starts,
+  // a full turn. Recorded as chords within the sampling tolerance.
+  void arcTo(const std::array<std::optional<double>, 3>& axes,
+             const std::array<std::optional<double>, 2>& centre) {
+    if (!known()) {
+      fail("an arc before every axis is known");
+    }
+    if (!centre[0] && !centre[1]) {
+      fail("a G2/G3 block without I or J (its centre)");
+    }
+    if (!feed_) {
+      fail("an arc without a feed rate");
+    }
+    finishSpline(std::nullopt);
+    Vector start = current();
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Arc;
+    event.x = axes[0].value_or(start.x());
+    event.y = axes[1].value_or(start.y());
+    event.z = axes[2].value_or(start.z());
+    event.centreX = start.x() + centre[0].value_or(0.0);
+    event.centreY = start.y() + centre[1].value_or(0.0);
+    event.clockwise = motion_ == Motion::ClockwiseArc;
+    event.feed = *feed_;
+    double startRadius = std::hypot(start.x() - event.centreX, start.y() - event.centreY);
+    double endRadius = std::hypot(event.x - event.centreX, event.y - event.centreY);
+    if (!(startRadius > 0) || !(std::abs(endRadius - startRadius) <= arcEndTolerance)) {
+      fail(fmt::format("the arc's end is {:g} from its centre, its start {:g} (alarm 14040: "
+                       "error in end point of circle)",
+                       endRadius, startRadius));
+    }
+    std::vector<ir::MachineEvent> chords;
+    ir::appendArcChords(start.x(), start.y(), start.z(), event, options_.sampleTolerance, chords);
+    for (const ir::MachineEvent& chord : chords) {
+      run_.moves.push_back(
+          {MotionKind::Linear, Vector(chord.x, chord.y, chord.z), *feed_, line_, mainLine_});
+    }
+    previous_ = start;
+    position_ = {event.x, event.y, event.z};
+    lastLinear_ = false;
+  }
+
+  // How far an arc's end may lie off its circle ($MN_..._CIRCLE_ERROR, mm).
+  static constexpr double arcEndTolerance = 0.01;
 
   bool known() const { return position_[0] && position_[1] && position_[2]; }
   Vector current() const { return {*position_[0], *position_[1], *position_[2]}; }

@@ -176,6 +176,9 @@ private:
       break;
     case MachineEvent::Kind::Feed:
       return feed(i);
+    case MachineEvent::Kind::Arc:
+      arc(e);
+      break;
     case MachineEvent::Kind::Spindle:
       line(fmt::format("M3 S{}", static_cast<long long>(std::llround(e.number))));
       spindleOn_ = true;
@@ -275,6 +278,33 @@ private:
     const MachineEvent& e = path_.events[i];
     linear({e.x, e.y, e.z}, e.feed);
     return i;
+  }
+
+  // G2/G3 with X and Y always (a full turn ends where it starts), Z for a
+  // helix, I J incremental from the start as printed.
+  void arc(const MachineEvent& e) {
+    Eigen::Vector3d start = position_.value_or(Eigen::Vector3d::Zero());
+    exact_ = Eigen::Vector3d(e.x, e.y, e.z);
+    Eigen::Vector3d target = sinumerik::roundPoint(*exact_, options_.decimals);
+    const char* code = e.clockwise ? "G2" : "G3";
+    std::string words = code == motion_ ? "" : code;
+    motion_ = code;
+    x_ = number(target.x());
+    y_ = number(target.y());
+    words += fmt::format(" X{} Y{}", x_, y_);
+    if (std::string z = number(target.z()); z != z_) {
+      words += " Z" + z;
+      z_ = z;
+    }
+    words += fmt::format(" I{} J{}", number(e.centreX - start.x()), number(e.centreY - start.y()));
+    if (std::string feed = number(e.feed); feed != feed_) {
+      words += " F" + feed;
+      feed_ = feed;
+    }
+    line(words.front() == ' ' ? words.substr(1) : words);
+    previous_ = position_;
+    position_ = target;
+    lastWasFeed_ = false;
   }
 
   void linear(const Eigen::Vector3d& point, double feed) {

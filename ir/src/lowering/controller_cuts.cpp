@@ -212,6 +212,8 @@ struct ControllerSegment {
   int steps = 0;
   std::optional<Scalar> stepCount;
   bool isNurbs = false;
+  // An arc piece: move.arc blocks (native_arcs.cpp), no steps.
+  bool isArc = false;
   // A line, arc, polar or param piece that depends on controller values:
   // evaluated from its symbolic form over start .. end.
   const SymbolicPiece* symbolic = nullptr;
@@ -335,8 +337,13 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
                    arcs != nullptr && arcs->kind == ExprKind::Bool
                        ? std::optional<bool>(as<BoolExpr>(*arcs).value)
                        : std::nullopt,
-                   methodOf(cut)});
+                   methodOf(cut), hasArcPiece(curve) && !uniformSteps});
   builder_.cutBegin(index);
+  for (const ControllerSegment& segment : *planned) {
+    if (segment.isArc && segment.symbolic != nullptr) {
+      guardArcRadius(symbolicArcPath(*segment.symbolic, *curve.pieces[segment.piece].value));
+    }
+  }
 
   const ControllerSegment& first = planned->front();
   const ControllerSegment& last = planned->back();
@@ -511,7 +518,14 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     geom::ParameterRange domain = piece.geometry->domain();
     segment.from = domain.t0;
     segment.to = domain.t1;
-    if (symbolic != nullptr && (*symbolic)[p].dependent) {
+    if (value.kind == CurveKind::Arc && !uniformSteps) {
+      segment.isArc = true;
+      segment.steps = 1;
+      if (symbolic != nullptr && (*symbolic)[p].dependent) {
+        segment.symbolic = &(*symbolic)[p];
+        std::tie(segment.start, segment.end) = symbolicRange(*segment.symbolic);
+      }
+    } else if (symbolic != nullptr && (*symbolic)[p].dependent) {
       segment.symbolic = &(*symbolic)[p];
       std::tie(segment.start, segment.end) = symbolicRange(*segment.symbolic);
       if (uniformSteps) {
@@ -892,17 +906,25 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
                                          Scalar z, ValueId feed, const CutStmt& cut,
                                          const RampLap* ramp) {
   const CurvePiece& piece = curve.pieces[segment.piece];
-  auto move = [&](const CurvePoint& point, Scalar index) {
-    Scalar height = z;
-    if (ramp != nullptr) {
-      // z = from + (to - from) (before + share index / steps).
-      Scalar share =
-          arithmetic_.add(Scalar::of(ramp->segment.before),
-                          times(Scalar::of(ramp->segment.share),
-                                arithmetic_.binary(Opcode::Div, index, stepsOf(segment))));
-      height = arithmetic_.add(ramp->from,
-                               times(arithmetic_.binary(Opcode::Sub, ramp->to, ramp->from), share));
+  // The pass's z, or on a ramp lap from + (to - from) (before + share fraction).
+  auto heightAt = [&](Scalar fraction) {
+    if (ramp == nullptr) {
+      return z;
     }
+    Scalar share = arithmetic_.add(Scalar::of(ramp->segment.before),
+                                   times(Scalar::of(ramp->segment.share), fraction));
+    return arithmetic_.add(ramp->from,
+                           times(arithmetic_.binary(Opcode::Sub, ramp->to, ramp->from), share));
+  };
+  if (segment.isArc) {
+    emitArc(segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
+                                        : constantArcPath(curve, segment.piece, cut),
+            heightAt, feed, cut);
+    return;
+  }
+  auto move = [&](const CurvePoint& point, Scalar index) {
+    Scalar height =
+        ramp == nullptr ? z : heightAt(arithmetic_.binary(Opcode::Div, index, stepsOf(segment)));
     builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
                   arithmetic_.value(arithmetic_.add(height, point.z)), feed);
   };

@@ -116,7 +116,7 @@ CurvePiece PartLowering::leafPiece(const std::shared_ptr<const CurveValue>& valu
   case CurveKind::Arc:
     piece.geometry = std::make_shared<geom::ArcCurve>(
         Eigen::Vector2d(curve.center[0], curve.center[1]), curve.arcRadius, curve.startAngle,
-        curve.endAngle - curve.startAngle);
+        curve.endAngle - curve.startAngle, curve.startZ, curve.endZ - curve.startZ);
     break;
   default:
     unsupported(cut.curve->span, fmt::format("a '{}' curve", curve.constructor));
@@ -191,14 +191,19 @@ SampleLocation PartLowering::locate(const CutCurve& curve, double t) const {
   const CurvePiece& piece = curve.pieces[location.piece];
   geom::ParameterRange domain = piece.geometry->domain();
   double own = count == 1 ? t : domain.t0 + (t - curve.pieceStarts[location.piece]);
-  own = domain.clamp(own);
-  location.local = own;
-  if (!piece.spans.empty()) {
-    while (location.span + 1 < piece.spans.size() && piece.spans[location.span + 1].t0 <= own) {
+  return locateInPiece(curve, location.piece, own);
+}
+
+SampleLocation PartLowering::locateInPiece(const CutCurve& curve, std::size_t piece, double own) {
+  const CurvePiece& value = curve.pieces[piece];
+  SampleLocation location{piece, 0, value.geometry->domain().clamp(own)};
+  if (!value.spans.empty()) {
+    while (location.span + 1 < value.spans.size() &&
+           value.spans[location.span + 1].t0 <= location.local) {
       ++location.span;
     }
-    const geom::PolynomialSpan& span = piece.spans[location.span];
-    location.local = std::clamp((own - span.t0) / (span.t1 - span.t0), 0.0, 1.0);
+    const geom::PolynomialSpan& span = value.spans[location.span];
+    location.local = std::clamp((location.local - span.t0) / (span.t1 - span.t0), 0.0, 1.0);
   }
   return location;
 }
@@ -270,9 +275,15 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
     Scalar angle = math.add(Scalar::of(curve.startAngle),
                             math.multiply(Scalar::of(arc.sweep() / arc.length()), local));
     Scalar r = Scalar::of(curve.arcRadius);
+    // A helix climbs in proportion to the angle, so to the parameter too.
+    Scalar z = curve.endZ == curve.startZ
+                   ? Scalar::of(curve.startZ)
+                   : math.add(Scalar::of(curve.startZ),
+                              math.multiply(Scalar::of((curve.endZ - curve.startZ) / arc.length()),
+                                            local));
     return {math.add(Scalar::of(curve.center[0]), math.multiply(r, math.unary(Opcode::Cos, angle))),
             math.add(Scalar::of(curve.center[1]), math.multiply(r, math.unary(Opcode::Sin, angle))),
-            Scalar::of(0)};
+            z};
   }
   case CurveKind::Nurbs:
     return spanPointAt(piece.spans[span], local);

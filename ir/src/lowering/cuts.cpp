@@ -21,17 +21,6 @@ namespace {
 
 constexpr double maximumPointsPerCut = 1'000'000;
 
-// Consecutive samples on the same piece and span: one table, one loop.
-struct SampleRun {
-  std::size_t piece = 0;
-  std::size_t span = 0;
-  std::vector<double> locals;
-  // The share of the descent done at each sample (entry=ramp).
-  std::vector<double> progress;
-  std::uint32_t localTable = 0;
-  std::uint32_t progressTable = 0;
-};
-
 } // namespace
 
 const Modifier* findModifier(const CutStmt& cut, std::string_view name) {
@@ -241,16 +230,69 @@ void PartLowering::checkRampCloses(const CutCurve& curve, const CutStmt& cut) {
   }
 }
 
-void PartLowering::lowerCut(const CutStmt& cut) {
-  if (lowerNurbsCut(cut)) {
-    return;
+std::vector<SampleRun> PartLowering::sampleRuns(const CutCurve& curve,
+                                                const std::vector<SampleLocation>& locations,
+                                                const std::vector<RampSegment>* ramp) {
+  std::vector<SampleRun> runs;
+  for (const SampleLocation& location : locations) {
+    if (runs.empty() || runs.back().piece != location.piece || runs.back().span != location.span) {
+      runs.push_back({location.piece, location.span, {}, {}, 0, 0});
+    }
+    runs.back().locals.push_back(location.local);
+    runs.back().progress.push_back(ramp ? rampProgress(*ramp, curve, location) : 1.0);
   }
-  if (lowerArcCut(cut)) {
-    return;
+  for (SampleRun& run : runs) {
+    run.localTable = builder_.addTable(run.locals);
+    if (ramp) {
+      run.progressTable = builder_.addTable(run.progress);
+    }
   }
-  if (lowerControllerCut(cut)) {
-    return;
+  return runs;
+}
+
+// One lap along the runs, its z going from zFrom to zTo in proportion to the
+// chord length done, plus the curve's own z.
+void PartLowering::emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs,
+                                  double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
+  for (const SampleRun& run : runs) {
+    double last = static_cast<double>(run.locals.size()) - 1;
+    ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
+    Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
+    CurvePoint point = pointAt(curve, run.piece, run.span, local, cut);
+    Scalar z = Scalar::of(zTo);
+    if (zFrom != zTo) {
+      Scalar progress = Scalar::of(builder_.tableLoad(run.progressTable, i), ValueType::F64);
+      z = arithmetic_.add(Scalar::of(zFrom),
+                          arithmetic_.multiply(Scalar::of(zTo - zFrom), progress));
+    }
+    builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
+                  arithmetic_.value(arithmetic_.add(z, point.z)), feed);
+    builder_.endLoop();
   }
+}
+
+// The points of one piece alone, within `budget` of it, after its start.
+std::vector<SampleRun> PartLowering::pieceSampleRuns(const CutCurve& curve, std::size_t piece,
+                                                     double budget,
+                                                     const std::vector<RampSegment>* ramp,
+                                                     const CutStmt& cut) {
+  const CurvePiece& own = curve.pieces[piece];
+  auto moved = std::make_shared<TransformedCurve>(own.geometry, own.transform);
+  geom::CurveSamples samples;
+  try {
+    samples = geom::discretiseByChordTolerance(*moved, budget);
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
+  }
+  std::vector<SampleLocation> locations;
+  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
+    locations.push_back(locateInPiece(curve, piece, samples.parameters[i]));
+  }
+  return sampleRuns(curve, locations, ramp);
+}
+
+HostCut PartLowering::beginHostCut(const CutStmt& cut) {
   // The curve's points are chosen at its defaults, whatever IR evaluates it.
   fixParameters(*cut.curve, cut.curve->span, "this curve's points");
   checkMethod(cut);
@@ -259,7 +301,25 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     fail(cut.span, "this cut has no safe height; write 'safe z=Z' before it",
          DiagnosticKind::NoSafeHeight);
   }
-  Scalar feed = cutFeed(cut);
+  return {cutFeed(cut), ramp};
+}
+
+void PartLowering::lowerCut(const CutStmt& cut) {
+  if (lowerNurbsCut(cut)) {
+    return;
+  }
+  // Arc pieces are printed as circles (native_arcs.cpp), not fitted arcs.
+  bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(cutCurve(cut));
+  if (!nativeArcs && lowerArcCut(cut)) {
+    return;
+  }
+  if (lowerControllerCut(cut)) {
+    return;
+  }
+  if (nativeArcs && lowerHostArcCut(cut)) {
+    return;
+  }
+  auto [feed, ramp] = beginHostCut(cut);
   CutCurve curve = cutCurve(cut);
   geom::CurveSamples samples = samplesFor(cut, *curve.geometry);
   for (const Eigen::Vector3d& point : samples.points) {
@@ -294,40 +354,13 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (ramp) {
     rampShares = rampSegments(curve, cut);
   }
-  std::vector<SampleRun> runs;
+  std::vector<SampleLocation> locations;
   for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
-    SampleLocation location = locate(curve, samples.parameters[i]);
-    if (runs.empty() || runs.back().piece != location.piece || runs.back().span != location.span) {
-      runs.push_back({location.piece, location.span, {}, {}, 0, 0});
-    }
-    runs.back().locals.push_back(location.local);
-    runs.back().progress.push_back(ramp ? rampProgress(rampShares, curve, location) : 1.0);
+    locations.push_back(locate(curve, samples.parameters[i]));
   }
-  for (SampleRun& run : runs) {
-    run.localTable = builder_.addTable(run.locals);
-    if (ramp) {
-      run.progressTable = builder_.addTable(run.progress);
-    }
-  }
-
-  // One lap of the curve, its z going from zFrom to zTo in proportion to
-  // the chord length done, plus the curve's own z.
+  std::vector<SampleRun> runs = sampleRuns(curve, locations, ramp ? &rampShares : nullptr);
   auto lap = [&](double zFrom, double zTo) {
-    for (const SampleRun& run : runs) {
-      double last = static_cast<double>(run.locals.size()) - 1;
-      ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
-      Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
-      CurvePoint point = pointAt(curve, run.piece, run.span, local, cut);
-      Scalar z = Scalar::of(zTo);
-      if (zFrom != zTo) {
-        Scalar progress = Scalar::of(builder_.tableLoad(run.progressTable, i), ValueType::F64);
-        z = arithmetic_.add(Scalar::of(zFrom),
-                            arithmetic_.multiply(Scalar::of(zTo - zFrom), progress));
-      }
-      builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
-                    arithmetic_.value(arithmetic_.add(z, point.z)), feedValue);
-      builder_.endLoop();
-    }
+    emitSampleRuns(curve, runs, zFrom, zTo, feedValue, cut);
   };
 
   SampleLocation first = locate(curve, samples.parameters.front());

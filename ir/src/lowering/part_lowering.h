@@ -37,6 +37,10 @@ struct Scalar {
   static Scalar ofBool(bool yes) { return {ValueId{}, yes ? 1.0 : 0.0, ValueType::Bool}; }
   static Scalar of(ValueId id, ValueType type) { return {id, 0, type}; }
   bool isConstant() const { return !value.valid(); }
+  // The same constant, or the same IR value.
+  bool sameAs(const Scalar& other) const {
+    return isConstant() ? other.isConstant() && other.constant == constant : other.value == value;
+  }
 };
 
 // A lowered CDL value: a num or bool (one scalar) or a point (three).
@@ -91,6 +95,38 @@ struct SampleLocation {
   std::size_t piece = 0;
   std::size_t span = 0;
   double local = 0;
+};
+
+// Consecutive samples on the same piece and span: one table, one loop.
+struct SampleRun {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  std::vector<double> locals;
+  // The share of the descent done at each sample (entry=ramp).
+  std::vector<double> progress;
+  std::uint32_t localTable = 0;
+  std::uint32_t progressTable = 0;
+};
+
+// An arc piece as native_arcs.cpp moves on it: its point at a fraction (0
+// to 1) of the piece, transformed, the helix's own z included; the way from
+// there to its centre; and the angle it turns (to - from: counter-clockwise
+// when positive).
+struct ArcPath {
+  std::function<CurvePoint(Scalar fraction)> pointAt;
+  // From the point at a fraction to the centre, transformed (z: 0).
+  std::function<CurvePoint(Scalar fraction)> toCentre;
+  Scalar sweep;
+  // The radius the controller moves on, transformed (a constant when known).
+  Scalar radius;
+};
+// The height added to an arc's own z at a fraction of it (the pass, a ramp).
+using ArcHeight = std::function<Scalar(Scalar fraction)>;
+
+// What a cut computed on the host starts with (cuts.cpp, beginHostCut).
+struct HostCut {
+  Scalar feed;
+  bool ramp = false;
 };
 
 // Arithmetic on scalars through the builder: folds constant operands and
@@ -258,6 +294,8 @@ private:
   analyticCurve(const std::shared_ptr<const frontend::CurveValue>& curve);
   void joinPieces(CutCurve& curve, const frontend::CutStmt& cut);
   SampleLocation locate(const CutCurve& curve, double t) const;
+  // Where the piece's own parameter lies (its NURBS span and the span's u).
+  static SampleLocation locateInPiece(const CutCurve& curve, std::size_t piece, double own);
   CurvePoint pointAt(const CutCurve& curve, std::size_t piece, std::size_t span, Scalar local,
                      const frontend::CutStmt& cut);
   CurvePoint untransformedPointAt(const CurvePiece& piece, std::size_t span, Scalar local,
@@ -267,6 +305,9 @@ private:
 
   // cuts.cpp
   void lowerCut(const frontend::CutStmt& cut);
+  // Its points fixed at the defaults, its method and entry checked, a safe
+  // height and a feed required.
+  HostCut beginHostCut(const frontend::CutStmt& cut);
   void checkMethod(const frontend::CutStmt& cut);
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
@@ -281,6 +322,29 @@ private:
   static RampSegment rampSegmentOf(const std::vector<RampSegment>& segments, std::size_t piece,
                                    std::size_t span);
   void checkRampCloses(const CutCurve& curve, const frontend::CutStmt& cut);
+  std::vector<SampleRun> sampleRuns(const CutCurve& curve,
+                                    const std::vector<SampleLocation>& locations,
+                                    const std::vector<RampSegment>* ramp);
+  void emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs, double zFrom,
+                      double zTo, ValueId feed, const frontend::CutStmt& cut);
+  std::vector<SampleRun> pieceSampleRuns(const CutCurve& curve, std::size_t piece, double budget,
+                                         const std::vector<RampSegment>* ramp,
+                                         const frontend::CutStmt& cut);
+
+  // native_arcs.cpp
+  static bool wantsNativeArcs(const frontend::CutStmt& cut);
+  static bool hasArcPiece(const CutCurve& curve);
+  bool lowerHostArcCut(const frontend::CutStmt& cut);
+  ArcPath constantArcPath(const CutCurve& curve, std::size_t piece, const frontend::CutStmt& cut);
+  ArcPath symbolicArcPath(const SymbolicPiece& piece, const frontend::CurveValue& value);
+  void guardArcRadius(const ArcPath& arc);
+  void emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
+               const frontend::CutStmt& cut);
+  void emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count, bool fullTurns,
+                     const ArcHeight& height, ValueId feed);
+  void emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, Scalar to, bool fullTurn,
+                    const ArcHeight& height, ValueId feed);
+  CurvePoint radiusTowardsCentre(Scalar radius, Scalar from, Scalar sweep, Scalar fraction);
 
   // nurbs_cuts.cpp
   bool lowerNurbsCut(const frontend::CutStmt& cut);
@@ -340,6 +404,12 @@ private:
   // The parameter range the piece's loop runs over: t0 .. t1 of an analytic
   // curve, 0 .. 1 for a line or an arc.
   std::pair<Scalar, Scalar> symbolicRange(const SymbolicPiece& piece);
+  // The two ends of a range written out (`a .. b`) as the controller computes them.
+  std::pair<Scalar, Scalar> symbolicBounds(const frontend::Expr& range, const SymbolicPiece& piece,
+                                           std::string_view what);
+  // An arc's heights at its start and end (z = a .. b; 0 and 0 without).
+  std::pair<Scalar, Scalar> symbolicHeights(const SymbolicPiece& piece,
+                                            const frontend::CurveValue& value);
   Scalar times(Scalar left, Scalar right);
   Scalar magnitude(Scalar value);
 

@@ -223,13 +223,30 @@ std::pair<Scalar, Scalar> PartLowering::symbolicRange(const SymbolicPiece& piece
   if (range == nullptr || range->kind != ExprKind::Range) {
     return {Scalar::of(0), Scalar::of(1)};
   }
-  const auto& bounds = as<RangeExpr>(*range);
+  return symbolicBounds(*range, piece, "this curve's range");
+}
+
+std::pair<Scalar, Scalar>
+PartLowering::symbolicBounds(const Expr& range, const SymbolicPiece& piece, std::string_view what) {
+  const auto& bounds = as<RangeExpr>(range);
   std::optional<Scalar> low = symbolicNumber(bounds.low.get(), piece.bindings, piece.environment);
   std::optional<Scalar> high = symbolicNumber(bounds.high.get(), piece.bindings, piece.environment);
   if (!low || !high) {
-    unsupported(range->span, "this curve's range");
+    unsupported(range.span, what);
   }
   return {*low, *high};
+}
+
+std::pair<Scalar, Scalar> PartLowering::symbolicHeights(const SymbolicPiece& piece,
+                                                        const CurveValue& value) {
+  const Expr* heights = builtinArgument(*piece.call, "z");
+  if (heights == nullptr || !dependsOn(*heights, piece.bindings)) {
+    return {Scalar::of(value.startZ), Scalar::of(value.endZ)};
+  }
+  if (heights->kind != ExprKind::Range) {
+    unsupported(heights->span, "a helix's heights on the controller unless written 'z = a .. b'");
+  }
+  return symbolicBounds(*heights, piece, "this helix's heights");
 }
 
 CurvePoint PartLowering::symbolicPointAt(const SymbolicPiece& piece, const CurveValue& value,
@@ -287,8 +304,13 @@ CurvePoint PartLowering::symbolicPointAt(const SymbolicPiece& piece, const Curve
     Scalar start = number(builtinArgument(*piece.call, "from"), piece.bindings);
     Scalar end = number(builtinArgument(*piece.call, "to"), piece.bindings);
     Scalar angle = math.add(start, times(math.binary(Opcode::Sub, end, start), local));
+    auto [startZ, endZ] = symbolicHeights(piece, value);
+    Scalar z = startZ;
+    if (!endZ.sameAs(startZ)) {
+      z = math.add(startZ, times(math.binary(Opcode::Sub, endZ, startZ), local));
+    }
     result = {math.add(center[0], times(radius, math.unary(Opcode::Cos, angle))),
-              math.add(center[1], times(radius, math.unary(Opcode::Sin, angle))), Scalar::of(0)};
+              math.add(center[1], times(radius, math.unary(Opcode::Sin, angle))), z};
   } else {
     unsupported(piece.call->span, "this curve on the controller");
   }

@@ -54,7 +54,7 @@ private:
   void leaveRegion() override { scopes_.pop_back(); }
 
   void visit(const Instruction& instruction) override {
-    if (!passes::isPure(instruction.opcode)) {
+    if (!isPure(instruction.opcode)) {
       copy(instruction);
       return;
     }

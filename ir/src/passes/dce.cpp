@@ -51,7 +51,7 @@ private:
     for (InstructionId id : region.instructions) {
       const Instruction& instruction = source_.instructions[id];
       bool hasRegions = !instruction.regions.empty();
-      if (passes::isEffect(instruction.opcode) || (hasRegions && mustStay(instruction))) {
+      if (isEffect(instruction.opcode) || (hasRegions && mustStay(instruction))) {
         markLive(id);
       }
       for (const Region& nested : instruction.regions) {
@@ -66,7 +66,7 @@ private:
     for (const Region& region : instruction.regions) {
       for (InstructionId id : region.instructions) {
         const Instruction& nested = source_.instructions[id];
-        if (passes::isEffect(nested.opcode) || (!nested.regions.empty() && mustStay(nested))) {
+        if (isEffect(nested.opcode) || (!nested.regions.empty() && mustStay(nested))) {
           return true;
         }
       }

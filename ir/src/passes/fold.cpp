@@ -56,7 +56,7 @@ private:
     default:
       break;
     }
-    if (!passes::isPure(instruction.opcode)) {
+    if (!isPure(instruction.opcode)) {
       copy(instruction);
       return;
     }

@@ -66,7 +66,7 @@ private:
     std::set<std::uint32_t> moving; // values of the operations in `result`
     for (InstructionId id : loop.regions[0].instructions) {
       const Instruction& instruction = source_.instructions[id];
-      if (!passes::isPure(instruction.opcode) || passes::mayFail(instruction.opcode)) {
+      if (!isPure(instruction.opcode) || mayFail(instruction.opcode)) {
         continue;
       }
       bool invariant = true;

@@ -4,31 +4,6 @@
 
 namespace cncc::ir::passes {
 
-bool isEffect(Opcode opcode) {
-  switch (opcode) {
-  case Opcode::Rapid:
-  case Opcode::Feed:
-  case Opcode::Spindle:
-  case Opcode::Tool:
-  case Opcode::Comment:
-  case Opcode::CutBegin:
-    return true;
-  default:
-    return false;
-  }
-}
-
-bool isPure(Opcode opcode) {
-  // Everything with a result is pure except the loop, whose result is its
-  // induction variable; effects have no result.
-  return opcode != Opcode::Loop && opcode != Opcode::If && !isEffect(opcode) &&
-         opcodeInfo(opcode).result != ValueType::None;
-}
-
-bool mayFail(Opcode opcode) {
-  return opcode == Opcode::TableLoad;
-}
-
 std::size_t regionSize(const Function& function, const Region& region) {
   std::size_t size = 0;
   for (InstructionId id : region.instructions) {

@@ -13,13 +13,7 @@
 
 namespace cncc::ir::passes {
 
-// Moves, spindle, tool, comment, cut.begin: what the machine does, in order.
-bool isEffect(Opcode opcode);
-// No effect and no region: the result depends only on the operands (and the
-// immediates), so two equal ones compute the same value.
-bool isPure(Opcode opcode);
-// Pure, and can stop the run: table.load with an index out of range.
-bool mayFail(Opcode opcode);
+// Which operations are pure, effects or may fail: ir.h, from the traits of ir_ops.def.
 
 // Instructions in the region, nested regions included.
 std::size_t regionSize(const Function& function, const Region& region);

@@ -53,14 +53,17 @@ std::unique_ptr<CompiledPart> compileWithArcs(const std::string& name, const std
     ADD_FAILURE() << name << " does not check";
     return nullptr;
   }
-  result->lowered =
-      ir::lowerPartWithCuts(*result->program, *result->program->selectedPart, result->diagnostics);
+  // As the gcode target lowers: the chords leave room for the printed rounding.
+  backends::GcodeOptions gcode;
+  ir::LoweringOptions lowering;
+  lowering.coordinateIncrement = std::pow(10.0, -gcode.decimals);
+  result->lowered = ir::lowerPartWithCuts(*result->program, *result->program->selectedPart,
+                                          result->diagnostics, lowering);
   if (!result->lowered) {
     ADD_FAILURE() << name << " does not lower";
     return nullptr;
   }
   result->path = ir::interpret(result->lowered->function);
-  backends::GcodeOptions gcode;
   result->fitting = backends::fitCutArcs(result->lowered->cuts, true, gcode.decimals);
   gcode.arcFits = result->fitting.fits;
   result->text = backends::writeGcode(result->path, gcode);
@@ -203,10 +206,12 @@ void expectArcsWithinTolerance(const std::string& example, const std::string& pa
   std::vector<const ExecutedPass*> firstPass(part->lowered->cuts.size(), nullptr);
   for (const ExecutedPass& pass : passes) {
     const ir::CutGeometry& cut = part->lowered->cuts.at(pass.cut);
-    if (!part->fitting.fits[pass.cut]) {
+    bool fitted = part->fitting.fits[pass.cut].has_value();
+    if (!fitted && !cut.nativeArcs) {
       EXPECT_EQ(pass.arcs, 0u) << "cut " << pass.cut << " has no fit but arcs";
       continue;
     }
+    EXPECT_FALSE(fitted && cut.nativeArcs) << "cut " << pass.cut << " is fitted over its arcs";
     // Every pass repeats the first one's moves at its own depth: measured once.
     if (firstPass[pass.cut] != nullptr) {
       EXPECT_EQ(pass.points, firstPass[pass.cut]->points) << "cut " << pass.cut;
@@ -214,7 +219,8 @@ void expectArcsWithinTolerance(const std::string& example, const std::string& pa
     }
     firstPass[pass.cut] = &pass;
     EXPECT_LE(passDeviation(pass, cut), cut.tolerance) << "cut " << pass.cut;
-    EXPECT_LE(pass.largestSweep, std::numbers::pi + 1e-9);
+    // Fitted arcs turn at most half a turn; an arc of the part, a full one.
+    EXPECT_LE(pass.largestSweep, (fitted ? 1 : 2) * std::numbers::pi + 1e-9);
     EXPECT_GT(pass.arcs, 0u);
     ++measured;
   }
@@ -241,20 +247,21 @@ TEST(ArcsOutput, CamProfileWithinTolerance) {
   expectArcsWithinTolerance("cam_profile.cdl");
 }
 
-TEST(ArcsOutput, HelixBoreKeepsChordsOnHelices) {
+// The bores are arcs with z and the floors arcs: printed as they are, one
+// helical G03 per turn (6 turns of 1.5 mm down to 9 mm) and one G03 per
+// floor circle, with nothing fitted and no chords.
+TEST(ArcsOutput, HelixBoreCutsItsArcsNatively) {
   for (const char* partName : {"bore_plate_mm", "bore_plate_inch"}) {
     std::unique_ptr<CompiledPart> part = compileWithArcs("helix_bore.cdl", partName);
     ASSERT_TRUE(part);
-    for (const backends::ArcProblem& problem : part->fitting.problems) {
-      EXPECT_FALSE(part->fitting.fits[problem.cut]);
-    }
-    for (const ExecutedPass& pass : executePasses(*part)) {
-      const ir::CutGeometry& cut = part->lowered->cuts.at(pass.cut);
-      if (part->fitting.fits[pass.cut]) {
-        EXPECT_LE(passDeviation(pass, cut), cut.tolerance) << partName << " cut " << pass.cut;
-      } else {
-        EXPECT_EQ(pass.arcs, 0u);
-      }
+    EXPECT_TRUE(part->fitting.problems.empty());
+    std::vector<ExecutedPass> passes = executePasses(*part);
+    ASSERT_EQ(passes.size(), 6u) << partName; // a bore and a floor per hole
+    for (const ExecutedPass& pass : passes) {
+      EXPECT_TRUE(part->lowered->cuts.at(pass.cut).nativeArcs);
+      EXPECT_FALSE(part->fitting.fits[pass.cut]);
+      EXPECT_EQ(pass.lines, 0u) << partName << " cut " << pass.cut;
+      EXPECT_EQ(pass.arcs, pass.cut % 2 == 0 ? 6u : 1u) << partName << " cut " << pass.cut;
     }
   }
 }

@@ -8,6 +8,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/verification.h"
+#include "cncc/backends/virtual_controller.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/interpreter.h"
@@ -228,13 +229,20 @@ struct ExampleParameters {
 const std::vector<ExampleParameters>& exampleParameters() {
   static const std::vector<ExampleParameters> examples = {
       {"archimedean_spiral.cdl", "", {{}, {{"a", 3}, {"b", 0.5}}, {{"a", 0.5}, {"b", 4}}}, {}},
+      {"bolt_circle.cdl",
+       "",
+       {{}, {{"holes", 8}, {"pcd", 100}}, {{"hole", 12}, {"depth", 4.5}, {"step", 2}}},
+       {}},
       {"cam_profile.cdl",
        "",
        {{}, {{"base", 25}, {"lift", 5}}, {{"base", 18}, {"lift", 10}, {"top_end", 2.5}}},
        {}},
       {"helix_bore.cdl",
        "bore_plate_mm",
-       {{}, {{"bore_diameter", 10}, {"depth", 6}}, {{"depth", 12}, {"pitch", 1}}},
+       {{},
+        {{"bore_diameter", 10}, {"depth", 6}},
+        {{"depth", 12}, {"pitch", 1}},
+        {{"depth", 7}, {"pitch", 2}}},
        {}},
       {"helix_bore.cdl",
        "bore_plate_inch",
@@ -290,6 +298,47 @@ std::string caseName(const ::testing::TestParamInfo<MacroCase>& info) {
     c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   }
   return name + "_" + std::to_string(info.index);
+}
+
+// The circular and helical moves the controller executes: the helices of
+// helix_bore, whose turns (depth / pitch) are parameters, in half-turn
+// blocks, at most two per turn; each floor circle in one block; the bolt
+// circle's holes one block per pass.
+std::size_t executedArcs(const MacroCase& test) {
+  std::unique_ptr<CheckedExample> example = checkExample(test, test.parameters);
+  if (!example) {
+    return 0;
+  }
+  std::optional<std::string> program = macroProgram(*example, test);
+  if (!program) {
+    return 0;
+  }
+  sim::SimulationResult run = sim::simulateProgram(*program, *findControllerProfile(test.target));
+  EXPECT_FALSE(run.error) << run.error->what();
+  std::size_t arcs = 0;
+  for (const sim::ExecutedEvent& event : run.path.events) {
+    arcs += event.kind == sim::ExecutedEvent::Kind::ClockwiseArc ||
+                    event.kind == sim::ExecutedEvent::Kind::CounterclockwiseArc
+                ? 1
+                : 0;
+  }
+  return arcs;
+}
+
+TEST(NativeArcs, HelicesInHalfTurnsAndCirclesInOneBlockOnTheController) {
+  for (const char* target : {"fanuc", "m80"}) {
+    // 3 holes: 6 turns as 12 half turns, and a floor circle.
+    EXPECT_EQ(executedArcs({"helix_bore.cdl", "bore_plate_mm", {}, target}), 3u * (12 + 1));
+    // 3.5 turns as 7 half turns.
+    EXPECT_EQ(
+        executedArcs({"helix_bore.cdl", "bore_plate_mm", {{"depth", 7}, {"pitch", 2}}, target}),
+        3u * (7 + 1));
+    // 6 holes of 3 passes, then 8 holes of 2 passes (4.5 mm in steps of 2.5).
+    EXPECT_EQ(executedArcs({"bolt_circle.cdl", "", {}, target}), 6u * 3);
+    EXPECT_EQ(executedArcs(
+                  {"bolt_circle.cdl", "", {{"holes", 8}, {"depth", 4.5}, {"step", 2.5}}, target}),
+              8u * 2);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, MacroEndToEnd,

@@ -210,7 +210,9 @@ TEST_P(EveryExample, EveryCutStaysWithinItsTolerance) {
   ASSERT_TRUE(example);
   const std::vector<ir::CutGeometry>& cuts = example->lowered->cuts;
   ASSERT_FALSE(cuts.empty());
-  std::vector<std::vector<Pass>> passes = passesByCut(example->path, cuts.size());
+  // Arcs as the chords a controller's interpolation stays within (1e-5 mm).
+  std::vector<std::vector<Pass>> passes =
+      passesByCut(ir::flattenArcs(example->path, 1e-5), cuts.size());
   std::string program = backends::writeGcode(example->path, {});
   std::cout << GetParam().file << " " << GetParam().part << ": " << countG01(program)
             << " G01 blocks, " << cuts.size() << " cuts\n";
@@ -231,7 +233,8 @@ TEST_P(EveryExample, EveryCutStaysWithinItsTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(
     Examples, EveryExample,
-    testing::Values(ExampleCase{"archimedean_spiral.cdl", ""}, ExampleCase{"cam_profile.cdl", ""},
+    testing::Values(ExampleCase{"archimedean_spiral.cdl", ""}, ExampleCase{"bolt_circle.cdl", ""},
+                    ExampleCase{"cam_profile.cdl", ""},
                     ExampleCase{"helix_bore.cdl", "bore_plate_mm"},
                     ExampleCase{"helix_bore.cdl", "bore_plate_inch"},
                     ExampleCase{"polar_contour.cdl", ""}, ExampleCase{"rosette_plate.cdl", ""},
@@ -324,7 +327,7 @@ TEST(EndToEnd, PolarContourWithRampWithinTolerance) {
   EXPECT_EQ(z, -6);
 }
 
-// The JIT target prints the same moves the G-code holds.
+// The JIT target prints the same moves the G-code holds, its arcs as chords.
 TEST(EndToEnd, JitAndGcodeShareTheToolPath) {
   std::optional<ir::ToolPath> path = compileExample("cam_profile.cdl");
   ASSERT_TRUE(path);
@@ -334,7 +337,9 @@ TEST(EndToEnd, JitAndGcodeShareTheToolPath) {
     rows += c == '\n' ? 1 : 0;
   }
   std::size_t moves = 0;
-  for (const ir::MachineEvent& event : path->events) {
+  ir::ToolPath flat = ir::flattenArcs(*path, backends::toolPathCsvArcSagitta);
+  EXPECT_GT(flat.events.size(), path->events.size()); // the profile has arcs
+  for (const ir::MachineEvent& event : flat.events) {
     bool move =
         event.kind == ir::MachineEvent::Kind::Feed || event.kind == ir::MachineEvent::Kind::Rapid;
     moves += move ? 1 : 0;

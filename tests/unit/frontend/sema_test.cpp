@@ -120,8 +120,12 @@ TEST(SemaTest, NamedAndPositionalArguments) {
   EXPECT_THAT(check(part("  curve arc(center=(0, 0), radius=5, from=0, to=pi)"))->names(),
               ElementsAre());
   EXPECT_THAT(check(part("  curve arc((0, 0), 5, to=pi, from=0)"))->names(), ElementsAre());
-  EXPECT_THAT(check(part("  curve arc((0, 0), 5, 0, pi, 3)"))->names(),
+  EXPECT_THAT(check(part("  curve arc((0, 0), 5, 0, pi, 0 .. -1, 3)"))->names(),
               ElementsAre("too-many-arguments"));
+  // z= (a helix) is a range of heights.
+  EXPECT_THAT(check(part("  curve arc((0, 0), 5, 0, 4*pi, z=0 .. -2)"))->names(), ElementsAre());
+  EXPECT_THAT(check(part("  curve arc((0, 0), 5, 0, pi, 3)"))->names(),
+              ElementsAre("type-mismatch"));
   EXPECT_THAT(check(part("  curve arc((0, 0), 5, 0, center=(1, 1))"))->names(),
               ElementsAre("missing-argument", "duplicate-argument"));
   EXPECT_THAT(check(part("  curve arc((0, 0), 5, 0)"))->names(), ElementsAre("missing-argument"));

@@ -63,6 +63,7 @@ struct Example {
 
 constexpr Example examples[] = {
     {"archimedean_spiral.cdl", ""},
+    {"bolt_circle.cdl", ""},
     {"cam_profile.cdl", ""},
     {"helix_bore.cdl", "bore_plate_mm"},
     {"helix_bore.cdl", "bore_plate_inch"},

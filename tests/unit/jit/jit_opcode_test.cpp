@@ -146,6 +146,26 @@ OpcodeCase loopsCase() {
   return {"loops", builder.finish()};
 }
 
+// Arcs from where the last move ended: a quarter counter-clockwise, a full
+// clockwise turn, a helical half turn; the radius a parameter, an alarm
+// when it is not positive.
+OpcodeCase arcsCase() {
+  FunctionBuilder builder("arcs");
+  ValueId radius = builder.parameter(builder.addParameter("radius", 5));
+  ValueId zero = builder.constant(0);
+  ValueId feed = builder.constant(250);
+  ValueId negated = builder.unary(Opcode::Neg, radius);
+  builder.beginIf(builder.binary(Opcode::Le, radius, zero));
+  builder.alarm("no radius");
+  builder.endIf();
+  builder.rapid(radius, zero, zero);
+  builder.arc(ir::ArcTurn::CounterClockwise, zero, radius, zero, negated, zero, feed);
+  builder.arc(ir::ArcTurn::Clockwise, zero, radius, zero, zero, negated, feed);
+  builder.arc(ir::ArcTurn::CounterClockwise, zero, negated, builder.constant(-2), zero, negated,
+              feed);
+  return {"arcs", builder.finish()};
+}
+
 std::vector<OpcodeCase> opcodeCases() {
   std::vector<OpcodeCase> cases;
   for (Opcode opcode : {Opcode::Neg, Opcode::Abs, Opcode::Sqrt, Opcode::Sin, Opcode::Cos,
@@ -165,6 +185,7 @@ std::vector<OpcodeCase> opcodeCases() {
   }
   cases.push_back(effectsCase());
   cases.push_back(loopsCase());
+  cases.push_back(arcsCase());
   return cases;
 }
 
@@ -210,6 +231,19 @@ TEST(JitOpcodes, UsesTheSameMathAsTheInterpreterBitForBit) {
       EXPECT_TRUE((std::isnan(expected) && std::isnan(actual)) || expected == actual)
           << opcodeCase.name << "(" << interpreted.events[i].y << ")";
     }
+  }
+}
+
+TEST(JitOpcodes, AnArcWithoutARadiusFailsAsInTheInterpreter) {
+  OpcodeCase opcodeCase = arcsCase();
+  for (double radius : {0.0, 1e-9, 2.5}) {
+    ir::InterpreterOptions options;
+    options.parameters["radius"] = radius;
+    jit_test::RunOutcome interpreted =
+        jit_test::outcomeOf([&] { return ir::interpret(opcodeCase.function, options); });
+    EXPECT_EQ(interpreted.failed, radius < 1e-5) << "radius " << radius;
+    EXPECT_EQ(interpreted.error == "alarm: no radius", radius == 0) << interpreted.error;
+    EXPECT_TRUE(jit_test::jitMatchesInterpreter(opcodeCase.function, options)) << radius;
   }
 }
 

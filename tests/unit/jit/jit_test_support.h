@@ -37,7 +37,8 @@ inline ::testing::AssertionResult samePaths(const ir::ToolPath& expected,
     bool same = a.kind == b.kind && sameNumber(a.x, b.x) && sameNumber(a.y, b.y) &&
                 sameNumber(a.z, b.z) && sameNumber(a.feed, b.feed) &&
                 sameNumber(a.number, b.number) && sameNumber(a.diameter, b.diameter) &&
-                a.text == b.text;
+                sameNumber(a.centreX, b.centreX) && sameNumber(a.centreY, b.centreY) &&
+                a.clockwise == b.clockwise && a.text == b.text;
     if (!same) {
       return ::testing::AssertionFailure()
              << "event " << i << " differs: interpreter kind " << static_cast<int>(a.kind) << " ("

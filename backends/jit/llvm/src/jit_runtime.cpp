@@ -1,7 +1,10 @@
 #include "jit_runtime.h"
 
+#include "cncc/ir/interpreter.h"
+
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 namespace cncc::backends::jit {
@@ -56,6 +59,24 @@ static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, doubl
   });
 }
 
+// `move.arc` from where the last move ended (the interpreter's arcMove
+// checks and builds it); `turn` is its ArcTurn.
+static std::int32_t cncc_jit_arc(RunContext* context, double turn, double x, double y, double z,
+                                 double i, double j, double feed) {
+  return record(context, [&] {
+    std::array<double, 3> start{0, 0, 0};
+    for (auto event = context->events->rbegin(); event != context->events->rend(); ++event) {
+      if (event->kind == ir::MachineEvent::Kind::Rapid ||
+          event->kind == ir::MachineEvent::Kind::Feed ||
+          event->kind == ir::MachineEvent::Kind::Arc) {
+        start = {event->x, event->y, event->z};
+        break;
+      }
+    }
+    return ir::arcMove(start, static_cast<ir::ArcTurn>(turn), x, y, z, i, j, feed);
+  });
+}
+
 static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
   return record(context, [&] {
     ir::MachineEvent event;
@@ -81,6 +102,14 @@ static std::int32_t cncc_jit_comment(RunContext* context, std::uint32_t index) {
     event.kind = ir::MachineEvent::Kind::Comment;
     event.text = (*context->comments)[index];
     return event;
+  });
+}
+
+// `alarm`: the run stops as the interpreter's does (the text is kept with
+// the comments, by index).
+static std::int32_t cncc_jit_alarm(RunContext* context, std::uint32_t index) {
+  return record(context, [&]() -> ir::MachineEvent {
+    throw ir::InterpreterError("alarm: " + (*context->comments)[index]);
   });
 }
 
@@ -123,9 +152,11 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
   static const std::vector<RuntimeSymbol> symbols = {
       {"cncc_jit_rapid", reinterpret_cast<void*>(&cncc_jit_rapid)},
       {"cncc_jit_feed", reinterpret_cast<void*>(&cncc_jit_feed)},
+      {"cncc_jit_arc", reinterpret_cast<void*>(&cncc_jit_arc)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
       {"cncc_jit_comment", reinterpret_cast<void*>(&cncc_jit_comment)},
+      {"cncc_jit_alarm", reinterpret_cast<void*>(&cncc_jit_alarm)},
       {"cncc_jit_cut_begin", reinterpret_cast<void*>(&cncc_jit_cut_begin)},
       {"cncc_jit_table_index_error", reinterpret_cast<void*>(&cncc_jit_table_index_error)},
       {"cncc_jit_loop_bound_error", reinterpret_cast<void*>(&cncc_jit_loop_bound_error)},

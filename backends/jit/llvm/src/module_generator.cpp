@@ -214,6 +214,8 @@ private:
       return;
     case Opcode::Rapid:
     case Opcode::Feed:
+    case Opcode::Arc:
+    case Opcode::Alarm:
     case Opcode::Spindle:
     case Opcode::Tool:
     case Opcode::Comment:
@@ -384,6 +386,11 @@ private:
     case Opcode::Feed:
       callback = "cncc_jit_feed";
       break;
+    case Opcode::Arc:
+      callback = "cncc_jit_arc";
+      arguments.insert(arguments.begin(),
+                       llvm::ConstantFP::get(f64_, static_cast<double>(instruction.index)));
+      break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";
       break;
@@ -392,7 +399,8 @@ private:
       arguments.insert(arguments.begin(), llvm::ConstantFP::get(f64_, instruction.number));
       break;
     case Opcode::Comment:
-      callback = "cncc_jit_comment";
+    case Opcode::Alarm:
+      callback = instruction.opcode == Opcode::Comment ? "cncc_jit_comment" : "cncc_jit_alarm";
       arguments = {builder_.getInt32(static_cast<std::uint32_t>(comments_.size()))};
       comments_.push_back(instruction.text);
       break;

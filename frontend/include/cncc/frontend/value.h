@@ -127,6 +127,8 @@ struct CurveValue {
   std::array<double, 3> center{0, 0, 0};
   double arcRadius = 0;
   double startAngle = 0, endAngle = 0;
+  // Arc: its height at the start and the end angle (z = z0 .. z1, a helix; 0 .. 0 without).
+  double startZ = 0, endZ = 0;
 
   // Path: the pieces. Translate/rotate/scale: one piece and the amounts.
   CurvePieces pieces;

@@ -38,9 +38,14 @@ public:
 
   void rapid(ValueId x, ValueId y, ValueId z);
   void feed(ValueId x, ValueId y, ValueId z, ValueId feedRate);
+  // `move.arc`: to (x, y, z) about the centre at (i, j) from the current
+  // position, turning `turn`; a full turn when it ends where it starts.
+  void arc(ArcTurn turn, ValueId x, ValueId y, ValueId z, ValueId i, ValueId j, ValueId feedRate);
   void spindle(ValueId speed);
   void tool(double number, ValueId diameter);
   void comment(std::string text);
+  // `alarm "text"`: the program stops with this message.
+  void alarm(std::string text);
   // `cut.begin index`: the moves that follow belong to cut `index`.
   void cutBegin(std::uint32_t index);
 

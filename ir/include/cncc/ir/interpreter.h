@@ -4,6 +4,7 @@
 #include "cncc/ir/ir.h"
 #include "cncc/ir/tool_path.h"
 
+#include <array>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -11,7 +12,8 @@
 namespace cncc::ir {
 
 // A run that cannot finish: a table index out of range, a loop bound that
-// is not finite, or more work than `maximumSteps`.
+// is not finite, more work than `maximumSteps`, an arc without a radius, or
+// an `alarm` ("alarm: " and its text).
 class InterpreterError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
@@ -25,5 +27,12 @@ struct InterpreterOptions {
 };
 
 ToolPath interpret(const Function& function, const InterpreterOptions& options = {});
+
+// The event `move.arc` records when the machine is at `start`: centre at
+// (i, j) from it. Throws InterpreterError, as a controller alarms, for an
+// arc without a radius or whose end lies off its circle (by more than 1e-5,
+// relative above 1 mm). The interpreter and the JIT both record arcs so.
+MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x, double y, double z,
+                     double i, double j, double feed);
 
 } // namespace cncc::ir

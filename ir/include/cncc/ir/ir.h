@@ -15,20 +15,40 @@
 namespace cncc::ir {
 
 enum class Opcode {
-#define CNCC_IR_OP(identifier, spelling, operands, result, meaning) identifier,
+#define CNCC_IR_OP(identifier, spelling, operands, result, traits, meaning) identifier,
 #include "cncc/ir/ir_ops.def"
 };
 
 enum class ValueType { None, F64, Bool };
 
+// What the passes may do with an operation (ir_ops.def explains each).
+enum class OpcodeTraits { Pure, MayFail, Effect, Control };
+
 struct OpcodeInfo {
   std::string_view spelling;
   int operandCount; // -1: any
   ValueType result;
+  OpcodeTraits traits;
   std::string_view meaning;
 };
 
 const OpcodeInfo& opcodeInfo(Opcode opcode);
+// Something the machine does (a move, the spindle, a comment...): kept, in order.
+inline bool isEffect(Opcode opcode) {
+  return opcodeInfo(opcode).traits == OpcodeTraits::Effect;
+}
+// Computes its result from its operands alone (table.load included, which
+// may also stop the run: see mayFail).
+inline bool isPure(Opcode opcode) {
+  OpcodeTraits traits = opcodeInfo(opcode).traits;
+  return traits == OpcodeTraits::Pure || traits == OpcodeTraits::MayFail;
+}
+inline bool mayFail(Opcode opcode) {
+  return opcodeInfo(opcode).traits == OpcodeTraits::MayFail;
+}
+
+// The immediate of `move.arc` (Instruction::index): its turning direction.
+enum class ArcTurn : std::uint32_t { Clockwise = 0, CounterClockwise = 1 };
 // Every opcode, in declaration order.
 std::vector<Opcode> allOpcodes();
 
@@ -52,8 +72,9 @@ struct Instruction {
   std::vector<ValueId> operands;
   ValueId result;              // invalid when the operation has none
   double number = 0;           // Const value, ConstBool (0 or 1), Tool number
-  std::uint32_t index = 0;     // TableLoad: the table; Param: the parameter; CutBegin: the cut
-  std::string text;            // Comment text
+  std::uint32_t index = 0;     // TableLoad: the table; Param: the parameter; CutBegin: the cut;
+                               // Arc: its ArcTurn
+  std::string text;            // Comment, Alarm: the text
   std::vector<Region> regions; // Loop: {body}; If: {then, else}
 };
 

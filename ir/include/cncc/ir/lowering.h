@@ -63,6 +63,9 @@ struct CutGeometry {
   std::optional<bool> arcs;
   // The cut's method= word (linear, aspline, bspline, cspline, nurbs); empty without one.
   std::string method;
+  // Its arc pieces are move.arc blocks (native circular interpolation), so
+  // no arcs are fitted to it.
+  bool nativeArcs = false;
 };
 
 // A part parameter whose default the lowering read as a constant, and the

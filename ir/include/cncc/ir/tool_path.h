@@ -8,17 +8,38 @@
 namespace cncc::ir {
 
 struct MachineEvent {
-  enum class Kind { Rapid, Feed, Spindle, Tool, Comment, CutBegin };
+  enum class Kind { Rapid, Feed, Arc, Spindle, Tool, Comment, CutBegin };
   Kind kind = Kind::Rapid;
-  double x = 0, y = 0, z = 0; // Rapid, Feed: the target
-  double feed = 0;            // Feed: mm/min
-  double number = 0;          // Spindle: rpm; Tool: the tool number; CutBegin: the cut index
-  double diameter = 0;        // Tool
-  std::string text;           // Comment
+  double x = 0, y = 0, z = 0; // Rapid, Feed, Arc: the target
+  double feed = 0;            // Feed, Arc: mm/min
+  // Arc: the centre (absolute, in the XY plane) and the turning direction.
+  // It starts where the move before it ended; ending there too, it is one
+  // full turn. z goes linearly with the angle turned (a helix).
+  double centreX = 0, centreY = 0;
+  bool clockwise = false;
+  double number = 0;   // Spindle: rpm; Tool: the tool number; CutBegin: the cut index
+  double diameter = 0; // Tool
+  std::string text;    // Comment
 };
 
 struct ToolPath {
   std::vector<MachineEvent> events;
 };
+
+// The angle an arc from (startX, startY) to (endX, endY) about the centre
+// turns, in (0, 2 pi]: an arc that ends where it starts (within `closing`
+// mm) is a full turn.
+double arcSweep(double startX, double startY, const MachineEvent& arc, double closing = 1e-9);
+
+// Appends feed moves along `arc` from (startX, startY, startZ) whose chords
+// stay within `maximumSagitta` of it, the last one to its end.
+void appendArcChords(double startX, double startY, double startZ, const MachineEvent& arc,
+                     double maximumSagitta, std::vector<MachineEvent>& out);
+
+// The path with every arc replaced by feed moves whose chords stay within
+// `maximumSagitta` of it (the arc's radius goes evenly from its start's to
+// its end's, as controllers move). At most `maximumChordsPerArc` per arc.
+ToolPath flattenArcs(const ToolPath& path, double maximumSagitta);
+inline constexpr double maximumChordsPerArc = 4'000'000;
 
 } // namespace cncc::ir

@@ -49,8 +49,11 @@ public:
   using std::logic_error::logic_error;
 };
 
-// The tool path itself, exactly: what a host run (the jit target) executes.
-ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath);
+// The tool path itself, exactly: what a host run (the jit target) executes;
+// its arcs as chords within `arcSagitta` of them.
+inline constexpr double executedArcSagitta = 1e-5;
+ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath,
+                                    double arcSagitta = executedArcSagitta);
 
 // Runs plain G-code as a controller would: G00/G01 blocks with modal X, Y, Z,
 // F and motion mode; other words and comments are ignored. Each feed move is

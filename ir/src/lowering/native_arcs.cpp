@@ -1,0 +1,272 @@
+// Arcs as the controller's circular interpolation: every `arc` piece of a
+// cut (alone, in a path, under translate/rotate/scale, with z = a .. b as a
+// helix) becomes `move.arc` blocks, exact, with no tolerance spent. The
+// transforms keep an arc an arc and its turning direction (a scale has one
+// factor, so no mirror).
+//
+// The blocks of an arc that turns by D radians:
+// - D constant and a whole number k of turns: k blocks, each ending exactly
+//   where it starts (a full circle, the end written with the start's values
+//   so that no rounding makes it a sliver);
+// - D constant otherwise: the fewest blocks of at most 2 pi - 0.01 each (a
+//   block close to a full turn would end too near its start to say which);
+// - D computed on the controller (a number of turns that is a parameter):
+//   half turns at most, ceil(|D| / pi) of them, in a loop the controller
+//   runs, and the direction chosen by D's sign when the program runs.
+// A piece's own z (a helix) and the pass depth or ramp descent add up.
+#include "lowering/part_lowering.h"
+
+#include "cncc/geom/line_arc_curves.h"
+
+#include <Eigen/LU>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+constexpr double fullTurn = 2 * std::numbers::pi;
+// The most a block short of a full turn turns (radians).
+constexpr double largestPartialBlock = fullTurn - 0.01;
+// More blocks than this for one arc: the program would be absurd.
+constexpr double maximumArcBlocks = 100'000;
+// Blocks written out one after the other; more go in a loop.
+constexpr int largestUnrolledArc = 4;
+// ceil(x) as round(x + offset), a whole x staying itself (see controller_cuts.cpp).
+constexpr double wholeBlocksOffset = 0.49999999;
+
+bool isArcPiece(const CurvePiece& piece) {
+  return piece.value->kind == CurveKind::Arc;
+}
+
+} // namespace
+
+bool PartLowering::wantsNativeArcs(const CutStmt& cut) {
+  return modifierValue(cut, "samples") == nullptr && modifierValue(cut, "spacing") == nullptr;
+}
+
+bool PartLowering::hasArcPiece(const CutCurve& curve) {
+  for (const CurvePiece& piece : curve.pieces) {
+    if (isArcPiece(piece)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+ArcPath PartLowering::constantArcPath(const CutCurve& curve, std::size_t piece,
+                                      const CutStmt& cut) {
+  const CurvePiece& own = curve.pieces[piece];
+  const CurveValue& value = *own.value;
+  double length = static_cast<const geom::ArcCurve&>(*own.geometry).length();
+  ArcPath path;
+  path.pointAt = [this, &curve, piece, &cut, length](Scalar fraction) {
+    return pointAt(curve, piece, 0, arithmetic_.multiply(fraction, Scalar::of(length)), cut);
+  };
+  path.sweep = Scalar::of(value.endAngle - value.startAngle);
+  path.radius =
+      Scalar::of(value.arcRadius * std::sqrt(std::abs(own.transform.linear.determinant())));
+  path.toCentre = [this, &own, &value, sweep = path.sweep](Scalar fraction) {
+    Affine direction = own.transform;
+    direction.offset = Eigen::Vector2d::Zero();
+    return transformed(direction,
+                       radiusTowardsCentre(Scalar::of(value.arcRadius),
+                                           Scalar::of(value.startAngle), sweep, fraction));
+  };
+  return path;
+}
+
+ArcPath PartLowering::symbolicArcPath(const SymbolicPiece& piece, const CurveValue& value) {
+  auto number = [&](std::string_view name) {
+    std::optional<Scalar> result =
+        symbolicNumber(builtinArgument(*piece.call, name), piece.bindings, piece.environment);
+    if (!result) {
+      unsupported(piece.call->span, fmt::format("this arc's {} on the controller", name));
+    }
+    return *result;
+  };
+  Scalar from = number("from");
+  ArcPath path;
+  path.sweep = arithmetic_.binary(Opcode::Sub, number("to"), from);
+  path.pointAt = [this, &piece, &value](Scalar fraction) {
+    return symbolicPointAt(piece, value, fraction);
+  };
+  Scalar radius = number("radius");
+  path.radius = times(radius, piece.transform.norm);
+  path.toCentre = [this, &piece, radius, from, sweep = path.sweep](Scalar fraction) {
+    RuntimeTransform direction = piece.transform;
+    direction.offset = {Scalar::of(0), Scalar::of(0)};
+    return applied(direction, radiusTowardsCentre(radius, from, sweep, fraction));
+  };
+  return path;
+}
+
+// -r (cos a, sin a) at a = from + sweep fraction: from the arc's point to its
+// centre, before the transform.
+CurvePoint PartLowering::radiusTowardsCentre(Scalar radius, Scalar from, Scalar sweep,
+                                             Scalar fraction) {
+  Scalar angle = arithmetic_.add(from, times(sweep, fraction));
+  Scalar negated = arithmetic_.unary(Opcode::Neg, radius);
+  return {times(negated, arithmetic_.unary(Opcode::Cos, angle)),
+          times(negated, arithmetic_.unary(Opcode::Sin, angle)), Scalar::of(0)};
+}
+
+void PartLowering::emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, Scalar to,
+                                bool fullTurn, const ArcHeight& height, ValueId feed) {
+  CurvePoint end = arc.pointAt(to);
+  if (fullTurn) {
+    CurvePoint start = arc.pointAt(from);
+    end.x = start.x;
+    end.y = start.y;
+  }
+  CurvePoint centre = arc.toCentre(from);
+  Scalar z = arithmetic_.add(height(to), end.z);
+  builder_.arc(turn, arithmetic_.value(end.x), arithmetic_.value(end.y), arithmetic_.value(z),
+               arithmetic_.value(centre.x), arithmetic_.value(centre.y), feed);
+}
+
+// `count` blocks of equal turn: block j from (j - 1) / count to j / count.
+void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count, bool fullTurns,
+                                 const ArcHeight& height, ValueId feed) {
+  if (count.isConstant() && count.constant <= largestUnrolledArc) {
+    auto blocks = static_cast<int>(count.constant);
+    for (int j = 1; j <= blocks; ++j) {
+      emitArcBlock(arc, turn, Scalar::of(static_cast<double>(j - 1) / blocks),
+                   Scalar::of(static_cast<double>(j) / blocks), fullTurns, height, feed);
+    }
+    return;
+  }
+  ValueId j = builder_.beginLoop(builder_.constant(1), arithmetic_.value(count));
+  Scalar index = Scalar::of(j, ValueType::F64);
+  Scalar step = count.isConstant() ? Scalar::of(1 / count.constant)
+                                   : arithmetic_.binary(Opcode::Div, Scalar::of(1), count);
+  Scalar from = arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, index, Scalar::of(1)), step);
+  emitArcBlock(arc, turn, from, arithmetic_.multiply(index, step), fullTurns, height, feed);
+  builder_.endLoop();
+}
+
+// A radius the program computes: a value that leaves none stops the
+// program before the cut starts, as the controller would alarm at the arc.
+void PartLowering::guardArcRadius(const ArcPath& arc) {
+  if (arc.radius.isConstant()) {
+    return;
+  }
+  builder_.beginIf(arithmetic_.value(arithmetic_.binary(Opcode::Le, arc.radius, Scalar::of(0))));
+  builder_.alarm("the radius of an arc is not positive");
+  builder_.endIf();
+}
+
+void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
+                           const CutStmt& cut) {
+  if (arc.sweep.isConstant()) {
+    double sweep = arc.sweep.constant;
+    double turns = std::abs(sweep) / fullTurn;
+    double whole = std::round(turns);
+    bool fullTurns = whole >= 1 && std::abs(turns - whole) <= 1e-9 * turns;
+    double blocks = fullTurns ? whole : std::ceil(std::abs(sweep) / largestPartialBlock);
+    if (!(blocks <= maximumArcBlocks)) {
+      fail(cut.curve->span,
+           fmt::format("this arc turns {:g} times; the limit is {:g} turns", turns,
+                       maximumArcBlocks),
+           DiagnosticKind::ProgramTooLarge);
+    }
+    ArcTurn turn = sweep > 0 ? ArcTurn::CounterClockwise : ArcTurn::Clockwise;
+    emitArcBlocks(arc, turn, Scalar::of(blocks), fullTurns, height, feed);
+    return;
+  }
+  // Half turns at most, as many as the turn the program runs with needs.
+  Scalar count = arithmetic_.unary(
+      Opcode::Round, arithmetic_.add(arithmetic_.binary(Opcode::Div, magnitude(arc.sweep),
+                                                        Scalar::of(std::numbers::pi)),
+                                     Scalar::of(wholeBlocksOffset)));
+  Scalar counterClockwise = arithmetic_.binary(Opcode::Gt, arc.sweep, Scalar::of(0));
+  builder_.beginIf(arithmetic_.value(counterClockwise));
+  emitArcBlocks(arc, ArcTurn::CounterClockwise, count, false, height, feed);
+  builder_.beginElse();
+  emitArcBlocks(arc, ArcTurn::Clockwise, count, false, height, feed);
+  builder_.endIf();
+}
+
+// A cut with arc pieces on a target that computes on the host: each arc
+// piece as move.arc, each other piece's points chosen on the piece alone
+// (chord tolerance), in a table and a loop as cuts.cpp does for a whole curve.
+bool PartLowering::lowerHostArcCut(const CutStmt& cut) {
+  if (!wantsNativeArcs(cut)) {
+    return false;
+  }
+  CutCurve curve = cutCurve(cut);
+  if (!hasArcPiece(curve)) {
+    return false;
+  }
+  auto [feed, ramp] = beginHostCut(cut);
+  std::vector<double> depths = passDepths(cut);
+  if (ramp) {
+    checkRampCloses(curve, cut);
+  }
+  double tolerance = *chordTolerance(cut);
+  double rounding = options_.coordinateIncrement / 2 * std::sqrt(3.0);
+  std::vector<RampSegment> shares = ramp ? rampSegments(curve, cut) : std::vector<RampSegment>{};
+
+  // The other pieces' points: one run of samples per piece and span.
+  std::vector<std::vector<SampleRun>> runs(curve.pieces.size());
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    if (!isArcPiece(curve.pieces[p])) {
+      runs[p] = pieceSampleRuns(curve, p, tolerance - rounding, ramp ? &shares : nullptr, cut);
+    }
+  }
+  ValueId feedValue = arithmetic_.value(feed);
+  ValueId safeValue = arithmetic_.value(*safe_);
+  auto index = static_cast<std::uint32_t>(cuts_.size());
+  cuts_.push_back({curve.geometry, tolerance, cut.span, std::nullopt, methodOf(cut), true});
+  builder_.cutBegin(index);
+
+  // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp does).
+  auto lap = [&](double zFrom, double zTo) {
+    for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+      if (!isArcPiece(curve.pieces[p])) {
+        emitSampleRuns(curve, runs[p], zFrom, zTo, feedValue, cut);
+        continue;
+      }
+      RampSegment segment = ramp ? rampSegmentOf(shares, p, 0) : RampSegment{p, 0, 1.0, 0.0};
+      ArcHeight height = [&, segment](Scalar fraction) {
+        if (zFrom == zTo) {
+          return Scalar::of(zTo);
+        }
+        Scalar done = arithmetic_.add(Scalar::of(segment.before),
+                                      arithmetic_.multiply(Scalar::of(segment.share), fraction));
+        return arithmetic_.add(Scalar::of(zFrom),
+                               arithmetic_.multiply(Scalar::of(zTo - zFrom), done));
+      };
+      emitArc(constantArcPath(curve, p, cut), height, feedValue, cut);
+    }
+  };
+  geom::ParameterRange domain = curve.geometry->domain();
+  Eigen::Vector3d start = curve.geometry->point(domain.t0);
+  Eigen::Vector3d finish = curve.geometry->point(domain.t1);
+  double previous = 0;
+  for (double depth : depths) {
+    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
+    double passZ = depth == 0 ? 0.0 : -depth;
+    double entryZ = ramp ? previous : passZ;
+    ValueId startX = builder_.constant(start.x());
+    ValueId startY = builder_.constant(start.y());
+    builder_.rapid(startX, startY, safeValue);
+    builder_.feed(startX, startY, builder_.constant(entryZ + start.z()), feedValue);
+    if (ramp) {
+      builder_.comment("ramp");
+      lap(entryZ, passZ);
+    }
+    lap(passZ, passZ);
+    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safeValue);
+    previous = passZ;
+  }
+  return true;
+}
+
+} // namespace cncc::ir::lowering
