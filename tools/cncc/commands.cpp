@@ -30,6 +30,34 @@ void reportWriteFailure(const DiagnosticOutput& output, const std::string& path,
   output.driverError(fmt::format("cannot write '{}': {}", path, error.message()));
 }
 
+// `--emit=ir`: the selected part as lowered for no target; with -t, as
+// that target's backend lowers and optimises it (--print-after shows each
+// pass on standard error, -O0 none).
+std::string emittedIr(const DriverOptions& options, SourceManager& sources,
+                      DiagnosticEngine& diagnostics) {
+  std::optional<frontend::CheckedProgram> program =
+      checkInput(options.inputs.front(), options, true, sources, diagnostics);
+  if (!program || diagnostics.hasErrors() || program->selectedPart == nullptr) {
+    return "";
+  }
+  const frontend::PartItem& part = *program->selectedPart;
+  const Target* target = options.target.empty() ? nullptr : findTarget(options.target);
+  std::optional<ir::Function> function = ir::lowerPart(
+      *program, part, diagnostics,
+      target != nullptr ? target->lowering(part, options) : ir::LoweringOptions{});
+  if (!function) {
+    return "";
+  }
+  std::vector<std::string> problems = ir::verifyFunction(*function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  if (target != nullptr) {
+    optimise(*function, options);
+  }
+  return ir::printFunction(*function);
+}
+
 // The text of `--emit`: the tokens, the tree after semantic checking, or the
 // selected part lowered to the IR.
 std::string emittedText(const DriverOptions& options, SourceManager& sources,
@@ -40,21 +68,7 @@ std::string emittedText(const DriverOptions& options, SourceManager& sources,
     return file ? frontend::dumpTokens(frontend::lex(sources, *file, diagnostics), sources) : "";
   }
   if (options.emit == EmitKind::Ir) {
-    std::optional<frontend::CheckedProgram> program =
-        checkInput(path, options, true, sources, diagnostics);
-    if (!program || diagnostics.hasErrors() || program->selectedPart == nullptr) {
-      return "";
-    }
-    std::optional<ir::Function> function =
-        ir::lowerPart(*program, *program->selectedPart, diagnostics);
-    if (!function) {
-      return "";
-    }
-    std::vector<std::string> problems = ir::verifyFunction(*function);
-    if (!problems.empty()) {
-      throw InternalError("the lowered IR does not verify: " + problems.front());
-    }
-    return ir::printFunction(*function);
+    return emittedIr(options, sources, diagnostics);
   }
   std::optional<frontend::CheckedProgram> program =
       checkInput(path, options, false, sources, diagnostics);

@@ -12,19 +12,14 @@
 
 namespace cncc::driver {
 
-namespace {
-
-// The controller runs the curve loops; LinuxCNC computes in doubles, so no
-// input increment takes from the tolerance.
-ir::LoweringOptions loweringOptions(const BackendRequest& request) {
-  ir::LoweringOptions options;
-  options.controllerLoops = true;
-  options.arcBlocks = true;
-  options.arcsOnEveryCut = request.options.arcs;
-  return options;
+ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem&,
+                                            const DriverOptions& options) {
+  ir::LoweringOptions lowering;
+  lowering.controllerLoops = true;
+  lowering.arcBlocks = true;
+  lowering.arcsOnEveryCut = options.arcs;
+  return lowering;
 }
-
-} // namespace
 
 void linuxcncBackend(const BackendRequest& request) {
   const frontend::PartItem* part = request.program.selectedPart;
@@ -32,7 +27,8 @@ void linuxcncBackend(const BackendRequest& request) {
     return;
   }
   std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, loweringOptions(request));
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
+                            linuxcncLoweringOptions(*part, request.options));
   if (!lowered) {
     return;
   }

@@ -7,5 +7,9 @@
 namespace cncc::driver {
 
 void linuxcncBackend(const BackendRequest& request);
+// The controller runs the curve loops; LinuxCNC computes in doubles, so no
+// input increment takes from the tolerance.
+ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem& part,
+                                            const DriverOptions& options);
 
 } // namespace cncc::driver

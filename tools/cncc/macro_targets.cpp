@@ -16,22 +16,37 @@ namespace cncc::driver {
 
 namespace {
 
+const backends::ControllerProfile& profileFor(const DriverOptions& options,
+                                              std::string_view defaultProfile) {
+  std::string_view name =
+      options.profile.empty() ? defaultProfile : std::string_view(options.profile);
+  const backends::ControllerProfile* profile = backends::findControllerProfile(name);
+  if (profile == nullptr) {
+    throw InternalError(fmt::format("unknown controller profile '{}'", name));
+  }
+  return *profile;
+}
+
+ir::LoweringOptions macroLowering(const frontend::PartItem& part, const DriverOptions& options,
+                                  std::string_view defaultProfile) {
+  ir::LoweringOptions lowering = backends::macroLoweringOptions(
+      profileFor(options, defaultProfile), ir::partUnits(part) == ir::PartUnits::Inches);
+  lowering.nurbsBlocks = true;
+  lowering.arcsOnEveryCut = options.arcs;
+  return lowering;
+}
+
 // The lowered, optimised part; nullopt after a diagnostic. `cuts` receives
 // the part's cut table (method=nurbs cuts are printed from it).
 std::optional<ir::Function> loweredPart(const BackendRequest& request,
-                                        const backends::ControllerProfile& profile,
                                         std::vector<ir::CutGeometry>& cuts) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
   }
-  // The controller runs the curve loops, within the budget its increment leaves.
-  ir::LoweringOptions lowering =
-      backends::macroLoweringOptions(profile, ir::partUnits(*part) == ir::PartUnits::Inches);
-  lowering.nurbsBlocks = true; // method=nurbs as G06.2 blocks
-  lowering.arcsOnEveryCut = request.options.arcs;
   std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, lowering);
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
+                            findTarget(request.options.target)->lowering(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }
@@ -46,14 +61,9 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request,
 }
 
 void macroBackend(const BackendRequest& request, std::string_view defaultProfile) {
-  std::string_view profileName =
-      request.options.profile.empty() ? defaultProfile : std::string_view(request.options.profile);
-  const backends::ControllerProfile* profile = backends::findControllerProfile(profileName);
-  if (profile == nullptr) {
-    throw InternalError(fmt::format("unknown controller profile '{}'", profileName));
-  }
+  const backends::ControllerProfile* profile = &profileFor(request.options, defaultProfile);
   std::vector<ir::CutGeometry> cuts;
-  std::optional<ir::Function> function = loweredPart(request, *profile, cuts);
+  std::optional<ir::Function> function = loweredPart(request, cuts);
   if (!function) {
     return;
   }
@@ -86,6 +96,16 @@ void m80Backend(const BackendRequest& request) {
 
 void fanucBackend(const BackendRequest& request) {
   macroBackend(request, "fanuc");
+}
+
+ir::LoweringOptions m80LoweringOptions(const frontend::PartItem& part,
+                                       const DriverOptions& options) {
+  return macroLowering(part, options, "m80");
+}
+
+ir::LoweringOptions fanucLoweringOptions(const frontend::PartItem& part,
+                                         const DriverOptions& options) {
+  return macroLowering(part, options, "fanuc");
 }
 
 } // namespace cncc::driver

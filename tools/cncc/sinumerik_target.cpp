@@ -49,15 +49,19 @@ std::vector<backends::SinumerikCut> sinumerikCuts(std::vector<ir::CutGeometry> g
 
 } // namespace
 
+ir::LoweringOptions sinumerikLoweringOptions(const frontend::PartItem&, const DriverOptions&) {
+  ir::LoweringOptions lowering;
+  lowering.splineInterpolation = true;
+  return lowering;
+}
+
 std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& request) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
   }
-  ir::LoweringOptions lowering;
-  lowering.splineInterpolation = true;
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, lowering);
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics, sinumerikLoweringOptions(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }

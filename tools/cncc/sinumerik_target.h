@@ -26,5 +26,9 @@ std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& re
 backends::ExecutedProgram executeSinumerik(const backends::SinumerikProgram& program);
 
 void sinumerikBackend(const BackendRequest& request);
+// The host computes the tool path; method=aspline/bspline/cspline are the
+// controller's splines, so no spline-as-chords warning.
+ir::LoweringOptions sinumerikLoweringOptions(const frontend::PartItem& part,
+                                             const DriverOptions& options);
 
 } // namespace cncc::driver

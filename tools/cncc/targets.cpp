@@ -44,12 +44,17 @@ void jitBackend(const BackendRequest& request) {
 }
 
 constexpr Target targetTable[] = {
-    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend},
-    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend},
-    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", sinumerikBackend},
-    {"gcode", "plain G-code: G00/G01 blocks computed on the host", gcodeBackend},
-    {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend},
-    {"jit", "run the part on the host and print the tool path", jitBackend},
+    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend,
+     m80LoweringOptions},
+    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend,
+     fanucLoweringOptions},
+    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", sinumerikBackend,
+     sinumerikLoweringOptions},
+    {"gcode", "plain G-code: G00/G01 and G02/G03 blocks computed on the host", gcodeBackend,
+     gcodeLoweringOptions},
+    {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend,
+     linuxcncLoweringOptions},
+    {"jit", "run the part on the host and print the tool path", jitBackend, jitLoweringOptions},
 };
 
 } // namespace
@@ -61,7 +66,8 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
     return std::nullopt;
   }
   std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics, hostLoweringOptions(request));
+      request.program, *part, request.diagnostics,
+      findTarget(request.options.target)->lowering(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }
@@ -89,15 +95,17 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   }
 }
 
-ir::LoweringOptions hostLoweringOptions(const BackendRequest& request) {
-  // The printed coordinates are rounded to the printed decimals (the CSV
-  // of jit has 6): the chords leave that rounding room inside the tolerance.
+// The printed coordinates are rounded to the printed decimals (the CSV of
+// jit has 6): the chords leave that rounding room inside the tolerance.
+ir::LoweringOptions gcodeLoweringOptions(const frontend::PartItem&, const DriverOptions&) {
   ir::LoweringOptions options;
-  if (request.options.target == "gcode") {
-    options.coordinateIncrement = std::pow(10.0, -gcodeOptionsFor(request).decimals);
-  } else if (request.options.target == "jit") {
-    options.coordinateIncrement = std::pow(10.0, -backends::toolPathCsvDecimals);
-  }
+  options.coordinateIncrement = std::pow(10.0, -backends::GcodeOptions{}.decimals);
+  return options;
+}
+
+ir::LoweringOptions jitLoweringOptions(const frontend::PartItem&, const DriverOptions&) {
+  ir::LoweringOptions options;
+  options.coordinateIncrement = std::pow(10.0, -backends::toolPathCsvDecimals);
   return options;
 }
 

@@ -30,17 +30,25 @@ struct BackendRequest {
 
 // Writes the program; problems go to the request's diagnostics.
 using BackendFunction = void (*)(const BackendRequest& request);
+// How the target lowers a part: what its backend lowers with, and what
+// `--emit=ir -t TARGET` shows.
+using LoweringFunction = ir::LoweringOptions (*)(const frontend::PartItem& part,
+                                                 const DriverOptions& options);
 
 struct Target {
   std::string_view name;        // what `-t` takes
   std::string_view description; // one line, for --help
   BackendFunction backend;      // null until the backend exists
+  LoweringFunction lowering;
 
   bool available() const { return backend != nullptr; }
 };
 
-// How a host-side target (gcode, jit) lowers the request's part.
-ir::LoweringOptions hostLoweringOptions(const BackendRequest& request);
+// How the host-side targets (gcode, jit) lower a part.
+ir::LoweringOptions gcodeLoweringOptions(const frontend::PartItem& part,
+                                         const DriverOptions& options);
+ir::LoweringOptions jitLoweringOptions(const frontend::PartItem& part,
+                                       const DriverOptions& options);
 
 // The selected part lowered so (and optimised, unless -O0) and run on the
 // host: by the LLVM JIT when `native` and its module loads (jit_module.h),
