@@ -341,7 +341,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
   builder_.cutBegin(index);
   for (const ControllerSegment& segment : *planned) {
     if (segment.isArc && segment.symbolic != nullptr) {
-      guardArcRadius(symbolicArcPath(*segment.symbolic, *curve.pieces[segment.piece].value));
+      guardArc(symbolicArcPath(*segment.symbolic, *curve.pieces[segment.piece].value));
     }
   }
 

@@ -12,7 +12,9 @@
 //   block close to a full turn would end too near its start to say which);
 // - D computed on the controller (a number of turns that is a parameter):
 //   half turns at most, ceil(|D| / pi) of them, in a loop the controller
-//   runs, and the direction chosen by D's sign when the program runs.
+//   runs, turning as the defaults turn it (values that turn it the other
+//   way stop the program with an alarm, as do values that leave it no
+//   radius, before the cut starts).
 // A piece's own z (a helix) and the pass depth or ramp descent add up.
 #include "lowering/part_lowering.h"
 
@@ -70,6 +72,7 @@ ArcPath PartLowering::constantArcPath(const CutCurve& curve, std::size_t piece,
     return pointAt(curve, piece, 0, arithmetic_.multiply(fraction, Scalar::of(length)), cut);
   };
   path.sweep = Scalar::of(value.endAngle - value.startAngle);
+  path.turnsCounterClockwise = value.endAngle > value.startAngle;
   path.radius =
       Scalar::of(value.arcRadius * std::sqrt(std::abs(own.transform.linear.determinant())));
   path.toCentre = [this, &own, &value, sweep = path.sweep](Scalar fraction) {
@@ -94,6 +97,7 @@ ArcPath PartLowering::symbolicArcPath(const SymbolicPiece& piece, const CurveVal
   Scalar from = number("from");
   ArcPath path;
   path.sweep = arithmetic_.binary(Opcode::Sub, number("to"), from);
+  path.turnsCounterClockwise = value.endAngle > value.startAngle;
   path.pointAt = [this, &piece, &value](Scalar fraction) {
     return symbolicPointAt(piece, value, fraction);
   };
@@ -151,15 +155,26 @@ void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count,
   builder_.endLoop();
 }
 
-// A radius the program computes: a value that leaves none stops the
-// program before the cut starts, as the controller would alarm at the arc.
-void PartLowering::guardArcRadius(const ArcPath& arc) {
-  if (arc.radius.isConstant()) {
-    return;
+// What the program computes of an arc is checked before the cut starts: a
+// radius the values leave none of, or a turn the other way than the
+// defaults', stops it with an alarm, as the controller would alarm at the
+// arc (or cut it mirrored).
+void PartLowering::guardArc(const ArcPath& arc) {
+  auto alarmWhen = [&](Scalar condition, std::string message) {
+    builder_.beginIf(arithmetic_.value(condition));
+    builder_.alarm(std::move(message));
+    builder_.endIf();
+  };
+  if (!arc.radius.isConstant()) {
+    alarmWhen(arithmetic_.binary(Opcode::Le, arc.radius, Scalar::of(0)),
+              "the radius of an arc is not positive");
   }
-  builder_.beginIf(arithmetic_.value(arithmetic_.binary(Opcode::Le, arc.radius, Scalar::of(0))));
-  builder_.alarm("the radius of an arc is not positive");
-  builder_.endIf();
+  if (!arc.sweep.isConstant()) {
+    alarmWhen(arithmetic_.binary(arc.turnsCounterClockwise ? Opcode::Lt : Opcode::Gt, arc.sweep,
+                                 Scalar::of(0)),
+              arc.turnsCounterClockwise ? "an arc turns clockwise, not as its defaults"
+                                        : "an arc turns counter-clockwise, not as its defaults");
+  }
 }
 
 void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
@@ -185,12 +200,8 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
       Opcode::Round, arithmetic_.add(arithmetic_.binary(Opcode::Div, magnitude(arc.sweep),
                                                         Scalar::of(std::numbers::pi)),
                                      Scalar::of(wholeBlocksOffset)));
-  Scalar counterClockwise = arithmetic_.binary(Opcode::Gt, arc.sweep, Scalar::of(0));
-  builder_.beginIf(arithmetic_.value(counterClockwise));
-  emitArcBlocks(arc, ArcTurn::CounterClockwise, count, false, height, feed);
-  builder_.beginElse();
-  emitArcBlocks(arc, ArcTurn::Clockwise, count, false, height, feed);
-  builder_.endIf();
+  emitArcBlocks(arc, arc.turnsCounterClockwise ? ArcTurn::CounterClockwise : ArcTurn::Clockwise,
+                count, false, height, feed);
 }
 
 // A cut with arc pieces on a target that computes on the host: each arc

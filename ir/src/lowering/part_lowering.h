@@ -119,6 +119,8 @@ struct ArcPath {
   Scalar sweep;
   // The radius the controller moves on, transformed (a constant when known).
   Scalar radius;
+  // The direction it turns with the part's defaults (the sweep's sign).
+  bool turnsCounterClockwise = true;
 };
 // The height added to an arc's own z at a fraction of it (the pass, a ramp).
 using ArcHeight = std::function<Scalar(Scalar fraction)>;
@@ -337,7 +339,7 @@ private:
   bool lowerHostArcCut(const frontend::CutStmt& cut);
   ArcPath constantArcPath(const CutCurve& curve, std::size_t piece, const frontend::CutStmt& cut);
   ArcPath symbolicArcPath(const SymbolicPiece& piece, const frontend::CurveValue& value);
-  void guardArcRadius(const ArcPath& arc);
+  void guardArc(const ArcPath& arc);
   void emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
                const frontend::CutStmt& cut);
   void emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count, bool fullTurns,

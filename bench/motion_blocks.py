@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Program size of parts on every controller target: motion blocks and bytes.
+
+    bench/motion_blocks.py CNCC [CNCC_BEFORE --root-before DIR]
+
+compiles each case below with each cncc given (the second, when given, is
+an older build to compare with, compiling the case files of its own
+checkout DIR where it has them) and prints a Markdown table. A motion block
+is a program line with a motion word (G0..G3 in any spelling) or an axis
+word (X, Y, Z) outside comments; the bytes are the whole program's. For the
+macro targets the figure counts the lines printed, not the blocks executed
+(a loop is printed once).
+"""
+
+import argparse
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+CASES = [
+    ("examples/helix_bore.cdl", "bore_plate_mm"),
+    ("examples/bolt_circle.cdl", ""),
+]
+TARGETS = ["fanuc", "m80", "linuxcnc", "gcode", "sinumerik"]
+
+COMMENT = re.compile(r"\([^)]*\)|;.*$")
+MOTION = re.compile(r"(^|[\s\]N0-9])G0?[0-3](?![0-9.])|(^|\s)[XYZ][-+#\[.0-9]")
+
+
+def motion_blocks(text):
+    count = 0
+    for line in text.splitlines():
+        if MOTION.search(COMMENT.sub("", line)):
+            count += 1
+    return count
+
+
+def compile_case(cncc, root, source, part, target):
+    path = root / source if (root / source).exists() else ROOT / source
+    arguments = [cncc, str(path), "-t", target]
+    if part:
+        arguments += ["-p", part]
+    result = subprocess.run(arguments, capture_output=True, text=True)
+    if result.returncode != 0:
+        return None
+    return result.stdout
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("cncc")
+    parser.add_argument("before", nargs="?")
+    parser.add_argument("--root-before", type=Path, default=ROOT)
+    options = parser.parse_args()
+    builds = [("after", options.cncc, ROOT)]
+    if options.before:
+        builds.insert(0, ("before", options.before, options.root_before))
+    header = "| part | target | " + " | ".join(
+        f"{name}: motion blocks | {name}: bytes" for name, _, _ in builds) + " |"
+    print(header)
+    print("|" + "---|" * (2 + 2 * len(builds)))
+    for source, part in CASES:
+        for target in TARGETS:
+            cells = []
+            for _, cncc, root in builds:
+                text = compile_case(cncc, root, source, part, target)
+                cells += ["error", "error"] if text is None else [
+                    str(motion_blocks(text)), str(len(text.encode()))]
+            name = Path(source).stem + (f" -p {part}" if part else "")
+            print(f"| {name} | {target} | " + " | ".join(cells) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
