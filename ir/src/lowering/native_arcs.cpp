@@ -121,10 +121,13 @@ CurvePoint PartLowering::radiusTowardsCentre(Scalar radius, Scalar from, Scalar 
           times(negated, arithmetic_.unary(Opcode::Sin, angle)), Scalar::of(0)};
 }
 
+// A full turn starts and ends where the arc starts: every one of them the
+// same values, so that no rounding of a computed angle leaves a sliver.
 void PartLowering::emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, Scalar to,
                                 bool fullTurn, const ArcHeight& height, ValueId feed) {
   CurvePoint end = arc.pointAt(to);
   if (fullTurn) {
+    from = Scalar::of(0);
     CurvePoint start = arc.pointAt(from);
     end.x = start.x;
     end.y = start.y;
