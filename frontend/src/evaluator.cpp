@@ -618,7 +618,7 @@ double applyUnary(MathFunction function, double x) {
   case MathFunction::Exp:
     return std::exp(x);
   case MathFunction::Ln:
-    return x > 0 ? std::log(x) : NAN;
+    return std::log(x); // as the IR computes it: -inf at 0, NaN below
   case MathFunction::Floor:
     return std::floor(x);
   case MathFunction::Ceil:

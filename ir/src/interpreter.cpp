@@ -1,6 +1,6 @@
 #include "cncc/ir/interpreter.h"
 
-#include "arithmetic.h"
+#include "cncc/ir/arithmetic.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,7 @@
 #include "macro_simplify.h"
 
+#include "cncc/ir/arithmetic.h"
+
 #include <cmath>
 #include <optional>
 
@@ -7,46 +9,20 @@ namespace cncc::backends {
 
 namespace {
 
-std::optional<double> foldUnary(ir::Opcode opcode, double a) {
-  switch (opcode) {
-  case ir::Opcode::Neg:
-    return -a;
-  case ir::Opcode::Abs:
-    return std::abs(a);
-  case ir::Opcode::Sqrt:
-    return std::sqrt(a);
-  case ir::Opcode::Sin:
-    return std::sin(a);
-  case ir::Opcode::Cos:
-    return std::cos(a);
-  case ir::Opcode::Tan:
-    return std::tan(a);
-  case ir::Opcode::Exp:
-    return std::exp(a);
-  case ir::Opcode::Ln:
-    return std::log(a);
-  default:
+// A constant number from constant operands, by the IR's own arithmetic (a
+// comparison, whose result is a bool, stays as it is).
+std::optional<double> fold(ir::Opcode opcode, double a) {
+  if (ir::opcodeInfo(opcode).result != ir::ValueType::F64) {
     return std::nullopt;
   }
+  return ir::unaryResult(opcode, a);
 }
 
-std::optional<double> foldBinary(ir::Opcode opcode, double a, double b) {
-  switch (opcode) {
-  case ir::Opcode::Add:
-    return a + b;
-  case ir::Opcode::Sub:
-    return a - b;
-  case ir::Opcode::Mul:
-    return a * b;
-  case ir::Opcode::Div:
-    return a / b;
-  case ir::Opcode::Min:
-    return std::min(a, b);
-  case ir::Opcode::Max:
-    return std::max(a, b);
-  default:
+std::optional<double> fold(ir::Opcode opcode, double a, double b) {
+  if (ir::opcodeInfo(opcode).result != ir::ValueType::F64) {
     return std::nullopt;
   }
+  return ir::binaryResult(opcode, a, b);
 }
 
 class Simplifier {
@@ -114,7 +90,7 @@ private:
     const std::vector<ir::ValueId>& operands = instruction.operands;
     if (operands.size() == 1) {
       if (std::optional<double> a = constant(operands[0])) {
-        if (std::optional<double> folded = foldUnary(instruction.opcode, *a)) {
+        if (std::optional<double> folded = fold(instruction.opcode, *a)) {
           becomeConstant(id, *folded);
         }
       }
@@ -126,7 +102,7 @@ private:
     std::optional<double> a = constant(operands[0]);
     std::optional<double> b = constant(operands[1]);
     if (a && b) {
-      if (std::optional<double> folded = foldBinary(instruction.opcode, *a, *b)) {
+      if (std::optional<double> folded = fold(instruction.opcode, *a, *b)) {
         becomeConstant(id, *folded);
       }
       return;

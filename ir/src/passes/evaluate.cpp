@@ -2,7 +2,7 @@
 // arithmetic (../arithmetic.h); a test runs both on the same inputs.
 #include "evaluate.h"
 
-#include "arithmetic.h"
+#include "cncc/ir/arithmetic.h"
 
 namespace cncc::ir::passes {
 

@@ -57,6 +57,17 @@ TEST(EvaluationTest, NumbersThroughFunctionsMatchTheOrdinaryArithmetic) {
             1.5 * 1.5 + -1 * (2.0 / 3) + std::pow(2.0, 1.5) + std::atan2(2, 1));
 }
 
+TEST(EvaluationTest, TheLogarithmIsTheOneTheIrComputes) {
+  // std::log, as the IR's interpreter and the JIT call it; ln(0) (-inf)
+  // and ln(-1) (NaN) are no numbers for a part.
+  auto checked = check("const z = ln(0)\nconst n = ln(-1)\nconst e = ln(2.5)\n" +
+                       part("  curve line((0, 0), (e, 1))"));
+  EXPECT_THAT(checked->names(), ElementsAre("non-finite-value", "non-finite-value"));
+  const Declaration* positive = checked->find("e");
+  ASSERT_TRUE(positive && positive->value);
+  EXPECT_EQ(positive->value->number, std::log(2.5));
+}
+
 TEST(EvaluationTest, ACurveConstructorBindsNamedArgumentsInAnyOrder) {
   // Named arguments out of order, alone and after a positional one.
   auto checked = check("const a = arc(to = 1, center = (3, 4), radius = 2, from = 0.5)\n"

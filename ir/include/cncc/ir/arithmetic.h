@@ -1,6 +1,7 @@
-// The IR's arithmetic on doubles, shared by the interpreter and constant
-// folding, so that a folded constant is the value the interpreter would have
-// computed at run time, bit for bit. Bools are 0 and 1.
+// The IR's arithmetic on doubles, shared by the interpreter, constant
+// folding and the macro printers' simplifier, so that a folded constant is
+// the value the interpreter would have computed at run time, bit for bit
+// (the JIT calls the same C library functions). Bools are 0 and 1.
 #pragma once
 
 #include "cncc/ir/ir.h"
