@@ -36,7 +36,9 @@ void appendArcChords(double startX, double startY, double startZ, const MachineE
   // A chord of angle a has sagitta r (1 - cos(a / 2)).
   double stepLimit =
       maximumSagitta >= radius ? std::numbers::pi / 2 : 2 * std::acos(1 - maximumSagitta / radius);
-  int count = static_cast<int>(std::clamp(std::ceil(sweep / stepLimit), 1.0, maximumChordsPerArc));
+  double chords = std::ceil(sweep / stepLimit);
+  // NaN (a coordinate that is no number) gives one chord, not a bad cast.
+  int count = static_cast<int>(chords >= 1 ? std::min(chords, maximumChordsPerArc) : 1.0);
   double direction = arc.clockwise ? -1 : 1;
   double startAngle = std::atan2(start.y - arc.centreY, start.x - arc.centreX);
   for (int index = 1; index < count; ++index) {
