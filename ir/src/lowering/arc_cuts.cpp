@@ -53,14 +53,12 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
   return std::nullopt;
 }
 
-bool PartLowering::lowerArcCut(const CutStmt& cut) {
+bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   if (!options_.arcBlocks || !arcsModifier(cut).value_or(options_.arcsOnEveryCut)) {
     return false;
   }
   std::optional<std::string> problem = arcCutProblem(cut);
-  CutCurve curve;
   if (!problem) {
-    curve = cutCurve(cut);
     problem = geom::findArcFittingProblem(*curve.geometry);
   }
   if (problem) {

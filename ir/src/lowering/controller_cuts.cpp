@@ -270,7 +270,7 @@ PartLowering::symbolicList(const Expr& expression, const Bindings& bindings,
   return elements;
 }
 
-bool PartLowering::lowerControllerCut(const CutStmt& cut) {
+bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve) {
   if (!options_.controllerLoops || modifierValue(cut, "spacing") != nullptr) {
     return false;
   }
@@ -285,7 +285,6 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut) {
     uniformSteps = static_cast<int>(sampleCount(cut)) - 1;
   }
   double tolerance = uniformSteps ? std::numeric_limits<double>::quiet_NaN() : *chordTolerance(cut);
-  CutCurve curve = cutCurve(cut);
   bool planar = true;
   for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
     geom::ParameterRange domain = curve.geometry->domain();

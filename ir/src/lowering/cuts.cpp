@@ -308,19 +308,21 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerNurbsCut(cut)) {
     return;
   }
-  // Arc pieces are printed as circles (native_arcs.cpp), not fitted arcs.
-  bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(cutCurve(cut));
-  if (!nativeArcs && lowerArcCut(cut)) {
+  // The curve is built once for whichever way lowers the cut. Arc pieces
+  // are printed as circles (native_arcs.cpp), not fitted arcs.
+  CutCurve curve = cutCurve(cut);
+  bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
+  if (!nativeArcs && lowerArcCut(cut, curve)) {
     return;
   }
-  if (lowerControllerCut(cut)) {
+  if (lowerControllerCut(cut, curve)) {
     return;
   }
-  if (nativeArcs && lowerHostArcCut(cut)) {
+  if (nativeArcs) {
+    lowerHostArcCut(cut, curve);
     return;
   }
   auto [feed, ramp] = beginHostCut(cut);
-  CutCurve curve = cutCurve(cut);
   geom::CurveSamples samples = samplesFor(cut, *curve.geometry);
   for (const Eigen::Vector3d& point : samples.points) {
     if (!point.allFinite()) {

@@ -207,17 +207,11 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
                 count, false, height, feed);
 }
 
-// A cut with arc pieces on a target that computes on the host: each arc
-// piece as move.arc, each other piece's points chosen on the piece alone
-// (chord tolerance), in a table and a loop as cuts.cpp does for a whole curve.
-bool PartLowering::lowerHostArcCut(const CutStmt& cut) {
-  if (!wantsNativeArcs(cut)) {
-    return false;
-  }
-  CutCurve curve = cutCurve(cut);
-  if (!hasArcPiece(curve)) {
-    return false;
-  }
+// A cut with arc pieces (and neither samples= nor spacing=) on a target
+// that computes on the host: each arc piece as move.arc, each other
+// piece's points chosen on the piece alone (chord tolerance), in a table
+// and a loop as cuts.cpp does for a whole curve.
+void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   auto [feed, ramp] = beginHostCut(cut);
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
@@ -280,7 +274,6 @@ bool PartLowering::lowerHostArcCut(const CutStmt& cut) {
     builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safeValue);
     previous = passZ;
   }
-  return true;
 }
 
 } // namespace cncc::ir::lowering

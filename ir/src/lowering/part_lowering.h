@@ -336,7 +336,7 @@ private:
   // native_arcs.cpp
   static bool wantsNativeArcs(const frontend::CutStmt& cut);
   static bool hasArcPiece(const CutCurve& curve);
-  bool lowerHostArcCut(const frontend::CutStmt& cut);
+  void lowerHostArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
   ArcPath constantArcPath(const CutCurve& curve, std::size_t piece, const frontend::CutStmt& cut);
   ArcPath symbolicArcPath(const SymbolicPiece& piece, const frontend::CurveValue& value);
   void guardArc(const ArcPath& arc);
@@ -354,11 +354,11 @@ private:
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
 
   // arc_cuts.cpp
-  bool lowerArcCut(const frontend::CutStmt& cut);
+  bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
 
   // controller_cuts.cpp
-  bool lowerControllerCut(const frontend::CutStmt& cut);
+  bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
   std::optional<std::vector<ControllerSegment>>
   planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget,
                          const std::vector<SymbolicPiece>* symbolic,
