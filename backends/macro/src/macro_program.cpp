@@ -290,16 +290,21 @@ private:
       std::string variable = fmt::format("#{}", allocation_.parameterVariables[i]);
       std::string literal = parameterDefault(i);
       std::string condition = fmt::format("[{} NE {}]", variable, literal);
-      std::string alarm = "#3000=1";
-      std::string message =
-          gcodeCommentText(fmt::format("{} IS FIXED AT {}", function_.parameters[i].name, literal));
-      // The message is cut to what the block length leaves.
-      std::size_t used = alarm.size() + 3 + (profile_.hasThen ? condition.size() + 9 : 0);
-      std::size_t limit = static_cast<std::size_t>(std::max(0, profile_.maximumBlockLength));
-      std::size_t room = limit > used ? limit - used : 0;
+      std::string message = fmt::format("{} is fixed at {}", function_.parameters[i].name, literal);
       conditional(condition, fmt::format("[{} EQ {}]", variable, literal),
-                  fmt::format("{} ({})", alarm, message.substr(0, room)));
+                  alarmStatement(message, profile_.hasThen ? condition.size() + 9 : 0));
     }
+  }
+
+  // `#3000=1 (MESSAGE)`: alarm 3001, its message cut to what the block
+  // length leaves beside `reserved` characters (an IF around it).
+  std::string alarmStatement(std::string_view text, std::size_t reserved) const {
+    std::string_view alarm = "#3000=1";
+    std::string message = gcodeCommentText(text);
+    std::size_t used = alarm.size() + 3 + reserved;
+    auto limit = static_cast<std::size_t>(std::max(0, profile_.maximumBlockLength));
+    std::size_t room = limit > used ? limit - used : 0;
+    return fmt::format("{} ({})", alarm, message.substr(0, room));
   }
 
   // Equal tables share one block of variables.
@@ -385,14 +390,9 @@ private:
     case Opcode::Tool:
       printTool(instruction);
       return;
-    case Opcode::Alarm: {
-      // Alarm 3001 with the message, cut to what the block length leaves.
-      std::string message = gcodeCommentText(instruction.text);
-      auto limit = static_cast<std::size_t>(std::max(0, profile_.maximumBlockLength));
-      std::size_t used = std::string_view("#3000=1 ()").size();
-      line(fmt::format("#3000=1 ({})", message.substr(0, limit > used ? limit - used : 0)));
+    case Opcode::Alarm:
+      line(alarmStatement(instruction.text, 0));
       return;
-    }
     case Opcode::Comment:
       if (instruction.text == "NURBS") { // the next feed is a method=nurbs lap
         nurbsNext_ = true;
