@@ -212,7 +212,10 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
 // piece's points chosen on the piece alone (chord tolerance), in a table
 // and a loop as cuts.cpp does for a whole curve.
 void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
-  auto [feed, ramp] = beginHostCut(cut);
+  // Named, not structured bindings: the lambdas below capture them.
+  HostCut begun = beginHostCut(cut);
+  Scalar feed = begun.feed;
+  bool ramp = begun.ramp;
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
