@@ -159,8 +159,10 @@ private:
   std::size_t steps_ = 0;
 };
 
-// How far an arc's end may lie off its circle (mm, relative above 1 mm).
-constexpr double arcRadiusTolerance = 1e-5;
+// How far an arc's end may lie off its circle, in the part's units: what a
+// controller allows by default (ControllerProfile::arcRadiusTolerance), so
+// that arcs whose numbers are rounded to the printed grid run as printed.
+constexpr double arcRadiusTolerance = 0.005;
 
 } // namespace
 
@@ -178,7 +180,7 @@ MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x,
   double startRadius = std::hypot(i, j);
   double endRadius = std::hypot(x - event.centreX, y - event.centreY);
   if (!(startRadius > arcRadiusTolerance) ||
-      !(std::abs(endRadius - startRadius) <= arcRadiusTolerance * std::max(1.0, startRadius))) {
+      !(std::abs(endRadius - startRadius) <= arcRadiusTolerance)) {
     throw InterpreterError(fmt::format("an arc from ({:g}, {:g}) to ({:g}, {:g}) has radius {:g} "
                                        "at its start and {:g} at its end",
                                        start[0], start[1], x, y, startRadius, endRadius));

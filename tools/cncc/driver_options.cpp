@@ -382,7 +382,10 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   }
   bool printsArcs = raw.target == "gcode" || raw.target == "linuxcnc" || raw.target == "m80" ||
                     raw.target == "fanuc";
-  if (raw.arcs && (options.command != Command::Compile || !printsArcs)) {
+  // --emit=ir -t TARGET --arcs shows the IR the backend receives.
+  bool compiles = options.command == Command::Compile ||
+                  (options.command == Command::Emit && options.emit == EmitKind::Ir);
+  if (raw.arcs && (!compiles || !printsArcs)) {
     throw UsageError(
         "--arcs is for the gcode, linuxcnc, m80 and fanuc targets: it prints cuts as G02/G03 arcs");
   }

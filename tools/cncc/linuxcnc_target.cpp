@@ -12,10 +12,12 @@
 
 namespace cncc::driver {
 
-ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem&,
+ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem& part,
                                             const DriverOptions& options) {
   ir::LoweringOptions lowering;
   lowering.controllerLoops = true;
+  // The program's literals have 5 decimals (6 in inches).
+  lowering.coordinateIncrement = ir::partUnits(part) == ir::PartUnits::Inches ? 1e-6 : 1e-5;
   lowering.arcBlocks = true;
   lowering.arcsOnEveryCut = options.arcs;
   return lowering;
@@ -26,9 +28,8 @@ void linuxcncBackend(const BackendRequest& request) {
   if (part == nullptr) {
     return;
   }
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
-                            linuxcncLoweringOptions(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics, linuxcncLoweringOptions(*part, request.options));
   if (!lowered) {
     return;
   }

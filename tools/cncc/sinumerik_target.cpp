@@ -60,8 +60,9 @@ std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& re
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics, sinumerikLoweringOptions(*part, request.options));
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
+                            sinumerikLoweringOptions(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }

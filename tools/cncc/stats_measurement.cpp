@@ -32,11 +32,8 @@ std::optional<HostRun> runOnHost(const BackendRequest& request) {
 backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const HostRun& run) {
   const ir::ToolPath& path = run.toolPath;
   backends::GcodeOptions options = gcodeOptionsFor(request);
-  addArcFits(options, run.cuts, request);
   std::string text = backends::writeGcode(path, options);
-  // With arcs, the program reaches the ends of the arcs instead of the chords.
-  backends::ExecutedPath executed =
-      backends::executeGcode(text, backends::arcEndPoints(path, options.arcFits), options.decimals);
+  backends::ExecutedPath executed = backends::executeGcode(text, path, options.decimals);
   std::size_t blocks = backends::countProgramBlocks(text);
   return {std::move(text), blocks, std::move(executed)};
 }

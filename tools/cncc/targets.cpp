@@ -22,18 +22,11 @@ namespace cncc::driver {
 namespace {
 
 void gcodeBackend(const BackendRequest& request) {
-  std::vector<ir::CutGeometry> cuts;
-  std::optional<ir::ToolPath> path = hostToolPath(request, false, &cuts);
+  std::optional<ir::ToolPath> path = hostToolPath(request, false);
   if (!path) {
     return;
   }
-  backends::GcodeOptions options = gcodeOptionsFor(request);
-  addArcFits(options, cuts, request);
-  try {
-    request.output.write(backends::writeGcode(*path, options));
-  } catch (const std::logic_error& error) {
-    throw InternalError(std::string("the arcs do not fit the tool path: ") + error.what());
-  }
+  request.output.write(backends::writeGcode(*path, gcodeOptionsFor(request)));
 }
 
 void jitBackend(const BackendRequest& request) {
@@ -65,9 +58,9 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics,
-      findTarget(request.options.target)->lowering(*part, request.options));
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
+                            findTarget(request.options.target)->lowering(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }
@@ -97,9 +90,12 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
 
 // The printed coordinates are rounded to the printed decimals (the CSV of
 // jit has 6): the chords leave that rounding room inside the tolerance.
-ir::LoweringOptions gcodeLoweringOptions(const frontend::PartItem&, const DriverOptions&) {
+ir::LoweringOptions gcodeLoweringOptions(const frontend::PartItem&,
+                                         const DriverOptions& driverOptions) {
   ir::LoweringOptions options;
   options.coordinateIncrement = std::pow(10.0, -backends::GcodeOptions{}.decimals);
+  options.arcBlocks = true;
+  options.arcsOnEveryCut = driverOptions.arcs;
   return options;
 }
 
@@ -119,18 +115,6 @@ backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   options.partName = part.name;
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
   return options;
-}
-
-void addArcFits(backends::GcodeOptions& options, const std::vector<ir::CutGeometry>& cuts,
-                const BackendRequest& request) {
-  backends::CutArcFitting fitting =
-      backends::fitCutArcs(cuts, request.options.arcs, options.decimals);
-  for (const backends::ArcProblem& problem : fitting.problems) {
-    request.diagnostics.report(
-        frontend::DiagnosticKind::ArcsAsChords, cuts[problem.cut].span,
-        fmt::format("this cut is printed as G01 chords, not arcs: {}", problem.reason));
-  }
-  options.arcFits = std::move(fitting.fits);
 }
 
 std::span<const Target> allTargets() {

@@ -60,10 +60,6 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
 
 // How the gcode target prints the request's part (also what --stats measures).
 backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request);
-// Fits the arcs of the cuts that want them (arcs=true, --arcs) into
-// `options`; a cut that cannot have arcs keeps its chords, with a warning.
-void addArcFits(backends::GcodeOptions& options, const std::vector<ir::CutGeometry>& cuts,
-                const BackendRequest& request);
 
 std::span<const Target> allTargets();
 const Target* findTarget(std::string_view name);

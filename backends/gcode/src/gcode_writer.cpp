@@ -86,33 +86,9 @@ public:
     block(false, x, y, z, feed);
   }
 
-  // A lap of arcs from the current position (gcode_arcs.h), at the current Z.
-  void arcs(std::span<const geom::ArcSegment> segments, double feed) {
-    if (segments.empty()) {
-      return;
-    }
-    ArcBlockFormat format;
-    format.decimals = decimals_;
-    format.start = {std::stod(x_), std::stod(y_)};
-    std::string feedText = formatGcodeNumber(feed, decimals_);
-    if (feedText != feed_) {
-      format.feedWord = " F" + feedText;
-    }
-    std::vector<std::string> blocks = arcBlocks(segments, format);
-    if (blocks.empty()) {
-      return;
-    }
-    for (std::string& block : blocks) {
-      line(std::move(block));
-    }
-    feed_ = feedText;
-    x_ = formatGcodeNumber(segments.back().end.x(), decimals_);
-    y_ = formatGcodeNumber(segments.back().end.y(), decimals_);
-  }
-
-  // A native arc (move.arc): X and Y always (a full turn ends where it
-  // starts), Z when it climbs or descends (a helix), I J from the start as
-  // printed.
+  // An arc (move.arc, native or fitted): X and Y always (a full turn ends
+  // where it starts), Z when it climbs or descends (a helix), I J from the
+  // start as printed.
   void arc(const ir::MachineEvent& event) {
     double startX = x_.empty() ? 0.0 : std::stod(x_);
     double startY = y_.empty() ? 0.0 : std::stod(y_);
@@ -193,16 +169,7 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
   writer.line("G17 G90");
   writer.line("G40 G49 G80");
   bool spindleOn = false;
-  std::vector<ArcLap> laps = findArcLaps(path, options.arcFits);
-  std::size_t nextLap = 0;
-  for (std::size_t index = 0; index < path.events.size(); ++index) {
-    if (nextLap < laps.size() && laps[nextLap].first == index) {
-      const ArcLap& lap = laps[nextLap++];
-      writer.arcs(options.arcFits[lap.cut]->segments, lap.feed);
-      index = lap.last;
-      continue;
-    }
-    const ir::MachineEvent& event = path.events[index];
+  for (const ir::MachineEvent& event : path.events) {
     switch (event.kind) {
     case ir::MachineEvent::Kind::Rapid:
     case ir::MachineEvent::Kind::Feed:

@@ -71,15 +71,4 @@ void LinuxcncMoveWriter::arc(bool clockwise, std::span<const ir::ValueId> operan
   z_ = expressions_.constantOf(operands[2]);
 }
 
-void LinuxcncMoveWriter::arcs(std::span<const geom::ArcSegment> segments, ArcBlockFormat format,
-                              ir::ValueId feedRate) {
-  format.leadingZero = false;
-  format.feedWord = word('F', feedRate, false);
-  for (const ArcMotion& motion : arcMotions(segments, format)) {
-    motionLine(motion.motion, motion.words);
-  }
-  literals_.erase('X'); // the position is the curve's end now
-  literals_.erase('Y');
-}
-
 } // namespace cncc::backends

@@ -7,7 +7,7 @@
 
 #include "linuxcnc_expressions.h"
 
-#include "cncc/backends/gcode_arcs.h"
+#include "cncc/ir/ir.h"
 
 #include <map>
 #include <optional>
@@ -27,10 +27,6 @@ public:
   // lowering's rapids climb to the safe height).
   void rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z);
   void feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate);
-  // A lap printed as arcs (arc_cuts.cpp): the G2/G3 blocks of `segments`
-  // from `format.start`, the feed word added to the first.
-  void arcs(std::span<const geom::ArcSegment> segments, ArcBlockFormat format,
-            ir::ValueId feedRate);
   // move.arc: G2/G3 with X and Y always (a full turn ends where it starts),
   // Z when it changes (a helix), the centre's I J from the start always.
   void arc(bool clockwise, std::span<const ir::ValueId> operands);

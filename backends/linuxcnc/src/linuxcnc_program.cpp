@@ -259,10 +259,6 @@ private:
       moves_.rapid(instruction.operands[0], instruction.operands[1], instruction.operands[2]);
       return;
     case Opcode::Feed:
-      if (arcsNext_) {
-        printArcs(instruction);
-        return;
-      }
       moves_.feed(instruction.operands[0], instruction.operands[1], instruction.operands[2],
                   instruction.operands[3]);
       return;
@@ -280,15 +276,9 @@ private:
       line(fmt::format("(abort, {})", gcodeCommentText(instruction.text)));
       return;
     case Opcode::Comment:
-      if (instruction.text == "ARCS") { // the next feed is a lap printed as arcs
-        arcsNext_ = true;
-        return;
-      }
       line(commentLine(instruction.text));
       return;
     case Opcode::CutBegin: // the cut's own comment says it
-      cut_ = instruction.index;
-      return;
     case Opcode::Param:
       return;
     default:
@@ -397,30 +387,6 @@ private:
 
   int coordinateDecimals() const { return options_.inches ? 6 : 5; }
 
-  // An arc lap (arc_cuts.cpp): the cut's G2/G3 blocks at the plunge's height
-  // and the feed's rate, fitted once per cut at the printed decimals.
-  void printArcs(const ir::Instruction& instruction) {
-    arcsNext_ = false;
-    if (cut_ >= options_.cuts.size() || options_.cuts[cut_].curve == nullptr) {
-      errors_.push_back("arcs: an arc lap without its cut's curve");
-      return;
-    }
-    auto fitted = arcFits_.find(cut_);
-    if (fitted == arcFits_.end()) {
-      fitted = arcFits_.emplace(cut_, fitCutArc(options_.cuts[cut_], coordinateDecimals())).first;
-    }
-    if (!fitted->second.fit) {
-      errors_.push_back(fmt::format("arcs: {}", fitted->second.problem));
-      return;
-    }
-    const std::vector<geom::ArcSegment>& segments = fitted->second.fit->segments;
-    ArcBlockFormat format;
-    format.decimals = coordinateDecimals();
-    format.start = {std::stod(formatGcodeNumber(segments.front().start.x(), format.decimals)),
-                    std::stod(formatGcodeNumber(segments.front().start.y(), format.decimals))};
-    moves_.arcs(segments, format, instruction.operands[3]);
-  }
-
   const ir::Function& function_;
   const ir::Allocation& allocation_;
   const LinuxcncProgramOptions& options_;
@@ -431,9 +397,6 @@ private:
   LinuxcncMoveWriter moves_;
   int nextLabel_ = 100;
   bool spindleOn_ = false;
-  bool arcsNext_ = false; // after comment "ARCS": the feed is printed as arcs
-  std::uint32_t cut_ = 0; // the cut of the latest CutBegin
-  std::map<std::uint32_t, OneCutArcFit> arcFits_;
 };
 
 ir::AllocationOptions allocationOptions(std::size_t parameterCount) {

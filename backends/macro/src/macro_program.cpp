@@ -1,8 +1,6 @@
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/nurbs_blocks.h"
 
-#include "cncc/backends/gcode_arcs.h"
-
 #include "cncc/backends/gcode_writer.h"
 #include "macro_expressions.h"
 #include "macro_simplify.h"
@@ -374,10 +372,6 @@ private:
         printNurbs(instruction);
         return;
       }
-      if (arcsNext_) {
-        printArcs(instruction);
-        return;
-      }
       printFeed(instruction);
       return;
     case Opcode::Arc:
@@ -396,10 +390,6 @@ private:
     case Opcode::Comment:
       if (instruction.text == "NURBS") { // the next feed is a method=nurbs lap
         nurbsNext_ = true;
-        return;
-      }
-      if (instruction.text == "ARCS") { // the next feed is a lap printed as arcs
-        arcsNext_ = true;
         return;
       }
       if (instruction.text.starts_with("NURBS R")) { // "NURBS R5=P2": a parameter weight
@@ -717,37 +707,6 @@ private:
     modal_.forget(); // G06.2 is modal now, and the position is the curve's end
   }
 
-  // An arc lap (arc_cuts.cpp): the cut's G02/G03 blocks at the feed's height
-  // (the plunge's) and rate, fitted once per cut at the printed decimals.
-  void printArcs(const ir::Instruction& instruction) {
-    arcsNext_ = false;
-    if (cut_ >= options_.cuts.size() || options_.cuts[cut_].curve == nullptr) {
-      errors_.push_back("arcs: an arc lap without its cut's curve");
-      return;
-    }
-    int decimals = profile_.coordinateDecimals + (options_.inches ? 1 : 0);
-    auto fitted = arcFits_.find(cut_);
-    if (fitted == arcFits_.end()) {
-      fitted = arcFits_.emplace(cut_, fitCutArc(options_.cuts[cut_], decimals)).first;
-    }
-    if (!fitted->second.fit) {
-      errors_.push_back(fmt::format("arcs: {}", fitted->second.problem));
-      return;
-    }
-    const std::vector<geom::ArcSegment>& segments = fitted->second.fit->segments;
-    ArcBlockFormat format;
-    format.decimals = decimals;
-    format.leadingZero = false;
-    format.feedWord = word('F', instruction.operands[3], false);
-    format.start = {std::stod(formatGcodeNumber(segments.front().start.x(), decimals)),
-                    std::stod(formatGcodeNumber(segments.front().start.y(), decimals))};
-    for (ArcMotion& motion : arcMotions(segments, format)) {
-      block(motion.motion, motion.words);
-    }
-    modal_.words.erase('X'); // the position is the curve's end now
-    modal_.words.erase('Y');
-  }
-
   const ir::Function& function_;
   const ir::Allocation& allocation_;
   const ControllerProfile& profile_;
@@ -766,8 +725,6 @@ private:
   bool nurbsNext_ = false; // after comment "NURBS": the feed is printed as NURBS blocks
   std::uint32_t cut_ = 0;  // the cut of the latest CutBegin
   std::vector<std::string> nurbsWeights_; // per control point: "#3", or empty
-  bool arcsNext_ = false;                 // after comment "ARCS": the feed is printed as arcs
-  std::map<std::uint32_t, OneCutArcFit> arcFits_;
 };
 
 bool isCommentLine(std::string_view line) {

@@ -1,16 +1,23 @@
-// Arcs on a controller-side target (LoweringOptions::arcBlocks: the macro
-// targets and LinuxCNC). A cut that wants arcs (arcs=true, or --arcs without
-// arcs=false) is lowered like a method=nurbs cut: each pass is a rapid over
-// the start, a plunge, a `comment "ARCS"` and one feed to the curve's end,
-// which the printer replaces by the G02/G03 blocks it fits to the cut's
-// curve (CutGeometry::curve) within the tolerance. The arcs are the host's,
-// so a cut whose geometry depends on a part parameter keeps its controller
-// loops, with an arcs-as-chords warning saying why.
+// Fitted arcs on a target that prints G02/G03 (LoweringOptions::arcBlocks:
+// gcode, the macro targets and LinuxCNC). A cut that wants arcs (arcs=true, or
+// --arcs without arcs=false) has its curve fitted once with tangent-
+// continuous arcs (geom/arc_fitting.h) within its tolerance less the
+// rounding of the printed numbers; each pass is a rapid over the start, a
+// plunge (on the host, a ramp lap of chords) and the fit as move.arc and
+// move.feed ops. Every coordinate and centre offset is on the printed grid
+// already (coordinateIncrement), so the IR is the path the printed program
+// makes. The arcs are the host's, so on a controller-side target a cut
+// whose geometry depends on a part parameter keeps its controller loops,
+// with an arcs-as-chords warning saying why.
 #include "lowering/part_lowering.h"
 
 #include "cncc/geom/arc_fitting.h"
+#include "cncc/geom/geometry_error.h"
 
 #include <fmt/format.h>
+
+#include <cmath>
+#include <variant>
 
 namespace cncc::ir::lowering {
 
@@ -26,6 +33,33 @@ std::optional<bool> arcsModifier(const CutStmt& cut) {
   return std::nullopt;
 }
 
+// How far the printed arcs may stray from the fitted ones: the start, the
+// end and the centre each move by up to half an increment per axis.
+double arcRoundingAllowance(double increment) {
+  return 3.0 * std::sqrt(2.0) * increment / 2;
+}
+
+// The value on the printed grid (the value itself without a grid).
+double onGrid(double value, double increment) {
+  return increment > 0 ? std::round(value / increment) * increment : value;
+}
+
+Eigen::Vector2d onGrid(const Eigen::Vector3d& point, double increment) {
+  return {onGrid(point.x(), increment), onGrid(point.y(), increment)};
+}
+
+// An arc too flat or too short to print as one: its sagitta is below half
+// an increment, or its chord is under two increments (I J would be mostly
+// rounding).
+bool printsAsLine(const geom::ArcSegment& segment, double increment) {
+  if (segment.kind == geom::ArcSegmentKind::Line) {
+    return true;
+  }
+  double sagitta = segment.radius * (1.0 - std::cos(0.5 * std::fabs(segment.sweep)));
+  double chord = (segment.end - segment.start).head<2>().norm();
+  return sagitta < 0.5 * increment || chord < 2.0 * increment;
+}
+
 } // namespace
 
 // Why the cut cannot be printed as host-fitted arcs, before its curve is
@@ -33,6 +67,9 @@ std::optional<bool> arcsModifier(const CutStmt& cut) {
 std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
   if (modifierValue(cut, "samples") != nullptr || modifierValue(cut, "spacing") != nullptr) {
     return "samples= or spacing= chose its points; arcs are fitted within a tolerance=";
+  }
+  if (!options_.controllerLoops) {
+    return std::nullopt; // the host evaluates everything at the values compiled with
   }
   if (rampEntry(cut)) {
     return "its entry=ramp laps are computed on the controller";
@@ -53,50 +90,117 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
   return std::nullopt;
 }
 
+// The cut's curve as arcs within its tolerance less the printed rounding,
+// or why it cannot be.
+std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& cut,
+                                                                 const CutCurve& curve) {
+  if (std::optional<std::string> problem = arcCutProblem(cut)) {
+    return *problem;
+  }
+  if (std::optional<std::string> problem = geom::findArcFittingProblem(*curve.geometry)) {
+    return *problem;
+  }
+  double tolerance = *chordTolerance(cut);
+  double allowance = arcRoundingAllowance(options_.coordinateIncrement);
+  if (!(tolerance > 2.0 * allowance)) {
+    return fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to the "
+                       "increment {:g}",
+                       tolerance, options_.coordinateIncrement);
+  }
+  try {
+    return geom::fitArcs(*curve.geometry, {tolerance - allowance});
+  } catch (const geom::GeometryError& error) {
+    return std::string(error.what());
+  }
+}
+
 bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   if (!options_.arcBlocks || !arcsModifier(cut).value_or(options_.arcsOnEveryCut)) {
     return false;
   }
-  std::optional<std::string> problem = arcCutProblem(cut);
-  if (!problem) {
-    problem = geom::findArcFittingProblem(*curve.geometry);
-  }
-  if (problem) {
+  std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, curve);
+  if (const std::string* problem = std::get_if<std::string>(&fitted)) {
     diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
                          fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
     return false;
   }
-  if (!safe_) {
-    fail(cut.span, "this cut has no safe height; write 'safe z=Z' before it",
-         DiagnosticKind::NoSafeHeight);
+  HostCut begun = beginHostCut(cut);
+  std::vector<std::vector<SampleRun>> rampRuns;
+  if (begun.ramp) {
+    checkRampCloses(curve, cut);
+    rampRuns = rampLapRuns(cut, curve);
   }
-  checkMethod(cut);
-  Scalar feed = cutFeed(cut);
-  ValueId feedValue = arithmetic_.value(feed);
+  ValueId feedValue = arithmetic_.value(begun.feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());
-  cuts_.push_back(
-      {curve.geometry, *chordTolerance(cut), cut.span, arcsModifier(cut), methodOf(cut)});
+  cuts_.push_back({curve.geometry, *chordTolerance(cut), cut.span, arcsModifier(cut), methodOf(cut),
+                   CutArcs::Fitted});
   builder_.cutBegin(index);
 
-  geom::ParameterRange domain = curve.geometry->domain();
-  Eigen::Vector3d start = curve.geometry->point(domain.t0);
-  Eigen::Vector3d end = curve.geometry->point(domain.t1);
+  const std::vector<geom::ArcSegment>& segments = std::get<geom::ArcFit>(fitted).segments;
+  double increment = options_.coordinateIncrement;
+  Eigen::Vector2d start = onGrid(segments.front().start, increment);
+  double planeZ = segments.front().start.z();
   std::vector<double> depths = passDepths(cut);
+  double previous = 0;
   for (double depth : depths) {
     builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double z = depth == 0 ? 0.0 : -depth;
-    ValueId startX = builder_.constant(start.x());
-    ValueId startY = builder_.constant(start.y());
-    builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, builder_.constant(z + start.z()), feedValue);
-    builder_.comment("ARCS");
-    ValueId endX = builder_.constant(end.x());
-    ValueId endY = builder_.constant(end.y());
-    builder_.feed(endX, endY, builder_.constant(z + end.z()), feedValue);
-    builder_.rapid(endX, endY, safeValue);
+    double passZ = -depth;
+    double entryZ = begun.ramp ? previous : passZ;
+    builder_.rapid(builder_.constant(start.x()), builder_.constant(start.y()), safeValue);
+    builder_.feed(builder_.constant(start.x()), builder_.constant(start.y()),
+                  builder_.constant(onGrid(planeZ + entryZ, increment)), feedValue);
+    if (begun.ramp) {
+      builder_.comment("ramp");
+      for (const std::vector<SampleRun>& runs : rampRuns) {
+        emitSampleRuns(curve, runs, entryZ, passZ, feedValue, cut);
+      }
+    }
+    Eigen::Vector2d end =
+        emitArcLap(segments, builder_.constant(onGrid(planeZ + passZ, increment)), feedValue);
+    builder_.rapid(builder_.constant(end.x()), builder_.constant(end.y()), safeValue);
+    previous = passZ;
   }
   return true;
+}
+
+// A ramp lap (host targets only) is chords: each piece's points within the
+// tolerance, descending along the length as cuts.cpp does.
+std::vector<std::vector<SampleRun>> PartLowering::rampLapRuns(const CutStmt& cut,
+                                                              const CutCurve& curve) {
+  double budget = *chordTolerance(cut) - options_.coordinateIncrement / 2 * std::sqrt(3.0);
+  std::vector<RampSegment> shares = rampSegments(curve, cut);
+  std::vector<std::vector<SampleRun>> runs;
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    runs.push_back(pieceSampleRuns(curve, p, budget, &shares, cut));
+  }
+  return runs;
+}
+
+// One lap of the fitted arcs at height z from the fit's start on the grid;
+// returns where it ends.
+Eigen::Vector2d PartLowering::emitArcLap(const std::vector<geom::ArcSegment>& segments, ValueId z,
+                                         ValueId feed) {
+  double increment = options_.coordinateIncrement;
+  Eigen::Vector2d at = onGrid(segments.front().start, increment);
+  for (const geom::ArcSegment& segment : segments) {
+    Eigen::Vector2d end = onGrid(segment.end, increment);
+    if (end == at) {
+      continue; // rounds to no movement
+    }
+    ValueId endX = builder_.constant(end.x());
+    ValueId endY = builder_.constant(end.y());
+    if (printsAsLine(segment, increment)) {
+      builder_.feed(endX, endY, z, feed);
+    } else {
+      bool clockwise = segment.direction == geom::ArcDirection::Clockwise;
+      builder_.arc(clockwise ? ArcTurn::Clockwise : ArcTurn::CounterClockwise, endX, endY, z,
+                   builder_.constant(onGrid(segment.centre.x() - at.x(), increment)),
+                   builder_.constant(onGrid(segment.centre.y() - at.y(), increment)), feed);
+    }
+    at = end;
+  }
+  return at;
 }
 
 } // namespace cncc::ir::lowering

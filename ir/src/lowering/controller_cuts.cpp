@@ -336,7 +336,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
                    arcs != nullptr && arcs->kind == ExprKind::Bool
                        ? std::optional<bool>(as<BoolExpr>(*arcs).value)
                        : std::nullopt,
-                   methodOf(cut), hasArcPiece(curve) && !uniformSteps});
+                   methodOf(cut),
+                   hasArcPiece(curve) && !uniformSteps ? CutArcs::Native : CutArcs::None});
   builder_.cutBegin(index);
   for (const ControllerSegment& segment : *planned) {
     if (segment.isArc && segment.symbolic != nullptr) {

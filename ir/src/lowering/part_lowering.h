@@ -7,6 +7,7 @@
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/value.h"
+#include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/curve.h"
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/polynomial_span.h"
@@ -21,6 +22,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace cncc::ir::lowering {
@@ -356,6 +358,12 @@ private:
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
+  std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
+                                                     const CutCurve& curve);
+  std::vector<std::vector<SampleRun>> rampLapRuns(const frontend::CutStmt& cut,
+                                                  const CutCurve& curve);
+  Eigen::Vector2d emitArcLap(const std::vector<geom::ArcSegment>& segments, ValueId z,
+                             ValueId feed);
 
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);

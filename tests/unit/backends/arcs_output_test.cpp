@@ -5,7 +5,6 @@
 // interpolates it), and each pass measured against its cut's true curve in
 // both directions. The reference figure: the Archimedean spiral at 5 um in at
 // most a third of its 90 minimal chords.
-#include "cncc/backends/gcode_arcs.h"
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
@@ -31,7 +30,6 @@ struct CompiledPart {
   std::optional<frontend::CheckedProgram> program;
   std::optional<ir::LoweredPart> lowered;
   ir::ToolPath path;
-  backends::CutArcFitting fitting;
   std::string text;
 };
 
@@ -57,6 +55,8 @@ std::unique_ptr<CompiledPart> compileWithArcs(const std::string& name, const std
   backends::GcodeOptions gcode;
   ir::LoweringOptions lowering;
   lowering.coordinateIncrement = std::pow(10.0, -gcode.decimals);
+  lowering.arcBlocks = true;
+  lowering.arcsOnEveryCut = true;
   result->lowered = ir::lowerPartWithCuts(*result->program, *result->program->selectedPart,
                                           result->diagnostics, lowering);
   if (!result->lowered) {
@@ -64,8 +64,6 @@ std::unique_ptr<CompiledPart> compileWithArcs(const std::string& name, const std
     return nullptr;
   }
   result->path = ir::interpret(result->lowered->function);
-  result->fitting = backends::fitCutArcs(result->lowered->cuts, true, gcode.decimals);
-  gcode.arcFits = result->fitting.fits;
   result->text = backends::writeGcode(result->path, gcode);
   return result;
 }
@@ -206,12 +204,11 @@ void expectArcsWithinTolerance(const std::string& example, const std::string& pa
   std::vector<const ExecutedPass*> firstPass(part->lowered->cuts.size(), nullptr);
   for (const ExecutedPass& pass : passes) {
     const ir::CutGeometry& cut = part->lowered->cuts.at(pass.cut);
-    bool fitted = part->fitting.fits[pass.cut].has_value();
-    if (!fitted && !cut.nativeArcs) {
+    bool fitted = cut.arcMoves == ir::CutArcs::Fitted;
+    if (cut.arcMoves == ir::CutArcs::None) {
       EXPECT_EQ(pass.arcs, 0u) << "cut " << pass.cut << " has no fit but arcs";
       continue;
     }
-    EXPECT_FALSE(fitted && cut.nativeArcs) << "cut " << pass.cut << " is fitted over its arcs";
     // Every pass repeats the first one's moves at its own depth: measured once.
     if (firstPass[pass.cut] != nullptr) {
       EXPECT_EQ(pass.points, firstPass[pass.cut]->points) << "cut " << pass.cut;
@@ -254,12 +251,11 @@ TEST(ArcsOutput, HelixBoreCutsItsArcsNatively) {
   for (const char* partName : {"bore_plate_mm", "bore_plate_inch"}) {
     std::unique_ptr<CompiledPart> part = compileWithArcs("helix_bore.cdl", partName);
     ASSERT_TRUE(part);
-    EXPECT_TRUE(part->fitting.problems.empty());
+    EXPECT_TRUE(part->diagnostics.diagnostics().empty()); // no arcs-as-chords
     std::vector<ExecutedPass> passes = executePasses(*part);
     ASSERT_EQ(passes.size(), 6u) << partName; // a bore and a floor per hole
     for (const ExecutedPass& pass : passes) {
-      EXPECT_TRUE(part->lowered->cuts.at(pass.cut).nativeArcs);
-      EXPECT_FALSE(part->fitting.fits[pass.cut]);
+      EXPECT_EQ(part->lowered->cuts.at(pass.cut).arcMoves, ir::CutArcs::Native);
       EXPECT_EQ(pass.lines, 0u) << partName << " cut " << pass.cut;
       EXPECT_EQ(pass.arcs, pass.cut % 2 == 0 ? 6u : 1u) << partName << " cut " << pass.cut;
     }
@@ -280,44 +276,52 @@ TEST(ArcsOutput, SpiralInAThirdOfTheMinimalChords) {
   EXPECT_LE(passDeviation(passes[0], part->lowered->cuts[0]), 0.005);
 }
 
-TEST(ArcsOutput, LapsAreFoundAtEveryPass) {
+// The fitted arcs are IR ops: every pass of the S profile (depth 3, step 1)
+// has the same move.arc ops at its own depth, and the printed program has one
+// G02/G03 per arc the IR runs.
+TEST(ArcsOutput, FittedArcsAreMovesOfTheIr) {
   std::unique_ptr<CompiledPart> part = compileWithArcs("s_profile.cdl", "");
   ASSERT_TRUE(part);
-  std::vector<backends::ArcLap> laps = backends::findArcLaps(part->path, part->fitting.fits);
-  ASSERT_EQ(laps.size(), 3u); // depth 3, step 1
-  EXPECT_DOUBLE_EQ(laps[0].z, -1);
-  EXPECT_DOUBLE_EQ(laps[2].z, -3);
-  ir::ToolPath ends = backends::arcEndPoints(part->path, part->fitting.fits);
-  std::size_t segments = part->fitting.fits[0]->segments.size();
-  EXPECT_EQ(ends.events.size(),
-            part->path.events.size() - 3 * (laps[0].last - laps[0].first + 1) + 3 * segments);
+  ASSERT_EQ(part->lowered->cuts.at(0).arcMoves, ir::CutArcs::Fitted);
+  std::map<double, std::size_t> arcsAtDepth;
+  for (const ir::MachineEvent& event : part->path.events) {
+    if (event.kind == ir::MachineEvent::Kind::Arc) {
+      ++arcsAtDepth[event.z];
+    }
+  }
+  ASSERT_EQ(arcsAtDepth.size(), 3u);
+  EXPECT_EQ(arcsAtDepth.begin()->first, -3);
+  EXPECT_EQ(arcsAtDepth.begin()->second, arcsAtDepth.rbegin()->second);
+  std::size_t printed = 0;
+  std::istringstream lines(part->text);
+  for (std::string line; std::getline(lines, line);) {
+    printed += line.starts_with("G02") || line.starts_with("G03");
+  }
+  EXPECT_EQ(printed, 3 * arcsAtDepth.begin()->second);
 }
 
-TEST(ArcsOutput, ArcBlocksTakeTheCentreFromThePrintedStart) {
-  geom::ArcSegment arc;
-  arc.kind = geom::ArcSegmentKind::Arc;
-  arc.start = {10, 0, 0};
-  arc.end = {0, 10, 0};
-  arc.centre = {0, 0};
-  arc.radius = 10;
-  arc.sweep = std::numbers::pi / 2;
-  arc.direction = geom::ArcDirection::CounterClockwise;
-  backends::ArcBlockFormat format;
-  format.decimals = 3;
-  format.feedWord = " F300.";
-  format.start = {10.0004, 0}; // the start as printed, off the exact one
-  std::vector<std::string> blocks = backends::arcBlocks(std::span(&arc, 1), format);
-  ASSERT_EQ(blocks.size(), 1u);
-  EXPECT_EQ(blocks[0], "G03 X0. Y10. I-10. J0. F300.");
-  arc.direction = geom::ArcDirection::Clockwise;
-  arc.sweep = -arc.sweep;
-  format.feedWord.clear();
-  format.start = {10, 0};
-  EXPECT_EQ(backends::arcBlocks(std::span(&arc, 1), format)[0], "G02 X0. Y10. I-10. J0.");
-  // A move that rounds to nothing is left out.
-  geom::ArcSegment tiny = arc;
-  tiny.end = {10.0001, 0.0001, 0};
-  EXPECT_TRUE(backends::arcBlocks(std::span(&tiny, 1), format).empty());
+// Every number of a fitted arc is on the printed grid (4 decimals) already,
+// the centre offset from the start as printed: the IR is the program.
+TEST(ArcsOutput, FittedArcsAreOnThePrintedGrid) {
+  std::unique_ptr<CompiledPart> part = compileWithArcs("archimedean_spiral.cdl", "");
+  ASSERT_TRUE(part);
+  auto onGrid = [](double value) {
+    return std::fabs(value * 1e4 - std::round(value * 1e4)) < 1e-6;
+  };
+  Eigen::Vector2d at(0, 0);
+  std::size_t arcs = 0;
+  for (const ir::MachineEvent& event : part->path.events) {
+    if (event.kind == ir::MachineEvent::Kind::Arc) {
+      EXPECT_TRUE(onGrid(event.x) && onGrid(event.y)) << event.x << " " << event.y;
+      EXPECT_TRUE(onGrid(event.centreX - at.x()) && onGrid(event.centreY - at.y()));
+      ++arcs;
+    }
+    if (event.kind == ir::MachineEvent::Kind::Feed || event.kind == ir::MachineEvent::Kind::Rapid ||
+        event.kind == ir::MachineEvent::Kind::Arc) {
+      at = {event.x, event.y};
+    }
+  }
+  EXPECT_GT(arcs, 2u);
 }
 
 } // namespace

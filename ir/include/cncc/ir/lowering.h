@@ -32,9 +32,9 @@ struct LoweringOptions {
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;
-  // Controller-side targets that print host-fitted G02/G03 arcs: a cut that
-  // wants arcs (arcs=true, or arcsOnEveryCut without arcs=false) is lowered
-  // as one marked feed per pass that the printer prints as arcs (arc_cuts.cpp).
+  // Targets that print host-fitted G02/G03 arcs: a cut that wants arcs
+  // (arcs=true, or arcsOnEveryCut without arcs=false) is lowered as the
+  // fitted move.arc ops on the printed grid (arc_cuts.cpp).
   bool arcBlocks = false;
   bool arcsOnEveryCut = false; // --arcs
   // Controller-side targets (macro programs): each cut becomes loops the
@@ -51,6 +51,8 @@ struct LoweringOptions {
   int maximumLoopNesting = 0;
 };
 
+enum class CutArcs { None, Native, Fitted };
+
 // One cut of the part: what `cut.begin index` refers to.
 struct CutGeometry {
   // The true curve in part coordinates, transforms applied (XY plane).
@@ -63,9 +65,9 @@ struct CutGeometry {
   std::optional<bool> arcs;
   // The cut's method= word (linear, aspline, bspline, cspline, nurbs); empty without one.
   std::string method;
-  // Its arc pieces are move.arc blocks (native circular interpolation), so
-  // no arcs are fitted to it.
-  bool nativeArcs = false;
+  // How its passes use move.arc: not at all, for the curve's own arc pieces
+  // (native circular interpolation), or as arcs fitted to the curve.
+  CutArcs arcMoves = CutArcs::None;
 };
 
 // A part parameter whose default the lowering read as a constant, and the

@@ -1,8 +1,7 @@
 // Plain ISO G-code: the tool path the IR produced on the host, as G00/G01
-// blocks with modal coordinates.
+// and G02/G03 blocks with modal coordinates.
 #pragma once
 
-#include "cncc/backends/gcode_arcs.h"
 #include "cncc/ir/tool_path.h"
 
 #include <optional>
@@ -17,8 +16,6 @@ struct GcodeOptions {
   std::string partName;   // for the header comment
   bool inches = false;    // G20 instead of G21
   int decimals = 4;       // the most decimals a number is printed with
-  // The cuts printed as arcs (gcode_arcs.h); empty: chords everywhere.
-  CutArcFits arcFits;
 };
 
 // `10.`, `0.5`, `-1.25`: at most `decimals` decimals, no trailing zeros, always
