@@ -120,6 +120,16 @@ void FunctionBuilder::arc(ArcTurn turn, ValueId x, ValueId y, ValueId z, ValueId
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::nurbs(std::uint32_t table, ValueId z, ValueId feedRate,
+                            const std::vector<ValueId>& weights) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Nurbs;
+  instruction.index = table;
+  instruction.operands = {z, feedRate};
+  instruction.operands.insert(instruction.operands.end(), weights.begin(), weights.end());
+  append(std::move(instruction), ValueType::None);
+}
+
 void FunctionBuilder::spindle(ValueId speed) {
   operation(Opcode::Spindle, {speed});
 }

@@ -1,6 +1,7 @@
 #include "cncc/ir/interpreter.h"
 
 #include "cncc/ir/arithmetic.h"
+#include "cncc/ir/nurbs_move.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,6 +65,9 @@ private:
       return;
     case Opcode::Arc:
       recordArc(instruction);
+      return;
+    case Opcode::Nurbs:
+      recordNurbs(instruction);
       return;
     case Opcode::Alarm:
       throw InterpreterError("alarm: " + instruction.text);
@@ -148,6 +152,17 @@ private:
                                  operand(1), operand(2), operand(3), operand(4), operand(5));
     position_ = {event.x, event.y, event.z};
     path_.events.push_back(std::move(event));
+  }
+
+  void recordNurbs(const Instruction& instruction) {
+    std::vector<double> weights;
+    for (std::size_t k = 2; k < instruction.operands.size(); ++k) {
+      weights.push_back(value(instruction.operands[k]));
+    }
+    nurbsMove(position_, function_.tables[instruction.index], value(instruction.operands[0]),
+              value(instruction.operands[1]), weights, path_.events);
+    const MachineEvent& end = path_.events.back();
+    position_ = {end.x, end.y, end.z};
   }
 
   const Function& function_;

@@ -210,6 +210,19 @@ private:
       define(result, builder_->tableLoad(table, value(parts[1])));
       return;
     }
+    case Opcode::Nurbs: {
+      std::vector<std::string_view> parts = splitList(rest);
+      if (parts.size() < 3 || !startsWith(parts[0], "@")) {
+        throw Failure{"expected 'move.nurbs @n, %z, %f, %weight, ...'"};
+      }
+      auto table = static_cast<std::uint32_t>(parseNumber(parts[0].substr(1)));
+      std::vector<ValueId> weights;
+      for (std::size_t i = 3; i < parts.size(); ++i) {
+        weights.push_back(value(parts[i]));
+      }
+      builder_->nurbs(table, value(parts[1]), value(parts[2]), weights);
+      return;
+    }
     case Opcode::Tool: {
       std::vector<std::string_view> parts = splitList(rest);
       if (parts.size() != 2) {

@@ -75,8 +75,9 @@ private:
                           function_.parameters[instruction.index].name);
       return;
     case Opcode::TableLoad:
+    case Opcode::Nurbs:
       out_ +=
-          fmt::format("{}{}table.load @{}, {}\n", indent, result, instruction.index, operandText);
+          fmt::format("{}{}{} @{}, {}\n", indent, result, spelling, instruction.index, operandText);
       return;
     case Opcode::Tool:
       out_ += fmt::format("{}tool {}, {}\n", indent, instruction.number, operandText);

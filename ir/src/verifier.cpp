@@ -1,5 +1,7 @@
 #include "cncc/ir/verifier.h"
 
+#include "cncc/ir/nurbs_move.h"
+
 #include <fmt/format.h>
 #include <set>
 
@@ -135,8 +137,25 @@ private:
         instruction.index > static_cast<std::uint32_t>(ArcTurn::CounterClockwise)) {
       problem(fmt::format("{} turns neither clockwise nor counter-clockwise", where));
     }
+    if (instruction.opcode == Opcode::Nurbs) {
+      checkNurbs(instruction, where);
+    }
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
+    }
+  }
+
+  // Its table holds the block data of as many control points as it has
+  // weights (nurbs_move.h).
+  void checkNurbs(const Instruction& instruction, const std::string& where) {
+    if (instruction.index >= function_.tables.size() || instruction.operands.size() < 2) {
+      problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
+      return;
+    }
+    std::string why;
+    if (!readNurbsMoveTable(function_.tables[instruction.index], instruction.operands.size() - 2,
+                            &why)) {
+      problem(fmt::format("{} with {} weights: {}", where, instruction.operands.size() - 2, why));
     }
   }
 

@@ -45,7 +45,6 @@ void linuxcncBackend(const BackendRequest& request) {
   options.inches = names.inches;
   options.callable = request.options.macroCall;
   options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
-  options.cuts = lowered->cuts;
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
   for (const std::string& error : program.errors) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,

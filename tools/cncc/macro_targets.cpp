@@ -36,10 +36,8 @@ ir::LoweringOptions macroLowering(const frontend::PartItem& part, const DriverOp
   return lowering;
 }
 
-// The lowered, optimised part; nullopt after a diagnostic. `cuts` receives
-// the part's cut table (method=nurbs cuts are printed from it).
-std::optional<ir::Function> loweredPart(const BackendRequest& request,
-                                        std::vector<ir::CutGeometry>& cuts) {
+// The lowered, optimised part; nullopt after a diagnostic.
+std::optional<ir::Function> loweredPart(const BackendRequest& request) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
@@ -50,7 +48,6 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request,
   if (!lowered) {
     return std::nullopt;
   }
-  cuts = std::move(lowered->cuts);
   std::optional<ir::Function> function = std::move(lowered->function);
   optimise(*function, request.options);
   std::vector<std::string> problems = ir::verifyFunction(*function);
@@ -62,8 +59,7 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request,
 
 void macroBackend(const BackendRequest& request, std::string_view defaultProfile) {
   const backends::ControllerProfile* profile = &profileFor(request.options, defaultProfile);
-  std::vector<ir::CutGeometry> cuts;
-  std::optional<ir::Function> function = loweredPart(request, cuts);
+  std::optional<ir::Function> function = loweredPart(request);
   if (!function) {
     return;
   }
@@ -76,7 +72,6 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.inches = names.inches;
   options.callable = request.options.macroCall;
   options.parametersInCommon = request.options.parametersInCommon;
-  options.cuts = std::move(cuts);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
   for (const std::string& error : program.errors) {
     request.diagnostics.report(

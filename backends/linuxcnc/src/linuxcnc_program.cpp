@@ -266,6 +266,9 @@ private:
       moves_.arc(instruction.index == static_cast<std::uint32_t>(ir::ArcTurn::Clockwise),
                  instruction.operands);
       return;
+    case Opcode::Nurbs: // lowered only for targets with NURBS blocks
+      errors_.push_back("LinuxCNC has no NURBS blocks of the G06.2 kind (move.nurbs)");
+      return;
     case Opcode::Spindle:
       printSpindle(instruction);
       return;

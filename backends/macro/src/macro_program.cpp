@@ -2,6 +2,8 @@
 #include "cncc/backends/nurbs_blocks.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/nurbs_move.h"
 #include "macro_expressions.h"
 #include "macro_simplify.h"
 
@@ -10,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <optional>
@@ -368,14 +369,13 @@ private:
       printRapid(instruction);
       return;
     case Opcode::Feed:
-      if (nurbsNext_) {
-        printNurbs(instruction);
-        return;
-      }
       printFeed(instruction);
       return;
     case Opcode::Arc:
       printArc(instruction);
+      return;
+    case Opcode::Nurbs:
+      printNurbs(instruction);
       return;
     case Opcode::Spindle:
       line(fmt::format("S{} M3", spindleSpeed(instruction.operands[0])));
@@ -388,19 +388,9 @@ private:
       line(alarmStatement(instruction.text, 0));
       return;
     case Opcode::Comment:
-      if (instruction.text == "NURBS") { // the next feed is a method=nurbs lap
-        nurbsNext_ = true;
-        return;
-      }
-      if (instruction.text.starts_with("NURBS R")) { // "NURBS R5=P2": a parameter weight
-        nurbsWeight(instruction.text);
-        return;
-      }
       comment(instruction.text);
       return;
     case Opcode::CutBegin: // the cut's own comment says it
-      cut_ = instruction.index;
-      return;
     case Opcode::Param:
       return;
     default:
@@ -678,28 +668,39 @@ private:
     rememberZ(operands[2]);
   }
 
-  void nurbsWeight(const std::string& note) {
-    unsigned point = 0, parameter = 0;
-    if (std::sscanf(note.c_str(), "NURBS R%u=P%u", &point, &parameter) == 2 &&
-        parameter < allocation_.parameterVariables.size()) {
-      nurbsWeights_.resize(std::max<std::size_t>(nurbsWeights_.size(), point + 1));
-      nurbsWeights_[point] = fmt::format("#{}", allocation_.parameterVariables[parameter]);
-    }
-  }
-
-  // A method=nurbs lap: the cut's G06.2 blocks at the feed's height and rate.
+  // move.nurbs: the G06.2 blocks of its table at the pass height; a weight
+  // computed on the controller (a part parameter) is printed as its
+  // expression, R#3, as the syntax allows.
   void printNurbs(const ir::Instruction& instruction) {
-    nurbsNext_ = false;
-    std::optional<double> endZ = constantOf(instruction.operands[2]);
-    if (!endZ || cut_ >= options_.cuts.size() || options_.cuts[cut_].curve == nullptr) {
-      errors_.push_back("G06.2: a NURBS lap without its cut's curve or a constant height");
+    std::size_t count = instruction.operands.size() - 2;
+    std::optional<ir::NurbsBlockData> data =
+        ir::readNurbsMoveTable(function_.tables[instruction.index], count);
+    std::optional<double> z = constantOf(instruction.operands[0]);
+    if (!data || !z) {
+      errors_.push_back("G06.2: a NURBS move without its block data or a constant height");
       return;
     }
-    std::string feed = word('F', instruction.operands[3], false);
-    NurbsBlocks blocks = nurbsBlocksForCut(options_.cuts[cut_], *endZ,
-                                           feed.empty() ? modal_.words['F'].text : feed.substr(2),
-                                           profile_, options_.inches, nurbsWeights_);
-    nurbsWeights_.clear();
+    std::vector<double> weights;
+    NurbsBlockOptions options;
+    for (std::size_t k = 0; k < count; ++k) {
+      ir::ValueId weight = instruction.operands[2 + k];
+      weights.push_back(constantOf(weight).value_or(1.0));
+      options.weightVariables.push_back(constantOf(weight) ? "" : expressions_.operand(weight));
+    }
+    std::optional<geom::NurbsCurve> curve;
+    try {
+      curve = ir::nurbsMoveCurve(*data, 0, weights);
+    } catch (const ir::InterpreterError& error) {
+      errors_.push_back(fmt::format("G06.2: {}", error.what()));
+      return;
+    }
+    std::string feed = word('F', instruction.operands[1], false);
+    options.dialect = profile_.name == "m80" ? NurbsDialect::Mitsubishi : NurbsDialect::Fanuc;
+    options.coordinateDecimals = profile_.coordinateDecimals + (options_.inches ? 1 : 0);
+    options.z = *z;
+    options.feedText = feed.empty() ? modal_.words['F'].text : feed.substr(2);
+    options.currentPosition = data->points.front() + Eigen::Vector3d(0, 0, *z);
+    NurbsBlocks blocks = writeNurbsBlocks(*curve, options);
     errors_.insert(errors_.end(), blocks.errors.begin(), blocks.errors.end());
     for (std::string& text : blocks.lines) {
       line(std::move(text));
@@ -722,9 +723,6 @@ private:
   bool reportedLoopDepth_ = false;
   int nextLabel_ = 1;
   bool spindleOn_ = false;
-  bool nurbsNext_ = false; // after comment "NURBS": the feed is printed as NURBS blocks
-  std::uint32_t cut_ = 0;  // the cut of the latest CutBegin
-  std::vector<std::string> nurbsWeights_; // per control point: "#3", or empty
 };
 
 bool isCommentLine(std::string_view line) {

@@ -1,8 +1,6 @@
 #include "cncc/backends/nurbs_blocks.h"
 
 #include "cncc/backends/gcode_writer.h"
-#include "cncc/geom/bspline_fitting.h"
-#include "cncc/geom/geometry_error.h"
 
 #include <fmt/format.h>
 
@@ -173,53 +171,6 @@ NurbsBlocks writeNurbsBlocks(const geom::NurbsCurve& curve, const NurbsBlockOpti
     result.lines.push_back("K" + knotWord(i));
   }
   return result;
-}
-
-geom::NurbsCurve nurbsForBlocks(const geom::Curve& curve, double tolerance) {
-  if (const auto* nurbs = dynamic_cast<const geom::NurbsCurve*>(&curve)) {
-    return *nurbs;
-  }
-  geom::BSplineFitOptions options;
-  options.degree = 3;
-  options.tolerance = tolerance;
-  return geom::fitBSpline(curve, options).spline;
-}
-
-NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std::string& feedText,
-                              const ControllerProfile& profile, bool inches,
-                              const std::vector<std::string>& weightVariables,
-                              double defaultTolerance) {
-  // The pass's offset: the marked feed ends at the curve's end, lowered by it.
-  double z = endZ - cut.curve->point(cut.curve->domain().t1).z();
-  double increment = inches ? profile.leastInputIncrement / 10.0 : profile.leastInputIncrement;
-  double rounding = increment / 2 * std::sqrt(3.0);
-  double tolerance = std::isnan(cut.tolerance) ? defaultTolerance : cut.tolerance;
-  NurbsBlocks blocks;
-  if (!(tolerance > 2 * rounding)) {
-    blocks.errors.push_back(fmt::format("G06.2: the tolerance {:g} leaves no room for the "
-                                        "controller's rounding of the control points ({:.6g})",
-                                        tolerance, rounding));
-    return blocks;
-  }
-  std::optional<geom::NurbsCurve> curve;
-  try {
-    curve = nurbsForBlocks(*cut.curve, tolerance - rounding);
-  } catch (const geom::GeometryError& error) {
-    blocks.errors.push_back(fmt::format("G06.2: no B-spline fits this curve within {:g}: {}",
-                                        tolerance - rounding, error.what()));
-    return blocks;
-  }
-  NurbsBlockOptions options;
-  options.dialect = profile.name == "m80" ? NurbsDialect::Mitsubishi : NurbsDialect::Fanuc;
-  options.coordinateDecimals = profile.coordinateDecimals + (inches ? 1 : 0);
-  options.z = z;
-  options.feedText = feedText;
-  options.currentPosition = curve->controlPoints().front() + Eigen::Vector3d(0, 0, z);
-  // A fitted curve has weights of its own: the parameters' weights no longer apply.
-  if (dynamic_cast<const geom::NurbsCurve*>(cut.curve.get()) != nullptr) {
-    options.weightVariables = weightVariables;
-  }
-  return writeNurbsBlocks(*curve, options);
 }
 
 } // namespace cncc::backends

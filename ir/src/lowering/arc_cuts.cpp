@@ -10,6 +10,7 @@
 // whose geometry depends on a part parameter keeps its controller loops,
 // with an arcs-as-chords warning saying why.
 #include "lowering/part_lowering.h"
+#include "lowering/printed_grid.h"
 
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/geometry_error.h"
@@ -39,13 +40,8 @@ double arcRoundingAllowance(double increment) {
   return 3.0 * std::sqrt(2.0) * increment / 2;
 }
 
-// The value on the printed grid (the value itself without a grid).
-double onGrid(double value, double increment) {
-  return increment > 0 ? std::round(value / increment) * increment : value;
-}
-
 Eigen::Vector2d onGrid(const Eigen::Vector3d& point, double increment) {
-  return {onGrid(point.x(), increment), onGrid(point.y(), increment)};
+  return {onPrintedGrid(point.x(), increment), onPrintedGrid(point.y(), increment)};
 }
 
 // An arc too flat or too short to print as one: its sagitta is below half
@@ -149,15 +145,15 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
     double entryZ = begun.ramp ? previous : passZ;
     builder_.rapid(builder_.constant(start.x()), builder_.constant(start.y()), safeValue);
     builder_.feed(builder_.constant(start.x()), builder_.constant(start.y()),
-                  builder_.constant(onGrid(planeZ + entryZ, increment)), feedValue);
+                  builder_.constant(onPrintedGrid(planeZ + entryZ, increment)), feedValue);
     if (begun.ramp) {
       builder_.comment("ramp");
       for (const std::vector<SampleRun>& runs : rampRuns) {
         emitSampleRuns(curve, runs, entryZ, passZ, feedValue, cut);
       }
     }
-    Eigen::Vector2d end =
-        emitArcLap(segments, builder_.constant(onGrid(planeZ + passZ, increment)), feedValue);
+    Eigen::Vector2d end = emitArcLap(
+        segments, builder_.constant(onPrintedGrid(planeZ + passZ, increment)), feedValue);
     builder_.rapid(builder_.constant(end.x()), builder_.constant(end.y()), safeValue);
     previous = passZ;
   }
@@ -195,8 +191,8 @@ Eigen::Vector2d PartLowering::emitArcLap(const std::vector<geom::ArcSegment>& se
     } else {
       bool clockwise = segment.direction == geom::ArcDirection::Clockwise;
       builder_.arc(clockwise ? ArcTurn::Clockwise : ArcTurn::CounterClockwise, endX, endY, z,
-                   builder_.constant(onGrid(segment.centre.x() - at.x(), increment)),
-                   builder_.constant(onGrid(segment.centre.y() - at.y(), increment)), feed);
+                   builder_.constant(onPrintedGrid(segment.centre.x() - at.x(), increment)),
+                   builder_.constant(onPrintedGrid(segment.centre.y() - at.y(), increment)), feed);
     }
     at = end;
   }

@@ -1,13 +1,22 @@
 // method=nurbs on a target that prints NURBS blocks (LoweringOptions::
-// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass is a rapid over the
-// start, a plunge, a `comment "NURBS"` and one feed to the curve's end; the
-// printer replaces that feed by the G06.2 blocks of the cut's curve
-// (CutGeometry::curve, fitted within the tolerance when it is not a NURBS),
-// at the feed's height and rate. The curve is the host's, evaluated with the
-// parameters' values at compile time.
+// nurbsBlocks: Fanuc and Mitsubishi G06.2). The cut's curve is the block
+// data, in a table: the curve itself when it is a NURBS, else a cubic
+// B-spline fitted within the tolerance less the rounding of the control
+// points, which are put on the printed grid. Each pass is a rapid over the
+// first control point, a plunge and one move.nurbs at the pass height; a
+// weight that is a part parameter is its SSA value, so the printer writes
+// it as that parameter's variable (`R#3`) and the operator's edit reaches
+// the curve. Every other number of the curve is fixed at its default.
 #include "lowering/part_lowering.h"
+#include "lowering/printed_grid.h"
+
+#include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/geometry_error.h"
+#include "cncc/ir/nurbs_move.h"
 
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include <limits>
 
@@ -15,30 +24,61 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-// "NURBS R5=P2" for each weight of a nurbs(...) cut that is a part
-// parameter (control point 5, parameter 2): the printer writes it as that
-// parameter's variable (`R#3`), so the operator's edit reaches the curve.
-std::vector<std::string> PartLowering::parameterWeights(const CutStmt& cut, const CutCurve& curve) {
-  std::vector<std::string> notes;
+// Per weight of a nurbs(...) cut, the part parameter it is (its value), or
+// nullopt for a number.
+std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt& cut,
+                                                                   const CutCurve& curve) {
+  std::vector<std::optional<ValueId>> weights;
   const Expr* expression = curveArgument(cut, "weights");
   if (expression == nullptr || curve.pieces.size() != 1) {
-    return notes;
+    return weights;
   }
-  std::optional<std::vector<std::optional<Lowered>>> weights = symbolicList(*expression);
-  if (!weights) {
-    return notes;
+  std::optional<std::vector<std::optional<Lowered>>> lowered = symbolicList(*expression);
+  if (!lowered) {
+    return weights;
   }
-  for (std::size_t i = 0; i < weights->size(); ++i) {
-    const std::optional<Lowered>& weight = (*weights)[i];
-    if (!weight || weight->values.size() != 1 || weight->values[0].isConstant()) {
-      continue;
+  for (const std::optional<Lowered>& weight : *lowered) {
+    bool parameter =
+        weight && weight->values.size() == 1 && !weight->values[0].isConstant() &&
+        builder_.function().definition(weight->values[0].value).opcode == Opcode::Param;
+    weights.push_back(parameter ? std::optional<ValueId>(weight->values[0].value) : std::nullopt);
+  }
+  return weights;
+}
+
+// The NURBS the blocks carry, control points on the printed grid.
+geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve& curve) {
+  double increment = options_.coordinateIncrement;
+  double rounding = increment / 2 * std::sqrt(3.0);
+  double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
+  if (!(tolerance > 2 * rounding)) {
+    fail(cut.span,
+         fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
+                     "NURBS control points ({:.6g})",
+                     tolerance, rounding),
+         DiagnosticKind::InvalidTolerance);
+  }
+  std::optional<geom::NurbsCurve> nurbs;
+  if (const auto* own = dynamic_cast<const geom::NurbsCurve*>(curve.geometry.get())) {
+    nurbs = *own;
+  } else {
+    try {
+      geom::BSplineFitOptions fit;
+      fit.degree = 3;
+      fit.tolerance = tolerance - rounding;
+      nurbs = geom::fitBSpline(*curve.geometry, fit).spline;
+    } catch (const geom::GeometryError& error) {
+      fail(cut.span,
+           fmt::format("no B-spline fits this curve within {:g} for the NURBS blocks: {}",
+                       tolerance - rounding, error.what()),
+           DiagnosticKind::InvalidTolerance);
     }
-    const Instruction& definition = builder_.function().definition(weight->values[0].value);
-    if (definition.opcode == Opcode::Param) {
-      notes.push_back(fmt::format("NURBS R{}=P{}", i, definition.index));
-    }
   }
-  return notes;
+  std::vector<Eigen::Vector3d> points = nurbs->controlPoints();
+  for (Eigen::Vector3d& point : points) {
+    point = onPrintedGrid(point, increment);
+  }
+  return geom::NurbsCurve(nurbs->knots(), std::move(points), nurbs->weights());
 }
 
 // The blocks carry the host's control points and knots: every parameter
@@ -76,6 +116,19 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   }
   Scalar feed = cutFeed(cut);
   CutCurve curve = cutCurve(cut);
+  std::vector<std::optional<ValueId>> parameters = parameterWeights(cut, curve);
+  fixNurbsBlockParameters(cut);
+  geom::NurbsCurve blocks = nurbsForBlocks(cut, curve);
+  // A fitted curve has weights of its own: the parameters' weights no longer apply.
+  bool ownCurve = dynamic_cast<const geom::NurbsCurve*>(curve.geometry.get()) != nullptr;
+  std::vector<ValueId> weights;
+  for (std::size_t i = 0; i < blocks.controlPoints().size(); ++i) {
+    bool parameter = ownCurve && i < parameters.size() && parameters[i];
+    weights.push_back(
+        parameter ? *parameters[i]
+                  : builder_.constant(blocks.weights().empty() ? 1.0 : blocks.weights()[i]));
+  }
+  std::uint32_t table = builder_.addTable(nurbsMoveTable(blocks));
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());
@@ -86,27 +139,18 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   cuts_.push_back(geometry);
   builder_.cutBegin(index);
 
-  std::vector<std::string> weightNotes = parameterWeights(cut, curve);
-  fixNurbsBlockParameters(cut);
-  geom::ParameterRange domain = curve.geometry->domain();
-  Eigen::Vector3d start = curve.geometry->point(domain.t0);
-  Eigen::Vector3d end = curve.geometry->point(domain.t1);
+  const Eigen::Vector3d& first = blocks.controlPoints().front();
+  const Eigen::Vector3d& last = blocks.controlPoints().back();
   std::vector<double> depths = passDepths(cut);
   for (double depth : depths) {
     builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
     double z = depth == 0 ? 0.0 : -depth;
-    ValueId startX = builder_.constant(start.x());
-    ValueId startY = builder_.constant(start.y());
+    ValueId startX = builder_.constant(first.x());
+    ValueId startY = builder_.constant(first.y());
     builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, builder_.constant(z + start.z()), feedValue);
-    for (const std::string& note : weightNotes) {
-      builder_.comment(note);
-    }
-    builder_.comment("NURBS");
-    ValueId endX = builder_.constant(end.x());
-    ValueId endY = builder_.constant(end.y());
-    builder_.feed(endX, endY, builder_.constant(z + end.z()), feedValue);
-    builder_.rapid(endX, endY, safeValue);
+    builder_.feed(startX, startY, builder_.constant(z + first.z()), feedValue);
+    builder_.nurbs(table, builder_.constant(z), feedValue, weights);
+    builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
   }
   return true;
 }

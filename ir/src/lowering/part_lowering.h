@@ -10,6 +10,7 @@
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/curve.h"
 #include "cncc/geom/discretisation.h"
+#include "cncc/geom/nurbs_curve.h"
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/lowering.h"
@@ -352,7 +353,9 @@ private:
 
   // nurbs_cuts.cpp
   bool lowerNurbsCut(const frontend::CutStmt& cut);
-  std::vector<std::string> parameterWeights(const frontend::CutStmt& cut, const CutCurve& curve);
+  std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
+                                                       const CutCurve& curve);
+  geom::NurbsCurve nurbsForBlocks(const frontend::CutStmt& cut, const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
 
   // arc_cuts.cpp

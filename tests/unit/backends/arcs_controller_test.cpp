@@ -133,7 +133,6 @@ std::optional<MacroRun> runMacro(const ArcCase& test) {
   options.sourceName = test.file;
   options.partName = part.name;
   options.inches = inches;
-  options.cuts = lowered->cuts;
   MacroProgram program = writeMacroProgram(lowered->function, profile, options);
   EXPECT_TRUE(program.errors.empty()) << program.errors.front();
   if (!program.errors.empty()) {
@@ -237,7 +236,6 @@ TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
   printing.sourceName = "spiral.cdl";
   printing.partName = "spiral";
   printing.blendTolerance = linuxcncBlendTolerance(lowered->cuts);
-  printing.cuts = lowered->cuts;
   LinuxcncProgram program = writeLinuxcncProgram(lowered->function, printing);
   ASSERT_TRUE(program.errors.empty()) << program.errors.front();
   std::size_t arcs = arcBlockCount(program.text);

@@ -102,7 +102,6 @@ std::optional<std::string> macroProgram(const CheckedExample& example, const Mac
   options.partName = part.name;
   options.inches = inches;
   options.callable = test.callable;
-  options.cuts = std::move(lowered->cuts);
   MacroProgram program = writeMacroProgram(lowered->function, profile, options);
   EXPECT_TRUE(program.errors.empty()) << program.errors.front();
   if (!program.errors.empty()) {

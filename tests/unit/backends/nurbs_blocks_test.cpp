@@ -11,6 +11,7 @@
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/backends/nurbs_blocks.h"
 #include "cncc/backends/virtual_controller.h"
+#include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/line_arc_curves.h"
 
@@ -226,7 +227,10 @@ TEST(NurbsBlocks, SProfileOnBothControllersWithinTheRounding) {
 
 TEST(NurbsBlocks, AnalyticCurvesAreFittedWithinTheTolerance) {
   geom::ArcCurve arc({0, 0}, 20, 0, 1.5 * std::numbers::pi);
-  geom::NurbsCurve fitted = nurbsForBlocks(arc, 0.004);
+  geom::BSplineFitOptions fit;
+  fit.degree = 3;
+  fit.tolerance = 0.004;
+  geom::NurbsCurve fitted = geom::fitBSpline(arc, fit).spline;
   NurbsBlocks blocks = writeNurbsBlocks(fitted, optionsFor(fitted, NurbsDialect::Fanuc, 0));
   ASSERT_TRUE(blocks.errors.empty());
   sim::SimulationResult result = run(programAround(blocks, {20, 0, 0}), "fanuc");

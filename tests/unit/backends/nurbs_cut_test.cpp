@@ -13,7 +13,9 @@
 #include "cncc/frontend/source_manager.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/nurbs_curve.h"
+#include "cncc/ir/interpreter.h"
 #include "cncc/ir/lowering.h"
+#include "cncc/ir/nurbs_move.h"
 
 #include <gtest/gtest.h>
 
@@ -45,6 +47,7 @@ struct CompiledNurbsPart {
   frontend::DiagnosticEngine diagnostics;
   std::optional<frontend::CheckedProgram> program;
   std::vector<ir::CutGeometry> cuts;
+  std::optional<ir::Function> function;
   std::string text;
 };
 
@@ -68,9 +71,9 @@ std::unique_ptr<CompiledNurbsPart> compile(const std::string& source, const std:
     return nullptr;
   }
   part->cuts = lowered->cuts;
+  part->function = lowered->function;
   MacroProgramOptions options;
   options.partName = part->program->selectedPart->name;
-  options.cuts = lowered->cuts;
   MacroProgram program = writeMacroProgram(lowered->function, profile, options);
   if (!program.errors.empty()) {
     ADD_FAILURE() << program.errors.front();
@@ -133,6 +136,52 @@ TEST(NurbsCut, SProfileIsTheSourceNurbsUpToTheIncrement) {
       EXPECT_LE(largestPointDistance(points, source), 7.1e-4 + 1e-6);
       EXPECT_LE(geom::measureDeviation(points, source, {1e-6}).maxDeviation(), 0.01);
     }
+  }
+}
+
+// The curve of the IR's move.nurbs (its table, its weights at their
+// defaults) at the pass height of 0.
+geom::NurbsCurve curveOfTheIr(const ir::Function& function) {
+  for (const ir::Instruction& instruction : function.instructions) {
+    if (instruction.opcode != ir::Opcode::Nurbs) {
+      continue;
+    }
+    std::vector<double> weights;
+    for (std::size_t k = 2; k < instruction.operands.size(); ++k) {
+      const ir::Instruction& definition = function.definition(instruction.operands[k]);
+      weights.push_back(definition.opcode == ir::Opcode::Param
+                            ? function.parameters[definition.index].defaultValue
+                            : definition.number);
+    }
+    std::optional<ir::NurbsBlockData> data =
+        ir::readNurbsMoveTable(function.tables[instruction.index], weights.size());
+    EXPECT_TRUE(data);
+    return ir::nurbsMoveCurve(*data, 0, weights);
+  }
+  ADD_FAILURE() << "no move.nurbs";
+  return geom::NurbsCurve::bezier({{0, 0, 0}, {1, 0, 0}});
+}
+
+// The IR holds the curve the controller cuts: every point the printed
+// program executes, and every point of the interpreted IR, lies on the
+// curve of the IR's move.nurbs.
+TEST(NurbsCut, TheIrHoldsTheCurveTheControllerCuts) {
+  for (const char* target : {"m80", "fanuc"}) {
+    SCOPED_TRACE(target);
+    std::unique_ptr<CompiledNurbsPart> part = compile(sProfileSource, target);
+    ASSERT_TRUE(part);
+    geom::NurbsCurve curve = curveOfTheIr(*part->function);
+    for (const auto& [z, points] : lapsOf(part->text, target)) {
+      EXPECT_LT(largestPointDistance(points, curve), 1e-6) << z;
+    }
+    std::vector<Eigen::Vector3d> interpreted;
+    for (const ir::MachineEvent& event : ir::interpret(*part->function).events) {
+      if (event.kind == ir::MachineEvent::Kind::Feed && event.z == -1) {
+        interpreted.emplace_back(event.x, event.y, 0);
+      }
+    }
+    ASSERT_GT(interpreted.size(), 100u);
+    EXPECT_LT(largestPointDistance(interpreted, curve), 1e-6);
   }
 }
 

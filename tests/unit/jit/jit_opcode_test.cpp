@@ -4,7 +4,9 @@
 // the native code itself computes them.
 #include "jit_test_support.h"
 
+#include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/builder.h"
+#include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/verifier.h"
 
 #include <gtest/gtest.h>
@@ -166,6 +168,24 @@ OpcodeCase arcsCase() {
   return {"arcs", builder.finish()};
 }
 
+// A NURBS move whose middle weight is a parameter, from a plunge onto its
+// first control point.
+OpcodeCase nurbsCase() {
+  FunctionBuilder builder("nurbs");
+  ValueId weight = builder.parameter(builder.addParameter("w", 3));
+  geom::NurbsCurve curve(geom::KnotVector({0, 0, 0, 1, 1, 1}, 2),
+                         {{0, 0, 0}, {5, 8, 0}, {10, 0, 0}}, {1, 1, 1});
+  std::uint32_t table = builder.addTable(ir::nurbsMoveTable(curve));
+  ValueId zero = builder.constant(0);
+  ValueId one = builder.constant(1);
+  ValueId feed = builder.constant(200);
+  ValueId depth = builder.constant(-0.5);
+  builder.rapid(zero, zero, zero);
+  builder.feed(zero, zero, depth, feed);
+  builder.nurbs(table, depth, feed, {one, weight, one});
+  return {"nurbs", builder.finish()};
+}
+
 std::vector<OpcodeCase> opcodeCases() {
   std::vector<OpcodeCase> cases;
   for (Opcode opcode : {Opcode::Neg, Opcode::Abs, Opcode::Sqrt, Opcode::Sin, Opcode::Cos,
@@ -186,6 +206,7 @@ std::vector<OpcodeCase> opcodeCases() {
   cases.push_back(effectsCase());
   cases.push_back(loopsCase());
   cases.push_back(arcsCase());
+  cases.push_back(nurbsCase());
   return cases;
 }
 

@@ -91,6 +91,7 @@ struct CompiledFunction::Compiled {
   jit::EntryFunction entry = nullptr;
   std::vector<ir::Parameter> parameters;
   std::vector<std::string> comments;
+  std::vector<std::vector<double>> tables;
   std::atomic<std::size_t> lastEventCount = 0;
 };
 
@@ -104,6 +105,7 @@ CompiledFunction::CompiledFunction(const ir::Function& function)
     throw JitError("the IR does not verify: " + problems.front());
   }
   compiled_->parameters = function.parameters;
+  compiled_->tables = function.tables;
 
   llvm::orc::JITTargetMachineBuilder machineBuilder =
       orThrow(llvm::orc::JITTargetMachineBuilder::detectHost(), "cannot detect the host");
@@ -149,6 +151,7 @@ void CompiledFunction::run(const ir::InterpreterOptions& options, ir::ToolPath& 
   jit::RunContext context;
   context.events = &path.events;
   context.comments = &compiled_->comments;
+  context.tables = &compiled_->tables;
   std::uint64_t steps = 0;
   if (compiled_->entry(parameters.data(), &context, options.maximumSteps, &steps) != 0) {
     if (context.exception) {

@@ -1,6 +1,7 @@
 #include "jit_runtime.h"
 
 #include "cncc/ir/interpreter.h"
+#include "cncc/ir/nurbs_move.h"
 
 #include <fmt/format.h>
 
@@ -30,6 +31,17 @@ template <typename Fill> std::int32_t recordError(RunContext* context, Fill fill
     context->exception = std::current_exception();
   }
   return 1;
+}
+
+// Where the last move ended (the origin before any).
+std::array<double, 3> lastPosition(const RunContext& context) {
+  for (auto event = context.events->rbegin(); event != context.events->rend(); ++event) {
+    if (event->kind == ir::MachineEvent::Kind::Rapid ||
+        event->kind == ir::MachineEvent::Kind::Feed || event->kind == ir::MachineEvent::Kind::Arc) {
+      return {event->x, event->y, event->z};
+    }
+  }
+  return {0, 0, 0};
 }
 
 } // namespace
@@ -64,17 +76,38 @@ static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, doubl
 static std::int32_t cncc_jit_arc(RunContext* context, double turn, double x, double y, double z,
                                  double i, double j, double feed) {
   return record(context, [&] {
-    std::array<double, 3> start{0, 0, 0};
-    for (auto event = context->events->rbegin(); event != context->events->rend(); ++event) {
-      if (event->kind == ir::MachineEvent::Kind::Rapid ||
-          event->kind == ir::MachineEvent::Kind::Feed ||
-          event->kind == ir::MachineEvent::Kind::Arc) {
-        start = {event->x, event->y, event->z};
-        break;
-      }
-    }
-    return ir::arcMove(start, static_cast<ir::ArcTurn>(turn), x, y, z, i, j, feed);
+    return ir::arcMove(lastPosition(*context), static_cast<ir::ArcTurn>(turn), x, y, z, i, j, feed);
   });
+}
+
+// One weight of the move.nurbs that follows; it cannot fail (an exception
+// is kept for the move's call to report).
+static std::int32_t cncc_jit_nurbs_weight(RunContext* context, double weight) {
+  try {
+    context->nurbsWeights.push_back(weight);
+  } catch (...) {
+    context->exception = std::current_exception();
+  }
+  return 0;
+}
+
+// `move.nurbs` with the weights passed before it, as the interpreter's
+// nurbsMove records it.
+static std::int32_t cncc_jit_nurbs(RunContext* context, std::uint32_t table, double z,
+                                   double feed) {
+  if (context->exception) {
+    return 1;
+  }
+  try {
+    std::vector<double> weights = std::move(context->nurbsWeights);
+    context->nurbsWeights.clear();
+    ir::nurbsMove(lastPosition(*context), (*context->tables)[table], z, feed, weights,
+                  *context->events);
+    return 0;
+  } catch (...) {
+    context->exception = std::current_exception();
+    return 1;
+  }
 }
 
 static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
@@ -153,6 +186,8 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_rapid", reinterpret_cast<void*>(&cncc_jit_rapid)},
       {"cncc_jit_feed", reinterpret_cast<void*>(&cncc_jit_feed)},
       {"cncc_jit_arc", reinterpret_cast<void*>(&cncc_jit_arc)},
+      {"cncc_jit_nurbs_weight", reinterpret_cast<void*>(&cncc_jit_nurbs_weight)},
+      {"cncc_jit_nurbs", reinterpret_cast<void*>(&cncc_jit_nurbs)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
       {"cncc_jit_comment", reinterpret_cast<void*>(&cncc_jit_comment)},

@@ -18,6 +18,10 @@ struct RunContext {
   std::vector<ir::MachineEvent>* events = nullptr;
   // The texts of the function's comments, by the index the code passes.
   const std::vector<std::string>* comments = nullptr;
+  // The function's constant tables (move.nurbs reads its block data there).
+  const std::vector<std::vector<double>>* tables = nullptr;
+  // The weights of the move.nurbs being called, passed one by one before it.
+  std::vector<double> nurbsWeights;
   // Set before the native code returns a failure: the interpreter's message
   // for the same error, or an exception raised while recording an event.
   std::string errorMessage;

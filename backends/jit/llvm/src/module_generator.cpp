@@ -215,6 +215,7 @@ private:
     case Opcode::Rapid:
     case Opcode::Feed:
     case Opcode::Arc:
+    case Opcode::Nurbs:
     case Opcode::Alarm:
     case Opcode::Spindle:
     case Opcode::Tool:
@@ -390,6 +391,14 @@ private:
       callback = "cncc_jit_arc";
       arguments.insert(arguments.begin(),
                        llvm::ConstantFP::get(f64_, static_cast<double>(instruction.index)));
+      break;
+    case Opcode::Nurbs:
+      // The weights one by one, then the move (its table by index).
+      for (std::size_t k = 2; k < arguments.size(); ++k) {
+        callRuntime("cncc_jit_nurbs_weight", {f64_}, {arguments[k]});
+      }
+      callback = "cncc_jit_nurbs";
+      arguments = {builder_.getInt32(instruction.index), arguments[0], arguments[1]};
       break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";

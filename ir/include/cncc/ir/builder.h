@@ -41,6 +41,8 @@ public:
   // `move.arc`: to (x, y, z) about the centre at (i, j) from the current
   // position, turning `turn`; a full turn when it ends where it starts.
   void arc(ArcTurn turn, ValueId x, ValueId y, ValueId z, ValueId i, ValueId j, ValueId feedRate);
+  // `move.nurbs @table, %z, %f, %weights...` (nurbs_move.h).
+  void nurbs(std::uint32_t table, ValueId z, ValueId feedRate, const std::vector<ValueId>& weights);
   void spindle(ValueId speed);
   void tool(double number, ValueId diameter);
   void comment(std::string text);

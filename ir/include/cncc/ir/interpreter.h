@@ -30,8 +30,8 @@ ToolPath interpret(const Function& function, const InterpreterOptions& options =
 
 // The event `move.arc` records when the machine is at `start`: centre at
 // (i, j) from it. Throws InterpreterError, as a controller alarms, for an
-// arc without a radius or whose end lies off its circle (by more than 1e-5,
-// relative above 1 mm). The interpreter and the JIT both record arcs so.
+// arc without a radius or whose end lies off its circle (by more than 0.005
+// in the part's units). The interpreter and the JIT both record arcs so.
 MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x, double y, double z,
                      double i, double j, double feed);
 

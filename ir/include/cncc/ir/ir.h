@@ -72,8 +72,8 @@ struct Instruction {
   std::vector<ValueId> operands;
   ValueId result;              // invalid when the operation has none
   double number = 0;           // Const value, ConstBool (0 or 1), Tool number
-  std::uint32_t index = 0;     // TableLoad: the table; Param: the parameter; CutBegin: the cut;
-                               // Arc: its ArcTurn
+  std::uint32_t index = 0;     // TableLoad, Nurbs: the table; Param: the parameter;
+                               // CutBegin: the cut; Arc: its ArcTurn
   std::string text;            // Comment, Alarm: the text
   std::vector<Region> regions; // Loop: {body}; If: {then, else}
 };

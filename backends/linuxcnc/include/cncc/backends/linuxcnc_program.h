@@ -39,8 +39,6 @@ struct LinuxcncProgramOptions {
   // G64 P: how far the controller may round a corner while blending moves
   // (and merge nearly collinear ones); the part's smallest tolerance.
   double blendTolerance = 0.01;
-  // The part's cuts (LoweredPart::cuts): an arc lap is printed from its curve.
-  std::vector<ir::CutGeometry> cuts;
 };
 
 struct LinuxcncProgram {

@@ -30,9 +30,6 @@ struct MacroProgramOptions {
   bool inches = false;
   bool callable = false;           // --macro: ends M99, parameters are G65 arguments
   bool parametersInCommon = false; // --params=common: parameters in retained common variables
-  // The part's cuts (ir::LoweredPart::cuts): a method=nurbs cut's marked feed
-  // is printed as its G06.2 blocks (nurbs_blocks.h).
-  std::vector<ir::CutGeometry> cuts;
 };
 
 struct MacroProgramStatistics {

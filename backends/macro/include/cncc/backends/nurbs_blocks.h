@@ -17,9 +17,7 @@
 #pragma once
 
 #include "cncc/backends/controller_profile.h"
-#include "cncc/geom/curve.h"
 #include "cncc/geom/nurbs_curve.h"
-#include "cncc/ir/lowering.h"
 
 #include <Eigen/Core>
 
@@ -56,20 +54,5 @@ struct NurbsBlocks {
 };
 
 NurbsBlocks writeNurbsBlocks(const geom::NurbsCurve& curve, const NurbsBlockOptions& options);
-
-// The NURBS a cut is printed with: its own curve when it is one, else a
-// least-squares cubic B-spline within `tolerance` (geom/bspline_fitting.h).
-// Throws geom::GeometryError when no fit is found.
-geom::NurbsCurve nurbsForBlocks(const geom::Curve& curve, double tolerance);
-
-// One pass of a method=nurbs cut (ir/src/lowering/nurbs_cuts.cpp) whose
-// marked feed ends at height `endZ`, for the profile's controller: its NURBS fitted within the
-// cut's tolerance less the rounding of the control points (half an increment on each axis), then
-// printed. Without a tolerance (samples=, spacing=) an analytic curve is fitted within
-// `defaultTolerance`.
-NurbsBlocks nurbsBlocksForCut(const ir::CutGeometry& cut, double endZ, const std::string& feedText,
-                              const ControllerProfile& profile, bool inches,
-                              const std::vector<std::string>& weightVariables = {},
-                              double defaultTolerance = 0.01);
 
 } // namespace cncc::backends

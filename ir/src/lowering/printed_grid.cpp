@@ -1,0 +1,29 @@
+#include "lowering/printed_grid.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+namespace cncc::ir::lowering {
+
+double onPrintedGrid(double value, double increment) {
+  if (!(increment > 0) || !std::isfinite(value)) {
+    return value;
+  }
+  auto decimals = static_cast<int>(std::lround(-std::log10(increment)));
+  if (decimals < 0 || decimals > 12 ||
+      std::fabs(std::pow(10.0, -decimals) - increment) > 1e-9 * increment) {
+    return std::round(value / increment) * increment; // not a power of ten
+  }
+  // The decimal text, as printed, read back: halves round as the printers
+  // round them (the binary value decides), not as value / increment would.
+  return std::stod(fmt::format("{:.{}f}", value, decimals));
+}
+
+Eigen::Vector3d onPrintedGrid(const Eigen::Vector3d& point, double increment) {
+  return {onPrintedGrid(point.x(), increment), onPrintedGrid(point.y(), increment),
+          onPrintedGrid(point.z(), increment)};
+}
+
+} // namespace cncc::ir::lowering
