@@ -34,12 +34,6 @@ std::optional<bool> arcsModifier(const CutStmt& cut) {
   return std::nullopt;
 }
 
-// How far the printed arcs may stray from the fitted ones: the start, the
-// end and the centre each move by up to half an increment per axis.
-double arcRoundingAllowance(double increment) {
-  return 3.0 * std::sqrt(2.0) * increment / 2;
-}
-
 Eigen::Vector2d onGrid(const Eigen::Vector3d& point, double increment) {
   return {onPrintedGrid(point.x(), increment), onPrintedGrid(point.y(), increment)};
 }
@@ -96,15 +90,14 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
   if (std::optional<std::string> problem = geom::findArcFittingProblem(*curve.geometry)) {
     return *problem;
   }
-  double tolerance = *chordTolerance(cut);
-  double allowance = arcRoundingAllowance(options_.coordinateIncrement);
-  if (!(tolerance > 2.0 * allowance)) {
+  ToleranceBudget budget = toleranceBudget(cut);
+  if (!(budget.tolerance > 2.0 * budget.arcRounding())) {
     return fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to the "
                        "increment {:g}",
-                       tolerance, options_.coordinateIncrement);
+                       budget.tolerance, budget.increment);
   }
   try {
-    return geom::fitArcs(*curve.geometry, {tolerance - allowance});
+    return geom::fitArcs(*curve.geometry, {budget.forArcs()});
   } catch (const geom::GeometryError& error) {
     return std::string(error.what());
   }
@@ -164,7 +157,7 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
 // tolerance, descending along the length as cuts.cpp does.
 std::vector<std::vector<SampleRun>> PartLowering::rampLapRuns(const CutStmt& cut,
                                                               const CutCurve& curve) {
-  double budget = *chordTolerance(cut) - options_.coordinateIncrement / 2 * std::sqrt(3.0);
+  double budget = toleranceBudget(cut).forPoints();
   std::vector<RampSegment> shares = rampSegments(curve, cut);
   std::vector<std::vector<SampleRun>> runs;
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {

@@ -284,14 +284,15 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   if (modifierValue(cut, "samples") != nullptr) {
     uniformSteps = static_cast<int>(sampleCount(cut)) - 1;
   }
-  double tolerance = uniformSteps ? std::numeric_limits<double>::quiet_NaN() : *chordTolerance(cut);
+  ToleranceBudget tolerances = toleranceBudget(cut);
+  double tolerance = tolerances.tolerance;
   bool planar = true;
   for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
     geom::ParameterRange domain = curve.geometry->domain();
     planar = planar && curve.geometry->point(domain.t0 + t * domain.length()).z() == 0;
   }
-  double rounding = options_.coordinateIncrement / 2 * std::sqrt(planar ? 2.0 : 3.0);
-  double budget = tolerance - rounding;
+  double rounding = tolerances.pointRounding(planar ? 2 : 3);
+  double budget = tolerances.forPoints(planar ? 2 : 3);
   if (!uniformSteps && !(budget > 0)) {
     fail(modifierValue(cut, "tolerance") ? modifierValue(cut, "tolerance")->span : cut.span,
          fmt::format("tolerance={:g} is not larger than the controller's rounding of the "

@@ -104,6 +104,13 @@ std::optional<double> PartLowering::chordTolerance(const CutStmt& cut) {
                                : constantNumber(*expression, "this tolerance");
 }
 
+ToleranceBudget PartLowering::toleranceBudget(const CutStmt& cut) {
+  ToleranceBudget budget;
+  budget.tolerance = chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN());
+  budget.increment = options_.coordinateIncrement;
+  return budget;
+}
+
 std::size_t PartLowering::sampleCount(const CutStmt& cut) {
   const Expr* expression = modifierValue(cut, "samples");
   double samples = constantNumber(*expression, "samples=");
@@ -134,8 +141,7 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
     }
     // A controller that rounds every coordinate to its increment takes up to
     // half an increment per axis of the tolerance (LoweringOptions).
-    double rounding = options_.coordinateIncrement / 2 * std::sqrt(3.0);
-    return geom::discretiseByChordTolerance(curve, *chordTolerance(cut) - rounding);
+    return geom::discretiseByChordTolerance(curve, toleranceBudget(cut).forPoints());
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);

@@ -220,22 +220,21 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   if (ramp) {
     checkRampCloses(curve, cut);
   }
-  double tolerance = *chordTolerance(cut);
-  double rounding = options_.coordinateIncrement / 2 * std::sqrt(3.0);
+  ToleranceBudget budget = toleranceBudget(cut);
   std::vector<RampSegment> shares = ramp ? rampSegments(curve, cut) : std::vector<RampSegment>{};
 
   // The other pieces' points: one run of samples per piece and span.
   std::vector<std::vector<SampleRun>> runs(curve.pieces.size());
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
     if (!isArcPiece(curve.pieces[p])) {
-      runs[p] = pieceSampleRuns(curve, p, tolerance - rounding, ramp ? &shares : nullptr, cut);
+      runs[p] = pieceSampleRuns(curve, p, budget.forPoints(), ramp ? &shares : nullptr, cut);
     }
   }
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());
   cuts_.push_back(
-      {curve.geometry, tolerance, cut.span, std::nullopt, methodOf(cut), CutArcs::Native});
+      {curve.geometry, budget.tolerance, cut.span, std::nullopt, methodOf(cut), CutArcs::Native});
   builder_.cutBegin(index);
 
   // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp does).

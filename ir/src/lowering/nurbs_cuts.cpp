@@ -48,9 +48,12 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
 
 // The NURBS the blocks carry, control points on the printed grid.
 geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve& curve) {
-  double increment = options_.coordinateIncrement;
-  double rounding = increment / 2 * std::sqrt(3.0);
-  double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
+  ToleranceBudget budget = toleranceBudget(cut);
+  if (std::isnan(budget.tolerance)) { // samples= or spacing=: the default tolerance
+    budget.tolerance = options_.defaultTolerance;
+  }
+  double tolerance = budget.tolerance;
+  double rounding = budget.pointRounding();
   if (!(tolerance > 2 * rounding)) {
     fail(cut.span,
          fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
@@ -65,18 +68,18 @@ geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve
     try {
       geom::BSplineFitOptions fit;
       fit.degree = 3;
-      fit.tolerance = tolerance - rounding;
+      fit.tolerance = budget.forPoints();
       nurbs = geom::fitBSpline(*curve.geometry, fit).spline;
     } catch (const geom::GeometryError& error) {
       fail(cut.span,
            fmt::format("no B-spline fits this curve within {:g} for the NURBS blocks: {}",
-                       tolerance - rounding, error.what()),
+                       budget.forPoints(), error.what()),
            DiagnosticKind::InvalidTolerance);
     }
   }
   std::vector<Eigen::Vector3d> points = nurbs->controlPoints();
   for (Eigen::Vector3d& point : points) {
-    point = onPrintedGrid(point, increment);
+    point = onPrintedGrid(point, budget.increment);
   }
   return geom::NurbsCurve(nurbs->knots(), std::move(points), nurbs->weights());
 }

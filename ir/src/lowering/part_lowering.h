@@ -4,6 +4,7 @@
 #pragma once
 
 #include "lowering/affine.h"
+#include "lowering/tolerance_budget.h"
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/value.h"
@@ -317,6 +318,8 @@ private:
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
+  // The cut's tolerance and the printed grid's share of it (computed here only).
+  ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   std::vector<double> passDepths(const frontend::CutStmt& cut);

@@ -1,0 +1,28 @@
+// A cut's tolerance, split once between the approximation (chords, arcs,
+// fitted splines) and the controller's rounding of the printed numbers, and
+// read by every way of lowering the cut: nothing else computes the rounding.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+namespace cncc::ir::lowering {
+
+struct ToleranceBudget {
+  // The cut's promise; NaN when samples= or spacing= chose its points.
+  double tolerance = std::numeric_limits<double>::quiet_NaN();
+  // The printed grid (LoweringOptions::coordinateIncrement; 0: none).
+  double increment = 0;
+
+  // How far rounding moves a point: half an increment on each of `axes`.
+  double pointRounding(int axes = 3) const { return increment / 2 * std::sqrt(double(axes)); }
+  // How far rounding moves an arc: its start, end and centre each by half an
+  // increment in X and Y.
+  double arcRounding() const { return 3.0 * std::sqrt(2.0) * increment / 2; }
+
+  // What is left for the chords between rounded points, and for arcs.
+  double forPoints(int axes = 3) const { return tolerance - pointRounding(axes); }
+  double forArcs() const { return tolerance - arcRounding(); }
+};
+
+} // namespace cncc::ir::lowering
