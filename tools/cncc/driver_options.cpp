@@ -380,8 +380,8 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (app.count("--rapid-rate") > 0 && !raw.stats) {
     throw UsageError("--rapid-rate only sets the time estimate of --stats");
   }
-  bool printsArcs = raw.target == "gcode" || raw.target == "linuxcnc" || raw.target == "m80" ||
-                    raw.target == "fanuc";
+  const Target* target = findTarget(raw.target);
+  bool printsArcs = target != nullptr && target->fittedArcs;
   // --emit=ir -t TARGET --arcs shows the IR the backend receives.
   bool compiles = options.command == Command::Compile ||
                   (options.command == Command::Emit && options.emit == EmitKind::Ir);
@@ -389,7 +389,8 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
     throw UsageError(
         "--arcs is for the gcode, linuxcnc, m80 and fanuc targets: it prints cuts as G02/G03 arcs");
   }
-  if ((raw.subprograms || !raw.splineEnds.empty()) && raw.target != "sinumerik") {
+  if ((raw.subprograms || !raw.splineEnds.empty()) &&
+      (target == nullptr || !target->splineOptions)) {
     throw UsageError("--subprograms and --spline-ends are for the sinumerik target");
   }
   if (raw.stats && !canMeasure(raw.target) && !canVerify(raw.target)) {
@@ -537,7 +538,8 @@ DriverOptions verifyOptions(const RawOptions& raw, const CLI::App& app) {
 }
 
 DriverOptions simulateOptions(const RawOptions& raw) {
-  if (raw.target != "fanuc" && raw.target != "m80") {
+  const Target* target = findTarget(raw.target);
+  if (target == nullptr || target->controllerProfile.empty()) {
     throw UsageError("'sim' needs -t fanuc or -t m80");
   }
   DriverOptions options;

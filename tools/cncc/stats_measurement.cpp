@@ -2,8 +2,6 @@
 
 #include "commands.h"
 
-#include "cncc/backends/gcode_writer.h"
-#include "cncc/backends/tool_path_csv.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/verifier.h"
 
@@ -27,42 +25,6 @@ std::optional<HostRun> runOnHost(const BackendRequest& request) {
   }
   run.toolPath = std::move(*path);
   return run;
-}
-
-backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const HostRun& run) {
-  const ir::ToolPath& path = run.toolPath;
-  backends::GcodeOptions options = gcodeOptionsFor(request);
-  std::string text = backends::writeGcode(path, options);
-  backends::ExecutedPath executed = backends::executeGcode(text, path, options.decimals);
-  std::size_t blocks = backends::countProgramBlocks(text);
-  return {std::move(text), blocks, std::move(executed)};
-}
-
-// The jit target's program is the tool path as CSV; a block is a row.
-backends::ExecutedProgram jitProgram(const BackendRequest&, const HostRun& run) {
-  const ir::ToolPath& path = run.toolPath;
-  std::string text = backends::writeToolPathCsv(path);
-  std::size_t rows = backends::countProgramBlocks(text) - 1; // without the header
-  return {std::move(text), rows, backends::executedPathOfToolPath(path)};
-}
-
-struct MeasurableTarget {
-  std::string_view name;
-  backends::ExecutedProgram (*program)(const BackendRequest&, const HostRun&);
-};
-
-constexpr MeasurableTarget measurableTargets[] = {
-    {"gcode", gcodeProgram},
-    {"jit", jitProgram},
-};
-
-const MeasurableTarget* findMeasurable(std::string_view name) {
-  for (const MeasurableTarget& target : measurableTargets) {
-    if (target.name == name) {
-      return &target;
-    }
-  }
-  return nullptr;
 }
 
 std::string fileName(const std::string& path) {
@@ -89,12 +51,13 @@ std::vector<std::string> cutNames(const std::vector<ir::CutGeometry>& cuts,
 } // namespace
 
 bool canMeasure(std::string_view name) {
-  return findMeasurable(name) != nullptr;
+  const Target* target = findTarget(name);
+  return target != nullptr && target->hostProgram != nullptr;
 }
 
 std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
-  const MeasurableTarget* target = findMeasurable(request.options.target);
-  if (target == nullptr) {
+  const Target* target = findTarget(request.options.target);
+  if (target == nullptr || target->hostProgram == nullptr) {
     throw InternalError(fmt::format("target '{}' cannot be measured", request.options.target));
   }
   std::optional<HostRun> run = runOnHost(request);
@@ -103,7 +66,7 @@ std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
   }
   MeasuredPart measured;
   try {
-    measured.program = target->program(request, *run);
+    measured.program = target->hostProgram(request, run->toolPath);
   } catch (const std::logic_error& mismatch) { // ExecutionMismatch, or arcs off the tool path
     throw InternalError(fmt::format("the {} program does not execute as its tool path: {}",
                                     target->name, mismatch.what()));

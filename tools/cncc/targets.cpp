@@ -36,18 +36,56 @@ void jitBackend(const BackendRequest& request) {
   }
 }
 
+// The gcode target's program for a tool path, run by the G-code reader.
+backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const ir::ToolPath& path) {
+  backends::GcodeOptions options = gcodeOptionsFor(request);
+  std::string text = backends::writeGcode(path, options);
+  backends::ExecutedPath executed = backends::executeGcode(text, path, options.decimals);
+  std::size_t blocks = backends::countProgramBlocks(text);
+  return {std::move(text), blocks, std::move(executed)};
+}
+
+// The jit target's program is the tool path as CSV; a block is a row.
+backends::ExecutedProgram jitProgram(const BackendRequest&, const ir::ToolPath& path) {
+  std::string text = backends::writeToolPathCsv(path);
+  std::size_t rows = backends::countProgramBlocks(text) - 1; // without the header
+  return {std::move(text), rows, backends::executedPathOfToolPath(path)};
+}
+
 constexpr Target targetTable[] = {
-    {"m80", "Mitsubishi M70/M80/M800 macro program (parameters stay editable)", m80Backend,
-     m80LoweringOptions},
-    {"fanuc", "Fanuc Custom Macro B program (parameters stay editable)", fanucBackend,
-     fanucLoweringOptions},
-    {"sinumerik", "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks", sinumerikBackend,
-     sinumerikLoweringOptions},
-    {"gcode", "plain G-code: G00/G01 and G02/G03 blocks computed on the host", gcodeBackend,
-     gcodeLoweringOptions},
-    {"linuxcnc", "LinuxCNC program with o-word loops and parameters", linuxcncBackend,
-     linuxcncLoweringOptions},
-    {"jit", "run the part on the host and print the tool path", jitBackend, jitLoweringOptions},
+    {.name = "m80",
+     .description = "Mitsubishi M70/M80/M800 macro program (parameters stay editable)",
+     .backend = m80Backend,
+     .lowering = m80LoweringOptions,
+     .fittedArcs = true,
+     .controllerProfile = "m80"},
+    {.name = "fanuc",
+     .description = "Fanuc Custom Macro B program (parameters stay editable)",
+     .backend = fanucBackend,
+     .lowering = fanucLoweringOptions,
+     .fittedArcs = true,
+     .controllerProfile = "fanuc"},
+    {.name = "sinumerik",
+     .description = "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks",
+     .backend = sinumerikBackend,
+     .lowering = sinumerikLoweringOptions,
+     .splineOptions = true},
+    {.name = "gcode",
+     .description = "plain G-code: G00/G01 and G02/G03 blocks computed on the host",
+     .backend = gcodeBackend,
+     .lowering = gcodeLoweringOptions,
+     .fittedArcs = true,
+     .hostProgram = gcodeProgram},
+    {.name = "linuxcnc",
+     .description = "LinuxCNC program with o-word loops and parameters",
+     .backend = linuxcncBackend,
+     .lowering = linuxcncLoweringOptions,
+     .fittedArcs = true},
+    {.name = "jit",
+     .description = "run the part on the host and print the tool path",
+     .backend = jitBackend,
+     .lowering = jitLoweringOptions,
+     .hostProgram = jitProgram},
 };
 
 } // namespace

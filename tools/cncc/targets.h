@@ -1,10 +1,13 @@
-// The targets `-t` accepts. A target is known (its name is valid) before its
-// backend exists; a backend makes it available by filling in `backend`.
+// The targets `-t` accepts, each described once: its backend, how it lowers,
+// what else it takes and can do. The driver asks the table, never a target's
+// name. A target is known (its name is valid) before its backend exists; a
+// backend makes it available by filling in `backend`.
 #pragma once
 
 #include "atomic_output_file.h"
 #include "driver_options.h"
 
+#include "cncc/backends/executed_path.h"
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
@@ -35,11 +38,26 @@ using BackendFunction = void (*)(const BackendRequest& request);
 using LoweringFunction = ir::LoweringOptions (*)(const frontend::PartItem& part,
                                                  const DriverOptions& options);
 
+// A host-computed target's program for the tool path the IR gave, and the
+// path its execution makes (what --stats measures).
+using HostProgramFunction = backends::ExecutedProgram (*)(const BackendRequest& request,
+                                                          const ir::ToolPath& path);
+
 struct Target {
   std::string_view name;        // what `-t` takes
   std::string_view description; // one line, for --help
   BackendFunction backend;      // null until the backend exists
   LoweringFunction lowering;
+  // Takes --arcs: prints planar curves as fitted G02/G03 arcs.
+  bool fittedArcs = false;
+  // Takes --subprograms and --spline-ends (the Sinumerik spline options).
+  bool splineOptions = false;
+  // A program that reads the part parameters from the controller's
+  // variables: the controller profile it is printed for unless --profile
+  // says otherwise; `sim`, `--profile` and `--params` need one.
+  std::string_view controllerProfile = {};
+  // Computed on the host: its program and execution, for --stats.
+  HostProgramFunction hostProgram = nullptr;
 
   bool available() const { return backend != nullptr; }
 };

@@ -33,26 +33,6 @@ using frontend::CheckedProgram;
 using frontend::DiagnosticEngine;
 using frontend::SourceManager;
 
-// A target whose programs read the part parameters from variables.
-struct SymbolicTarget {
-  std::string_view name;
-  std::string_view defaultProfile;
-};
-
-constexpr SymbolicTarget symbolicTargets[] = {
-    {"m80", "m80"},
-    {"fanuc", "fanuc"},
-};
-
-const SymbolicTarget* findSymbolicTarget(std::string_view name) {
-  for (const SymbolicTarget& target : symbolicTargets) {
-    if (target.name == name) {
-      return &target;
-    }
-  }
-  return nullptr;
-}
-
 // A checked input; kept whole because analytic cut curves evaluate the
 // program's expressions.
 struct CheckedInput {
@@ -230,10 +210,11 @@ int runVerify(const DriverOptions& options) {
   if (!truth) {
     return 1;
   }
-  const SymbolicTarget* symbolic = findSymbolicTarget(options.target);
+  const Target* target = findTarget(options.target);
+  bool symbolic = target != nullptr && !target->controllerProfile.empty();
   backends::ExecutionRequest execution;
   std::optional<std::string> text;
-  if (symbolic != nullptr) {
+  if (symbolic) {
     // Compiled once with the defaults, as the program is kept; the -D
     // values are set on the controller.
     DriverOptions defaults = options;
@@ -244,7 +225,7 @@ int runVerify(const DriverOptions& options) {
       return 1;
     }
     std::string_view profile =
-        options.profile.empty() ? symbolic->defaultProfile : std::string_view(options.profile);
+        options.profile.empty() ? target->controllerProfile : std::string_view(options.profile);
     std::optional<std::vector<backends::ParameterValue>> values =
         parameterValues(*truth->program->selectedPart, options, profile, output);
     if (!values) {
