@@ -62,6 +62,9 @@ import sys
 import tempfile
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from cncc_binary import find_cncc  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent.parent
 CNCC_AS_WRITTEN = Path("build/tools/cncc/cncc")
 NOT_RUN = re.compile(r"^<!--\s*not run\b.*-->\s*$")
@@ -351,19 +354,6 @@ def check_summary(cncc):
     return 0
 
 
-def find_cncc(arguments):
-    if arguments.cncc:
-        cncc = Path(arguments.cncc)
-    else:
-        build = Path(arguments.build)
-        if not build.is_absolute() and not build.exists():
-            build = ROOT / build
-        cncc = build / "tools" / "cncc" / "cncc"
-    if not cncc.is_file():
-        sys.exit(f"run_doc_examples.py: no cncc at '{cncc}'; build first or pass --build/--cncc")
-    return cncc.resolve()
-
-
 def select_documents(names):
     if not names:
         return default_documents()
@@ -389,7 +379,7 @@ def main():
     parser.add_argument("--summary", action="store_true",
                         help="check README's command-line summary against cncc --help")
     arguments = parser.parse_args()
-    cncc = find_cncc(arguments)
+    cncc = find_cncc(arguments, "run_doc_examples.py")
     if arguments.summary:
         return check_summary(cncc)
     return run_documents(cncc, select_documents(arguments.documents), arguments.update)

@@ -44,6 +44,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from cncc_binary import find_cncc  # noqa: E402
+
 GOLDEN_DIR = Path(__file__).resolve().parent
 ROOT = GOLDEN_DIR.parent.parent
 DEFAULT_ARGUMENTS = "check %s"
@@ -242,19 +245,6 @@ def check_coverage(cncc):
     return 0
 
 
-def find_cncc(arguments):
-    if arguments.cncc:
-        cncc = Path(arguments.cncc)
-    else:
-        build = Path(arguments.build)
-        if not build.is_absolute() and not build.exists():
-            build = ROOT / build
-        cncc = build / "tools" / "cncc" / "cncc"
-    if not cncc.is_file():
-        sys.exit(f"run_golden.py: no cncc at '{cncc}'; build first or pass --build/--cncc")
-    return cncc.resolve()
-
-
 def main():
     parser = argparse.ArgumentParser(
         description="Run the golden tests of cncc.",
@@ -267,7 +257,7 @@ def main():
     parser.add_argument("--coverage", action="store_true",
                         help="check that every diagnostic appears in some expectation")
     arguments = parser.parse_args()
-    cncc = find_cncc(arguments)
+    cncc = find_cncc(arguments, "run_golden.py")
     if arguments.coverage:
         return check_coverage(cncc)
     return run_cases(cncc, select_cases(arguments.selectors), arguments.update)
