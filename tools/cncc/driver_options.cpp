@@ -387,7 +387,8 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
                   (options.command == Command::Emit && options.emit == EmitKind::Ir);
   if (raw.arcs && (!compiles || !printsArcs)) {
     throw UsageError(
-        "--arcs is for the gcode, linuxcnc, m80 and fanuc targets: it prints cuts as G02/G03 arcs");
+        fmt::format("--arcs is for the targets {}: it prints cuts as G02/G03 arcs",
+                    targetNameList([](const Target& candidate) { return candidate.fittedArcs; })));
   }
   if ((raw.subprograms || !raw.splineEnds.empty()) &&
       (target == nullptr || !target->splineOptions)) {

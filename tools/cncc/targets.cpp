@@ -168,9 +168,12 @@ const Target* findTarget(std::string_view name) {
   return nullptr;
 }
 
-std::string targetNameList() {
+std::string targetNameList(bool (*which)(const Target& target)) {
   std::string names;
   for (const Target& target : targetTable) {
+    if (which != nullptr && !which(target)) {
+      continue;
+    }
     names += names.empty() ? "" : ", ";
     names += target.name;
   }

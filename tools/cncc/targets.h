@@ -81,7 +81,8 @@ backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request);
 
 std::span<const Target> allTargets();
 const Target* findTarget(std::string_view name);
-// "m80, fanuc, ..." in table order, for messages and --help.
-std::string targetNameList();
+// "m80, fanuc, ..." in table order, for messages and --help: every target,
+// or those `which` holds for.
+std::string targetNameList(bool (*which)(const Target& target) = nullptr);
 
 } // namespace cncc::driver
