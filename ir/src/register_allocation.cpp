@@ -507,4 +507,15 @@ AllocationResult allocateVariables(const Function& function, const AllocationOpt
   return Allocator(function, options).run();
 }
 
+std::map<int, std::vector<std::size_t>> tablesByBase(const Function& function,
+                                                     const Allocation& allocation) {
+  std::map<int, std::vector<std::size_t>> tables;
+  for (std::size_t table = 0; table < function.tables.size(); ++table) {
+    if (allocation.tableBase[table] >= 0) {
+      tables[allocation.tableBase[table]].push_back(table);
+    }
+  }
+  return tables;
+}
+
 } // namespace cncc::ir

@@ -1,5 +1,7 @@
 #include "linuxcnc_expressions.h"
 
+#include "controller_words.h"
+
 #include "cncc/backends/gcode_writer.h"
 
 #include <fmt/format.h>
@@ -16,61 +18,15 @@ using ir::Opcode;
 
 constexpr double degreesPerRadian = 57.29577951308232;
 
-bool isTrigonometric(Opcode opcode) {
-  return opcode == Opcode::Sin || opcode == Opcode::Cos || opcode == Opcode::Tan;
-}
-
-bool isInverseTrigonometric(Opcode opcode) {
-  return opcode == Opcode::Asin || opcode == Opcode::Acos;
-}
-
+// The shared names, and LinuxCNC's FIX (rounds down) and FUP (up).
 std::string_view functionName(Opcode opcode) {
   switch (opcode) {
-  case Opcode::Sin:
-    return "SIN";
-  case Opcode::Cos:
-    return "COS";
-  case Opcode::Tan:
-    return "TAN";
-  case Opcode::Asin:
-    return "ASIN";
-  case Opcode::Acos:
-    return "ACOS";
-  case Opcode::Sqrt:
-    return "SQRT";
-  case Opcode::Abs:
-    return "ABS";
-  case Opcode::Exp:
-    return "EXP";
-  case Opcode::Ln:
-    return "LN";
-  case Opcode::Round:
-    return "ROUND";
-  case Opcode::Floor: // LinuxCNC's FIX rounds down, FUP up
+  case Opcode::Floor:
     return "FIX";
   case Opcode::Ceil:
     return "FUP";
   default:
-    return "";
-  }
-}
-
-std::string_view comparisonName(Opcode opcode, bool negated) {
-  switch (opcode) {
-  case Opcode::Lt:
-    return negated ? "GE" : "LT";
-  case Opcode::Le:
-    return negated ? "GT" : "LE";
-  case Opcode::Gt:
-    return negated ? "LE" : "GT";
-  case Opcode::Ge:
-    return negated ? "LT" : "GE";
-  case Opcode::Eq:
-    return negated ? "NE" : "EQ";
-  case Opcode::Ne:
-    return negated ? "EQ" : "NE";
-  default:
-    return "";
+    return sharedFunctionName(opcode);
   }
 }
 

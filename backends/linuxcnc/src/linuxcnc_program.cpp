@@ -179,7 +179,7 @@ private:
           "{}#<{}> {}, {} {}", where, names_[i], function_.parameters[i].name,
           function_.parameters[i].fixed ? "fixed at" : "default", parameterDefault(i))));
     }
-    for (const auto& [base, tables] : tablesByBase()) {
+    for (const auto& [base, tables] : ir::tablesByBase(function_, allocation_)) {
       int count = static_cast<int>(function_.tables[tables.front()].size());
       line(commentLine(fmt::format("#{}-#{} table {}, {} values", base, base + count - 1,
                                    fmt::join(tables, " and "), count)));
@@ -217,19 +217,8 @@ private:
     }
   }
 
-  // Equal tables share one block of parameters.
-  std::map<int, std::vector<std::size_t>> tablesByBase() const {
-    std::map<int, std::vector<std::size_t>> tables;
-    for (std::size_t table = 0; table < function_.tables.size(); ++table) {
-      if (allocation_.tableBase[table] >= 0) {
-        tables[allocation_.tableBase[table]].push_back(table);
-      }
-    }
-    return tables;
-  }
-
   void printTables() {
-    for (const auto& [base, tables] : tablesByBase()) {
+    for (const auto& [base, tables] : ir::tablesByBase(function_, allocation_)) {
       const std::vector<double>& values = function_.tables[tables.front()];
       for (std::size_t i = 0; i < values.size(); ++i) {
         line(fmt::format("#{} = {}", base + static_cast<int>(i), expressions_.constant(values[i])));

@@ -1,5 +1,7 @@
 #include "macro_expressions.h"
 
+#include "controller_words.h"
+
 #include "cncc/backends/gcode_writer.h"
 
 #include <fmt/format.h>
@@ -48,60 +50,6 @@ std::string textAt(const MacroText& text, Position position) {
   return bracketedUnless(text, bareAt(text.form, position));
 }
 
-bool isTrigonometric(Opcode opcode) {
-  return opcode == Opcode::Sin || opcode == Opcode::Cos || opcode == Opcode::Tan;
-}
-
-bool isInverseTrigonometric(Opcode opcode) {
-  return opcode == Opcode::Asin || opcode == Opcode::Acos;
-}
-
-std::string_view functionName(Opcode opcode) {
-  switch (opcode) {
-  case Opcode::Sin:
-    return "SIN";
-  case Opcode::Cos:
-    return "COS";
-  case Opcode::Tan:
-    return "TAN";
-  case Opcode::Asin:
-    return "ASIN";
-  case Opcode::Acos:
-    return "ACOS";
-  case Opcode::Sqrt:
-    return "SQRT";
-  case Opcode::Abs:
-    return "ABS";
-  case Opcode::Exp:
-    return "EXP";
-  case Opcode::Ln:
-    return "LN";
-  case Opcode::Round:
-    return "ROUND";
-  default:
-    return "";
-  }
-}
-
-std::string_view comparisonName(Opcode opcode, bool negated) {
-  switch (opcode) {
-  case Opcode::Lt:
-    return negated ? "GE" : "LT";
-  case Opcode::Le:
-    return negated ? "GT" : "LE";
-  case Opcode::Gt:
-    return negated ? "LE" : "GT";
-  case Opcode::Ge:
-    return negated ? "LT" : "GE";
-  case Opcode::Eq:
-    return negated ? "NE" : "EQ";
-  case Opcode::Ne:
-    return negated ? "EQ" : "NE";
-  default:
-    return "";
-  }
-}
-
 int operationsOf(std::span<const InlineShape> operands) {
   int operations = 1;
   for (const InlineShape& operand : operands) {
@@ -128,7 +76,7 @@ namespace {
 int ownCharacters(const ir::Function& function, const ir::Instruction& instruction,
                   std::span<const InlineShape> operands, int significantDigits) {
   int characters = 1;
-  std::string_view name = functionName(instruction.opcode);
+  std::string_view name = sharedFunctionName(instruction.opcode);
   if (!name.empty()) {
     characters = static_cast<int>(name.size()) + 2;
   }
@@ -395,10 +343,11 @@ MacroText MacroExpressionWriter::function(const ir::Instruction& instruction) co
   Opcode opcode = instruction.opcode;
   const std::vector<ir::ValueId>& operands = instruction.operands;
   if (isTrigonometric(opcode)) {
-    return {fmt::format("{}[{}]", functionName(opcode), degrees(operands[0])), InlineForm::Atom};
+    return {fmt::format("{}[{}]", sharedFunctionName(opcode), degrees(operands[0])),
+            InlineForm::Atom};
   }
   if (isInverseTrigonometric(opcode)) {
-    return {fmt::format("{}[{}]*{}", functionName(opcode), value(operands[0]).text,
+    return {fmt::format("{}[{}]*{}", sharedFunctionName(opcode), value(operands[0]).text,
                         constant(1 / degreesPerRadian)),
             InlineForm::Multiplicative};
   }
@@ -411,7 +360,7 @@ MacroText MacroExpressionWriter::function(const ir::Instruction& instruction) co
                         textAt(value(operands[1]), Position::RightOfMultiplicative)),
             InlineForm::Atom};
   }
-  std::string_view name = functionName(opcode);
+  std::string_view name = sharedFunctionName(opcode);
   if (name.empty() || operands.size() != 1) {
     errors_.push_back(
         fmt::format("internal: '{}' cannot be written inline", ir::opcodeInfo(opcode).spelling));

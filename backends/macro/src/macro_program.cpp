@@ -197,7 +197,7 @@ private:
           "#{} {}, {} {}", allocation_.parameterVariables[i], function_.parameters[i].name,
           function_.parameters[i].fixed ? "FIXED AT" : "DEFAULT", parameterDefault(i)));
     }
-    for (const auto& [base, tables] : tablesByBase()) {
+    for (const auto& [base, tables] : ir::tablesByBase(function_, allocation_)) {
       int count = static_cast<int>(function_.tables[tables.front()].size());
       comment(fmt::format("#{}-#{} TABLE {}, {} VALUES", base, base + count - 1,
                           fmt::join(tables, " AND "), count));
@@ -306,19 +306,8 @@ private:
     return fmt::format("{} ({})", alarm, message.substr(0, room));
   }
 
-  // Equal tables share one block of variables.
-  std::map<int, std::vector<std::size_t>> tablesByBase() const {
-    std::map<int, std::vector<std::size_t>> tables;
-    for (std::size_t table = 0; table < function_.tables.size(); ++table) {
-      if (allocation_.tableBase[table] >= 0) {
-        tables[allocation_.tableBase[table]].push_back(table);
-      }
-    }
-    return tables;
-  }
-
   void printTables() {
-    for (const auto& [base, tables] : tablesByBase()) {
+    for (const auto& [base, tables] : ir::tablesByBase(function_, allocation_)) {
       const std::vector<double>& values = function_.tables[tables.front()];
       for (std::size_t i = 0; i < values.size(); ++i) {
         line(fmt::format("#{}={}", base + static_cast<int>(i), expressions_.constant(values[i])));

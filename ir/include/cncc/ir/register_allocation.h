@@ -24,6 +24,7 @@
 #include "cncc/ir/ir.h"
 
 #include <functional>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -84,6 +85,11 @@ struct Allocation {
 
   bool inVariable(ValueId value) const { return variableOfValue[value.index] >= 0; }
 };
+
+// The tables by the first variable of their block: equal tables (one per
+// pass of a cut) share one block, so a printer writes each block once.
+std::map<int, std::vector<std::size_t>> tablesByBase(const Function& function,
+                                                     const Allocation& allocation);
 
 // Why a Function does not fit: the limit and the count it needed.
 struct AllocationFailure {
