@@ -55,7 +55,8 @@ geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve
   double tolerance = budget.tolerance;
   double rounding = budget.pointRounding();
   if (!(tolerance > 2 * rounding)) {
-    fail(cut.span,
+    const Expr* written = modifierValue(cut, "tolerance");
+    fail(written != nullptr ? written->span : cut.span,
          fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
                      "NURBS control points ({:.6g})",
                      tolerance, rounding),
