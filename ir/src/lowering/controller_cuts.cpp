@@ -332,12 +332,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());
-  const Expr* arcs = modifierValue(cut, "arcs");
-  cuts_.push_back({curve.geometry, tolerance, cut.span,
-                   arcs != nullptr && arcs->kind == ExprKind::Bool
-                       ? std::optional<bool>(as<BoolExpr>(*arcs).value)
-                       : std::nullopt,
-                   methodOf(cut),
+  cuts_.push_back({curve.geometry, tolerance, cut.span, methodOf(cut),
                    hasArcPiece(curve) && !uniformSteps ? CutArcs::Native : CutArcs::None});
   builder_.cutBegin(index);
   for (const ControllerSegment& segment : *planned) {

@@ -348,12 +348,8 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());
-  const Expr* arcs = modifierValue(cut, "arcs");
   cuts_.push_back({curve.geometry,
                    chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
-                   arcs != nullptr && arcs->kind == ExprKind::Bool
-                       ? std::optional<bool>(as<BoolExpr>(*arcs).value)
-                       : std::nullopt,
                    methodOf(cut)});
   builder_.cutBegin(index);
 

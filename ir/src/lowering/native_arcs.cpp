@@ -233,8 +233,7 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());
-  cuts_.push_back(
-      {curve.geometry, budget.tolerance, cut.span, std::nullopt, methodOf(cut), CutArcs::Native});
+  cuts_.push_back({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
   builder_.cutBegin(index);
 
   // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp does).

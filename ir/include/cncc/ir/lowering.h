@@ -61,8 +61,6 @@ struct CutGeometry {
   double tolerance = 0;
   // The `curve` statement.
   frontend::SourceSpan span;
-  // arcs=true or arcs=false on the cut; nullopt leaves it to --arcs.
-  std::optional<bool> arcs;
   // The cut's method= word (linear, aspline, bspline, cspline, nurbs); empty without one.
   std::string method;
   // How its passes use move.arc: not at all, for the curve's own arc pieces
