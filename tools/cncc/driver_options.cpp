@@ -395,9 +395,11 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
     throw UsageError("--subprograms and --spline-ends are for the sinumerik target");
   }
   if (raw.stats && !canMeasure(raw.target) && !canVerify(raw.target)) {
-    throw UsageError(fmt::format("--stats is not available for target '{}' in this version "
-                                 "(gcode, jit, m80 and fanuc have it)",
-                                 raw.target));
+    throw UsageError(
+        fmt::format("--stats is not available for target '{}' in this version ({} have it)",
+                    raw.target, targetNameList([](const Target& candidate) {
+                      return canMeasure(candidate.name) || canVerify(candidate.name);
+                    })));
   }
 }
 
@@ -495,9 +497,9 @@ DriverOptions plotOptions(const RawOptions& raw, const CLI::App& app) {
   compile.target = raw.target.empty() ? "gcode" : raw.target;
   DriverOptions options = validatedOptions(compile, app, false);
   if (!canMeasure(options.target)) {
-    throw UsageError(fmt::format("'plot' is not available for target '{}' in this version "
-                                 "(gcode and jit have it)",
-                                 options.target));
+    throw UsageError(fmt::format(
+        "'plot' is not available for target '{}' in this version ({} have it)", options.target,
+        targetNameList([](const Target& candidate) { return canMeasure(candidate.name); })));
   }
   options.command = Command::Plot;
   return options;

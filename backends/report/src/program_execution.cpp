@@ -2,6 +2,8 @@
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/linuxcnc_canon.h"
+#include "cncc/backends/rs274.h"
 #include "cncc/backends/sinumerik_controller.h"
 #include "cncc/backends/virtual_controller.h"
 
@@ -254,9 +256,37 @@ ProgramExecution runSinumerik(const ExecutionRequest& request) {
   return execution;
 }
 
+// A LinuxCNC program through LinuxCNC's own interpreter, rs274, which
+// prints 4 decimals; the program's parameters are the values it sets.
+ProgramExecution runLinuxcnc(const ExecutionRequest& request) {
+  std::optional<std::string> rs274 = findRs274();
+  if (!rs274) {
+    return failed(request.text, 0,
+                  "verifying a LinuxCNC program needs LinuxCNC's interpreter rs274 on the PATH "
+                  "(Debian package linuxcnc-uspace)");
+  }
+  constexpr int seconds = 60;
+  Rs274Run run = runRs274(*rs274, request.text, rs274ToolTable(request.text), seconds);
+  if (run.exitCode != 0) {
+    std::string message = run.exitCode < 0
+                              ? fmt::format("rs274 did not finish within {} s", seconds)
+                              : run.errors.substr(0, run.errors.find('\n'));
+    return failed(request.text, 0, "rs274: " + message);
+  }
+  ProgramExecution execution;
+  execution.text = request.text;
+  execution.increment = 1e-4;
+  try {
+    execution.path = readLinuxcncCanon(run.canon, kArcSagitta);
+  } catch (const ExecutionMismatch& error) {
+    return failed(request.text, 0, std::string("rs274's output: ") + error.what());
+  }
+  return execution;
+}
+
 constexpr TargetExecutor executorTable[] = {
     {"m80", runM80}, {"fanuc", runFanuc},         {"gcode", runGcode},
-    {"jit", runJit}, {"sinumerik", runSinumerik},
+    {"jit", runJit}, {"sinumerik", runSinumerik}, {"linuxcnc", runLinuxcnc},
 };
 
 } // namespace

@@ -4,6 +4,8 @@
 // executor table.
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
+#include "cncc/backends/program_execution.h"
+#include "cncc/backends/rs274.h"
 #include "cncc/backends/sim_operation_count.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/backends/verification.h"
@@ -223,13 +225,37 @@ TEST(Verification, ReadsTheJitTargetsToolPathBack) {
 }
 
 TEST(Verification, HasAnExecutorForEachTargetItRuns) {
-  for (std::string_view target : {"m80", "fanuc", "gcode", "jit"}) {
+  for (std::string_view target : {"m80", "fanuc", "gcode", "jit", "sinumerik", "linuxcnc"}) {
     const TargetExecutor* executor = findTargetExecutor(target);
     ASSERT_NE(executor, nullptr) << target;
     EXPECT_EQ(executor->target, target);
   }
   EXPECT_EQ(findTargetExecutor("no-such-target"), nullptr);
   EXPECT_THROW(verifyProgram({"no-such-target", {}, {}, {}}, {}), std::invalid_argument);
+}
+
+// A LinuxCNC program runs in rs274: its feed moves are the path, and a
+// program rs274 refuses is a failure that quotes rs274.
+TEST(Verification, LinuxcncProgramsRunInRs274) {
+  const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
+  ASSERT_NE(linuxcnc, nullptr);
+  ExecutionRequest request;
+  request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+  ProgramExecution run = linuxcnc->execute(request);
+  ASSERT_FALSE(run.failure) << run.failure->message;
+  ASSERT_FALSE(run.path.moves.empty());
+  EXPECT_NEAR(run.path.moves.back().end.x(), 10, 1e-9);
+  EXPECT_NEAR(run.path.moves.back().end.y(), 5, 1e-9);
+  EXPECT_EQ(run.increment, 1e-4);
+  request.text = "G21\nG1 X1 Y1\nM2\n"; // a feed move without a feed rate
+  run = linuxcnc->execute(request);
+  ASSERT_TRUE(run.failure);
+  EXPECT_EQ(run.failure->message.rfind("rs274: ", 0), 0u) << run.failure->message;
+}
+
+TEST(Rs274, ToolTableHasEveryToolTheProgramNames) {
+  EXPECT_EQ(rs274ToolTable("T1 M6\n(T9 IN A COMMENT)\nG0 X1\nt12 m6\nM2\n"),
+            "T1 P1 D0 ;\nT12 P12 D0 ;\n");
 }
 
 TEST(OperationCounts, CountsEachKindOfOperationInABlock) {

@@ -1,0 +1,33 @@
+// LinuxCNC's standalone interpreter, `rs274 -g FILE` (Debian package
+// linuxcnc-uspace): what `cncc verify -t linuxcnc` and the tests run a
+// LinuxCNC program through. Its canonical calls are read by
+// readLinuxcncCanon (linuxcnc_canon.h).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace cncc::backends {
+
+// The rs274 executable on PATH; nullopt when LinuxCNC is not installed.
+std::optional<std::string> findRs274();
+
+// A tool table (`T5 P5 D0 ;`) with every tool the program names in a `T`
+// word: rs274 refuses `T5 M6` for a tool its table does not have.
+std::string rs274ToolTable(std::string_view program);
+
+struct Rs274Run {
+  int exitCode = -1;  // -1: it did not finish (killed after the time limit)
+  std::string canon;  // standard output: the canonical calls
+  std::string errors; // standard error
+};
+
+// Writes `program` and `toolTable` to a fresh temporary directory and runs
+// `rs274 -t TABLE -g PROGRAM`, for at most `seconds` (a program that loops
+// for ever is stopped). One run at a time across processes: concurrent runs
+// were seen to read each other's tool table.
+Rs274Run runRs274(const std::string& rs274, const std::string& program,
+                  const std::string& toolTable, int seconds = 60);
+
+} // namespace cncc::backends
