@@ -797,6 +797,9 @@ MacroProgramStatistics measureMacroProgram(const std::string& text) {
     std::string bare;
     int depth = 0;
     for (char c : line) {
+      if (c == ';' && depth == 0) {
+        break; // LinuxCNC's comment to the end of the line
+      }
       depth += c == '(' ? 1 : 0;
       if (depth == 0) {
         bare += c;

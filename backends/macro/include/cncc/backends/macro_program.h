@@ -64,7 +64,8 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
                                const MacroProgramOptions& options);
 
-// Counts of a program text: blocks, bytes, bytes without comments.
+// Counts of a program text: blocks, bytes, bytes without comments (`( ... )`,
+// and LinuxCNC's `;` to the end of the line).
 MacroProgramStatistics measureMacroProgram(const std::string& text);
 
 } // namespace cncc::backends
