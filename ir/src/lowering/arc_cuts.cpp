@@ -117,7 +117,8 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<std::vector<SampleRun>> rampRuns;
   if (begun.ramp) {
     checkRampCloses(curve, cut);
-    rampRuns = rampLapRuns(cut, curve);
+    std::vector<RampSegment> shares = rampSegments(curve, cut);
+    rampRuns = piecesSampleRuns(cut, curve, &shares, false);
   }
   ValueId feedValue = arithmetic_.value(begun.feed);
   ValueId safeValue = arithmetic_.value(*safe_);
@@ -150,19 +151,6 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
     previous = passZ;
   }
   return true;
-}
-
-// A ramp lap (host targets only) is chords: each piece's points within the
-// tolerance, descending along the length as cuts.cpp does.
-std::vector<std::vector<SampleRun>> PartLowering::rampLapRuns(const CutStmt& cut,
-                                                              const CutCurve& curve) {
-  double budget = toleranceBudget(cut).forPoints();
-  std::vector<RampSegment> shares = rampSegments(curve, cut);
-  std::vector<std::vector<SampleRun>> runs;
-  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
-    runs.push_back(pieceSampleRuns(curve, p, budget, &shares, cut));
-  }
-  return runs;
 }
 
 // One lap of the fitted arcs at height z from the fit's start on the grid;

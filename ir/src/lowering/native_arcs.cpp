@@ -207,6 +207,19 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
                 count, false, height, feed);
 }
 
+std::vector<std::vector<SampleRun>>
+PartLowering::piecesSampleRuns(const CutStmt& cut, const CutCurve& curve,
+                               const std::vector<RampSegment>* ramp, bool skipArcPieces) {
+  double budget = toleranceBudget(cut).forPoints();
+  std::vector<std::vector<SampleRun>> runs(curve.pieces.size());
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    if (!skipArcPieces || !isArcPiece(curve.pieces[p])) {
+      runs[p] = pieceSampleRuns(curve, p, budget, ramp, cut);
+    }
+  }
+  return runs;
+}
+
 // A cut with arc pieces (and neither samples= nor spacing=) on a target
 // that computes on the host: each arc piece as move.arc, each other
 // piece's points chosen on the piece alone (chord tolerance), in a table
@@ -224,12 +237,8 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<RampSegment> shares = ramp ? rampSegments(curve, cut) : std::vector<RampSegment>{};
 
   // The other pieces' points: one run of samples per piece and span.
-  std::vector<std::vector<SampleRun>> runs(curve.pieces.size());
-  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
-    if (!isArcPiece(curve.pieces[p])) {
-      runs[p] = pieceSampleRuns(curve, p, budget.forPoints(), ramp ? &shares : nullptr, cut);
-    }
-  }
+  std::vector<std::vector<SampleRun>> runs =
+      piecesSampleRuns(cut, curve, ramp ? &shares : nullptr, true);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   auto index = static_cast<std::uint32_t>(cuts_.size());

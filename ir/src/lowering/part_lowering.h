@@ -366,8 +366,13 @@ private:
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
   std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
                                                      const CutCurve& curve);
-  std::vector<std::vector<SampleRun>> rampLapRuns(const frontend::CutStmt& cut,
-                                                  const CutCurve& curve);
+  // Each piece's runs of samples within the cut's chord budget (descending
+  // with `ramp`'s shares when given); an arc piece has none when
+  // `skipArcPieces` (it is cut as move.arc).
+  std::vector<std::vector<SampleRun>> piecesSampleRuns(const frontend::CutStmt& cut,
+                                                       const CutCurve& curve,
+                                                       const std::vector<RampSegment>* ramp,
+                                                       bool skipArcPieces);
   Eigen::Vector2d emitArcLap(const std::vector<geom::ArcSegment>& segments, ValueId z,
                              ValueId feed);
 
