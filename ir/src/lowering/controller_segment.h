@@ -1,0 +1,103 @@
+// What controller_cuts.cpp plans for each loop of a cut, and the bounds
+// arithmetic it shares with controller_nurbs_spans.cpp (NURBS spans whose
+// control points depend on parameters).
+#pragma once
+
+#include "lowering/part_lowering.h"
+
+#include <array>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace cncc::ir::lowering {
+
+using Polynomial = std::vector<double>; // ascending powers of u
+
+Polynomial derivativeOf(const Polynomial& polynomial);
+// An upper bound of |p(u)| on [0, 1] (its largest Bernstein coefficient).
+double supremumBound(const Polynomial& polynomial);
+// Every coordinate's bound, as one bound of the vector's length.
+double vectorSupremumBound(const std::vector<Polynomial>& coordinates);
+
+// constant + sum of coefficient * value: the bounds of a NURBS span, kept
+// in this form so that the controller computes each as one flat sum.
+struct LinearForm {
+  double constant = 0;
+  std::vector<std::pair<Scalar, double>> terms;
+
+  void add(Scalar value, double coefficient) {
+    if (value.isConstant()) {
+      constant += coefficient * value.constant;
+      return;
+    }
+    for (auto& [existing, factor] : terms) {
+      if (existing.value == value.value) {
+        factor += coefficient;
+        return;
+      }
+    }
+    terms.emplace_back(value, coefficient);
+  }
+  void add(const LinearForm& other, double coefficient) {
+    constant += coefficient * other.constant;
+    for (const auto& [value, factor] : other.terms) {
+      add(value, coefficient * factor);
+    }
+  }
+  bool isConstant() const { return terms.empty(); }
+  Scalar scalar(Arithmetic& math) const {
+    Scalar sum = Scalar::of(constant);
+    for (const auto& [value, factor] : terms) {
+      sum = math.add(sum, factor == 1 ? value : math.multiply(value, Scalar::of(factor)));
+    }
+    return sum;
+  }
+  // The product; a product of two non-constant forms becomes one term.
+  LinearForm times(const LinearForm& other, Arithmetic& math) const {
+    LinearForm product;
+    if (other.isConstant()) {
+      product.add(*this, other.constant);
+    } else if (isConstant()) {
+      product.add(other, constant);
+    } else {
+      product.add(math.multiply(scalar(math), other.scalar(math)), 1);
+    }
+    return product;
+  }
+};
+
+// One loop of the cut: a piece, or a knot span of a NURBS piece.
+struct ControllerSegment {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  // The piece's own parameter range (a NURBS span: its local u, 0 to 1).
+  double from = 0;
+  double to = 1;
+  // Chosen at compile time; 0 when the controller computes stepCount.
+  int steps = 0;
+  std::optional<Scalar> stepCount;
+  bool isNurbs = false;
+  // An arc piece: move.arc blocks (native_arcs.cpp), no steps.
+  bool isArc = false;
+  // A line, arc, polar or param piece that depends on controller values:
+  // evaluated from its symbolic form over start .. end.
+  const SymbolicPiece* symbolic = nullptr;
+  Scalar start, end;
+  // A NURBS span of constant shape moved by a transform of controller values.
+  const RuntimeTransform* moved = nullptr;
+  // A NURBS span whose control points depend on parameters, split as
+  //   W(u) = reference + Wc(u) + sum_d (w_d - reference) N_d(u),
+  //   X(u) = Xc(u) + sum_d w_d x_d N_d(u)   (likewise y, z),
+  // with Xc, Wc the constant control points' share (literals) and, per
+  // dependent control point d, its basis function N_d (literals) and its
+  // homogeneous point (computed on the controller once).
+  bool split = false;
+  bool rational = false;
+  double referenceWeight = 1;
+  std::array<Polynomial, 4> constantPart;
+  std::vector<Polynomial> dependentBasis;
+  std::vector<std::array<Scalar, 4>> dependentPoints;
+};
+
+} // namespace cncc::ir::lowering
