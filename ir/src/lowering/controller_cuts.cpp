@@ -20,8 +20,7 @@
 //   N = (length of the domain) * sqrt(M / (8 budget)) steps, rounded up,
 //   suffice. The bounds are derived with the functions that compute them
 //   (controller_nurbs_spans.cpp for NURBS spans, curvature_bounds.cpp for
-//   the others); the
-//   pieces' symbolic forms come from symbolic_curves.cpp.
+//   the others); the pieces' symbolic forms come from symbolic_curves.cpp.
 // samples=N gives N - 1 equal steps of a single piece's parameter, and
 // entry=ramp a first lap descending along each segment (RampSegment). A cut
 // this mode cannot treat (spacing=, samples= over several pieces, a curve
