@@ -5,6 +5,7 @@
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/nurbs_move.h"
 #include "macro_expressions.h"
+#include "macro_loop_stepping.h"
 #include "macro_simplify.h"
 
 #include <fmt/format.h>
@@ -54,69 +55,6 @@ struct ModalState {
   }
   friend bool operator==(const ModalState&, const ModalState&) = default;
 };
-
-// Loops whose index is used only scaled, u = i * c (a curve's parameter):
-// the index variable then holds u itself, stepped by c, which saves the
-// multiplication and its assignment at every point.
-struct SteppedLoops {
-  // loop index value -> c; NaN: u = i / high, the loop from 1 to high.
-  std::map<std::uint32_t, double> scaleOfIndex;
-  std::set<std::uint32_t> scaledValues; // the products, not printed
-};
-
-SteppedLoops stepLoopsByTheirScale(const ir::Function& function, ir::Allocation& allocation) {
-  std::map<std::uint32_t, std::vector<ir::InstructionId>> users;
-  for (ir::InstructionId id = 0; id < function.instructions.size(); ++id) {
-    for (ValueId operand : function.instructions[id].operands) {
-      users[operand.index].push_back(id);
-    }
-  }
-  auto constant = [&](ValueId value) {
-    const ir::Instruction& definition = function.definition(value);
-    return definition.opcode == Opcode::Const ? std::optional<double>(definition.number)
-                                              : std::nullopt;
-  };
-  SteppedLoops stepped;
-  for (const ir::Instruction& loop : function.instructions) {
-    if (loop.opcode != Opcode::Loop || !constant(loop.operands[0]) ||
-        users[loop.result.index].size() != 1 || !allocation.inVariable(loop.result)) {
-      continue;
-    }
-    const ir::Instruction& product = function.instructions[users[loop.result.index].front()];
-    std::optional<double> scale;
-    if (product.opcode == Opcode::Mul && constant(loop.operands[1])) {
-      ValueId other =
-          product.operands[0] == loop.result ? product.operands[1] : product.operands[0];
-      scale = constant(other);
-    } else if (product.opcode == Opcode::Div && product.operands[0] == loop.result &&
-               product.operands[1] == loop.operands[1] && *constant(loop.operands[0]) == 1 &&
-               allocation.inVariable(loop.operands[1])) {
-      scale = std::numeric_limits<double>::quiet_NaN();
-    }
-    if (!scale || *scale == 0 || std::isinf(*scale)) {
-      continue;
-    }
-    allocation.variableOfValue[product.result.index] =
-        allocation.variableOfValue[loop.result.index];
-    stepped.scaleOfIndex[loop.result.index] = *scale;
-    stepped.scaledValues.insert(product.result.index);
-  }
-  // The products' own variables may now be unused.
-  std::set<int> used(allocation.parameterVariables.begin(), allocation.parameterVariables.end());
-  for (int variable : allocation.variableOfValue) {
-    if (variable >= 0) {
-      used.insert(variable);
-    }
-  }
-  for (std::size_t table = 0; table < function.tables.size(); ++table) {
-    for (std::size_t i = 0; allocation.tableBase[table] >= 0 && i < function.tables[table].size();
-         ++i) {
-      used.insert(allocation.tableBase[table] + static_cast<int>(i));
-    }
-  }
-  allocation.usedVariables.assign(used.begin(), used.end());
-  return stepped;
-}
 
 class ProgramPrinter {
 public:
@@ -714,10 +652,6 @@ private:
   bool spindleOn_ = false;
 };
 
-bool isCommentLine(std::string_view line) {
-  return line.starts_with("(");
-}
-
 } // namespace
 
 std::vector<int> macroParameterVariables(std::size_t parameterCount,
@@ -779,42 +713,6 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
       inches ? profile.leastInputIncrement / 10 : profile.leastInputIncrement;
   options.maximumLoopNesting = std::min(profile.maximumLoopNesting, profile.maximumLoopIdentifier);
   return options;
-}
-
-MacroProgramStatistics measureMacroProgram(const std::string& text) {
-  MacroProgramStatistics statistics;
-  statistics.bytes = text.size();
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) {
-      end = text.size();
-    }
-    std::string_view line(text.data() + start, end - start);
-    if (line != "%") {
-      ++statistics.blocks;
-    }
-    std::string bare;
-    int depth = 0;
-    for (char c : line) {
-      if (c == ';' && depth == 0) {
-        break; // LinuxCNC's comment to the end of the line
-      }
-      depth += c == '(' ? 1 : 0;
-      if (depth == 0) {
-        bare += c;
-      }
-      depth -= (c == ')' && depth > 0) ? 1 : 0;
-    }
-    while (!bare.empty() && bare.back() == ' ') {
-      bare.pop_back();
-    }
-    if (!bare.empty() && !isCommentLine(line)) {
-      statistics.bytesWithoutComments += bare.size() + 1;
-    }
-    start = end + 1;
-  }
-  return statistics;
 }
 
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
