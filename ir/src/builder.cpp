@@ -134,11 +134,34 @@ void FunctionBuilder::spindle(ValueId speed) {
   operation(Opcode::Spindle, {speed});
 }
 
-void FunctionBuilder::tool(double number, ValueId diameter) {
+void FunctionBuilder::tool(double number, ValueId diameter, std::uint32_t lengthRegister) {
   Instruction instruction;
   instruction.opcode = Opcode::Tool;
   instruction.number = number;
+  instruction.index = lengthRegister;
   instruction.operands = {diameter};
+  append(std::move(instruction), ValueType::None);
+}
+
+void FunctionBuilder::origin(double code, std::uint32_t extended) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Origin;
+  instruction.number = code;
+  instruction.index = extended;
+  append(std::move(instruction), ValueType::None);
+}
+
+void FunctionBuilder::coolant(CoolantMode mode) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Coolant;
+  instruction.index = static_cast<std::uint32_t>(mode);
+  append(std::move(instruction), ValueType::None);
+}
+
+void FunctionBuilder::contouring(double tolerance) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Contouring;
+  instruction.number = tolerance;
   append(std::move(instruction), ValueType::None);
 }
 

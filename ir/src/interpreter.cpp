@@ -75,6 +75,9 @@ private:
     case Opcode::Feed:
     case Opcode::Spindle:
     case Opcode::Tool:
+    case Opcode::Origin:
+    case Opcode::Coolant:
+    case Opcode::Contouring:
     case Opcode::Comment:
     case Opcode::CutBegin:
       record(instruction);
@@ -133,6 +136,12 @@ private:
       event.kind = MachineEvent::Kind::Tool;
       event.number = instruction.number;
       event.diameter = value(operands[0]);
+      event.offsetRegister = instruction.index;
+      break;
+    case Opcode::Origin:
+    case Opcode::Coolant:
+    case Opcode::Contouring:
+      event = settingEvent(instruction.opcode, instruction.number, instruction.index);
       break;
     case Opcode::CutBegin:
       event.kind = MachineEvent::Kind::CutBegin;
@@ -199,6 +208,25 @@ MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x,
     throw InterpreterError(fmt::format("an arc from ({:g}, {:g}) to ({:g}, {:g}) has radius {:g} "
                                        "at its start and {:g} at its end",
                                        start[0], start[1], x, y, startRadius, endRadius));
+  }
+  return event;
+}
+
+MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index) {
+  MachineEvent event;
+  event.number = number;
+  switch (opcode) {
+  case Opcode::Origin:
+    event.kind = MachineEvent::Kind::Origin;
+    event.offsetRegister = index;
+    break;
+  case Opcode::Coolant:
+    event.kind = MachineEvent::Kind::Coolant;
+    event.number = index;
+    break;
+  default:
+    event.kind = MachineEvent::Kind::Contouring;
+    break;
   }
   return event;
 }

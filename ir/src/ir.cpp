@@ -26,4 +26,21 @@ std::vector<Opcode> allOpcodes() {
   return opcodes;
 }
 
+namespace {
+constexpr std::string_view coolantModeNames[] = {"off", "flood", "mist", "through"};
+} // namespace
+
+std::string_view coolantModeName(CoolantMode mode) {
+  return coolantModeNames[static_cast<std::size_t>(mode)];
+}
+
+std::optional<CoolantMode> coolantModeNamed(std::string_view name) {
+  for (std::size_t i = 0; i < std::size(coolantModeNames); ++i) {
+    if (coolantModeNames[i] == name) {
+      return static_cast<CoolantMode>(i);
+    }
+  }
+  return std::nullopt;
+}
+
 } // namespace cncc::ir

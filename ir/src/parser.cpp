@@ -51,13 +51,13 @@ double parseNumber(std::string_view text) {
   return value;
 }
 
-// The index of `cut.begin n`: a whole number that fits an index.
-std::uint32_t parseCutIndex(std::string_view text) {
+// A whole number that fits an index (`cut.begin n`, a register).
+std::uint32_t parseWholeNumber(std::string_view text) {
   text = trim(text);
   std::uint32_t index = 0;
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), index);
   if (error != std::errc() || end != text.data() + text.size()) {
-    throw Failure{fmt::format("expected a cut index, found '{}'", text)};
+    throw Failure{fmt::format("expected a whole number, found '{}'", text)};
   }
   return index;
 }
@@ -223,14 +223,23 @@ private:
       builder_->nurbs(table, value(parts[1]), value(parts[2]), weights);
       return;
     }
-    case Opcode::Tool: {
-      std::vector<std::string_view> parts = splitList(rest);
-      if (parts.size() != 2) {
-        throw Failure{"expected 'tool number, %diameter'"};
+    case Opcode::Tool:
+      parseTool(rest);
+      return;
+    case Opcode::Origin:
+      parseOrigin(rest);
+      return;
+    case Opcode::Coolant: {
+      std::optional<CoolantMode> mode = coolantModeNamed(rest);
+      if (!mode) {
+        throw Failure{"expected 'coolant off', 'flood', 'mist' or 'through'"};
       }
-      builder_->tool(parseNumber(parts[0]), value(parts[1]));
+      builder_->coolant(*mode);
       return;
     }
+    case Opcode::Contouring:
+      builder_->contouring(rest == "off" ? 0 : parseNumber(rest));
+      return;
     case Opcode::Comment:
       builder_->comment(unquote(rest));
       return;
@@ -238,7 +247,7 @@ private:
       builder_->alarm(unquote(rest));
       return;
     case Opcode::CutBegin:
-      builder_->cutBegin(parseCutIndex(rest));
+      builder_->cutBegin(parseWholeNumber(rest));
       return;
     case Opcode::Arc:
       parseArc(rest);
@@ -278,6 +287,39 @@ private:
     } else if (!result.empty()) {
       throw Failure{fmt::format("'{}' has no result", spelling)};
     }
+  }
+
+  // `tool n length h, %diameter`
+  void parseTool(std::string_view rest) {
+    std::vector<std::string_view> parts = splitList(rest);
+    std::vector<std::string_view> words = splitWords(parts.empty() ? "" : parts[0]);
+    if (parts.size() != 2 || words.size() != 3 || words[1] != "length") {
+      throw Failure{"expected 'tool number length register, %diameter'"};
+    }
+    builder_->tool(parseNumber(words[0]), value(parts[1]), parseWholeNumber(words[2]));
+  }
+
+  // `origin 54` or `origin 54.1 p`
+  void parseOrigin(std::string_view rest) {
+    std::vector<std::string_view> words = splitWords(rest);
+    if (words.empty() || words.size() > 2) {
+      throw Failure{"expected 'origin code' or 'origin 54.1 number'"};
+    }
+    builder_->origin(parseNumber(words[0]), words.size() == 2 ? parseWholeNumber(words[1]) : 0);
+  }
+
+  static std::vector<std::string_view> splitWords(std::string_view text) {
+    std::vector<std::string_view> words;
+    std::size_t at = 0;
+    while (at < text.size()) {
+      std::size_t end = text.find(' ', at);
+      end = end == std::string_view::npos ? text.size() : end;
+      if (end > at) {
+        words.push_back(text.substr(at, end - at));
+      }
+      at = end + 1;
+    }
+    return words;
   }
 
   // `move.arc cw|ccw %x, %y, %z, %i, %j, %f`

@@ -80,7 +80,22 @@ private:
           fmt::format("{}{}{} @{}, {}\n", indent, result, spelling, instruction.index, operandText);
       return;
     case Opcode::Tool:
-      out_ += fmt::format("{}tool {}, {}\n", indent, instruction.number, operandText);
+      out_ += fmt::format("{}tool {} length {}, {}\n", indent, instruction.number,
+                          instruction.index, operandText);
+      return;
+    case Opcode::Origin:
+      out_ += instruction.index == 0
+                  ? fmt::format("{}origin {}\n", indent, instruction.number)
+                  : fmt::format("{}origin {} {}\n", indent, instruction.number, instruction.index);
+      return;
+    case Opcode::Coolant:
+      out_ += fmt::format("{}coolant {}\n", indent,
+                          coolantModeName(static_cast<CoolantMode>(instruction.index)));
+      return;
+    case Opcode::Contouring:
+      out_ += instruction.number == 0
+                  ? fmt::format("{}contouring off\n", indent)
+                  : fmt::format("{}contouring {}\n", indent, instruction.number);
       return;
     case Opcode::Comment:
     case Opcode::Alarm:

@@ -2,6 +2,7 @@
 
 #include "cncc/ir/nurbs_move.h"
 
+#include <cmath>
 #include <fmt/format.h>
 #include <set>
 
@@ -143,6 +144,29 @@ private:
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
     }
+    checkSetting(instruction, where);
+  }
+
+  void checkSetting(const Instruction& instruction, const std::string& where) {
+    if (instruction.opcode == Opcode::Origin &&
+        !isWorkOffsetCode(instruction.number, instruction.index)) {
+      problem(
+          fmt::format("{} is not a work offset (54 .. 59, or 54.1 with a number from 1)", where));
+    }
+    if (instruction.opcode == Opcode::Coolant &&
+        instruction.index > static_cast<std::uint32_t>(CoolantMode::Through)) {
+      problem(fmt::format("{} names no coolant mode", where));
+    }
+    if (instruction.opcode == Opcode::Contouring && !(instruction.number >= 0)) {
+      problem(fmt::format("{} has a negative tolerance", where));
+    }
+  }
+
+  static bool isWorkOffsetCode(double code, std::uint32_t extended) {
+    if (code == 54.1) {
+      return extended >= 1;
+    }
+    return extended == 0 && code >= 54 && code <= 59 && code == std::floor(code);
   }
 
   // Its table holds the block data of as many control points as it has

@@ -44,6 +44,7 @@ void linuxcncBackend(const BackendRequest& request) {
   options.partName = names.partName;
   options.inches = names.inches;
   options.callable = request.options.macroCall;
+  options.setup = backends::builtinMachineSetup(request.options.target);
   options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
   for (const std::string& error : program.errors) {

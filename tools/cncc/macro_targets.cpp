@@ -72,6 +72,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.inches = names.inches;
   options.callable = request.options.macroCall;
   options.parametersInCommon = request.options.parametersInCommon;
+  options.setup = backends::builtinMachineSetup(request.options.target);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
   for (const std::string& error : program.errors) {
     request.diagnostics.report(

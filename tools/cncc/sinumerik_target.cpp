@@ -31,6 +31,7 @@ backends::SinumerikOptions sinumerikOptionsFor(const BackendRequest& request) {
   options.programName = output.empty() || output == "-" ? part.name : fileStem(output);
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
   options.subprograms = request.options.subprograms;
+  options.setup = backends::builtinMachineSetup(request.options.target);
   const std::string& ends = request.options.splineEnds;
   options.transitions = ends == "natural" ? backends::SinumerikTransitions::Natural
                         : ends == "auto"  ? backends::SinumerikTransitions::Auto

@@ -152,6 +152,7 @@ backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   options.sourceName = slash == std::string::npos ? input : input.substr(slash + 1);
   options.partName = part.name;
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
+  options.setup = backends::builtinMachineSetup(request.options.target);
   return options;
 }
 

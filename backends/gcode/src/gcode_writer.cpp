@@ -113,6 +113,10 @@ public:
 
   std::string take() { return std::move(out_); }
 
+  // Words the next block with a Z word carries (the length offset after a
+  // tool change).
+  void beforeNextZ(std::string words) { beforeZ_ = std::move(words); }
+
 private:
   void block(bool rapid, std::optional<double> x, std::optional<double> y, std::optional<double> z,
              double feed) {
@@ -129,7 +133,12 @@ private:
     };
     word('X', x, x_);
     word('Y', y, y_);
+    std::size_t beforeZ = words.size();
     word('Z', z, zText_);
+    if (words.size() > beforeZ && !beforeZ_.empty()) {
+      words.insert(0, " " + beforeZ_);
+      beforeZ_.clear();
+    }
     if (z) {
       z_ = *z;
     }
@@ -152,7 +161,7 @@ private:
 
   int decimals_;
   std::string out_;
-  std::string x_, y_, zText_, feed_;
+  std::string x_, y_, zText_, feed_, beforeZ_;
   double z_ = 0;
   bool known_ = false;
 };
@@ -191,6 +200,17 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
       writer.line(fmt::format("T{} M06 (DIAMETER {})",
                               static_cast<long long>(std::llround(event.number)),
                               formatGcodeNumber(event.diameter, options.decimals)));
+      writer.beforeNextZ(lengthOffsetWords(
+          options.setup, static_cast<int>(std::llround(event.number)), event.offsetRegister));
+      break;
+    case ir::MachineEvent::Kind::Origin:
+    case ir::MachineEvent::Kind::Coolant:
+    case ir::MachineEvent::Kind::Contouring:
+      if (std::string text =
+              settingBlock(options.setup, event, formatGcodeNumber(event.number, options.decimals));
+          !text.empty()) {
+        writer.line(std::move(text));
+      }
       break;
     case ir::MachineEvent::Kind::Comment:
       writer.line(fmt::format("({})", gcodeCommentText(event.text)));

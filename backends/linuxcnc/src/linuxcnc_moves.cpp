@@ -36,21 +36,30 @@ void LinuxcncMoveWriter::motionLine(std::string_view motion, const std::string& 
   lines_.push_back(std::move(text));
 }
 
+std::string LinuxcncMoveWriter::zWord(ir::ValueId z) {
+  std::string text = word('Z', z);
+  if (!text.empty() && !beforeZ_.empty()) {
+    text = " " + beforeZ_ + text;
+    beforeZ_.clear();
+  }
+  return text;
+}
+
 void LinuxcncMoveWriter::rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z) {
   std::optional<double> target = expressions_.constantOf(z);
   bool descending = target && z_ && *target < *z_ - 1e-12;
   if (descending) {
     motionLine("G0", word('X', x) + word('Y', y));
-    motionLine("G0", word('Z', z));
+    motionLine("G0", zWord(z));
   } else {
-    motionLine("G0", word('Z', z));
+    motionLine("G0", zWord(z));
     motionLine("G0", word('X', x) + word('Y', y));
   }
   z_ = target;
 }
 
 void LinuxcncMoveWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate) {
-  std::string words = word('X', x) + word('Y', y) + word('Z', z);
+  std::string words = word('X', x) + word('Y', y) + zWord(z);
   if (!words.empty()) {
     words += word('F', feedRate, false);
   }
@@ -62,7 +71,7 @@ void LinuxcncMoveWriter::arc(bool clockwise, std::span<const ir::ValueId> operan
   for (char always : {'X', 'Y', 'I', 'J'}) {
     literals_.erase(always);
   }
-  std::string words = word('X', operands[0]) + word('Y', operands[1]) + word('Z', operands[2]) +
+  std::string words = word('X', operands[0]) + word('Y', operands[1]) + zWord(operands[2]) +
                       word('I', operands[3]) + word('J', operands[4]) +
                       word('F', operands[5], false);
   literals_.erase('I');

@@ -31,8 +31,12 @@ public:
   // Z when it changes (a helix), the centre's I J from the start always.
   void arc(bool clockwise, std::span<const ir::ValueId> operands);
   void forget();
+  // Words the next move with a Z word carries (the length offset after a
+  // tool change).
+  void beforeNextZ(std::string words) { beforeZ_ = std::move(words); }
 
 private:
+  std::string zWord(ir::ValueId z);
   // One motion line: `G1 X.. Y.. F..`, the motion word left out when in
   // force, nothing when no word is left.
   void motionLine(std::string_view motion, const std::string& words);
@@ -42,6 +46,7 @@ private:
   const LinuxcncExpressionWriter& expressions_;
   std::vector<std::string>& lines_;
   std::string motion_;
+  std::string beforeZ_;
   std::map<char, std::string> literals_;
   std::optional<double> z_; // the last literal Z
 };

@@ -1,6 +1,7 @@
 #include "cncc/backends/linuxcnc_program.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/ir/interpreter.h"
 #include "linuxcnc_expressions.h"
 #include "linuxcnc_moves.h"
 #include "macro_simplify.h"
@@ -264,6 +265,11 @@ private:
     case Opcode::Tool:
       printTool(instruction);
       return;
+    case Opcode::Origin:
+    case Opcode::Coolant:
+    case Opcode::Contouring:
+      printSetting(instruction);
+      return;
     case Opcode::Alarm:
       line(fmt::format("(abort, {})", gcodeCommentText(instruction.text)));
       return;
@@ -300,6 +306,17 @@ private:
       line(commentLine(fmt::format("tool diameter {}", expressions_.coordinateLiteral(*diameter))));
     }
     moves_.forget();
+    moves_.beforeNextZ(lengthOffsetWords(
+        options_.setup, static_cast<int>(std::llround(instruction.number)), instruction.index));
+  }
+
+  void printSetting(const ir::Instruction& instruction) {
+    std::string text = settingBlock(
+        options_.setup, ir::settingEvent(instruction.opcode, instruction.number, instruction.index),
+        expressions_.coordinateLiteral(instruction.number));
+    if (!text.empty()) {
+      line(std::move(text));
+    }
   }
 
   // `o<n> if [c]` .. `o<n> else` .. `o<n> endif` around single assignments.

@@ -311,6 +311,11 @@ private:
     case Opcode::Tool:
       printTool(instruction);
       return;
+    case Opcode::Origin:
+    case Opcode::Coolant:
+    case Opcode::Contouring:
+      printSetting(instruction);
+      return;
     case Opcode::Alarm:
       line(alarmStatement(instruction.text, 0));
       return;
@@ -349,6 +354,28 @@ private:
     }
     line(text);
     modal_.forget();
+    beforeZ_ = lengthOffsetWords(options_.setup, static_cast<int>(std::llround(instruction.number)),
+                                 instruction.index);
+  }
+
+  void printSetting(const ir::Instruction& instruction) {
+    std::string text = settingBlock(
+        options_.setup, ir::settingEvent(instruction.opcode, instruction.number, instruction.index),
+        expressions_.coordinateLiteral(instruction.number));
+    if (!text.empty()) {
+      line(std::move(text));
+    }
+  }
+
+  // The Z word of a move, after the words the first Z move after a tool
+  // change carries (its length offset).
+  std::string zWord(ValueId z) {
+    std::string text = word('Z', z);
+    if (!text.empty() && !beforeZ_.empty()) {
+      text = " " + beforeZ_ + text;
+      beforeZ_.clear();
+    }
+    return text;
   }
 
   void printAssignment(const ir::Instruction& instruction) {
@@ -560,9 +587,9 @@ private:
     bool descending = target && modal_.z && *target < *modal_.z - 1e-12;
     if (descending) {
       block("G0", word('X', x) + word('Y', y));
-      block("G0", word('Z', z));
+      block("G0", zWord(z));
     } else {
-      block("G0", word('Z', z));
+      block("G0", zWord(z));
       block("G0", word('X', x) + word('Y', y));
     }
     rememberZ(z);
@@ -570,7 +597,7 @@ private:
 
   void printFeed(const ir::Instruction& instruction) {
     std::string words = word('X', instruction.operands[0]) + word('Y', instruction.operands[1]) +
-                        word('Z', instruction.operands[2]);
+                        zWord(instruction.operands[2]);
     if (!words.empty()) {
       words += word('F', instruction.operands[3], false);
     }
@@ -585,7 +612,7 @@ private:
     for (char always : {'X', 'Y', 'I', 'J'}) {
       modal_.words.erase(always);
     }
-    std::string words = word('X', operands[0]) + word('Y', operands[1]) + word('Z', operands[2]) +
+    std::string words = word('X', operands[0]) + word('Y', operands[1]) + zWord(operands[2]) +
                         word('I', operands[3]) + word('J', operands[4]) +
                         word('F', operands[5], false);
     modal_.words.erase('I');
@@ -650,6 +677,7 @@ private:
   bool reportedLoopDepth_ = false;
   int nextLabel_ = 1;
   bool spindleOn_ = false;
+  std::string beforeZ_; // the length offset words of the next Z move
 };
 
 } // namespace

@@ -47,6 +47,8 @@ private:
     std::optional<double> feed;
     Point3 position;
     std::optional<int> selectedTool;
+    bool toolChanged = false;        // an M06 has run
+    std::optional<int> lengthOffset; // G43 H.., cleared by G49 and M06
     double spindleSpeed = 0;
     bool spindleRunning = false;
   };

@@ -22,7 +22,9 @@ constexpr GCode supportedGCodes[] = {
     {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
     {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
     {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
-    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0}}; // G06.2 NURBS, G05 P10000 (sim_nurbs.cpp)
+    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14}};
+// G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
+// control) and G54.1 P.. (extended work offsets) do not change the path.
 
 constexpr std::string_view axisLetters = "XYZ";
 constexpr std::string_view arcLetters = "IJKR";
@@ -140,7 +142,8 @@ void checkLetters(const Block& block, const BlockWords& words) {
   bool dwell = has(words, 40);
   for (const auto& [letter, value] : words.values) {
     bool allowed = std::string_view("XYZIJKRFST").find(letter) != std::string_view::npos ||
-                   (letter == 'P' && dwell) || (letter == 'H' && has(words, 430));
+                   (letter == 'P' && (dwell || has(words, 541))) ||
+                   (letter == 'H' && has(words, 430)) || (letter == 'Q' && has(words, 51));
     if (!allowed) {
       failInBlock(block, fmt::format("the address {} is not simulated in this block", letter));
     }
@@ -188,8 +191,17 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
       modal_.inches = tenths == 200;
       path_.inches = modal_.inches;
       break;
+    case 430:
+      if (words.values.count('H') == 0) {
+        failInBlock(block, "G43 without H: which length offset?");
+      }
+      modal_.lengthOffset = static_cast<int>(words.values['H']);
+      break;
+    case 490:
+      modal_.lengthOffset.reset();
+      break;
     default:
-      break; // G04, G17, G40, G43, G49, G54-G59, G61, G64, G80, G94: no effect on the path
+      break; // G04, G17, G40, G54-G59, G61, G64, G80, G94: no effect on the path
     }
   }
   if (words.values.count('F') > 0) {
@@ -241,6 +253,7 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
   switch (words.mCodes.front()) {
   case 0:
   case 1:
+  case 7:
   case 8:
   case 9:
     return Next::Continue;
@@ -263,6 +276,8 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     }
     path_.events.push_back(
         {ExecutedEvent::Kind::ToolChange, {}, {}, {}, 0, double(*modal_.selectedTool), block.line});
+    modal_.toolChanged = true;
+    modal_.lengthOffset.reset();
     return Next::Continue;
   case 99:
     return returnFromMacro(block, next);
@@ -346,6 +361,12 @@ Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
 }
 
 void Machine::move(const Block& block, int motion, const std::map<char, double>& axes) {
+  if (axes.count('Z') > 0 && modal_.toolChanged && !modal_.lengthOffset &&
+      profile_.requiresLengthOffset) {
+    failInBlock(block, fmt::format("a Z move with tool {} in the spindle and no tool length "
+                                   "offset active: G43 H.. must come first",
+                                   modal_.selectedTool.value_or(0)));
+  }
   Point3 target = modal_.position;
   double* coordinates[] = {&target.x, &target.y, &target.z};
   for (int axis = 0; axis < 3; ++axis) {

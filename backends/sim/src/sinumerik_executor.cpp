@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <map>
 
@@ -198,6 +199,10 @@ private:
         feed_ = needNumber(word);
       } else if (a == "S" || a == "N") {
         needNumber(word);
+      } else if (a == "D") {
+        toolEdge(word);
+      } else if (a == "CYCLE832") {
+        highSpeedCycle(word);
       } else if (a == "T") {
         if (word.text.empty() && !word.value) {
           fail("T needs a tool name or number");
@@ -290,6 +295,9 @@ private:
     case 17:
     case 90:
     case 54:
+    case 55:
+    case 56:
+    case 57:
     case 64:
       return false;
     case 70:
@@ -311,6 +319,9 @@ private:
     case 3:
     case 5:
     case 6:
+    case 7:
+    case 8:
+    case 9:
       return false;
     case 30:
       if (depth_ != 1) {
@@ -324,6 +335,37 @@ private:
       return true;
     default:
       fail(fmt::format("M{:g} is not known to this model", value));
+    }
+  }
+
+  // D1 .. D32000: the cutting edge whose length offset is active.
+  void toolEdge(const SinumerikWord& word) const {
+    double edge = needNumber(word);
+    if (!(edge >= 0 && edge <= 32000) || edge != std::floor(edge)) {
+      fail(fmt::format("D{:g}: a cutting edge is a whole number 0 .. 32000", edge));
+    }
+  }
+
+  // CYCLE832(tolerance, _FINISH|_SEMIFIN|_ROUGH, n) switches high-speed
+  // settings on, CYCLE832() off; the path is the same.
+  void highSpeedCycle(const SinumerikWord& word) const {
+    if (word.text.empty()) {
+      return;
+    }
+    std::string text = word.text;
+    std::erase(text, ' ');
+    std::size_t first = text.find(',');
+    std::size_t second = first == std::string::npos ? first : text.find(',', first + 1);
+    std::string mode =
+        second == std::string::npos ? "" : text.substr(first + 1, second - first - 1);
+    double tolerance = 0;
+    bool number =
+        first != std::string::npos &&
+        std::from_chars(text.data(), text.data() + first, tolerance).ptr == text.data() + first;
+    if (!number || !(tolerance > 0) ||
+        (mode != "_FINISH" && mode != "_SEMIFIN" && mode != "_ROUGH")) {
+      fail(
+          fmt::format("CYCLE832({}): expected (tolerance, _FINISH|_SEMIFIN|_ROUGH, n)", word.text));
     }
   }
 

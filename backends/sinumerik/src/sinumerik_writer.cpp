@@ -132,7 +132,6 @@ public:
     }
     line(fmt::format("; {} - part {}", commentText(options_.sourceName),
                      commentText(options_.partName)));
-    line("G54");
     line(fmt::format("G17 G90 {}", options_.inches ? "G70" : "G71"));
     if (usesSplines()) {
       line("SPLINEPATH(1,X,Y)");
@@ -186,6 +185,13 @@ private:
     case MachineEvent::Kind::Tool:
       tool(e);
       break;
+    case MachineEvent::Kind::Origin:
+    case MachineEvent::Kind::Coolant:
+    case MachineEvent::Kind::Contouring:
+      if (std::string text = settingBlock(options_.setup, e, number(e.number)); !text.empty()) {
+        line(std::move(text));
+      }
+      break;
     case MachineEvent::Kind::Comment:
       line("; " + commentText(e.text));
       break;
@@ -203,9 +209,12 @@ private:
       spindleOn_ = false;
     }
     long long number = std::llround(e.number);
-    line(fmt::format("T=\"T{}\" ; tool {}, diameter {}", number, number, number_(e.diameter)));
+    std::string edge = toolEdgeWords(options_.setup, e.offsetRegister);
+    line(fmt::format("T=\"T{}\"{}{} ; tool {}, diameter {}", number, edge.empty() ? "" : " ", edge,
+                     number, number_(e.diameter)));
     line("M6");
-    if (!pathModeWritten_) {
+    // CYCLE832 sets the path mode itself where the machine has it.
+    if (!pathModeWritten_ && options_.setup.contouringOn.empty()) {
       line("G64");
       if (options_.soft) {
         line("SOFT");

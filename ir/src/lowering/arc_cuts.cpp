@@ -122,9 +122,7 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   }
   ValueId feedValue = arithmetic_.value(begun.feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  auto index = static_cast<std::uint32_t>(cuts_.size());
-  cuts_.push_back({curve.geometry, *chordTolerance(cut), cut.span, methodOf(cut), CutArcs::Fitted});
-  builder_.cutBegin(index);
+  beginCutMoves({curve.geometry, *chordTolerance(cut), cut.span, methodOf(cut), CutArcs::Fitted});
 
   const std::vector<geom::ArcSegment>& segments = std::get<geom::ArcFit>(fitted).segments;
   double increment = options_.coordinateIncrement;

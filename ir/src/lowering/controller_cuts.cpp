@@ -249,10 +249,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   Scalar feed = cutFeed(cut);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  auto index = static_cast<std::uint32_t>(cuts_.size());
-  cuts_.push_back({curve.geometry, tolerance, cut.span, methodOf(cut),
-                   hasArcPiece(curve) && !uniformSteps ? CutArcs::Native : CutArcs::None});
-  builder_.cutBegin(index);
+  beginCutMoves({curve.geometry, tolerance, cut.span, methodOf(cut),
+                 hasArcPiece(curve) && !uniformSteps ? CutArcs::Native : CutArcs::None});
   for (const ControllerSegment& segment : *planned) {
     if (segment.isArc && segment.symbolic != nullptr) {
       guardArc(symbolicArcPath(*segment.symbolic, *curve.pieces[segment.piece].value));

@@ -310,6 +310,19 @@ HostCut PartLowering::beginHostCut(const CutStmt& cut) {
   return {cutFeed(cut), ramp};
 }
 
+void PartLowering::beginCutMoves(CutGeometry geometry) {
+  ensureOrigin();
+  machine_.lengthOffsetPending = false; // the cut's first rapid climbs to the safe height
+  double tolerance = geometry.tolerance;
+  if (std::isfinite(tolerance) && tolerance > 0 && machine_.contouring != tolerance) {
+    builder_.contouring(tolerance);
+    machine_.contouring = tolerance;
+  }
+  auto index = static_cast<std::uint32_t>(cuts_.size());
+  cuts_.push_back(std::move(geometry));
+  builder_.cutBegin(index);
+}
+
 void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerNurbsCut(cut)) {
     return;
@@ -347,11 +360,9 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   // Feed and safe height once, visible in every loop of the cut.
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  auto index = static_cast<std::uint32_t>(cuts_.size());
-  cuts_.push_back({curve.geometry,
-                   chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
-                   methodOf(cut)});
-  builder_.cutBegin(index);
+  beginCutMoves({curve.geometry,
+                 chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
+                 methodOf(cut)});
 
   // The runs of samples after the first (the start, reached by the plunge).
   std::vector<RampSegment> rampShares;

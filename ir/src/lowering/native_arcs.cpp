@@ -241,9 +241,7 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
       piecesSampleRuns(cut, curve, ramp ? &shares : nullptr, true);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  auto index = static_cast<std::uint32_t>(cuts_.size());
-  cuts_.push_back({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
-  builder_.cutBegin(index);
+  beginCutMoves({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
 
   // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp does).
   auto lap = [&](double zFrom, double zTo) {

@@ -134,13 +134,11 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   std::uint32_t table = builder_.addTable(nurbsMoveTable(blocks));
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  auto index = static_cast<std::uint32_t>(cuts_.size());
   CutGeometry geometry;
   geometry.curve = curve.geometry;
   geometry.tolerance = chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN());
   geometry.span = cut.span;
-  cuts_.push_back(geometry);
-  builder_.cutBegin(index);
+  beginCutMoves(geometry);
 
   const Eigen::Vector3d& first = blocks.controlPoints().front();
   const Eigen::Vector3d& last = blocks.controlPoints().back();

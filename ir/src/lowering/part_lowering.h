@@ -66,6 +66,23 @@ struct NeedsUnrolling {};
 // cannot be lowered as one (runtime_control.cpp).
 struct LoweringState;
 
+// The modal machine settings the lowering has emitted so far, as far as it
+// knows: after a controller loop or branch they are unknown (nullopt), and
+// the next cut or the part's end sets them again.
+struct MachineSettings {
+  bool originChosen = false;
+  // A tool change whose length offset no Z move has activated yet: the next
+  // cut's first rapid does, unless a controller loop or branch comes first.
+  bool lengthOffsetPending = false;
+  std::optional<double> contouring = 0.0; // its tolerance; 0: off
+  std::optional<CoolantMode> coolant = CoolantMode::Off;
+
+  void forgetModes() {
+    contouring.reset();
+    coolant.reset();
+  }
+};
+
 // A point of a curve.
 struct CurvePoint {
   Scalar x, y, z;
@@ -314,6 +331,18 @@ private:
   // Its points fixed at the defaults, its method and entry checked, a safe
   // height and a feed required.
   HostCut beginHostCut(const frontend::CutStmt& cut);
+  // Enters the cut into the part's cut table and starts its moves: the
+  // controller's contouring mode for its tolerance, then `cut.begin`.
+  void beginCutMoves(CutGeometry geometry);
+  // The default work offset (G54) when none has been chosen yet: before
+  // the first tool change or move.
+  void ensureOrigin();
+  // Before a controller loop or branch: a pending length offset activated
+  // by a rapid to the safe height over the origin, so that the printed
+  // program activates it before its branches.
+  void activateLengthOffset();
+  // At the end of the part: contouring and coolant off.
+  void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
@@ -465,6 +494,7 @@ private:
   frontend::Environment environment_;
   std::optional<Scalar> feed_;
   std::optional<Scalar> safe_;
+  MachineSettings machine_;
   std::vector<CutGeometry> cuts_;
   std::size_t unrolledIterations_ = 0;
   // The parameters each parameter or let declaration reads, and each let's

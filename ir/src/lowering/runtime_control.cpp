@@ -27,6 +27,7 @@ struct LoweringState {
   Bindings bindings;
   Environment environment;
   std::optional<Scalar> feed, safe;
+  MachineSettings machine;
   std::vector<CutGeometry> cuts;
   std::size_t unrolledIterations = 0;
   std::map<const Declaration*, std::set<std::string>> parameterNames;
@@ -75,9 +76,9 @@ bool PartLowering::isLoopVariableMarker(std::string_view name) {
 }
 
 LoweringState PartLowering::saveState() {
-  return {builder_,    bindings_,           environment_,    feed_,      safe_,
-          cuts_,       unrolledIterations_, parameterNames_, letValues_, fixedParameters_,
-          diagnostics_};
+  return {builder_,         bindings_,   environment_,        feed_,           safe_,
+          machine_,         cuts_,       unrolledIterations_, parameterNames_, letValues_,
+          fixedParameters_, diagnostics_};
 }
 
 void PartLowering::restoreState(LoweringState& state) {
@@ -86,6 +87,7 @@ void PartLowering::restoreState(LoweringState& state) {
   environment_ = std::move(state.environment);
   feed_ = state.feed;
   safe_ = state.safe;
+  machine_ = state.machine;
   cuts_ = std::move(state.cuts);
   unrolledIterations_ = state.unrolledIterations;
   parameterNames_ = std::move(state.parameterNames);
@@ -126,6 +128,8 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
       defaults.high != std::floor(defaults.high)) {
     return false; // the unrolling reports it
   }
+  ensureOrigin(); // before the loop, which may run no times
+  activateLengthOffset();
   bool lowered = attempt([&](LoweringState&) {
     Scalar low = number(*range.low);
     Scalar high = number(*range.high);
@@ -135,6 +139,7 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
     parameterNames_[loop.declaration] = {loopVariableMarker(loop.declaration)};
     lowerBlock(loop.body);
     builder_.endLoop();
+    machine_.forgetModes();
     if (options_.maximumLoopNesting > 0 &&
         loopNesting(builder_.function(), builder_.function().body) > options_.maximumLoopNesting) {
       throw NeedsUnrolling{};
@@ -155,6 +160,8 @@ bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
   if (!condition || condition->kind != TypeKind::Bool || condition->values.front().isConstant()) {
     return false;
   }
+  ensureOrigin();
+  activateLengthOffset();
   return attempt([&](LoweringState& before) {
     Scalar test = condition->values.front();
     builder_.beginIf(arithmetic_.value(test));
@@ -165,6 +172,7 @@ bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
     builder_.beginElse();
     lowerBlock(conditional.elseBlock);
     builder_.endIf();
+    machine_.forgetModes();
     // A feed or safe height set in a branch holds after the if: chosen by
     // the condition when both are numbers, else the branch is decided here.
     auto merged = [&](const std::optional<Scalar>& fromThen,

@@ -33,6 +33,7 @@ LoweredPart PartLowering::run() {
     builder_.comment(fmt::format("part {}", part_.name));
   }
   lowerBlock(part_.body);
+  endMachineSettings();
   Function function = builder_.finish();
   for (const FixedParameter& fixed : fixedParameters_) {
     for (ir::Parameter& parameter : function.parameters) {
@@ -120,12 +121,44 @@ void PartLowering::lowerStatement(const Stmt& statement) {
   }
 }
 
+void PartLowering::ensureOrigin() {
+  if (!machine_.originChosen) {
+    builder_.origin(54);
+    machine_.originChosen = true;
+  }
+}
+
+void PartLowering::activateLengthOffset() {
+  if (machine_.lengthOffsetPending && safe_) {
+    builder_.rapid(builder_.constant(0), builder_.constant(0), arithmetic_.value(*safe_));
+    machine_.lengthOffsetPending = false;
+  }
+}
+
+void PartLowering::endMachineSettings() {
+  if (machine_.contouring != 0.0) {
+    builder_.contouring(0);
+  }
+  if (machine_.coolant != CoolantMode::Off) {
+    builder_.coolant(CoolantMode::Off);
+  }
+}
+
 void PartLowering::lowerTool(const ToolStmt& tool) {
+  ensureOrigin();
+  if (machine_.contouring != 0.0) { // the new tool's cuts choose their own
+    builder_.contouring(0);
+    machine_.contouring = 0.0;
+  }
   double toolNumber = constantNumber(*tool.number, "the tool number");
   Scalar diameter = Scalar::of(0);
   std::optional<Scalar> spindle;
+  std::uint32_t lengthRegister = 0;
   for (const Argument& setting : tool.settings) {
-    if (setting.name == "diameter") {
+    if (setting.name == "length") {
+      lengthRegister =
+          static_cast<std::uint32_t>(constantNumber(*setting.value, "the length offset register"));
+    } else if (setting.name == "diameter") {
       diameter = number(*setting.value);
     } else if (setting.name == "spindle") {
       spindle = number(*setting.value);
@@ -133,7 +166,8 @@ void PartLowering::lowerTool(const ToolStmt& tool) {
       feed_ = number(*setting.value);
     }
   }
-  builder_.tool(toolNumber, arithmetic_.value(diameter));
+  builder_.tool(toolNumber, arithmetic_.value(diameter), lengthRegister);
+  machine_.lengthOffsetPending = true;
   if (spindle) {
     builder_.spindle(arithmetic_.value(*spindle));
   }

@@ -83,19 +83,17 @@ std::vector<Eigen::Vector3d> lastPass(const ir::ToolPath& path) {
   for (const ir::MachineEvent& event : path.events) {
     deepest = std::min(deepest, event.z);
   }
-  std::vector<Eigen::Vector3d> polyline;
+  // The feed moves at the deepest height between two rapids; the last run.
+  std::vector<Eigen::Vector3d> polyline, run;
   for (const ir::MachineEvent& event : path.events) {
     if (event.kind == ir::MachineEvent::Kind::Feed && event.z == deepest) {
-      polyline.emplace_back(event.x, event.y, 0);
-    } else if (!polyline.empty() && event.kind == ir::MachineEvent::Kind::Rapid &&
-               event.z > deepest) {
-      if (&event != &path.events.back()) {
-        // A later pass at the same depth would follow; keep the last one.
-        polyline.clear();
-      }
+      run.emplace_back(event.x, event.y, 0);
+    } else if (!run.empty() && event.kind == ir::MachineEvent::Kind::Rapid) {
+      polyline = std::move(run);
+      run.clear();
     }
   }
-  return polyline;
+  return run.empty() ? polyline : run;
 }
 
 int countG01(const std::string& program) {

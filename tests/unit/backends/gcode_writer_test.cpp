@@ -76,7 +76,7 @@ TEST(Gcode, CoordinatesAndFeedAreModal) {
                                        "G40 G49 G80\n"
                                        "T1 M06 (DIAMETER 10.)\n"
                                        "S3000 M03\n"
-                                       "G00 Z5.\n"
+                                       "G00 G43 H1 Z5.\n"
                                        "G00 X1. Y2.\n"
                                        "G01 Z-1. F300.\n"
                                        "G01 X3.\n"

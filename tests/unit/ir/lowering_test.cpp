@@ -66,10 +66,14 @@ TEST(Lowering, PolarCircleLiesOnTheCurveAndFollowsItsParameter) {
   for (const MachineEvent& move : feeds(interpret(*lowered->function, options))) {
     EXPECT_NEAR(std::hypot(move.x, move.y), 12.0, 1e-9);
   }
-  // Rapid to the safe height first and last.
+  // Rapid to the safe height last, then the settings end: contouring off.
   EXPECT_EQ(path.events.front().kind, MachineEvent::Kind::Comment);
-  EXPECT_EQ(path.events.back().kind, MachineEvent::Kind::Rapid);
-  EXPECT_EQ(path.events.back().z, 3.0);
+  ASSERT_GE(path.events.size(), 2u);
+  const MachineEvent& lastMove = path.events[path.events.size() - 2];
+  EXPECT_EQ(lastMove.kind, MachineEvent::Kind::Rapid);
+  EXPECT_EQ(lastMove.z, 3.0);
+  EXPECT_EQ(path.events.back().kind, MachineEvent::Kind::Contouring);
+  EXPECT_EQ(path.events.back().number, 0.0);
   // The printed IR parses back to the same text.
   std::string text = printFunction(*lowered->function);
   ParseError error;

@@ -109,8 +109,11 @@ OpcodeCase effectsCase() {
   std::uint32_t diameter = builder.addParameter("diameter", 6.35);
   std::uint32_t speed = builder.addParameter("speed", 12000);
   builder.comment("a \"quoted\" comment");
-  builder.tool(7, builder.parameter(diameter));
+  builder.origin(54.1, 3);
+  builder.tool(7, builder.parameter(diameter), 12);
   builder.spindle(builder.parameter(speed));
+  builder.coolant(ir::CoolantMode::Mist);
+  builder.contouring(0.01);
   builder.cutBegin(0);
   ValueId never = builder.constantBool(false);
   ValueId always = builder.constantBool(true);
@@ -124,6 +127,9 @@ OpcodeCase effectsCase() {
   builder.endIf();
   builder.cutBegin(3);
   builder.comment("");
+  builder.contouring(0);
+  builder.origin(59);
+  builder.coolant(ir::CoolantMode::Off);
   return {"effects", builder.finish()};
 }
 

@@ -38,14 +38,16 @@ inline ::testing::AssertionResult samePaths(const ir::ToolPath& expected,
                 sameNumber(a.z, b.z) && sameNumber(a.feed, b.feed) &&
                 sameNumber(a.number, b.number) && sameNumber(a.diameter, b.diameter) &&
                 sameNumber(a.centreX, b.centreX) && sameNumber(a.centreY, b.centreY) &&
-                a.clockwise == b.clockwise && a.text == b.text;
+                a.clockwise == b.clockwise && a.text == b.text &&
+                a.offsetRegister == b.offsetRegister;
     if (!same) {
       return ::testing::AssertionFailure()
              << "event " << i << " differs: interpreter kind " << static_cast<int>(a.kind) << " ("
              << a.x << ", " << a.y << ", " << a.z << ", " << a.feed << ", " << a.number << ", "
-             << a.diameter << ", \"" << a.text << "\"), JIT kind " << static_cast<int>(b.kind)
-             << " (" << b.x << ", " << b.y << ", " << b.z << ", " << b.feed << ", " << b.number
-             << ", " << b.diameter << ", \"" << b.text << "\")";
+             << a.diameter << ", " << a.offsetRegister << ", \"" << a.text << "\"), JIT kind "
+             << static_cast<int>(b.kind) << " (" << b.x << ", " << b.y << ", " << b.z << ", "
+             << b.feed << ", " << b.number << ", " << b.diameter << ", " << b.offsetRegister
+             << ", \"" << b.text << "\")";
     }
   }
   return ::testing::AssertionSuccess();

@@ -119,14 +119,22 @@ static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
   });
 }
 
-static std::int32_t cncc_jit_tool(RunContext* context, double number, double diameter) {
+static std::int32_t cncc_jit_tool(RunContext* context, double number, double diameter,
+                                  std::uint32_t lengthRegister) {
   return record(context, [&] {
     ir::MachineEvent event;
     event.kind = ir::MachineEvent::Kind::Tool;
     event.number = number;
     event.diameter = diameter;
+    event.offsetRegister = lengthRegister;
     return event;
   });
+}
+
+static std::int32_t cncc_jit_setting(RunContext* context, std::uint32_t opcode, double number,
+                                     std::uint32_t index) {
+  return record(context,
+                [&] { return ir::settingEvent(static_cast<ir::Opcode>(opcode), number, index); });
 }
 
 static std::int32_t cncc_jit_comment(RunContext* context, std::uint32_t index) {
@@ -190,6 +198,7 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_nurbs", reinterpret_cast<void*>(&cncc_jit_nurbs)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
+      {"cncc_jit_setting", reinterpret_cast<void*>(&cncc_jit_setting)},
       {"cncc_jit_comment", reinterpret_cast<void*>(&cncc_jit_comment)},
       {"cncc_jit_alarm", reinterpret_cast<void*>(&cncc_jit_alarm)},
       {"cncc_jit_cut_begin", reinterpret_cast<void*>(&cncc_jit_cut_begin)},

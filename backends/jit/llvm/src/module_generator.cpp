@@ -219,6 +219,9 @@ private:
     case Opcode::Alarm:
     case Opcode::Spindle:
     case Opcode::Tool:
+    case Opcode::Origin:
+    case Opcode::Coolant:
+    case Opcode::Contouring:
     case Opcode::Comment:
     case Opcode::CutBegin:
       emitEffect(instruction);
@@ -405,7 +408,16 @@ private:
       break;
     case Opcode::Tool:
       callback = "cncc_jit_tool";
-      arguments.insert(arguments.begin(), llvm::ConstantFP::get(f64_, instruction.number));
+      arguments = {llvm::ConstantFP::get(f64_, instruction.number), arguments[0],
+                   builder_.getInt32(instruction.index)};
+      break;
+    case Opcode::Origin:
+    case Opcode::Coolant:
+    case Opcode::Contouring:
+      callback = "cncc_jit_setting";
+      arguments = {builder_.getInt32(static_cast<std::uint32_t>(instruction.opcode)),
+                   llvm::ConstantFP::get(f64_, instruction.number),
+                   builder_.getInt32(instruction.index)};
       break;
     case Opcode::Comment:
     case Opcode::Alarm:

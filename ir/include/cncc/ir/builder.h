@@ -44,7 +44,13 @@ public:
   // `move.nurbs @table, %z, %f, %weights...` (nurbs_move.h).
   void nurbs(std::uint32_t table, ValueId z, ValueId feedRate, const std::vector<ValueId>& weights);
   void spindle(ValueId speed);
-  void tool(double number, ValueId diameter);
+  // lengthRegister 0: the dialect's default register for the tool.
+  void tool(double number, ValueId diameter, std::uint32_t lengthRegister = 0);
+  // code 54 .. 59, or 54.1 with `extended` its P number.
+  void origin(double code, std::uint32_t extended = 0);
+  void coolant(CoolantMode mode);
+  // tolerance 0 switches the mode off.
+  void contouring(double tolerance);
   void comment(std::string text);
   // `alarm "text"`: the program stops with this message.
   void alarm(std::string text);

@@ -28,6 +28,10 @@ struct InterpreterOptions {
 
 ToolPath interpret(const Function& function, const InterpreterOptions& options = {});
 
+// The event of a setting op (origin, coolant, contouring) from its
+// immediates: what the interpreter records and the JIT's code too.
+MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index);
+
 // The event `move.arc` records when the machine is at `start`: centre at
 // (i, j) from it. Throws InterpreterError, as a controller alarms, for an
 // arc without a radius or whose end lies off its circle (by more than 0.005

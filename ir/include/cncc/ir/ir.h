@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,11 @@ inline bool mayFail(Opcode opcode) {
 
 // The immediate of `move.arc` (Instruction::index): its turning direction.
 enum class ArcTurn : std::uint32_t { Clockwise = 0, CounterClockwise = 1 };
+// The immediate of `coolant` (Instruction::index).
+enum class CoolantMode : std::uint32_t { Off = 0, Flood = 1, Mist = 2, Through = 3 };
+// "off", "flood", "mist", "through"; nullopt for another word.
+std::string_view coolantModeName(CoolantMode mode);
+std::optional<CoolantMode> coolantModeNamed(std::string_view name);
 // Every opcode, in declaration order.
 std::vector<Opcode> allOpcodes();
 
@@ -71,9 +77,11 @@ struct Instruction {
   Opcode opcode = Opcode::Const;
   std::vector<ValueId> operands;
   ValueId result;              // invalid when the operation has none
-  double number = 0;           // Const value, ConstBool (0 or 1), Tool number
+  double number = 0;           // Const value, ConstBool (0 or 1), Tool number, Origin code
+                               // (54 .. 59, 54.1), Contouring tolerance (0: off)
   std::uint32_t index = 0;     // TableLoad, Nurbs: the table; Param: the parameter;
-                               // CutBegin: the cut; Arc: its ArcTurn
+                               // CutBegin: the cut; Arc: its ArcTurn; Tool: its length
+                               // offset register; Origin 54.1: P; Coolant: its CoolantMode
   std::string text;            // Comment, Alarm: the text
   std::vector<Region> regions; // Loop: {body}; If: {then, else}
 };

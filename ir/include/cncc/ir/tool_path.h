@@ -2,13 +2,26 @@
 // interpreter and the JIT, and the input of the numeric backends.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace cncc::ir {
 
 struct MachineEvent {
-  enum class Kind { Rapid, Feed, Arc, Spindle, Tool, Comment, CutBegin };
+  // Origin, Coolant and Contouring are modal settings (ir_ops.def).
+  enum class Kind {
+    Rapid,
+    Feed,
+    Arc,
+    Spindle,
+    Tool,
+    Origin,
+    Coolant,
+    Contouring,
+    Comment,
+    CutBegin
+  };
   Kind kind = Kind::Rapid;
   double x = 0, y = 0, z = 0; // Rapid, Feed, Arc: the target
   double feed = 0;            // Feed, Arc: mm/min
@@ -17,9 +30,13 @@ struct MachineEvent {
   // full turn. z goes linearly with the angle turned (a helix).
   double centreX = 0, centreY = 0;
   bool clockwise = false;
-  double number = 0;   // Spindle: rpm; Tool: the tool number; CutBegin: the cut index
-  double diameter = 0; // Tool
-  std::string text;    // Comment
+  // Spindle: rpm; Tool: the tool number; CutBegin: the cut index; Origin:
+  // its code (54 .. 59, 54.1); Coolant: its CoolantMode; Contouring: the
+  // tolerance (0: off).
+  double number = 0;
+  double diameter = 0;              // Tool
+  std::uint32_t offsetRegister = 0; // Tool: length offset (0: default); Origin 54.1: P
+  std::string text;                 // Comment
 };
 
 struct ToolPath {

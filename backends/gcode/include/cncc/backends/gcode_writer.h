@@ -2,6 +2,7 @@
 // and G02/G03 blocks with modal coordinates.
 #pragma once
 
+#include "cncc/backends/machine_setup.h"
 #include "cncc/ir/tool_path.h"
 
 #include <optional>
@@ -16,6 +17,7 @@ struct GcodeOptions {
   std::string partName;   // for the header comment
   bool inches = false;    // G20 instead of G21
   int decimals = 4;       // the most decimals a number is printed with
+  MachineSetup setup = builtinMachineSetup("gcode");
 };
 
 // `10.`, `0.5`, `-1.25`: at most `decimals` decimals, no trailing zeros, always

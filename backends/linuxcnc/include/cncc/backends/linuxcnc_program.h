@@ -18,6 +18,7 @@
 // refused with the limit and the count named.
 #pragma once
 
+#include "cncc/backends/machine_setup.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/lowering.h"
 
@@ -39,6 +40,7 @@ struct LinuxcncProgramOptions {
   // G64 P: how far the controller may round a corner while blending moves
   // (and merge nearly collinear ones); the part's smallest tolerance.
   double blendTolerance = 0.01;
+  MachineSetup setup = builtinMachineSetup("linuxcnc");
 };
 
 struct LinuxcncProgram {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/machine_setup.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/lowering.h"
 #include "cncc/ir/register_allocation.h"
@@ -30,6 +31,7 @@ struct MacroProgramOptions {
   bool inches = false;
   bool callable = false;           // --macro: ends M99, parameters are G65 arguments
   bool parametersInCommon = false; // --params=common: parameters in retained common variables
+  MachineSetup setup = builtinMachineSetup("fanuc");
 };
 
 struct MacroProgramStatistics {

@@ -58,6 +58,9 @@ struct ControllerProfile {
   bool hasIndirectVariables = true; // `#[expression]`
   bool hasThen = true;              // `IF [..] THEN statement`
   bool hasPowerFunction = false;    // `POW[a,b]` (30i)
+  // After a tool change (M06) a Z move needs the tool's length offset
+  // (G43 H..): without it the spindle gauge line, not the tool tip, goes to Z.
+  bool requiresLengthOffset = true;
 
   // The letter of the G65 argument that reaches local `variable`, if any.
   std::optional<char> letterForLocal(int variable) const;

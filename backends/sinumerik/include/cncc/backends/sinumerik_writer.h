@@ -4,6 +4,7 @@
 // as G1 chords.
 #pragma once
 
+#include "cncc/backends/machine_setup.h"
 #include "cncc/ir/lowering.h"
 #include "cncc/ir/tool_path.h"
 
@@ -42,6 +43,7 @@ struct SinumerikOptions {
   // in the same text, each after a `%_N_NAME_SPF` header as in a Sinumerik
   // archive.
   bool subprograms = false;
+  MachineSetup setup = builtinMachineSetup("sinumerik");
 };
 
 // What the writer did with one cut.

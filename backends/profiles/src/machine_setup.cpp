@@ -1,0 +1,122 @@
+#include "cncc/backends/machine_setup.h"
+
+#include <fmt/format.h>
+
+#include <array>
+
+namespace cncc::backends {
+
+namespace {
+
+MachineSetup isoSetup(std::string dialect) {
+  MachineSetup setup;
+  setup.dialect = std::move(dialect);
+  setup.lengthOffset = "G43 H{length}";
+  setup.workOffset = "G{code}";
+  return setup;
+}
+
+std::array<MachineSetup, 5> makeBuiltinSetups() {
+  // Fanuc 0i-F / 30i: AI contour control.
+  MachineSetup fanuc = isoSetup("fanuc");
+  fanuc.extendedWorkOffset = "G54.1 P{number}";
+  fanuc.contouringOn = "G05.1 Q1";
+  fanuc.contouringOff = "G05.1 Q0";
+  // Mitsubishi M80: high-speed high-accuracy control II.
+  MachineSetup m80 = isoSetup("m80");
+  m80.extendedWorkOffset = "G54.1 P{number}";
+  m80.contouringOn = "G05 P10000";
+  m80.contouringOff = "G05 P0";
+  // LinuxCNC: path blending within the tolerance, collinear moves merged.
+  MachineSetup linuxcnc = isoSetup("linuxcnc");
+  linuxcnc.contouringOn = "G64 P{tolerance} Q{tolerance}";
+  linuxcnc.contouringOff = "G64";
+  MachineSetup sinumerik;
+  sinumerik.dialect = "sinumerik";
+  sinumerik.toolEdge = "D{length}";
+  sinumerik.workOffset = "G{code}";
+  sinumerik.contouringOn = "CYCLE832({tolerance}, _FINISH, 1)";
+  sinumerik.contouringOff = "CYCLE832()";
+  // Plain ISO G-code: no high-speed mode is common to all machines.
+  MachineSetup gcode = isoSetup("gcode");
+  return {std::move(fanuc), std::move(m80), std::move(linuxcnc), std::move(sinumerik),
+          std::move(gcode)};
+}
+
+std::string formatted(const std::string& pattern, std::string_view name, std::string_view value) {
+  return fmt::format(fmt::runtime(pattern), fmt::arg(std::string(name).c_str(), value));
+}
+
+} // namespace
+
+const MachineSetup& builtinMachineSetup(std::string_view target) {
+  static const std::array<MachineSetup, 5> setups = makeBuiltinSetups();
+  for (const MachineSetup& setup : setups) {
+    if (setup.dialect == target) {
+      return setup;
+    }
+  }
+  return setups.back();
+}
+
+std::string lengthOffsetWords(const MachineSetup& setup, int tool, std::uint32_t lengthRegister) {
+  if (setup.lengthOffset.empty()) {
+    return "";
+  }
+  std::string value = std::to_string(lengthRegister == 0 ? tool : static_cast<int>(lengthRegister));
+  return formatted(setup.lengthOffset, "length", value);
+}
+
+std::string toolEdgeWords(const MachineSetup& setup, std::uint32_t lengthRegister) {
+  if (setup.toolEdge.empty()) {
+    return "";
+  }
+  return formatted(setup.toolEdge, "length",
+                   std::to_string(lengthRegister == 0 ? 1 : lengthRegister));
+}
+
+std::string workOffsetBlock(const MachineSetup& setup, double code, std::uint32_t extended) {
+  if (extended != 0) {
+    return setup.extendedWorkOffset.empty()
+               ? ""
+               : formatted(setup.extendedWorkOffset, "number", std::to_string(extended));
+  }
+  return formatted(setup.workOffset, "code", fmt::format("{}", code));
+}
+
+std::string coolantBlock(const MachineSetup& setup, ir::CoolantMode mode) {
+  switch (mode) {
+  case ir::CoolantMode::Flood:
+    return setup.coolantFlood;
+  case ir::CoolantMode::Mist:
+    return setup.coolantMist;
+  case ir::CoolantMode::Through:
+    return setup.coolantThrough;
+  case ir::CoolantMode::Off:
+    break;
+  }
+  return setup.coolantOff;
+}
+
+std::string contouringBlock(const MachineSetup& setup, double tolerance, std::string_view number) {
+  if (tolerance == 0) {
+    return setup.contouringOff;
+  }
+  return setup.contouringOn.empty() ? "" : formatted(setup.contouringOn, "tolerance", number);
+}
+
+std::string settingBlock(const MachineSetup& setup, const ir::MachineEvent& event,
+                         std::string_view tolerance) {
+  switch (event.kind) {
+  case ir::MachineEvent::Kind::Origin:
+    return workOffsetBlock(setup, event.number, event.offsetRegister);
+  case ir::MachineEvent::Kind::Coolant:
+    return coolantBlock(setup, static_cast<ir::CoolantMode>(event.number));
+  case ir::MachineEvent::Kind::Contouring:
+    return contouringBlock(setup, event.number, tolerance);
+  default:
+    return "";
+  }
+}
+
+} // namespace cncc::backends
