@@ -36,4 +36,22 @@ std::string_view operatorSpelling(BinaryOperator op) {
   return "?";
 }
 
+std::string_view coolantModeSpelling(CoolantMode mode) {
+  switch (mode) {
+  case CoolantMode::Off:
+    return "off";
+  case CoolantMode::Flood:
+    return "flood";
+  case CoolantMode::Mist:
+    return "mist";
+  case CoolantMode::Through:
+    return "through";
+  }
+  return "?";
+}
+
+std::string originOffsetSpelling(const OriginStmt& origin) {
+  return "G" + std::to_string(origin.group) + (origin.extended != 0 ? ".1" : "");
+}
+
 } // namespace cncc::frontend

@@ -226,6 +226,12 @@ private:
       node("Safe", statement.span);
       printArguments(as<SafeStmt>(statement).settings);
       return;
+    case StmtKind::Origin:
+      printOrigin(as<OriginStmt>(statement));
+      return;
+    case StmtKind::Coolant:
+      node("Coolant", statement.span, name(coolantModeSpelling(as<CoolantStmt>(statement).mode)));
+      return;
     case StmtKind::Let: {
       const auto& let = as<LetStmt>(statement);
       node("Let", statement.span, name(let.name), declaredType(let.declaration));
@@ -251,6 +257,14 @@ private:
     node("Tool", tool.span);
     printChild(*tool.number);
     printArguments(tool.settings);
+  }
+
+  void printOrigin(const OriginStmt& origin) {
+    std::string offset = originOffsetSpelling(origin);
+    if (origin.extended != 0) {
+      offset += fmt::format(" P{}", origin.extended);
+    }
+    node("Origin", origin.span, name(offset));
   }
 
   void printCut(const CutStmt& cut) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace cncc::frontend {
@@ -115,6 +116,10 @@ private:
   void checkStatement(Stmt& statement, Scope& scope, Block& block);
   void checkSettings(NodeList<Argument>& settings, std::span<const ParameterSpec> allowed,
                      const Scope& scope, std::string_view owner, SourceSpan ownerSpan);
+  void checkOffsetRegisters(ToolStmt& tool);
+  // Whether the value may change with a part parameter: it names one, or a
+  // let or loop variable computed from one.
+  bool dependsOnPartParameter(const Expr& expression) const;
   void checkLet(LetStmt& let, Scope& scope, Block& block);
   void warnIfShadowing(std::string_view name, SourceSpan span, const Scope& outer);
   void checkFor(ForStmt& loop, const Scope& scope);
@@ -209,6 +214,8 @@ private:
   // The lets of the blocks being checked, innermost last: checkBlock looks
   // at its own for unused ones, then drops them.
   std::vector<const Declaration*> lets_;
+  // The lets and loop variables whose values come from a part parameter.
+  std::unordered_set<const Declaration*> parameterDependent_;
 };
 
 } // namespace cncc::frontend

@@ -12,10 +12,11 @@ using namespace std::string_view_literals;
 namespace {
 
 // The settings of `tool` and `safe`.
-constexpr ParameterSpec toolSettings[] = {{"diameter", true}, {"spindle", false}, {"feed", false}};
+constexpr ParameterSpec toolSettings[] = {
+    {"diameter", true}, {"length", false}, {"radius", false}, {"spindle", false}, {"feed", false}};
 constexpr ParameterSpec safeSettings[] = {{"z", true}};
 // checkSettings keeps the settings seen in an array of this size.
-constexpr std::size_t maxSettings = 4;
+constexpr std::size_t maxSettings = 5;
 static_assert(std::size(toolSettings) <= maxSettings && std::size(safeSettings) <= maxSettings);
 
 constexpr std::string_view methodChoices[] = {"linear", "aspline", "bspline", "cspline", "nurbs"};
@@ -101,12 +102,15 @@ void Checker::checkBlock(Block& block, const Scope& parent) {
 void Checker::checkStatement(Stmt& statement, Scope& scope, Block& block) {
   switch (statement.kind) {
   case StmtKind::Units:
+  case StmtKind::Origin:  // the parser checked its offset
+  case StmtKind::Coolant: // and its mode
   case StmtKind::Error:
     return;
   case StmtKind::Tool: {
     auto& tool = as<ToolStmt>(statement);
     expectNumber(*tool.number, scope, "tool number");
     checkSettings(tool.settings, toolSettings, scope, "tool", tool.span);
+    checkOffsetRegisters(tool);
     return;
   }
   case StmtKind::Feed:
@@ -173,6 +177,81 @@ void Checker::checkSettings(NodeList<Argument>& settings, std::span<const Parame
   }
 }
 
+// `length=` and `radius=` name registers of the controller's offset tables,
+// which the program prints as they are: a part parameter, which may become a
+// controller variable, cannot choose one. (Their values are checked when the
+// part runs, part_evaluation.cpp.)
+void Checker::checkOffsetRegisters(ToolStmt& tool) {
+  for (Argument& setting : tool.settings) {
+    bool isRegister = setting.name == "length"sv || setting.name == "radius"sv;
+    if (!isRegister || setting.value->type.kind == TypeKind::Error ||
+        !dependsOnPartParameter(*setting.value)) {
+      continue;
+    }
+    context_.report(DiagnosticKind::NotConstant, setting.value->span,
+                    fmt::format("'{}=' is the number of an offset register and must be a constant; "
+                                "it cannot depend on a part parameter",
+                                setting.name));
+    setting.value->type = Type::error(); // reported: the part's run skips it
+  }
+}
+
+bool Checker::dependsOnPartParameter(const Expr& expression) const {
+  auto depends = [this](const Expr* child) {
+    return child != nullptr && dependsOnPartParameter(*child);
+  };
+  switch (expression.kind) {
+  case ExprKind::Name: {
+    const Declaration* declaration = as<NameExpr>(expression).declaration;
+    return declaration != nullptr && (declaration->kind == DeclarationKind::PartParameter ||
+                                      parameterDependent_.contains(declaration));
+  }
+  case ExprKind::Unary:
+    return depends(as<UnaryExpr>(expression).operand.get());
+  case ExprKind::Binary: {
+    const auto& binary = as<BinaryExpr>(expression);
+    return depends(binary.left.get()) || depends(binary.right.get());
+  }
+  case ExprKind::Call:
+    // A fn's body sees only its arguments and the file's constants.
+    for (const Argument& argument : as<CallExpr>(expression).arguments) {
+      if (depends(argument.value.get())) {
+        return true;
+      }
+    }
+    return false;
+  case ExprKind::Point:
+    return std::any_of(as<PointExpr>(expression).components.begin(),
+                       as<PointExpr>(expression).components.end(),
+                       [&](const ExprPtr& component) { return depends(component.get()); });
+  case ExprKind::List:
+    return std::any_of(as<ListExpr>(expression).elements.begin(),
+                       as<ListExpr>(expression).elements.end(),
+                       [&](const ExprPtr& element) { return depends(element.get()); });
+  case ExprKind::Range: {
+    const auto& range = as<RangeExpr>(expression);
+    return depends(range.low.get()) || depends(range.high.get());
+  }
+  case ExprKind::Index: {
+    const auto& index = as<IndexExpr>(expression);
+    return depends(index.base.get()) || depends(index.index.get());
+  }
+  case ExprKind::Member:
+    return depends(as<MemberExpr>(expression).base.get());
+  case ExprKind::IfElse: {
+    const auto& choice = as<IfElseExpr>(expression);
+    return depends(choice.condition.get()) || depends(choice.thenValue.get()) ||
+           depends(choice.elseValue.get());
+  }
+  case ExprKind::Number:
+  case ExprKind::Bool:
+  case ExprKind::String:
+  case ExprKind::Error:
+    return false;
+  }
+  return false;
+}
+
 void Checker::checkLet(LetStmt& let, Scope& scope, Block& block) {
   Type type = checkExpression(*let.value, scope);
   if (let.name.empty()) {
@@ -188,6 +267,9 @@ void Checker::checkLet(LetStmt& let, Scope& scope, Block& block) {
   warnIfShadowing(let.name, let.nameSpan, *scope.parent());
   Declaration& declaration = context_.declare(DeclarationKind::Let, let.name, let.nameSpan, type);
   let.declaration = &declaration;
+  if (dependsOnPartParameter(*let.value)) {
+    parameterDependent_.insert(&declaration);
+  }
   scope.add(let.name, &declaration);
   lets_.push_back(&declaration);
   context_.program.scopeExtents.push_back(
@@ -216,6 +298,9 @@ void Checker::checkFor(ForStmt& loop, const Scope& scope) {
     Declaration& declaration = context_.declare(DeclarationKind::LoopVariable, loop.variable,
                                                 loop.variableSpan, Type::num());
     loop.declaration = &declaration;
+    if (dependsOnPartParameter(*loop.range)) {
+      parameterDependent_.insert(&declaration);
+    }
     bodyScope.add(loop.variable, &declaration);
     context_.program.scopeExtents.push_back({loop.body.span, &declaration});
   }

@@ -186,6 +186,10 @@ Doc TreeFormatter::statement(const Stmt& statement) {
     return valueStatement(as<ValueStmt>(statement));
   case StmtKind::Safe:
     return safeStatement(as<SafeStmt>(statement));
+  case StmtKind::Origin:
+    return originStatement(as<OriginStmt>(statement));
+  case StmtKind::Coolant:
+    return coolantStatement(as<CoolantStmt>(statement));
   case StmtKind::Let:
     return letStatement(as<LetStmt>(statement));
   case StmtKind::Cut:
@@ -210,7 +214,8 @@ Doc TreeFormatter::unitsStatement(const UnitsStmt& units) {
 Doc TreeFormatter::toolStatement(const ToolStmt& tool) {
   Doc head =
       Doc::concat({source_.printAt(tool.span.begin), Doc::space(), expression(*tool.number)});
-  return Doc::concat({head, settings(tool.settings, {"diameter", "spindle", "feed"})});
+  return Doc::concat(
+      {head, settings(tool.settings, {"diameter", "length", "radius", "spindle", "feed"})});
 }
 
 // feed F, spindle S
@@ -222,6 +227,24 @@ Doc TreeFormatter::valueStatement(const ValueStmt& setting) {
 // safe z=Z
 Doc TreeFormatter::safeStatement(const SafeStmt& safe) {
   return Doc::concat({source_.printAt(safe.span.begin), settings(safe.settings, {"z"})});
+}
+
+// origin G55, origin G54.1 P3 (`P03` prints as `P3`)
+Doc TreeFormatter::originStatement(const OriginStmt& origin) {
+  std::vector<Doc> parts{source_.printAt(origin.span.begin), Doc::space(),
+                         source_.printAs(origin.offsetSpan, originOffsetSpelling(origin))};
+  if (origin.extended != 0) {
+    parts.push_back(Doc::space());
+    parts.push_back(source_.printAs(origin.extendedSpan, "P" + std::to_string(origin.extended)));
+  }
+  return Doc::concat(std::move(parts));
+}
+
+// coolant flood
+Doc TreeFormatter::coolantStatement(const CoolantStmt& coolant) {
+  return Doc::concat(
+      {source_.printAt(coolant.span.begin), Doc::space(),
+       source_.printAs(coolant.modeSpan, std::string(coolantModeSpelling(coolant.mode)))});
 }
 
 // let name = value

@@ -86,6 +86,13 @@ Doc SourceCursor::printWithoutTrailing(const Token& token) {
   return Doc::concat({std::move(comments), std::move(text)});
 }
 
+Doc SourceCursor::printAs(SourceSpan span, std::string text) {
+  Doc comments = commentsBefore(span.begin);
+  atBlockStart_ = false;
+  commentContinuesLine_ = false;
+  return Doc::concat({std::move(comments), Doc::text(std::move(text)), trailingComments(span.end)});
+}
+
 Doc SourceCursor::commentsBefore(std::uint32_t offset) {
   std::vector<Doc> parts;
   while (nextComment_ < comments_.size() && comments_[nextComment_].span.begin < offset) {

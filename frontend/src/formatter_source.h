@@ -14,6 +14,7 @@
 #include "formatter_layout.h"
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -39,6 +40,9 @@ public:
   Doc printWithoutTrailing(const Token& token);
   Doc trailingComments(const Token& token) { return trailingComments(token.span.end); }
   Doc printAt(std::uint32_t offset) { return print(tokenAt(offset)); }
+  // The tokens of `span` (written together, so no comment is between them)
+  // printed as `text`, their canonical spelling, with their comments.
+  Doc printAs(SourceSpan span, std::string text);
   Doc printNext(TokenKind kind, std::uint32_t offset) { return print(find(kind, offset)); }
 
   // The comments not yet printed that begin before `offset`.

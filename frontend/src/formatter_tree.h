@@ -41,6 +41,8 @@ private:
   Doc toolStatement(const ToolStmt& tool);
   Doc valueStatement(const ValueStmt& setting);
   Doc safeStatement(const SafeStmt& safe);
+  Doc originStatement(const OriginStmt& origin);
+  Doc coolantStatement(const CoolantStmt& coolant);
   Doc letStatement(const LetStmt& let);
   Doc cutStatement(const CutStmt& cut);
   Doc forStatement(const ForStmt& loop);

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 namespace cncc::frontend {
 
@@ -19,7 +20,51 @@ bool isStatementWord(const Token& token) {
     return false;
   }
   std::string_view word = token.text;
-  return word == "units" || word == "tool" || word == "feed" || word == "spindle" || word == "safe";
+  return word == "units" || word == "tool" || word == "feed" || word == "spindle" ||
+         word == "safe" || word == "origin" || word == "coolant";
+}
+
+// The extended work offsets `G54.1 P1` .. `G54.1 P300`.
+constexpr int maximumExtendedOffset = 300;
+
+// 54 .. 59 for `G54` .. `G59`, else 0.
+int workOffsetGroup(std::string_view word) {
+  if (word.size() != 3 || word[0] != 'G' || word[1] != '5' || word[2] < '4' || word[2] > '9') {
+    return 0;
+  }
+  return 50 + (word[2] - '0');
+}
+
+// Whether `token` is the `.1` of `G54.1` (the lexer reads `G54.1` as the name
+// G54 and the number .1).
+bool isPointOne(const Token& token) {
+  return token.kind == TokenKind::Number && token.unit == UnitSuffix::None && token.number == 0.1 &&
+         token.span.end - token.span.begin == 2;
+}
+
+// n of the word `Pn` (one to four digits), or -1 when the word is not one.
+int extendedOffsetNumber(std::string_view word) {
+  if (word.size() < 2 || word.size() > 5 || word[0] != 'P') {
+    return -1;
+  }
+  int number = 0;
+  for (char digit : word.substr(1)) {
+    if (digit < '0' || digit > '9') {
+      return -1;
+    }
+    number = number * 10 + (digit - '0');
+  }
+  return number;
+}
+
+std::optional<CoolantMode> coolantModeNamed(std::string_view word) {
+  for (CoolantMode mode :
+       {CoolantMode::Flood, CoolantMode::Mist, CoolantMode::Through, CoolantMode::Off}) {
+    if (coolantModeSpelling(mode) == word) {
+      return mode;
+    }
+  }
+  return std::nullopt;
 }
 
 bool isModifierName(std::string_view word) {
@@ -475,8 +520,8 @@ private:
       hint = fmt::format("; to name a value write 'let {} = ...'", peek().text);
     }
     error(DiagnosticKind::ExpectedStatement, peek().span,
-          fmt::format("expected a statement (units, tool, feed, spindle, safe, let, curve, for, "
-                      "if), found {}{}",
+          fmt::format("expected a statement (units, tool, feed, spindle, safe, origin, coolant, "
+                      "let, curve, for, if), found {}{}",
                       describe(peek()), hint));
     return arena_->make<ErrorStmt>(begin);
   }
@@ -500,8 +545,15 @@ private:
     }
     if (text == "tool") {
       ExprPtr number = parseExpression();
-      NodeList<Argument> settings = parseSettings({"diameter", "spindle", "feed"});
+      NodeList<Argument> settings =
+          parseSettings({"diameter", "length", "radius", "spindle", "feed"});
       return arena_->make<ToolStmt>(spanFrom(begin), std::move(number), std::move(settings));
+    }
+    if (text == "origin") {
+      return parseOrigin(begin);
+    }
+    if (text == "coolant") {
+      return parseCoolant(begin);
     }
     if (text == "safe") {
       NodeList<Argument> settings = parseSettings({"z"});
@@ -513,6 +565,110 @@ private:
     StmtKind kind = text == "feed" ? StmtKind::Feed : StmtKind::Spindle;
     ExprPtr value = parseExpression();
     return arena_->make<ValueStmt>(kind, spanFrom(begin), std::move(value));
+  }
+
+  // The words of `origin` and `coolant` are on the statement's line.
+  bool onStatementLine() { return !peek().startsLine && !check(TokenKind::EndOfFile); }
+
+  // origin G54 .. G59 | origin G54.1 P<n>, all on one line. `G54.1` is the
+  // name G54 and the number .1 written together; a space separates `P<n>`
+  // from it (the lexer would read `.1P3` as a number with a unit).
+  StmtPtr parseOrigin(SourceSpan begin) {
+    if (!onStatementLine() || !check(TokenKind::Identifier)) {
+      reportMissingWord(begin, "origin", "a work offset", "G54 .. G59, or G54.1 P1 .. P300");
+      return arena_->make<ErrorStmt>(spanFrom(begin));
+    }
+    const Token word = advance(); // copied: the window moves on
+    SourceSpan offsetSpan = word.span;
+    bool extended = false;
+    bool joined = false; // a number, '.' or bad token right after the name
+    if (peek().span.begin == word.span.end &&
+        (check(TokenKind::Number) || check(TokenKind::Dot) || check(TokenKind::Error))) {
+      joined = true;
+      if (check(TokenKind::Error)) {
+        panicking_ = true; // the lexer has reported it (`G54.1P3`)
+        advance();
+        return arena_->make<ErrorStmt>(spanFrom(begin));
+      }
+      extended = word.text == "G54" && isPointOne(peek());
+      offsetSpan = word.span.to(advance().span);
+    }
+    int group = workOffsetGroup(word.text);
+    if (group == 0 || (joined && !extended)) {
+      reportInvalidOffset(word.text, offsetSpan, joined);
+      return arena_->make<ErrorStmt>(spanFrom(begin));
+    }
+    if (!extended) {
+      return arena_->make<OriginStmt>(spanFrom(begin), group, 0, offsetSpan, SourceSpan{});
+    }
+    return parseExtendedOffset(begin, offsetSpan);
+  }
+
+  // The `P<n>` after `origin G54.1`.
+  StmtPtr parseExtendedOffset(SourceSpan begin, SourceSpan offsetSpan) {
+    int number =
+        onStatementLine() && check(TokenKind::Identifier) ? extendedOffsetNumber(peek().text) : -1;
+    if (number < 0) {
+      if (onStatementLine()) {
+        errorAtCurrent(DiagnosticKind::ExpectedToken,
+                       "the extended offset P1 .. P300 after 'G54.1' (one word, such as P1)");
+      } else {
+        error(DiagnosticKind::ExpectedToken, offsetSpan,
+              "'G54.1' needs the extended offset after it on its line: P1 .. P300, such as "
+              "'G54.1 P1'");
+      }
+      return arena_->make<ErrorStmt>(spanFrom(begin));
+    }
+    SourceSpan numberSpan = advance().span;
+    if (number < 1 || number > maximumExtendedOffset) {
+      // The statement is read to its end: the next one parses as usual.
+      report(DiagnosticKind::RegisterOutOfRange, numberSpan,
+             fmt::format("there is no extended work offset P{}; G54.1 takes P1 .. P{}", number,
+                         maximumExtendedOffset));
+      return arena_->make<ErrorStmt>(spanFrom(begin));
+    }
+    return arena_->make<OriginStmt>(spanFrom(begin), 54, number, offsetSpan, numberSpan);
+  }
+
+  void reportInvalidOffset(std::string_view word, SourceSpan span, bool joined) {
+    std::string what = joined ? std::string("this") : fmt::format("'{}'", word);
+    std::string hint;
+    if (!word.empty() && word[0] == 'g') {
+      hint = " (written in capitals)";
+    }
+    error(DiagnosticKind::InvalidChoice, span,
+          fmt::format("{} is not a work offset; 'origin' takes G54 .. G59, or G54.1 P1 .. P{}{}",
+                      what, maximumExtendedOffset, hint));
+  }
+
+  // coolant flood | mist | through | off, on one line.
+  StmtPtr parseCoolant(SourceSpan begin) {
+    if (!onStatementLine() || !check(TokenKind::Identifier)) {
+      reportMissingWord(begin, "coolant", "a coolant mode", "flood, mist, through or off");
+      return arena_->make<ErrorStmt>(spanFrom(begin));
+    }
+    const Token& word = advance();
+    std::optional<CoolantMode> mode = coolantModeNamed(word.text);
+    if (!mode) {
+      report(DiagnosticKind::InvalidChoice, word.span,
+             fmt::format("'{}' is not a coolant mode; expected flood, mist, through or off{}",
+                         word.text, word.text == "on" ? " (flood or mist turns it on)" : ""));
+      return arena_->make<ErrorStmt>(spanFrom(begin));
+    }
+    return arena_->make<CoolantStmt>(spanFrom(begin), *mode, word.span);
+  }
+
+  // `origin` or `coolant` without its word: at the next token when it is on
+  // the line, else at the statement's word (not at what the next line holds).
+  void reportMissingWord(SourceSpan statementWord, std::string_view statement,
+                         std::string_view expected, std::string_view choices) {
+    if (onStatementLine()) {
+      errorAtCurrent(DiagnosticKind::ExpectedIdentifier,
+                     fmt::format("{} after '{}' ({})", expected, statement, choices));
+      return;
+    }
+    error(DiagnosticKind::ExpectedIdentifier, statementWord,
+          fmt::format("'{}' needs {} after it on its line: {}", statement, expected, choices));
   }
 
   // { name = expr } while the next tokens read `identifier =`. A setting on a

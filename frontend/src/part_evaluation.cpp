@@ -21,6 +21,20 @@ constexpr std::size_t maximumCheckedStatements = 100'000;
 // number of points grows without bound.
 constexpr double minimumTolerance = 1e-5;
 constexpr double maximumSamples = 1'000'000;
+// The tool offset registers `length=` and `radius=` can name: H1 .. H999 and
+// D1 .. D999 on the controllers the compiler prints for.
+constexpr double maximumOffsetRegister = 999;
+
+// What `length=` and `radius=` choose, for messages.
+std::string_view offsetRegisterRole(std::string_view setting) {
+  if (setting == "length"sv) {
+    return "tool length offset";
+  }
+  if (setting == "radius"sv) {
+    return "tool radius offset";
+  }
+  return {};
+}
 
 class PartEvaluator {
 public:
@@ -115,6 +129,8 @@ private:
   void walkStatement(const Stmt& statement, Bindings& environment) {
     switch (statement.kind) {
     case StmtKind::Units:
+    case StmtKind::Origin:  // machine set-up: no value to check, nothing
+    case StmtKind::Coolant: // on the tool path
     case StmtKind::Error:
       return;
     case StmtKind::Tool:
@@ -169,11 +185,37 @@ private:
           fmt::format("the tool number is {:g}; tools are numbered from 1", *toolNumber));
     }
     for (const Argument& setting : tool.settings) {
+      if (std::string_view role = offsetRegisterRole(setting.name); !role.empty()) {
+        checkOffsetRegister(setting, role, environment);
+        continue;
+      }
       std::optional<double> value = positiveDescribed(
           *setting.value, environment, [&] { return fmt::format("the tool's {}", setting.name); });
       if (setting.name == "feed"sv && value) {
         feedKnown_ = true;
       }
+    }
+  }
+
+  // `length=H` and `radius=R`: a whole number from 1 to 999, the first
+  // problem reported.
+  void checkOffsetRegister(const Argument& setting, std::string_view role,
+                           const Bindings& environment) {
+    std::optional<double> value = number(*setting.value, environment);
+    if (!value) {
+      return;
+    }
+    std::string what = fmt::format("'{}=' (the {} register)", setting.name, role);
+    if (*value != std::floor(*value)) {
+      evaluator_.report(DiagnosticKind::NotInteger, setting.value->span,
+                        fmt::format("{} must be a whole number, not {:g}", what, *value));
+    } else if (*value < 1) {
+      evaluator_.report(DiagnosticKind::ValueNotPositive, setting.value->span,
+                        fmt::format("{} is {:g}; registers are numbered from 1", what, *value));
+    } else if (*value > maximumOffsetRegister) {
+      evaluator_.report(DiagnosticKind::RegisterOutOfRange, setting.value->span,
+                        fmt::format("{} is {:g}; the largest register is {:g}", what, *value,
+                                    maximumOffsetRegister));
     }
   }
 

@@ -108,6 +108,9 @@ void PartLowering::lowerStatement(const Stmt& statement) {
       }
     }
     return;
+  case StmtKind::Origin:
+  case StmtKind::Coolant:
+    return; // lowered in a later change
   case StmtKind::Let:
     return lowerLet(as<LetStmt>(statement));
   case StmtKind::Cut:

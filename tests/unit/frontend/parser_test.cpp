@@ -549,6 +549,141 @@ TEST_F(ParserTest, UnknownUnits) {
   EXPECT_EQ(body.back()->kind, StmtKind::Cut);
 }
 
+// ---------------------------------------------------------------- machine set-up
+
+TEST_F(ParserTest, OriginTakesG54ToG59) {
+  const auto& body = statements("origin G54\norigin G59\ncurve c");
+  EXPECT_TRUE(clean());
+  ASSERT_EQ(kindsOf(body),
+            (std::vector<StmtKind>{StmtKind::Origin, StmtKind::Origin, StmtKind::Cut}));
+  const auto& first = as<OriginStmt>(*body[0]);
+  EXPECT_EQ(first.group, 54);
+  EXPECT_EQ(first.extended, 0);
+  EXPECT_EQ(textOf(first.offsetSpan), "G54");
+  EXPECT_FALSE(first.extendedSpan.valid());
+  EXPECT_EQ(textOf(first.span), "origin G54");
+  EXPECT_EQ(as<OriginStmt>(*body[1]).group, 59);
+}
+
+TEST_F(ParserTest, OriginTakesTheExtendedOffsetsOfG54Point1) {
+  const auto& body = statements("origin G54.1 P1\norigin G54.1 P300\norigin G54.1 P07");
+  EXPECT_TRUE(clean());
+  ASSERT_EQ(body.size(), 3u);
+  const auto& first = as<OriginStmt>(*body[0]);
+  EXPECT_EQ(first.group, 54);
+  EXPECT_EQ(first.extended, 1);
+  EXPECT_EQ(textOf(first.offsetSpan), "G54.1");
+  EXPECT_EQ(textOf(first.extendedSpan), "P1");
+  EXPECT_EQ(textOf(first.span), "origin G54.1 P1");
+  EXPECT_EQ(as<OriginStmt>(*body[1]).extended, 300);
+  EXPECT_EQ(as<OriginStmt>(*body[2]).extended, 7);
+}
+
+TEST_F(ParserTest, OriginStatementsInLoopsAndBranches) {
+  const auto& body = statements("for i in 1 .. 2 { origin G55 }\n"
+                                "if true { coolant mist } else { origin G54.1 P2 }");
+  EXPECT_TRUE(clean());
+  ASSERT_EQ(body.size(), 2u);
+  const auto& loop = as<ForStmt>(*body[0]);
+  ASSERT_EQ(loop.body.statements.size(), 1u);
+  EXPECT_EQ(as<OriginStmt>(*loop.body.statements[0]).group, 55);
+  const auto& branch = as<IfStmt>(*body[1]);
+  EXPECT_EQ(as<CoolantStmt>(*branch.thenBlock.statements[0]).mode, CoolantMode::Mist);
+  EXPECT_EQ(as<OriginStmt>(*branch.elseBlock.statements[0]).extended, 2);
+}
+
+// Each bad origin: one message of `name`, at `at`, and the next statement kept.
+struct BadOrigin {
+  const char* statement;
+  const char* name;
+  const char* at;
+};
+
+TEST_F(ParserTest, ABadOriginGivesOneMessageAtTheWrongWord) {
+  for (const BadOrigin& bad : {
+           BadOrigin{"origin G60", "invalid-choice", "G60"},
+           BadOrigin{"origin G53", "invalid-choice", "G53"},
+           BadOrigin{"origin g54", "invalid-choice", "g54"},
+           BadOrigin{"origin G55.1 P1", "invalid-choice", "G55.1"},
+           BadOrigin{"origin G54.2 P1", "invalid-choice", "G54.2"},
+           BadOrigin{"origin G54.10 P1", "invalid-choice", "G54.10"},
+           BadOrigin{"origin G54. P1", "invalid-choice", "G54."},
+           BadOrigin{"origin G54.1 P0", "register-out-of-range", "P0"},
+           BadOrigin{"origin G54.1 P301", "register-out-of-range", "P301"},
+           BadOrigin{"origin G54.1 P99999", "expected-token", "P99999"},
+           BadOrigin{"origin G54.1 P", "expected-token", "P"},
+           BadOrigin{"origin G54.1 3", "expected-token", "3"},
+           BadOrigin{"origin G54.1", "expected-token", "G54.1"},
+           BadOrigin{"origin", "expected-identifier", "origin"},
+           BadOrigin{"origin 54", "expected-identifier", "54"},
+           BadOrigin{"origin G54.1P3", "unknown-unit-suffix", "P3"},
+       }) {
+    diagnostics_.clear();
+    const auto& body = statements(std::string(bad.statement) + "\ncurve c");
+    ASSERT_EQ(diagnosticNames(), Names{bad.name}) << bad.statement;
+    EXPECT_EQ(textOf(diagnostics_.diagnostics().front().span), bad.at) << bad.statement;
+    EXPECT_EQ(kindsOf(body), (std::vector<StmtKind>{StmtKind::Error, StmtKind::Cut}))
+        << bad.statement;
+  }
+}
+
+TEST_F(ParserTest, TheMessagesOfABadOriginSayWhatIsAllowed) {
+  statements("origin G60");
+  ASSERT_EQ(diagnostics_.diagnostics().size(), 1u);
+  EXPECT_EQ(diagnostics_.diagnostics().front().message,
+            "'G60' is not a work offset; 'origin' takes G54 .. G59, or G54.1 P1 .. P300");
+  diagnostics_.clear();
+  statements("origin G54.1 P301");
+  ASSERT_EQ(diagnostics_.diagnostics().size(), 1u);
+  EXPECT_EQ(diagnostics_.diagnostics().front().message,
+            "there is no extended work offset P301; G54.1 takes P1 .. P300");
+}
+
+TEST_F(ParserTest, CoolantModes) {
+  const auto& body = statements("coolant flood\ncoolant mist\ncoolant through\ncoolant off");
+  EXPECT_TRUE(clean());
+  ASSERT_EQ(body.size(), 4u);
+  std::vector<CoolantMode> modes;
+  for (const StmtPtr& statement : body) {
+    ASSERT_EQ(statement->kind, StmtKind::Coolant);
+    modes.push_back(as<CoolantStmt>(*statement).mode);
+  }
+  EXPECT_EQ(modes, (std::vector<CoolantMode>{CoolantMode::Flood, CoolantMode::Mist,
+                                             CoolantMode::Through, CoolantMode::Off}));
+  EXPECT_EQ(textOf(as<CoolantStmt>(*body[2]).modeSpan), "through");
+  EXPECT_EQ(textOf(body[2]->span), "coolant through");
+}
+
+TEST_F(ParserTest, ABadCoolantGivesOneMessage) {
+  const auto& unknown = statements("coolant on\ncurve c");
+  ASSERT_EQ(diagnosticNames(), Names{"invalid-choice"});
+  EXPECT_EQ(textOf(diagnostics_.diagnostics().front().span), "on");
+  EXPECT_NE(diagnostics_.diagnostics().front().message.find("flood, mist, through or off"),
+            std::string::npos);
+  EXPECT_EQ(kindsOf(unknown), (std::vector<StmtKind>{StmtKind::Error, StmtKind::Cut}));
+
+  diagnostics_.clear();
+  const auto& alone = statements("coolant\ncurve c");
+  ASSERT_EQ(diagnosticNames(), Names{"expected-identifier"});
+  // At the word itself, not at the next line's `curve`.
+  EXPECT_EQ(textOf(diagnostics_.diagnostics().front().span), "coolant");
+  EXPECT_EQ(kindsOf(alone), (std::vector<StmtKind>{StmtKind::Error, StmtKind::Cut}));
+}
+
+TEST_F(ParserTest, SetUpWordsAreNamesWhereANameFits) {
+  const auto& body = statements("let origin = (0, 0)\nlet coolant = 1\ncurve line(origin, "
+                                "(coolant, 0))");
+  EXPECT_TRUE(clean());
+  EXPECT_EQ(kindsOf(body), (std::vector<StmtKind>{StmtKind::Let, StmtKind::Let, StmtKind::Cut}));
+}
+
+TEST_F(ParserTest, ToolLengthAndRadiusMayContinueOnTheNextLine) {
+  const auto& body = statements("tool 2 diameter=6\n  length=12\n  radius=22\ncurve c");
+  EXPECT_TRUE(clean());
+  ASSERT_EQ(kindsOf(body), (std::vector<StmtKind>{StmtKind::Tool, StmtKind::Cut}));
+  EXPECT_EQ(argumentsText(as<ToolStmt>(*body[0]).settings), " diameter=6 length=12 radius=22");
+}
+
 TEST_F(ParserTest, ALexerErrorIsNotReportedAgainByTheParser) {
   const auto& body = statements("let a = 3 @ 4\ncurve c");
   EXPECT_EQ(diagnosticNames(), Names{"unexpected-character"});

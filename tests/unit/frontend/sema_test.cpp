@@ -275,6 +275,53 @@ TEST(SemaTest, PathologicalLoopsAreBounded) {
   EXPECT_THAT(checked->names(), ElementsAre());
 }
 
+// ---------------------------------------------------------------- machine set-up
+
+TEST(SemaTest, SetUpStatementsCheckAndRunAnywhereInAPart) {
+  auto checked = check(part("  origin G55\n  coolant flood\n  curve line((0, 0), (1, 0))\n"
+                            "  for i in 1 .. 2 {\n    origin G54.1 P2\n    coolant off\n  }\n"
+                            "  if true { coolant mist }"));
+  EXPECT_THAT(checked->names(), ElementsAre());
+}
+
+TEST(SemaTest, ToolLengthAndRadiusRegisters) {
+  auto tool = [](const std::string& settings, const std::string& parameters = "") {
+    return check("const H = 7\npart q(" + parameters + ") {\n  tool 1 diameter=6 feed=200 " +
+                 settings + "\n}\n");
+  };
+  EXPECT_THAT(tool("length=12 radius=22")->names(), ElementsAre());
+  EXPECT_THAT(tool("length=H radius=H + 1")->names(), ElementsAre());
+  EXPECT_THAT(tool("length=999 radius=1")->names(), ElementsAre());
+  EXPECT_THAT(tool("length=0")->names(), ElementsAre("value-not-positive"));
+  EXPECT_THAT(tool("radius=-3")->names(), ElementsAre("value-not-positive"));
+  EXPECT_THAT(tool("length=2.5")->names(), ElementsAre("not-integer"));
+  EXPECT_THAT(tool("radius=1000")->names(), ElementsAre("register-out-of-range"));
+  EXPECT_THAT(tool("length=true")->names(), ElementsAre("type-mismatch"));
+  EXPECT_THAT(tool("length=1 length=2")->names(), ElementsAre("duplicate-argument"));
+  EXPECT_THAT(tool("lenght=1")->names(), ElementsAre("unknown-argument"));
+}
+
+TEST(SemaTest, AToolRegisterCannotDependOnAPartParameter) {
+  // Directly, through a let, and through a loop variable; the value (2.5 by
+  // default) is not checked again once reported.
+  auto direct = check("part q(p = 2.5) {\n  tool 1 diameter=6 length=p\n}\n");
+  ASSERT_THAT(direct->names(), ElementsAre("not-constant"));
+  const Diagnostic& diagnostic = direct->diagnostics.diagnostics().front();
+  EXPECT_EQ(direct->sources.text(diagnostic.span), "p");
+  EXPECT_THAT(diagnostic.message, HasSubstr("part parameter"));
+  EXPECT_THAT(check("part q(p = 2) {\n  let h = p + 1\n  tool 1 diameter=6 radius=h\n}\n")->names(),
+              ElementsAre("not-constant"));
+  EXPECT_THAT(check("part q(n = 2) {\n  for i in 1 .. n {\n    tool i diameter=6 length=i\n"
+                    "  }\n}\n")
+                  ->names(),
+              ElementsAre("not-constant"));
+  // A loop over constant bounds and a let of constants are fine.
+  EXPECT_THAT(check("part q(p = 2) {\n  let h = 3\n  for i in 1 .. 2 {\n"
+                    "    tool i diameter=p length=i radius=h\n  }\n}\n")
+                  ->names(),
+              ElementsAre());
+}
+
 } // namespace
 } // namespace cncc::frontend
 

@@ -79,11 +79,33 @@ TEST_F(CompletionTest, InsideTheCurveExpressionOffersNames) {
 
 TEST_F(CompletionTest, StatementKeywordsAtTheStartOfAStatement) {
   std::vector<std::string> found = labels(completeAt("part p() {\n  units mm\n  |\n}\n"));
-  for (const char* keyword :
-       {"units", "tool", "feed", "spindle", "safe", "let", "curve", "for", "if"}) {
+  for (const char* keyword : {"units", "tool", "feed", "spindle", "safe", "origin", "coolant",
+                              "let", "curve", "for", "if"}) {
     EXPECT_THAT(found, Contains(keyword));
   }
   EXPECT_THAT(found, Not(Contains("part")));
+}
+
+TEST_F(CompletionTest, WorkOffsetsAfterOrigin) {
+  EXPECT_EQ(labels(completeAt("part p() {\n  origin |\n}\n")),
+            (std::vector<std::string>{"G54", "G55", "G56", "G57", "G58", "G59", "G54.1 P1"}));
+  EXPECT_EQ(labels(completeAt("part p() {\n  origin G5|\n}\n")).size(), 7u);
+}
+
+TEST_F(CompletionTest, CoolantModesAfterCoolant) {
+  Json list = completeAt("part p() {\n  coolant |\n}\n");
+  EXPECT_EQ(labels(list), (std::vector<std::string>{"flood", "mist", "through", "off"}));
+  EXPECT_EQ((*item(list, "flood"))["detail"], "M08: flood coolant");
+}
+
+TEST_F(CompletionTest, ToolSettingsAfterTheToolNumber) {
+  Json list = completeAt("part p() {\n  tool 1 diameter=6 |\n}\n");
+  EXPECT_EQ(labels(list), (std::vector<std::string>{"length", "radius", "spindle", "feed"}));
+  EXPECT_NE((*item(list, "length"))["documentation"]["value"].get<std::string>().find("G43 H"),
+            std::string::npos);
+  // The tool number is an expression: names, not settings.
+  EXPECT_THAT(labels(completeAt("part p() {\n  tool |\n}\n")), Not(Contains("diameter")));
+  EXPECT_THAT(labels(completeAt("part p() {\n  tool 1 diameter=|\n}\n")), Not(Contains("length")));
 }
 
 TEST_F(CompletionTest, NothingInCommentsAndStrings) {

@@ -72,7 +72,7 @@ TEST(EditorGrammar, KnowsEveryKeyword) {
                            keyword + " x", keyword))
         << keyword;
   }
-  for (const char* word : {"units", "tool", "feed", "spindle", "safe"}) {
+  for (const char* word : {"units", "tool", "feed", "spindle", "safe", "origin", "coolant"}) {
     EXPECT_TRUE(highlights(repository, {"statements"}, std::string("  ") + word + " 1", word))
         << word;
   }

@@ -116,6 +116,27 @@ TEST(Formatter, StatementsOnePerLineInsideBlocks) {
             "}\n");
 }
 
+TEST(Formatter, MachineSetUpStatementsAreCanonical) {
+  EXPECT_EQ(formatted("part p(){origin   G55;coolant    flood\n"
+                      "origin G54.1    P03 // fixture 3\n"
+                      "tool 2 diameter=6 length = 12 radius=22\n"
+                      "for i in 1..2{coolant off}}"),
+            "part p() {\n"
+            "  origin G55\n"
+            "  coolant flood\n"
+            "  origin G54.1 P3 // fixture 3\n"
+            "  tool 2 diameter=6 length=12 radius=22\n"
+            "  for i in 1 .. 2 {\n"
+            "    coolant off\n"
+            "  }\n"
+            "}\n");
+  // A comment between the offset and its P number stays between them.
+  EXPECT_EQ(formatted("part p() {\n  origin G54.1 /* pallet */ P12\n}\n"),
+            "part p() {\n  origin G54.1 /* pallet */ P12\n}\n");
+  EXPECT_EQ(formatText("part p() { origin G60 }"), std::nullopt);
+  EXPECT_EQ(formatText("part p() { coolant on }"), std::nullopt);
+}
+
 TEST(Formatter, CommentsStayWhereTheyWere) {
   std::string source = "/* head */ import \"std/curves\"   // trailing\n"
                        "// own line\n\n\n"

@@ -118,5 +118,56 @@ TEST_F(HoverTest, NoDefinitionForBuiltins) {
   EXPECT_TRUE(session.at("textDocument/definition", uri, 6, 17).is_null());
 }
 
+const char* setupSource = R"(part plate() {
+  origin G54.1 P3
+  tool 2 diameter=6 feed=300 length=12 radius=22
+  for i in 1 .. 2 {
+    coolant flood
+  }
+}
+)";
+
+class SetupHoverTest : public ::testing::Test {
+protected:
+  void SetUp() override {
+    session.initialize();
+    session.open(uri, setupSource);
+  }
+  Json hoverAt(unsigned line, unsigned character) {
+    return session.at("textDocument/hover", uri, line, character);
+  }
+  std::string hoverText(unsigned line, unsigned character) {
+    Json result = hoverAt(line, character);
+    return result.is_null() ? "" : result["contents"]["value"].get<std::string>();
+  }
+  Session session;
+};
+
+TEST_F(SetupHoverTest, OriginShowsItsOffsetAndWhatItDoes) {
+  std::string text = hoverText(1, 4); // `origin`
+  EXPECT_NE(text.find("origin G54.1 P3"), std::string::npos) << text;
+  EXPECT_NE(text.find("work offset"), std::string::npos) << text;
+  EXPECT_EQ(hoverText(1, 16), text); // on `P3`
+  Json result = hoverAt(1, 4);
+  EXPECT_EQ(result["range"]["start"], (Json{{"line", 1}, {"character", 2}}));
+  EXPECT_EQ(result["range"]["end"], (Json{{"line", 1}, {"character", 17}}));
+}
+
+TEST_F(SetupHoverTest, CoolantInALoopNamesItsMCodes) {
+  std::string text = hoverText(4, 6);
+  EXPECT_NE(text.find("coolant flood"), std::string::npos) << text;
+  EXPECT_NE(text.find("M08"), std::string::npos) << text;
+  EXPECT_NE(text.find("M09"), std::string::npos) << text;
+}
+
+TEST_F(SetupHoverTest, ToolRegistersNameTheirCodes) {
+  std::string length = hoverText(2, 30); // `length`
+  EXPECT_NE(length.find("G43 H"), std::string::npos) << length;
+  std::string radius = hoverText(2, 41); // `radius`
+  EXPECT_NE(radius.find("D<radius>"), std::string::npos) << radius;
+  EXPECT_EQ(hoverText(2, 12), ""); // `diameter`: nothing to add
+  EXPECT_EQ(hoverText(0, 2), "");  // `part`
+}
+
 } // namespace
 } // namespace cncc::lsp::testing

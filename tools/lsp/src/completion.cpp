@@ -1,6 +1,7 @@
 // Completion: decides from the text before the cursor what may come next
 // (a module after `import`, a modifier or its value after `curve <expr>`, a
-// statement or item keyword at the start of a line, or an expression) and
+// setting after `tool N`, an offset after `origin`, a mode after `coolant`,
+// a statement or item keyword at the start of a line, or an expression) and
 // offers the matching items.
 #include "completion_items.h"
 
@@ -86,32 +87,74 @@ bool completeImport(ItemBuilder& items, const CursorLine& line, const TextPositi
   return false;
 }
 
+// What follows the statement `word` and a blank on the line, or nothing when
+// the line does not begin with it.
+std::optional<std::string_view> afterStatementWord(const CursorLine& line, std::string_view word) {
+  std::optional<std::string_view> rest = after(line.head, word);
+  if (!rest || rest->empty() || (rest->front() != ' ' && rest->front() != '\t')) {
+    return std::nullopt;
+  }
+  return skipBlanks(*rest);
+}
+
+// Whether `written` ends in a complete expression and a blank, where a
+// setting or a modifier may follow.
+bool endsAfterExpression(std::string_view written) {
+  int depth = 0;
+  for (char c : written) {
+    depth += (c == '(' || c == '[') ? 1 : (c == ')' || c == ']') ? -1 : 0;
+  }
+  std::size_t last = written.find_last_not_of(" \t");
+  return depth == 0 && last != std::string::npos && last + 1 < written.size() &&
+         std::string_view("+-*/%^=<>!&|,.(").find(written[last]) == std::string::npos;
+}
+
 // After `curve <expression> ` on the same line: the cut's modifiers, or the
 // choices after `method=` and `entry=`.
 bool completeModifiers(ItemBuilder& items, const CursorLine& line) {
-  std::optional<std::string_view> rest = after(line.head, "curve");
-  if (!rest || rest->empty() || (rest->front() != ' ' && rest->front() != '\t')) {
+  std::optional<std::string_view> rest = afterStatementWord(line, "curve");
+  if (!rest) {
     return false;
   }
-  std::string cut(skipBlanks(*rest));
+  std::string cut(*rest);
   for (std::string_view modifier : {"method=", "entry="}) {
     if (cut.size() >= modifier.size() && cut.substr(cut.size() - modifier.size()) == modifier) {
       addModifierChoices(items, modifier.substr(0, modifier.size() - 1));
       return true;
     }
   }
-  int depth = 0;
-  for (char c : cut) {
-    depth += (c == '(' || c == '[') ? 1 : (c == ')' || c == ']') ? -1 : 0;
-  }
-  std::size_t last = cut.find_last_not_of(" \t");
-  bool afterExpression = depth == 0 && last != std::string::npos && last + 1 < cut.size() &&
-                         std::string_view("+-*/%^=<>!&|,.(").find(cut[last]) == std::string::npos;
-  if (!afterExpression) {
+  if (!endsAfterExpression(cut)) {
     return false;
   }
   addModifiers(items, cut);
   return true;
+}
+
+// The words of the set-up statements: the settings after `tool N `, the
+// offsets after `origin ` and the modes after `coolant `.
+bool completeSetup(ItemBuilder& items, const CursorLine& line) {
+  if (std::optional<std::string_view> rest = afterStatementWord(line, "tool")) {
+    if (!endsAfterExpression(*rest)) {
+      return false;
+    }
+    addToolSettings(items, *rest);
+    return true;
+  }
+  if (std::optional<std::string_view> rest = afterStatementWord(line, "origin")) {
+    if (!rest->empty()) {
+      return false;
+    }
+    addOriginOffsets(items);
+    return true;
+  }
+  if (std::optional<std::string_view> rest = afterStatementWord(line, "coolant")) {
+    if (!rest->empty()) {
+      return false;
+    }
+    addCoolantModes(items);
+    return true;
+  }
+  return false;
 }
 
 bool insidePart(const Analysis& analysis, std::uint32_t offset) {
@@ -160,7 +203,8 @@ Json completion(const Analysis& analysis, Position position, const CompletionOpt
   std::uint32_t offset = analysis.offsetOf(position);
   CursorLine line = cursorLine(text, offset);
   if (completeImport(items, line, analysis.positions(), offset, options) ||
-      inCommentOrString(line.before) || completeModifiers(items, line)) {
+      inCommentOrString(line.before) || completeModifiers(items, line) ||
+      completeSetup(items, line)) {
     return items.list();
   }
   bool lineStart = isBlank(line.head) && !continuesExpression(text, line.lineStart);

@@ -77,10 +77,14 @@ void addStatementKeywords(ItemBuilder& items) {
       {
           {"units", "units ${1|mm,inch|}", "units ", "units mm | inch"},
           {"tool", "tool ${1:1} diameter=${2:10}", "tool ",
-           "tool N diameter=D [spindle=S] [feed=F]"},
+           "tool N diameter=D [length=H] [radius=R] [spindle=S] [feed=F]"},
           {"feed", "feed ${1:300}", "feed ", "feed F"},
           {"spindle", "spindle ${1:3000}", "spindle ", "spindle S"},
           {"safe", "safe z=${1:5}", "safe z=", "safe z=Z: clearance height"},
+          {"origin", "origin ${1|G54,G55,G56,G57,G58,G59|}", "origin ",
+           "origin G54 .. G59 | G54.1 P<n>: work offset"},
+          {"coolant", "coolant ${1|flood,mist,through,off|}", "coolant ",
+           "coolant flood | mist | through | off"},
           {"let", "let ${1:name} = ${2:value}", "let ", "let name = expr"},
           {"curve", "curve ${1:curve}", "curve ", "curve <curve-expr> [modifiers]"},
           {"for", "for ${1:i} in ${2:0} .. ${3:n} {\n\t$0\n}", "for ", "for i in a .. b { ... }"},
@@ -165,6 +169,48 @@ void addModifiers(ItemBuilder& items, std::string_view written) {
     std::string plain = name == "sweep" ? "sweep" : name + "=";
     items.addSnippet(name, ItemKind::Property, snippet, plain, "modifier", description);
   }
+}
+
+namespace {
+
+const std::vector<ModifierInfo>& toolSettingInfos() {
+  static const std::vector<ModifierInfo> infos = {
+      {"diameter", "diameter=${1:10}", "the tool's diameter (required)"},
+      {"length", "length=${1:1}",
+       "tool length offset register: G43 H<length> (default: the tool number)"},
+      {"radius", "radius=${1:1}",
+       "tool radius offset register D<radius> for cutter compensation (default: the tool "
+       "number)"},
+      {"spindle", "spindle=${1:3000}", "spindle speed when the tool is loaded"},
+      {"feed", "feed=${1:300}", "feed rate for the tool's cuts"},
+  };
+  return infos;
+}
+
+} // namespace
+
+void addToolSettings(ItemBuilder& items, std::string_view written) {
+  for (const ModifierInfo& setting : toolSettingInfos()) {
+    if (!mentions(written, setting.name)) {
+      items.addSnippet(setting.name, ItemKind::Property, setting.snippet,
+                       std::string(setting.name) + "=", "tool setting", setting.description);
+    }
+  }
+}
+
+void addOriginOffsets(ItemBuilder& items) {
+  for (int group = 54; group <= 59; ++group) {
+    items.add(fmt::format("G{}", group), ItemKind::EnumMember,
+              fmt::format("work offset {}", group - 53));
+  }
+  items.add("G54.1 P1", ItemKind::EnumMember, "extended work offset P1 .. P300");
+}
+
+void addCoolantModes(ItemBuilder& items) {
+  items.add("flood", ItemKind::EnumMember, "M08: flood coolant");
+  items.add("mist", ItemKind::EnumMember, "M07: mist coolant");
+  items.add("through", ItemKind::EnumMember, "through-spindle coolant (machine-specific M code)");
+  items.add("off", ItemKind::EnumMember, "M09: coolant off");
 }
 
 void addModifierChoices(ItemBuilder& items, std::string_view modifier) {

@@ -53,6 +53,12 @@ void addExpressionKeywords(ItemBuilder& items);
 void addModifiers(ItemBuilder& items, std::string_view written);
 // The choices of `method=` or `entry=`.
 void addModifierChoices(ItemBuilder& items, std::string_view modifier);
+// The settings of `tool N` not yet in `written`.
+void addToolSettings(ItemBuilder& items, std::string_view written);
+// After `origin `: G54 .. G59 and G54.1 P1.
+void addOriginOffsets(ItemBuilder& items);
+// After `coolant `: flood, mist, through, off.
+void addCoolantModes(ItemBuilder& items);
 // Builtins (with named-argument snippets), and the names in scope.
 void addNames(ItemBuilder& items, const Analysis& analysis, std::uint32_t offset);
 // The modules of the standard library, as `import "..."` names them.

@@ -1,10 +1,12 @@
 // Hovers: what a name is. The declaration's kind and type; the value of a
 // constant and the default of a parameter; a builtin's or function's
 // signature and description; a curve's kind, degree, points and length.
+// Elsewhere, what a set-up word does (setup_hover.cpp).
 #include "cncc/lsp/features.h"
 #include "cncc/lsp/protocol_json.h"
 #include "curve_length.h"
 #include "doc_comments.h"
+#include "setup_hover.h"
 
 #include <fmt/format.h>
 
@@ -116,7 +118,12 @@ Json hover(const Analysis& analysis, Position position) {
   std::uint32_t offset = analysis.offsetOf(position);
   const frontend::Reference* reference = analysis.program().referenceAt(analysis.file(), offset);
   if (reference == nullptr || reference->declaration == nullptr) {
-    return nullptr;
+    std::optional<SetupHover> setup = setupHover(analysis.module(), offset);
+    if (!setup) {
+      return nullptr;
+    }
+    return {{"contents", {{"kind", "markdown"}, {"value", setup->markdown}}},
+            {"range", toJson(analysis.rangeOf(setup->span))}};
   }
   return {
       {"contents", {{"kind", "markdown"}, {"value", markdown(analysis, *reference->declaration)}}},

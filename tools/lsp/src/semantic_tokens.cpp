@@ -63,7 +63,22 @@ std::optional<std::pair<TokenType, unsigned>> classifyDeclaration(const Referenc
 }
 
 bool isStatementWord(std::string_view word) {
-  return word == "units" || word == "tool" || word == "feed" || word == "spindle" || word == "safe";
+  return word == "units" || word == "tool" || word == "feed" || word == "spindle" ||
+         word == "safe" || word == "origin" || word == "coolant";
+}
+
+bool isIdentifier(const std::vector<Token>& tokens, std::size_t i, std::string_view text) {
+  return tokens[i].kind == TokenKind::Identifier && tokens[i].text == text;
+}
+
+// The word of `units mm`, `coolant flood` and `origin G55`, and the `P3` of
+// `origin G54.1 P3` (tokens `origin`, `G54`, `.1`, `P3`).
+bool isStatementChoice(const std::vector<Token>& tokens, std::size_t i) {
+  if (i >= 1 && (isIdentifier(tokens, i - 1, "units") || isIdentifier(tokens, i - 1, "coolant") ||
+                 isIdentifier(tokens, i - 1, "origin"))) {
+    return true;
+  }
+  return i >= 3 && tokens[i - 1].kind == TokenKind::Number && isIdentifier(tokens, i - 3, "origin");
 }
 
 // Whether tokens[i] is where a statement may begin: a line's first token,
@@ -142,8 +157,7 @@ private:
     TokenType type = TokenType::Property; // named arguments, settings, modifiers
     if (startsStatement(tokens, i) && isStatementWord(token.text)) {
       type = TokenType::Keyword;
-    } else if (i > 0 && tokens[i - 1].kind == TokenKind::Identifier &&
-               tokens[i - 1].text == "units") {
+    } else if (isStatementChoice(tokens, i)) {
       type = TokenType::EnumMember;
     } else if (i + 1 < tokens.size() && tokens[i + 1].kind != TokenKind::Equal &&
                std::find(cutModifierNames().begin(), cutModifierNames().end(), token.text) ==

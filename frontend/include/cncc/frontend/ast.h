@@ -246,10 +246,12 @@ struct ErrorExpr : Expr {
 
 enum class StmtKind : std::uint8_t {
   Units,   // units mm | inch
-  Tool,    // tool N diameter=D [spindle=S] [feed=F]
+  Tool,    // tool N diameter=D [length=H] [radius=R] [spindle=S] [feed=F]
   Feed,    // feed F
   Spindle, // spindle S
   Safe,    // safe z=Z
+  Origin,  // origin G54 .. G59 | origin G54.1 P<n>
+  Coolant, // coolant flood | mist | through | off
   Let,     // let name = expr
   Cut,     // curve <expr> [modifiers]
   For,     // for i in a .. b { ... }
@@ -283,7 +285,7 @@ struct ToolStmt : Stmt {
   ToolStmt(SourceSpan span, ExprPtr number, NodeList<Argument> settings)
       : Stmt(StmtKind::Tool, span), number(std::move(number)), settings(std::move(settings)) {}
   ExprPtr number;
-  NodeList<Argument> settings; // diameter=, spindle=, feed=
+  NodeList<Argument> settings; // diameter=, length=, radius=, spindle=, feed=
 };
 
 // `feed F` and `spindle S`.
@@ -298,6 +300,35 @@ struct SafeStmt : Stmt {
       : Stmt(StmtKind::Safe, span), settings(std::move(settings)) {}
   NodeList<Argument> settings; // z=
 };
+
+// `origin G55` or `origin G54.1 P3`: the work offset the moves after it are
+// in. The parser makes one only for a valid offset, so the fields are always
+// in range.
+struct OriginStmt : Stmt {
+  OriginStmt(SourceSpan span, int group, int extended, SourceSpan offsetSpan,
+             SourceSpan extendedSpan)
+      : Stmt(StmtKind::Origin, span), group(group), extended(extended), offsetSpan(offsetSpan),
+        extendedSpan(extendedSpan) {}
+  int group = 54;          // 54 .. 59: G54 .. G59
+  int extended = 0;        // 0: none; else n of `G54.1 Pn` (group is then 54)
+  SourceSpan offsetSpan;   // `G55`, or `G54.1`
+  SourceSpan extendedSpan; // `P3`; invalid when extended is 0
+};
+
+enum class CoolantMode : std::uint8_t { Off, Flood, Mist, Through };
+
+// `coolant flood`: holds until the next `coolant`.
+struct CoolantStmt : Stmt {
+  CoolantStmt(SourceSpan span, CoolantMode mode, SourceSpan modeSpan)
+      : Stmt(StmtKind::Coolant, span), mode(mode), modeSpan(modeSpan) {}
+  CoolantMode mode = CoolantMode::Off;
+  SourceSpan modeSpan;
+};
+
+// The words of `coolant`, and of `origin`'s offset as the formatter prints
+// them ("G54", "G54.1").
+std::string_view coolantModeSpelling(CoolantMode mode);
+std::string originOffsetSpelling(const OriginStmt& origin);
 
 struct LetStmt : Stmt {
   LetStmt(SourceSpan span, std::string_view name, SourceSpan nameSpan, ExprPtr value)
