@@ -289,14 +289,16 @@ private:
     }
   }
 
-  // `tool n length h, %diameter`
+  // `tool n length h, %diameter`; without `length h` the dialect's default.
   void parseTool(std::string_view rest) {
     std::vector<std::string_view> parts = splitList(rest);
     std::vector<std::string_view> words = splitWords(parts.empty() ? "" : parts[0]);
-    if (parts.size() != 2 || words.size() != 3 || words[1] != "length") {
-      throw Failure{"expected 'tool number length register, %diameter'"};
+    bool withLength = words.size() == 3 && words[1] == "length";
+    if (parts.size() != 2 || (words.size() != 1 && !withLength)) {
+      throw Failure{"expected 'tool number [length register], %diameter'"};
     }
-    builder_->tool(parseNumber(words[0]), value(parts[1]), parseWholeNumber(words[2]));
+    builder_->tool(parseNumber(words[0]), value(parts[1]),
+                   withLength ? parseWholeNumber(words[2]) : 0);
   }
 
   // `origin 54` or `origin 54.1 p`

@@ -42,9 +42,9 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
   }
   const frontend::PartItem& part = *program->selectedPart;
   const Target* target = options.target.empty() ? nullptr : findTarget(options.target);
-  std::optional<ir::Function> function =
-      ir::lowerPart(*program, part, diagnostics,
-                    target != nullptr ? target->lowering(part, options) : ir::LoweringOptions{});
+  std::optional<ir::Function> function = ir::lowerPart(
+      *program, part, diagnostics,
+      target != nullptr ? target->loweringOptions(part, options) : ir::LoweringOptions{});
   if (!function) {
     return "";
   }

@@ -42,9 +42,9 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request) {
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
-                            findTarget(request.options.target)->lowering(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics,
+      findTarget(request.options.target)->loweringOptions(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }

@@ -96,9 +96,9 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
-                            findTarget(request.options.target)->lowering(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics,
+      findTarget(request.options.target)->loweringOptions(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }
@@ -154,6 +154,16 @@ backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
   options.setup = backends::builtinMachineSetup(request.options.target);
   return options;
+}
+
+ir::LoweringOptions Target::loweringOptions(const frontend::PartItem& part,
+                                            const DriverOptions& options) const {
+  ir::LoweringOptions lowered = lowering(part, options);
+  const backends::MachineSetup& setup = backends::builtinMachineSetup(name);
+  lowered.maximumExtendedWorkOffset =
+      setup.extendedWorkOffset.empty() ? 0 : setup.maximumExtendedWorkOffset;
+  lowered.throughSpindleCoolant = !setup.coolantThrough.empty();
+  return lowered;
 }
 
 std::span<const Target> allTargets() {

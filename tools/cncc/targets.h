@@ -60,6 +60,10 @@ struct Target {
   HostProgramFunction hostProgram = nullptr;
 
   bool available() const { return backend != nullptr; }
+  // How it lowers the part: `lowering`, with what the target's machine
+  // set-up has (extended work offsets, through-spindle coolant).
+  ir::LoweringOptions loweringOptions(const frontend::PartItem& part,
+                                      const DriverOptions& options) const;
 };
 
 // How the host-side targets (gcode, jit) lower a part.

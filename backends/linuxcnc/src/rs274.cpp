@@ -56,7 +56,9 @@ std::string rs274ToolTable(std::string_view program) {
   for (std::size_t i = 0; i < program.size(); ++i) {
     char c = program[i];
     comment = c == '(' ? true : c == ')' ? false : comment;
-    bool word = !comment && (c == 'T' || c == 't') &&
+    // T selects a tool; H reads a tool's length from the table too.
+    bool letter = c == 'T' || c == 't' || c == 'H' || c == 'h';
+    bool word = !comment && letter &&
                 (i == 0 || !std::isalpha(static_cast<unsigned char>(program[i - 1])));
     if (word && i + 1 < program.size() &&
         std::isdigit(static_cast<unsigned char>(program[i + 1]))) {

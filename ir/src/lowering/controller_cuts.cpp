@@ -249,6 +249,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   Scalar feed = cutFeed(cut);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
+  bool activatesLengthOffset = machine_.lengthOffsetPending;
   beginCutMoves({curve.geometry, tolerance, cut.span, methodOf(cut),
                  hasArcPiece(curve) && !uniformSteps ? CutArcs::Native : CutArcs::None});
   for (const ControllerSegment& segment : *planned) {
@@ -281,6 +282,14 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   bool sweep = depthExpression != nullptr || stepExpression != nullptr;
   Scalar z = Scalar::of(0);
   Scalar previousZ = Scalar::of(0); // where a ramp starts: the pass above
+  CurvePoint start = endPoint(first, false);
+  ValueId startX = arithmetic_.value(start.x);
+  ValueId startY = arithmetic_.value(start.y);
+  if (sweep && activatesLengthOffset) {
+    // The first Z move after a tool change, which activates its length
+    // offset, before the pass loop (which might run no times).
+    builder_.rapid(startX, startY, safeValue);
+  }
   if (sweep) {
     // The sweep itself is computed on the controller.
     checkingDefaults_ = true;
@@ -302,9 +311,6 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   } else {
     builder_.comment("cut");
   }
-  CurvePoint start = endPoint(first, false);
-  ValueId startX = arithmetic_.value(start.x);
-  ValueId startY = arithmetic_.value(start.y);
   builder_.rapid(startX, startY, safeValue);
   builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
                 feedValue);

@@ -312,7 +312,9 @@ HostCut PartLowering::beginHostCut(const CutStmt& cut) {
 
 void PartLowering::beginCutMoves(CutGeometry geometry) {
   ensureOrigin();
-  machine_.lengthOffsetPending = false; // the cut's first rapid climbs to the safe height
+  // The cut's first rapid climbs to the safe height: the first Z move, which
+  // activates a new tool's length offset (before a pass loop: controller_cuts.cpp).
+  machine_.lengthOffsetPending = false;
   double tolerance = geometry.tolerance;
   if (std::isfinite(tolerance) && tolerance > 0 && machine_.contouring != tolerance) {
     builder_.contouring(tolerance);

@@ -341,6 +341,8 @@ private:
   // by a rapid to the safe height over the origin, so that the printed
   // program activates it before its branches.
   void activateLengthOffset();
+  void lowerOrigin(const frontend::OriginStmt& origin);
+  void lowerCoolant(const frontend::CoolantStmt& coolant);
   // At the end of the part: contouring and coolant off.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);

@@ -109,8 +109,9 @@ void PartLowering::lowerStatement(const Stmt& statement) {
     }
     return;
   case StmtKind::Origin:
+    return lowerOrigin(as<OriginStmt>(statement));
   case StmtKind::Coolant:
-    return; // lowered in a later change
+    return lowerCoolant(as<CoolantStmt>(statement));
   case StmtKind::Let:
     return lowerLet(as<LetStmt>(statement));
   case StmtKind::Cut:
@@ -131,6 +132,38 @@ void PartLowering::ensureOrigin() {
   }
 }
 
+void PartLowering::lowerOrigin(const OriginStmt& origin) {
+  if (origin.extended != 0) {
+    if (origin.extended > options_.maximumExtendedWorkOffset) {
+      fail(origin.extendedSpan,
+           options_.maximumExtendedWorkOffset == 0
+               ? std::string("this target's machine has no extended work offsets (G54.1 P..)")
+               : fmt::format("this target's machine has extended work offsets P1 .. P{}",
+                             options_.maximumExtendedWorkOffset),
+           DiagnosticKind::MachineCapability);
+    }
+    builder_.origin(54.1, static_cast<std::uint32_t>(origin.extended));
+  } else {
+    builder_.origin(origin.group);
+  }
+  machine_.originChosen = true;
+}
+
+void PartLowering::lowerCoolant(const CoolantStmt& coolant) {
+  if (coolant.mode == frontend::CoolantMode::Through && !options_.throughSpindleCoolant) {
+    fail(coolant.modeSpan,
+         "this target's machine has no code for through-spindle coolant (it differs from "
+         "machine to machine)",
+         DiagnosticKind::MachineCapability);
+  }
+  static_assert(static_cast<int>(frontend::CoolantMode::Through) ==
+                static_cast<int>(ir::CoolantMode::Through));
+  auto mode = static_cast<ir::CoolantMode>(static_cast<std::uint32_t>(coolant.mode));
+  ensureOrigin();
+  builder_.coolant(mode);
+  machine_.coolant = mode;
+}
+
 void PartLowering::activateLengthOffset() {
   if (machine_.lengthOffsetPending && safe_) {
     builder_.rapid(builder_.constant(0), builder_.constant(0), arithmetic_.value(*safe_));
@@ -142,8 +175,8 @@ void PartLowering::endMachineSettings() {
   if (machine_.contouring != 0.0) {
     builder_.contouring(0);
   }
-  if (machine_.coolant != CoolantMode::Off) {
-    builder_.coolant(CoolantMode::Off);
+  if (machine_.coolant != ir::CoolantMode::Off) {
+    builder_.coolant(ir::CoolantMode::Off);
   }
 }
 

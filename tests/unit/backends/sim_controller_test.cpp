@@ -237,6 +237,27 @@ TEST(SimMotion, ToolsAndSpindleAreRecorded) {
   EXPECT_EQ(flat.events[3].number, 0);
 }
 
+TEST(SimMotion, AZMoveAfterAToolChangeNeedsTheLengthOffset) {
+  auto error = [](const std::string& body) {
+    SimulationResult result = runBody(body);
+    return result.error ? std::string(result.error->what()) + " at line " +
+                              std::to_string(result.error->line())
+                        : std::string();
+  };
+  // G43 H in the block of the first Z move, or before it.
+  EXPECT_EQ(error("G54\nT3 M06\nG00 G43 H3 Z5.\nX1. Y1.\nG01 Z-1. F100.\n"), "");
+  EXPECT_EQ(error("T3 M06\nG43 H13\nG00 Z5.\n"), "");
+  // A move in X and Y alone is no Z move.
+  EXPECT_EQ(error("T3 M06\nG00 X1. Y1.\nG43 H3 Z5.\n"), "");
+  EXPECT_THAT(error("T3 M06\nG00 Z5.\n"), HasSubstr("G43 H.. must come first at line 4"));
+  // G49 cancels it; a new tool needs its own.
+  EXPECT_THAT(error("T3 M06\nG00 G43 H3 Z5.\nG49\nZ6.\n"), HasSubstr("line 6"));
+  EXPECT_THAT(error("T3 M06\nG00 G43 H3 Z5.\nT4 M06\nZ6.\n"), HasSubstr("tool 4"));
+  EXPECT_THAT(error("T3 M06\nG43 Z5.\n"), HasSubstr("G43 without H"));
+  // The set-up codes the compiler prints run without changing the path.
+  EXPECT_EQ(error("G54.1 P7\nG05.1 Q1\nM08\nM07\nG05.1 Q0\nM09\n"), "");
+}
+
 TEST(SimMotion, WhatTheControllerWouldRefuse) {
   auto refusal = [](const std::string& body) {
     SimulationResult result = runBody(body);

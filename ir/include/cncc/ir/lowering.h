@@ -49,6 +49,10 @@ struct LoweringOptions {
   // How deep the controller nests loops (0: no limit). A `for` run on the
   // controller that would nest deeper is unrolled instead.
   int maximumLoopNesting = 0;
+  // What the machine's set-up has: `origin G54.1 Pn` up to this n (0: no
+  // extended work offsets), and a code for through-spindle coolant.
+  int maximumExtendedWorkOffset = 0;
+  bool throughSpindleCoolant = false;
 };
 
 enum class CutArcs { None, Native, Fitted };

@@ -14,7 +14,8 @@ namespace cncc::backends {
 std::optional<std::string> findRs274();
 
 // A tool table (`T5 P5 D0 ;`) with every tool the program names in a `T`
-// word: rs274 refuses `T5 M6` for a tool its table does not have.
+// or `H` word: rs274 refuses `T5 M6` or `G43 H5` for a tool its table does
+// not have.
 std::string rs274ToolTable(std::string_view program);
 
 struct Rs274Run {

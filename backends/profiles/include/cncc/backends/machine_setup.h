@@ -25,6 +25,7 @@ struct MachineSetup {
   std::string toolEdge;
   std::string workOffset;         // {code}: "G{code}"
   std::string extendedWorkOffset; // {number}: "G54.1 P{number}"; empty: none
+  int maximumExtendedWorkOffset = 48; // P1 .. P48, the common option
   std::string coolantFlood = "M8";
   std::string coolantMist = "M7";
   std::string coolantThrough; // machine-specific (M88, M51, ...); empty: none
