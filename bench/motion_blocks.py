@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Program size of parts on every controller target: motion blocks and bytes.
 
-    bench/motion_blocks.py CNCC [CNCC_BEFORE --root-before DIR]
+    bench/motion_blocks.py CNCC [CNCC_BEFORE --root-before DIR] [--examples]
 
 compiles each case below with each cncc given (the second, when given, is
 an older build to compare with, compiling the case files of its own
@@ -9,7 +9,8 @@ checkout DIR where it has them) and prints a Markdown table. A motion block
 is a program line with a motion word (G0..G3 in any spelling) or an axis
 word (X, Y, Z) outside comments; the bytes are the whole program's. For the
 macro targets the figure counts the lines printed, not the blocks executed
-(a loop is printed once).
+(a loop is printed once). With --examples every example is a case, and
+the table has the blocks (every line but `%`) beside the motion blocks.
 """
 
 import argparse
@@ -38,6 +39,18 @@ def motion_blocks(text):
     return count
 
 
+def blocks(text):
+    return sum(1 for line in text.splitlines() if line.strip() not in ("", "%"))
+
+
+def example_cases():
+    cases = []
+    for path in sorted((ROOT / "examples").glob("*.cdl")):
+        source = str(path.relative_to(ROOT))
+        cases.append((source, "bore_plate_mm" if path.stem == "helix_bore" else ""))
+    return cases
+
+
 def compile_case(cncc, root, source, part, target):
     path = root / source if (root / source).exists() else ROOT / source
     arguments = [cncc, str(path), "-t", target]
@@ -54,21 +67,28 @@ def main():
     parser.add_argument("cncc")
     parser.add_argument("before", nargs="?")
     parser.add_argument("--root-before", type=Path, default=ROOT)
+    parser.add_argument("--examples", action="store_true")
     options = parser.parse_args()
+    cases = example_cases() if options.examples else CASES
     builds = [("after", options.cncc, ROOT)]
     if options.before:
         builds.insert(0, ("before", options.before, options.root_before))
+    columns = ["blocks", "motion blocks", "bytes"] if options.examples else [
+        "motion blocks", "bytes"]
     header = "| part | target | " + " | ".join(
-        f"{name}: motion blocks | {name}: bytes" for name, _, _ in builds) + " |"
+        f"{name}: {column}" for name, _, _ in builds for column in columns) + " |"
     print(header)
-    print("|" + "---|" * (2 + 2 * len(builds)))
-    for source, part in CASES:
+    print("|" + "---|" * (2 + len(columns) * len(builds)))
+    for source, part in cases:
         for target in TARGETS:
             cells = []
             for _, cncc, root in builds:
                 text = compile_case(cncc, root, source, part, target)
-                cells += ["error", "error"] if text is None else [
+                figures = [] if text is None else [
                     str(motion_blocks(text)), str(len(text.encode()))]
+                if options.examples and text is not None:
+                    figures.insert(0, str(blocks(text)))
+                cells += figures or ["error"] * len(columns)
             name = Path(source).stem + (f" -p {part}" if part else "")
             print(f"| {name} | {target} | " + " | ".join(cells) + " |")
     return 0
