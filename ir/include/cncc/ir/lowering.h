@@ -53,6 +53,11 @@ struct LoweringOptions {
   // extended work offsets), and a code for through-spindle coolant.
   int maximumExtendedWorkOffset = 0;
   bool throughSpindleCoolant = false;
+  // The machine's largest feed (mm/min, or inch/min in an inch part) and
+  // spindle speed (rpm); 0: no limit. A constant beyond it is an error at
+  // the statement that sets it.
+  double maximumFeed = 0;
+  double maximumSpindleSpeed = 0;
 };
 
 enum class CutArcs { None, Native, Fitted };

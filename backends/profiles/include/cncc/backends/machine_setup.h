@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cncc::backends {
 
@@ -23,8 +24,8 @@ struct MachineSetup {
   // Sinumerik: the cutting edge `D{length}` activated with the tool, D1
   // when the part gives no register.
   std::string toolEdge;
-  std::string workOffset;         // {code}: "G{code}"
-  std::string extendedWorkOffset; // {number}: "G54.1 P{number}"; empty: none
+  std::string workOffset;             // {code}: "G{code}"
+  std::string extendedWorkOffset;     // {number}: "G54.1 P{number}"; empty: none
   int maximumExtendedWorkOffset = 48; // P1 .. P48, the common option
   std::string coolantFlood = "M8";
   std::string coolantMist = "M7";
@@ -34,6 +35,9 @@ struct MachineSetup {
   // dialect has no such mode.
   std::string contouringOn;
   std::string contouringOff;
+  // The blocks that retract Z in machine coordinates at the program's end,
+  // before the spindle stops and the program ends.
+  std::vector<std::string> endRetract;
 };
 
 // The built-in setup of a target (the names `-t` takes); the plain one
