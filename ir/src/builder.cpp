@@ -158,6 +158,10 @@ void FunctionBuilder::coolant(CoolantMode mode) {
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::home() {
+  operation(Opcode::Home, {});
+}
+
 void FunctionBuilder::contouring(double tolerance) {
   Instruction instruction;
   instruction.opcode = Opcode::Contouring;

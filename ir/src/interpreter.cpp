@@ -78,6 +78,7 @@ private:
     case Opcode::Origin:
     case Opcode::Coolant:
     case Opcode::Contouring:
+    case Opcode::Home:
     case Opcode::Comment:
     case Opcode::CutBegin:
       record(instruction);
@@ -141,6 +142,7 @@ private:
     case Opcode::Origin:
     case Opcode::Coolant:
     case Opcode::Contouring:
+    case Opcode::Home:
       event = settingEvent(instruction.opcode, instruction.number, instruction.index);
       break;
     case Opcode::CutBegin:
@@ -223,6 +225,9 @@ MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index) {
   case Opcode::Coolant:
     event.kind = MachineEvent::Kind::Coolant;
     event.number = index;
+    break;
+  case Opcode::Home:
+    event.kind = MachineEvent::Kind::Home;
     break;
   default:
     event.kind = MachineEvent::Kind::Contouring;

@@ -237,6 +237,12 @@ private:
       builder_->coolant(*mode);
       return;
     }
+    case Opcode::Home:
+      if (!rest.empty()) {
+        throw Failure{"'move.home' takes nothing"};
+      }
+      builder_->home();
+      return;
     case Opcode::Contouring:
       builder_->contouring(rest == "off" ? 0 : parseNumber(rest));
       return;

@@ -92,6 +92,9 @@ private:
       out_ += fmt::format("{}coolant {}\n", indent,
                           coolantModeName(static_cast<CoolantMode>(instruction.index)));
       return;
+    case Opcode::Home:
+      out_ += fmt::format("{}move.home\n", indent);
+      return;
     case Opcode::Contouring:
       out_ += instruction.number == 0
                   ? fmt::format("{}contouring off\n", indent)

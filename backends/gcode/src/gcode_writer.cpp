@@ -113,6 +113,15 @@ public:
 
   std::string take() { return std::move(out_); }
 
+  // After a move the writer does not follow: every coordinate is printed
+  // again.
+  void forget() {
+    x_.clear();
+    y_.clear();
+    zText_.clear();
+    known_ = false;
+  }
+
   // Words the next block with a Z word carries (the length offset after a
   // tool change).
   void beforeNextZ(std::string words) { beforeZ_ = std::move(words); }
@@ -202,6 +211,12 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
                               formatGcodeNumber(event.diameter, options.decimals)));
       writer.beforeNextZ(lengthOffsetWords(
           options.setup, static_cast<int>(std::llround(event.number)), event.offsetRegister));
+      break;
+    case ir::MachineEvent::Kind::Home:
+      for (const std::string& block : options.setup.endRetract) {
+        writer.line(block);
+      }
+      writer.forget();
       break;
     case ir::MachineEvent::Kind::Origin:
     case ir::MachineEvent::Kind::Coolant:

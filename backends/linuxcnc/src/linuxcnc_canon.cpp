@@ -67,7 +67,13 @@ public:
     if (call.name == "STRAIGHT_TRAVERSE" || call.name == "STRAIGHT_FEED") {
       need(3);
       bool rapid = call.name == "STRAIGHT_TRAVERSE";
-      moveTo({call.arguments[0], call.arguments[1], call.arguments[2]}, rapid);
+      Eigen::Vector3d end(call.arguments[0], call.arguments[1], call.arguments[2]);
+      if (!(rapid && isMachineZero(end))) { // G53 G0 Z0: the part's path leaves the work
+        moveTo(end, rapid);
+      }
+    } else if (call.name == "SET_G5X_OFFSET") {
+      need(4);
+      workOffsetZ_ = call.arguments[3];
     } else if (call.name == "SET_FEED_RATE") {
       need(1);
       feed_ = call.arguments[0];
@@ -83,6 +89,13 @@ public:
   ExecutedPath path() && { return std::move(path_); }
 
 private:
+  // A traverse in Z alone to the machine's Z0, where the work offset puts it
+  // (rs274ReferenceHeight above the work; it is not part of the work).
+  bool isMachineZero(const Eigen::Vector3d& end) const {
+    return workOffsetZ_ != 0 && std::abs(end.z() + workOffsetZ_) < 1e-6 &&
+           (end.head<2>() - position_.head<2>()).norm() < 1e-9;
+  }
+
   void moveTo(const Eigen::Vector3d& end, bool rapid) {
     path_.moves.push_back({rapid, end, rapid ? 0.0 : feed_, std::nullopt});
     position_ = end;
@@ -127,6 +140,7 @@ private:
   ExecutedPath path_;
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   double feed_ = 0;
+  double workOffsetZ_ = 0; // of the work offset in use (SET_G5X_OFFSET)
 };
 
 } // namespace

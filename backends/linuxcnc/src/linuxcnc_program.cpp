@@ -270,6 +270,12 @@ private:
     case Opcode::Contouring:
       printSetting(instruction);
       return;
+    case Opcode::Home:
+      for (const std::string& block : options_.setup.endRetract) {
+        line(block);
+      }
+      moves_.forget();
+      return;
     case Opcode::Alarm:
       line(fmt::format("(abort, {})", gcodeCommentText(instruction.text)));
       return;

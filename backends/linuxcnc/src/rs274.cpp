@@ -1,5 +1,7 @@
 #include "cncc/backends/rs274.h"
 
+#include <fmt/format.h>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -58,8 +60,8 @@ std::string rs274ToolTable(std::string_view program) {
     comment = c == '(' ? true : c == ')' ? false : comment;
     // T selects a tool; H reads a tool's length from the table too.
     bool letter = c == 'T' || c == 't' || c == 'H' || c == 'h';
-    bool word = !comment && letter &&
-                (i == 0 || !std::isalpha(static_cast<unsigned char>(program[i - 1])));
+    bool word =
+        !comment && letter && (i == 0 || !std::isalpha(static_cast<unsigned char>(program[i - 1])));
     if (word && i + 1 < program.size() &&
         std::isdigit(static_cast<unsigned char>(program[i + 1]))) {
       tools.insert(std::strtol(program.data() + i + 1, nullptr, 10));
@@ -72,6 +74,16 @@ std::string rs274ToolTable(std::string_view program) {
   return table;
 }
 
+std::string rs274WorkOffsets() {
+  // #5220 selects G54; #5221 + 20 k .. are the X Y Z of G54 .. G59.3, in
+  // the inches rs274 keeps them in.
+  std::string text = "5220\t1\n";
+  for (int system = 0; system < 9; ++system) {
+    text += fmt::format("{}\t{}\n", 5223 + 20 * system, -rs274ReferenceHeight / 25.4);
+  }
+  return text;
+}
+
 Rs274Run runRs274(const std::string& rs274, const std::string& program,
                   const std::string& toolTable, int seconds) {
   std::filesystem::path directory = uniqueDirectory();
@@ -79,14 +91,16 @@ Rs274Run runRs274(const std::string& rs274, const std::string& program,
   std::ofstream(input) << program;
   std::filesystem::path tools = directory / "tools.tbl";
   std::ofstream(tools) << toolTable;
+  std::filesystem::path variables = directory / "offsets.var";
+  std::ofstream(variables) << rs274WorkOffsets();
   std::filesystem::path output = directory / "canon.txt";
   std::filesystem::path errors = directory / "errors.txt";
   std::string lock = (std::filesystem::temp_directory_path() / "cncc-rs274.lock").string();
-  std::string command = "flock " + shellQuoted(lock) + " timeout -s KILL " +
-                        std::to_string(seconds) + " " + shellQuoted(rs274) + " -t " +
-                        shellQuoted(tools.string()) + " -g " + shellQuoted(input.string()) + " > " +
-                        shellQuoted(output.string()) + " 2> " + shellQuoted(errors.string()) +
-                        " < /dev/null";
+  std::string command =
+      "flock " + shellQuoted(lock) + " timeout -s KILL " + std::to_string(seconds) + " " +
+      shellQuoted(rs274) + " -t " + shellQuoted(tools.string()) + " -v " +
+      shellQuoted(variables.string()) + " -g " + shellQuoted(input.string()) + " > " +
+      shellQuoted(output.string()) + " 2> " + shellQuoted(errors.string()) + " < /dev/null";
   int status = std::system(command.c_str());
   Rs274Run run;
   // timeout's status for a killed program is 128 + 9.

@@ -316,6 +316,12 @@ private:
     case Opcode::Contouring:
       printSetting(instruction);
       return;
+    case Opcode::Home:
+      for (const std::string& block : options_.setup.endRetract) {
+        line(block);
+      }
+      modal_.forget();
+      return;
     case Opcode::Alarm:
       line(alarmStatement(instruction.text, 0));
       return;

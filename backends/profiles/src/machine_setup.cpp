@@ -13,6 +13,7 @@ MachineSetup isoSetup(std::string dialect) {
   setup.dialect = std::move(dialect);
   setup.lengthOffset = "G43 H{length}";
   setup.workOffset = "G{code}";
+  setup.endRetract = {"G91 G28 Z0.", "G90"};
   return setup;
 }
 
@@ -31,12 +32,14 @@ std::array<MachineSetup, 5> makeBuiltinSetups() {
   MachineSetup linuxcnc = isoSetup("linuxcnc");
   linuxcnc.contouringOn = "G64 P{tolerance} Q{tolerance}";
   linuxcnc.contouringOff = "G64";
+  linuxcnc.endRetract = {"G53 G0 Z0"};
   MachineSetup sinumerik;
   sinumerik.dialect = "sinumerik";
   sinumerik.toolEdge = "D{length}";
   sinumerik.workOffset = "G{code}";
   sinumerik.contouringOn = "CYCLE832({tolerance}, _FINISH, 1)";
   sinumerik.contouringOff = "CYCLE832()";
+  sinumerik.endRetract = {"SUPA G0 Z0 D0"};
   // Plain ISO G-code: no high-speed mode is common to all machines.
   MachineSetup gcode = isoSetup("gcode");
   return {std::move(fanuc), std::move(m80), std::move(linuxcnc), std::move(sinumerik),

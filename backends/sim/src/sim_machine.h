@@ -49,6 +49,7 @@ private:
     std::optional<int> selectedTool;
     bool toolChanged = false;        // an M06 has run
     std::optional<int> lengthOffset; // G43 H.., cleared by G49 and M06
+    bool atReference = false;        // after G28: off the work coordinates
     double spindleSpeed = 0;
     bool spindleRunning = false;
   };
@@ -66,6 +67,7 @@ private:
   void callMacro(const Block& block, std::size_t& next);
   Next returnFromMacro(const Block& block, std::size_t& next);
   void move(const Block& block, int motion, const std::map<char, double>& axes);
+  void returnToReference(const Block& block, const std::map<char, double>& axes);
   void moveArc(const Block& block, int motion, Point3 target, const std::map<char, double>& axes);
   double increment() const;
   double roundToIncrement(double value) const;

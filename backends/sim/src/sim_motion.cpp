@@ -19,10 +19,10 @@ struct GCode {
 };
 
 constexpr GCode supportedGCodes[] = {
-    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
-    {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
-    {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
-    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14}};
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
+    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
+    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
+    {62, 1},   {50, 0},   {51, 0},   {541, 14}, {280, 0}};
 // G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
 // control) and G54.1 P.. (extended work offsets) do not change the path.
 
@@ -237,6 +237,8 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     if (!axes.empty()) {
       failInBlock(block, "G04 takes its time in P, with no axis words");
     }
+  } else if (has(words, 280)) {
+    returnToReference(block, axes);
   } else if (!axes.empty()) {
     if (!modal_.motion) {
       failInBlock(block, "a move before any G00, G01, G02 or G03: the power-on motion mode is "
@@ -360,7 +362,38 @@ Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
   return Next::Jump;
 }
 
+// G28: a rapid to the intermediate point the axis words give (none for
+// `G91 G28 Z0.`), then those axes to the machine's reference position,
+// which is not in the work coordinates: the part's path leaves them.
+void Machine::returnToReference(const Block& block, const std::map<char, double>& axes) {
+  if (axes.empty()) {
+    failInBlock(block, "G28 without an axis: which axes return to the reference position?");
+  }
+  bool moves = false;
+  for (const auto& [letter, value] : axes) {
+    if (axisLetters.find(letter) == std::string_view::npos) {
+      failInBlock(block, fmt::format("G28 takes axis words, not {}", letter));
+    }
+    double current = letter == 'X'   ? modal_.position.x
+                     : letter == 'Y' ? modal_.position.y
+                                     : modal_.position.z;
+    moves = moves || (modal_.absolute ? roundToIncrement(value) != current : value != 0);
+  }
+  if (moves) {
+    move(block, 0, axes);
+  }
+  modal_.atReference = true;
+}
+
 void Machine::move(const Block& block, int motion, const std::map<char, double>& axes) {
+  if (modal_.atReference) {
+    // The virtual machine does not know where its reference is in work
+    // coordinates: from there Z must be given absolutely, by a rapid.
+    if (axes.count('Z') > 0 && (!modal_.absolute || motion != 0)) {
+      failInBlock(block, "after G28 the first Z move is a G00 to an absolute Z");
+    }
+    modal_.atReference = axes.count('Z') == 0;
+  }
   if (axes.count('Z') > 0 && modal_.toolChanged && !modal_.lengthOffset &&
       profile_.requiresLengthOffset) {
     failInBlock(block, fmt::format("a Z move with tool {} in the spindle and no tool length "

@@ -185,6 +185,7 @@ private:
     std::optional<double> weight, interval;
     bool motionWord = false;
     bool ends = false;
+    bool machineCoordinates = false; // SUPA: this block's axes are the machine's
     for (const SinumerikWord& word : block.words) {
       const std::string& a = word.address;
       if (a == "X" || a == "Y" || a == "Z") {
@@ -201,6 +202,8 @@ private:
         needNumber(word);
       } else if (a == "D") {
         toolEdge(word);
+      } else if (a == "SUPA") {
+        machineCoordinates = true;
       } else if (a == "CYCLE832") {
         highSpeedCycle(word);
       } else if (a == "T") {
@@ -255,7 +258,13 @@ private:
     if ((centre[0] || centre[1]) && !arc) {
       fail("I and J belong in a G2 or G3 block");
     }
-    if (arc && hasAxis) {
+    if (machineCoordinates) {
+      // `SUPA G0 Z0`: the machine's own position, off the work coordinates
+      // (the program's end); the part's path ends there.
+      if (motion_ != Motion::Rapid || axes[0] || axes[1]) {
+        fail("SUPA is modelled for a G0 in Z only (the retract at the end)");
+      }
+    } else if (arc && hasAxis) {
       arcTo(axes, centre);
     } else if (hasAxis) {
       moveTo(axes, weight, interval);

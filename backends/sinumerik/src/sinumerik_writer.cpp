@@ -185,6 +185,11 @@ private:
     case MachineEvent::Kind::Tool:
       tool(e);
       break;
+    case MachineEvent::Kind::Home:
+      for (const std::string& block : options_.setup.endRetract) {
+        line(block);
+      }
+      break;
     case MachineEvent::Kind::Origin:
     case MachineEvent::Kind::Coolant:
     case MachineEvent::Kind::Contouring:

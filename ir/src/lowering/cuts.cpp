@@ -87,7 +87,7 @@ bool PartLowering::rampEntry(const CutStmt& cut) {
 
 Scalar PartLowering::cutFeed(const CutStmt& cut) {
   if (const Expr* expression = modifierValue(cut, "feed")) {
-    return number(*expression);
+    return feedRate(*expression);
   }
   if (!feed_) {
     fail(cut.span, "this cut has no feed rate", DiagnosticKind::NoFeed);

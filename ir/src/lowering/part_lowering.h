@@ -291,6 +291,12 @@ private:
                            const frontend::Environment& environment);
   double constantNumber(const frontend::Expr& expression, std::string_view what);
   Scalar number(const frontend::Expr& expression);
+  // A feed rate or spindle speed: a number within the machine's maximum
+  // (LoweringOptions) at the values the part is compiled with.
+  Scalar feedRate(const frontend::Expr& expression);
+  Scalar spindleSpeed(const frontend::Expr& expression);
+  Scalar withinMachineLimit(const frontend::Expr& expression, double limit, std::string_view what,
+                            std::string_view unit);
   std::optional<Lowered> constantOf(const frontend::Value& value);
   std::optional<Lowered> tryLower(const frontend::Expr& expression, const Bindings& bindings,
                                   const frontend::Environment& environment);
@@ -343,7 +349,8 @@ private:
   void activateLengthOffset();
   void lowerOrigin(const frontend::OriginStmt& origin);
   void lowerCoolant(const frontend::CoolantStmt& coolant);
-  // At the end of the part: contouring and coolant off.
+  // At the end of the part: contouring and coolant off, Z to the machine's
+  // reference.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);
   bool rampEntry(const frontend::CutStmt& cut);

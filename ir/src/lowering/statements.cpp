@@ -96,10 +96,10 @@ void PartLowering::lowerStatement(const Stmt& statement) {
   case StmtKind::Tool:
     return lowerTool(as<ToolStmt>(statement));
   case StmtKind::Feed:
-    feed_ = number(*as<ValueStmt>(statement).value);
+    feed_ = feedRate(*as<ValueStmt>(statement).value);
     return;
   case StmtKind::Spindle:
-    builder_.spindle(arithmetic_.value(number(*as<ValueStmt>(statement).value)));
+    builder_.spindle(arithmetic_.value(spindleSpeed(*as<ValueStmt>(statement).value)));
     return;
   case StmtKind::Safe:
     for (const Argument& setting : as<SafeStmt>(statement).settings) {
@@ -130,6 +130,31 @@ void PartLowering::ensureOrigin() {
     builder_.origin(54);
     machine_.originChosen = true;
   }
+}
+
+Scalar PartLowering::feedRate(const Expr& expression) {
+  bool inches = partUnits(part_) == PartUnits::Inches;
+  return withinMachineLimit(expression, options_.maximumFeed / (inches ? 25.4 : 1.0), "feed",
+                            inches ? "inch/min" : "mm/min");
+}
+
+Scalar PartLowering::spindleSpeed(const Expr& expression) {
+  return withinMachineLimit(expression, options_.maximumSpindleSpeed, "spindle speed", "rpm");
+}
+
+Scalar PartLowering::withinMachineLimit(const Expr& expression, double limit, std::string_view what,
+                                        std::string_view unit) {
+  Scalar value = number(expression);
+  if (limit > 0) {
+    Value atDefaults = evaluate(expression, environment_);
+    if (atDefaults.type.kind == TypeKind::Num && atDefaults.number > limit) {
+      fail(expression.span,
+           fmt::format("the {} {:g} {} is over this machine's maximum of {:g} {}", what,
+                       atDefaults.number, unit, limit, unit),
+           DiagnosticKind::MachineLimit);
+    }
+  }
+  return value;
 }
 
 void PartLowering::lowerOrigin(const OriginStmt& origin) {
@@ -178,6 +203,7 @@ void PartLowering::endMachineSettings() {
   if (machine_.coolant != ir::CoolantMode::Off) {
     builder_.coolant(ir::CoolantMode::Off);
   }
+  builder_.home();
 }
 
 void PartLowering::lowerTool(const ToolStmt& tool) {
@@ -197,9 +223,9 @@ void PartLowering::lowerTool(const ToolStmt& tool) {
     } else if (setting.name == "diameter") {
       diameter = number(*setting.value);
     } else if (setting.name == "spindle") {
-      spindle = number(*setting.value);
+      spindle = spindleSpeed(*setting.value);
     } else if (setting.name == "feed") {
-      feed_ = number(*setting.value);
+      feed_ = feedRate(*setting.value);
     }
   }
   builder_.tool(toolNumber, arithmetic_.value(diameter), lengthRegister);

@@ -68,7 +68,7 @@ TEST(SinumerikWriter, LinearCutsAreG1BlocksInTheUsualLayout) {
   const std::string& text = part->output.text;
   EXPECT_EQ(text.rfind("; ", 0), 0u);
   for (const char* line : {"G54\n", "T=\"T1\" D1", "\nM6\n", "\nCYCLE832(0.01, _FINISH, 1)\n",
-                           "M3 S3000\n", "\nCYCLE832()\nM5\nM30\n"}) {
+                           "M3 S3000\n", "\nCYCLE832()\nSUPA G0 Z0 D0\nM5\nM30\n"}) {
     EXPECT_NE(text.find(line), std::string::npos) << line;
   }
   EXPECT_EQ(text.find("SPLINE"), std::string::npos);

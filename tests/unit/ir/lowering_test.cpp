@@ -22,7 +22,7 @@ struct Lowering {
   std::optional<Function> function;
 };
 
-std::unique_ptr<Lowering> lower(const std::string& text) {
+std::unique_ptr<Lowering> lower(const std::string& text, const LoweringOptions& lowering = {}) {
   auto result = std::make_unique<Lowering>();
   frontend::FileId file = result->sources.addFile("test.cdl", text);
   frontend::CheckOptions options;
@@ -32,7 +32,7 @@ std::unique_ptr<Lowering> lower(const std::string& text) {
   EXPECT_FALSE(result->diagnostics.hasErrors());
   if (result->program->selectedPart != nullptr) {
     result->function =
-        lowerPart(*result->program, *result->program->selectedPart, result->diagnostics);
+        lowerPart(*result->program, *result->program->selectedPart, result->diagnostics, lowering);
   }
   return result;
 }
@@ -66,14 +66,16 @@ TEST(Lowering, PolarCircleLiesOnTheCurveAndFollowsItsParameter) {
   for (const MachineEvent& move : feeds(interpret(*lowered->function, options))) {
     EXPECT_NEAR(std::hypot(move.x, move.y), 12.0, 1e-9);
   }
-  // Rapid to the safe height last, then the settings end: contouring off.
+  // Rapid to the safe height last, then contouring off and Z to the
+  // machine's reference.
   EXPECT_EQ(path.events.front().kind, MachineEvent::Kind::Comment);
-  ASSERT_GE(path.events.size(), 2u);
-  const MachineEvent& lastMove = path.events[path.events.size() - 2];
+  ASSERT_GE(path.events.size(), 3u);
+  const MachineEvent& lastMove = path.events[path.events.size() - 3];
   EXPECT_EQ(lastMove.kind, MachineEvent::Kind::Rapid);
   EXPECT_EQ(lastMove.z, 3.0);
-  EXPECT_EQ(path.events.back().kind, MachineEvent::Kind::Contouring);
-  EXPECT_EQ(path.events.back().number, 0.0);
+  EXPECT_EQ(path.events[path.events.size() - 2].kind, MachineEvent::Kind::Contouring);
+  EXPECT_EQ(path.events[path.events.size() - 2].number, 0.0);
+  EXPECT_EQ(path.events.back().kind, MachineEvent::Kind::Home);
   // The printed IR parses back to the same text.
   std::string text = printFunction(*lowered->function);
   ParseError error;
@@ -119,6 +121,44 @@ TEST(Lowering, UnsupportedConstructIsAnErrorAtItsSpan) {
   const frontend::Diagnostic& diagnostic = lowered->diagnostics.diagnostics().back();
   EXPECT_NE(diagnostic.message.find("not supported by this version's lowering"), std::string::npos);
   EXPECT_TRUE(diagnostic.span.valid());
+}
+
+// The last diagnostic's kind and the text its span covers.
+std::pair<frontend::DiagnosticKind, std::string> lastDiagnostic(const Lowering& lowered,
+                                                                const std::string& text) {
+  if (lowered.diagnostics.diagnostics().empty()) {
+    return {};
+  }
+  const frontend::Diagnostic& diagnostic = lowered.diagnostics.diagnostics().back();
+  return {diagnostic.kind, text.substr(diagnostic.span.begin, diagnostic.span.end - diagnostic.span.begin)};
+}
+
+TEST(Lowering, FeedsAndSpindleSpeedsWithinTheMachinesMaximum) {
+  LoweringOptions machine;
+  machine.maximumFeed = 5000;
+  machine.maximumSpindleSpeed = 10000;
+  auto part = [](const std::string& tool, const std::string& cut) {
+    return "part p(f = 400) {\n  tool 1 diameter=6 " + tool +
+           "\n  safe z=2\n  curve line((0, 0), (10, 0)) sweep depth=1 step=1 " + cut + "\n}\n";
+  };
+  EXPECT_TRUE(lower(part("spindle=10000 feed=5000", "feed=f"), machine)->function);
+  for (auto [tool, cut, over] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"spindle=12000 feed=300", "", "12000"},
+           {"spindle=8000 feed=300", "feed=6000", "6000"},
+           {"spindle=8000 feed=2*f*10", "", "2*f*10"}}) {
+    std::string text = part(tool, cut);
+    auto lowered = lower(text, machine);
+    EXPECT_FALSE(lowered->function) << text;
+    auto [kind, quoted] = lastDiagnostic(*lowered, text);
+    EXPECT_EQ(kind, frontend::DiagnosticKind::MachineLimit) << text;
+    EXPECT_EQ(quoted, over);
+  }
+  // In an inch part the maximum feed is the machine's in inch/min.
+  EXPECT_FALSE(lower("part p {\n  units inch\n  tool 1 diameter=0.25 feed=200\n  safe z=0.1\n"
+                     "  curve line((0, 0), (1, 0)) sweep depth=0.1 step=0.1\n}\n",
+                     machine)
+                   ->function);
 }
 
 TEST(Lowering, RampOnAnOpenCurveIsRefused) {

@@ -130,6 +130,7 @@ OpcodeCase effectsCase() {
   builder.contouring(0);
   builder.origin(59);
   builder.coolant(ir::CoolantMode::Off);
+  builder.home();
   return {"effects", builder.finish()};
 }
 

@@ -222,6 +222,7 @@ private:
     case Opcode::Origin:
     case Opcode::Coolant:
     case Opcode::Contouring:
+    case Opcode::Home:
     case Opcode::Comment:
     case Opcode::CutBegin:
       emitEffect(instruction);
@@ -414,6 +415,7 @@ private:
     case Opcode::Origin:
     case Opcode::Coolant:
     case Opcode::Contouring:
+    case Opcode::Home:
       callback = "cncc_jit_setting";
       arguments = {builder_.getInt32(static_cast<std::uint32_t>(instruction.opcode)),
                    llvm::ConstantFP::get(f64_, instruction.number),

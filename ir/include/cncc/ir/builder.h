@@ -51,6 +51,7 @@ public:
   void coolant(CoolantMode mode);
   // tolerance 0 switches the mode off.
   void contouring(double tolerance);
+  void home();
   void comment(std::string text);
   // `alarm "text"`: the program stops with this message.
   void alarm(std::string text);

@@ -14,6 +14,7 @@ struct MachineEvent {
     Rapid,
     Feed,
     Arc,
+    Home, // Z to the machine's reference (move.home): off the work
     Spindle,
     Tool,
     Origin,

@@ -18,6 +18,14 @@ std::optional<std::string> findRs274();
 // not have.
 std::string rs274ToolTable(std::string_view program);
 
+// rs274 runs with every work offset's Z at minus this (mm), so that the
+// machine's Z0 (`G53 G0 Z0`, the retract at the end) is this far above the
+// work's zero, as on a machine, rather than at it; its canonical calls then
+// show the retract as a SET_G5X_OFFSET and a traverse to that height.
+inline constexpr double rs274ReferenceHeight = 254;
+// The parameter file that sets those offsets.
+std::string rs274WorkOffsets();
+
 struct Rs274Run {
   int exitCode = -1;  // -1: it did not finish (killed after the time limit)
   std::string canon;  // standard output: the canonical calls
