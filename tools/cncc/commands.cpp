@@ -134,6 +134,8 @@ int runEmit(const DriverOptions& options) {
   return diagnostics.hasErrors() ? 1 : 0;
 }
 
+// With --machine the file was read (and its errors reported) with the
+// command line; `check --machine FILE.toml` alone has nothing more to do.
 int runCheck(const DriverOptions& options) {
   DiagnosticOutput output = diagnosticOutputFor(options);
   bool failed = false;

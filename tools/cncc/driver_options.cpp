@@ -1,6 +1,7 @@
 #include "driver_options.h"
 
 #include "commands.h"
+#include "machine_options.h"
 #include "stats_measurement.h"
 #include "targets.h"
 
@@ -55,6 +56,7 @@ struct RawOptions {
   std::string simulateInput;
   std::string verifyInput;
   std::vector<std::string> macroArguments;
+  std::string machineFile;
 };
 
 // A mistake in how cncc was called: printed, exit code 2.
@@ -62,6 +64,9 @@ class UsageError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
+
+// A machine file with errors, whose diagnostics are printed: exit code 1.
+struct MachineFileError {};
 
 std::string helpFooter() {
   std::string footer = "\nTargets:\n";
@@ -76,6 +81,7 @@ std::string helpFooter() {
             "  cncc --emit=ast examples/s_profile.cdl\n"
             "  cncc examples/s_profile.cdl -t gcode --stats -o O1\n"
             "  cncc plot examples/s_profile.cdl -o s_profile.svg\n"
+            "  cncc examples/s_profile.cdl --machine examples/machines/fanuc-0i-mf-vmc.toml\n"
             "\nExit codes: 0 success, 1 errors in the source, 2 wrong usage.";
   return footer;
 }
@@ -102,6 +108,10 @@ void addCommonOptions(CLI::App& app, RawOptions& raw) {
       ->check(CLI::IsMember({"auto", "always", "never"}));
   app.add_option("--error-limit", raw.errorLimit, "Stop reporting after N errors (0: no limit)")
       ->type_name("N");
+  app.add_option("--machine", raw.machineFile,
+                 "The machine's set-up blocks, controller profile and limits from a machine "
+                 "file (examples/machines); its target is the default of -t")
+      ->type_name("FILE.toml");
   app.add_flag("--list-diagnostics", raw.listDiagnostics,
                "Print the name of every diagnostic and exit")
       ->group("");
@@ -152,11 +162,12 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
 CLI::App* addCheckCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* check =
       app.add_subcommand("check", "Check files and report every problem without compiling");
-  check->add_option("FILE", raw.checkInputs, "The .cdl files to check")->type_name("")->required();
+  check->add_option("FILE", raw.checkInputs, "The .cdl files to check")->type_name("");
   // The common options belong to the main command and fall through to here.
   check->fallthrough();
   check->footer("\nAlso takes -D, -p, -I, --diagnostics-format, --color and --error-limit "
-                "(see 'cncc --help').\nExit codes: 0 no errors, 1 errors in some file, 2 wrong "
+                "(see 'cncc --help'); with --machine FILE.toml it checks the machine file too, "
+                "or alone.\nExit codes: 0 no errors, 1 errors in some file, 2 wrong "
                 "usage.");
   return check;
 }
@@ -354,6 +365,9 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
       if (app.count(name) > 0) {
         throw UsageError(fmt::format("option {} does not apply to 'check'", name));
       }
+    }
+    if (raw.checkInputs.empty() && raw.machineFile.empty()) {
+      throw UsageError("FILE is required");
     }
     options.command = Command::Check;
     options.inputs = raw.checkInputs;
@@ -556,6 +570,36 @@ DriverOptions simulateOptions(const RawOptions& raw) {
   return options;
 }
 
+// --machine: the file read (its diagnostics printed when it has errors), its
+// target the default of -t, its profile in place of --profile's.
+std::shared_ptr<const backends::MachineDescription> applyMachineFile(RawOptions& raw,
+                                                                     bool applies) {
+  if (raw.machineFile.empty()) {
+    return nullptr;
+  }
+  if (!applies) {
+    throw UsageError("option --machine does not apply to 'fmt', 'opt' or 'lsp'");
+  }
+  if (!raw.profile.empty()) {
+    throw UsageError("--profile and --machine together: the machine file's [profile] is the "
+                     "controller profile");
+  }
+  std::shared_ptr<const backends::MachineDescription> machine = loadMachineFile(
+      raw.machineFile,
+      raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text,
+      raw.colour == "always" ? ColourMode::Always : ColourMode::Never);
+  if (machine == nullptr) {
+    throw MachineFileError{};
+  }
+  if (raw.target.empty()) {
+    raw.target = machine->target;
+  } else if (raw.target != machine->target) {
+    throw UsageError(fmt::format("-t {} is not the target of machine file '{}', which is '{}'",
+                                 raw.target, raw.machineFile, machine->target));
+  }
+  return machine;
+}
+
 int reportUsageError(std::string_view message) {
   fmt::print(stderr, "cncc: error: {}\nRun 'cncc --help' for usage.\n", message);
   return 2;
@@ -580,27 +624,28 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   CLI::App* verify = addVerifyCommand(app, raw);
   try {
     app.parse(argc, argv);
+    bool takesMachine = !format->parsed() && !opt->parsed() && !lsp->parsed();
+    std::shared_ptr<const backends::MachineDescription> machine =
+        applyMachineFile(raw, takesMachine);
+    DriverOptions options;
     if (format->parsed()) {
-      return {formatOptions(raw, app), 0};
-    }
-    if (opt->parsed()) {
-      return {optOptions(raw, app), 0};
-    }
-    if (plot->parsed()) {
-      return {plotOptions(raw, app), 0};
-    }
-    if (simulate->parsed()) {
-      return {simulateOptions(raw), 0};
-    }
-    if (verify->parsed()) {
-      return {verifyOptions(raw, app), 0};
-    }
-    if (lsp->parsed()) {
-      DriverOptions options;
+      options = formatOptions(raw, app);
+    } else if (opt->parsed()) {
+      options = optOptions(raw, app);
+    } else if (plot->parsed()) {
+      options = plotOptions(raw, app);
+    } else if (simulate->parsed()) {
+      options = simulateOptions(raw);
+    } else if (verify->parsed()) {
+      options = verifyOptions(raw, app);
+    } else if (lsp->parsed()) {
       options.command = Command::LanguageServer;
-      return {options, 0};
+    } else {
+      options = validatedOptions(raw, app, check->parsed());
     }
-    return {validatedOptions(raw, app, check->parsed()), 0};
+    options.machineFile = raw.machineFile;
+    options.machine = std::move(machine);
+    return {std::move(options), 0};
   } catch (const CLI::ParseError& error) {
     if (error.get_exit_code() == 0) {
       return {std::nullopt, app.exit(error)};
@@ -608,6 +653,8 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
     return {std::nullopt, reportUsageError(error.what())};
   } catch (const UsageError& error) {
     return {std::nullopt, reportUsageError(error.what())};
+  } catch (const MachineFileError&) {
+    return {std::nullopt, 1};
   }
 }
 

@@ -5,16 +5,21 @@
 
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace cncc::backends {
+struct MachineDescription;
+}
 
 namespace cncc::driver {
 
 enum class Command {
   Compile,         // cncc FILE -t TARGET [-o OUT]
   Emit,            // cncc FILE --emit=tokens|ast|ir [-o OUT]
-  Check,           // cncc check FILE...
+  Check,           // cncc check FILE... | cncc check --machine FILE.toml
   ListDiagnostics, // cncc --list-diagnostics (hidden; for the coverage test)
   Format,          // cncc fmt FILE... [--check | -i]
   LanguageServer,  // cncc lsp
@@ -63,11 +68,15 @@ struct DriverOptions {
   bool parametersInCommon = false;
   std::string profile;
   std::vector<std::string> macroArguments; // sim -a A3.: run as if called by G65
+  // --machine FILE.toml: the machine read from it (machine_options.h), whose
+  // set-up, profile and limits replace the target's built-in ones.
+  std::string machineFile;
+  std::shared_ptr<const backends::MachineDescription> machine;
 };
 
 // What parsing the command line decided: options to run with, or an exit
 // code when parsing already did all there was to do (--help, --version, a
-// usage error, which it has printed).
+// usage error or a bad machine file, which it has printed).
 struct ParsedCommandLine {
   std::optional<DriverOptions> options;
   int exitCode = 0;

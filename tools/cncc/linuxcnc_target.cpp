@@ -1,6 +1,8 @@
 #include "linuxcnc_target.h"
 
 #include "commands.h"
+#include "machine_options.h"
+#include "targets.h"
 
 #include "cncc/backends/linuxcnc_program.h"
 #include "cncc/ir/lowering.h"
@@ -29,7 +31,8 @@ void linuxcncBackend(const BackendRequest& request) {
     return;
   }
   std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics, linuxcncLoweringOptions(*part, request.options));
+      request.program, *part, request.diagnostics,
+      findTarget(request.options.target)->loweringOptions(*part, request.options));
   if (!lowered) {
     return;
   }
@@ -44,7 +47,7 @@ void linuxcncBackend(const BackendRequest& request) {
   options.partName = names.partName;
   options.inches = names.inches;
   options.callable = request.options.macroCall;
-  options.setup = backends::builtinMachineSetup(request.options.target);
+  options.setup = machineSetup(request.options);
   options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
   for (const std::string& error : program.errors) {

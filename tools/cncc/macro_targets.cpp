@@ -1,6 +1,7 @@
 #include "macro_targets.h"
 
 #include "commands.h"
+#include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/gcode_writer.h"
@@ -16,21 +17,10 @@ namespace cncc::driver {
 
 namespace {
 
-const backends::ControllerProfile& profileFor(const DriverOptions& options,
-                                              std::string_view defaultProfile) {
-  std::string_view name =
-      options.profile.empty() ? defaultProfile : std::string_view(options.profile);
-  const backends::ControllerProfile* profile = backends::findControllerProfile(name);
-  if (profile == nullptr) {
-    throw InternalError(fmt::format("unknown controller profile '{}'", name));
-  }
-  return *profile;
-}
-
 ir::LoweringOptions macroLowering(const frontend::PartItem& part, const DriverOptions& options,
                                   std::string_view defaultProfile) {
   ir::LoweringOptions lowering = backends::macroLoweringOptions(
-      profileFor(options, defaultProfile), ir::partUnits(part) == ir::PartUnits::Inches);
+      controllerProfile(options, defaultProfile), ir::partUnits(part) == ir::PartUnits::Inches);
   lowering.nurbsBlocks = true;
   lowering.arcsOnEveryCut = options.arcs;
   return lowering;
@@ -58,7 +48,7 @@ std::optional<ir::Function> loweredPart(const BackendRequest& request) {
 }
 
 void macroBackend(const BackendRequest& request, std::string_view defaultProfile) {
-  const backends::ControllerProfile* profile = &profileFor(request.options, defaultProfile);
+  const backends::ControllerProfile* profile = &controllerProfile(request.options, defaultProfile);
   std::optional<ir::Function> function = loweredPart(request);
   if (!function) {
     return;
@@ -72,7 +62,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.inches = names.inches;
   options.callable = request.options.macroCall;
   options.parametersInCommon = request.options.parametersInCommon;
-  options.setup = backends::builtinMachineSetup(request.options.target);
+  options.setup = machineSetup(request.options);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
   for (const std::string& error : program.errors) {
     request.diagnostics.report(

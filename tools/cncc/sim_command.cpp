@@ -2,6 +2,7 @@
 // prints the executed path as CSV, arcs split into fine chords.
 #include "atomic_output_file.h"
 #include "commands.h"
+#include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/tool_path_csv.h"
@@ -34,11 +35,7 @@ std::optional<std::string> readWholeFile(const std::string& path) {
 } // namespace
 
 int runSimulate(const DriverOptions& options) {
-  std::string profileName = options.profile.empty() ? options.target : options.profile;
-  const backends::ControllerProfile* profile = backends::findControllerProfile(profileName);
-  if (profile == nullptr) {
-    return usageError(fmt::format("unknown controller profile '{}'", profileName));
-  }
+  const backends::ControllerProfile* profile = &controllerProfile(options, options.target);
   backends::sim::SimulationOptions simulation;
   for (const std::string& text : options.macroArguments) {
     std::string problem;

@@ -1,6 +1,8 @@
 #include "sinumerik_target.h"
 
 #include "commands.h"
+#include "machine_options.h"
+#include "targets.h"
 
 #include "cncc/backends/sinumerik_controller.h"
 #include "cncc/ir/interpreter.h"
@@ -31,7 +33,7 @@ backends::SinumerikOptions sinumerikOptionsFor(const BackendRequest& request) {
   options.programName = output.empty() || output == "-" ? part.name : fileStem(output);
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
   options.subprograms = request.options.subprograms;
-  options.setup = backends::builtinMachineSetup(request.options.target);
+  options.setup = machineSetup(request.options);
   const std::string& ends = request.options.splineEnds;
   options.transitions = ends == "natural" ? backends::SinumerikTransitions::Natural
                         : ends == "auto"  ? backends::SinumerikTransitions::Auto
@@ -61,9 +63,9 @@ std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& re
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(request.program, *part, request.diagnostics,
-                            sinumerikLoweringOptions(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics,
+      findTarget(request.options.target)->loweringOptions(*part, request.options));
   if (!lowered) {
     return std::nullopt;
   }

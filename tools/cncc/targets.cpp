@@ -3,10 +3,12 @@
 #include "commands.h"
 #include "jit_module.h"
 #include "linuxcnc_target.h"
+#include "machine_options.h"
 #include "macro_targets.h"
 #include "sinumerik_target.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/machine_file.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/lowering.h"
@@ -152,17 +154,23 @@ backends::GcodeOptions gcodeOptionsFor(const BackendRequest& request) {
   options.sourceName = slash == std::string::npos ? input : input.substr(slash + 1);
   options.partName = part.name;
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
-  options.setup = backends::builtinMachineSetup(request.options.target);
+  options.setup = machineSetup(request.options);
   return options;
 }
 
 ir::LoweringOptions Target::loweringOptions(const frontend::PartItem& part,
                                             const DriverOptions& options) const {
   ir::LoweringOptions lowered = lowering(part, options);
-  const backends::MachineSetup& setup = backends::builtinMachineSetup(name);
+  const backends::MachineSetup& setup = machineSetup(options);
   lowered.maximumExtendedWorkOffset =
       setup.extendedWorkOffset.empty() ? 0 : setup.maximumExtendedWorkOffset;
   lowered.throughSpindleCoolant = !setup.coolantThrough.empty();
+  if (options.machine) {
+    // The machine file's feed is in mm/min; an inch part's feeds are in/min.
+    double perProgramUnit = ir::partUnits(part) == ir::PartUnits::Inches ? 1 / 25.4 : 1.0;
+    lowered.maximumFeed = options.machine->maximumFeed * perProgramUnit;
+    lowered.maximumSpindleSpeed = options.machine->maximumSpindleSpeed;
+  }
   return lowered;
 }
 

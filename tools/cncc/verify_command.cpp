@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "diagnostic_output.h"
 #include "input_checking.h"
+#include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
@@ -152,11 +153,8 @@ backends::ParameterPassing parameterPassing(const DriverOptions& options) {
 // The -D values and the variables the program reads them from.
 std::optional<std::vector<backends::ParameterValue>>
 parameterValues(const frontend::PartItem& part, const DriverOptions& options,
-                std::string_view profileName, const DiagnosticOutput& output) {
-  const backends::ControllerProfile* profile = backends::findControllerProfile(profileName);
-  if (profile == nullptr) {
-    throw InternalError(fmt::format("unknown controller profile '{}'", profileName));
-  }
+                std::string_view defaultProfile, const DiagnosticOutput& output) {
+  const backends::ControllerProfile* profile = &controllerProfile(options, defaultProfile);
   std::vector<std::string> errors;
   std::vector<int> variables = backends::macroParameterVariables(
       part.parameters.size(), *profile, options.parametersInCommon, errors);
@@ -227,10 +225,8 @@ int runVerify(const DriverOptions& options) {
         !(text = compiledText(*compiled->program, compiled->sources, defaults, output))) {
       return 1;
     }
-    std::string_view profile =
-        options.profile.empty() ? target->controllerProfile : std::string_view(options.profile);
     std::optional<std::vector<backends::ParameterValue>> values =
-        parameterValues(*truth->program->selectedPart, options, profile, output);
+        parameterValues(*truth->program->selectedPart, options, target->controllerProfile, output);
     if (!values) {
       return 1;
     }
@@ -246,6 +242,7 @@ int runVerify(const DriverOptions& options) {
   }
   execution.text = std::move(*text);
   execution.profile = options.profile;
+  execution.machineProfile = machineProfile(options);
   execution.callable = options.macroCall;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
@@ -272,6 +269,7 @@ int printVerifiedStatistics(const BackendRequest& request) {
   backends::ExecutionRequest execution;
   execution.text = std::move(*text);
   execution.profile = options.profile;
+  execution.machineProfile = machineProfile(options);
   execution.callable = options.macroCall;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);

@@ -148,6 +148,9 @@ ProgramExecution runOnController(const ExecutionRequest& request,
 }
 
 ProgramExecution runMacroProgram(const ExecutionRequest& request, std::string_view profileName) {
+  if (request.machineProfile) {
+    return runOnController(request, *request.machineProfile);
+  }
   std::string_view name = request.profile.empty() ? profileName : request.profile;
   const ControllerProfile* profile = findControllerProfile(name);
   if (profile == nullptr) {

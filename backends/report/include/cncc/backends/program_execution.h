@@ -6,6 +6,7 @@
 // new target (say sinumerik) plugs in by adding an entry.
 #pragma once
 
+#include "cncc/backends/controller_profile.h"
 #include "cncc/backends/executed_path.h"
 #include "cncc/backends/sim_operation_count.h"
 
@@ -36,6 +37,8 @@ struct ParameterValue {
 struct ExecutionRequest {
   std::string text;    // the program as the target wrote it
   std::string profile; // the controller profile (empty: the target's default)
+  // A machine file's profile, which replaces `profile` when given.
+  std::optional<ControllerProfile> machineProfile;
   ParameterPassing passing = ParameterPassing::None;
   // Only the parameters the operator sets; the others keep their defaults.
   std::vector<ParameterValue> parameters;

@@ -1,0 +1,436 @@
+#include "cncc/backends/machine_file.h"
+
+#include "machine_block.h"
+
+// With exceptions, as the shared toml++ library is built: toml::parse_error
+// is caught below and becomes a diagnostic.
+#include <toml++/toml.h>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace cncc::backends {
+
+namespace {
+
+constexpr std::array<std::string_view, 6> machineTargets = {"fanuc",     "m80",   "linuxcnc",
+                                                            "sinumerik", "gcode", "jit"};
+
+// Blocks on the targets without a controller profile: a conservative line
+// length every controller accepts (LinuxCNC's reader takes 255 (?)).
+constexpr int defaultMaximumBlockLength = 255;
+
+struct SetupStringField {
+  std::string_view key;
+  std::string MachineSetup::*member;
+  std::string_view placeholder; // the one it takes, or none
+  bool required = false;
+};
+
+constexpr SetupStringField setupStringFields[] = {
+    {"length_offset", &MachineSetup::lengthOffset, "length"},
+    {"tool_edge", &MachineSetup::toolEdge, "length"},
+    {"work_offset", &MachineSetup::workOffset, "code", true},
+    {"extended_work_offset", &MachineSetup::extendedWorkOffset, "number"},
+    {"coolant_flood", &MachineSetup::coolantFlood, ""},
+    {"coolant_mist", &MachineSetup::coolantMist, ""},
+    {"coolant_through", &MachineSetup::coolantThrough, ""},
+    {"coolant_off", &MachineSetup::coolantOff, ""},
+    {"contouring_on", &MachineSetup::contouringOn, "tolerance"},
+    {"contouring_off", &MachineSetup::contouringOff, ""},
+};
+
+struct ProfileIntegerField {
+  std::string_view key;
+  int ControllerProfile::*member;
+  std::int64_t minimum = 1;
+  std::int64_t maximum = 0; // 0: the profile's loop identifiers
+};
+
+constexpr ProfileIntegerField profileIntegerFields[] = {
+    {"maximum_block_length", &ControllerProfile::maximumBlockLength, 16, 1024},
+    {"coordinate_decimals", &ControllerProfile::coordinateDecimals, 0, 6},
+    {"maximum_program_number", &ControllerProfile::maximumProgramNumber, 1, 99999999},
+    {"maximum_sequence_number", &ControllerProfile::maximumSequenceNumber, 1, 99999999},
+    {"maximum_loop_nesting", &ControllerProfile::maximumLoopNesting, 1, 0},
+};
+
+std::string_view typeName(toml::node_type type) {
+  switch (type) {
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::array:
+    return "an array";
+  case toml::node_type::string:
+    return "a string";
+  case toml::node_type::integer:
+    return "an integer";
+  case toml::node_type::floating_point:
+    return "a number with a fraction";
+  case toml::node_type::boolean:
+    return "a boolean";
+  default:
+    return "a date or time";
+  }
+}
+
+bool isMacroTarget(std::string_view target) {
+  return target == "fanuc" || target == "m80";
+}
+
+class MachineReader {
+public:
+  explicit MachineReader(std::vector<MachineDiagnostic>& diagnostics) : diagnostics_(diagnostics) {}
+
+  std::optional<MachineDescription> read(const toml::table& root) {
+    std::size_t before = diagnostics_.size();
+    checkKeys(root, {"name", "description", "target", "profile", "setup", "limits"}, "");
+    MachineDescription machine;
+    readString(root, "name", machine.name);
+    readString(root, "description", machine.description);
+    readTarget(root, machine);
+    machine.setup = builtinMachineSetup(machine.target);
+    readProfile(root, machine);
+    int blockLength =
+        machine.profile ? machine.profile->maximumBlockLength : defaultMaximumBlockLength;
+    if (const toml::table* setup = tableAt(root, "setup")) {
+      readSetup(*setup, machine.setup, blockLength);
+    }
+    if (const toml::table* limits = tableAt(root, "limits")) {
+      checkKeys(*limits, {"maximum_feed", "maximum_spindle_speed"}, "limits");
+      readPositive(*limits, "maximum_feed", machine.maximumFeed);
+      readPositive(*limits, "maximum_spindle_speed", machine.maximumSpindleSpeed);
+    }
+    if (diagnostics_.size() != before) {
+      return std::nullopt;
+    }
+    return machine;
+  }
+
+private:
+  void report(const toml::source_region& at, std::string code, std::string message) {
+    diagnostics_.push_back({static_cast<int>(at.begin.line), static_cast<int>(at.begin.column),
+                            std::move(message), std::move(code)});
+  }
+
+  void checkKeys(const toml::table& table, std::initializer_list<std::string_view> known,
+                 std::string_view tableName) {
+    for (const auto& [key, node] : table) {
+      if (std::find(known.begin(), known.end(), key.str()) != known.end()) {
+        continue;
+      }
+      std::string known_list;
+      for (std::string_view name : known) {
+        known_list += fmt::format("{}{}", known_list.empty() ? "" : ", ", name);
+      }
+      std::string where = tableName.empty() ? "" : fmt::format(" in [{}]", tableName);
+      report(key.source(), node.is_table() ? "machine-unknown-table" : "machine-unknown-key",
+             fmt::format("unknown {} '{}'{}; expected one of: {}",
+                         node.is_table() ? "table" : "key", key.str(), where, known_list));
+    }
+  }
+
+  // The node of `key` if it has the type `T`, else a diagnostic.
+  template <typename T>
+  const T* typed(const toml::table& table, std::string_view key, std::string_view expected) {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) {
+      return nullptr;
+    }
+    if (const T* value = node->as<T>()) {
+      return value;
+    }
+    report(node->source(), "machine-wrong-type",
+           fmt::format("'{}' must be {}, not {}", key, expected, typeName(node->type())));
+    return nullptr;
+  }
+
+  const toml::table* tableAt(const toml::table& root, std::string_view key) {
+    return typed<toml::table>(root, key, "a table");
+  }
+
+  bool readString(const toml::table& table, std::string_view key, std::string& into) {
+    const toml::value<std::string>* value = typed<toml::value<std::string>>(table, key, "a string");
+    if (value != nullptr) {
+      into = value->get();
+    }
+    return value != nullptr;
+  }
+
+  // An integer or a number with a fraction, as a double.
+  const toml::node* number(const toml::table& table, std::string_view key, double& into) {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) {
+      return nullptr;
+    }
+    if (std::optional<double> value = node->value_exact<double>()) {
+      into = *value;
+    } else if (const toml::value<std::int64_t>* integer = node->as_integer()) {
+      into = static_cast<double>(integer->get());
+    } else {
+      report(node->source(), "machine-wrong-type",
+             fmt::format("'{}' must be a number, not {}", key, typeName(node->type())));
+      return nullptr;
+    }
+    return node;
+  }
+
+  void readPositive(const toml::table& table, std::string_view key, double& into) {
+    double value = 0;
+    const toml::node* node = number(table, key, value);
+    if (node == nullptr) {
+      return;
+    }
+    if (!std::isfinite(value) || value <= 0) {
+      report(node->source(), "machine-out-of-range",
+             fmt::format("'{}' must be a positive number, not {}", key, value));
+      return;
+    }
+    into = value;
+  }
+
+  void readTarget(const toml::table& root, MachineDescription& machine) {
+    const toml::node* node = root.get("target");
+    if (node == nullptr) {
+      diagnostics_.push_back(
+          {1, 1,
+           fmt::format("the machine file names no target; add target = \"...\" ({})",
+                       fmt::join(machineTargets, ", ")),
+           "machine-missing-key"});
+      return;
+    }
+    if (!readString(root, "target", machine.target)) {
+      return;
+    }
+    if (!isMachineTarget(machine.target)) {
+      report(node->source(), "machine-unknown-target",
+             fmt::format("unknown target '{}'; expected one of: {}", machine.target,
+                         fmt::join(machineTargets, ", ")));
+    }
+  }
+
+  void readProfile(const toml::table& root, MachineDescription& machine) {
+    const toml::table* table = tableAt(root, "profile");
+    if (!isMacroTarget(machine.target)) {
+      if (table != nullptr) {
+        report(table->source(), "machine-profile-not-applicable",
+               fmt::format("target '{}' has no controller profile; [profile] is for fanuc and m80",
+                           machine.target));
+      }
+      return;
+    }
+    if (table == nullptr) {
+      if (root.get("profile") == nullptr) {
+        report(root.get("target")->source(), "machine-missing-key",
+               fmt::format("target '{}' needs a [profile] with extends = \"...\" (fanuc, "
+                           "fanuc-0i-small or m80)",
+                           machine.target));
+      }
+      return;
+    }
+    checkKeys(*table,
+              {"extends", "maximum_block_length", "coordinate_decimals", "least_input_increment",
+               "maximum_program_number", "maximum_sequence_number", "maximum_loop_nesting"},
+              "profile");
+    std::string extends;
+    if (table->get("extends") == nullptr) {
+      report(table->source(), "machine-missing-key",
+             "[profile] needs extends = \"...\", the built-in profile it changes (fanuc, "
+             "fanuc-0i-small or m80)");
+      return;
+    }
+    if (!readString(*table, "extends", extends)) {
+      return;
+    }
+    const ControllerProfile* base = findControllerProfile(extends);
+    if (base == nullptr) {
+      report(table->get("extends")->source(), "machine-unknown-profile",
+             fmt::format("unknown controller profile '{}'; the built-in ones are fanuc, "
+                         "fanuc-0i-small and m80",
+                         extends));
+      return;
+    }
+    machine.profile = *base;
+    readProfileOverrides(*table, *machine.profile);
+  }
+
+  void readProfileOverrides(const toml::table& table, ControllerProfile& profile) {
+    for (const ProfileIntegerField& field : profileIntegerFields) {
+      const toml::value<std::int64_t>* value =
+          typed<toml::value<std::int64_t>>(table, field.key, "an integer");
+      if (value == nullptr) {
+        continue;
+      }
+      std::int64_t maximum = field.maximum != 0 ? field.maximum : profile.maximumLoopIdentifier;
+      if (value->get() < field.minimum || value->get() > maximum) {
+        report(value->source(), "machine-out-of-range",
+               fmt::format("'{}' must be from {} to {}, not {}", field.key, field.minimum, maximum,
+                           value->get()));
+        continue;
+      }
+      profile.*field.member = static_cast<int>(value->get());
+    }
+    double increment = 0;
+    if (const toml::node* node = number(table, "least_input_increment", increment)) {
+      if (!(increment > 0 && increment <= 1)) {
+        report(node->source(), "machine-out-of-range",
+               fmt::format("'least_input_increment' must be above 0 and at most 1 (mm), not {}",
+                           increment));
+      } else {
+        profile.leastInputIncrement = increment;
+      }
+    }
+  }
+
+  // A block of the setup: its placeholders, then the block it prints.
+  bool checkBlock(const toml::node& node, std::string_view text, std::string_view placeholder,
+                  const MachineSetup& setup, int blockLength) {
+    std::optional<machine::BlockProblem> problem = machine::placeholderProblem(text, placeholder);
+    if (!problem) {
+      problem = machine::blockProblem(machine::withSampleValues(text), setup.dialect, blockLength);
+    }
+    if (problem) {
+      report(node.source(), problem->code, problem->message);
+    }
+    return !problem;
+  }
+
+  void readSetup(const toml::table& table, MachineSetup& setup, int blockLength) {
+    std::vector<std::string_view> known;
+    for (const SetupStringField& field : setupStringFields) {
+      known.push_back(field.key);
+    }
+    for (std::string_view key : {"maximum_extended_work_offset", "high_speed", "end_retract"}) {
+      known.push_back(key);
+    }
+    checkSetupKeys(table, known);
+    for (const SetupStringField& field : setupStringFields) {
+      std::string text;
+      if (!readString(table, field.key, text)) {
+        continue;
+      }
+      if (field.required && text.empty()) {
+        report(table.get(field.key)->source(), "machine-out-of-range",
+               fmt::format("'{}' cannot be empty", field.key));
+      } else if (checkBlock(*table.get(field.key), text, field.placeholder, setup, blockLength)) {
+        setup.*field.member = text;
+      }
+    }
+    readExtendedOffsetCount(table, setup);
+    readEndRetract(table, setup, blockLength);
+    readHighSpeed(table, setup);
+  }
+
+  void checkSetupKeys(const toml::table& table, const std::vector<std::string_view>& known) {
+    for (const auto& [key, node] : table) {
+      if (std::find(known.begin(), known.end(), key.str()) == known.end()) {
+        report(key.source(), node.is_table() ? "machine-unknown-table" : "machine-unknown-key",
+               fmt::format("unknown {} '{}' in [setup]; expected one of: {}",
+                           node.is_table() ? "table" : "key", key.str(), fmt::join(known, ", ")));
+      }
+    }
+  }
+
+  void readExtendedOffsetCount(const toml::table& table, MachineSetup& setup) {
+    const toml::value<std::int64_t>* count =
+        typed<toml::value<std::int64_t>>(table, "maximum_extended_work_offset", "an integer");
+    if (count == nullptr) {
+      return;
+    }
+    if (count->get() < 1 || count->get() > 9999) {
+      report(count->source(), "machine-out-of-range",
+             fmt::format("'maximum_extended_work_offset' must be from 1 to 9999, not {}",
+                         count->get()));
+      return;
+    }
+    setup.maximumExtendedWorkOffset = static_cast<int>(count->get());
+  }
+
+  void readEndRetract(const toml::table& table, MachineSetup& setup, int blockLength) {
+    const toml::array* blocks = typed<toml::array>(table, "end_retract", "an array of strings");
+    if (blocks == nullptr) {
+      return;
+    }
+    std::vector<std::string> retract;
+    for (const toml::node& block : *blocks) {
+      const toml::value<std::string>* text = block.as_string();
+      if (text == nullptr) {
+        report(block.source(), "machine-wrong-type",
+               fmt::format("'end_retract' holds strings (blocks), not {}", typeName(block.type())));
+      } else if (checkBlock(block, text->get(), "", setup, blockLength)) {
+        retract.push_back(text->get());
+      }
+    }
+    setup.endRetract = std::move(retract);
+  }
+
+  // high_speed = false: the machine has no contouring mode, so neither block.
+  void readHighSpeed(const toml::table& table, MachineSetup& setup) {
+    const toml::value<bool>* highSpeed = typed<toml::value<bool>>(table, "high_speed", "a boolean");
+    if (highSpeed == nullptr || highSpeed->get()) {
+      return;
+    }
+    for (std::string_view key : {"contouring_on", "contouring_off"}) {
+      const toml::node* node = table.get(key);
+      if (node != nullptr && node->is_string() && !node->as_string()->get().empty()) {
+        report(node->source(), "machine-conflict",
+               fmt::format("'{}' is set but high_speed = false", key));
+      }
+    }
+    setup.contouringOn.clear();
+    setup.contouringOff.clear();
+  }
+
+  std::vector<MachineDiagnostic>& diagnostics_;
+};
+
+} // namespace
+
+bool isMachineTarget(std::string_view target) {
+  return std::find(machineTargets.begin(), machineTargets.end(), target) != machineTargets.end();
+}
+
+std::optional<MachineDescription> readMachineText(std::string_view text,
+                                                  const std::string& displayName,
+                                                  std::vector<MachineDiagnostic>& diagnostics) {
+  try {
+    toml::table root = toml::parse(text, displayName);
+    return MachineReader(diagnostics).read(root);
+  } catch (const toml::parse_error& error) {
+    diagnostics.push_back({static_cast<int>(error.source().begin.line),
+                           static_cast<int>(error.source().begin.column),
+                           std::string(error.description()), "machine-syntax"});
+    return std::nullopt;
+  } catch (const std::exception& error) {
+    diagnostics.push_back({0, 0, fmt::format("cannot read the machine file: {}", error.what()),
+                           "machine-file-not-readable"});
+    return std::nullopt;
+  }
+}
+
+std::optional<MachineDescription> readMachineFile(const std::string& path,
+                                                  std::vector<MachineDiagnostic>& diagnostics) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    diagnostics.push_back({0, 0,
+                           fmt::format("cannot read machine file '{}': {}", path,
+                                       std::error_code(errno, std::generic_category()).message()),
+                           "machine-file-not-readable"});
+    return std::nullopt;
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  return readMachineText(text.str(), path, diagnostics);
+}
+
+} // namespace cncc::backends
