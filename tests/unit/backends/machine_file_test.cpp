@@ -137,7 +137,7 @@ coolant_through = ""
 coolant_off = "M9"
 contouring_on = "G05.1 Q1"
 contouring_off = "G05.1 Q0"
-end_retract = []
+end_retract = ["G91 G28 Z0.", "G90"]
 )toml");
   ASSERT_TRUE(fanuc.machine) << fanuc.diagnostics.front().message;
   expectEqualSetups(fanuc.machine->setup, builtinMachineSetup("fanuc"));
@@ -149,6 +149,7 @@ work_offset = "G{code}"
 extended_work_offset = ""
 contouring_on = "CYCLE832({tolerance}, _FINISH, 1)"
 contouring_off = "CYCLE832()"
+end_retract = ["SUPA G0 Z0 D0"]
 )toml");
   ASSERT_TRUE(sinumerik.machine) << sinumerik.diagnostics.front().message;
   expectEqualSetups(sinumerik.machine->setup, builtinMachineSetup("sinumerik"));
