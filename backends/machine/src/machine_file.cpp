@@ -110,6 +110,10 @@ public:
       checkKeys(*limits, {"maximum_feed", "maximum_spindle_speed"}, "limits");
       readPositive(*limits, "maximum_feed", machine.maximumFeed);
       readPositive(*limits, "maximum_spindle_speed", machine.maximumSpindleSpeed);
+      if (machine.profile) { // the virtual controller checks them too
+        machine.profile->maximumFeed = machine.maximumFeed;
+        machine.profile->maximumSpindleSpeed = machine.maximumSpindleSpeed;
+      }
     }
     if (diagnostics_.size() != before) {
       return std::nullopt;

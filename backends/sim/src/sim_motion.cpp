@@ -209,11 +209,21 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
       failInBlock(block, "the feed F must be positive");
     }
     modal_.feed = words.values['F'];
+    double perMinute = *modal_.feed * (modal_.inches ? 25.4 : 1.0);
+    if (profile_.maximumFeed > 0 && perMinute > profile_.maximumFeed * (1 + 1e-9)) {
+      failInBlock(block, fmt::format("the feed F{:g} is over the machine's maximum of {:g} mm/min",
+                                     *modal_.feed, profile_.maximumFeed));
+    }
   }
   if (words.values.count('S') > 0) {
     double speed = words.values['S'];
     if (speed < 0 || speed != std::round(speed)) {
       failInBlock(block, "the spindle speed S must be a whole number from 0");
+    }
+    if (profile_.maximumSpindleSpeed > 0 && speed > profile_.maximumSpindleSpeed) {
+      failInBlock(block, fmt::format("the spindle speed S{:g} is over the machine's maximum of "
+                                     "{:g} rpm",
+                                     speed, profile_.maximumSpindleSpeed));
     }
     modal_.spindleSpeed = speed;
     if (modal_.spindleRunning) {

@@ -258,6 +258,22 @@ TEST(SimMotion, AZMoveAfterAToolChangeNeedsTheLengthOffset) {
   EXPECT_EQ(error("G54.1 P7\nG05.1 Q1\nM08\nM07\nG05.1 Q0\nM09\n"), "");
 }
 
+TEST(SimMotion, FeedAndSpindleWithinTheMachinesMaximum) {
+  ControllerProfile machine = fanuc();
+  machine.maximumFeed = 2000;
+  machine.maximumSpindleSpeed = 6000;
+  auto error = [&](const std::string& body) {
+    SimulationResult result = runBody(body, machine);
+    return result.error ? std::string(result.error->what()) : std::string();
+  };
+  EXPECT_EQ(error("S6000 M03\nG90 G00 X0 Y0\nG01 X1. F2000.\n"), "");
+  EXPECT_THAT(error("S6001 M03\n"), HasSubstr("maximum of 6000 rpm"));
+  EXPECT_THAT(error("G90 G00 X0 Y0\nG01 X1. F2500.\n"), HasSubstr("maximum of 2000 mm/min"));
+  // Inch per minute, against the maximum in millimetres per minute.
+  EXPECT_EQ(error("G20\nG90 G00 X0 Y0\nG01 X1. F78.\n"), "");
+  EXPECT_THAT(error("G20\nG90 G00 X0 Y0\nG01 X1. F79.\n"), HasSubstr("F79"));
+}
+
 TEST(SimMotion, WhatTheControllerWouldRefuse) {
   auto refusal = [](const std::string& body) {
     SimulationResult result = runBody(body);

@@ -61,6 +61,10 @@ struct ControllerProfile {
   // After a tool change (M06) a Z move needs the tool's length offset
   // (G43 H..): without it the spindle gauge line, not the tool tip, goes to Z.
   bool requiresLengthOffset = true;
+  // The machine's largest feed (mm/min) and spindle speed (rpm), from a
+  // machine file's [limits]; 0: none. The virtual controller alarms past them.
+  double maximumFeed = 0;
+  double maximumSpindleSpeed = 0;
 
   // The letter of the G65 argument that reaches local `variable`, if any.
   std::optional<char> letterForLocal(int variable) const;
