@@ -21,7 +21,8 @@ bool useColour(ColourMode mode) {
   return false;
 }
 
-// `text` as a JSON string literal.
+} // namespace
+
 std::string jsonString(std::string_view text) {
   std::string out = "\"";
   for (unsigned char c : text) {
@@ -36,8 +37,6 @@ std::string jsonString(std::string_view text) {
   }
   return out + "\"";
 }
-
-} // namespace
 
 DiagnosticOutput::DiagnosticOutput(DiagnosticsFormat format, ColourMode colour)
     : format_(format), colour_(useColour(colour)) {}

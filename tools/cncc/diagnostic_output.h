@@ -8,9 +8,13 @@
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/source_manager.h"
 
+#include <string>
 #include <string_view>
 
 namespace cncc::driver {
+
+// `text` as a JSON string literal, quotes included.
+std::string jsonString(std::string_view text);
 
 class DiagnosticOutput {
 public:

@@ -13,21 +13,6 @@ namespace cncc::driver {
 
 namespace {
 
-std::string jsonString(std::string_view text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20) {
-      out += fmt::format("\\u{:04x}", c);
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
-
 // Line `number` (1-based) of `text`, without its line break.
 std::string_view lineOf(std::string_view text, int number) {
   for (int line = 1; line < number; ++line) {

@@ -268,13 +268,14 @@ private:
     case Opcode::Origin:
     case Opcode::Coolant:
     case Opcode::Contouring:
-      printSetting(instruction);
-      return;
     case Opcode::Home:
-      for (const std::string& block : options_.setup.endRetract) {
-        line(block);
+      for (std::string& block : setupBlocks(options_.setup, instruction,
+                                            expressions_.coordinateLiteral(instruction.number))) {
+        line(std::move(block));
       }
-      moves_.forget();
+      if (instruction.opcode == Opcode::Home) { // Z is at the machine's reference
+        moves_.forget();
+      }
       return;
     case Opcode::Alarm:
       line(fmt::format("(abort, {})", gcodeCommentText(instruction.text)));
@@ -314,15 +315,6 @@ private:
     moves_.forget();
     moves_.beforeNextZ(lengthOffsetWords(
         options_.setup, static_cast<int>(std::llround(instruction.number)), instruction.index));
-  }
-
-  void printSetting(const ir::Instruction& instruction) {
-    std::string text = settingBlock(
-        options_.setup, ir::settingEvent(instruction.opcode, instruction.number, instruction.index),
-        expressions_.coordinateLiteral(instruction.number));
-    if (!text.empty()) {
-      line(std::move(text));
-    }
   }
 
   // `o<n> if [c]` .. `o<n> else` .. `o<n> endif` around single assignments.

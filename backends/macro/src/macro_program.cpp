@@ -314,13 +314,14 @@ private:
     case Opcode::Origin:
     case Opcode::Coolant:
     case Opcode::Contouring:
-      printSetting(instruction);
-      return;
     case Opcode::Home:
-      for (const std::string& block : options_.setup.endRetract) {
-        line(block);
+      for (std::string& block : setupBlocks(options_.setup, instruction,
+                                            expressions_.coordinateLiteral(instruction.number))) {
+        line(std::move(block));
       }
-      modal_.forget();
+      if (instruction.opcode == Opcode::Home) { // Z is at the machine's reference
+        modal_.forget();
+      }
       return;
     case Opcode::Alarm:
       line(alarmStatement(instruction.text, 0));
@@ -362,15 +363,6 @@ private:
     modal_.forget();
     beforeZ_ = lengthOffsetWords(options_.setup, static_cast<int>(std::llround(instruction.number)),
                                  instruction.index);
-  }
-
-  void printSetting(const ir::Instruction& instruction) {
-    std::string text = settingBlock(
-        options_.setup, ir::settingEvent(instruction.opcode, instruction.number, instruction.index),
-        expressions_.coordinateLiteral(instruction.number));
-    if (!text.empty()) {
-      line(std::move(text));
-    }
   }
 
   // The Z word of a move, after the words the first Z move after a tool

@@ -1,5 +1,7 @@
 #include "cncc/backends/machine_setup.h"
 
+#include "cncc/ir/interpreter.h"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -106,6 +108,17 @@ std::string contouringBlock(const MachineSetup& setup, double tolerance, std::st
     return setup.contouringOff;
   }
   return setup.contouringOn.empty() ? "" : formatted(setup.contouringOn, "tolerance", number);
+}
+
+std::vector<std::string> setupBlocks(const MachineSetup& setup, const ir::Instruction& instruction,
+                                     std::string_view tolerance) {
+  if (instruction.opcode == ir::Opcode::Home) {
+    return setup.endRetract;
+  }
+  std::string text = settingBlock(
+      setup, ir::settingEvent(instruction.opcode, instruction.number, instruction.index),
+      tolerance);
+  return text.empty() ? std::vector<std::string>{} : std::vector<std::string>{std::move(text)};
 }
 
 std::string settingBlock(const MachineSetup& setup, const ir::MachineEvent& event,

@@ -59,6 +59,12 @@ std::string coolantBlock(const MachineSetup& setup, ir::CoolantMode mode);
 // prints numbers.
 std::string contouringBlock(const MachineSetup& setup, double tolerance, std::string_view number);
 
+// The blocks of an origin, coolant, contouring or move.home op, for the
+// printers that print the IR (none for a code the machine does not have);
+// `tolerance` is the contouring tolerance as printed.
+std::vector<std::string> setupBlocks(const MachineSetup& setup, const ir::Instruction& instruction,
+                                     std::string_view tolerance);
+
 // The block of an origin, coolant or contouring event, for the printers
 // that print the executed path; `tolerance` is its tolerance as printed.
 std::string settingBlock(const MachineSetup& setup, const ir::MachineEvent& event,
