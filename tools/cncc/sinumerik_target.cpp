@@ -53,9 +53,7 @@ std::vector<backends::SinumerikCut> sinumerikCuts(std::vector<ir::CutGeometry> g
 } // namespace
 
 ir::LoweringOptions sinumerikLoweringOptions(const frontend::PartItem&, const DriverOptions&) {
-  ir::LoweringOptions lowering;
-  lowering.splineInterpolation = true;
-  return lowering;
+  return backends::sinumerikLoweringOptions();
 }
 
 std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& request) {

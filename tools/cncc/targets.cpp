@@ -166,9 +166,7 @@ ir::LoweringOptions Target::loweringOptions(const frontend::PartItem& part,
       setup.extendedWorkOffset.empty() ? 0 : setup.maximumExtendedWorkOffset;
   lowered.throughSpindleCoolant = !setup.coolantThrough.empty();
   if (options.machine) {
-    // The machine file's feed is in mm/min; an inch part's feeds are in/min.
-    double perProgramUnit = ir::partUnits(part) == ir::PartUnits::Inches ? 1 / 25.4 : 1.0;
-    lowered.maximumFeed = options.machine->maximumFeed * perProgramUnit;
+    lowered.maximumFeed = options.machine->maximumFeed;
     lowered.maximumSpindleSpeed = options.machine->maximumSpindleSpeed;
   }
   return lowered;

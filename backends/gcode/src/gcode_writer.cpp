@@ -1,5 +1,7 @@
 #include "cncc/backends/gcode_writer.h"
 
+#include "cncc/backends/program_format.h"
+
 #include <fmt/format.h>
 
 #include <cctype>
@@ -32,7 +34,7 @@ std::string gcodeCommentText(std::string_view text) {
       continue;
     }
     unsigned char u = static_cast<unsigned char>(c);
-    out += std::isprint(u) ? static_cast<char>(std::toupper(u)) : ' ';
+    out += std::isprint(u) ? c : ' ';
   }
   return out;
 }
@@ -183,9 +185,9 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
   writer.line(fmt::format("O{}", options.programNumber));
   writer.line(fmt::format("({} - PART {})", gcodeCommentText(options.sourceName),
                           gcodeCommentText(options.partName)));
-  writer.line(options.inches ? "G20" : "G21");
-  writer.line("G17 G90");
-  writer.line("G40 G49 G80");
+  for (std::string& block : startBlocks(options.setup, options.inches)) {
+    writer.line(std::move(block));
+  }
   bool spindleOn = false;
   for (const ir::MachineEvent& event : path.events) {
     switch (event.kind) {
@@ -206,9 +208,11 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
         writer.line("M05");
         spindleOn = false;
       }
-      writer.line(fmt::format("T{} M06 (DIAMETER {})",
-                              static_cast<long long>(std::llround(event.number)),
-                              formatGcodeNumber(event.diameter, options.decimals)));
+      for (std::string& block : toolChangeBlocks(
+               options.setup, std::llround(event.number),
+               fmt::format("(DIAMETER {})", formatGcodeNumber(event.diameter, options.decimals)))) {
+        writer.line(std::move(block));
+      }
       writer.beforeNextZ(lengthOffsetWords(
           options.setup, static_cast<int>(std::llround(event.number)), event.offsetRegister));
       break;
@@ -237,9 +241,14 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
   if (spindleOn) {
     writer.line("M05");
   }
+  for (const std::string& block : options.setup.end) {
+    writer.line(block);
+  }
   writer.line("M30");
   writer.line("%");
-  return writer.take();
+  // Plain G-code has no jumps, so numbering it cannot fail.
+  std::vector<std::string> errors;
+  return formatProgramText(writer.take(), options.setup, errors);
 }
 
 } // namespace cncc::backends

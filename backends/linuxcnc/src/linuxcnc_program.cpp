@@ -1,6 +1,7 @@
 #include "cncc/backends/linuxcnc_program.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/program_format.h"
 #include "cncc/ir/interpreter.h"
 #include "linuxcnc_expressions.h"
 #include "linuxcnc_moves.h"
@@ -115,12 +116,17 @@ public:
       line(fmt::format("o<{}> sub", subroutineName()));
     }
     printParameters();
-    line(fmt::format("{} G17 G90 G40 G49 G80 G94 G64 P{}", options_.inches ? "G20" : "G21",
-                     expressions_.constant(options_.blendTolerance)));
+    for (std::string& block : startBlocks(options_.setup, options_.inches,
+                                          expressions_.constant(options_.blendTolerance))) {
+      line(std::move(block));
+    }
     printTables();
     printRegion(function_.body);
     if (spindleOn_) {
       line("M5");
+    }
+    for (const std::string& block : options_.setup.end) {
+      line(block);
     }
     if (options_.callable) {
       line(fmt::format("o<{}> endsub", subroutineName()));
@@ -136,7 +142,8 @@ private:
     std::string text;
     std::size_t longest = 0;
     int tooLong = 0;
-    for (const std::string& block : lines_) {
+    for (const std::string& block :
+         formatProgram(std::move(lines_), options_.setup, errors_).lines) {
       if (static_cast<int>(block.size()) > linuxcncMaximumLineLength) {
         longest = std::max(longest, block.size());
         ++tooLong;
@@ -307,7 +314,10 @@ private:
       line("M5");
       spindleOn_ = false;
     }
-    line(fmt::format("T{} M6", std::llround(instruction.number)));
+    for (std::string& block :
+         toolChangeBlocks(options_.setup, std::llround(instruction.number), "")) {
+      line(std::move(block));
+    }
     std::optional<double> diameter = expressions_.constantOf(instruction.operands[0]);
     if (diameter) {
       line(commentLine(fmt::format("tool diameter {}", expressions_.coordinateLiteral(*diameter))));

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <utility>
 
@@ -172,7 +173,8 @@ std::optional<BlockProblem> sinumerikBlockProblem(std::string_view block) {
 
 } // namespace
 
-std::optional<BlockProblem> placeholderProblem(std::string_view pattern, std::string_view allowed) {
+std::optional<BlockProblem> placeholderProblem(std::string_view pattern,
+                                               std::span<const std::string_view> allowed) {
   for (std::size_t at = 0; at < pattern.size(); ++at) {
     if (pattern[at] == '}') {
       return BlockProblem{"machine-placeholder", fmt::format("unmatched '}}' in '{}'", pattern)};
@@ -185,13 +187,17 @@ std::optional<BlockProblem> placeholderProblem(std::string_view pattern, std::st
       return BlockProblem{"machine-placeholder", fmt::format("unclosed '{{' in '{}'", pattern)};
     }
     std::string_view name = pattern.substr(at + 1, close - at - 1);
-    if (name != allowed || allowed.empty()) {
+    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+      std::string takes = "none";
+      if (!allowed.empty()) {
+        takes = "";
+        for (std::string_view each : allowed) {
+          takes += fmt::format("{}{{{}}}", takes.empty() ? "" : " and ", each);
+        }
+      }
       return BlockProblem{
           "machine-placeholder",
-          allowed.empty()
-              ? fmt::format("'{{{}}}' is not a placeholder of this field, which takes none", name)
-              : fmt::format("'{{{}}}' is not a placeholder of this field; it takes {{{}}}", name,
-                            allowed)};
+          fmt::format("'{{{}}}' is not a placeholder of this field, which takes {}", name, takes)};
     }
     at = close;
   }
@@ -207,7 +213,10 @@ std::string withSampleValues(std::string_view pattern) {
       continue;
     }
     std::string_view name = pattern.substr(at + 1, close - at - 1);
-    text += name == "code" ? "54" : name == "tolerance" ? "0.01" : "1";
+    text += name == "code"                           ? "54"
+            : name == "tolerance" || name == "blend" ? "0.01"
+            : name == "units"                        ? "G21"
+                                                     : "1";
     at = close;
   }
   return text;

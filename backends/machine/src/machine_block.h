@@ -14,9 +14,10 @@ struct BlockProblem {
   std::string message;
 };
 
-// A problem with the {placeholders} of `pattern`, which may use `allowed`
-// (one name, or empty for none).
-std::optional<BlockProblem> placeholderProblem(std::string_view pattern, std::string_view allowed);
+// A problem with the {placeholders} of `pattern`, which may use those
+// named in `allowed`.
+std::optional<BlockProblem> placeholderProblem(std::string_view pattern,
+                                               std::span<const std::string_view> allowed);
 
 // `pattern` with every placeholder replaced by a typical value, so that the
 // block can be checked as the printer would write it.

@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <span>
+
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -94,7 +96,7 @@ public:
 
   std::optional<MachineDescription> read(const toml::table& root) {
     std::size_t before = diagnostics_.size();
-    checkKeys(root, {"name", "description", "target", "profile", "setup", "limits"}, "");
+    checkKeys(root, {"name", "description", "target", "profile", "setup", "program", "limits"}, "");
     MachineDescription machine;
     readString(root, "name", machine.name);
     readString(root, "description", machine.description);
@@ -105,6 +107,9 @@ public:
         machine.profile ? machine.profile->maximumBlockLength : defaultMaximumBlockLength;
     if (const toml::table* setup = tableAt(root, "setup")) {
       readSetup(*setup, machine.setup, blockLength);
+    }
+    if (const toml::table* program = tableAt(root, "program")) {
+      readProgram(*program, machine);
     }
     if (const toml::table* limits = tableAt(root, "limits")) {
       checkKeys(*limits, {"maximum_feed", "maximum_spindle_speed"}, "limits");
@@ -297,9 +302,10 @@ private:
   }
 
   // A block of the setup: its placeholders, then the block it prints.
-  bool checkBlock(const toml::node& node, std::string_view text, std::string_view placeholder,
-                  const MachineSetup& setup, int blockLength) {
-    std::optional<machine::BlockProblem> problem = machine::placeholderProblem(text, placeholder);
+  bool checkBlock(const toml::node& node, std::string_view text,
+                  std::span<const std::string_view> placeholders, const MachineSetup& setup,
+                  int blockLength) {
+    std::optional<machine::BlockProblem> problem = machine::placeholderProblem(text, placeholders);
     if (!problem) {
       problem = machine::blockProblem(machine::withSampleValues(text), setup.dialect, blockLength);
     }
@@ -314,7 +320,8 @@ private:
     for (const SetupStringField& field : setupStringFields) {
       known.push_back(field.key);
     }
-    for (std::string_view key : {"maximum_extended_work_offset", "high_speed", "end_retract"}) {
+    for (std::string_view key : {"maximum_extended_work_offset", "high_speed", "end_retract",
+                                 "start", "tool_change", "end"}) {
       known.push_back(key);
     }
     checkSetupKeys(table, known);
@@ -326,12 +333,21 @@ private:
       if (field.required && text.empty()) {
         report(table.get(field.key)->source(), "machine-out-of-range",
                fmt::format("'{}' cannot be empty", field.key));
-      } else if (checkBlock(*table.get(field.key), text, field.placeholder, setup, blockLength)) {
+      } else if (checkBlock(*table.get(field.key), text,
+                            std::span(&field.placeholder, field.placeholder.empty() ? 0 : 1), setup,
+                            blockLength)) {
         setup.*field.member = text;
       }
     }
-    readExtendedOffsetCount(table, setup);
-    readEndRetract(table, setup, blockLength);
+    readWhole(table, "maximum_extended_work_offset", 1, 9999, setup.maximumExtendedWorkOffset);
+    readBlocks(table, {"end_retract", {}, ""}, setup, setup.endRetract, blockLength);
+    std::string_view startPlaceholders[] = {"units", "blend"};
+    std::size_t startCount = setup.dialect == "linuxcnc" ? 2 : 1; // {blend} is LinuxCNC's
+    readBlocks(table, {"start", std::span(startPlaceholders, startCount), "units"}, setup,
+               setup.start, blockLength);
+    std::string_view tool[] = {"tool"};
+    readBlocks(table, {"tool_change", tool, "tool"}, setup, setup.toolChange, blockLength);
+    readBlocks(table, {"end", {}, ""}, setup, setup.end, blockLength);
     readHighSpeed(table, setup);
   }
 
@@ -345,37 +361,94 @@ private:
     }
   }
 
-  void readExtendedOffsetCount(const toml::table& table, MachineSetup& setup) {
-    const toml::value<std::int64_t>* count =
-        typed<toml::value<std::int64_t>>(table, "maximum_extended_work_offset", "an integer");
-    if (count == nullptr) {
-      return;
-    }
-    if (count->get() < 1 || count->get() > 9999) {
-      report(count->source(), "machine-out-of-range",
-             fmt::format("'maximum_extended_work_offset' must be from 1 to 9999, not {}",
-                         count->get()));
-      return;
-    }
-    setup.maximumExtendedWorkOffset = static_cast<int>(count->get());
-  }
+  struct BlockListField {
+    std::string_view key;
+    std::span<const std::string_view> placeholders;
+    std::string_view required; // a placeholder some block must have, or none
+  };
 
-  void readEndRetract(const toml::table& table, MachineSetup& setup, int blockLength) {
-    const toml::array* blocks = typed<toml::array>(table, "end_retract", "an array of strings");
+  void readBlocks(const toml::table& table, BlockListField field, const MachineSetup& setup,
+                  std::vector<std::string>& into, int blockLength) {
+    const toml::array* blocks = typed<toml::array>(table, field.key, "an array of strings");
     if (blocks == nullptr) {
       return;
     }
-    std::vector<std::string> retract;
+    std::vector<std::string> texts;
+    bool valid = true;
     for (const toml::node& block : *blocks) {
       const toml::value<std::string>* text = block.as_string();
       if (text == nullptr) {
-        report(block.source(), "machine-wrong-type",
-               fmt::format("'end_retract' holds strings (blocks), not {}", typeName(block.type())));
-      } else if (checkBlock(block, text->get(), "", setup, blockLength)) {
-        retract.push_back(text->get());
+        report(
+            block.source(), "machine-wrong-type",
+            fmt::format("'{}' holds strings (blocks), not {}", field.key, typeName(block.type())));
+        valid = false;
+      } else if (checkBlock(block, text->get(), field.placeholders, setup, blockLength)) {
+        texts.push_back(text->get());
+      } else {
+        valid = false;
       }
     }
-    setup.endRetract = std::move(retract);
+    std::string placeholder = fmt::format("{{{}}}", field.required);
+    if (valid && !field.required.empty() &&
+        std::none_of(texts.begin(), texts.end(), [&](const std::string& text) {
+          return text.find(placeholder) != std::string::npos;
+        })) {
+      report(blocks->source(), "machine-missing-placeholder",
+             fmt::format("'{}' must have a block with {} ({})", field.key, placeholder,
+                         field.required == "units" ? "the program's units, G21/G20 or G71/G70"
+                                                   : "the tool number"));
+    }
+    into = std::move(texts);
+  }
+
+  // [program]: line numbers and comments.
+  void readProgram(const toml::table& table, MachineDescription& machine) {
+    checkKeys(table,
+              {"line_numbers", "line_number_start", "line_number_increment", "line_number_maximum",
+               "comments", "comment_case"},
+              "program");
+    MachineSetup& setup = machine.setup;
+    // The largest N the controller takes (rs274 stops at 99999 as Fanuc does).
+    int largest = machine.profile                 ? machine.profile->maximumSequenceNumber
+                  : machine.target == "sinumerik" ? 99999999
+                                                  : 99999;
+    setup.lineNumbers.maximum = std::min(setup.lineNumbers.maximum, largest);
+    if (const toml::value<bool>* on =
+            typed<toml::value<bool>>(table, "line_numbers", "a boolean")) {
+      setup.lineNumbers.enabled = on->get();
+    }
+    readWhole(table, "line_number_maximum", 1, largest, setup.lineNumbers.maximum);
+    readWhole(table, "line_number_start", 1, setup.lineNumbers.maximum, setup.lineNumbers.start);
+    readWhole(table, "line_number_increment", 1, 1000, setup.lineNumbers.increment);
+    if (const toml::value<bool>* on = typed<toml::value<bool>>(table, "comments", "a boolean")) {
+      setup.comments = on->get();
+    }
+    std::string commentCase;
+    if (readString(table, "comment_case", commentCase)) {
+      if (commentCase == "upper" || commentCase == "as-written") {
+        setup.commentCase = commentCase == "upper" ? CommentCase::Upper : CommentCase::AsWritten;
+      } else {
+        report(
+            table.get("comment_case")->source(), "machine-out-of-range",
+            fmt::format("'comment_case' is \"upper\" or \"as-written\", not \"{}\"", commentCase));
+      }
+    }
+  }
+
+  void readWhole(const toml::table& table, std::string_view key, int minimum, int maximum,
+                 int& into) {
+    const toml::value<std::int64_t>* value =
+        typed<toml::value<std::int64_t>>(table, key, "an integer");
+    if (value == nullptr) {
+      return;
+    }
+    if (value->get() < minimum || value->get() > maximum) {
+      report(
+          value->source(), "machine-out-of-range",
+          fmt::format("'{}' must be from {} to {}, not {}", key, minimum, maximum, value->get()));
+      return;
+    }
+    into = static_cast<int>(value->get());
   }
 
   // high_speed = false: the machine has no contouring mode, so neither block.

@@ -2,6 +2,7 @@
 #include "cncc/backends/nurbs_blocks.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/program_format.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/nurbs_move.h"
 #include "macro_expressions.h"
@@ -71,7 +72,9 @@ public:
     line("%");
     line(fmt::format("O{}", options_.programNumber));
     printHeader();
-    line(options_.inches ? "G20 G17 G90 G40 G49 G80" : "G21 G17 G90 G40 G49 G80");
+    for (std::string& block : startBlocks(options_.setup, options_.inches)) {
+      line(std::move(block));
+    }
     printParameterDefaults();
     printFixedParameterChecks();
     printTables();
@@ -79,12 +82,16 @@ public:
     if (spindleOn_) {
       line("M5");
     }
+    for (const std::string& block : options_.setup.end) {
+      line(block);
+    }
     line(options_.callable ? "M99" : "M30");
     line("%");
     std::string text;
     std::size_t longest = 0;
     int tooLong = 0;
-    for (const std::string& block : lines_) {
+    for (const std::string& block :
+         formatProgram(std::move(lines_), options_.setup, errors_).lines) {
       if (static_cast<int>(block.size()) > profile_.maximumBlockLength) {
         longest = std::max(longest, block.size());
         ++tooLong;
@@ -354,12 +361,16 @@ private:
       line("M5");
       spindleOn_ = false;
     }
-    std::string text = fmt::format("T{} M6", std::llround(instruction.number));
+    std::string diameterComment;
     const ir::Instruction& diameter = function_.definition(instruction.operands[0]);
     if (diameter.opcode == Opcode::Const) {
-      text += fmt::format(" (DIAMETER {})", expressions_.coordinateLiteral(diameter.number));
+      diameterComment =
+          fmt::format("(DIAMETER {})", expressions_.coordinateLiteral(diameter.number));
     }
-    line(text);
+    for (std::string& block :
+         toolChangeBlocks(options_.setup, std::llround(instruction.number), diameterComment)) {
+      line(std::move(block));
+    }
     modal_.forget();
     beforeZ_ = lengthOffsetWords(options_.setup, static_cast<int>(std::llround(instruction.number)),
                                  instruction.index);

@@ -16,6 +16,8 @@ MachineSetup isoSetup(std::string dialect) {
   setup.lengthOffset = "G43 H{length}";
   setup.workOffset = "G{code}";
   setup.endRetract = {"G91 G28 Z0.", "G90"};
+  setup.start = {"{units} G17 G90 G40 G49 G80"};
+  setup.toolChange = {"T{tool} M6"};
   return setup;
 }
 
@@ -35,6 +37,8 @@ std::array<MachineSetup, 5> makeBuiltinSetups() {
   linuxcnc.contouringOn = "G64 P{tolerance} Q{tolerance}";
   linuxcnc.contouringOff = "G64";
   linuxcnc.endRetract = {"G53 G0 Z0"};
+  linuxcnc.start = {"{units} G17 G90 G40 G49 G80 G94 G64 P{blend}"};
+  linuxcnc.commentCase = CommentCase::AsWritten;
   MachineSetup sinumerik;
   sinumerik.dialect = "sinumerik";
   sinumerik.toolEdge = "D{length}";
@@ -42,8 +46,13 @@ std::array<MachineSetup, 5> makeBuiltinSetups() {
   sinumerik.contouringOn = "CYCLE832({tolerance}, _FINISH, 1)";
   sinumerik.contouringOff = "CYCLE832()";
   sinumerik.endRetract = {"SUPA G0 Z0 D0"};
+  sinumerik.start = {"G17 G90 {units}"};
+  sinumerik.toolChange = {"T=\"T{tool}\"", "M6"};
+  sinumerik.commentCase = CommentCase::AsWritten;
   // Plain ISO G-code: no high-speed mode is common to all machines.
   MachineSetup gcode = isoSetup("gcode");
+  gcode.start = {"{units}", "G17 G90", "G40 G49 G80"};
+  gcode.toolChange = {"T{tool} M06"};
   return {std::move(fanuc), std::move(m80), std::move(linuxcnc), std::move(sinumerik),
           std::move(gcode)};
 }
@@ -53,6 +62,34 @@ std::string formatted(const std::string& pattern, std::string_view name, std::st
 }
 
 } // namespace
+
+std::vector<std::string> startBlocks(const MachineSetup& setup, bool inches,
+                                     std::string_view blend) {
+  bool sinumerik = setup.dialect == "sinumerik";
+  std::string_view units = sinumerik ? (inches ? "G70" : "G71") : (inches ? "G20" : "G21");
+  std::vector<std::string> blocks;
+  for (const std::string& pattern : setup.start) {
+    blocks.push_back(
+        fmt::format(fmt::runtime(pattern), fmt::arg("units", units), fmt::arg("blend", blend)));
+  }
+  return blocks;
+}
+
+std::vector<std::string> toolChangeBlocks(const MachineSetup& setup, long long tool,
+                                          std::string_view additions) {
+  std::vector<std::string> blocks;
+  bool added = false;
+  for (const std::string& pattern : setup.toolChange) {
+    std::string block = formatted(pattern, "tool", std::to_string(tool));
+    if (!added && pattern.find("{tool}") != std::string::npos && !additions.empty()) {
+      block += additions.front() == ' ' ? "" : " ";
+      block += additions;
+      added = true;
+    }
+    blocks.push_back(std::move(block));
+  }
+  return blocks;
+}
 
 const MachineSetup& builtinMachineSetup(std::string_view target) {
   static const std::array<MachineSetup, 5> setups = makeBuiltinSetups();

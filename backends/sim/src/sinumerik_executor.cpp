@@ -325,6 +325,8 @@ private:
     }
     int code = int(value);
     switch (code) {
+    case 0: // program stop and optional stop: the path goes on
+    case 1:
     case 3:
     case 5:
     case 6:

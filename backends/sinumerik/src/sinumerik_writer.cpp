@@ -1,4 +1,5 @@
 #include "cncc/backends/sinumerik_writer.h"
+#include "cncc/backends/program_format.h"
 
 #include "sinumerik_splines.h"
 
@@ -132,7 +133,9 @@ public:
     }
     line(fmt::format("; {} - part {}", commentText(options_.sourceName),
                      commentText(options_.partName)));
-    line(fmt::format("G17 G90 {}", options_.inches ? "G70" : "G71"));
+    for (std::string& block : startBlocks(options_.setup, options_.inches)) {
+      line(std::move(block));
+    }
     if (usesSplines()) {
       line("SPLINEPATH(1,X,Y)");
     }
@@ -142,8 +145,12 @@ public:
     if (spindleOn_) {
       line("M5");
     }
+    for (const std::string& block : options_.setup.end) {
+      line(block);
+    }
     line("M30");
     writeSubprograms();
+    formatLines();
     return std::move(program_);
   }
 
@@ -158,9 +165,19 @@ private:
   }
 
   void line(std::string text) {
-    program_.text += text;
-    program_.text += '\n';
-    program_.cutOfLine.push_back(cut_);
+    lines_.push_back(std::move(text));
+    cutOfPrintedLine_.push_back(cut_);
+  }
+
+  // The program as the machine writes it (line numbers, comments).
+  void formatLines() {
+    std::vector<std::string> errors; // Sinumerik jumps to labels, not to N
+    FormattedProgram formatted = formatProgram(std::move(lines_), options_.setup, errors);
+    for (std::size_t i = 0; i < formatted.lines.size(); ++i) {
+      program_.text += formatted.lines[i];
+      program_.text += '\n';
+      program_.cutOfLine.push_back(cutOfPrintedLine_[formatted.printedLine[i]]);
+    }
   }
 
   std::string number(double value) const { return formatSinumerikNumber(value, options_.decimals); }
@@ -215,9 +232,11 @@ private:
     }
     long long number = std::llround(e.number);
     std::string edge = toolEdgeWords(options_.setup, e.offsetRegister);
-    line(fmt::format("T=\"T{}\"{}{} ; tool {}, diameter {}", number, edge.empty() ? "" : " ", edge,
-                     number, number_(e.diameter)));
-    line("M6");
+    std::string additions = fmt::format("{}{}; tool {}, diameter {}", edge, edge.empty() ? "" : " ",
+                                        number, number_(e.diameter));
+    for (std::string& block : toolChangeBlocks(options_.setup, number, additions)) {
+      line(std::move(block));
+    }
     // CYCLE832 sets the path mode itself where the machine has it.
     if (!pathModeWritten_ && options_.setup.contouringOn.empty()) {
       line("G64");
@@ -384,41 +403,17 @@ private:
     return true;
   }
 
-  // The lap as G1 chords chosen again with the printed rounding taken off
-  // the tolerance (the tool path's chords use all of it); a ramp keeps
-  // descending in proportion to the chord length.
+  // A lap that is not a spline: the tool path's chords, which left room for
+  // the printed rounding already (LoweringOptions::coordinateIncrement).
   void chords(std::size_t first, const Lap& lap) {
-    const SinumerikCut& cut = cuts_[*cut_];
-    double tolerance = cut.geometry.tolerance - sinumerik::roundingBound(options_.decimals);
-    double feed = path_.events[first].feed;
-    if (std::isnan(cut.geometry.tolerance) || !(tolerance > 0)) {
-      for (std::size_t j = first; j < lap.end; ++j) {
-        const MachineEvent& e = path_.events[j];
-        linear({e.x, e.y, e.z}, e.feed);
-      }
-      return;
+    for (std::size_t j = first; j < lap.end; ++j) {
+      const MachineEvent& e = path_.events[j];
+      linear({e.x, e.y, e.z}, e.feed);
     }
-    geom::CurveSamples samples = geom::discretiseByChordTolerance(*cut.geometry.curve, tolerance);
-    double total = 0;
-    for (std::size_t k = 1; k < samples.points.size(); ++k) {
-      total += (samples.points[k] - samples.points[k - 1]).norm();
-    }
-    // The height the lap adds to the curve's own, at its start and end.
-    geom::ParameterRange domain = cut.geometry.curve->domain();
-    double zFrom = exact_->z() - cut.geometry.curve->point(domain.t0).z();
-    double zTo = path_.events[lap.end - 1].z - cut.geometry.curve->point(domain.t1).z();
-    double done = 0;
-    for (std::size_t k = 1; k < samples.points.size(); ++k) {
-      done += (samples.points[k] - samples.points[k - 1]).norm();
-      double z = zFrom + (zTo - zFrom) * (total > 0 ? done / total : 1.0);
-      linear({samples.points[k].x(), samples.points[k].y(), z + samples.points[k].z()}, feed);
-    }
-    const MachineEvent& last = path_.events[lap.end - 1];
-    exact_ = Eigen::Vector3d(last.x, last.y, last.z);
     SinumerikCutSummary& summary = program_.cuts[*cut_];
     if (summary.method.empty()) {
       summary.method = "linear";
-      summary.blocksPerPass = samples.points.size() - 1;
+      summary.blocksPerPass = lap.end - first;
     }
   }
 
@@ -549,6 +544,8 @@ private:
   const SinumerikOptions& options_;
   std::string name_;
   SinumerikProgram program_;
+  std::vector<std::string> lines_;
+  std::vector<std::optional<std::size_t>> cutOfPrintedLine_;
   std::optional<std::size_t> cut_;
   std::optional<Eigen::Vector3d> position_, previous_;
   std::optional<Eigen::Vector3d> exact_; // the tool path's position, unrounded
@@ -561,6 +558,13 @@ private:
 };
 
 } // namespace
+
+ir::LoweringOptions sinumerikLoweringOptions(const SinumerikOptions& options) {
+  ir::LoweringOptions lowering;
+  lowering.splineInterpolation = true;
+  lowering.coordinateIncrement = std::pow(10.0, -options.decimals);
+  return lowering;
+}
 
 SinumerikProgram writeSinumerik(const ir::ToolPath& path, std::span<const SinumerikCut> cuts,
                                 const SinumerikOptions& options) {

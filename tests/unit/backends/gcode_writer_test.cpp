@@ -32,8 +32,9 @@ TEST(ProgramNumber, ComesFromAnOFileName) {
   EXPECT_EQ(programNumberFromFileName("O12a"), std::nullopt);
 }
 
-TEST(CommentText, UpperCaseWithoutParentheses) {
-  EXPECT_EQ(gcodeCommentText("part (a) b"), "PART A B");
+TEST(CommentText, PrintableWithoutParentheses) {
+  // The case is the machine's (program_format.h): capitals by default.
+  EXPECT_EQ(gcodeCommentText("part (a)\tb"), "part a b");
 }
 
 ir::MachineEvent move(ir::MachineEvent::Kind kind, double x, double y, double z, double f = 0) {

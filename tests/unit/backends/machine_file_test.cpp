@@ -1,4 +1,5 @@
 #include "cncc/backends/machine_file.h"
+#include "cncc/backends/machine_setup.h"
 
 #include <gtest/gtest.h>
 
@@ -257,6 +258,68 @@ contouring_on = "CYCLE832({tolerance}, _SEMIFIN, 1) ; high speed"
 end_retract = ["SUPA G0 Z0 D0", "G0 X=AC(0) Y=0", "G64 SOFT COMPCAD"]
 )toml");
   EXPECT_TRUE(result.machine) << result.diagnostics.front().message;
+}
+
+TEST(MachineFileTest, ReadsSequencesLineNumbersAndComments) {
+  Read result = readText(R"toml(target = "fanuc"
+[profile]
+extends = "fanuc"
+maximum_sequence_number = 9999
+[setup]
+start = ["{units} G17 G90 G40 G49 G80 G94", "G91 G28 Z0.", "G90"]
+tool_change = ["G91 G28 Z0.", "G90", "M6 T{tool}"]
+end = ["M1"]
+[program]
+line_numbers = true
+line_number_start = 100
+line_number_increment = 5
+comments = false
+comment_case = "as-written"
+)toml");
+  ASSERT_TRUE(result.machine) << result.diagnostics.front().message;
+  const MachineSetup& setup = result.machine->setup;
+  EXPECT_EQ(startBlocks(setup, true).front(), "G20 G17 G90 G40 G49 G80 G94");
+  EXPECT_EQ(toolChangeBlocks(setup, 12, "(DIAMETER 6.)"),
+            (std::vector<std::string>{"G91 G28 Z0.", "G90", "M6 T12 (DIAMETER 6.)"}));
+  EXPECT_EQ(setup.end, std::vector<std::string>{"M1"});
+  EXPECT_TRUE(setup.lineNumbers.enabled);
+  EXPECT_EQ(setup.lineNumbers.start, 100);
+  EXPECT_EQ(setup.lineNumbers.increment, 5);
+  // The profile's largest sequence number is the numbering's maximum.
+  EXPECT_EQ(setup.lineNumbers.maximum, 9999);
+  EXPECT_FALSE(setup.comments);
+  EXPECT_EQ(setup.commentCase, CommentCase::AsWritten);
+}
+
+TEST(MachineFileTest, RefusesSequencesWithoutTheirPlaceholders) {
+  // No {units}: the program's units would be the machine's last ones.
+  expectDiagnostic("target = \"gcode\"\n[setup]\nstart = [\"G17 G90\"]\n", 3, 9,
+                   "machine-missing-placeholder");
+  expectDiagnostic("target = \"gcode\"\n[setup]\ntool_change = [\"M6\"]\n", 3, 15,
+                   "machine-missing-placeholder");
+  // {blend} is LinuxCNC's blending tolerance only.
+  expectDiagnostic("target = \"gcode\"\n[setup]\nstart = [\"{units} G64 P{blend}\"]\n", 3, 10,
+                   "machine-placeholder");
+  EXPECT_TRUE(
+      readText("target = \"linuxcnc\"\n[setup]\nstart = [\"{units} G64 P{blend}\"]\n").machine);
+  expectDiagnostic("target = \"gcode\"\n[setup]\nend = [\"M30 #1\"]\n", 3, 8,
+                   "machine-invalid-block");
+}
+
+TEST(MachineFileTest, RefusesLineNumbersBeyondTheController) {
+  // Past the profile's largest sequence number.
+  expectDiagnostic("target = \"fanuc\"\n[profile]\nextends = \"fanuc\"\n"
+                   "maximum_sequence_number = 9999\n[program]\nline_number_maximum = 10000\n",
+                   6, 23, "machine-out-of-range");
+  // rs274 stops at N99999.
+  expectDiagnostic("target = \"linuxcnc\"\n[program]\nline_number_start = 100000\n", 3, 21,
+                   "machine-out-of-range");
+  expectDiagnostic("target = \"gcode\"\n[program]\nline_number_increment = 0\n", 3, 25,
+                   "machine-out-of-range");
+  expectDiagnostic("target = \"gcode\"\n[program]\ncomment_case = \"lower\"\n", 3, 16,
+                   "machine-out-of-range");
+  expectDiagnostic("target = \"gcode\"\n[program]\nline_numbers = 1\n", 3, 16,
+                   "machine-wrong-type");
 }
 
 TEST(MachineFileTest, ReportsEveryProblemOfAFile) {

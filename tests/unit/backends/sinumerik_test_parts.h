@@ -58,8 +58,7 @@ inline std::unique_ptr<SinumerikPart> compileForSinumerik(const std::string& tex
     ADD_FAILURE() << "the part does not check";
     return nullptr;
   }
-  ir::LoweringOptions lowering;
-  lowering.splineInterpolation = true;
+  ir::LoweringOptions lowering = backends::sinumerikLoweringOptions();
   std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
       *part->program, *part->program->selectedPart, part->diagnostics, lowering);
   if (!lowered) {

@@ -53,7 +53,7 @@ struct LoweringOptions {
   // extended work offsets), and a code for through-spindle coolant.
   int maximumExtendedWorkOffset = 0;
   bool throughSpindleCoolant = false;
-  // The machine's largest feed (mm/min, or inch/min in an inch part) and
+  // The machine's largest feed (mm/min, whatever the part's units) and
   // spindle speed (rpm); 0: no limit. A constant beyond it is an error at
   // the statement that sets it.
   double maximumFeed = 0;

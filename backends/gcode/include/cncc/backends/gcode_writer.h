@@ -24,7 +24,8 @@ struct GcodeOptions {
 // a decimal point, never `-0.`.
 std::string formatGcodeNumber(double value, int decimals);
 
-// A comment's text for `( ... )`: upper case, without parentheses.
+// A comment's text for `( ... )`: printable, without parentheses (the
+// machine's comment case is applied to the whole program, program_format.h).
 std::string gcodeCommentText(std::string_view text);
 
 // The program number that an output file name gives: `O1234` (any directory,

@@ -31,6 +31,22 @@
 //   contouring_on = "G05.1 Q1"           # {tolerance} (mm or inch)
 //   contouring_off = "G05.1 Q0"
 //   end_retract = ["G91 G28 Z0.", "G90"] # blocks before the spindle stops
+//   start = ["{units} G17 G90 G40 G49 G80"] # after the header; {units} (G21
+//                                        # or G20, G71 or G70) in one block;
+//                                        # LinuxCNC also {blend}
+//   tool_change = ["T{tool} M6"]         # {tool} in one block
+//   end = ["M9"]                         # before M30 (M2, M99)
+//   [program]
+//   line_numbers = false                 # N on every block but headers and
+//                                        # comment lines
+//   line_number_start = 10               # 1 .. the maximum
+//   line_number_increment = 10           # 1 .. 1000
+//   line_number_maximum = 99999          # then from the start again; at
+//                                        # most the profile's (fanuc, m80),
+//                                        # 99999 (linuxcnc, gcode)
+//   comments = true                      # false: only those the controller
+//                                        # acts on (alarm messages, ...)
+//   comment_case = "upper"               # or "as-written"
 //   [limits]
 //   maximum_feed = 10000                 # mm/min, > 0
 //   maximum_spindle_speed = 12000        # rpm, > 0

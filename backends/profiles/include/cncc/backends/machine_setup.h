@@ -15,6 +15,19 @@
 
 namespace cncc::backends {
 
+// `N` numbers on the blocks of a program: from `start` in steps of
+// `increment`, starting again at `start` after `maximum`.
+struct LineNumbering {
+  bool enabled = false;
+  int start = 10;
+  int increment = 10;
+  int maximum = 99999;
+};
+
+// How comment text is written: in capitals (what older Fanuc and Mitsubishi
+// tape code has) or as the source has it.
+enum class CommentCase { Upper, AsWritten };
+
 struct MachineSetup {
   std::string dialect; // "fanuc", "m80", "sinumerik", "linuxcnc", "gcode"
   // Joined to the first Z move after a tool change, {length} the register
@@ -38,11 +51,31 @@ struct MachineSetup {
   // The blocks that retract Z in machine coordinates at the program's end,
   // before the spindle stops and the program ends.
   std::vector<std::string> endRetract;
+  // The blocks after the program's header: {units} the unit word (G21/G20,
+  // G71/G70), {blend} LinuxCNC's default blending tolerance.
+  std::vector<std::string> start;
+  // The blocks of a tool change, {tool} the tool number; the printer adds
+  // its words (Sinumerik's D) and comment to the block with {tool}.
+  std::vector<std::string> toolChange;
+  // Blocks before the end of the program (after the retract and M5).
+  std::vector<std::string> end;
+  LineNumbering lineNumbers;
+  bool comments = true;
+  CommentCase commentCase = CommentCase::Upper;
 };
 
 // The built-in setup of a target (the names `-t` takes); the plain one
 // (gcode) for a name it does not know.
 const MachineSetup& builtinMachineSetup(std::string_view target);
+
+// The start blocks for a program in inches or millimetres; `blend` is the
+// value of {blend}.
+std::vector<std::string> startBlocks(const MachineSetup& setup, bool inches,
+                                     std::string_view blend = "");
+// The blocks that change to `tool`, `additions` (words, a comment) joined
+// to the block that names the tool.
+std::vector<std::string> toolChangeBlocks(const MachineSetup& setup, long long tool,
+                                          std::string_view additions);
 
 // The words that activate the length offset of `tool` with this register (0:
 // the tool's own number), empty when the tool change does it.

@@ -77,6 +77,11 @@ private:
 // no trailing point, never `-0`.
 std::string formatSinumerikNumber(double value, int decimals);
 
+// How to lower a part for this writer: spline cuts reach it as curves, and
+// chords leave room for the rounding to `options.decimals`, so that the
+// writer prints the tool path's chords as they are.
+ir::LoweringOptions sinumerikLoweringOptions(const SinumerikOptions& options = {});
+
 // One cut: its true curve and how it asks to be cut.
 struct SinumerikCut {
   ir::CutGeometry geometry;
