@@ -109,8 +109,10 @@ void addCommonOptions(CLI::App& app, RawOptions& raw) {
   app.add_option("--error-limit", raw.errorLimit, "Stop reporting after N errors (0: no limit)")
       ->type_name("N");
   app.add_option("--machine", raw.machineFile,
-                 "The machine's set-up blocks, controller profile and limits from a machine "
-                 "file (examples/machines); its target is the default of -t")
+                 "The machine's set-up blocks, program format, controller profile and limits "
+                 "from a machine file (examples/machines), or a shipped machine's name (fanuc, "
+                 "m80, linuxcnc, sinumerik, gcode: the built-in defaults); its target is the "
+                 "default of -t")
       ->type_name("FILE.toml");
   app.add_flag("--list-diagnostics", raw.listDiagnostics,
                "Print the name of every diagnostic and exit")
@@ -570,6 +572,23 @@ DriverOptions simulateOptions(const RawOptions& raw) {
   return options;
 }
 
+// --machine NAME, a bare name that is not a file: the shipped machine
+// stdlib/machines/NAME.toml (the built-in defaults of each target).
+std::string machineFilePath(const std::string& argument) {
+  if (argument.find('/') != std::string::npos || argument.ends_with(".toml") ||
+      std::filesystem::exists(argument)) {
+    return argument;
+  }
+  std::filesystem::path shipped =
+      std::filesystem::path(standardLibraryDirectory()) / "machines" / (argument + ".toml");
+  if (!std::filesystem::exists(shipped)) {
+    throw UsageError(fmt::format("--machine {}: no such file, and no shipped machine of that "
+                                 "name (fanuc, m80, linuxcnc, sinumerik, gcode)",
+                                 argument));
+  }
+  return shipped.string();
+}
+
 // --machine: the file read (its diagnostics printed when it has errors), its
 // target the default of -t, its profile in place of --profile's.
 std::shared_ptr<const backends::MachineDescription> applyMachineFile(RawOptions& raw,
@@ -585,7 +604,7 @@ std::shared_ptr<const backends::MachineDescription> applyMachineFile(RawOptions&
                      "controller profile");
   }
   std::shared_ptr<const backends::MachineDescription> machine = loadMachineFile(
-      raw.machineFile,
+      machineFilePath(raw.machineFile),
       raw.diagnosticsFormat == "json" ? DiagnosticsFormat::Json : DiagnosticsFormat::Text,
       raw.colour == "always" ? ColourMode::Always : ColourMode::Never);
   if (machine == nullptr) {

@@ -49,6 +49,15 @@ void expectEqualSetups(const MachineSetup& a, const MachineSetup& b) {
   EXPECT_EQ(a.contouringOn, b.contouringOn);
   EXPECT_EQ(a.contouringOff, b.contouringOff);
   EXPECT_EQ(a.endRetract, b.endRetract);
+  EXPECT_EQ(a.start, b.start);
+  EXPECT_EQ(a.toolChange, b.toolChange);
+  EXPECT_EQ(a.end, b.end);
+  EXPECT_EQ(a.lineNumbers.enabled, b.lineNumbers.enabled);
+  EXPECT_EQ(a.lineNumbers.start, b.lineNumbers.start);
+  EXPECT_EQ(a.lineNumbers.increment, b.lineNumbers.increment);
+  EXPECT_EQ(a.lineNumbers.maximum, b.lineNumbers.maximum);
+  EXPECT_EQ(a.comments, b.comments);
+  EXPECT_EQ(a.commentCase, b.commentCase);
 }
 
 const char* const fullFanucFile = R"toml(name = "vmc 3"
@@ -122,38 +131,26 @@ TEST(MachineFileTest, LeavesTheBuiltinValuesOfWhatTheFileDoesNotSet) {
   EXPECT_EQ(result.machine->maximumFeed, 0);
 }
 
-TEST(MachineFileTest, AFileOfTheBuiltinValuesGivesTheBuiltinSetup) {
-  Read fanuc = readText(R"toml(target = "fanuc"
-[profile]
-extends = "fanuc"
-[setup]
-length_offset = "G43 H{length}"
-tool_edge = ""
-work_offset = "G{code}"
-extended_work_offset = "G54.1 P{number}"
-maximum_extended_work_offset = 48
-coolant_flood = "M8"
-coolant_mist = "M7"
-coolant_through = ""
-coolant_off = "M9"
-contouring_on = "G05.1 Q1"
-contouring_off = "G05.1 Q0"
-end_retract = ["G91 G28 Z0.", "G90"]
-)toml");
-  ASSERT_TRUE(fanuc.machine) << fanuc.diagnostics.front().message;
-  expectEqualSetups(fanuc.machine->setup, builtinMachineSetup("fanuc"));
-  Read sinumerik = readText(R"toml(target = "sinumerik"
-[setup]
-length_offset = ""
-tool_edge = "D{length}"
-work_offset = "G{code}"
-extended_work_offset = ""
-contouring_on = "CYCLE832({tolerance}, _FINISH, 1)"
-contouring_off = "CYCLE832()"
-end_retract = ["SUPA G0 Z0 D0"]
-)toml");
-  ASSERT_TRUE(sinumerik.machine) << sinumerik.diagnostics.front().message;
-  expectEqualSetups(sinumerik.machine->setup, builtinMachineSetup("sinumerik"));
+// The built-in setups, shipped as machine files (stdlib/machines) for shops
+// to copy: each file reads to exactly what the target prints without one.
+TEST(MachineFileTest, TheShippedDefaultsAreTheBuiltinSetups) {
+  std::filesystem::path folder = std::filesystem::path(CNCC_STDLIB_DIR) / "machines";
+  for (std::string target : {"fanuc", "m80", "linuxcnc", "sinumerik", "gcode"}) {
+    SCOPED_TRACE(target);
+    std::vector<MachineDiagnostic> diagnostics;
+    std::optional<MachineDescription> machine =
+        readMachineFile((folder / (target + ".toml")).string(), diagnostics);
+    ASSERT_TRUE(machine) << diagnostics.front().message;
+    EXPECT_EQ(machine->target, target);
+    expectEqualSetups(machine->setup, builtinMachineSetup(target));
+    if (machine->profile) {
+      const ControllerProfile* builtin = findControllerProfile(target);
+      ASSERT_NE(builtin, nullptr);
+      EXPECT_EQ(machine->profile->name, builtin->name);
+      EXPECT_EQ(machine->profile->maximumSequenceNumber, builtin->maximumSequenceNumber);
+      EXPECT_EQ(machine->profile->maximumBlockLength, builtin->maximumBlockLength);
+    }
+  }
 }
 
 TEST(MachineFileTest, HighSpeedFalseEmptiesTheContouringBlocks) {
