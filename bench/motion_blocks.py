@@ -2,6 +2,7 @@
 """Program size of parts on every controller target: motion blocks and bytes.
 
     bench/motion_blocks.py CNCC [CNCC_BEFORE --root-before DIR] [--examples]
+    bench/motion_blocks.py CNCC --machines
 
 compiles each case below with each cncc given (the second, when given, is
 an older build to compare with, compiling the case files of its own
@@ -11,6 +12,9 @@ word (X, Y, Z) outside comments; the bytes are the whole program's. For the
 macro targets the figure counts the lines printed, not the blocks executed
 (a loop is printed once). With --examples every example is a case, and
 the table has the blocks (every line but `%`) beside the motion blocks.
+With --machines every example is compiled for the built-in target and for
+each machine file of examples/machines with that target (its sequences,
+line numbers and comments), side by side.
 """
 
 import argparse
@@ -51,9 +55,9 @@ def example_cases():
     return cases
 
 
-def compile_case(cncc, root, source, part, target):
+def compile_case(cncc, root, source, part, target, machine=None):
     path = root / source if (root / source).exists() else ROOT / source
-    arguments = [cncc, str(path), "-t", target]
+    arguments = [cncc, str(path)] + (["--machine", str(machine)] if machine else ["-t", target])
     if part:
         arguments += ["-p", part]
     result = subprocess.run(arguments, capture_output=True, text=True)
@@ -62,13 +66,38 @@ def compile_case(cncc, root, source, part, target):
     return result.stdout
 
 
+def figures_of(text):
+    if text is None:
+        return ["error"] * 3
+    return [str(blocks(text)), str(motion_blocks(text)), str(len(text.encode()))]
+
+
+def machine_table(cncc):
+    columns = ["blocks", "motion blocks", "bytes"]
+    print("| part | machine | " + " | ".join(f"built-in: {c}" for c in columns) + " | " +
+          " | ".join(f"machine file: {c}" for c in columns) + " |")
+    print("|" + "---|" * 8)
+    for machine in sorted((ROOT / "examples" / "machines").glob("*.toml")):
+        target = re.search(r'^target = "(\w+)"', machine.read_text(), re.M).group(1)
+        for source, part in example_cases():
+            builtin = compile_case(cncc, ROOT, source, part, target)
+            shop = compile_case(cncc, ROOT, source, part, target, machine)
+            name = Path(source).stem + (f" -p {part}" if part else "")
+            print(f"| {name} | {machine.stem} | " + " | ".join(figures_of(builtin)) + " | " +
+                  " | ".join(figures_of(shop)) + " |")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("cncc")
     parser.add_argument("before", nargs="?")
     parser.add_argument("--root-before", type=Path, default=ROOT)
     parser.add_argument("--examples", action="store_true")
+    parser.add_argument("--machines", action="store_true")
     options = parser.parse_args()
+    if options.machines:
+        machine_table(options.cncc)
+        return 0
     cases = example_cases() if options.examples else CASES
     builds = [("after", options.cncc, ROOT)]
     if options.before:
