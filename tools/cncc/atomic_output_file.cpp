@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -43,6 +44,16 @@ std::optional<AtomicOutputFile> AtomicOutputFile::create(const std::string& path
   if (!destination.has_filename() || fs::is_directory(destination, statusError)) {
     error = std::make_error_code(std::errc::is_a_directory);
     return std::nullopt;
+  }
+  if (fs::exists(destination, statusError) && !fs::is_regular_file(destination, statusError)) {
+    // A device or a pipe (/dev/null, /dev/stdout, a FIFO): written to as it
+    // is, since renaming a file over it would replace the device itself.
+    int descriptor = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (descriptor < 0) {
+      error = lastError();
+      return std::nullopt;
+    }
+    return AtomicOutputFile(path, "", descriptor);
   }
   std::string pattern = temporaryPattern(destination);
   std::vector<char> buffer(pattern.begin(), pattern.end());
@@ -110,7 +121,8 @@ bool AtomicOutputFile::commit(std::error_code& error) {
     error = lastError();
   }
   descriptor_ = -1;
-  if (!error && std::rename(temporaryPath_.c_str(), path_.c_str()) != 0) {
+  if (!error && !temporaryPath_.empty() &&
+      std::rename(temporaryPath_.c_str(), path_.c_str()) != 0) {
     error = lastError();
   }
   if (error) {

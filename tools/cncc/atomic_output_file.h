@@ -4,7 +4,8 @@
 // temporary is removed and the destination is left as it was. So a failed
 // compile never leaves a partial program, nor half of an old one.
 //
-// The path "-" means standard output, written directly.
+// The path "-" means standard output, written directly, and so is a path
+// that is not a regular file (/dev/null, a pipe).
 #pragma once
 
 #include <optional>
