@@ -187,6 +187,9 @@ def check_outcome(outcome, update):
     case = outcome.case
     if outcome.problem:
         return outcome.problem
+    # An internal error is a bug to fix, never an expectation to record.
+    if "internal error" in outcome.text:
+        return "cncc reported an internal error:\n" + outcome.text
     old = case.expected.read_text(encoding="utf-8") if case.expected.is_file() else None
     if update:
         if outcome.text != old:

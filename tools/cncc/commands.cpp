@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include "atomic_output_file.h"
+#include "dependency_file.h"
 #include "diagnostic_output.h"
 #include "input_checking.h"
 #include "stats_measurement.h"
@@ -107,6 +108,17 @@ int runCompile(const DriverOptions& options) {
   if (!file->commit(error)) {
     reportWriteFailure(output, options.output, error);
     return 1;
+  }
+  if (!options.dependencyFile.empty()) {
+    std::vector<std::string> inputs = sources.paths();
+    if (!options.machineFile.empty()) {
+      inputs.push_back(options.machineFile);
+    }
+    if (!writeFileAtomically(options.dependencyFile,
+                             dependencyFileText(options.dependencyTarget, inputs), error)) {
+      reportWriteFailure(output, options.dependencyFile, error);
+      return 1;
+    }
   }
   if (!options.stats) {
     return 0;

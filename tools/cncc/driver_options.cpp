@@ -57,6 +57,9 @@ struct RawOptions {
   std::string verifyInput;
   std::vector<std::string> macroArguments;
   std::string machineFile;
+  bool writeDependencies = false; // -MD
+  std::string dependencyFile;     // -MF
+  std::string dependencyTarget;   // -MT
 };
 
 // A mistake in how cncc was called: printed, exit code 2.
@@ -159,6 +162,35 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
   app.add_option("--rapid-rate", raw.rapidRate,
                  "The rapid rate the --stats time estimate assumes (default 10000)")
       ->type_name("MM/MIN");
+  // Written -MD, -MF, -MT as C compilers have them (parseCommandLine).
+  app.add_flag("--MD", raw.writeDependencies,
+               "-MD: also write a Make/Ninja depfile: the source, its imports and the machine "
+               "file (OUT.d unless -MF names it)");
+  app.add_option("--MF", raw.dependencyFile, "-MF: the depfile's path")->type_name("FILE");
+  app.add_option("--MT", raw.dependencyTarget, "-MT: the target the depfile names (default OUT)")
+      ->type_name("TARGET");
+}
+
+// -MD, -MF, -MT: where the depfile goes and what it names.
+void setDependencyFile(const RawOptions& raw, DriverOptions& options) {
+  bool wanted = raw.writeDependencies || !raw.dependencyFile.empty();
+  if (!wanted) {
+    if (!raw.dependencyTarget.empty()) {
+      throw UsageError("-MT names the target of a depfile; add -MD or -MF FILE");
+    }
+    return;
+  }
+  if (options.command != Command::Compile) {
+    throw UsageError("-MD and -MF write the depfile of a compile; they do not apply to this "
+                     "command");
+  }
+  bool toStandardOutput = options.output == "-";
+  if (toStandardOutput && (raw.dependencyFile.empty() || raw.dependencyTarget.empty())) {
+    throw UsageError("the program goes to standard output: a depfile needs -MF FILE and "
+                     "-MT TARGET");
+  }
+  options.dependencyFile = raw.dependencyFile.empty() ? options.output + ".d" : raw.dependencyFile;
+  options.dependencyTarget = raw.dependencyTarget.empty() ? options.output : raw.dependencyTarget;
 }
 
 CLI::App* addCheckCommand(CLI::App& app, RawOptions& raw) {
@@ -470,6 +502,7 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   options.profile = raw.profile;
   options.rapidRate = parseRapidRate(raw.rapidRate);
   setOptimisation(raw, options);
+  setDependencyFile(raw, options);
   if (options.command != Command::ListDiagnostics) {
     options.importPaths = importPaths(raw.includeDirectories);
   }
@@ -626,6 +659,17 @@ int reportUsageError(std::string_view message) {
 
 } // namespace
 
+// -MD, -MF and -MT as C compilers spell them, for the parser's --MD...
+std::vector<std::string> compilerStyleArguments(int argc, const char* const* argv) {
+  std::vector<std::string> arguments;
+  for (int i = 0; i < argc; ++i) {
+    std::string_view argument = argv[i];
+    bool dependencyOption = argument == "-MD" || argument == "-MF" || argument == "-MT";
+    arguments.push_back(dependencyOption ? "-" + std::string(argument) : std::string(argument));
+  }
+  return arguments;
+}
+
 ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   RawOptions raw;
   CLI::App app("cncc: compiles CDL part descriptions for CNC controllers", "cncc");
@@ -642,7 +686,12 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   CLI::App* simulate = addSimulateCommand(app, raw);
   CLI::App* verify = addVerifyCommand(app, raw);
   try {
-    app.parse(argc, argv);
+    std::vector<std::string> arguments = compilerStyleArguments(argc, argv);
+    std::vector<const char*> pointers;
+    for (const std::string& argument : arguments) {
+      pointers.push_back(argument.c_str());
+    }
+    app.parse(static_cast<int>(pointers.size()), pointers.data());
     bool takesMachine = !format->parsed() && !opt->parsed() && !lsp->parsed();
     std::shared_ptr<const backends::MachineDescription> machine =
         applyMachineFile(raw, takesMachine);
@@ -662,7 +711,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
     } else {
       options = validatedOptions(raw, app, check->parsed());
     }
-    options.machineFile = raw.machineFile;
+    options.machineFile = raw.machineFile.empty() ? "" : machineFilePath(raw.machineFile);
     options.machine = std::move(machine);
     return {std::move(options), 0};
   } catch (const CLI::ParseError& error) {

@@ -72,6 +72,10 @@ struct DriverOptions {
   // set-up, profile and limits replace the target's built-in ones.
   std::string machineFile;
   std::shared_ptr<const backends::MachineDescription> machine;
+  // -MD, -MF FILE, -MT TARGET: after a compile, a Make/Ninja depfile at
+  // `dependencyFile` (empty: none) naming `dependencyTarget`'s inputs.
+  std::string dependencyFile;
+  std::string dependencyTarget;
 };
 
 // What parsing the command line decided: options to run with, or an exit

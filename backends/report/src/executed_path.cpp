@@ -110,7 +110,19 @@ public:
   }
 
 private:
+  // A block that moves in machine coordinates (the end retract: G28's
+  // return to the reference point, G53): not a move of the tool path.
+  static bool movesInMachineCoordinates(const std::vector<Word>& words) {
+    return std::any_of(words.begin(), words.end(), [](const Word& word) {
+      return word.letter == 'G' && (word.value == 28 || word.value == 53);
+    });
+  }
+
   void readBlock(const std::vector<Word>& words, std::size_t lineNumber) {
+    if (movesInMachineCoordinates(words)) {
+      position_[2].reset(); // Z is somewhere up at the reference point
+      return;
+    }
     bool moves = false;
     std::optional<ArcMotion> arc;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero(); // I J, from the start

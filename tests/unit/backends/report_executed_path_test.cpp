@@ -85,6 +85,19 @@ TEST(ReportExecutedPath, GcodeThatDoesNotMatchItsToolPathIsAMismatch) {
   EXPECT_THROW(backends::executeGcode("G01 X1..2\n", toolPath, 4), backends::ExecutionMismatch);
 }
 
+// The end retract and a tool change's return to the reference point move in
+// machine coordinates: no move of the tool path.
+TEST(ReportExecutedPath, RetractsInMachineCoordinatesAreNotToolPathMoves) {
+  ir::ToolPath toolPath;
+  ir::MachineEvent home;
+  home.kind = ir::MachineEvent::Kind::Home;
+  toolPath.events = {rapid(1, 2, 3), cutBegin(0), feed(4, 2, 3, 50), home};
+  std::string program = "G00 X1. Y2. Z3.\nG01 X4. F50.\nG91 G28 Z0.\nG90\nG53 G00 Z0.\nM30\n";
+  ExecutedPath path = backends::executeGcode(program, toolPath, 4);
+  ASSERT_EQ(path.moves.size(), 1u);
+  EXPECT_EQ(path.moves[0].end, Eigen::Vector3d(4, 2, 3));
+}
+
 TEST(ReportExecutedPath, GcodeReaderIgnoresCommentsAndOtherWords) {
   ir::ToolPath toolPath;
   toolPath.events = {rapid(1, 2, 3), cutBegin(0), feed(4, 2, 3, 50)};
