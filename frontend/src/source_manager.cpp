@@ -76,6 +76,14 @@ std::optional<FileId> SourceManager::findFile(const std::string& path) const {
   return std::nullopt;
 }
 
+std::vector<std::string> SourceManager::paths() const {
+  std::vector<std::string> paths;
+  for (const std::unique_ptr<SourceFile>& file : files_) {
+    paths.push_back(file->path());
+  }
+  return paths;
+}
+
 std::optional<FileId> SourceManager::loadFile(const std::string& path) {
   if (auto existing = findFile(path)) {
     return existing;

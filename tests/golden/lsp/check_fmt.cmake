@@ -15,8 +15,10 @@ function(run output_variable)
 endfunction()
 
 # The tree without positions, and without its first line (the file's path).
+# The input's folder is an import path, so that the copy finds its imports.
+get_filename_component(input_folder ${INPUT} DIRECTORY)
 function(tree_of file output_variable)
-  run(dump ${CNCC} --emit=ast ${file})
+  run(dump ${CNCC} --emit=ast -I ${input_folder} ${file})
   string(FIND "${dump}" "\n" first_line_end)
   math(EXPR rest_begin "${first_line_end} + 1")
   string(SUBSTRING "${dump}" ${rest_begin} -1 dump)

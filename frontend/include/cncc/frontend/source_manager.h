@@ -80,6 +80,8 @@ public:
   std::optional<FileId> findFile(const std::string& path) const;
 
   const SourceFile& file(FileId id) const { return *files_.at(id.index - 1); }
+  // The path of every file added or loaded, in that order.
+  std::vector<std::string> paths() const;
   std::string_view text(SourceSpan span) const;
 
 private:
