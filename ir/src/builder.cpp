@@ -32,6 +32,7 @@ InstructionId FunctionBuilder::append(Instruction instruction, ValueType resultT
     function_.definitions.push_back(id);
   }
   currentRegion().instructions.push_back(id);
+  instruction.span = span_;
   function_.instructions.push_back(std::move(instruction));
   return id;
 }

@@ -154,6 +154,7 @@ private:
       event.text = instruction.text;
       break;
     }
+    event.span = instruction.span;
     path_.events.push_back(std::move(event));
   }
 
@@ -162,6 +163,7 @@ private:
     MachineEvent event = arcMove(position_, static_cast<ArcTurn>(instruction.index), operand(0),
                                  operand(1), operand(2), operand(3), operand(4), operand(5));
     position_ = {event.x, event.y, event.z};
+    event.span = instruction.span;
     path_.events.push_back(std::move(event));
   }
 
@@ -170,8 +172,12 @@ private:
     for (std::size_t k = 2; k < instruction.operands.size(); ++k) {
       weights.push_back(value(instruction.operands[k]));
     }
+    std::size_t first = path_.events.size();
     nurbsMove(position_, function_.tables[instruction.index], value(instruction.operands[0]),
               value(instruction.operands[1]), weights, path_.events);
+    for (std::size_t k = first; k < path_.events.size(); ++k) {
+      path_.events[k].span = instruction.span;
+    }
     const MachineEvent& end = path_.events.back();
     position_ = {end.x, end.y, end.z};
   }

@@ -4,6 +4,7 @@
 #include "dependency_file.h"
 #include "diagnostic_output.h"
 #include "input_checking.h"
+#include "source_map.h"
 #include "stats_measurement.h"
 #include "targets.h"
 
@@ -14,6 +15,9 @@
 #include "cncc/ir/verifier.h"
 
 #include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
 
 namespace cncc::driver {
 
@@ -76,6 +80,24 @@ std::string emittedText(const DriverOptions& options, SourceManager& sources,
   return program ? frontend::dumpAst(program->modules.front(), sources) : "";
 }
 
+// The source map of the program just written to options.output.
+bool writeSourceMap(DiagnosticOutput& output, const DriverOptions& options,
+                    const frontend::CheckedProgram& program, const SourceManager& sources,
+                    std::vector<frontend::SourceSpan> lineSpans) {
+  std::ifstream written(options.output, std::ios::binary);
+  std::ostringstream text;
+  text << written.rdbuf();
+  std::string programText = text.str();
+  SourceMapInput input{options.output, programText, options.target,
+                       &program,       &sources,    std::move(lineSpans)};
+  std::error_code error;
+  if (!writeFileAtomically(options.sourceMap, sourceMapJson(input), error)) {
+    reportWriteFailure(output, options.sourceMap, error);
+    return false;
+  }
+  return true;
+}
+
 } // namespace
 
 int runCompile(const DriverOptions& options) {
@@ -100,13 +122,19 @@ int runCompile(const DriverOptions& options) {
     return 1;
   }
   DiagnosticEngine backendDiagnostics(options.errorLimit);
-  target.backend({*program, sources, options, backendDiagnostics, *file});
+  std::vector<frontend::SourceSpan> lineSpans;
+  target.backend({*program, sources, options, backendDiagnostics, *file,
+                  options.sourceMap.empty() ? nullptr : &lineSpans});
   output.print(backendDiagnostics, sources);
   if (backendDiagnostics.hasErrors()) {
     return 1; // the file discards what the backend wrote
   }
   if (!file->commit(error)) {
     reportWriteFailure(output, options.output, error);
+    return 1;
+  }
+  if (!options.sourceMap.empty() &&
+      !writeSourceMap(output, options, *program, sources, std::move(lineSpans))) {
     return 1;
   }
   if (!options.dependencyFile.empty()) {
@@ -190,6 +218,8 @@ int runCommand(const DriverOptions& options) {
     return runSimulate(options);
   case Command::Verify:
     return runVerify(options);
+  case Command::Where:
+    return runWhere(options);
   }
   return 2;
 }

@@ -50,6 +50,9 @@ int runSimulate(const DriverOptions& options);
 
 // cncc verify FILE -t TARGET [-D NAME=VALUE ...] (verify_command.cpp)
 int runVerify(const DriverOptions& options);
+// `cncc where PROGRAM LINE|Nnnnn`: the CDL source of a program line, from the
+// program's source map. 0 found, 1 an unreadable or mismatched map or line.
+int runWhere(const DriverOptions& options);
 // Whether `cncc verify` can run target `name`'s programs.
 bool canVerify(std::string_view name);
 // --stats of a target measured by running its program on the virtual

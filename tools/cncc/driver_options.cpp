@@ -60,6 +60,9 @@ struct RawOptions {
   bool writeDependencies = false; // -MD
   std::string dependencyFile;     // -MF
   std::string dependencyTarget;   // -MT
+  std::string sourceMap;          // --source-map
+  std::string whereProgram;
+  std::string whereLocation;
 };
 
 // A mistake in how cncc was called: printed, exit code 2.
@@ -162,6 +165,10 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
   app.add_option("--rapid-rate", raw.rapidRate,
                  "The rapid rate the --stats time estimate assumes (default 10000)")
       ->type_name("MM/MIN");
+  app.add_option("--source-map", raw.sourceMap,
+                 "Also write where each program line comes from: CDL file, line and column, "
+                 "for 'cncc where' (JSON)")
+      ->type_name("FILE.json");
   // Written -MD, -MF, -MT as C compilers have them (parseCommandLine).
   app.add_flag("--MD", raw.writeDependencies,
                "-MD: also write a Make/Ninja depfile: the source, its imports and the machine "
@@ -279,6 +286,22 @@ CLI::App* addVerifyCommand(CLI::App& app, RawOptions& raw) {
                  "exceeds it, the controller refuses the program or the source has errors, 2 "
                  "wrong usage.");
   return verify;
+}
+
+CLI::App* addWhereCommand(CLI::App& app, RawOptions& raw) {
+  CLI::App* where = app.add_subcommand(
+      "where", "Print the CDL source of a line of a compiled program, from its source map");
+  where->add_option("PROGRAM", raw.whereProgram, "The program")->type_name("")->required();
+  where->add_option("LINE", raw.whereLocation, "A line number, or a block number Nnnnn")
+      ->type_name("")
+      ->required();
+  where
+      ->add_option("--source-map", raw.sourceMap,
+                   "The program's source map (default: PROGRAM.map.json)")
+      ->type_name("FILE.json");
+  where->footer("\nExit codes: 0 found, 1 the map or the line cannot be read or does not belong "
+                "to the program, 2 wrong usage.");
+  return where;
 }
 
 CLI::App* addLanguageServerCommand(CLI::App& app) {
@@ -503,6 +526,15 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   options.rapidRate = parseRapidRate(raw.rapidRate);
   setOptimisation(raw, options);
   setDependencyFile(raw, options);
+  if (!raw.sourceMap.empty() && options.command != Command::Compile) {
+    throw UsageError("--source-map writes the map of a compiled program; it does not apply "
+                     "to this command");
+  }
+  if (!raw.sourceMap.empty() && (options.output == "-" || options.target == "jit")) {
+    throw UsageError("--source-map maps the lines of a program file: it needs -o FILE and a "
+                     "target that prints a program (not jit)");
+  }
+  options.sourceMap = raw.sourceMap;
   if (options.command != Command::ListDiagnostics) {
     options.importPaths = importPaths(raw.includeDirectories);
   }
@@ -586,6 +618,16 @@ DriverOptions verifyOptions(const RawOptions& raw, const CLI::App& app) {
         fmt::format("'verify' is not available for target '{}' in this version", options.target));
   }
   options.command = Command::Verify;
+  return options;
+}
+
+DriverOptions whereOptions(const RawOptions& raw) {
+  DriverOptions options;
+  options.command = Command::Where;
+  options.inputs = {raw.whereProgram};
+  options.whereLocation = raw.whereLocation;
+  options.sourceMap = raw.sourceMap.empty() ? raw.whereProgram + ".map.json" : raw.sourceMap;
+  setDiagnosticOutput(raw, options);
   return options;
 }
 
@@ -685,6 +727,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
   CLI::App* opt = addOptCommand(app, raw);
   CLI::App* simulate = addSimulateCommand(app, raw);
   CLI::App* verify = addVerifyCommand(app, raw);
+  CLI::App* where = addWhereCommand(app, raw);
   try {
     std::vector<std::string> arguments = compilerStyleArguments(argc, argv);
     std::vector<const char*> pointers;
@@ -692,7 +735,7 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
       pointers.push_back(argument.c_str());
     }
     app.parse(static_cast<int>(pointers.size()), pointers.data());
-    bool takesMachine = !format->parsed() && !opt->parsed() && !lsp->parsed();
+    bool takesMachine = !format->parsed() && !opt->parsed() && !lsp->parsed() && !where->parsed();
     std::shared_ptr<const backends::MachineDescription> machine =
         applyMachineFile(raw, takesMachine);
     DriverOptions options;
@@ -706,6 +749,8 @@ ParsedCommandLine parseCommandLine(int argc, const char* const* argv) {
       options = simulateOptions(raw);
     } else if (verify->parsed()) {
       options = verifyOptions(raw, app);
+    } else if (where->parsed()) {
+      options = whereOptions(raw);
     } else if (lsp->parsed()) {
       options.command = Command::LanguageServer;
     } else {

@@ -27,6 +27,7 @@ enum class Command {
   Plot,            // cncc plot FILE -o OUT.svg [-t TARGET]
   Simulate,        // cncc sim PROGRAM -t fanuc|m80 [-a A3.] [--profile NAME] [-o OUT]
   Verify,          // cncc verify FILE -t TARGET [-D NAME=VALUE ...]
+  Where,           // cncc where PROGRAM LINE|Nnnnn [--source-map FILE.json]
 };
 
 enum class EmitKind { Tokens, Ast, Ir };
@@ -76,6 +77,11 @@ struct DriverOptions {
   // `dependencyFile` (empty: none) naming `dependencyTarget`'s inputs.
   std::string dependencyFile;
   std::string dependencyTarget;
+  // --source-map FILE.json: after a compile, where each program line comes
+  // from (source_map.h). `where`: the map to read (default PROGRAM.map.json)
+  // and the program line asked about (a line number or Nnnnn).
+  std::string sourceMap;
+  std::string whereLocation;
 };
 
 // What parsing the command line decided: options to run with, or an exit

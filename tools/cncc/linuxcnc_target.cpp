@@ -56,6 +56,9 @@ void linuxcncBackend(const BackendRequest& request) {
   }
   if (program.errors.empty()) {
     request.output.write(program.text);
+    if (request.lineSpans != nullptr) {
+      *request.lineSpans = std::move(program.lineSpans);
+    }
   }
 }
 

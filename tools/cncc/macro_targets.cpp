@@ -71,6 +71,9 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   }
   if (program.errors.empty()) {
     request.output.write(program.text);
+    if (request.lineSpans != nullptr) {
+      *request.lineSpans = std::move(program.lineSpans);
+    }
   }
 }
 

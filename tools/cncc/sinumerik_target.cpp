@@ -109,6 +109,9 @@ void sinumerikBackend(const BackendRequest& request) {
   std::optional<SinumerikCompilation> compiled = compileForSinumerik(request);
   if (compiled) {
     request.output.write(compiled->program.text);
+    if (request.lineSpans != nullptr) {
+      *request.lineSpans = std::move(compiled->program.lineSpans);
+    }
   }
 }
 

@@ -28,7 +28,11 @@ void gcodeBackend(const BackendRequest& request) {
   if (!path) {
     return;
   }
-  request.output.write(backends::writeGcode(*path, gcodeOptionsFor(request)));
+  backends::GcodeProgram program = backends::writeGcodeProgram(*path, gcodeOptionsFor(request));
+  request.output.write(program.text);
+  if (request.lineSpans != nullptr) {
+    *request.lineSpans = std::move(program.lineSpans);
+  }
 }
 
 void jitBackend(const BackendRequest& request) {

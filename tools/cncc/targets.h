@@ -29,6 +29,9 @@ struct BackendRequest {
   const DriverOptions& options;
   frontend::DiagnosticEngine& diagnostics;
   AtomicOutputFile& output;
+  // When given, the backend puts here the CDL span of each line it wrote
+  // (for --source-map).
+  std::vector<frontend::SourceSpan>* lineSpans = nullptr;
 };
 
 // Writes the program; problems go to the request's diagnostics.

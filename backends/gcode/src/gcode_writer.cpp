@@ -1,5 +1,6 @@
 #include "cncc/backends/gcode_writer.h"
 
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/program_format.h"
 
 #include <fmt/format.h>
@@ -67,9 +68,12 @@ public:
   explicit BlockWriter(int decimals) : decimals_(decimals) {}
 
   void line(std::string text) {
-    out_ += text;
-    out_ += '\n';
+    lines_.push_back(std::move(text));
+    spans_.push_back(span_);
   }
+
+  // The CDL span of the lines that follow.
+  void setSpan(frontend::SourceSpan span) { span_ = span; }
 
   void move(bool rapid, double x, double y, double z, double feed) {
     if (rapid) {
@@ -113,7 +117,8 @@ public:
     line(std::move(words));
   }
 
-  std::string take() { return std::move(out_); }
+  std::vector<std::string> takeLines() { return std::move(lines_); }
+  const std::vector<frontend::SourceSpan>& spans() const { return spans_; }
 
   // After a move the writer does not follow: every coordinate is printed
   // again.
@@ -171,7 +176,9 @@ private:
   }
 
   int decimals_;
-  std::string out_;
+  std::vector<std::string> lines_;
+  std::vector<frontend::SourceSpan> spans_;
+  frontend::SourceSpan span_;
   std::string x_, y_, zText_, feed_, beforeZ_;
   double z_ = 0;
   bool known_ = false;
@@ -179,7 +186,7 @@ private:
 
 } // namespace
 
-std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
+GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& options) {
   BlockWriter writer(options.decimals);
   writer.line("%");
   writer.line(fmt::format("O{}", options.programNumber));
@@ -190,6 +197,7 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
   }
   bool spindleOn = false;
   for (const ir::MachineEvent& event : path.events) {
+    writer.setSpan(event.span);
     switch (event.kind) {
     case ir::MachineEvent::Kind::Rapid:
     case ir::MachineEvent::Kind::Feed:
@@ -246,9 +254,21 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
   }
   writer.line("M30");
   writer.line("%");
+  std::vector<frontend::SourceSpan> spans = writer.spans();
   // Plain G-code has no jumps, so numbering it cannot fail.
   std::vector<std::string> errors;
-  return formatProgramText(writer.take(), options.setup, errors);
+  FormattedProgram formatted = formatProgram(writer.takeLines(), options.setup, errors);
+  GcodeProgram program;
+  for (const std::string& line : formatted.lines) {
+    program.text += line;
+    program.text += '\n';
+  }
+  program.lineSpans = LineSpans::kept(spans, formatted.printedLine);
+  return program;
+}
+
+std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options) {
+  return writeGcodeProgram(path, options).text;
 }
 
 } // namespace cncc::backends

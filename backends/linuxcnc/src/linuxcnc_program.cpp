@@ -1,6 +1,7 @@
 #include "cncc/backends/linuxcnc_program.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/program_format.h"
 #include "cncc/ir/interpreter.h"
 #include "linuxcnc_expressions.h"
@@ -135,6 +136,9 @@ public:
     return joinLines();
   }
 
+  // The CDL span of each line of the program print() returned.
+  std::vector<frontend::SourceSpan> takeLineSpans() { return std::move(printedSpans_); }
+
 private:
   void line(std::string text) { lines_.push_back(std::move(text)); }
 
@@ -142,8 +146,10 @@ private:
     std::string text;
     std::size_t longest = 0;
     int tooLong = 0;
-    for (const std::string& block :
-         formatProgram(std::move(lines_), options_.setup, errors_).lines) {
+    std::vector<frontend::SourceSpan> spans = lineSpans_.spans(lines_.size());
+    FormattedProgram formatted = formatProgram(std::move(lines_), options_.setup, errors_);
+    printedSpans_ = LineSpans::kept(spans, formatted.printedLine);
+    for (const std::string& block : formatted.lines) {
       if (static_cast<int>(block.size()) > linuxcncMaximumLineLength) {
         longest = std::max(longest, block.size());
         ++tooLong;
@@ -245,6 +251,7 @@ private:
   }
 
   void printInstruction(const ir::Instruction& instruction) {
+    InstructionLines marked(lineSpans_, lines_, instruction.span, currentSpan_);
     switch (instruction.opcode) {
     case Opcode::Loop:
       printLoop(instruction);
@@ -411,6 +418,9 @@ private:
   std::vector<std::string> names_;
   LinuxcncExpressionWriter expressions_;
   std::vector<std::string> lines_;
+  LineSpans lineSpans_;
+  frontend::SourceSpan currentSpan_;
+  std::vector<frontend::SourceSpan> printedSpans_;
   LinuxcncMoveWriter moves_;
   int nextLabel_ = 100;
   bool spindleOn_ = false;
@@ -473,10 +483,11 @@ LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,
   if (!program.errors.empty()) {
     return program;
   }
-  std::string text =
-      ProgramPrinter(simplified, allocated.allocation, options, program.errors).print();
+  ProgramPrinter printer(simplified, allocated.allocation, options, program.errors);
+  std::string text = printer.print();
   if (program.errors.empty()) {
     program.text = std::move(text);
+    program.lineSpans = printer.takeLineSpans();
   }
   return program;
 }

@@ -2,6 +2,7 @@
 #include "cncc/backends/nurbs_blocks.h"
 
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/program_format.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/nurbs_move.h"
@@ -57,14 +58,22 @@ struct ModalState {
   friend bool operator==(const ModalState&, const ModalState&) = default;
 };
 
+// Lines printed aside (a loop body, a branch) before they are placed, with
+// the CDL span of each.
+struct CapturedLines {
+  std::vector<std::string> lines;
+  std::vector<frontend::SourceSpan> spans;
+};
+
 class ProgramPrinter {
 public:
   ProgramPrinter(const ir::Function& function, const ir::Allocation& allocation,
                  const SteppedLoops& stepped, const ControllerProfile& profile,
                  const MacroProgramOptions& options, std::vector<std::string>& errors,
-                 int* longestBlock = nullptr)
+                 int* longestBlock = nullptr,
+                 std::vector<frontend::SourceSpan>* printedSpans = nullptr)
       : function_(function), allocation_(allocation), profile_(profile), options_(options),
-        errors_(errors), longestBlock_(longestBlock),
+        errors_(errors), longestBlock_(longestBlock), printedSpans_(printedSpans),
         expressions_(function, allocation, profile, errors), steppedLoops_(stepped.scaleOfIndex),
         scaledValues_(stepped.scaledValues) {}
 
@@ -90,8 +99,12 @@ public:
     std::string text;
     std::size_t longest = 0;
     int tooLong = 0;
-    for (const std::string& block :
-         formatProgram(std::move(lines_), options_.setup, errors_).lines) {
+    std::vector<frontend::SourceSpan> spans = lineSpans_.spans(lines_.size());
+    FormattedProgram formatted = formatProgram(std::move(lines_), options_.setup, errors_);
+    if (printedSpans_ != nullptr) {
+      *printedSpans_ = LineSpans::kept(spans, formatted.printedLine);
+    }
+    for (const std::string& block : formatted.lines) {
       if (static_cast<int>(block.size()) > profile_.maximumBlockLength) {
         longest = std::max(longest, block.size());
         ++tooLong;
@@ -292,6 +305,7 @@ private:
   }
 
   void printInstruction(const ir::Instruction& instruction) {
+    InstructionLines marked(lineSpans_, lines_, instruction.span, currentSpan_);
     switch (instruction.opcode) {
     case Opcode::Loop:
       printLoop(instruction);
@@ -472,7 +486,7 @@ private:
     // The body as it prints from the words in force before the loop, then
     // from those that also hold after one pass through it, until stable.
     ModalState entry = modal_;
-    std::vector<std::string> body;
+    CapturedLines body;
     for (int attempt = 0;; ++attempt) {
       if (attempt >= 3) {
         entry.forget();
@@ -489,7 +503,7 @@ private:
       errors_.resize(errorCount);
       entry = agreed;
     }
-    lines_.insert(lines_.end(), body.begin(), body.end());
+    append(body);
     if (stepped != steppedLoops_.end() && std::isnan(stepped->second)) {
       line(fmt::format("{}={}+1./{}", index, index, expressions_.operand(instruction.operands[1])));
     } else if (stepped != steppedLoops_.end()) {
@@ -502,53 +516,68 @@ private:
   }
 
   // The region's lines, printed from `entry`; modal_ is left as it ends.
-  std::vector<std::string> capture(const ir::Region& region, const ModalState& entry) {
-    std::vector<std::string> saved = std::move(lines_);
-    lines_.clear();
+  CapturedLines capture(const ir::Region& region, const ModalState& entry) {
     modal_ = entry;
-    printRegion(region);
-    std::vector<std::string> captured = std::move(lines_);
-    lines_ = std::move(saved);
+    return captureLines(region);
+  }
+
+  CapturedLines capture(const ir::Region& region) {
+    modal_.forget();
+    CapturedLines captured = captureLines(region);
+    modal_.forget();
     return captured;
   }
 
-  std::vector<std::string> capture(const ir::Region& region) {
-    std::vector<std::string> saved = std::move(lines_);
+  // The region's lines and where each comes from, printed aside.
+  CapturedLines captureLines(const ir::Region& region) {
+    std::vector<std::string> savedLines = std::move(lines_);
+    LineSpans savedSpans = std::move(lineSpans_);
     lines_.clear();
-    modal_.forget();
+    lineSpans_ = LineSpans();
+    lineSpans_.start(0, currentSpan_);
     printRegion(region);
-    std::vector<std::string> captured = std::move(lines_);
-    lines_ = std::move(saved);
-    modal_.forget();
+    CapturedLines captured{std::move(lines_), {}};
+    captured.spans = lineSpans_.spans(captured.lines.size());
+    lines_ = std::move(savedLines);
+    lineSpans_ = std::move(savedSpans);
     return captured;
+  }
+
+  // Appends captured lines; the lines after them are the current span's.
+  void append(const CapturedLines& captured) {
+    for (std::size_t k = 0; k < captured.lines.size(); ++k) {
+      lineSpans_.start(lines_.size(), captured.spans[k]);
+      lines_.push_back(captured.lines[k]);
+    }
+    lineSpans_.start(lines_.size(), currentSpan_);
   }
 
   // IF THEN where one statement is the whole branch; jumps otherwise.
   void printIf(const ir::Instruction& instruction) {
     ValueId condition = instruction.operands[0];
-    std::vector<std::string> thenLines = capture(instruction.regions[0]);
-    std::vector<std::string> elseLines = instruction.regions.size() > 1
-                                             ? capture(instruction.regions[1])
-                                             : std::vector<std::string>{};
-    if (thenLines.empty() && elseLines.empty()) {
+    CapturedLines thenLines = capture(instruction.regions[0]);
+    CapturedLines elseLines =
+        instruction.regions.size() > 1 ? capture(instruction.regions[1]) : CapturedLines{};
+    if (thenLines.lines.empty() && elseLines.lines.empty()) {
       return;
     }
-    bool single = elseLines.empty() && thenLines.size() == 1 && thenLines[0].starts_with("#");
+    bool single = elseLines.lines.empty() && thenLines.lines.size() == 1 &&
+                  thenLines.lines[0].starts_with("#");
     if (single && profile_.hasThen) {
-      line(fmt::format("IF {} THEN {}", expressions_.condition(condition), thenLines[0]));
+      line(fmt::format("IF {} THEN {}", expressions_.condition(condition), thenLines.lines[0]));
       return;
     }
     int skipThen = newLabel();
     line(fmt::format("IF {} GOTO {}", expressions_.condition(condition, true), skipThen));
-    lines_.insert(lines_.end(), thenLines.begin(), thenLines.end());
-    if (elseLines.empty()) {
+    append(thenLines);
+    if (elseLines.lines.empty()) {
       line(fmt::format("N{}", skipThen));
       return;
     }
     int skipElse = newLabel();
     line(fmt::format("GOTO {}", skipElse));
     line(fmt::format("N{}", skipThen));
-    lines_.insert(lines_.end(), elseLines.begin(), elseLines.end());
+    append(elseLines);
     line(fmt::format("N{}", skipElse));
   }
 
@@ -677,6 +706,7 @@ private:
   const MacroProgramOptions& options_;
   std::vector<std::string>& errors_;
   int* longestBlock_;
+  std::vector<frontend::SourceSpan>* printedSpans_;
   MacroExpressionWriter expressions_;
   const std::map<std::uint32_t, double>& steppedLoops_;
   const std::set<std::uint32_t>& scaledValues_;
@@ -686,6 +716,8 @@ private:
   bool reportedLoopDepth_ = false;
   int nextLabel_ = 1;
   bool spindleOn_ = false;
+  LineSpans lineSpans_;
+  frontend::SourceSpan currentSpan_;
   std::string beforeZ_; // the length offset words of the next Z move
 };
 
@@ -789,7 +821,7 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
     SteppedLoops stepped = stepLoopsByTheirScale(simplified, allocated.allocation);
     int longest = 0;
     text = ProgramPrinter(simplified, allocated.allocation, stepped, profile, options,
-                          program.errors, &longest)
+                          program.errors, &longest, &program.lineSpans)
                .print();
     bool onlyTooLong = program.errors.size() == 1 && longest > profile.maximumBlockLength;
     if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {

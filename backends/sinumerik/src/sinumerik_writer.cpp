@@ -140,6 +140,7 @@ public:
       line("SPLINEPATH(1,X,Y)");
     }
     for (std::size_t i = 0; i < path_.events.size(); ++i) {
+      span_ = path_.events[i].span;
       i = event(i);
     }
     if (spindleOn_) {
@@ -167,6 +168,7 @@ private:
   void line(std::string text) {
     lines_.push_back(std::move(text));
     cutOfPrintedLine_.push_back(cut_);
+    spanOfPrintedLine_.push_back(span_);
   }
 
   // The program as the machine writes it (line numbers, comments).
@@ -177,6 +179,7 @@ private:
       program_.text += formatted.lines[i];
       program_.text += '\n';
       program_.cutOfLine.push_back(cutOfPrintedLine_[formatted.printedLine[i]]);
+      program_.lineSpans.push_back(spanOfPrintedLine_[formatted.printedLine[i]]);
     }
   }
 
@@ -546,6 +549,8 @@ private:
   SinumerikProgram program_;
   std::vector<std::string> lines_;
   std::vector<std::optional<std::size_t>> cutOfPrintedLine_;
+  std::vector<frontend::SourceSpan> spanOfPrintedLine_;
+  frontend::SourceSpan span_; // of the event being written
   std::optional<std::size_t> cut_;
   std::optional<Eigen::Vector3d> position_, previous_;
   std::optional<Eigen::Vector3d> exact_; // the tool path's position, unrounded

@@ -28,6 +28,9 @@ PartLowering::PartLowering(const CheckedProgram& program, const PartItem& part,
       evaluator_(program, scratch_), builder_(std::string(part.name)) {}
 
 LoweredPart PartLowering::run() {
+  // What no statement makes (the parameters, the set-up before the first
+  // statement and at the end) comes from the part itself.
+  builder_.setSpan(part_.nameSpan);
   lowerParameters();
   if (!options_.controllerLoops) { // the macro programs' header names the part
     builder_.comment(fmt::format("part {}", part_.name));
@@ -90,6 +93,7 @@ void PartLowering::lowerBlock(const Block& block) {
 }
 
 void PartLowering::lowerStatement(const Stmt& statement) {
+  SpanScope span(builder_, statement.span);
   switch (statement.kind) {
   case StmtKind::Units:
     return; // partUnits() reads it; the IR's numbers are in the part's units

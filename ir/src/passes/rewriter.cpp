@@ -65,7 +65,11 @@ Function Rewriter::run() {
 void Rewriter::rewriteRegion(const Region& region) {
   enterRegion();
   for (InstructionId id : region.instructions) {
+    // What a visit makes in place of an instruction comes from its statement.
+    frontend::SourceSpan outer = visiting_;
+    visiting_ = source_.instructions[id].span;
     visit(source_.instructions[id]);
+    visiting_ = outer;
   }
   leaveRegion();
 }
@@ -116,6 +120,9 @@ ValueId Rewriter::append(Instruction instruction) {
     output_.definitions.push_back(id);
   }
   currentRegion().instructions.push_back(id);
+  if (!instruction.span.valid()) {
+    instruction.span = visiting_;
+  }
   output_.instructions.push_back(std::move(instruction));
   return output_.instructions.back().result;
 }
@@ -127,6 +134,7 @@ ValueId Rewriter::emit(const Instruction& instruction, std::vector<ValueId> oper
   copy.number = instruction.number;
   copy.index = instruction.index;
   copy.text = instruction.text;
+  copy.span = instruction.span;
   return append(std::move(copy));
 }
 
@@ -150,6 +158,7 @@ ValueId Rewriter::beginRegions(const Instruction& instruction, std::vector<Value
   copy.operands = std::move(operands);
   copy.number = instruction.number;
   copy.index = instruction.index;
+  copy.span = instruction.span;
   copy.regions.resize(instruction.regions.size());
   ValueId result = append(std::move(copy));
   insertion_.push_back({static_cast<InstructionId>(output_.instructions.size() - 1), 0});

@@ -83,6 +83,7 @@ private:
   // The output regions being filled: (instruction, region); empty = body.
   std::vector<std::pair<InstructionId, std::size_t>> insertion_;
   bool changed_ = false;
+  frontend::SourceSpan visiting_; // of the source instruction being visited
 };
 
 } // namespace cncc::ir::passes

@@ -58,6 +58,10 @@ public:
   // `cut.begin index`: the moves that follow belong to cut `index`.
   void cutBegin(std::uint32_t index);
 
+  // The CDL span every instruction appended from now on comes from.
+  void setSpan(frontend::SourceSpan span) { span_ = span; }
+  frontend::SourceSpan span() const { return span_; }
+
   Function finish();
   const Function& function() const { return function_; }
 
@@ -68,6 +72,24 @@ private:
   Function function_;
   // The regions being filled: (instruction, region index); empty = body.
   std::vector<std::pair<InstructionId, std::size_t>> insertion_;
+  frontend::SourceSpan span_;
+};
+
+// Sets the builder's span for the life of the scope (a statement being
+// lowered), then puts the one before it back.
+class SpanScope {
+public:
+  SpanScope(FunctionBuilder& builder, frontend::SourceSpan span)
+      : builder_(builder), outer_(builder.span()) {
+    builder_.setSpan(span);
+  }
+  ~SpanScope() { builder_.setSpan(outer_); }
+  SpanScope(const SpanScope&) = delete;
+  SpanScope& operator=(const SpanScope&) = delete;
+
+private:
+  FunctionBuilder& builder_;
+  frontend::SourceSpan outer_;
 };
 
 } // namespace cncc::ir

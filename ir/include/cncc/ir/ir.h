@@ -6,6 +6,8 @@
 // each other by index.
 #pragma once
 
+#include "cncc/frontend/source_manager.h"
+
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -84,6 +86,10 @@ struct Instruction {
                                // offset register; Origin 54.1: P; Coolant: its CoolantMode
   std::string text;            // Comment, Alarm: the text
   std::vector<Region> regions; // Loop: {body}; If: {then, else}
+  // The CDL statement it was lowered from (the part's name for the set-up
+  // around the statements); not printed in the IR's text. What a source
+  // map gives for the program lines printed from it.
+  frontend::SourceSpan span;
 };
 
 struct Parameter {

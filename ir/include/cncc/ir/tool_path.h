@@ -2,6 +2,8 @@
 // interpreter and the JIT, and the input of the numeric backends.
 #pragma once
 
+#include "cncc/frontend/source_manager.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,6 +40,7 @@ struct MachineEvent {
   double diameter = 0;              // Tool
   std::uint32_t offsetRegister = 0; // Tool: length offset (0: default); Origin 54.1: P
   std::string text;                 // Comment
+  frontend::SourceSpan span;        // the instruction's (Instruction::span)
 };
 
 struct ToolPath {

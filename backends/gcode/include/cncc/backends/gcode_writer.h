@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cncc::backends {
 
@@ -33,5 +34,13 @@ std::string gcodeCommentText(std::string_view text);
 std::optional<int> programNumberFromFileName(std::string_view path);
 
 std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options);
+
+struct GcodeProgram {
+  std::string text;
+  // The CDL span each line of `text` was printed from.
+  std::vector<frontend::SourceSpan> lineSpans;
+};
+// The same program, with where each line comes from.
+GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& options);
 
 } // namespace cncc::backends

@@ -46,6 +46,9 @@ struct LinuxcncProgramOptions {
 struct LinuxcncProgram {
   std::string text;                // empty when errors is not
   std::vector<std::string> errors; // each names the limit and the count
+  // The CDL span each line of `text` was printed from (invalid: before any
+  // statement).
+  std::vector<frontend::SourceSpan> lineSpans;
 };
 
 // The named parameter of each part parameter, without `#<>`: `_depth`;

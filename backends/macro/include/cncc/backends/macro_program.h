@@ -45,6 +45,9 @@ struct MacroProgram {
   std::string text;                // empty when errors is not
   std::vector<std::string> errors; // each names the limit and the count
   MacroProgramStatistics statistics;
+  // The CDL span each line of `text` was printed from (invalid: the part's
+  // header, before any statement).
+  std::vector<frontend::SourceSpan> lineSpans;
 };
 
 // Where the part parameters go: G65 argument locals in letter order

@@ -60,6 +60,8 @@ struct SinumerikProgram {
   // The cut each line of the main program belongs to (index 0 is line 1).
   std::vector<std::optional<std::size_t>> cutOfLine;
   std::vector<SinumerikCutSummary> cuts;
+  // The CDL span each line of `text` was printed from.
+  std::vector<frontend::SourceSpan> lineSpans;
 };
 
 // A cut the controller cannot be given within its tolerance.

@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""Source maps and `cncc where`:
+
+    run_source_map_tests.py --cncc build/tools/cncc/cncc --work DIR
+
+- every line of every example's program, on every target that prints a
+  program, maps to a CDL location inside its source file, the cuts' lines
+  to cut statements, and the map is the program's (its hash);
+- on the macro targets a line inside a controller loop maps to the cut
+  statement that made the loop, and `cncc where` says so;
+- `cncc where` refuses a line past the end, a block number the program does
+  not have, a map of another program, a missing map and a malformed one
+  (exit 1, a message naming the problem).
+"""
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+TARGETS = ["fanuc", "m80", "linuxcnc", "gcode", "sinumerik"]
+
+
+def fnv1a(text):
+    value = 14695981039346656037
+    for byte in text:
+        value ^= byte
+        value = (value * 1099511628211) % (1 << 64)
+    return f"{value:016x}"
+
+
+def example_parts():
+    for path in sorted((ROOT / "examples").glob("*.cdl")):
+        for line in path.read_text().splitlines():
+            if line.startswith("part "):
+                yield path, line.split()[1].split("(")[0].rstrip("{").strip()
+
+
+class Checks:
+    def __init__(self, cncc, work):
+        self.cncc = cncc
+        self.work = work
+        self.failures = []
+        self.programs = 0
+
+    def fail(self, message):
+        self.failures.append(message)
+
+    def compile(self, source, part, target, name):
+        program = self.work / f"{name}.nc"
+        source_map = self.work / f"{name}.nc.map.json"
+        result = subprocess.run([self.cncc, str(source), "-p", part, "-t", target, "-o",
+                                 str(program), "--source-map", str(source_map)],
+                                cwd=ROOT, capture_output=True, text=True)
+        if result.returncode != 0:
+            self.fail(f"{name}: does not compile: {result.stderr}")
+            return None, None
+        return program, json.loads(source_map.read_text())
+
+    def check_map(self, name, program, source_map):
+        text = program.read_bytes()
+        lines = text.decode().splitlines()
+        if source_map.get("version") != 1 or source_map.get("programHash") != fnv1a(text):
+            self.fail(f"{name}: the map's version or hash is not the program's")
+        if len(source_map["lines"]) != len(lines):
+            self.fail(f"{name}: {len(lines)} program lines, {len(source_map['lines'])} in the map")
+            return
+        sources = [(ROOT / path).read_text().splitlines() for path in source_map["sources"]]
+        for number, entry in enumerate(source_map["lines"], 1):
+            source = sources[entry["source"]]
+            if not 1 <= entry["line"] <= len(source) or entry["column"] < 1 or \
+                    entry["column"] > len(source[entry["line"] - 1]) + 1:
+                self.fail(f"{name}:{number}: maps to {entry}, outside its source")
+                return
+
+    def check_controller_loops(self, name, source_map):
+        inside = [entry for entry in source_map["lines"] if entry["loopDepth"] > 0]
+        if inside and not any(entry["statement"] == "cut" for entry in inside):
+            self.fail(f"{name}: no line inside a controller loop maps to a cut")
+
+    def run_examples(self):
+        for source, part in example_parts():
+            for target in TARGETS:
+                name = f"{part}-{target}"
+                program, source_map = self.compile(source, part, target, name)
+                if program is None:
+                    continue
+                self.programs += 1
+                self.check_map(name, program, source_map)
+                if not any(entry["statement"] == "cut" for entry in source_map["lines"]):
+                    self.fail(f"{name}: no line maps to a cut statement")
+                if target in ("fanuc", "m80", "linuxcnc"):
+                    self.check_controller_loops(name, source_map)
+
+    def where(self, *arguments):
+        return subprocess.run([self.cncc, "where", *map(str, arguments)], cwd=ROOT,
+                              capture_output=True, text=True)
+
+    def run_where(self):
+        program, source_map = self.compile(ROOT / "examples" / "bolt_circle.cdl", "bolt_circle",
+                                           "fanuc", "where-bolt-circle")
+        if program is None:
+            return
+        loop_line = max(range(len(source_map["lines"])),
+                        key=lambda k: source_map["lines"][k]["loopDepth"]) + 1
+        result = self.where(program, loop_line)
+        expected = ["bolt_circle.cdl:16:5: note: printed from this cut statement",
+                    "inside 2 controller loops", "curve circle(", "holes=6, pcd=80"]
+        if result.returncode != 0 or any(part not in result.stdout for part in expected):
+            self.fail(f"where {program} {loop_line}:\n{result.stdout}{result.stderr}")
+        lines = program.read_text().splitlines()
+        self.expect_refusal("a line past the end", [program, len(lines) + 1],
+                            f"has {len(lines)} lines")
+        self.expect_refusal("a block number the program lacks", [program, "N77777"],
+                            "has no block N77777")
+        edited = self.work / "edited.nc"
+        edited.write_text(program.read_text().replace("G54", "G55"))
+        self.expect_refusal("a map of another program",
+                            [edited, 3, "--source-map", str(program) + ".map.json"],
+                            "is for another program")
+        self.expect_refusal("a missing map", [edited, 3], "cannot read the source map")
+        malformed = self.work / "malformed.json"
+        malformed.write_text('{"version": 1, "lines": [')
+        self.expect_refusal("a malformed map", [program, 3, "--source-map", malformed],
+                            "is not valid JSON")
+
+    def expect_refusal(self, what, arguments, message):
+        result = self.where(*arguments)
+        if result.returncode != 1 or message not in result.stderr:
+            self.fail(f"where with {what}: exit {result.returncode}, expected 1 and "
+                      f"'{message}':\n{result.stderr}")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--cncc", required=True)
+    parser.add_argument("--work", required=True, type=Path)
+    options = parser.parse_args()
+    shutil.rmtree(options.work, ignore_errors=True)
+    options.work.mkdir(parents=True)
+    checks = Checks(str(Path(options.cncc).resolve()), options.work)
+    checks.run_examples()
+    checks.run_where()
+    for failure in checks.failures:
+        print(f"FAIL {failure}")
+    print(f"{checks.programs} programs mapped line by line; {len(checks.failures)} failures")
+    return 1 if checks.failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,177 @@
+#include "source_map.h"
+
+#include "cncc/frontend/ast.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <regex>
+#include <utility>
+
+namespace cncc::driver {
+
+namespace {
+
+using frontend::SourceSpan;
+
+std::string_view statementName(frontend::StmtKind kind) {
+  switch (kind) {
+  case frontend::StmtKind::Units:
+    return "units";
+  case frontend::StmtKind::Tool:
+    return "tool";
+  case frontend::StmtKind::Feed:
+    return "feed";
+  case frontend::StmtKind::Spindle:
+    return "spindle";
+  case frontend::StmtKind::Safe:
+    return "safe";
+  case frontend::StmtKind::Origin:
+    return "origin";
+  case frontend::StmtKind::Coolant:
+    return "coolant";
+  case frontend::StmtKind::Let:
+    return "let";
+  case frontend::StmtKind::Cut:
+    return "cut";
+  case frontend::StmtKind::For:
+    return "for";
+  case frontend::StmtKind::If:
+    return "if";
+  case frontend::StmtKind::Error:
+    break;
+  }
+  return "statement";
+}
+
+using StatementKinds = std::map<std::pair<std::uint32_t, std::uint32_t>, std::string_view>;
+
+void collectStatements(const frontend::Block& block, StatementKinds& kinds) {
+  for (const frontend::StmtPtr& statement : block.statements) {
+    kinds[{statement->span.file.index, statement->span.begin}] = statementName(statement->kind);
+    if (statement->kind == frontend::StmtKind::For) {
+      collectStatements(frontend::as<frontend::ForStmt>(*statement).body, kinds);
+    } else if (statement->kind == frontend::StmtKind::If) {
+      const auto& conditional = frontend::as<frontend::IfStmt>(*statement);
+      collectStatements(conditional.thenBlock, kinds);
+      collectStatements(conditional.elseBlock, kinds);
+    }
+  }
+}
+
+std::vector<std::string_view> programLines(std::string_view text) {
+  std::vector<std::string_view> lines;
+  while (!text.empty()) {
+    std::size_t newline = text.find('\n');
+    lines.push_back(text.substr(0, newline));
+    text = newline == std::string_view::npos ? std::string_view() : text.substr(newline + 1);
+  }
+  return lines;
+}
+
+// How many controller loops hold each line (the loop's first and last
+// lines count as inside it): WHILE .. DOn / ENDn, o-word while / endwhile
+// and do / while, Sinumerik WHILE / ENDWHILE.
+std::vector<int> loopDepths(const std::vector<std::string_view>& lines) {
+  static const std::regex comment(R"(\([^)]*\)|;.*$)");
+  static const std::regex opens(R"(\bWHILE\b|^\s*(N\d+\s+)?o\d+\s+(while|do)\b)");
+  static const std::regex closes(R"(\bEND\d\b|\bENDWHILE\b|^\s*(N\d+\s+)?o\d+\s+endwhile\b)");
+  static const std::regex doWhile(R"(^\s*(N\d+\s+)?o(\d+)\s+(do|while)\b)");
+  std::vector<int> depths;
+  std::vector<std::string> doLabels; // LinuxCNC `oN do` loops open
+  int depth = 0;
+  for (std::string_view line : lines) {
+    std::string code = std::regex_replace(std::string(line), comment, "");
+    std::smatch oWord;
+    bool isOWord = std::regex_search(code, oWord, doWhile);
+    if (isOWord && oWord[3] == "while" && !doLabels.empty() && doLabels.back() == oWord[2]) {
+      depths.push_back(depth--); // the `while` that closes a do loop
+      doLabels.pop_back();
+      continue;
+    }
+    if (isOWord && oWord[3] == "do") {
+      doLabels.push_back(oWord[2]);
+    }
+    if (std::regex_search(code, opens)) {
+      ++depth;
+    }
+    depths.push_back(depth);
+    if (std::regex_search(code, closes) && depth > 0) {
+      --depth;
+    }
+  }
+  return depths;
+}
+
+nlohmann::json parameterValues(const frontend::PartItem& part) {
+  nlohmann::json values = nlohmann::json::object();
+  for (const frontend::Parameter& parameter : part.parameters) {
+    const frontend::Declaration* declaration = parameter.declaration;
+    if (declaration != nullptr && declaration->value &&
+        declaration->value->type.kind == frontend::TypeKind::Num) {
+      values[std::string(parameter.name)] = declaration->value->number;
+    }
+  }
+  return values;
+}
+
+} // namespace
+
+std::string programHash(std::string_view text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (char c : text) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ull;
+  }
+  return fmt::format("{:016x}", hash);
+}
+
+std::string sourceMapJson(const SourceMapInput& input) {
+  const frontend::PartItem& part = *input.program->selectedPart;
+  StatementKinds kinds;
+  collectStatements(part.body, kinds);
+  std::vector<std::string> sources;
+  std::map<std::uint32_t, std::size_t> sourceIndex; // FileId -> index in sources
+  auto sourceOf = [&](frontend::FileId file) {
+    auto [found, added] = sourceIndex.try_emplace(file.index, sources.size());
+    if (added) {
+      sources.push_back(input.sources->file(file).path());
+    }
+    return found->second;
+  };
+  std::vector<std::string_view> lines = programLines(input.programText);
+  std::vector<int> depths = loopDepths(lines);
+  nlohmann::json mapped = nlohmann::json::array();
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    SourceSpan span = i < input.lineSpans.size() ? input.lineSpans[i] : SourceSpan{};
+    if (!span.valid()) {
+      span = part.nameSpan;
+    }
+    frontend::LineColumn at = input.sources->file(span.file).lineColumn(span.begin);
+    auto kind = kinds.find({span.file.index, span.begin});
+    mapped.push_back({{"source", sourceOf(span.file)},
+                      {"line", at.line},
+                      {"column", at.column},
+                      {"statement", kind == kinds.end() ? "part" : kind->second},
+                      {"loopDepth", depths[i]}});
+  }
+  nlohmann::json header = {{"version", 1},
+                           {"program", input.programPath},
+                           {"programHash", programHash(input.programText)},
+                           {"target", input.target},
+                           {"part", std::string(part.name)},
+                           {"parameters", parameterValues(part)},
+                           {"sources", sources}};
+  // One line per program line, so that the map reads (and diffs) as the
+  // program does.
+  std::string text = header.dump(1);
+  text.erase(text.find_last_not_of(" \n", text.rfind('}') - 1) + 1);
+  text += ",\n \"lines\": [";
+  for (std::size_t i = 0; i < mapped.size(); ++i) {
+    text += (i == 0 ? "\n  " : ",\n  ") + mapped[i].dump();
+  }
+  return text + "\n ]\n}\n";
+}
+
+} // namespace cncc::driver

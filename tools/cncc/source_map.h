@@ -1,0 +1,42 @@
+// Source maps (`--source-map FILE.json`): for every line of a compiled
+// program, the CDL file, line and column of what printed it, and the
+// parameter values it was compiled with; `cncc where` reads them back.
+//
+// The JSON (version 1):
+//   {"version": 1, "program": "O1000.nc", "programHash": "<FNV-1a 64, hex>",
+//    "target": "fanuc", "part": "ring",
+//    "parameters": {"radius": 20, ...},
+//    "sources": ["ring.cdl", "/.../std/curves.cdl"],
+//    "lines": [{"source": 0, "line": 12, "column": 3, "statement": "cut",
+//               "loopDepth": 1}, ...]}
+// `lines[i]` is line i + 1 of the program; "statement" is the kind of CDL
+// statement (part, tool, cut, for, if, let, origin, coolant, feed, ...),
+// "loopDepth" how many controller loops (WHILE, o-word while) hold the line.
+#pragma once
+
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cncc::driver {
+
+struct SourceMapInput {
+  std::string programPath;
+  std::string_view programText;
+  std::string target;
+  const frontend::CheckedProgram* program = nullptr; // its selected part
+  const frontend::SourceManager* sources = nullptr;
+  // The span of each program line (invalid: the part's own).
+  std::vector<frontend::SourceSpan> lineSpans;
+};
+
+std::string sourceMapJson(const SourceMapInput& input);
+
+// FNV-1a, 64 bits, in hex: what a map checks its program against.
+std::string programHash(std::string_view text);
+
+} // namespace cncc::driver

@@ -1,0 +1,176 @@
+// `cncc where PROGRAM LINE|Nnnnn [--source-map FILE.json]`: which CDL
+// statement printed a line of a compiled program (source_map.h).
+#include "commands.h"
+#include "source_map.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cncc::driver {
+
+namespace {
+
+// A problem `where` reports as `cncc: error: ...`, exit 1.
+class WhereError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string readFile(const std::string& path, std::string_view what) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    throw WhereError(fmt::format("cannot read {} '{}'", what, path));
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+nlohmann::json readMap(const std::string& path, const std::string& programText) {
+  nlohmann::json map;
+  try {
+    map = nlohmann::json::parse(readFile(path, "the source map"));
+  } catch (const nlohmann::json::exception& error) {
+    throw WhereError(fmt::format("the source map '{}' is not valid JSON: {}", path, error.what()));
+  }
+  if (!map.is_object() || map.value("version", 0) != 1 || !map["lines"].is_array() ||
+      !map["sources"].is_array() || !map["programHash"].is_string()) {
+    throw WhereError(fmt::format("'{}' is not a cncc source map (version 1)", path));
+  }
+  if (map["programHash"].get<std::string>() != programHash(programText)) {
+    throw WhereError(fmt::format("the source map '{}' is for another program than this one (or "
+                                 "the program was changed since)",
+                                 path));
+  }
+  return map;
+}
+
+// The 1-based program line `location` names: a line number, or the first
+// block numbered Nnnnn.
+std::size_t programLine(const std::string& location, const std::vector<std::string>& lines,
+                        const std::string& programPath) {
+  bool blockNumber = !location.empty() && (location[0] == 'N' || location[0] == 'n');
+  std::string digits = blockNumber ? location.substr(1) : location;
+  std::size_t number = 0;
+  auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) {
+    throw WhereError(
+        fmt::format("'{}' is neither a line number nor a block number Nnnnn", location));
+  }
+  if (!blockNumber) {
+    if (number < 1 || number > lines.size()) {
+      throw WhereError(
+          fmt::format("{} has {} lines; there is no line {}", programPath, lines.size(), number));
+    }
+    return number;
+  }
+  std::string word = fmt::format("N{}", number);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::string_view code = lines[i];
+    code.remove_prefix(std::min(code.find_first_not_of(" \t"), code.size()));
+    if (code.starts_with(word) && (code.size() == word.size() ||
+                                   !std::isdigit(static_cast<unsigned char>(code[word.size()])))) {
+      return i + 1;
+    }
+  }
+  throw WhereError(fmt::format("{} has no block {}", programPath, word));
+}
+
+std::string describe(const nlohmann::json& entry, const nlohmann::json& map) {
+  std::string statement = entry.value("statement", "part");
+  std::string text = statement == "part" ? fmt::format("printed for part {} itself (its set-up)",
+                                                       map.value("part", ""))
+                                         : fmt::format("printed from this {} statement of part {}",
+                                                       statement, map.value("part", ""));
+  int depth = entry.value("loopDepth", 0);
+  if (depth > 0) {
+    text += fmt::format(", inside {} controller loop{}", depth, depth == 1 ? "" : "s");
+  }
+  return text;
+}
+
+void printSourceLine(const std::string& path, std::size_t line, std::size_t column) {
+  std::ifstream file(path, std::ios::binary);
+  std::string text;
+  for (std::size_t k = 0; k < line && std::getline(file, text); ++k) {
+  }
+  if (!file && text.empty()) {
+    return;
+  }
+  std::string indent;
+  for (std::size_t k = 0; k + 1 < column && k < text.size(); ++k) {
+    indent += text[k] == '\t' ? '\t' : ' ';
+  }
+  fmt::print("  {}\n  {}^\n", text, indent);
+}
+
+void printParameters(const nlohmann::json& parameters) {
+  if (!parameters.is_object() || parameters.empty()) {
+    return;
+  }
+  std::string list;
+  for (const auto& [name, value] : parameters.items()) {
+    std::string shown = value.is_number() ? fmt::format("{:g}", value.get<double>()) : value.dump();
+    list += fmt::format("{}{}={}", list.empty() ? "" : ", ", name, shown);
+  }
+  fmt::print("compiled with {}\n", list);
+}
+
+} // namespace
+
+int runWhere(const DriverOptions& options) {
+  const std::string& programPath = options.inputs.front();
+  try {
+    std::string programText = readFile(programPath, "the program");
+    nlohmann::json map = readMap(options.sourceMap, programText);
+    std::vector<std::string> lines = linesOf(programText);
+    std::size_t line = programLine(options.whereLocation, lines, programPath);
+    const nlohmann::json& entries = map["lines"];
+    if (line > entries.size()) {
+      throw WhereError(
+          fmt::format("the source map '{}' has no entry for line {}", options.sourceMap, line));
+    }
+    const nlohmann::json& entry = entries[line - 1];
+    std::size_t source = entry.value("source", std::size_t{0});
+    if (source >= map["sources"].size() || !map["sources"][source].is_string()) {
+      throw WhereError(
+          fmt::format("the source map '{}' names no source for line {}", options.sourceMap, line));
+    }
+    std::string sourcePath = map["sources"][source].get<std::string>();
+    std::size_t sourceLine = entry.value("line", std::size_t{0});
+    std::size_t column = entry.value("column", std::size_t{0});
+    fmt::print("{}:{}: {}\n", programPath, line, lines[line - 1]);
+    fmt::print("{}:{}:{}: note: {}\n", sourcePath, sourceLine, column, describe(entry, map));
+    printSourceLine(sourcePath, sourceLine, column);
+    printParameters(map["parameters"]);
+    return 0;
+  } catch (const WhereError& error) {
+    std::fflush(stdout);
+    fmt::print(stderr, "cncc: error: {}\n", error.what());
+    return 1;
+  } catch (const nlohmann::json::exception& error) {
+    fmt::print(stderr, "cncc: error: the source map '{}' is malformed: {}\n", options.sourceMap,
+               error.what());
+    return 1;
+  }
+}
+
+} // namespace cncc::driver
