@@ -133,7 +133,8 @@ bool takesLineNumber(std::string_view line, const MachineSetup& setup) {
 
 // A macro jump target: a block of nothing but `N<label>`.
 std::optional<int> jumpLabel(std::string_view line) {
-  if (line.size() < 2 || line.front() != 'N' ||
+  // At most 9 digits: a number an int holds (controllers stop at 8).
+  if (line.size() < 2 || line.size() > 10 || line.front() != 'N' ||
       !std::all_of(line.begin() + 1, line.end(), isDigit)) {
     return std::nullopt;
   }
@@ -155,7 +156,7 @@ std::optional<Span> jumpTarget(std::string_view line, const MachineSetup& setup)
   while (end < codeEnd && isDigit(line[end])) {
     ++end;
   }
-  return end == begin ? std::nullopt : std::optional<Span>({begin, end});
+  return end == begin || end - begin > 9 ? std::nullopt : std::optional<Span>({begin, end});
 }
 
 class LineNumberer {

@@ -49,6 +49,11 @@ TEST(ProgramFormatTest, AJumpInACommentIsNotRenumbered) {
             (std::vector<std::string>{"N10 G0 X1. (GOTO 1)", "N20"}));
 }
 
+TEST(ProgramFormatTest, ANumberTooLongForALabelIsAnOrdinaryBlock) {
+  EXPECT_EQ(format({"N1234567890123", "GOTO 98765432109876"}, numbered("fanuc")),
+            (std::vector<std::string>{"N10 N1234567890123", "N20 GOTO 98765432109876"}));
+}
+
 TEST(ProgramFormatTest, NumbersStartAgainAfterTheMaximum) {
   std::vector<std::string> lines = {"G0 X1.", "G0 X2.", "G0 X3."};
   EXPECT_EQ(format(lines, numbered("gcode", 1, 4, 8)),
