@@ -144,8 +144,13 @@ CLI::App* addPlotCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* plot = app.add_subcommand(
       "plot", "Draw the part's true curves and emitted path, coloured by deviation, as SVG");
   plot->add_option("FILE", raw.plotInput, "The .cdl file to plot")->type_name("")->required();
+  plot->add_option("--format", raw.plotFormat,
+                   "svg (the default), or png through rsvg-convert (Debian: librsvg2-bin)")
+      ->type_name("svg|png")
+      ->check(CLI::IsMember({"svg", "png"}));
   plot->fallthrough();
-  plot->footer("\nTakes -o OUT.svg ('-': standard output), -t TARGET (gcode or jit; gcode by "
+  plot->footer("\nTakes -o OUT.svg (or OUT.png with --format=png; '-': standard output), "
+               "-t TARGET (gcode or jit; gcode by "
                "default), -D, -p, -I and the diagnostic options (see 'cncc --help').");
   return plot;
 }

@@ -33,6 +33,7 @@ struct RawOptions {
   std::string splineEnds;
   std::string rapidRate = "10000";
   std::string plotInput;
+  std::string plotFormat = "svg";
   std::string optInput;
   std::string passes;
   std::string printAfter;

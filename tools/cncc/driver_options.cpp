@@ -316,6 +316,7 @@ DriverOptions plotOptions(const RawOptions& raw, const CLI::App& app) {
         targetNameList([](const Target& candidate) { return canMeasure(candidate.name); })));
   }
   options.command = Command::Plot;
+  options.plotPng = raw.plotFormat == "png";
   return options;
 }
 

@@ -82,6 +82,7 @@ struct DriverOptions {
   // and the program line asked about (a line number or Nnnnn).
   std::string sourceMap;
   std::string whereLocation;
+  bool plotPng = false; // plot --format=png
 };
 
 // What parsing the command line decided: options to run with, or an exit

@@ -10,6 +10,11 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
+#include <optional>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace cncc::driver {
 
 namespace {
@@ -20,6 +25,39 @@ std::string plotTitle(const DriverOptions& options, const frontend::PartItem& pa
   return fmt::format("{}, part {}, target {}",
                      slash == std::string::npos ? input : input.substr(slash + 1), part.name,
                      options.target);
+}
+
+// The SVG as PNG, drawn by rsvg-convert; nullopt (and `problem` set) when
+// it cannot be.
+std::optional<std::string> pngOf(const std::string& svg, std::string& problem) {
+  char path[] = "/tmp/cncc-plot-XXXXXX";
+  int descriptor = ::mkstemp(path);
+  if (descriptor < 0) {
+    problem = "cannot create a temporary file for the SVG";
+    return std::nullopt;
+  }
+  bool written = ::write(descriptor, svg.data(), svg.size()) == static_cast<ssize_t>(svg.size());
+  ::close(descriptor);
+  std::string png;
+  int status = -1;
+  if (written) {
+    std::string command = fmt::format("rsvg-convert -f png {} 2>/dev/null", path);
+    if (FILE* pipe = ::popen(command.c_str(), "r")) {
+      char buffer[65536];
+      for (std::size_t read; (read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
+        png.append(buffer, read);
+      }
+      status = ::pclose(pipe);
+    }
+  }
+  ::unlink(path);
+  if (status != 0 || png.empty()) {
+    problem = WIFEXITED(status) && WEXITSTATUS(status) == 127
+                  ? "--format=png needs rsvg-convert (Debian package librsvg2-bin)"
+                  : "rsvg-convert could not draw the plot as PNG";
+    return std::nullopt;
+  }
+  return png;
 }
 
 } // namespace
@@ -51,7 +89,17 @@ int runPlot(const DriverOptions& options) {
   plotOptions.title = plotTitle(options, *program->selectedPart);
   plotOptions.unit = unitName(measured->inches);
   plotOptions.cutNames = measured->cutNames;
-  file->write(backends::plotSvg(measured->program.path, measured->cuts, plotOptions));
+  std::string svg = backends::plotSvg(measured->program.path, measured->cuts, plotOptions);
+  if (options.plotPng) {
+    std::string problem;
+    std::optional<std::string> png = pngOf(svg, problem);
+    if (!png) {
+      output.driverError(problem);
+      return 1;
+    }
+    svg = std::move(*png);
+  }
+  file->write(svg);
   if (!file->commit(error)) {
     output.driverError(fmt::format("cannot write '{}': {}", options.output, error.message()));
     return 1;

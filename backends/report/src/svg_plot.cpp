@@ -3,6 +3,7 @@
 #include "cncc/backends/path_statistics.h"
 #include "cncc/geom/deviation.h"
 #include "plane_projection.h"
+#include "svg_plot_parts.h"
 
 #include <fmt/format.h>
 
@@ -13,13 +14,7 @@
 
 namespace cncc::backends {
 
-namespace {
-
-constexpr double kMargin = 60;           // pixels around the drawing area, for the axes
-constexpr double kTitleHeight = 30;      // pixels above it
-constexpr double kLegendLineHeight = 18; // pixels per legend line
-constexpr int kSamplesPerSegment = 16;
-constexpr int kRefinementSteps = 40;
+namespace plot {
 
 std::string escaped(std::string_view text) {
   std::string out;
@@ -43,6 +38,38 @@ std::string escaped(std::string_view text) {
   }
   return out;
 }
+
+std::vector<PlottedCut> plottedCuts(const ExecutedPath& path, std::span<const ir::CutGeometry> cuts,
+                                    double accuracy) {
+  std::vector<PlottedCut> plotted(cuts.size());
+  for (std::size_t cut = 0; cut < cuts.size(); ++cut) {
+    plotted[cut].tolerance = cuts[cut].tolerance;
+    for (std::vector<Eigen::Vector3d>& points : cutPolylines(path, cut)) {
+      PlottedPolyline line;
+      if (cuts[cut].curve != nullptr) {
+        PlaneProjection plan(*cuts[cut].curve);
+        line.deviations = segmentDeviations(points, plan, accuracy);
+      }
+      line.points = std::move(points);
+      plotted[cut].polylines.push_back(std::move(line));
+    }
+  }
+  return plotted;
+}
+
+} // namespace plot
+
+namespace {
+
+using plot::escaped;
+using plot::PlottedCut;
+using plot::PlottedPolyline;
+
+constexpr double kMargin = 60;           // pixels around the drawing area, for the axes
+constexpr double kTitleHeight = 30;      // pixels above it
+constexpr double kLegendLineHeight = 18; // pixels per legend line
+constexpr int kSamplesPerSegment = 16;
+constexpr int kRefinementSteps = 40;
 
 using Rgb = std::array<double, 3>;
 
@@ -202,24 +229,19 @@ std::string rapidLines(const Frame& frame, const ExecutedPath& path) {
 }
 
 // The coloured segments and the dots of every cut.
-std::string cutPaths(const Frame& frame, const ExecutedPath& path,
-                     std::span<const ir::CutGeometry> cuts) {
+std::string cutPaths(const Frame& frame, const std::vector<PlottedCut>& plotted) {
   std::string segments = "<g class=\"path\" stroke-width=\"1.6\" stroke-linecap=\"round\">\n";
   std::string points = "<g class=\"points\" fill=\"#000\">\n";
-  for (std::size_t cut = 0; cut < cuts.size(); ++cut) {
-    for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(path, cut)) {
-      std::vector<double> deviations;
-      if (cuts[cut].curve != nullptr) {
-        PlaneProjection plan(*cuts[cut].curve);
-        deviations = segmentDeviations(polyline, plan, 1e-3 / frame.scale());
-      }
-      for (std::size_t i = 0; i < deviations.size(); ++i) {
+  for (std::size_t cut = 0; cut < plotted.size(); ++cut) {
+    for (const PlottedPolyline& line : plotted[cut].polylines) {
+      const std::vector<Eigen::Vector3d>& polyline = line.points;
+      for (std::size_t i = 0; i < line.deviations.size(); ++i) {
         segments += fmt::format(
             "<line class=\"segment\" data-cut=\"{}\" data-deviation=\"{:.6f}\" x1=\"{:.2f}\" "
             "y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\"/>\n",
-            cut, deviations[i], frame.x(polyline[i].x()), frame.y(polyline[i].y()),
+            cut, line.deviations[i], frame.x(polyline[i].x()), frame.y(polyline[i].y()),
             frame.x(polyline[i + 1].x()), frame.y(polyline[i + 1].y()),
-            deviationColour(deviations[i], cuts[cut].tolerance));
+            deviationColour(line.deviations[i], plotted[cut].tolerance));
       }
       for (const Eigen::Vector3d& point : polyline) {
         points += fmt::format("<circle class=\"point\" cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"1.3\"/>\n",
@@ -259,10 +281,11 @@ std::string legend(double top, std::span<const ir::CutGeometry> cuts,
     y += kLegendLineHeight;
   }
   double x = kMargin;
-  out += swatch(x, y, kWithinHalfToleranceColour, "within half the tolerance");
-  out += swatch(x + 210, y, deviationColour(1, 1), "at the tolerance");
-  out += swatch(x + 360, y, kBeyondToleranceColour, "beyond it");
-  out += swatch(x + 470, y, "#555", "true curve");
+  out += swatch(x, y, kOnTheCurveColour, "on the curve");
+  out += swatch(x + 130, y, deviationColour(0.5, 1), "half the tolerance");
+  out += swatch(x + 290, y, deviationColour(1, 1), "the tolerance");
+  out += swatch(x + 410, y, kBeyondToleranceColour, "beyond it");
+  out += swatch(x + 510, y, "#555", "true curve");
   return out + "</g>\n";
 }
 
@@ -282,11 +305,9 @@ std::string deviationColour(double deviation, double tolerance) {
   }
   double ratio = tolerance > 0 ? deviation / tolerance : 0.0;
   const Rgb green = {0x1a, 0x96, 0x41}, yellow = {0xf2, 0xc8, 0x0f}, red = {0xd7, 0x19, 0x1c};
-  if (ratio <= 0.5) {
-    return kWithinHalfToleranceColour;
-  }
-  return ratio <= 0.75 ? hexColour(mix(green, yellow, (ratio - 0.5) / 0.25))
-                       : hexColour(mix(yellow, red, (ratio - 0.75) / 0.25));
+  // Continuous: green on the curve, yellow at half the tolerance, red at it.
+  return ratio <= 0.5 ? hexColour(mix(green, yellow, ratio / 0.5))
+                      : hexColour(mix(yellow, red, (ratio - 0.5) / 0.5));
 }
 
 std::vector<double> segmentDeviations(const std::vector<Eigen::Vector3d>& polyline,
@@ -331,9 +352,12 @@ std::string plotSvg(const ExecutedPath& path, std::span<const ir::CutGeometry> c
   ExecutedProgram program{"", 0, path};
   std::vector<CutDeviation> deviations =
       measureProgram(program, cuts, {.rapidRate = 1, .unit = options.unit, .cutNames = {}}).cuts;
-  double legendTop = frame.bottom() + 66;
+  std::vector<PlottedCut> plotted = plot::plottedCuts(path, cuts, 1e-3 / frame.scale());
+  double panelsTop = frame.bottom() + 66;
+  double legendTop = panelsTop + plot::panelsHeight(plotted) + 12;
   double width = frame.right() + kMargin;
   double height = legendTop + kLegendLineHeight * double(cuts.size() + 1) + 10;
+  double insetSize = std::min(160.0, (frame.right() - frame.left()) / 3);
   std::string out =
       fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" "
                   "viewBox=\"0 0 {0:.0f} {1:.0f}\" font-family=\"sans-serif\">\n",
@@ -345,7 +369,11 @@ std::string plotSvg(const ExecutedPath& path, std::span<const ir::CutGeometry> c
   out += axes(frame, options.unit);
   out += curveLines(frame, cuts);
   out += rapidLines(frame, path);
-  out += cutPaths(frame, path, cuts);
+  out += cutPaths(frame, plotted);
+  out += plot::worstPointInset(plotted, cuts, frame.right() - insetSize - 6, frame.top() + 6,
+                               insetSize);
+  out += plot::deviationPanels(plotted, options.cutNames, frame.left(), panelsTop,
+                               frame.right() - frame.left(), options.unit);
   out += legend(legendTop, cuts, deviations, options);
   return out + "</svg>\n";
 }

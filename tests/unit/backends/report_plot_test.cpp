@@ -57,15 +57,16 @@ TEST(ReportPlot, SegmentDeviationIsTheSagittaOfEachChord) {
 }
 
 TEST(ReportPlot, ColoursGoFromGreenThroughRedToPurpleBeyondTheTolerance) {
-  EXPECT_EQ(backends::deviationColour(0.0, 1.0), backends::kWithinHalfToleranceColour);
-  EXPECT_EQ(backends::deviationColour(0.5, 1.0), backends::kWithinHalfToleranceColour);
-  EXPECT_EQ(backends::deviationColour(0.75, 1.0), "#f2c80f");
+  EXPECT_EQ(backends::deviationColour(0.0, 1.0), backends::kOnTheCurveColour);
+  EXPECT_EQ(backends::deviationColour(0.5, 1.0), "#f2c80f");
   EXPECT_EQ(backends::deviationColour(1.0, 1.0), "#d7191c");
   EXPECT_EQ(backends::deviationColour(1.0001, 1.0), backends::kBeyondToleranceColour);
   EXPECT_EQ(backends::deviationColour(0.1, std::nan("")), backends::kNoToleranceColour);
-  std::string between = backends::deviationColour(0.6, 1.0);
-  EXPECT_NE(between, backends::kWithinHalfToleranceColour);
-  EXPECT_NE(between, "#f2c80f");
+  // Continuous: every step of the ratio changes the colour.
+  EXPECT_NE(backends::deviationColour(0.1, 1.0), backends::kOnTheCurveColour);
+  EXPECT_NE(backends::deviationColour(0.2, 1.0), backends::deviationColour(0.3, 1.0));
+  EXPECT_NE(backends::deviationColour(0.6, 1.0), "#f2c80f");
+  EXPECT_NE(backends::deviationColour(0.6, 1.0), backends::deviationColour(0.9, 1.0));
 }
 
 class ReportPlotOfTwoCuts : public ::testing::Test {
@@ -104,10 +105,10 @@ TEST_F(ReportPlotOfTwoCuts, SegmentsBeyondTheToleranceArePurpleOthersGreenToRed)
       EXPECT_EQ(attribute(segment, "stroke"), backends::kBeyondToleranceColour);
     } else {
       EXPECT_NEAR(deviation, sagitta(pi / 8), 1e-6);
-      // 0.192 / 0.3 = 0.64: between green and yellow.
+      // 0.192 / 0.3 = 0.64: between yellow and red.
       std::string stroke = attribute(segment, "stroke");
       EXPECT_EQ(stroke, backends::deviationColour(sagitta(pi / 8), 0.3));
-      EXPECT_NE(stroke, backends::kWithinHalfToleranceColour);
+      EXPECT_NE(stroke, backends::kOnTheCurveColour);
       EXPECT_NE(stroke, backends::kBeyondToleranceColour);
     }
   }
@@ -119,6 +120,33 @@ TEST_F(ReportPlotOfTwoCuts, LegendGivesEachCutsDeviationAndTolerance) {
   EXPECT_NE(svg_.find("second: max deviation 0.19215 mm, tolerance 0.3 mm<"), std::string::npos);
   EXPECT_NE(svg_.find("x, y in mm"), std::string::npos);
   EXPECT_EQ(occurrences(svg_, "class=\"scale-bar\""), 1u);
+}
+
+// Per cut, a panel of deviation against path length: its curve has a step
+// per chord, the tolerance line sits at the tolerance, the worst point at
+// the largest deviation; the inset shows cut 0, the one beyond its tolerance.
+TEST_F(ReportPlotOfTwoCuts, PanelsPlotDeviationAlongThePathAndTheInsetTheWorstPoint) {
+  EXPECT_EQ(occurrences(svg_, "class=\"deviation-panel\""), 2u);
+  std::vector<std::string> tolerances = elementsWith(svg_, "class=\"tolerance-line\"");
+  ASSERT_EQ(tolerances.size(), 2u);
+  EXPECT_EQ(attribute(tolerances[0], "data-tolerance"), "0.5");
+  EXPECT_EQ(attribute(tolerances[1], "data-tolerance"), "0.3");
+  std::vector<std::string> curves = elementsWith(svg_, "class=\"deviation-curve\"");
+  ASSERT_EQ(curves.size(), 2u);
+  // Two points (a step) per chord: 2 chords in cut 0, 4 in cut 1.
+  EXPECT_EQ(occurrences(attribute(curves[0], "points"), ","), 4u);
+  EXPECT_EQ(occurrences(attribute(curves[1], "points"), ","), 8u);
+  std::vector<std::string> worst = elementsWith(svg_, "class=\"worst-point\"");
+  ASSERT_EQ(worst.size(), 2u);
+  EXPECT_NEAR(std::stod(attribute(worst[0], "data-deviation")), sagitta(pi / 4), 1e-6);
+  // Above the tolerance line: a smaller y.
+  EXPECT_LT(std::stod(attribute(worst[0], "cy")), std::stod(attribute(tolerances[0], "y1")));
+  EXPECT_GT(std::stod(attribute(worst[1], "cy")), std::stod(attribute(tolerances[1], "y1")));
+  std::vector<std::string> inset = elementsWith(svg_, "class=\"inset\"");
+  ASSERT_EQ(inset.size(), 1u);
+  EXPECT_EQ(attribute(inset[0], "data-cut"), "0");
+  EXPECT_GE(occurrences(svg_, "class=\"inset-segment\""), 1u);
+  EXPECT_GE(occurrences(svg_, "class=\"inset-curve\""), 1u);
 }
 
 TEST_F(ReportPlotOfTwoCuts, YGoesUp) {

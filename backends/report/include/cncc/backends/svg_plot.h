@@ -1,10 +1,13 @@
 // `cncc plot`: an SVG picture of a compiled part for a person to look at.
 // Each cut's true curve is a thin line; the executed path is drawn over it
 // segment by segment, coloured by how far the segment strays from the curve
-// (green up to half the tolerance, through yellow to red at the tolerance, a
-// distinct purple beyond it); the emitted points are dots, rapids dashed.
-// A legend gives each cut's largest deviation and tolerance; axes are in the
-// part's unit with y up.
+// on a continuous scale (green on the curve, yellow at half the tolerance,
+// red at the tolerance, a distinct purple beyond it); the emitted points are
+// dots, rapids dashed. A magnified inset shows the path around the point
+// worst against its tolerance; under the picture, per cut, a panel plots the
+// deviation against the length of path cut, with the tolerance line and the
+// worst point marked. A legend gives each cut's largest deviation and
+// tolerance; axes are in the part's unit with y up.
 #pragma once
 
 #include "cncc/backends/executed_path.h"
@@ -27,13 +30,13 @@ struct PlotOptions {
 };
 
 // The colours, for the picture's legend and for tests.
-inline constexpr const char* kWithinHalfToleranceColour = "#1a9641";
+inline constexpr const char* kOnTheCurveColour = "#1a9641";
 inline constexpr const char* kBeyondToleranceColour = "#5e3c99";
 inline constexpr const char* kNoToleranceColour = "#2c7bb6";
 
-// The colour of a segment `deviation` away from the curve: green up to half
-// the tolerance, then through yellow to red at the tolerance, purple beyond;
-// blue when the cut has no tolerance (NaN).
+// The colour of a segment `deviation` away from the curve: from green (0)
+// through yellow (half the tolerance) to red at the tolerance, purple
+// beyond; blue when the cut has no tolerance (NaN).
 std::string deviationColour(double deviation, double tolerance);
 
 // For each segment of `polyline` (segment i joins vertices i and i + 1), the
