@@ -56,6 +56,11 @@ struct RawOptions {
   std::string simulateInput;
   std::string verifyInput;
   std::vector<std::string> macroArguments;
+  bool strictReading = false;
+  std::vector<std::string> toolRadii;
+  std::optional<double> peckRetract;
+  std::optional<double> peckClearance;
+  double chordError = 1e-4;
   std::string machineFile;
 };
 
@@ -225,6 +230,30 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
                    "Run the program as if called by G65 with this argument (A3.)")
       ->type_name("ARG")
       ->allow_extra_args(false);
+  simulate->add_flag("--strict", raw.strictReading,
+                     "Read the program as the compiler prints it: ( ) comments in upper case, "
+                     "no ';', macro words in full");
+  simulate
+      ->add_option("--tool-radius", raw.toolRadii,
+                   "The radius in offset register N, read by D N for G41/G42 (1=5.)")
+      ->type_name("N=R")
+      ->allow_extra_args(false);
+  simulate
+      ->add_option("--peck-retract", raw.peckRetract,
+                   "G73's retract after each peck (Fanuc parameter 5114)")
+      ->type_name("D")
+      ->check(CLI::NonNegativeNumber);
+  simulate
+      ->add_option("--peck-clearance", raw.peckClearance,
+                   "G83's clearance above the last depth (Fanuc parameter 5115)")
+      ->type_name("D")
+      ->check(CLI::NonNegativeNumber);
+  simulate
+      ->add_option("--chord-error", raw.chordError,
+                   "The largest distance between an arc and the chords printed for it "
+                   "(default 0.0001)")
+      ->type_name("MM")
+      ->check(CLI::Range(1e-6, 10.0));
   simulate->fallthrough();
   simulate->footer("\nTakes -t fanuc|m80, --profile NAME and -o OUT ('-': standard output).");
   return simulate;
@@ -554,6 +583,32 @@ DriverOptions verifyOptions(const RawOptions& raw, const CLI::App& app) {
   return options;
 }
 
+// --tool-radius N=R: offset register N (1..9999) holds radius R.
+std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
+  std::map<int, double> radii;
+  for (const std::string& text : texts) {
+    std::size_t equals = text.find('=');
+    int number = 0;
+    double radius = 0;
+    bool valid = equals != std::string::npos;
+    if (valid) {
+      auto [numberEnd, numberError] = std::from_chars(text.data(), text.data() + equals, number);
+      auto [radiusEnd, radiusError] =
+          std::from_chars(text.data() + equals + 1, text.data() + text.size(), radius);
+      valid = numberError == std::errc() && numberEnd == text.data() + equals &&
+              radiusError == std::errc() && radiusEnd == text.data() + text.size() && number >= 1 &&
+              number <= 9999 && std::isfinite(radius);
+    }
+    if (!valid) {
+      throw UsageError(fmt::format("--tool-radius '{}': expected N=R, a register from 1 to 9999 "
+                                   "and its radius, as in 1=5.",
+                                   text));
+    }
+    radii[number] = radius;
+  }
+  return radii;
+}
+
 DriverOptions simulateOptions(const RawOptions& raw) {
   const Target* target = findTarget(raw.target);
   if (target == nullptr || target->controllerProfile.empty()) {
@@ -566,6 +621,11 @@ DriverOptions simulateOptions(const RawOptions& raw) {
   options.profile = raw.profile;
   options.output = raw.output.empty() ? "-" : raw.output;
   options.macroArguments = raw.macroArguments;
+  options.strictReading = raw.strictReading;
+  options.toolRadii = toolRadiiOf(raw.toolRadii);
+  options.peckRetract = raw.peckRetract;
+  options.peckClearance = raw.peckClearance;
+  options.chordError = raw.chordError;
   setDiagnosticOutput(raw, options);
   return options;
 }

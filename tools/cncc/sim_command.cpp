@@ -47,6 +47,11 @@ int runSimulate(const DriverOptions& options) {
     simulation.arguments.push_back(*argument);
   }
   simulation.runAsMacroCall = !options.macroArguments.empty();
+  simulation.reading.strict = options.strictReading;
+  simulation.reading.family = backends::sim::controllerFamilyOf(options.target);
+  simulation.toolRadii = options.toolRadii;
+  simulation.peckRetract = options.peckRetract;
+  simulation.peckClearance = options.peckClearance;
 
   const std::string& path = options.inputs.front();
   std::optional<std::string> text = readWholeFile(path);
@@ -63,7 +68,8 @@ int runSimulate(const DriverOptions& options) {
     }
     return 1;
   }
-  std::string csv = backends::writeToolPathCsv(backends::sim::flattenPath(result.path));
+  std::string csv =
+      backends::writeToolPathCsv(backends::sim::flattenPath(result.path, options.chordError));
   std::error_code error;
   if (!writeFileAtomically(options.output, csv, error)) {
     fmt::print(stderr, "cncc: error: cannot write '{}': {}\n", options.output, error.message());

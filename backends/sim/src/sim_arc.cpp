@@ -80,9 +80,9 @@ void Machine::moveArc(const Block& block, int motion, Point3 target,
                                    "more than the {} the controller allows",
                                    endRadius, startRadius, tolerance));
   }
-  path_.events.push_back(
-      {clockwise ? ExecutedEvent::Kind::ClockwiseArc : ExecutedEvent::Kind::CounterclockwiseArc,
-       start, target, centre, *modal_.feed, 0, block.line});
+  output({clockwise ? ExecutedEvent::Kind::ClockwiseArc : ExecutedEvent::Kind::CounterclockwiseArc,
+          start, target, centre, *modal_.feed, 0, block.line},
+         block);
   modal_.position = target;
 }
 

@@ -6,6 +6,7 @@
 
 #include "cncc/backends/virtual_controller.h"
 
+#include "sim_compensation.h"
 #include "sim_evaluator.h"
 #include "sim_nurbs.h"
 
@@ -36,8 +37,19 @@ private:
     std::size_t program = 0;     // index in ProgramText::programs
     std::size_t returnBlock = 0; // where the caller goes on after M99
     int repeatsLeft = 0;         // L: further runs of the macro after this one
+    bool subprogram = false;     // M98: runs with its caller's locals
     std::array<Value, localCount> arguments{};
     std::array<Value, localCount> locals{};
+  };
+
+  // A drilling cycle's modal data (sim_cycles.cpp).
+  struct CannedCycle {
+    std::optional<int> code;             // 73, 74, 81..86, 89 while a cycle is modal
+    std::optional<bool> returnToInitial; // G98 (true) or G99
+    double initialZ = 0;                 // Z when the cycle mode began
+    std::optional<double> rPoint;        // R as written (G91: from the initial level)
+    std::optional<double> bottom;        // Z as written (G91: from the R point)
+    std::optional<double> peck;          // Q
   };
 
   struct ModalState {
@@ -47,11 +59,13 @@ private:
     std::optional<double> feed;
     Point3 position;
     std::optional<int> selectedTool;
-    bool toolChanged = false;        // an M06 has run
-    std::optional<int> lengthOffset; // G43 H.., cleared by G49 and M06
-    bool atReference = false;        // after G28: off the work coordinates
+    bool toolChanged = false;          // an M06 has run
+    std::optional<int> lengthOffset;   // G43 H.., cleared by G49 and M06
+    std::optional<int> radiusRegister; // the last D
+    bool atReference = false;          // after G28: off the work coordinates
     double spindleSpeed = 0;
     bool spindleRunning = false;
+    CannedCycle cycle;
   };
 
   // What running one block decided.
@@ -64,7 +78,27 @@ private:
 
   // sim_motion.cpp
   Next executeWords(const Block& block, std::size_t& next);
+  Next executeAddressWords(const Block& block, std::size_t& next);
+  void setCompensation(const Block& block, int tenths);
+  // Every executed event goes to the path through the radius compensation.
+  void output(const ExecutedEvent& event, const Block& block) { compensation_.add(event, block); }
+  // sim_cycles.cpp
+  static bool isCycleCode(int tenths);
+  void setCycleMode(const Block& block, int tenths);
+  void runCycleBlock(const Block& block, const std::map<char, double>& values);
+  void drillHole(const Block& block, const std::map<char, double>& values);
+  void drillDown(const Block& block, double rLevel, double bottom);
+  void cycleMove(const Block& block, bool feed, Point3 target);
+  std::string peckParameterName(int code) const;
+
+  // sim_calls.cpp
   void callMacro(const Block& block, std::size_t& next);
+  void callSubprogram(const Block& block, const std::map<char, double>& values, std::size_t& next);
+  std::size_t programIndex(int number, const Block& block, std::string_view call) const;
+  void checkCallNesting(const Block& block, bool macroCall) const;
+  // The frame whose locals #1-#33 are in use: M98 subprograms share their caller's.
+  Frame& localFrame();
+  const Frame& localFrame() const;
   Next returnFromMacro(const Block& block, std::size_t& next);
   void move(const Block& block, int motion, const std::map<char, double>& axes);
   void returnToReference(const Block& block, const std::map<char, double>& axes);
@@ -86,6 +120,7 @@ private:
   std::map<int, Value> systemVariables_;
   ModalState modal_;
   NurbsInProgress nurbs_; // sim_nurbs.h
+  RadiusCompensation compensation_{path_};
   std::size_t blocksExecuted_ = 0;
   std::vector<std::size_t> blockExecutions_; // by block index
 };

@@ -19,10 +19,12 @@ struct GCode {
 };
 
 constexpr GCode supportedGCodes[] = {
-    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
-    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
-    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
-    {62, 1},   {50, 0},   {51, 0},   {541, 14}, {280, 0}};
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
+    {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
+    {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
+    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14},
+    {280, 0},  {410, 7},  {420, 7},  {730, 9},  {740, 9},  {810, 9},  {820, 9},
+    {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},  {980, 10}, {990, 10}};
 // G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
 // control) and G54.1 P.. (extended work offsets) do not change the path.
 
@@ -138,12 +140,16 @@ void checkGCodes(const Block& block, const BlockWords& words) {
 }
 
 // The letters a block of this kind may hold.
-void checkLetters(const Block& block, const BlockWords& words) {
+void checkLetters(const Block& block, const BlockWords& words, bool cycle) {
   bool dwell = has(words, 40);
+  bool subprogramCall =
+      std::find(words.mCodes.begin(), words.mCodes.end(), 98) != words.mCodes.end();
   for (const auto& [letter, value] : words.values) {
-    bool allowed = std::string_view("XYZIJKRFST").find(letter) != std::string_view::npos ||
-                   (letter == 'P' && (dwell || has(words, 541))) ||
-                   (letter == 'H' && has(words, 430)) || (letter == 'Q' && has(words, 51));
+    bool allowed = std::string_view("XYZIJKRFSTD").find(letter) != std::string_view::npos ||
+                   (letter == 'P' && (dwell || has(words, 541) || subprogramCall || cycle)) ||
+                   (letter == 'L' && (subprogramCall || cycle)) ||
+                   (letter == 'H' && has(words, 430)) ||
+                   (letter == 'Q' && (has(words, 51) || cycle));
     if (!allowed) {
       failInBlock(block, fmt::format("the address {} is not simulated in this block", letter));
     }
@@ -153,6 +159,38 @@ void checkLetters(const Block& block, const BlockWords& words) {
 } // namespace
 
 Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
+  Next decision = executeAddressWords(block, next);
+  if (decision == Next::Stop) {
+    compensation_.finish(block);
+  }
+  compensation_.endOfBlock(block);
+  return decision;
+}
+
+// G41/G42 with the radius of the D register, G40.
+void Machine::setCompensation(const Block& block, int tenths) {
+  if (tenths == 400) {
+    compensation_.cancel(block);
+    return;
+  }
+  if (!modal_.radiusRegister) {
+    failInBlock(block, fmt::format("{} without D: which radius register?", gName(tenths)));
+  }
+  int registerNumber = *modal_.radiusRegister;
+  double radius = 0; // D0 is always 0
+  if (registerNumber != 0) {
+    auto found = options_.toolRadii.find(registerNumber);
+    if (found == options_.toolRadii.end()) {
+      failInBlock(block, fmt::format("D{}: the radius in offset register {} is not known; give "
+                                     "it with --tool-radius {}=R",
+                                     registerNumber, registerNumber, registerNumber));
+    }
+    radius = found->second;
+  }
+  compensation_.start(tenths == 410, radius, block);
+}
+
+Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next) {
   BlockWords words = evaluateWords(block, *this);
   checkGCodes(block, words);
   if (has(words, 650)) {
@@ -164,13 +202,26 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     callMacro(block, next);
     return Next::Jump;
   }
+  if (compensation_.isOn() && (has(words, 62) || has(words, 280))) {
+    failInBlock(block, fmt::format("{} while G41/G42 is on is not simulated; cancel with G40 first",
+                                   has(words, 62) ? "G06.2" : "G28"));
+  }
+  if (words.values.count('D') > 0) {
+    double number = words.values['D'];
+    if (number < 0 || number != std::round(number) || number > 9999) {
+      failInBlock(block, "the offset register D must be a whole number from 0 to 9999");
+    }
+    modal_.radiusRegister = static_cast<int>(number);
+  }
   if (executeNurbsWords(block, words.gCodes, words.mCodes, words.values)) {
     return Next::Continue;
   }
-  checkLetters(block, words);
+  bool cycle = modal_.cycle.code.has_value() ||
+               std::any_of(words.gCodes.begin(), words.gCodes.end(), isCycleCode);
+  checkLetters(block, words, cycle);
   int decimals = profile_.coordinateDecimals + (modal_.inches ? 1 : 0);
   for (const Word& word : block.words) {
-    if (isCoordinateLetter(word.letter)) {
+    if (isCoordinateLetter(word.letter) && !(cycle && word.letter == 'K')) { // K: repeats
       checkLiteral(word, block, decimals, false);
     }
   }
@@ -181,6 +232,21 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     case 20:
     case 30:
       modal_.motion = tenths / 10;
+      setCycleMode(block, tenths);
+      break;
+    case 730:
+    case 740:
+    case 800:
+    case 810:
+    case 820:
+    case 830:
+    case 840:
+    case 850:
+    case 860:
+    case 890:
+    case 980:
+    case 990:
+      setCycleMode(block, tenths);
       break;
     case 900:
     case 910:
@@ -200,8 +266,13 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     case 490:
       modal_.lengthOffset.reset();
       break;
+    case 400:
+    case 410:
+    case 420:
+      setCompensation(block, tenths);
+      break;
     default:
-      break; // G04, G17, G40, G54-G59, G61, G64, G80, G94: no effect on the path
+      break; // G04, G17, G54-G59, G61, G64, G94: no effect on the path
     }
   }
   if (words.values.count('F') > 0) {
@@ -227,7 +298,7 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     }
     modal_.spindleSpeed = speed;
     if (modal_.spindleRunning) {
-      path_.events.push_back({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, speed, block.line});
+      output({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, speed, block.line}, block);
     }
   }
   if (words.values.count('T') > 0) {
@@ -249,6 +320,9 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
     }
   } else if (has(words, 280)) {
     returnToReference(block, axes);
+  } else if (modal_.cycle.code &&
+             (axes.count('X') + axes.count('Y') + axes.count('Z') + axes.count('R') > 0)) {
+    runCycleBlock(block, words.values);
   } else if (!axes.empty()) {
     if (!modal_.motion) {
       failInBlock(block, "a move before any G00, G01, G02 or G03: the power-on motion mode is "
@@ -275,101 +349,30 @@ Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
   case 3:
   case 4:
     modal_.spindleRunning = true;
-    path_.events.push_back(
-        {ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, modal_.spindleSpeed, block.line});
+    output({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, modal_.spindleSpeed, block.line}, block);
     return Next::Continue;
   case 5:
     modal_.spindleRunning = false;
-    path_.events.push_back({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, 0, block.line});
+    output({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, 0, block.line}, block);
     return Next::Continue;
   case 6:
     if (!modal_.selectedTool) {
       failInBlock(block, "M06 before any T: which tool?");
     }
-    path_.events.push_back(
-        {ExecutedEvent::Kind::ToolChange, {}, {}, {}, 0, double(*modal_.selectedTool), block.line});
+    output(
+        {ExecutedEvent::Kind::ToolChange, {}, {}, {}, 0, double(*modal_.selectedTool), block.line},
+        block);
     modal_.toolChanged = true;
     modal_.lengthOffset.reset();
     return Next::Continue;
+  case 98:
+    callSubprogram(block, words.values, next);
+    return Next::Jump;
   case 99:
     return returnFromMacro(block, next);
   default:
     failInBlock(block, fmt::format("M{:02d} is not simulated", words.mCodes.front()));
   }
-}
-
-void Machine::callMacro(const Block& block, std::size_t& next) {
-  Frame callee;
-  bool hasProgram = false;
-  int repeats = 1;
-  for (const Word& word : block.words) {
-    if (word.letter == 'G') {
-      continue;
-    }
-    Value value = evaluate(word.value, *this, block);
-    if (word.letter == 'P' || word.letter == 'L') {
-      if (word.isLiteral && word.literalHasPoint) {
-        failInBlock(block,
-                    fmt::format("{} of G65 is written without a decimal point", word.letter));
-      }
-      int number =
-          evaluateWholeNumber(word.value, *this, block, fmt::format("G65 {}", word.letter));
-      if (word.letter == 'L') {
-        if (number < 1 || number > 9999) {
-          failInBlock(block, fmt::format("G65 L{}: the repeat count is 1 to 9999", number));
-        }
-        repeats = number;
-        continue;
-      }
-      auto found = std::find_if(program_.programs.begin(), program_.programs.end(),
-                                [&](const ProgramUnit& unit) { return unit.number == number; });
-      if (found == program_.programs.end() || number == 0) {
-        failInBlock(block,
-                    fmt::format("G65 P{}: there is no program O{} in the file", number, number));
-      }
-      callee.program = static_cast<std::size_t>(found - program_.programs.begin());
-      hasProgram = true;
-      continue;
-    }
-    std::optional<int> local = profile_.localForLetter(word.letter);
-    if (!local || *local >= localCount) {
-      failInBlock(block, fmt::format("{} is not a G65 argument on {}", word.letter, profile_.name));
-    }
-    callee.arguments[*local] = value; // a vacant argument leaves the local vacant
-  }
-  if (!hasProgram) {
-    failInBlock(block, "G65 without P: which program?");
-  }
-  int level = static_cast<int>(frames_.size()) + (options_.runAsMacroCall ? 1 : 0);
-  if (level > profile_.maximumCallNesting) {
-    failInBlock(block, fmt::format("macro calls nested {} deep; {} allows {}", level, profile_.name,
-                                   profile_.maximumCallNesting));
-  }
-  callee.returnBlock = next;
-  callee.repeatsLeft = repeats - 1;
-  callee.locals = callee.arguments;
-  frames_.push_back(callee);
-  next = program_.programs[callee.program].first;
-}
-
-Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
-  if (frames_.size() == 1) {
-    if (options_.runAsMacroCall) {
-      return Next::Stop;
-    }
-    failInBlock(block, "M99 in the main program restarts it forever");
-  }
-  Frame& frame = frames_.back();
-  if (frame.repeatsLeft > 0) {
-    // Each repetition starts from the arguments again.
-    --frame.repeatsLeft;
-    frame.locals = frame.arguments;
-    next = program_.programs[frame.program].first;
-    return Next::Jump;
-  }
-  next = frame.returnBlock;
-  frames_.pop_back();
-  return Next::Jump;
 }
 
 // G28: a rapid to the intermediate point the axis words give (none for
@@ -440,7 +443,7 @@ void Machine::move(const Block& block, int motion, const std::map<char, double>&
                         motion == 0 ? 0 : *modal_.feed,
                         0,
                         block.line};
-    path_.events.push_back(event);
+    output(event, block);
     modal_.position = target;
     return;
   }
