@@ -115,8 +115,9 @@ void Machine::runCycleBlock(const Block& block, const std::map<char, double>& va
 
 void Machine::drillHole(const Block& block, const std::map<char, double>& values) {
   CannedCycle& cycle = modal_.cycle;
-  double rLevel = modal_.absolute ? *cycle.rPoint : cycle.initialZ + *cycle.rPoint;
-  double bottom = modal_.absolute ? *cycle.bottom : rLevel + *cycle.bottom;
+  double shiftZ = modal_.coordinates.shift.z; // G52
+  double rLevel = modal_.absolute ? *cycle.rPoint + shiftZ : cycle.initialZ + *cycle.rPoint;
+  double bottom = modal_.absolute ? *cycle.bottom + shiftZ : rLevel + *cycle.bottom;
   if (bottom >= rLevel) {
     failInBlock(block, fmt::format("the hole's bottom Z{:g} is not below its R point {:g}", bottom,
                                    rLevel));
@@ -125,15 +126,13 @@ void Machine::drillHole(const Block& block, const std::map<char, double>& values
     failInBlock(block, "a drilling cycle with no tool length offset active: G43 H.. must come "
                        "first");
   }
-  Point3 above = modal_.position;
+  std::map<char, double> position;
   for (char letter : {'X', 'Y'}) {
-    auto found = values.find(letter);
-    if (found != values.end()) {
-      double amount = roundToIncrement(found->second);
-      double& coordinate = letter == 'X' ? above.x : above.y;
-      coordinate = modal_.absolute ? amount : roundToIncrement(coordinate + amount);
+    if (values.count(letter) > 0) {
+      position[letter] = values.at(letter);
     }
   }
+  Point3 above = programmedTarget(block, position);
   cycleMove(block, false, above);
   Point3 at = above;
   at.z = rLevel;

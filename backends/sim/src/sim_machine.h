@@ -52,6 +52,16 @@ private:
     std::optional<double> peck;          // Q
   };
 
+  // G52, G68 and G16 over the work coordinates (sim_coordinates.cpp).
+  struct CoordinateSystem {
+    Point3 shift; // G52
+    bool rotated = false;
+    double centreX = 0, centreY = 0; // G68's centre, in the local system
+    double angle = 0;                // degrees, counterclockwise
+    bool polar = false;              // G16
+    bool isPlain() const;
+  };
+
   struct ModalState {
     std::optional<int> motion; // 0..3 once commanded
     bool absolute = true;
@@ -66,6 +76,7 @@ private:
     double spindleSpeed = 0;
     bool spindleRunning = false;
     CannedCycle cycle;
+    CoordinateSystem coordinates;
   };
 
   // What running one block decided.
@@ -82,6 +93,15 @@ private:
   void setCompensation(const Block& block, int tenths);
   // Every executed event goes to the path through the radius compensation.
   void output(const ExecutedEvent& event, const Block& block) { compensation_.add(event, block); }
+  // sim_coordinates.cpp
+  Point3 toWork(Point3 program) const;
+  Point3 toProgram(Point3 work) const;
+  void rotateVector(double& x, double& y) const;
+  // Where the block's X Y Z go, in work coordinates.
+  Point3 programmedTarget(const Block& block, const std::map<char, double>& axes) const;
+  void setLocalShift(const Block& block, const std::map<char, double>& axes);
+  void setRotation(const Block& block, const std::map<char, double>& axes);
+
   // sim_cycles.cpp
   static bool isCycleCode(int tenths);
   void setCycleMode(const Block& block, int tenths);

@@ -19,12 +19,12 @@ struct GCode {
 };
 
 constexpr GCode supportedGCodes[] = {
-    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
-    {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
-    {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
-    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14},
-    {280, 0},  {410, 7},  {420, 7},  {730, 9},  {740, 9},  {810, 9},  {820, 9},
-    {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},  {980, 10}, {990, 10}};
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
+    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
+    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
+    {62, 1},   {50, 0},   {51, 0},   {541, 14}, {280, 0},  {410, 7},  {420, 7},  {730, 9},
+    {740, 9},  {810, 9},  {820, 9},  {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},
+    {980, 10}, {990, 10}, {520, 0},  {680, 16}, {690, 16}, {150, 17}, {160, 17}};
 // G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
 // control) and G54.1 P.. (extended work offsets) do not change the path.
 
@@ -271,6 +271,16 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
     case 420:
       setCompensation(block, tenths);
       break;
+    case 690:
+      if (compensation_.isOn()) {
+        failInBlock(block, "G69 while G41/G42 is on is not simulated; cancel with G40 first");
+      }
+      modal_.coordinates.rotated = false;
+      break;
+    case 150:
+    case 160:
+      modal_.coordinates.polar = tenths == 160;
+      break;
     default:
       break; // G04, G17, G54-G59, G61, G64, G94: no effect on the path
     }
@@ -314,7 +324,13 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
       axes[letter] = value;
     }
   }
-  if (has(words, 40)) {
+  if (has(words, 520) && has(words, 680)) {
+    failInBlock(block, "G52 and G68 in one block: give them in blocks of their own");
+  } else if (has(words, 520)) {
+    setLocalShift(block, axes); // the block's words set the local origin: no move
+  } else if (has(words, 680)) {
+    setRotation(block, axes); // the centre and angle: no move
+  } else if (has(words, 40)) {
     if (!axes.empty()) {
       failInBlock(block, "G04 takes its time in P, with no axis words");
     }
@@ -384,6 +400,9 @@ void Machine::returnToReference(const Block& block, const std::map<char, double>
   }
   bool moves = false;
   for (const auto& [letter, value] : axes) {
+    if (!modal_.coordinates.isPlain() && (modal_.absolute || value != 0)) {
+      failInBlock(block, "G28 through a point while G52, G68 or G16 is on is not simulated");
+    }
     if (axisLetters.find(letter) == std::string_view::npos) {
       failInBlock(block, fmt::format("G28 takes axis words, not {}", letter));
     }
@@ -413,19 +432,15 @@ void Machine::move(const Block& block, int motion, const std::map<char, double>&
                                    "offset active: G43 H.. must come first",
                                    modal_.selectedTool.value_or(0)));
   }
-  Point3 target = modal_.position;
-  double* coordinates[] = {&target.x, &target.y, &target.z};
-  for (int axis = 0; axis < 3; ++axis) {
-    auto found = axes.find(axisLetters[axis]);
-    if (found == axes.end()) {
-      continue;
-    }
-    double amount = roundToIncrement(found->second);
-    *coordinates[axis] = modal_.absolute ? amount : roundToIncrement(*coordinates[axis] + amount);
-    double limit = modal_.inches ? profile_.maximumCoordinate / 10.0 : profile_.maximumCoordinate;
-    if (std::abs(*coordinates[axis]) > limit + increment() / 2) {
-      failInBlock(block, fmt::format("{} {} is beyond the controller's range +-{}",
-                                     axisLetters[axis], *coordinates[axis], limit));
+  if (modal_.coordinates.polar && motion > 1) {
+    failInBlock(block, "arcs in G16 polar coordinates are not simulated");
+  }
+  Point3 target = programmedTarget(block, axes);
+  double limit = modal_.inches ? profile_.maximumCoordinate / 10.0 : profile_.maximumCoordinate;
+  for (double coordinate : {target.x, target.y, target.z}) {
+    if (std::abs(coordinate) > limit + increment() / 2) {
+      failInBlock(block, fmt::format("the coordinate {} is beyond the controller's range +-{}",
+                                     coordinate, limit));
     }
   }
   bool arcWords = axes.count('I') + axes.count('J') + axes.count('K') + axes.count('R') > 0;

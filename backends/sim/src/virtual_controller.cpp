@@ -81,6 +81,11 @@ Value Machine::read(int variable, const Block& block) const {
     return found == commons_.end() ? Value::vacantValue() : found->second;
   }
   if (variable >= 5001 && variable <= 5003) { // the position at the end of the last block
+    if (!modal_.coordinates.isPlain()) {
+      failInBlock(block, fmt::format("#{} while G52, G68 or G16 is on is not simulated: which "
+                                     "coordinate system it reads differs",
+                                     variable));
+    }
     const Point3& position = modal_.position;
     return Value::of(variable == 5001 ? position.x : variable == 5002 ? position.y : position.z);
   }
