@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 namespace cncc::backends::sim {
 
@@ -84,7 +85,8 @@ void Machine::callSubprogram(const Block& block, const std::map<char, double>& v
   next = program_.programs[callee.program].first;
 }
 
-void Machine::callMacro(const Block& block, std::size_t& next) {
+// The frame a G65 or G66 block calls: P, L and the arguments, evaluated now.
+Machine::Frame Machine::macroCallFrame(const Block& block, std::string_view call) {
   Frame callee;
   bool hasProgram = false;
   int repeats = 1;
@@ -96,47 +98,81 @@ void Machine::callMacro(const Block& block, std::size_t& next) {
     if (word.letter == 'P' || word.letter == 'L') {
       if (word.isLiteral && word.literalHasPoint) {
         failInBlock(block,
-                    fmt::format("{} of G65 is written without a decimal point", word.letter));
+                    fmt::format("{} of {} is written without a decimal point", word.letter, call));
       }
       int number =
-          evaluateWholeNumber(word.value, *this, block, fmt::format("G65 {}", word.letter));
+          evaluateWholeNumber(word.value, *this, block, fmt::format("{} {}", call, word.letter));
       if (word.letter == 'L') {
         if (number < 1 || number > 9999) {
-          failInBlock(block, fmt::format("G65 L{}: the repeat count is 1 to 9999", number));
+          failInBlock(block, fmt::format("{} L{}: the repeat count is 1 to 9999", call, number));
         }
         repeats = number;
         continue;
       }
-      callee.program = programIndex(number, block, "G65");
+      callee.program = programIndex(number, block, call);
       hasProgram = true;
       continue;
     }
     std::optional<int> local = profile_.localForLetter(word.letter);
     if (!local || *local >= localCount) {
-      failInBlock(block, fmt::format("{} is not a G65 argument on {}", word.letter, profile_.name));
+      failInBlock(block,
+                  fmt::format("{} is not a {} argument on {}", word.letter, call, profile_.name));
     }
     callee.arguments[*local] = value; // a vacant argument leaves the local vacant
   }
   if (!hasProgram) {
-    failInBlock(block, "G65 without P: which program?");
+    failInBlock(block, fmt::format("{} without P: which program?", call));
   }
-  checkCallNesting(block, true);
-  callee.returnBlock = next;
   callee.repeatsLeft = repeats - 1;
   callee.locals = callee.arguments;
+  return callee;
+}
+
+void Machine::callMacro(const Block& block, std::size_t& next) {
+  Frame callee = macroCallFrame(block, "G65");
+  enterMacro(block, callee, next);
+}
+
+void Machine::enterMacro(const Block& block, Frame callee, std::size_t& next) {
+  checkCallNesting(block, true);
+  callee.returnBlock = next;
   frames_.push_back(callee);
   next = program_.programs[callee.program].first;
 }
 
-Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
+// G66: the call each later block with a move makes (G67 ends it); moves of
+// the macro it calls do not call it again.
+void Machine::setModalCall(const Block& block) {
+  modal_.modalCall = ModalCall{macroCallFrame(block, "G66"), frames_.size()};
+}
+
+bool Machine::callAfterMove(const Block& block, std::size_t& next) {
+  if (!modal_.modalCall || frames_.size() != modal_.modalCall->level) {
+    return false;
+  }
+  enterMacro(block, modal_.modalCall->frame, next);
+  return true;
+}
+
+// M99, or M99 P<n>: back to the caller after the call, or at its block Nn.
+Machine::Next Machine::returnFromMacro(const Block& block, const std::map<char, double>& values,
+                                       std::size_t& next) {
   if (frames_.size() == 1) {
-    if (options_.runAsMacroCall) {
+    if (options_.runAsMacroCall && values.empty()) {
       return Next::Stop;
     }
     failInBlock(block, "M99 in the main program restarts it forever");
   }
+  for (const auto& [letter, value] : values) {
+    if (letter != 'P') {
+      failInBlock(block, fmt::format("the address {} of M99 is not simulated", letter));
+    }
+  }
   Frame& frame = frames_.back();
   if (frame.repeatsLeft > 0) {
+    if (!values.empty()) {
+      failInBlock(block, "M99 P in a program called with repeats left is not simulated");
+    }
     // Each repetition of a macro starts from the arguments again.
     --frame.repeatsLeft;
     if (!frame.subprogram) {
@@ -145,8 +181,17 @@ Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
     next = program_.programs[frame.program].first;
     return Next::Jump;
   }
+  std::size_t callBlock = frame.returnBlock - 1;
   next = frame.returnBlock;
   frames_.pop_back();
+  if (values.count('P') > 0) {
+    double number = values.at('P');
+    if (number < 1 || number != std::floor(number) || number > 99999999) {
+      failInBlock(block, fmt::format("M99 P{:g}: a sequence number is expected", number));
+    }
+    // As a GOTO from the call: it may leave the caller's loops, not enter one.
+    next = findSequenceNumber(static_cast<int>(number), block, callBlock);
+  }
   return Next::Jump;
 }
 

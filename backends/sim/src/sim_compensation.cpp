@@ -139,6 +139,9 @@ void RadiusCompensation::emitHeld(const std::vector<Vector2>& corner, const Exec
 }
 
 void RadiusCompensation::emitLine(const ExecutedEvent& model, Vector2 to, double z) {
+  if (to.x == tool_.x && to.y == tool_.y && z == toolZ_) {
+    return; // a corner point the tool is already at
+  }
   ExecutedEvent line = model;
   if (isArc(model)) {
     line.kind = ExecutedEvent::Kind::Feed;
@@ -184,17 +187,32 @@ void RadiusCompensation::emitOffsetBlock(Vector2 to) {
                            "overcuts here (interference)",
                            radius_));
   }
-  double startZ = held.event.start.z;
-  double endZ = held.event.end.z;
-  ExecutedEvent arc = held.event;
-  if (compensated >= 360 - 1e-9) {
+  emitCompensatedArc(to, compensated);
+}
+
+// The held arc from the tool's point to `to`, turning `sweep` degrees. Sweeps
+// within `sweepTolerance` of 0 or 360 are a point or a full circle: their
+// ends differ by rounding only, and an arc whose ends nearly meet would be
+// read as a whole turn or none.
+void RadiusCompensation::emitCompensatedArc(Vector2 to, double sweep) {
+  constexpr double sweepTolerance = 1e-6; // degrees
+  const ExecutedEvent& held = held_->event;
+  double startZ = held.start.z;
+  double endZ = held.end.z;
+  if (sweep < sweepTolerance) {
+    emitLine(held, to, endZ);
+    return;
+  }
+  ExecutedEvent arc = held;
+  if (sweep > 360 - sweepTolerance) {
     // A full circle first, then what the offset adds beyond it.
-    double circleZ = startZ + (endZ - startZ) * 360 / compensated;
+    double circleZ = sweep > 360 + sweepTolerance ? startZ + (endZ - startZ) * 360 / sweep : endZ;
     arc.start = {tool_.x, tool_.y, toolZ_};
     arc.end = {tool_.x, tool_.y, circleZ};
     path_.events.push_back(arc);
     toolZ_ = circleZ;
-    if (length(to - tool_) == 0) {
+    if (sweep <= 360 + sweepTolerance) {
+      tool_ = to;
       return;
     }
   }

@@ -34,6 +34,10 @@ public:
   // G40.
   void cancel(const Block& block);
   bool isOn() const { return state_ != State::Off; }
+  // 40, 41 or 42, as #4007 reads it.
+  int modalCode() const {
+    return state_ == State::Off || state_ == State::Cancelling ? 40 : left_ ? 41 : 42;
+  }
 
   // Every event the program executes, in order.
   void add(const ExecutedEvent& event, const Block& block);
@@ -59,6 +63,7 @@ private:
   void emitHeld(const std::vector<Vector2>& corner, const ExecutedEvent& next);
   void emitLine(const ExecutedEvent& model, Vector2 to, double z);
   void emitOffsetBlock(Vector2 to);
+  void emitCompensatedArc(Vector2 to, double sweep);
   void flushWaiting();
 
   ExecutedPath& path_;

@@ -62,6 +62,12 @@ private:
     bool isPlain() const;
   };
 
+  // G66: the macro a block with a move calls, from the call level of G66.
+  struct ModalCall {
+    Frame frame;
+    std::size_t level = 0; // frames_.size() when G66 ran
+  };
+
   struct ModalState {
     std::optional<int> motion; // 0..3 once commanded
     bool absolute = true;
@@ -77,6 +83,7 @@ private:
     bool spindleRunning = false;
     CannedCycle cycle;
     CoordinateSystem coordinates;
+    std::optional<ModalCall> modalCall;
   };
 
   // What running one block decided.
@@ -93,6 +100,9 @@ private:
   void setCompensation(const Block& block, int tenths);
   // Every executed event goes to the path through the radius compensation.
   void output(const ExecutedEvent& event, const Block& block) { compensation_.add(event, block); }
+  // sim_system_variables.cpp: #4001-#4120, nullopt for other variables.
+  std::optional<Value> modalInformation(int variable, const Block& block) const;
+
   // sim_coordinates.cpp
   Point3 toWork(Point3 program) const;
   Point3 toProgram(Point3 work) const;
@@ -113,13 +123,18 @@ private:
 
   // sim_calls.cpp
   void callMacro(const Block& block, std::size_t& next);
+  Frame macroCallFrame(const Block& block, std::string_view call);
+  void enterMacro(const Block& block, Frame callee, std::size_t& next);
+  void setModalCall(const Block& block);
+  // After a block with a move: the G66 call, if one is modal; true if made.
+  bool callAfterMove(const Block& block, std::size_t& next);
   void callSubprogram(const Block& block, const std::map<char, double>& values, std::size_t& next);
   std::size_t programIndex(int number, const Block& block, std::string_view call) const;
   void checkCallNesting(const Block& block, bool macroCall) const;
   // The frame whose locals #1-#33 are in use: M98 subprograms share their caller's.
   Frame& localFrame();
   const Frame& localFrame() const;
-  Next returnFromMacro(const Block& block, std::size_t& next);
+  Next returnFromMacro(const Block& block, const std::map<char, double>& values, std::size_t& next);
   void move(const Block& block, int motion, const std::map<char, double>& axes);
   void returnToReference(const Block& block, const std::map<char, double>& axes);
   void moveArc(const Block& block, int motion, Point3 target, const std::map<char, double>& axes);
@@ -141,6 +156,7 @@ private:
   ModalState modal_;
   NurbsInProgress nurbs_; // sim_nurbs.h
   RadiusCompensation compensation_{path_};
+  bool moveCommanded_ = false; // the current block moved (for G66)
   std::size_t blocksExecuted_ = 0;
   std::vector<std::size_t> blockExecutions_; // by block index
 };

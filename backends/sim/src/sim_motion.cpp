@@ -19,12 +19,13 @@ struct GCode {
 };
 
 constexpr GCode supportedGCodes[] = {
-    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
-    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
-    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
-    {62, 1},   {50, 0},   {51, 0},   {541, 14}, {280, 0},  {410, 7},  {420, 7},  {730, 9},
-    {740, 9},  {810, 9},  {820, 9},  {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},
-    {980, 10}, {990, 10}, {520, 0},  {680, 16}, {690, 16}, {150, 17}, {160, 17}};
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
+    {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
+    {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
+    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14},
+    {280, 0},  {410, 7},  {420, 7},  {730, 9},  {740, 9},  {810, 9},  {820, 9},
+    {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},  {980, 10}, {990, 10},
+    {520, 0},  {680, 16}, {690, 16}, {150, 17}, {160, 17}, {660, 12}, {670, 12}};
 // G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
 // control) and G54.1 P.. (extended work offsets) do not change the path.
 
@@ -116,6 +117,15 @@ BlockWords evaluateWords(const Block& block, const VariableReader& variables) {
   return words;
 }
 
+// The words M99 takes: P, the sequence number to return to.
+std::map<char, double> returnWords(const std::map<char, double>& values) {
+  std::map<char, double> words;
+  if (values.count('P') > 0) {
+    words['P'] = values.at('P');
+  }
+  return words;
+}
+
 bool has(const BlockWords& words, int gTenths) {
   return std::find(words.gCodes.begin(), words.gCodes.end(), gTenths) != words.gCodes.end();
 }
@@ -134,8 +144,10 @@ void checkGCodes(const Block& block, const BlockWords& words) {
     }
     groups[*group] = tenths;
   }
-  if (has(words, 650) && words.gCodes.size() > 1) {
-    failInBlock(block, "G65 must be the only G code of its block");
+  for (int call : {650, 660}) {
+    if (has(words, call) && words.gCodes.size() > 1) {
+      failInBlock(block, fmt::format("{} must be the only G code of its block", gName(call)));
+    }
   }
 }
 
@@ -144,9 +156,12 @@ void checkLetters(const Block& block, const BlockWords& words, bool cycle) {
   bool dwell = has(words, 40);
   bool subprogramCall =
       std::find(words.mCodes.begin(), words.mCodes.end(), 98) != words.mCodes.end();
+  bool subprogramReturn =
+      std::find(words.mCodes.begin(), words.mCodes.end(), 99) != words.mCodes.end();
   for (const auto& [letter, value] : words.values) {
     bool allowed = std::string_view("XYZIJKRFSTD").find(letter) != std::string_view::npos ||
-                   (letter == 'P' && (dwell || has(words, 541) || subprogramCall || cycle)) ||
+                   (letter == 'P' &&
+                    (dwell || has(words, 541) || subprogramCall || subprogramReturn || cycle)) ||
                    (letter == 'L' && (subprogramCall || cycle)) ||
                    (letter == 'H' && has(words, 430)) ||
                    (letter == 'Q' && (has(words, 51) || cycle));
@@ -159,11 +174,15 @@ void checkLetters(const Block& block, const BlockWords& words, bool cycle) {
 } // namespace
 
 Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
+  moveCommanded_ = false;
   Next decision = executeAddressWords(block, next);
   if (decision == Next::Stop) {
     compensation_.finish(block);
   }
   compensation_.endOfBlock(block);
+  if (decision == Next::Continue && moveCommanded_ && callAfterMove(block, next)) {
+    return Next::Jump;
+  }
   return decision;
 }
 
@@ -193,11 +212,15 @@ void Machine::setCompensation(const Block& block, int tenths) {
 Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next) {
   BlockWords words = evaluateWords(block, *this);
   checkGCodes(block, words);
-  if (has(words, 650)) {
+  if (has(words, 650) || has(words, 660)) {
     for (const Word& word : block.words) {
       if (word.letter != 'G' && word.letter != 'P' && word.letter != 'L') {
         checkLiteral(word, block, 8, true);
       }
+    }
+    if (has(words, 660)) {
+      setModalCall(block);
+      return Next::Continue;
     }
     callMacro(block, next);
     return Next::Jump;
@@ -281,6 +304,9 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
     case 160:
       modal_.coordinates.polar = tenths == 160;
       break;
+    case 670:
+      modal_.modalCall.reset();
+      break;
     default:
       break; // G04, G17, G54-G59, G61, G64, G94: no effect on the path
     }
@@ -339,12 +365,14 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
   } else if (modal_.cycle.code &&
              (axes.count('X') + axes.count('Y') + axes.count('Z') + axes.count('R') > 0)) {
     runCycleBlock(block, words.values);
+    moveCommanded_ = true;
   } else if (!axes.empty()) {
     if (!modal_.motion) {
       failInBlock(block, "a move before any G00, G01, G02 or G03: the power-on motion mode is "
                          "a parameter");
     }
     move(block, *modal_.motion, axes);
+    moveCommanded_ = true;
   }
   if (words.mCodes.size() > 1) {
     failInBlock(block, "one M code per block");
@@ -385,7 +413,7 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
     callSubprogram(block, words.values, next);
     return Next::Jump;
   case 99:
-    return returnFromMacro(block, next);
+    return returnFromMacro(block, returnWords(words.values), next);
   default:
     failInBlock(block, fmt::format("M{:02d} is not simulated", words.mCodes.front()));
   }

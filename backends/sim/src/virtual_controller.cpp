@@ -89,6 +89,9 @@ Value Machine::read(int variable, const Block& block) const {
     const Point3& position = modal_.position;
     return Value::of(variable == 5001 ? position.x : variable == 5002 ? position.y : position.z);
   }
+  if (std::optional<Value> modal = modalInformation(variable, block)) {
+    return *modal;
+  }
   if (isHarmlessSystemVariable(variable)) {
     auto found = systemVariables_.find(variable);
     return found == systemVariables_.end() ? Value::of(0) : found->second;

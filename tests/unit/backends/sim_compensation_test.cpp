@@ -114,6 +114,32 @@ TEST(SimCompensation, HelicalCircleInsideAHole) {
               1e-9);
 }
 
+TEST(SimCompensation, TangentEntryIntoAFullCircleCutsItOnce) {
+  // Entry and exit arcs tangent to the circle: the compensated circle's ends
+  // meet up to rounding, which must not make it a second turn.
+  SimulationResult result = run("G00 X0. Y0.\n"
+                                "G41 D1 G01 X5. Y-5.\n"
+                                "G03 X10. Y0. R5.\n"
+                                "G03 X10. Y0. I-10. J0.\n"
+                                "G03 X5. Y5. R5.\n"
+                                "G40 G01 X0. Y0.\n");
+  ASSERT_FALSE(result.error) << result.error->what();
+  int circles = 0;
+  for (const ExecutedEvent& event : result.path.events) {
+    if (event.kind == ExecutedEvent::Kind::CounterclockwiseArc) {
+      bool fullTurn = event.start.x == event.end.x && event.start.y == event.end.y;
+      circles += fullTurn ? 1 : 0;
+      if (fullTurn) {
+        EXPECT_NEAR(event.start.x, 8, 1e-9); // radius 10 - 2
+        EXPECT_NEAR(event.start.y, 0, 1e-9);
+      }
+    }
+  }
+  EXPECT_EQ(circles, 1);
+  // The entry arc, radius 5 - 2 around (5, 0), ends on the circle.
+  expectPath(result, {{0, 0}, {5, -3}, {8, 0}, {8, 0}, {5, 3}, {0, 0}, {0, 0}});
+}
+
 TEST(SimCompensation, APlungeBetweenBlocksRunsAtTheCorner) {
   SimulationResult result = run("G00 Z5.\n"
                                 "G41 D1 G00 X0. Y0.\n"

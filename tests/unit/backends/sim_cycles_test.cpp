@@ -187,5 +187,21 @@ TEST(SimSubprograms, EndlessRecursionStopsAtTheNestingLimit) {
   EXPECT_EQ(result.error->line(), 6);
 }
 
+TEST(SimSubprograms, M99PReturnsToABlockOfTheCaller) {
+  SimulationResult result =
+      simulateProgram("%\nO1000\n#100 = 0\nM98 P2000\n#100 = 1\nN50 #101 = 2\nM30\n"
+                      "O2000\nM99 P50\n%\n",
+                      *findControllerProfile("fanuc"), options());
+  ASSERT_FALSE(result.error) << result.error->what();
+  EXPECT_DOUBLE_EQ(*result.commonVariables.at(100), 0); // skipped
+  EXPECT_DOUBLE_EQ(*result.commonVariables.at(101), 2);
+  SimulationResult missing = simulateProgram("%\nO1000\nM98 P2000\nM30\nO2000\nM99 P60\n%\n",
+                                             *findControllerProfile("fanuc"), options());
+  EXPECT_THAT(errorOf(missing), HasSubstr("no block N60"));
+  SimulationResult repeats = simulateProgram("%\nO1000\nM98 P2000 L2\nN5 M30\nO2000\nM99 P5\n%\n",
+                                             *findControllerProfile("fanuc"), options());
+  EXPECT_THAT(errorOf(repeats), HasSubstr("repeats left"));
+}
+
 } // namespace
 } // namespace cncc::backends::sim
