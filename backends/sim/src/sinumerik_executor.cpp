@@ -1,5 +1,6 @@
 #include "cncc/backends/sinumerik_controller.h"
 
+#include "sinumerik_arc.h"
 #include "sinumerik_blocks.h"
 
 #include "cncc/geom/discretisation.h"
@@ -181,7 +182,7 @@ private:
   // False when the block ends the program.
   bool executeBlock(const SinumerikBlock& block) {
     std::array<std::optional<double>, 3> axes;
-    std::array<std::optional<double>, 2> centre; // I J, from the start
+    ArcWords arcWords; // I J, CR=, TURN=
     std::optional<double> weight, interval;
     bool motionWord = false;
     bool ends = false;
@@ -191,7 +192,15 @@ private:
       if (a == "X" || a == "Y" || a == "Z") {
         axes[std::size_t(a[0] - 'X')] = needNumber(word);
       } else if (a == "I" || a == "J") {
-        centre[std::size_t(a[0] - 'I')] = needNumber(word);
+        arcWords.centre[std::size_t(a[0] - 'I')] = needNumber(word);
+      } else if (a == "CR") {
+        arcWords.radius = needNumber(word);
+      } else if (a == "TURN") {
+        double turns = needNumber(word);
+        if (turns != std::floor(turns)) {
+          fail(fmt::format("TURN={:g}: the turns are a whole number", turns));
+        }
+        arcWords.turns = turns;
       } else if (a == "G") {
         motionWord |= gCode(needNumber(word));
       } else if (a == "M") {
@@ -255,8 +264,8 @@ private:
       fail("PW and PL belong in a BSPLINE block with a point");
     }
     bool arc = motion_ == Motion::ClockwiseArc || motion_ == Motion::CounterClockwiseArc;
-    if ((centre[0] || centre[1]) && !arc) {
-      fail("I and J belong in a G2 or G3 block");
+    if ((arcWords.centre[0] || arcWords.centre[1] || arcWords.radius || arcWords.turns) && !arc) {
+      fail("I, J, CR= and TURN= belong in a G2 or G3 block");
     }
     if (machineCoordinates) {
       // `SUPA G0 Z0`: the machine's own position, off the work coordinates
@@ -265,7 +274,7 @@ private:
         fail("SUPA is modelled for a G0 in Z only (the retract at the end)");
       }
     } else if (arc && hasAxis) {
-      arcTo(axes, centre);
+      arcTo(axes, arcWords);
     } else if (hasAxis) {
       moveTo(axes, weight, interval);
     } else if (motionWord && !isSpline(motion_)) {
@@ -427,51 +436,44 @@ private:
     lastLinear_ = motion_ == Motion::Linear;
   }
 
-  // G2/G3 in the XY plane with the centre at I J from the start
-  // (incremental, the default), Z along for a helix; ending where it starts,
-  // a full turn. Recorded as chords within the sampling tolerance.
-  void arcTo(const std::array<std::optional<double>, 3>& axes,
-             const std::array<std::optional<double>, 2>& centre) {
+  // The arc words of a block: the centre or radius, extra full turns.
+  struct ArcWords {
+    std::array<std::optional<double>, 2> centre; // I J, from the start
+    std::optional<double> radius;                // CR=
+    double turns = 0;                            // TURN=
+  };
+
+  // G2/G3 in the XY plane (sinumerik_arc.h), recorded as chords within the
+  // sampling tolerance.
+  void arcTo(const std::array<std::optional<double>, 3>& axes, const ArcWords& words) {
     if (!known()) {
       fail("an arc before every axis is known");
-    }
-    if (!centre[0] && !centre[1]) {
-      fail("a G2/G3 block without I or J (its centre)");
     }
     if (!feed_) {
       fail("an arc without a feed rate");
     }
     finishSpline(std::nullopt);
     Vector start = current();
-    ir::MachineEvent event;
-    event.kind = ir::MachineEvent::Kind::Arc;
-    event.x = axes[0].value_or(start.x());
-    event.y = axes[1].value_or(start.y());
-    event.z = axes[2].value_or(start.z());
-    event.centreX = start.x() + centre[0].value_or(0.0);
-    event.centreY = start.y() + centre[1].value_or(0.0);
-    event.clockwise = motion_ == Motion::ClockwiseArc;
-    event.feed = *feed_;
-    double startRadius = std::hypot(start.x() - event.centreX, start.y() - event.centreY);
-    double endRadius = std::hypot(event.x - event.centreX, event.y - event.centreY);
-    if (!(startRadius > 0) || !(std::abs(endRadius - startRadius) <= arcEndTolerance)) {
-      fail(fmt::format("the arc's end is {:g} from its centre, its start {:g} (alarm 14040: "
-                       "error in end point of circle)",
-                       endRadius, startRadius));
+    ProgrammedArc arc;
+    arc.start = start;
+    arc.end = {axes[0].value_or(start.x()), axes[1].value_or(start.y()),
+               axes[2].value_or(start.z())};
+    arc.centre = words.centre;
+    arc.radius = words.radius;
+    arc.turns = int(std::min(words.turns, 1e6));
+    arc.clockwise = motion_ == Motion::ClockwiseArc;
+    std::string problem;
+    std::vector<Vector> points = arcChordPoints(arc, options_.sampleTolerance, problem);
+    if (!problem.empty()) {
+      fail(problem);
     }
-    std::vector<ir::MachineEvent> chords;
-    ir::appendArcChords(start.x(), start.y(), start.z(), event, options_.sampleTolerance, chords);
-    for (const ir::MachineEvent& chord : chords) {
-      run_.moves.push_back(
-          {MotionKind::Linear, Vector(chord.x, chord.y, chord.z), *feed_, line_, mainLine_});
+    for (const Vector& point : points) {
+      run_.moves.push_back({MotionKind::Linear, point, *feed_, line_, mainLine_});
     }
     previous_ = start;
-    position_ = {event.x, event.y, event.z};
+    position_ = {arc.end.x(), arc.end.y(), arc.end.z()};
     lastLinear_ = false;
   }
-
-  // How far an arc's end may lie off its circle ($MN_..._CIRCLE_ERROR, mm).
-  static constexpr double arcEndTolerance = 0.01;
 
   bool known() const { return position_[0] && position_[1] && position_[2]; }
   Vector current() const { return {*position_[0], *position_[1], *position_[2]}; }
