@@ -2,6 +2,7 @@
 
 #include "sinumerik_arc.h"
 #include "sinumerik_blocks.h"
+#include "sinumerik_expression.h"
 
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/geometry_error.h"
@@ -148,17 +149,24 @@ private:
       throw ProgramError(unit.name, unit.blocks.empty() ? 1 : unit.blocks.front().line,
                          "subprograms nest deeper than this model allows (8)");
     }
-    for (const SinumerikBlock& block : unit.blocks) {
+    std::size_t at = 0;
+    while (at < unit.blocks.size()) {
+      const SinumerikBlock& block = unit.blocks[at];
       if (++run_.blocksExecuted > options_.stepLimit) {
         throw ProgramError(unit.name, block.line, "the step limit was reached");
       }
       program_ = unit.name;
       line_ = block.line;
       mainLine_ = index == 0 ? block.line : callLine;
+      if (block.control != Control::None) {
+        at = controlNext(unit, at);
+        continue;
+      }
       if (!executeBlock(block)) {
         --depth_;
         return;
       }
+      ++at;
     }
     if (index == 0) {
       fail("the main program ends without M30");
@@ -168,6 +176,59 @@ private:
 
   [[noreturn]] void fail(const std::string& message) const {
     throw ProgramError(program_, line_, message);
+  }
+
+  // The block after control block `at`: IF and WHILE go on or past their
+  // end, FOR counts its R parameter up by 1 to the end value.
+  std::size_t controlNext(const SinumerikProgramUnit& unit, std::size_t at) {
+    const SinumerikBlock& block = unit.blocks[at];
+    switch (block.control) {
+    case Control::If:
+    case Control::While:
+      return evaluate(block.condition) != 0 ? at + 1 : block.partner + 1;
+    case Control::Else: // reached at the end of the IF branch
+      return block.partner + 1;
+    case Control::EndWhile:
+      return block.partner;
+    case Control::For: {
+      double start = needNumber(block.counter);
+      double end = evaluate(block.condition);
+      setParameter(block.counter.parameter, start);
+      loopEnds_[&block] = end;
+      return start <= end ? at + 1 : block.partner + 1;
+    }
+    case Control::EndFor: {
+      const SinumerikBlock& loop = unit.blocks[block.partner];
+      int counter = loop.counter.parameter;
+      setParameter(counter, parameters_[std::size_t(counter)] + 1);
+      return parameters_[std::size_t(counter)] <= loopEnds_[&loop] ? block.partner + 1 : at + 1;
+    }
+    default:
+      return at + 1;
+    }
+  }
+
+  double evaluate(const std::string& expression) const {
+    try {
+      return evaluateExpression(expression, [this](int number) { return parameter(number); });
+    } catch (const ExpressionError& error) {
+      fail(error.what());
+    }
+  }
+
+  // R0..R299 (the 828D's default count; the 840D's is a machine datum).
+  static constexpr int parameterCount = 300;
+
+  double parameter(int number) const {
+    if (number < 0 || number >= parameterCount) {
+      fail(fmt::format("R{} does not exist: R0 to R{}", number, parameterCount - 1));
+    }
+    return parameters_[std::size_t(number)];
+  }
+
+  void setParameter(int number, double value) {
+    parameter(number); // checks the number
+    parameters_[std::size_t(number)] = value;
   }
 
   std::optional<std::size_t> findUnit(const std::string& name) const {
@@ -189,7 +250,9 @@ private:
     bool machineCoordinates = false; // SUPA: this block's axes are the machine's
     for (const SinumerikWord& word : block.words) {
       const std::string& a = word.address;
-      if (a == "X" || a == "Y" || a == "Z") {
+      if (a == "R" && word.parameter >= 0) {
+        setParameter(word.parameter, needNumber(word));
+      } else if (a == "X" || a == "Y" || a == "Z") {
         axes[std::size_t(a[0] - 'X')] = needNumber(word);
       } else if (a == "I" || a == "J") {
         arcWords.centre[std::size_t(a[0] - 'I')] = needNumber(word);
@@ -284,6 +347,9 @@ private:
   }
 
   double needNumber(const SinumerikWord& word) const {
+    if (!word.expression.empty()) {
+      return evaluate(word.expression);
+    }
     if (!word.value) {
       fail(fmt::format("{} needs a number", word.address));
     }
@@ -615,6 +681,8 @@ private:
   std::vector<SinumerikProgramUnit> units_;
   const SinumerikRunOptions& options_;
   SinumerikRun& run_;
+  std::array<double, parameterCount> parameters_{};  // R parameters, 0 at the start
+  std::map<const SinumerikBlock*, double> loopEnds_; // FOR: the end value
   std::string program_;
   int line_ = 0;
   int mainLine_ = 0;
