@@ -223,7 +223,8 @@ CLI::App* addOptCommand(CLI::App& app, RawOptions& raw) {
 // cncc sim: -t, -o and --profile are the main command's options.
 CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* simulate = app.add_subcommand(
-      "sim", "Run an m80/fanuc program on the virtual controller and print its path as CSV");
+      "sim", "Run an m80/fanuc/sinumerik program on a virtual controller and print its path as "
+             "CSV");
   simulate->add_option("PROGRAM", raw.simulateInput, "The program file")->type_name("")->required();
   simulate
       ->add_option("-a", raw.macroArguments,
@@ -255,7 +256,8 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
       ->type_name("MM")
       ->check(CLI::Range(1e-6, 10.0));
   simulate->fallthrough();
-  simulate->footer("\nTakes -t fanuc|m80, --profile NAME and -o OUT ('-': standard output).");
+  simulate->footer(
+      "\nTakes -t fanuc|m80|sinumerik, --profile NAME and -o OUT ('-': standard output).");
   return simulate;
 }
 
@@ -611,8 +613,14 @@ std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
 
 DriverOptions simulateOptions(const RawOptions& raw) {
   const Target* target = findTarget(raw.target);
-  if (target == nullptr || target->controllerProfile.empty()) {
-    throw UsageError("'sim' needs -t fanuc or -t m80");
+  bool sinumerik = raw.target == "sinumerik";
+  if (!sinumerik && (target == nullptr || target->controllerProfile.empty())) {
+    throw UsageError("'sim' needs -t fanuc, -t m80 or -t sinumerik");
+  }
+  if (sinumerik && (!raw.macroArguments.empty() || raw.strictReading || !raw.toolRadii.empty() ||
+                    raw.peckRetract || raw.peckClearance || !raw.profile.empty())) {
+    throw UsageError("-a, --strict, --tool-radius, --peck-retract, --peck-clearance and "
+                     "--profile apply to 'sim -t fanuc' and '-t m80', not to sinumerik");
   }
   DriverOptions options;
   options.command = Command::Simulate;

@@ -3,6 +3,8 @@
 #include "sinumerik_arc.h"
 #include "sinumerik_blocks.h"
 #include "sinumerik_expression.h"
+#include "sinumerik_program_state.h"
+#include "sinumerik_sampling.h"
 
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/geometry_error.h"
@@ -18,42 +20,6 @@
 #include <map>
 
 namespace cncc::backends::sinumerik {
-
-geom::NurbsCurve bsplineOfBlocks(const Eigen::Vector3d& start, int degree,
-                                 const std::vector<Eigen::Vector3d>& points,
-                                 const std::vector<double>& weights,
-                                 const std::vector<double>& intervals) {
-  if (degree != 2 && degree != 3) {
-    throw geom::GeometryError(fmt::format("SD={} (2 or 3)", degree));
-  }
-  if (points.size() < std::size_t(degree)) {
-    throw geom::GeometryError(fmt::format("a B spline of degree {} needs at least {} points "
-                                          "after its start, this one has {}",
-                                          degree, degree, points.size()));
-  }
-  // u_0 = u_1 = 0, u_{i+1} = u_i + PL_i (i = 1..n), then p more copies of
-  // u_{n+1}: the first p - 1 intervals must keep u_2..u_p at 0.
-  for (int i = 0; i + 1 < degree; ++i) {
-    if (intervals[std::size_t(i)] != 0.0) {
-      throw geom::GeometryError(fmt::format(
-          "PL of point {} lies inside the clamped start of a degree {} spline and must be 0", i + 1,
-          degree));
-    }
-  }
-  std::vector<double> knots{0.0, 0.0};
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    knots.push_back(knots.back() + intervals[i]);
-  }
-  for (int k = 0; k < degree; ++k) {
-    knots.push_back(knots.back());
-  }
-  std::vector<Eigen::Vector3d> controlPoints{start};
-  controlPoints.insert(controlPoints.end(), points.begin(), points.end());
-  std::vector<double> allWeights{1.0};
-  allWeights.insert(allWeights.end(), weights.begin(), weights.end());
-  return geom::NurbsCurve(geom::KnotVector(std::move(knots), degree), std::move(controlPoints),
-                          std::move(allWeights));
-}
 
 namespace {
 
@@ -100,36 +66,6 @@ bool isSpline(Motion motion) {
   return motion == Motion::BSpline || motion == Motion::CSpline || motion == Motion::ASpline;
 }
 
-// Equal parameter steps on each smooth piece, short enough that a chord
-// sags at most `tolerance`: over a step h the sagitta is at most
-// h^2 max|C''| / 8, the maximum taken over 33 samples with a margin.
-geom::CurveSamples sampleDensely(const geom::Curve& curve, double tolerance) {
-  constexpr int kProbes = 32;
-  constexpr double kMargin = 2.0;
-  geom::CurveSamples samples;
-  std::vector<double> breakpoints = curve.breakpoints();
-  samples.parameters.push_back(breakpoints.front());
-  for (std::size_t piece = 0; piece + 1 < breakpoints.size(); ++piece) {
-    double t0 = breakpoints[piece];
-    double t1 = breakpoints[piece + 1];
-    double bend = 0;
-    for (int i = 0; i <= kProbes; ++i) {
-      double t = t0 + (t1 - t0) * i / kProbes;
-      bend = std::max(bend, curve.secondDerivative(std::min(t, t1)).norm());
-    }
-    double step = bend > 0 ? std::sqrt(8.0 * tolerance / (kMargin * bend)) : (t1 - t0);
-    double count = std::clamp(std::ceil((t1 - t0) / step), 1.0, 1e7);
-    auto steps = static_cast<std::size_t>(count);
-    for (std::size_t i = 1; i <= steps; ++i) {
-      samples.parameters.push_back(i == steps ? t1 : t0 + (t1 - t0) * double(i) / double(steps));
-    }
-  }
-  for (double t : samples.parameters) {
-    samples.points.push_back(curve.point(t));
-  }
-  return samples;
-}
-
 class Controller {
 public:
   Controller(std::vector<SinumerikProgramUnit> units, const SinumerikRunOptions& options,
@@ -159,7 +95,7 @@ private:
       line_ = block.line;
       mainLine_ = index == 0 ? block.line : callLine;
       if (block.control != Control::None) {
-        at = controlNext(unit, at);
+        at = withState([&] { return state_.next(unit, at); });
         continue;
       }
       if (!executeBlock(block)) {
@@ -178,57 +114,13 @@ private:
     throw ProgramError(program_, line_, message);
   }
 
-  // The block after control block `at`: IF and WHILE go on or past their
-  // end, FOR counts its R parameter up by 1 to the end value.
-  std::size_t controlNext(const SinumerikProgramUnit& unit, std::size_t at) {
-    const SinumerikBlock& block = unit.blocks[at];
-    switch (block.control) {
-    case Control::If:
-    case Control::While:
-      return evaluate(block.condition) != 0 ? at + 1 : block.partner + 1;
-    case Control::Else: // reached at the end of the IF branch
-      return block.partner + 1;
-    case Control::EndWhile:
-      return block.partner;
-    case Control::For: {
-      double start = needNumber(block.counter);
-      double end = evaluate(block.condition);
-      setParameter(block.counter.parameter, start);
-      loopEnds_[&block] = end;
-      return start <= end ? at + 1 : block.partner + 1;
-    }
-    case Control::EndFor: {
-      const SinumerikBlock& loop = unit.blocks[block.partner];
-      int counter = loop.counter.parameter;
-      setParameter(counter, parameters_[std::size_t(counter)] + 1);
-      return parameters_[std::size_t(counter)] <= loopEnds_[&loop] ? block.partner + 1 : at + 1;
-    }
-    default:
-      return at + 1;
-    }
-  }
-
-  double evaluate(const std::string& expression) const {
+  // A problem ProgramState found, at the current line.
+  template <typename Action> auto withState(Action action) const -> decltype(action()) {
     try {
-      return evaluateExpression(expression, [this](int number) { return parameter(number); });
+      return action();
     } catch (const ExpressionError& error) {
       fail(error.what());
     }
-  }
-
-  // R0..R299 (the 828D's default count; the 840D's is a machine datum).
-  static constexpr int parameterCount = 300;
-
-  double parameter(int number) const {
-    if (number < 0 || number >= parameterCount) {
-      fail(fmt::format("R{} does not exist: R0 to R{}", number, parameterCount - 1));
-    }
-    return parameters_[std::size_t(number)];
-  }
-
-  void setParameter(int number, double value) {
-    parameter(number); // checks the number
-    parameters_[std::size_t(number)] = value;
   }
 
   std::optional<std::size_t> findUnit(const std::string& name) const {
@@ -251,7 +143,7 @@ private:
     for (const SinumerikWord& word : block.words) {
       const std::string& a = word.address;
       if (a == "R" && word.parameter >= 0) {
-        setParameter(word.parameter, needNumber(word));
+        withState([&] { state_.setParameter(word.parameter, state_.valueOf(word)); });
       } else if (a == "X" || a == "Y" || a == "Z") {
         axes[std::size_t(a[0] - 'X')] = needNumber(word);
       } else if (a == "I" || a == "J") {
@@ -347,13 +239,7 @@ private:
   }
 
   double needNumber(const SinumerikWord& word) const {
-    if (!word.expression.empty()) {
-      return evaluate(word.expression);
-    }
-    if (!word.value) {
-      fail(fmt::format("{} needs a number", word.address));
-    }
-    return *word.value;
+    return withState([&] { return state_.valueOf(word); });
   }
 
   // True for a motion code.
@@ -681,8 +567,7 @@ private:
   std::vector<SinumerikProgramUnit> units_;
   const SinumerikRunOptions& options_;
   SinumerikRun& run_;
-  std::array<double, parameterCount> parameters_{};  // R parameters, 0 at the start
-  std::map<const SinumerikBlock*, double> loopEnds_; // FOR: the end value
+  ProgramState state_; // R parameters and loops
   std::string program_;
   int line_ = 0;
   int mainLine_ = 0;

@@ -73,6 +73,10 @@ private:
     }
     SinumerikWord word;
     word.address = upper(text_.substr(begin, at_ - begin));
+    if (at_ < text_.size() && text_[at_] == ':') {
+      fail(fmt::format("the label '{}:' and jumps to it (GOTOF, GOTOB) are not modelled",
+                       text_.substr(begin, at_ - begin)));
+    }
     if (at_ < text_.size() && text_[at_] == '(') {
       std::size_t close = text_.find(')', at_);
       if (close == std::string_view::npos) {
