@@ -16,6 +16,16 @@
 
 namespace cncc::backends::sim {
 
+// The words of a block after evaluation; vacant ones are dropped, as the
+// controller drops an address whose variable is vacant.
+struct BlockWords {
+  std::vector<int> gCodes; // tenths
+  std::vector<int> mCodes;
+  std::map<char, double> values; // every other letter
+
+  bool hasG(int tenths) const;
+};
+
 class Machine : public VariableReader {
 public:
   Machine(const ProgramText& program, const ControllerProfile& profile,
@@ -97,6 +107,11 @@ private:
   // sim_motion.cpp
   Next executeWords(const Block& block, std::size_t& next);
   Next executeAddressWords(const Block& block, std::size_t& next);
+  void executeAxisWords(const Block& block, const BlockWords& words);
+  // sim_modal_codes.cpp
+  void applyModalCodes(const Block& block, const BlockWords& words);
+  void applyFeedSpindleTool(const Block& block, const BlockWords& words);
+  Next executeMCode(const Block& block, const BlockWords& words, std::size_t& next);
   void setCompensation(const Block& block, int tenths);
   // Every executed event goes to the path through the radius compensation.
   void output(const ExecutedEvent& event, const Block& block) { compensation_.add(event, block); }
@@ -135,6 +150,8 @@ private:
   Frame& localFrame();
   const Frame& localFrame() const;
   Next returnFromMacro(const Block& block, const std::map<char, double>& values, std::size_t& next);
+
+  // sim_motion.cpp, sim_arc.cpp
   void move(const Block& block, int motion, const std::map<char, double>& axes);
   void returnToReference(const Block& block, const std::map<char, double>& axes);
   void moveArc(const Block& block, int motion, Point3 target, const std::map<char, double>& axes);

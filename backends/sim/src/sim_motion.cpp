@@ -51,14 +51,6 @@ bool isCoordinateLetter(char letter) {
          arcLetters.find(letter) != std::string_view::npos;
 }
 
-// The words of a block after evaluation; vacant ones are dropped, as the
-// controller drops an address whose variable is vacant.
-struct BlockWords {
-  std::vector<int> gCodes; // tenths
-  std::vector<int> mCodes;
-  std::map<char, double> values; // every other letter
-};
-
 } // namespace
 
 double Machine::increment() const {
@@ -117,19 +109,6 @@ BlockWords evaluateWords(const Block& block, const VariableReader& variables) {
   return words;
 }
 
-// The words M99 takes: P, the sequence number to return to.
-std::map<char, double> returnWords(const std::map<char, double>& values) {
-  std::map<char, double> words;
-  if (values.count('P') > 0) {
-    words['P'] = values.at('P');
-  }
-  return words;
-}
-
-bool has(const BlockWords& words, int gTenths) {
-  return std::find(words.gCodes.begin(), words.gCodes.end(), gTenths) != words.gCodes.end();
-}
-
 void checkGCodes(const Block& block, const BlockWords& words) {
   std::map<int, int> groups;
   for (int tenths : words.gCodes) {
@@ -145,7 +124,7 @@ void checkGCodes(const Block& block, const BlockWords& words) {
     groups[*group] = tenths;
   }
   for (int call : {650, 660}) {
-    if (has(words, call) && words.gCodes.size() > 1) {
+    if (words.hasG(call) && words.gCodes.size() > 1) {
       failInBlock(block, fmt::format("{} must be the only G code of its block", gName(call)));
     }
   }
@@ -153,7 +132,7 @@ void checkGCodes(const Block& block, const BlockWords& words) {
 
 // The letters a block of this kind may hold.
 void checkLetters(const Block& block, const BlockWords& words, bool cycle) {
-  bool dwell = has(words, 40);
+  bool dwell = words.hasG(40);
   bool subprogramCall =
       std::find(words.mCodes.begin(), words.mCodes.end(), 98) != words.mCodes.end();
   bool subprogramReturn =
@@ -161,10 +140,10 @@ void checkLetters(const Block& block, const BlockWords& words, bool cycle) {
   for (const auto& [letter, value] : words.values) {
     bool allowed = std::string_view("XYZIJKRFSTD").find(letter) != std::string_view::npos ||
                    (letter == 'P' &&
-                    (dwell || has(words, 541) || subprogramCall || subprogramReturn || cycle)) ||
+                    (dwell || words.hasG(541) || subprogramCall || subprogramReturn || cycle)) ||
                    (letter == 'L' && (subprogramCall || cycle)) ||
-                   (letter == 'H' && has(words, 430)) ||
-                   (letter == 'Q' && (has(words, 51) || cycle));
+                   (letter == 'H' && words.hasG(430)) ||
+                   (letter == 'Q' && (words.hasG(51) || cycle));
     if (!allowed) {
       failInBlock(block, fmt::format("the address {} is not simulated in this block", letter));
     }
@@ -212,22 +191,22 @@ void Machine::setCompensation(const Block& block, int tenths) {
 Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next) {
   BlockWords words = evaluateWords(block, *this);
   checkGCodes(block, words);
-  if (has(words, 650) || has(words, 660)) {
+  if (words.hasG(650) || words.hasG(660)) {
     for (const Word& word : block.words) {
       if (word.letter != 'G' && word.letter != 'P' && word.letter != 'L') {
         checkLiteral(word, block, 8, true);
       }
     }
-    if (has(words, 660)) {
+    if (words.hasG(660)) {
       setModalCall(block);
       return Next::Continue;
     }
     callMacro(block, next);
     return Next::Jump;
   }
-  if (compensation_.isOn() && (has(words, 62) || has(words, 280))) {
+  if (compensation_.isOn() && (words.hasG(62) || words.hasG(280))) {
     failInBlock(block, fmt::format("{} while G41/G42 is on is not simulated; cancel with G40 first",
-                                   has(words, 62) ? "G06.2" : "G28"));
+                                   words.hasG(62) ? "G06.2" : "G28"));
   }
   if (words.values.count('D') > 0) {
     double number = words.values['D'];
@@ -248,119 +227,32 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
       checkLiteral(word, block, decimals, false);
     }
   }
-  for (int tenths : words.gCodes) {
-    switch (tenths) {
-    case 0:
-    case 10:
-    case 20:
-    case 30:
-      modal_.motion = tenths / 10;
-      setCycleMode(block, tenths);
-      break;
-    case 730:
-    case 740:
-    case 800:
-    case 810:
-    case 820:
-    case 830:
-    case 840:
-    case 850:
-    case 860:
-    case 890:
-    case 980:
-    case 990:
-      setCycleMode(block, tenths);
-      break;
-    case 900:
-    case 910:
-      modal_.absolute = tenths == 900;
-      break;
-    case 200:
-    case 210:
-      modal_.inches = tenths == 200;
-      path_.inches = modal_.inches;
-      break;
-    case 430:
-      if (words.values.count('H') == 0) {
-        failInBlock(block, "G43 without H: which length offset?");
-      }
-      modal_.lengthOffset = static_cast<int>(words.values['H']);
-      break;
-    case 490:
-      modal_.lengthOffset.reset();
-      break;
-    case 400:
-    case 410:
-    case 420:
-      setCompensation(block, tenths);
-      break;
-    case 690:
-      if (compensation_.isOn()) {
-        failInBlock(block, "G69 while G41/G42 is on is not simulated; cancel with G40 first");
-      }
-      modal_.coordinates.rotated = false;
-      break;
-    case 150:
-    case 160:
-      modal_.coordinates.polar = tenths == 160;
-      break;
-    case 670:
-      modal_.modalCall.reset();
-      break;
-    default:
-      break; // G04, G17, G54-G59, G61, G64, G94: no effect on the path
-    }
-  }
-  if (words.values.count('F') > 0) {
-    if (words.values['F'] <= 0) {
-      failInBlock(block, "the feed F must be positive");
-    }
-    modal_.feed = words.values['F'];
-    double perMinute = *modal_.feed * (modal_.inches ? 25.4 : 1.0);
-    if (profile_.maximumFeed > 0 && perMinute > profile_.maximumFeed * (1 + 1e-9)) {
-      failInBlock(block, fmt::format("the feed F{:g} is over the machine's maximum of {:g} mm/min",
-                                     *modal_.feed, profile_.maximumFeed));
-    }
-  }
-  if (words.values.count('S') > 0) {
-    double speed = words.values['S'];
-    if (speed < 0 || speed != std::round(speed)) {
-      failInBlock(block, "the spindle speed S must be a whole number from 0");
-    }
-    if (profile_.maximumSpindleSpeed > 0 && speed > profile_.maximumSpindleSpeed) {
-      failInBlock(block, fmt::format("the spindle speed S{:g} is over the machine's maximum of "
-                                     "{:g} rpm",
-                                     speed, profile_.maximumSpindleSpeed));
-    }
-    modal_.spindleSpeed = speed;
-    if (modal_.spindleRunning) {
-      output({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, speed, block.line}, block);
-    }
-  }
-  if (words.values.count('T') > 0) {
-    double tool = words.values['T'];
-    if (tool < 0 || tool != std::round(tool) || tool > 99999999) {
-      failInBlock(block, "the tool number T must be a whole number from 0");
-    }
-    modal_.selectedTool = static_cast<int>(tool);
-  }
+  applyModalCodes(block, words);
+  applyFeedSpindleTool(block, words);
+  executeAxisWords(block, words);
+  return executeMCode(block, words, next);
+}
+
+// The block's X Y Z I J K R: a move, a cycle's holes, G52's or G68's data,
+// G28's intermediate point.
+void Machine::executeAxisWords(const Block& block, const BlockWords& words) {
   std::map<char, double> axes;
   for (const auto& [letter, value] : words.values) {
     if (isCoordinateLetter(letter)) {
       axes[letter] = value;
     }
   }
-  if (has(words, 520) && has(words, 680)) {
+  if (words.hasG(520) && words.hasG(680)) {
     failInBlock(block, "G52 and G68 in one block: give them in blocks of their own");
-  } else if (has(words, 520)) {
+  } else if (words.hasG(520)) {
     setLocalShift(block, axes); // the block's words set the local origin: no move
-  } else if (has(words, 680)) {
+  } else if (words.hasG(680)) {
     setRotation(block, axes); // the centre and angle: no move
-  } else if (has(words, 40)) {
+  } else if (words.hasG(40)) {
     if (!axes.empty()) {
       failInBlock(block, "G04 takes its time in P, with no axis words");
     }
-  } else if (has(words, 280)) {
+  } else if (words.hasG(280)) {
     returnToReference(block, axes);
   } else if (modal_.cycle.code &&
              (axes.count('X') + axes.count('Y') + axes.count('Z') + axes.count('R') > 0)) {
@@ -373,49 +265,6 @@ Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next
     }
     move(block, *modal_.motion, axes);
     moveCommanded_ = true;
-  }
-  if (words.mCodes.size() > 1) {
-    failInBlock(block, "one M code per block");
-  }
-  if (words.mCodes.empty()) {
-    return Next::Continue;
-  }
-  switch (words.mCodes.front()) {
-  case 0:
-  case 1:
-  case 7:
-  case 8:
-  case 9:
-    return Next::Continue;
-  case 2:
-  case 30:
-    return Next::Stop;
-  case 3:
-  case 4:
-    modal_.spindleRunning = true;
-    output({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, modal_.spindleSpeed, block.line}, block);
-    return Next::Continue;
-  case 5:
-    modal_.spindleRunning = false;
-    output({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, 0, block.line}, block);
-    return Next::Continue;
-  case 6:
-    if (!modal_.selectedTool) {
-      failInBlock(block, "M06 before any T: which tool?");
-    }
-    output(
-        {ExecutedEvent::Kind::ToolChange, {}, {}, {}, 0, double(*modal_.selectedTool), block.line},
-        block);
-    modal_.toolChanged = true;
-    modal_.lengthOffset.reset();
-    return Next::Continue;
-  case 98:
-    callSubprogram(block, words.values, next);
-    return Next::Jump;
-  case 99:
-    return returnFromMacro(block, returnWords(words.values), next);
-  default:
-    failInBlock(block, fmt::format("M{:02d} is not simulated", words.mCodes.front()));
   }
 }
 
