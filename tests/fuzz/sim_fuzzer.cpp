@@ -59,8 +59,9 @@ void checkPath(const sim::ExecutedPath& path) {
 }
 
 void checkOperationCounts(std::string_view text, const ControllerProfile& profile,
+                          const sim::SimulationOptions& options,
                           const sim::SimulationResult& result) {
-  sim::ProgramText program = sim::readProgram(text, profile);
+  sim::ProgramText program = sim::readProgram(text, profile, options.reading);
   if (result.blockExecutions.size() != program.blocks.size()) {
     fail("the execution counts do not cover the program's blocks");
   }
@@ -97,6 +98,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.runAsMacroCall = true;
     options.arguments = {{'A', 1.5}, {'B', -2}, {'X', 10}};
   }
+  if (data[0] & 0x20) {
+    // A shop's program: `;`, lower-case comments, abbreviations, and the
+    // settings compensation and peck drilling need.
+    options.reading.strict = false;
+    options.reading.family =
+        data[0] & 0x40 ? sim::ControllerFamily::Mitsubishi : sim::ControllerFamily::Fanuc;
+    options.toolRadii = {{1, 2.5}, {2, -1}};
+    options.peckRetract = 0.2;
+    options.peckClearance = 0.5;
+  }
   std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
   sim::SimulationResult result = sim::simulateProgram(text, *profile, options);
   if (result.error && (result.error->line() < 0 || result.error->line() > lineCount(text))) {
@@ -107,7 +118,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   checkPath(result.path);
   if (!result.error) {
-    checkOperationCounts(text, *profile, result);
+    checkOperationCounts(text, *profile, options, result);
   }
   return 0;
 }

@@ -175,15 +175,41 @@ CLI::App* addOptCommand(CLI::App& app, RawOptions& raw) {
 // cncc sim: -t, -o and --profile are the main command's options.
 CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* simulate = app.add_subcommand(
-      "sim", "Run an m80/fanuc program on the virtual controller and print its path as CSV");
+      "sim", "Run an m80/fanuc/sinumerik program on a virtual controller and print its path as "
+             "CSV");
   simulate->add_option("PROGRAM", raw.simulateInput, "The program file")->type_name("")->required();
   simulate
       ->add_option("-a", raw.macroArguments,
                    "Run the program as if called by G65 with this argument (A3.)")
       ->type_name("ARG")
       ->allow_extra_args(false);
+  simulate->add_flag("--strict", raw.strictReading,
+                     "Read the program as the compiler prints it: ( ) comments in upper case, "
+                     "no ';', macro words in full");
+  simulate
+      ->add_option("--tool-radius", raw.toolRadii,
+                   "The radius in offset register N, read by D N for G41/G42 (1=5.)")
+      ->type_name("N=R")
+      ->allow_extra_args(false);
+  simulate
+      ->add_option("--peck-retract", raw.peckRetract,
+                   "G73's retract after each peck (Fanuc parameter 5114)")
+      ->type_name("D")
+      ->check(CLI::NonNegativeNumber);
+  simulate
+      ->add_option("--peck-clearance", raw.peckClearance,
+                   "G83's clearance above the last depth (Fanuc parameter 5115)")
+      ->type_name("D")
+      ->check(CLI::NonNegativeNumber);
+  simulate
+      ->add_option("--chord-error", raw.chordError,
+                   "The largest distance between an arc and the chords printed for it "
+                   "(default 0.0001)")
+      ->type_name("MM")
+      ->check(CLI::Range(1e-6, 10.0));
   simulate->fallthrough();
-  simulate->footer("\nTakes -t fanuc|m80, --profile NAME and -o OUT ('-': standard output).");
+  simulate->footer(
+      "\nTakes -t fanuc|m80|sinumerik, --profile NAME and -o OUT ('-': standard output).");
   return simulate;
 }
 

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -44,6 +45,11 @@ struct RawOptions {
   std::string simulateInput;
   std::string verifyInput;
   std::vector<std::string> macroArguments;
+  bool strictReading = false;
+  std::vector<std::string> toolRadii;
+  std::optional<double> peckRetract;
+  std::optional<double> peckClearance;
+  double chordError = 1e-4;
   std::string machineFile;
   bool writeDependencies = false; // -MD
   std::string dependencyFile;     // -MF

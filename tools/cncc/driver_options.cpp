@@ -365,10 +365,42 @@ DriverOptions whereOptions(const RawOptions& raw) {
   return options;
 }
 
+// --tool-radius N=R: offset register N (1..9999) holds radius R.
+std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
+  std::map<int, double> radii;
+  for (const std::string& text : texts) {
+    std::size_t equals = text.find('=');
+    int number = 0;
+    double radius = 0;
+    bool valid = equals != std::string::npos;
+    if (valid) {
+      auto [numberEnd, numberError] = std::from_chars(text.data(), text.data() + equals, number);
+      auto [radiusEnd, radiusError] =
+          std::from_chars(text.data() + equals + 1, text.data() + text.size(), radius);
+      valid = numberError == std::errc() && numberEnd == text.data() + equals &&
+              radiusError == std::errc() && radiusEnd == text.data() + text.size() && number >= 1 &&
+              number <= 9999 && std::isfinite(radius);
+    }
+    if (!valid) {
+      throw UsageError(fmt::format("--tool-radius '{}': expected N=R, a register from 1 to 9999 "
+                                   "and its radius, as in 1=5.",
+                                   text));
+    }
+    radii[number] = radius;
+  }
+  return radii;
+}
+
 DriverOptions simulateOptions(const RawOptions& raw) {
   const Target* target = findTarget(raw.target);
-  if (target == nullptr || target->controllerProfile.empty()) {
-    throw UsageError("'sim' needs -t fanuc or -t m80");
+  bool sinumerik = raw.target == "sinumerik";
+  if (!sinumerik && (target == nullptr || target->controllerProfile.empty())) {
+    throw UsageError("'sim' needs -t fanuc, -t m80 or -t sinumerik");
+  }
+  if (sinumerik && (!raw.macroArguments.empty() || raw.strictReading || !raw.toolRadii.empty() ||
+                    raw.peckRetract || raw.peckClearance || !raw.profile.empty())) {
+    throw UsageError("-a, --strict, --tool-radius, --peck-retract, --peck-clearance and "
+                     "--profile apply to 'sim -t fanuc' and '-t m80', not to sinumerik");
   }
   DriverOptions options;
   options.command = Command::Simulate;
@@ -377,6 +409,11 @@ DriverOptions simulateOptions(const RawOptions& raw) {
   options.profile = raw.profile;
   options.output = raw.output.empty() ? "-" : raw.output;
   options.macroArguments = raw.macroArguments;
+  options.strictReading = raw.strictReading;
+  options.toolRadii = toolRadiiOf(raw.toolRadii);
+  options.peckRetract = raw.peckRetract;
+  options.peckClearance = raw.peckClearance;
+  options.chordError = raw.chordError;
   setDiagnosticOutput(raw, options);
   return options;
 }

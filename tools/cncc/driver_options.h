@@ -69,6 +69,11 @@ struct DriverOptions {
   bool parametersInCommon = false;
   std::string profile;
   std::vector<std::string> macroArguments; // sim -a A3.: run as if called by G65
+  bool strictReading = false;              // sim --strict: the compiler's conservative reading
+  std::map<int, double> toolRadii;         // sim --tool-radius N=R: offset registers
+  std::optional<double> peckRetract;       // sim --peck-retract: G73 (parameter 5114)
+  std::optional<double> peckClearance;     // sim --peck-clearance: G83 (parameter 5115)
+  double chordError = 1e-4;                // sim --chord-error: arcs printed as chords
   // --machine FILE.toml: the machine read from it (machine_options.h), whose
   // set-up, profile and limits replace the target's built-in ones.
   std::string machineFile;

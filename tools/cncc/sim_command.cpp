@@ -1,10 +1,12 @@
-// cncc sim: runs a program on the virtual controller (backends/sim) and
-// prints the executed path as CSV, arcs split into fine chords.
+// cncc sim: runs a program on a virtual controller (backends/sim: Fanuc/M80
+// or Sinumerik) and prints the executed path as CSV, arcs and splines split
+// into fine chords.
 #include "atomic_output_file.h"
 #include "commands.h"
 #include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/sinumerik_controller.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/backends/virtual_controller.h"
 
@@ -34,7 +36,63 @@ std::optional<std::string> readWholeFile(const std::string& path) {
 
 } // namespace
 
+namespace {
+
+int writeCsv(const DriverOptions& options, const ir::ToolPath& path) {
+  std::string csv = backends::writeToolPathCsv(path);
+  std::error_code error;
+  if (!writeFileAtomically(options.output, csv, error)) {
+    fmt::print(stderr, "cncc: error: cannot write '{}': {}\n", options.output, error.message());
+    return 1;
+  }
+  return 0;
+}
+
+// The virtual Sinumerik's run as a tool path: a rapid to where every axis
+// is first known, then its moves (splines and arcs already in chords).
+int runSinumerik(const DriverOptions& options, const std::string& path, const std::string& text) {
+  backends::sinumerik::SinumerikRunOptions settings;
+  settings.sampleTolerance = options.chordError;
+  backends::sinumerik::SinumerikRun run = backends::sinumerik::runSinumerikProgram(text, settings);
+  if (run.error) {
+    // The message starts "[NAME, ]line N: ", which the location says already.
+    std::string message = run.error->what();
+    std::size_t after = message.find(": ");
+    fmt::print(stderr, "{}:{}: error: {}\n", path, run.error->line(),
+               after == std::string::npos ? message : message.substr(after + 2));
+    return 1;
+  }
+  ir::ToolPath toolPath;
+  ir::MachineEvent start;
+  start.x = run.start.x();
+  start.y = run.start.y();
+  start.z = run.start.z();
+  toolPath.events.push_back(start);
+  for (const backends::sinumerik::ExecutedSinumerikMove& move : run.moves) {
+    ir::MachineEvent event;
+    bool rapid = move.kind == backends::sinumerik::MotionKind::Rapid;
+    event.kind = rapid ? ir::MachineEvent::Kind::Rapid : ir::MachineEvent::Kind::Feed;
+    event.x = move.end.x();
+    event.y = move.end.y();
+    event.z = move.end.z();
+    event.feed = rapid ? 0 : move.feed;
+    toolPath.events.push_back(event);
+  }
+  return writeCsv(options, toolPath);
+}
+
+} // namespace
+
 int runSimulate(const DriverOptions& options) {
+  if (options.target == "sinumerik") {
+    const std::string& path = options.inputs.front();
+    std::optional<std::string> text = readWholeFile(path);
+    if (!text) {
+      fmt::print(stderr, "cncc: error: cannot read '{}'\n", path);
+      return 1;
+    }
+    return runSinumerik(options, path, *text);
+  }
   const backends::ControllerProfile* profile = &controllerProfile(options, options.target);
   backends::sim::SimulationOptions simulation;
   for (const std::string& text : options.macroArguments) {
@@ -47,6 +105,11 @@ int runSimulate(const DriverOptions& options) {
     simulation.arguments.push_back(*argument);
   }
   simulation.runAsMacroCall = !options.macroArguments.empty();
+  simulation.reading.strict = options.strictReading;
+  simulation.reading.family = backends::sim::controllerFamilyOf(options.target);
+  simulation.toolRadii = options.toolRadii;
+  simulation.peckRetract = options.peckRetract;
+  simulation.peckClearance = options.peckClearance;
 
   const std::string& path = options.inputs.front();
   std::optional<std::string> text = readWholeFile(path);
@@ -63,13 +126,7 @@ int runSimulate(const DriverOptions& options) {
     }
     return 1;
   }
-  std::string csv = backends::writeToolPathCsv(backends::sim::flattenPath(result.path));
-  std::error_code error;
-  if (!writeFileAtomically(options.output, csv, error)) {
-    fmt::print(stderr, "cncc: error: cannot write '{}': {}\n", options.output, error.message());
-    return 1;
-  }
-  return 0;
+  return writeCsv(options, backends::sim::flattenPath(result.path, options.chordError));
 }
 
 } // namespace cncc::driver

@@ -66,7 +66,10 @@ void Machine::moveArc(const Block& block, int motion, Point3 target,
       auto found = axes.find(letter);
       return found == axes.end() ? 0.0 : roundToIncrement(found->second);
     };
-    centre = {start.x + offset('I'), start.y + offset('J'), start.z};
+    double offsetX = offset('I');
+    double offsetY = offset('J');
+    rotateVector(offsetX, offsetY); // I and J turn with G68
+    centre = {start.x + offsetX, start.y + offsetY, start.z};
   }
   double startRadius = std::hypot(start.x - centre.x, start.y - centre.y);
   double endRadius = std::hypot(target.x - centre.x, target.y - centre.y);
@@ -80,9 +83,9 @@ void Machine::moveArc(const Block& block, int motion, Point3 target,
                                    "more than the {} the controller allows",
                                    endRadius, startRadius, tolerance));
   }
-  path_.events.push_back(
-      {clockwise ? ExecutedEvent::Kind::ClockwiseArc : ExecutedEvent::Kind::CounterclockwiseArc,
-       start, target, centre, *modal_.feed, 0, block.line});
+  output({clockwise ? ExecutedEvent::Kind::ClockwiseArc : ExecutedEvent::Kind::CounterclockwiseArc,
+          start, target, centre, *modal_.feed, 0, block.line},
+         block);
   modal_.position = target;
 }
 

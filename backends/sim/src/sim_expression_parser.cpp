@@ -41,6 +41,78 @@ bool BlockCursor::consumeKeyword(std::string_view keyword) {
   return true;
 }
 
+namespace {
+
+// Fanuc's two-letter abbreviations of macro words (backends/sim/README.md):
+// the full word is always tried first, so SIN is never read as SI + N.
+struct Abbreviation {
+  std::string_view word;
+  std::string_view abbreviation;
+};
+
+constexpr std::array abbreviations = {
+    Abbreviation{"WHILE", "WH"}, Abbreviation{"GOTO", "GO"}, Abbreviation{"END", "EN"},
+    Abbreviation{"THEN", "TH"},  Abbreviation{"SIN", "SI"},  Abbreviation{"COS", "CO"},
+    Abbreviation{"TAN", "TA"},   Abbreviation{"ASIN", "AS"}, Abbreviation{"ACOS", "AC"},
+    Abbreviation{"ATAN", "AT"},  Abbreviation{"SQRT", "SQ"}, Abbreviation{"ABS", "AB"},
+    Abbreviation{"ROUND", "RO"}, Abbreviation{"FIX", "FI"},  Abbreviation{"FUP", "FU"},
+    Abbreviation{"EXP", "EX"},   Abbreviation{"AND", "AN"},  Abbreviation{"XOR", "XO"},
+    Abbreviation{"MOD", "MO"}};
+
+} // namespace
+
+bool BlockCursor::consumeMacroWord(std::string_view word) {
+  if (consumeKeyword(word)) {
+    return true;
+  }
+  if (!abbreviations_) {
+    return false;
+  }
+  for (const Abbreviation& entry : abbreviations) {
+    if (entry.word == word) {
+      return consumeKeyword(entry.abbreviation);
+    }
+  }
+  return false;
+}
+
+namespace {
+
+std::string_view abbreviationOf(std::string_view word) {
+  for (const Abbreviation& entry : abbreviations) {
+    if (entry.word == word) {
+      return entry.abbreviation;
+    }
+  }
+  return word;
+}
+
+} // namespace
+
+std::optional<std::string_view> BlockCursor::abbreviationAhead() {
+  skipSpaces();
+  for (const Abbreviation& entry : abbreviations) {
+    std::string_view ahead = code_.substr(position_, entry.abbreviation.size() + 1);
+    if (ahead.size() > entry.abbreviation.size() &&
+        ahead.substr(0, entry.abbreviation.size()) == entry.abbreviation &&
+        !(ahead.back() >= 'A' && ahead.back() <= 'Z')) {
+      return entry.word;
+    }
+  }
+  return std::nullopt;
+}
+
+void BlockCursor::failOnAbbreviation() {
+  if (abbreviations_) {
+    return;
+  }
+  if (std::optional<std::string_view> word = abbreviationAhead()) {
+    fail(fmt::format("'{}' abbreviates {}: only Fanuc reads it, and not in strict reading; "
+                     "write {}",
+                     abbreviationOf(*word), *word, *word));
+  }
+}
+
 void BlockCursor::expect(char expected, std::string_view what) {
   if (!consume(expected)) {
     char found = peek();
@@ -104,7 +176,7 @@ template <std::size_t count>
 std::optional<Operator> consumeOperator(BlockCursor& cursor,
                                         const std::array<OperatorKeyword, count>& keywords) {
   for (const OperatorKeyword& keyword : keywords) {
-    if (cursor.consumeKeyword(keyword.text)) {
+    if (cursor.consumeMacroWord(keyword.text)) {
       return keyword.op;
     }
   }
@@ -183,7 +255,7 @@ Expression parseArcTangent(BlockCursor& cursor) {
 
 std::optional<Expression> parseFunctionCall(BlockCursor& cursor) {
   for (const FunctionKeyword& keyword : functionKeywords) {
-    if (!cursor.consumeKeyword(keyword.text)) {
+    if (!cursor.consumeMacroWord(keyword.text)) {
       continue;
     }
     if (keyword.function == Function::ArcTangent) {
@@ -222,6 +294,7 @@ Expression parsePrimary(BlockCursor& cursor) {
   if (std::optional<Expression> call = parseFunctionCall(cursor)) {
     return std::move(*call);
   }
+  cursor.failOnAbbreviation();
   cursor.fail(next == '\0' ? std::string("expected a value at the end of the block")
                            : fmt::format("expected a value, found '{}'", next));
 }

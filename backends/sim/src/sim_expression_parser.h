@@ -13,6 +13,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/sim_program.h"
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -22,8 +23,9 @@ namespace cncc::backends::sim {
 class BlockCursor {
 public:
   BlockCursor(std::string_view code, int line, std::string_view lineText,
-              const ControllerProfile& profile)
-      : code_(code), line_(line), lineText_(lineText), profile_(profile) {}
+              const ControllerProfile& profile, bool abbreviations = false)
+      : code_(code), line_(line), lineText_(lineText), profile_(profile),
+        abbreviations_(abbreviations) {}
 
   void skipSpaces();
   bool atEnd();
@@ -31,6 +33,12 @@ public:
   bool consume(char expected);
   // Consumes `keyword` when the code continues with it.
   bool consumeKeyword(std::string_view keyword);
+  // Consumes the macro word `word` (WHILE, SIN, AND, ...), or its two-letter
+  // abbreviation when the reading rules accept abbreviations.
+  bool consumeMacroWord(std::string_view word);
+  // Fails, naming the word, when the code continues with the abbreviation of
+  // a macro word (WH[...) that these reading rules do not accept.
+  void failOnAbbreviation();
   void expect(char expected, std::string_view what);
   [[noreturn]] void fail(const std::string& message) const;
 
@@ -42,11 +50,15 @@ public:
   void advance() { ++position_; }
 
 private:
+  // The full word when the code continues with an abbreviation (WH, SI, ...).
+  std::optional<std::string_view> abbreviationAhead();
+
   std::string_view code_;
   std::size_t position_ = 0;
   int line_;
   std::string_view lineText_;
   const ControllerProfile& profile_;
+  bool abbreviations_;
   int bracketDepth_ = 0;
 };
 

@@ -19,10 +19,13 @@ struct GCode {
 };
 
 constexpr GCode supportedGCodes[] = {
-    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
-    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
-    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
-    {62, 1},   {50, 0},   {51, 0},   {541, 14}, {280, 0}};
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
+    {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
+    {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
+    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14},
+    {280, 0},  {410, 7},  {420, 7},  {730, 9},  {740, 9},  {810, 9},  {820, 9},
+    {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},  {980, 10}, {990, 10},
+    {520, 0},  {680, 16}, {690, 16}, {150, 17}, {160, 17}, {660, 12}, {670, 12}};
 // G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
 // control) and G54.1 P.. (extended work offsets) do not change the path.
 
@@ -47,14 +50,6 @@ bool isCoordinateLetter(char letter) {
   return axisLetters.find(letter) != std::string_view::npos ||
          arcLetters.find(letter) != std::string_view::npos;
 }
-
-// The words of a block after evaluation; vacant ones are dropped, as the
-// controller drops an address whose variable is vacant.
-struct BlockWords {
-  std::vector<int> gCodes; // tenths
-  std::vector<int> mCodes;
-  std::map<char, double> values; // every other letter
-};
 
 } // namespace
 
@@ -114,10 +109,6 @@ BlockWords evaluateWords(const Block& block, const VariableReader& variables) {
   return words;
 }
 
-bool has(const BlockWords& words, int gTenths) {
-  return std::find(words.gCodes.begin(), words.gCodes.end(), gTenths) != words.gCodes.end();
-}
-
 void checkGCodes(const Block& block, const BlockWords& words) {
   std::map<int, int> groups;
   for (int tenths : words.gCodes) {
@@ -132,18 +123,27 @@ void checkGCodes(const Block& block, const BlockWords& words) {
     }
     groups[*group] = tenths;
   }
-  if (has(words, 650) && words.gCodes.size() > 1) {
-    failInBlock(block, "G65 must be the only G code of its block");
+  for (int call : {650, 660}) {
+    if (words.hasG(call) && words.gCodes.size() > 1) {
+      failInBlock(block, fmt::format("{} must be the only G code of its block", gName(call)));
+    }
   }
 }
 
 // The letters a block of this kind may hold.
-void checkLetters(const Block& block, const BlockWords& words) {
-  bool dwell = has(words, 40);
+void checkLetters(const Block& block, const BlockWords& words, bool cycle) {
+  bool dwell = words.hasG(40);
+  bool subprogramCall =
+      std::find(words.mCodes.begin(), words.mCodes.end(), 98) != words.mCodes.end();
+  bool subprogramReturn =
+      std::find(words.mCodes.begin(), words.mCodes.end(), 99) != words.mCodes.end();
   for (const auto& [letter, value] : words.values) {
-    bool allowed = std::string_view("XYZIJKRFST").find(letter) != std::string_view::npos ||
-                   (letter == 'P' && (dwell || has(words, 541))) ||
-                   (letter == 'H' && has(words, 430)) || (letter == 'Q' && has(words, 51));
+    bool allowed = std::string_view("XYZIJKRFSTD").find(letter) != std::string_view::npos ||
+                   (letter == 'P' &&
+                    (dwell || words.hasG(541) || subprogramCall || subprogramReturn || cycle)) ||
+                   (letter == 'L' && (subprogramCall || cycle)) ||
+                   (letter == 'H' && words.hasG(430)) ||
+                   (letter == 'Q' && (words.hasG(51) || cycle));
     if (!allowed) {
       failInBlock(block, fmt::format("the address {} is not simulated in this block", letter));
     }
@@ -153,223 +153,119 @@ void checkLetters(const Block& block, const BlockWords& words) {
 } // namespace
 
 Machine::Next Machine::executeWords(const Block& block, std::size_t& next) {
+  moveCommanded_ = false;
+  Next decision = executeAddressWords(block, next);
+  if (decision == Next::Stop) {
+    compensation_.finish(block);
+  }
+  compensation_.endOfBlock(block);
+  if (decision == Next::Continue && moveCommanded_ && callAfterMove(block, next)) {
+    return Next::Jump;
+  }
+  return decision;
+}
+
+// G41/G42 with the radius of the D register, G40.
+void Machine::setCompensation(const Block& block, int tenths) {
+  if (tenths == 400) {
+    compensation_.cancel(block);
+    return;
+  }
+  if (!modal_.radiusRegister) {
+    failInBlock(block, fmt::format("{} without D: which radius register?", gName(tenths)));
+  }
+  int registerNumber = *modal_.radiusRegister;
+  double radius = 0; // D0 is always 0
+  if (registerNumber != 0) {
+    auto found = options_.toolRadii.find(registerNumber);
+    if (found == options_.toolRadii.end()) {
+      failInBlock(block, fmt::format("D{}: the radius in offset register {} is not known; give "
+                                     "it with --tool-radius {}=R",
+                                     registerNumber, registerNumber, registerNumber));
+    }
+    radius = found->second;
+  }
+  compensation_.start(tenths == 410, radius, block);
+}
+
+Machine::Next Machine::executeAddressWords(const Block& block, std::size_t& next) {
   BlockWords words = evaluateWords(block, *this);
   checkGCodes(block, words);
-  if (has(words, 650)) {
+  if (words.hasG(650) || words.hasG(660)) {
     for (const Word& word : block.words) {
       if (word.letter != 'G' && word.letter != 'P' && word.letter != 'L') {
         checkLiteral(word, block, 8, true);
       }
     }
+    if (words.hasG(660)) {
+      setModalCall(block);
+      return Next::Continue;
+    }
     callMacro(block, next);
     return Next::Jump;
+  }
+  if (compensation_.isOn() && (words.hasG(62) || words.hasG(280))) {
+    failInBlock(block, fmt::format("{} while G41/G42 is on is not simulated; cancel with G40 first",
+                                   words.hasG(62) ? "G06.2" : "G28"));
+  }
+  if (words.values.count('D') > 0) {
+    double number = words.values['D'];
+    if (number < 0 || number != std::round(number) || number > 9999) {
+      failInBlock(block, "the offset register D must be a whole number from 0 to 9999");
+    }
+    modal_.radiusRegister = static_cast<int>(number);
   }
   if (executeNurbsWords(block, words.gCodes, words.mCodes, words.values)) {
     return Next::Continue;
   }
-  checkLetters(block, words);
+  bool cycle = modal_.cycle.code.has_value() ||
+               std::any_of(words.gCodes.begin(), words.gCodes.end(), isCycleCode);
+  checkLetters(block, words, cycle);
   int decimals = profile_.coordinateDecimals + (modal_.inches ? 1 : 0);
   for (const Word& word : block.words) {
-    if (isCoordinateLetter(word.letter)) {
+    if (isCoordinateLetter(word.letter) && !(cycle && word.letter == 'K')) { // K: repeats
       checkLiteral(word, block, decimals, false);
     }
   }
-  for (int tenths : words.gCodes) {
-    switch (tenths) {
-    case 0:
-    case 10:
-    case 20:
-    case 30:
-      modal_.motion = tenths / 10;
-      break;
-    case 900:
-    case 910:
-      modal_.absolute = tenths == 900;
-      break;
-    case 200:
-    case 210:
-      modal_.inches = tenths == 200;
-      path_.inches = modal_.inches;
-      break;
-    case 430:
-      if (words.values.count('H') == 0) {
-        failInBlock(block, "G43 without H: which length offset?");
-      }
-      modal_.lengthOffset = static_cast<int>(words.values['H']);
-      break;
-    case 490:
-      modal_.lengthOffset.reset();
-      break;
-    default:
-      break; // G04, G17, G40, G54-G59, G61, G64, G80, G94: no effect on the path
-    }
-  }
-  if (words.values.count('F') > 0) {
-    if (words.values['F'] <= 0) {
-      failInBlock(block, "the feed F must be positive");
-    }
-    modal_.feed = words.values['F'];
-    double perMinute = *modal_.feed * (modal_.inches ? 25.4 : 1.0);
-    if (profile_.maximumFeed > 0 && perMinute > profile_.maximumFeed * (1 + 1e-9)) {
-      failInBlock(block, fmt::format("the feed F{:g} is over the machine's maximum of {:g} mm/min",
-                                     *modal_.feed, profile_.maximumFeed));
-    }
-  }
-  if (words.values.count('S') > 0) {
-    double speed = words.values['S'];
-    if (speed < 0 || speed != std::round(speed)) {
-      failInBlock(block, "the spindle speed S must be a whole number from 0");
-    }
-    if (profile_.maximumSpindleSpeed > 0 && speed > profile_.maximumSpindleSpeed) {
-      failInBlock(block, fmt::format("the spindle speed S{:g} is over the machine's maximum of "
-                                     "{:g} rpm",
-                                     speed, profile_.maximumSpindleSpeed));
-    }
-    modal_.spindleSpeed = speed;
-    if (modal_.spindleRunning) {
-      path_.events.push_back({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, speed, block.line});
-    }
-  }
-  if (words.values.count('T') > 0) {
-    double tool = words.values['T'];
-    if (tool < 0 || tool != std::round(tool) || tool > 99999999) {
-      failInBlock(block, "the tool number T must be a whole number from 0");
-    }
-    modal_.selectedTool = static_cast<int>(tool);
-  }
+  applyModalCodes(block, words);
+  applyFeedSpindleTool(block, words);
+  executeAxisWords(block, words);
+  return executeMCode(block, words, next);
+}
+
+// The block's X Y Z I J K R: a move, a cycle's holes, G52's or G68's data,
+// G28's intermediate point.
+void Machine::executeAxisWords(const Block& block, const BlockWords& words) {
   std::map<char, double> axes;
   for (const auto& [letter, value] : words.values) {
     if (isCoordinateLetter(letter)) {
       axes[letter] = value;
     }
   }
-  if (has(words, 40)) {
+  if (words.hasG(520) && words.hasG(680)) {
+    failInBlock(block, "G52 and G68 in one block: give them in blocks of their own");
+  } else if (words.hasG(520)) {
+    setLocalShift(block, axes); // the block's words set the local origin: no move
+  } else if (words.hasG(680)) {
+    setRotation(block, axes); // the centre and angle: no move
+  } else if (words.hasG(40)) {
     if (!axes.empty()) {
       failInBlock(block, "G04 takes its time in P, with no axis words");
     }
-  } else if (has(words, 280)) {
+  } else if (words.hasG(280)) {
     returnToReference(block, axes);
+  } else if (modal_.cycle.code &&
+             (axes.count('X') + axes.count('Y') + axes.count('Z') + axes.count('R') > 0)) {
+    runCycleBlock(block, words.values);
+    moveCommanded_ = true;
   } else if (!axes.empty()) {
     if (!modal_.motion) {
       failInBlock(block, "a move before any G00, G01, G02 or G03: the power-on motion mode is "
                          "a parameter");
     }
     move(block, *modal_.motion, axes);
+    moveCommanded_ = true;
   }
-  if (words.mCodes.size() > 1) {
-    failInBlock(block, "one M code per block");
-  }
-  if (words.mCodes.empty()) {
-    return Next::Continue;
-  }
-  switch (words.mCodes.front()) {
-  case 0:
-  case 1:
-  case 7:
-  case 8:
-  case 9:
-    return Next::Continue;
-  case 2:
-  case 30:
-    return Next::Stop;
-  case 3:
-  case 4:
-    modal_.spindleRunning = true;
-    path_.events.push_back(
-        {ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, modal_.spindleSpeed, block.line});
-    return Next::Continue;
-  case 5:
-    modal_.spindleRunning = false;
-    path_.events.push_back({ExecutedEvent::Kind::Spindle, {}, {}, {}, 0, 0, block.line});
-    return Next::Continue;
-  case 6:
-    if (!modal_.selectedTool) {
-      failInBlock(block, "M06 before any T: which tool?");
-    }
-    path_.events.push_back(
-        {ExecutedEvent::Kind::ToolChange, {}, {}, {}, 0, double(*modal_.selectedTool), block.line});
-    modal_.toolChanged = true;
-    modal_.lengthOffset.reset();
-    return Next::Continue;
-  case 99:
-    return returnFromMacro(block, next);
-  default:
-    failInBlock(block, fmt::format("M{:02d} is not simulated", words.mCodes.front()));
-  }
-}
-
-void Machine::callMacro(const Block& block, std::size_t& next) {
-  Frame callee;
-  bool hasProgram = false;
-  int repeats = 1;
-  for (const Word& word : block.words) {
-    if (word.letter == 'G') {
-      continue;
-    }
-    Value value = evaluate(word.value, *this, block);
-    if (word.letter == 'P' || word.letter == 'L') {
-      if (word.isLiteral && word.literalHasPoint) {
-        failInBlock(block,
-                    fmt::format("{} of G65 is written without a decimal point", word.letter));
-      }
-      int number =
-          evaluateWholeNumber(word.value, *this, block, fmt::format("G65 {}", word.letter));
-      if (word.letter == 'L') {
-        if (number < 1 || number > 9999) {
-          failInBlock(block, fmt::format("G65 L{}: the repeat count is 1 to 9999", number));
-        }
-        repeats = number;
-        continue;
-      }
-      auto found = std::find_if(program_.programs.begin(), program_.programs.end(),
-                                [&](const ProgramUnit& unit) { return unit.number == number; });
-      if (found == program_.programs.end() || number == 0) {
-        failInBlock(block,
-                    fmt::format("G65 P{}: there is no program O{} in the file", number, number));
-      }
-      callee.program = static_cast<std::size_t>(found - program_.programs.begin());
-      hasProgram = true;
-      continue;
-    }
-    std::optional<int> local = profile_.localForLetter(word.letter);
-    if (!local || *local >= localCount) {
-      failInBlock(block, fmt::format("{} is not a G65 argument on {}", word.letter, profile_.name));
-    }
-    callee.arguments[*local] = value; // a vacant argument leaves the local vacant
-  }
-  if (!hasProgram) {
-    failInBlock(block, "G65 without P: which program?");
-  }
-  int level = static_cast<int>(frames_.size()) + (options_.runAsMacroCall ? 1 : 0);
-  if (level > profile_.maximumCallNesting) {
-    failInBlock(block, fmt::format("macro calls nested {} deep; {} allows {}", level, profile_.name,
-                                   profile_.maximumCallNesting));
-  }
-  callee.returnBlock = next;
-  callee.repeatsLeft = repeats - 1;
-  callee.locals = callee.arguments;
-  frames_.push_back(callee);
-  next = program_.programs[callee.program].first;
-}
-
-Machine::Next Machine::returnFromMacro(const Block& block, std::size_t& next) {
-  if (frames_.size() == 1) {
-    if (options_.runAsMacroCall) {
-      return Next::Stop;
-    }
-    failInBlock(block, "M99 in the main program restarts it forever");
-  }
-  Frame& frame = frames_.back();
-  if (frame.repeatsLeft > 0) {
-    // Each repetition starts from the arguments again.
-    --frame.repeatsLeft;
-    frame.locals = frame.arguments;
-    next = program_.programs[frame.program].first;
-    return Next::Jump;
-  }
-  next = frame.returnBlock;
-  frames_.pop_back();
-  return Next::Jump;
 }
 
 // G28: a rapid to the intermediate point the axis words give (none for
@@ -381,6 +277,9 @@ void Machine::returnToReference(const Block& block, const std::map<char, double>
   }
   bool moves = false;
   for (const auto& [letter, value] : axes) {
+    if (!modal_.coordinates.isPlain() && (modal_.absolute || value != 0)) {
+      failInBlock(block, "G28 through a point while G52, G68 or G16 is on is not simulated");
+    }
     if (axisLetters.find(letter) == std::string_view::npos) {
       failInBlock(block, fmt::format("G28 takes axis words, not {}", letter));
     }
@@ -410,19 +309,15 @@ void Machine::move(const Block& block, int motion, const std::map<char, double>&
                                    "offset active: G43 H.. must come first",
                                    modal_.selectedTool.value_or(0)));
   }
-  Point3 target = modal_.position;
-  double* coordinates[] = {&target.x, &target.y, &target.z};
-  for (int axis = 0; axis < 3; ++axis) {
-    auto found = axes.find(axisLetters[axis]);
-    if (found == axes.end()) {
-      continue;
-    }
-    double amount = roundToIncrement(found->second);
-    *coordinates[axis] = modal_.absolute ? amount : roundToIncrement(*coordinates[axis] + amount);
-    double limit = modal_.inches ? profile_.maximumCoordinate / 10.0 : profile_.maximumCoordinate;
-    if (std::abs(*coordinates[axis]) > limit + increment() / 2) {
-      failInBlock(block, fmt::format("{} {} is beyond the controller's range +-{}",
-                                     axisLetters[axis], *coordinates[axis], limit));
+  if (modal_.coordinates.polar && motion > 1) {
+    failInBlock(block, "arcs in G16 polar coordinates are not simulated");
+  }
+  Point3 target = programmedTarget(block, axes);
+  double limit = modal_.inches ? profile_.maximumCoordinate / 10.0 : profile_.maximumCoordinate;
+  for (double coordinate : {target.x, target.y, target.z}) {
+    if (std::abs(coordinate) > limit + increment() / 2) {
+      failInBlock(block, fmt::format("the coordinate {} is beyond the controller's range +-{}",
+                                     coordinate, limit));
     }
   }
   bool arcWords = axes.count('I') + axes.count('J') + axes.count('K') + axes.count('R') > 0;
@@ -440,7 +335,7 @@ void Machine::move(const Block& block, int motion, const std::map<char, double>&
                         motion == 0 ? 0 : *modal_.feed,
                         0,
                         block.line};
-    path_.events.push_back(event);
+    output(event, block);
     modal_.position = target;
     return;
   }

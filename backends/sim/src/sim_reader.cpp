@@ -24,12 +24,16 @@ bool isUpperLetter(char c) {
 }
 
 // The characters a controller's tape code has; anything else is refused
-// rather than guessed at.
-void checkCharacters(int line, std::string_view text) {
+// rather than guessed at. Strict reading also refuses lower-case letters and
+// `;` anywhere; otherwise they are checked after the comments are removed.
+void checkCharacters(int line, std::string_view text, const ReadingRules& rules) {
   for (char c : text) {
     auto byte = static_cast<unsigned char>(c);
     if (byte >= 0x80 || (byte < 0x20 && c != '\t')) {
       failAt(line, text, fmt::format("the character 0x{:02X} is not allowed", byte));
+    }
+    if (!rules.strict) {
+      continue;
     }
     if (c >= 'a' && c <= 'z') {
       failAt(line, text, "lower-case letters are not allowed; write programs in upper case");
@@ -40,15 +44,50 @@ void checkCharacters(int line, std::string_view text) {
   }
 }
 
+// Outside comments, lower-case letters are refused however the program is read.
+void checkCodeCase(int line, std::string_view text, std::string_view code) {
+  for (char c : code) {
+    if (c >= 'a' && c <= 'z') {
+      failAt(line, text,
+             "lower-case letters are only allowed in comments; write the code in upper case");
+    }
+  }
+}
+
+// The blocks of one line: `;` outside comments ends a block, and what
+// follows it on the line is the next block.
+std::vector<std::string_view> splitAtEndOfBlock(std::string_view text) {
+  std::vector<std::string_view> segments;
+  std::size_t start = 0;
+  bool inComment = false;
+  for (std::size_t position = 0; position < text.size(); ++position) {
+    char c = text[position];
+    if (c == '(') {
+      inComment = true;
+    } else if (c == ')') {
+      inComment = false;
+    } else if (c == ';' && !inComment) {
+      segments.push_back(text.substr(start, position - start));
+      start = position + 1;
+    }
+  }
+  std::string_view rest = text.substr(start);
+  if (segments.empty() || rest.find_first_not_of(" \t") != std::string_view::npos) {
+    segments.push_back(rest);
+  }
+  return segments;
+}
+
 // Removes `( )` comments; the first one's text goes to `comment`.
-std::string stripComments(int line, std::string_view text, std::string& comment) {
+std::string stripComments(int line, std::string_view lineText, std::string_view text,
+                          std::string& comment) {
   std::string code;
   bool first = true;
   std::size_t position = 0;
   while (position < text.size()) {
     char c = text[position];
     if (c == ')') {
-      failAt(line, text, "')' without '('");
+      failAt(line, lineText, "')' without '('");
     }
     if (c != '(') {
       code += c;
@@ -57,10 +96,10 @@ std::string stripComments(int line, std::string_view text, std::string& comment)
     }
     std::size_t close = text.find_first_of("()", position + 1);
     if (close == std::string_view::npos) {
-      failAt(line, text, "a comment without its ')'");
+      failAt(line, lineText, "a comment without its ')'");
     }
     if (text[close] == '(') {
-      failAt(line, text, "a comment cannot contain '('");
+      failAt(line, lineText, "a comment cannot contain '('");
     }
     if (first) {
       comment = std::string(text.substr(position + 1, close - position - 1));
@@ -117,11 +156,11 @@ bool parseMacroStatement(BlockCursor& cursor, Block& block) {
     parseAssignment(cursor, block);
   } else if (cursor.consumeKeyword("IF")) {
     block.condition = parseCondition(cursor);
-    if (cursor.consumeKeyword("GOTO")) {
+    if (cursor.consumeMacroWord("GOTO")) {
       block.kind = Block::Kind::IfGoto;
       block.target = parseExpression(cursor);
       checkArithmetic(block.target, cursor);
-    } else if (cursor.consumeKeyword("THEN")) {
+    } else if (cursor.consumeMacroWord("THEN")) {
       if (!cursor.profile().hasThen) {
         cursor.fail(fmt::format("{} has no IF .. THEN", cursor.profile().name));
       }
@@ -131,13 +170,14 @@ bool parseMacroStatement(BlockCursor& cursor, Block& block) {
       }
       parseAssignment(cursor, block);
     } else {
+      cursor.failOnAbbreviation();
       cursor.fail("expected GOTO or THEN after the condition");
     }
-  } else if (cursor.consumeKeyword("GOTO")) {
+  } else if (cursor.consumeMacroWord("GOTO")) {
     block.kind = Block::Kind::Goto;
     block.target = parseExpression(cursor);
     checkArithmetic(block.target, cursor);
-  } else if (cursor.consumeKeyword("WHILE")) {
+  } else if (cursor.consumeMacroWord("WHILE")) {
     block.kind = Block::Kind::While;
     block.hasCondition = true;
     block.condition = parseCondition(cursor);
@@ -148,10 +188,11 @@ bool parseMacroStatement(BlockCursor& cursor, Block& block) {
   } else if (cursor.consumeKeyword("DO")) {
     block.kind = Block::Kind::While;
     parseLoopIdentifier(cursor, block, "DO");
-  } else if (cursor.consumeKeyword("END")) {
+  } else if (cursor.consumeMacroWord("END")) {
     block.kind = Block::Kind::End;
     parseLoopIdentifier(cursor, block, "END");
   } else {
+    cursor.failOnAbbreviation();
     return false;
   }
   if (!cursor.atEnd()) {
@@ -204,12 +245,14 @@ void parseStatement(BlockCursor& cursor, Block& block) {
   }
 }
 
-Block readBlock(int line, std::string_view text, const ControllerProfile& profile) {
+Block readBlock(int line, std::string_view lineText, std::string_view text,
+                const ControllerProfile& profile, const ReadingRules& rules) {
   Block block;
   block.line = line;
-  block.text = std::string(text);
-  std::string code = stripComments(line, text, block.comment);
-  BlockCursor cursor(code, line, text, profile);
+  block.text = std::string(lineText);
+  std::string code = stripComments(line, lineText, text, block.comment);
+  checkCodeCase(line, lineText, code);
+  BlockCursor cursor(code, line, lineText, profile, rules.allowsAbbreviations());
   if (cursor.peek() == 'O') {
     cursor.advance();
     block.kind = Block::Kind::ProgramName;
@@ -281,9 +324,34 @@ bool isPercentLine(std::string_view text) {
          text.find_first_not_of(" \t", first + 1) == std::string_view::npos;
 }
 
+// Adds one block to `program`, opening a new program unit at an `O` line.
+void addBlock(ProgramText& program, Block block, bool& started) {
+  if (block.kind == Block::Kind::ProgramName) {
+    for (const ProgramUnit& unit : program.programs) {
+      if (unit.number == block.programNumber) {
+        failAt(block.line, block.text,
+               fmt::format("O{} is already the program of line {}", unit.number, unit.line));
+      }
+    }
+    if (!program.programs.empty()) {
+      program.programs.back().end = program.blocks.size();
+    }
+    program.programs.push_back({block.programNumber, block.line, program.blocks.size() + 1, 0});
+  } else if (program.programs.empty() && block.kind != Block::Kind::Empty) {
+    program.programs.push_back({0, block.line, program.blocks.size(), 0});
+  }
+  started |= block.kind != Block::Kind::Empty || !block.comment.empty();
+  program.blocks.push_back(std::move(block));
+}
+
 } // namespace
 
-ProgramText readProgram(std::string_view text, const ControllerProfile& profile) {
+ControllerFamily controllerFamilyOf(std::string_view target) {
+  return target == "m80" ? ControllerFamily::Mitsubishi : ControllerFamily::Fanuc;
+}
+
+ProgramText readProgram(std::string_view text, const ControllerProfile& profile,
+                        const ReadingRules& rules) {
   ProgramText program;
   bool started = false; // a block or an `O` has been read
   int line = 0;
@@ -302,8 +370,10 @@ ProgramText readProgram(std::string_view text, const ControllerProfile& profile)
              fmt::format("the block has {} characters; {} allows {}", lineText.size(), profile.name,
                          profile.maximumBlockLength));
     }
-    checkCharacters(line, lineText);
-    if (isPercentLine(lineText)) {
+    checkCharacters(line, lineText, rules);
+    std::vector<std::string_view> segments =
+        rules.strict ? std::vector<std::string_view>{lineText} : splitAtEndOfBlock(lineText);
+    if (isPercentLine(segments.front())) {
       if (!started) {
         continue; // the leader before the program
       }
@@ -314,23 +384,9 @@ ProgramText readProgram(std::string_view text, const ControllerProfile& profile)
       program.blocks.push_back(std::move(block));
       break; // the controller reads nothing after the end of record
     }
-    Block block = readBlock(line, lineText, profile);
-    if (block.kind == Block::Kind::ProgramName) {
-      for (const ProgramUnit& unit : program.programs) {
-        if (unit.number == block.programNumber) {
-          failAt(line, lineText,
-                 fmt::format("O{} is already the program of line {}", unit.number, unit.line));
-        }
-      }
-      if (!program.programs.empty()) {
-        program.programs.back().end = program.blocks.size();
-      }
-      program.programs.push_back({block.programNumber, line, program.blocks.size() + 1, 0});
-    } else if (program.programs.empty() && block.kind != Block::Kind::Empty) {
-      program.programs.push_back({0, line, program.blocks.size(), 0});
+    for (std::string_view segment : segments) {
+      addBlock(program, readBlock(line, lineText, segment, profile, rules), started);
     }
-    started |= block.kind != Block::Kind::Empty || !block.comment.empty();
-    program.blocks.push_back(std::move(block));
   }
   if (!program.programs.empty()) {
     program.programs.back().end = program.blocks.size();

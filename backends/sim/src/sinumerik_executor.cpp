@@ -1,6 +1,10 @@
 #include "cncc/backends/sinumerik_controller.h"
 
+#include "sinumerik_arc.h"
 #include "sinumerik_blocks.h"
+#include "sinumerik_expression.h"
+#include "sinumerik_program_state.h"
+#include "sinumerik_sampling.h"
 
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/geometry_error.h"
@@ -16,42 +20,6 @@
 #include <map>
 
 namespace cncc::backends::sinumerik {
-
-geom::NurbsCurve bsplineOfBlocks(const Eigen::Vector3d& start, int degree,
-                                 const std::vector<Eigen::Vector3d>& points,
-                                 const std::vector<double>& weights,
-                                 const std::vector<double>& intervals) {
-  if (degree != 2 && degree != 3) {
-    throw geom::GeometryError(fmt::format("SD={} (2 or 3)", degree));
-  }
-  if (points.size() < std::size_t(degree)) {
-    throw geom::GeometryError(fmt::format("a B spline of degree {} needs at least {} points "
-                                          "after its start, this one has {}",
-                                          degree, degree, points.size()));
-  }
-  // u_0 = u_1 = 0, u_{i+1} = u_i + PL_i (i = 1..n), then p more copies of
-  // u_{n+1}: the first p - 1 intervals must keep u_2..u_p at 0.
-  for (int i = 0; i + 1 < degree; ++i) {
-    if (intervals[std::size_t(i)] != 0.0) {
-      throw geom::GeometryError(fmt::format(
-          "PL of point {} lies inside the clamped start of a degree {} spline and must be 0", i + 1,
-          degree));
-    }
-  }
-  std::vector<double> knots{0.0, 0.0};
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    knots.push_back(knots.back() + intervals[i]);
-  }
-  for (int k = 0; k < degree; ++k) {
-    knots.push_back(knots.back());
-  }
-  std::vector<Eigen::Vector3d> controlPoints{start};
-  controlPoints.insert(controlPoints.end(), points.begin(), points.end());
-  std::vector<double> allWeights{1.0};
-  allWeights.insert(allWeights.end(), weights.begin(), weights.end());
-  return geom::NurbsCurve(geom::KnotVector(std::move(knots), degree), std::move(controlPoints),
-                          std::move(allWeights));
-}
 
 namespace {
 
@@ -98,36 +66,6 @@ bool isSpline(Motion motion) {
   return motion == Motion::BSpline || motion == Motion::CSpline || motion == Motion::ASpline;
 }
 
-// Equal parameter steps on each smooth piece, short enough that a chord
-// sags at most `tolerance`: over a step h the sagitta is at most
-// h^2 max|C''| / 8, the maximum taken over 33 samples with a margin.
-geom::CurveSamples sampleDensely(const geom::Curve& curve, double tolerance) {
-  constexpr int kProbes = 32;
-  constexpr double kMargin = 2.0;
-  geom::CurveSamples samples;
-  std::vector<double> breakpoints = curve.breakpoints();
-  samples.parameters.push_back(breakpoints.front());
-  for (std::size_t piece = 0; piece + 1 < breakpoints.size(); ++piece) {
-    double t0 = breakpoints[piece];
-    double t1 = breakpoints[piece + 1];
-    double bend = 0;
-    for (int i = 0; i <= kProbes; ++i) {
-      double t = t0 + (t1 - t0) * i / kProbes;
-      bend = std::max(bend, curve.secondDerivative(std::min(t, t1)).norm());
-    }
-    double step = bend > 0 ? std::sqrt(8.0 * tolerance / (kMargin * bend)) : (t1 - t0);
-    double count = std::clamp(std::ceil((t1 - t0) / step), 1.0, 1e7);
-    auto steps = static_cast<std::size_t>(count);
-    for (std::size_t i = 1; i <= steps; ++i) {
-      samples.parameters.push_back(i == steps ? t1 : t0 + (t1 - t0) * double(i) / double(steps));
-    }
-  }
-  for (double t : samples.parameters) {
-    samples.points.push_back(curve.point(t));
-  }
-  return samples;
-}
-
 class Controller {
 public:
   Controller(std::vector<SinumerikProgramUnit> units, const SinumerikRunOptions& options,
@@ -147,17 +85,24 @@ private:
       throw ProgramError(unit.name, unit.blocks.empty() ? 1 : unit.blocks.front().line,
                          "subprograms nest deeper than this model allows (8)");
     }
-    for (const SinumerikBlock& block : unit.blocks) {
+    std::size_t at = 0;
+    while (at < unit.blocks.size()) {
+      const SinumerikBlock& block = unit.blocks[at];
       if (++run_.blocksExecuted > options_.stepLimit) {
         throw ProgramError(unit.name, block.line, "the step limit was reached");
       }
       program_ = unit.name;
       line_ = block.line;
       mainLine_ = index == 0 ? block.line : callLine;
+      if (block.control != Control::None) {
+        at = withState([&] { return state_.next(unit, at); });
+        continue;
+      }
       if (!executeBlock(block)) {
         --depth_;
         return;
       }
+      ++at;
     }
     if (index == 0) {
       fail("the main program ends without M30");
@@ -167,6 +112,15 @@ private:
 
   [[noreturn]] void fail(const std::string& message) const {
     throw ProgramError(program_, line_, message);
+  }
+
+  // A problem ProgramState found, at the current line.
+  template <typename Action> auto withState(Action action) const -> decltype(action()) {
+    try {
+      return action();
+    } catch (const ExpressionError& error) {
+      fail(error.what());
+    }
   }
 
   std::optional<std::size_t> findUnit(const std::string& name) const {
@@ -181,17 +135,27 @@ private:
   // False when the block ends the program.
   bool executeBlock(const SinumerikBlock& block) {
     std::array<std::optional<double>, 3> axes;
-    std::array<std::optional<double>, 2> centre; // I J, from the start
+    ArcWords arcWords; // I J, CR=, TURN=
     std::optional<double> weight, interval;
     bool motionWord = false;
     bool ends = false;
     bool machineCoordinates = false; // SUPA: this block's axes are the machine's
     for (const SinumerikWord& word : block.words) {
       const std::string& a = word.address;
-      if (a == "X" || a == "Y" || a == "Z") {
+      if (a == "R" && word.parameter >= 0) {
+        withState([&] { state_.setParameter(word.parameter, state_.valueOf(word)); });
+      } else if (a == "X" || a == "Y" || a == "Z") {
         axes[std::size_t(a[0] - 'X')] = needNumber(word);
       } else if (a == "I" || a == "J") {
-        centre[std::size_t(a[0] - 'I')] = needNumber(word);
+        arcWords.centre[std::size_t(a[0] - 'I')] = needNumber(word);
+      } else if (a == "CR") {
+        arcWords.radius = needNumber(word);
+      } else if (a == "TURN") {
+        double turns = needNumber(word);
+        if (turns != std::floor(turns)) {
+          fail(fmt::format("TURN={:g}: the turns are a whole number", turns));
+        }
+        arcWords.turns = turns;
       } else if (a == "G") {
         motionWord |= gCode(needNumber(word));
       } else if (a == "M") {
@@ -255,8 +219,8 @@ private:
       fail("PW and PL belong in a BSPLINE block with a point");
     }
     bool arc = motion_ == Motion::ClockwiseArc || motion_ == Motion::CounterClockwiseArc;
-    if ((centre[0] || centre[1]) && !arc) {
-      fail("I and J belong in a G2 or G3 block");
+    if ((arcWords.centre[0] || arcWords.centre[1] || arcWords.radius || arcWords.turns) && !arc) {
+      fail("I, J, CR= and TURN= belong in a G2 or G3 block");
     }
     if (machineCoordinates) {
       // `SUPA G0 Z0`: the machine's own position, off the work coordinates
@@ -265,7 +229,7 @@ private:
         fail("SUPA is modelled for a G0 in Z only (the retract at the end)");
       }
     } else if (arc && hasAxis) {
-      arcTo(axes, centre);
+      arcTo(axes, arcWords);
     } else if (hasAxis) {
       moveTo(axes, weight, interval);
     } else if (motionWord && !isSpline(motion_)) {
@@ -275,10 +239,7 @@ private:
   }
 
   double needNumber(const SinumerikWord& word) const {
-    if (!word.value) {
-      fail(fmt::format("{} needs a number", word.address));
-    }
-    return *word.value;
+    return withState([&] { return state_.valueOf(word); });
   }
 
   // True for a motion code.
@@ -429,51 +390,44 @@ private:
     lastLinear_ = motion_ == Motion::Linear;
   }
 
-  // G2/G3 in the XY plane with the centre at I J from the start
-  // (incremental, the default), Z along for a helix; ending where it starts,
-  // a full turn. Recorded as chords within the sampling tolerance.
-  void arcTo(const std::array<std::optional<double>, 3>& axes,
-             const std::array<std::optional<double>, 2>& centre) {
+  // The arc words of a block: the centre or radius, extra full turns.
+  struct ArcWords {
+    std::array<std::optional<double>, 2> centre; // I J, from the start
+    std::optional<double> radius;                // CR=
+    double turns = 0;                            // TURN=
+  };
+
+  // G2/G3 in the XY plane (sinumerik_arc.h), recorded as chords within the
+  // sampling tolerance.
+  void arcTo(const std::array<std::optional<double>, 3>& axes, const ArcWords& words) {
     if (!known()) {
       fail("an arc before every axis is known");
-    }
-    if (!centre[0] && !centre[1]) {
-      fail("a G2/G3 block without I or J (its centre)");
     }
     if (!feed_) {
       fail("an arc without a feed rate");
     }
     finishSpline(std::nullopt);
     Vector start = current();
-    ir::MachineEvent event;
-    event.kind = ir::MachineEvent::Kind::Arc;
-    event.x = axes[0].value_or(start.x());
-    event.y = axes[1].value_or(start.y());
-    event.z = axes[2].value_or(start.z());
-    event.centreX = start.x() + centre[0].value_or(0.0);
-    event.centreY = start.y() + centre[1].value_or(0.0);
-    event.clockwise = motion_ == Motion::ClockwiseArc;
-    event.feed = *feed_;
-    double startRadius = std::hypot(start.x() - event.centreX, start.y() - event.centreY);
-    double endRadius = std::hypot(event.x - event.centreX, event.y - event.centreY);
-    if (!(startRadius > 0) || !(std::abs(endRadius - startRadius) <= arcEndTolerance)) {
-      fail(fmt::format("the arc's end is {:g} from its centre, its start {:g} (alarm 14040: "
-                       "error in end point of circle)",
-                       endRadius, startRadius));
+    ProgrammedArc arc;
+    arc.start = start;
+    arc.end = {axes[0].value_or(start.x()), axes[1].value_or(start.y()),
+               axes[2].value_or(start.z())};
+    arc.centre = words.centre;
+    arc.radius = words.radius;
+    arc.turns = int(std::min(words.turns, 1e6));
+    arc.clockwise = motion_ == Motion::ClockwiseArc;
+    std::string problem;
+    std::vector<Vector> points = arcChordPoints(arc, options_.sampleTolerance, problem);
+    if (!problem.empty()) {
+      fail(problem);
     }
-    std::vector<ir::MachineEvent> chords;
-    ir::appendArcChords(start.x(), start.y(), start.z(), event, options_.sampleTolerance, chords);
-    for (const ir::MachineEvent& chord : chords) {
-      run_.moves.push_back(
-          {MotionKind::Linear, Vector(chord.x, chord.y, chord.z), *feed_, line_, mainLine_});
+    for (const Vector& point : points) {
+      run_.moves.push_back({MotionKind::Linear, point, *feed_, line_, mainLine_});
     }
     previous_ = start;
-    position_ = {event.x, event.y, event.z};
+    position_ = {arc.end.x(), arc.end.y(), arc.end.z()};
     lastLinear_ = false;
   }
-
-  // How far an arc's end may lie off its circle ($MN_..._CIRCLE_ERROR, mm).
-  static constexpr double arcEndTolerance = 0.01;
 
   bool known() const { return position_[0] && position_[1] && position_[2]; }
   Vector current() const { return {*position_[0], *position_[1], *position_[2]}; }
@@ -615,6 +569,7 @@ private:
   std::vector<SinumerikProgramUnit> units_;
   const SinumerikRunOptions& options_;
   SinumerikRun& run_;
+  ProgramState state_; // R parameters and loops
   std::string program_;
   int line_ = 0;
   int mainLine_ = 0;

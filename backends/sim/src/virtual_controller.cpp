@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 
 namespace cncc::backends::sim {
@@ -58,20 +59,38 @@ std::map<int, std::optional<double>> Machine::commonVariables() const {
   return values;
 }
 
+Machine::Frame& Machine::localFrame() {
+  auto frame = std::find_if(frames_.rbegin(), frames_.rend(),
+                            [](const Frame& candidate) { return !candidate.subprogram; });
+  return *frame; // the main program's frame is never a subprogram's
+}
+
+const Machine::Frame& Machine::localFrame() const {
+  return const_cast<Machine*>(this)->localFrame();
+}
+
 Value Machine::read(int variable, const Block& block) const {
   if (variable == 0) {
     return Value::vacantValue();
   }
   if (profile_.locals.contains(variable) && variable < localCount) {
-    return frames_.back().locals[variable];
+    return localFrame().locals[variable];
   }
   if (isCommon(profile_, variable)) {
     auto found = commons_.find(variable);
     return found == commons_.end() ? Value::vacantValue() : found->second;
   }
   if (variable >= 5001 && variable <= 5003) { // the position at the end of the last block
+    if (!modal_.coordinates.isPlain()) {
+      failInBlock(block, fmt::format("#{} while G52, G68 or G16 is on is not simulated: which "
+                                     "coordinate system it reads differs",
+                                     variable));
+    }
     const Point3& position = modal_.position;
     return Value::of(variable == 5001 ? position.x : variable == 5002 ? position.y : position.z);
+  }
+  if (std::optional<Value> modal = modalInformation(variable, block)) {
+    return *modal;
   }
   if (isHarmlessSystemVariable(variable)) {
     auto found = systemVariables_.find(variable);
@@ -87,7 +106,7 @@ void Machine::write(int variable, Value value, const Block& block) {
     failInBlock(block, "#0 is always vacant and cannot be assigned");
   }
   if (profile_.locals.contains(variable) && variable < localCount) {
-    frames_.back().locals[variable] = value;
+    localFrame().locals[variable] = value;
     return;
   }
   if (isCommon(profile_, variable)) {
@@ -220,7 +239,7 @@ SimulationResult simulateProgram(std::string_view text, const ControllerProfile&
                                  const SimulationOptions& options) {
   SimulationResult result;
   try {
-    ProgramText program = readProgram(text, profile);
+    ProgramText program = readProgram(text, profile, options.reading);
     Machine machine(program, profile, options, result.path);
     try {
       machine.run();

@@ -142,7 +142,7 @@ TEST(SinumerikController, ErrorsNameTheLine) {
   expectError("G0 X0 Y0 Z0\nG1 F100\nBSPLINE SD=4 X1\nM30\n", 3, "SD=4");
   expectError("G0 X0 Y0 Z0\nFOO\nM30\n", 2, "'FOO'");
   expectError("G0 X0 Y0 Z0\nG1 X1 F100\n", 2, "M30");
-  expectError("G0 X=R1\nM30\n", 1, "expressions");
+  expectError("G0 X=R1*\nM30\n", 1, "a value is missing");
   expectError("G0 X0 Y0 Z0\nSPLINEPATH(1,X,Y)\nG1 F1\nCSPLINE X1 Y1 Z2\nM30\n", 4, "spline axes");
   expectError("G0 X0 Y0 Z0\nG1 F10\nCSPLINE X1 Y1\nX1 Y1\nM30\n", 3, "cannot be built");
 }

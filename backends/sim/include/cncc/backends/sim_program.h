@@ -137,7 +137,28 @@ struct ProgramText {
   std::vector<ProgramUnit> programs; // in file order; the first is the main program
 };
 
+// The controller family whose reading rules and call syntax apply beyond the
+// profile's limits (backends/sim/README.md has the table and its sources).
+enum class ControllerFamily { Fanuc, Mitsubishi };
+
+// How the reader takes a program. Strict (the default) is the conservative
+// reading the compiler's own output must pass: `( )` comments in upper case,
+// one block a line, macro words written in full. Otherwise the program is
+// read as the family's controller reads shop programs: `;` ends a block,
+// comments may hold lower-case letters, and on Fanuc the two-letter
+// abbreviations of macro words (WH for WHILE) are accepted.
+struct ReadingRules {
+  bool strict = true;
+  ControllerFamily family = ControllerFamily::Fanuc;
+
+  bool allowsAbbreviations() const { return !strict && family == ControllerFamily::Fanuc; }
+};
+
+// The family of a target name ("m80": Mitsubishi, everything else Fanuc).
+ControllerFamily controllerFamilyOf(std::string_view target);
+
 // Reads a whole program file; throws SimulationError at the first problem.
-ProgramText readProgram(std::string_view text, const ControllerProfile& profile);
+ProgramText readProgram(std::string_view text, const ControllerProfile& profile,
+                        const ReadingRules& rules = {});
 
 } // namespace cncc::backends::sim

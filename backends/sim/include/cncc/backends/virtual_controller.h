@@ -63,6 +63,16 @@ struct SimulationOptions {
   std::map<int, double> commonVariables;
   // The safety net against endless loops: blocks executed in all.
   std::size_t stepLimit = 10'000'000;
+  // How the program is read (strict: as the compiler's output must be).
+  ReadingRules reading;
+  // The tool radius in each offset register, read by `D n` for G41/G42 (a
+  // register not given here is an error, not 0).
+  std::map<int, double> toolRadii;
+  // The parameters of the peck drilling cycles: G73's retract after each
+  // peck and G83's clearance above the last depth (Fanuc parameters 5114 and
+  // 5115). Unset: G73/G83 are refused rather than guessed.
+  std::optional<double> peckRetract;
+  std::optional<double> peckClearance;
 };
 
 struct SimulationResult {

@@ -1,0 +1,263 @@
+#include "sim_compensation.h"
+
+#include "sim_evaluator.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace cncc::backends::sim {
+
+namespace {
+
+bool isMotion(const ExecutedEvent& event) {
+  return event.kind == ExecutedEvent::Kind::Rapid || event.kind == ExecutedEvent::Kind::Feed ||
+         isArc(event);
+}
+
+Vector2 planeOf(const Point3& point) {
+  return {point.x, point.y};
+}
+
+bool movesInPlane(const ExecutedEvent& event) {
+  return isArc(event) || event.start.x != event.end.x || event.start.y != event.end.y;
+}
+
+PlaneElement elementOf(const ExecutedEvent& event) {
+  PlaneElement element;
+  element.arc = isArc(event);
+  element.clockwise = event.kind == ExecutedEvent::Kind::ClockwiseArc;
+  element.start = planeOf(event.start);
+  element.end = planeOf(event.end);
+  element.centre = planeOf(event.centre);
+  return element;
+}
+
+[[noreturn]] void failAtLine(int line, const std::string& text, const std::string& message) {
+  throw SimulationError(line, text, message);
+}
+
+} // namespace
+
+bool isArc(const ExecutedEvent& event) {
+  return event.kind == ExecutedEvent::Kind::ClockwiseArc ||
+         event.kind == ExecutedEvent::Kind::CounterclockwiseArc;
+}
+
+void RadiusCompensation::start(bool left, double radius, const Block& block) {
+  if (state_ == State::On || state_ == State::Cancelling) {
+    if (left != left_ || radius != radius_) {
+      failInBlock(block, "changing G41/G42 or the D register while compensating is not "
+                         "simulated; cancel with G40 first");
+    }
+    return;
+  }
+  left_ = left;
+  radius_ = radius;
+  offset_ = left ? radius : -radius;
+  state_ = State::Starting;
+}
+
+void RadiusCompensation::cancel(const Block&) {
+  if (state_ == State::Starting) {
+    state_ = State::Off;
+  } else if (state_ == State::On) {
+    state_ = State::Cancelling;
+  }
+}
+
+void RadiusCompensation::add(const ExecutedEvent& event, const Block& block) {
+  if (isMotion(event) && movesInPlane(event)) {
+    movedInPlane_ = true;
+    addInPlane(event, block);
+    return;
+  }
+  if (held_) {
+    waiting_.push_back(event); // runs at the corner, once it is known
+    return;
+  }
+  path_.events.push_back(event);
+}
+
+void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& block) {
+  if (state_ == State::Off) {
+    path_.events.push_back(event);
+    return;
+  }
+  PlaneElement element = elementOf(event);
+  if (state_ == State::Starting) {
+    if (isArc(event)) {
+      failInBlock(block, "cutter compensation starts on an arc: the start-up move after "
+                         "G41/G42 must be a G00 or G01 in the plane");
+    }
+    held_ = HeldBlock{event, element, true, block.line, block.text};
+    tool_ = element.start;
+    toolZ_ = event.start.z;
+    state_ = State::On;
+    return;
+  }
+  if (state_ == State::Cancelling) {
+    if (isArc(event)) {
+      failInBlock(block, "G40 cancels on an arc: the cancel move must be a G00 or G01");
+    }
+    if (held_->startUp) {
+      failInBlock(block, "G40 right after the start-up move is not simulated: the compensation "
+                         "never reached a block to offset");
+    }
+    Vector2 end = held_->element.end + offset_ * leftNormal(endTangent(held_->element));
+    emitHeld({end}, event);
+    emitLine(event, element.end, event.end.z);
+    held_.reset();
+    state_ = State::Off;
+    return;
+  }
+  std::vector<Vector2> corner;
+  if (held_->startUp) {
+    corner = {element.start + offset_ * leftNormal(startTangent(element))};
+  } else if (std::optional<std::vector<Vector2>> points =
+                 offsetCorner(held_->element, element, offset_)) {
+    corner = std::move(*points);
+  } else {
+    failInBlock(block, fmt::format("the compensated paths of line {} and this block do not "
+                                   "meet: the tool radius {:g} is too large for the corner",
+                                   held_->line, radius_));
+  }
+  emitHeld(corner, event);
+  held_ = HeldBlock{event, element, false, block.line, block.text};
+}
+
+void RadiusCompensation::emitHeld(const std::vector<Vector2>& corner, const ExecutedEvent& next) {
+  if (held_->startUp) {
+    emitLine(held_->event, corner.front(), held_->event.end.z);
+  } else {
+    emitOffsetBlock(corner.front());
+  }
+  flushWaiting();
+  for (std::size_t index = 1; index < corner.size(); ++index) {
+    emitLine(next, corner[index], toolZ_);
+  }
+}
+
+void RadiusCompensation::emitLine(const ExecutedEvent& model, Vector2 to, double z) {
+  if (to.x == tool_.x && to.y == tool_.y && z == toolZ_) {
+    return; // a corner point the tool is already at
+  }
+  ExecutedEvent line = model;
+  if (isArc(model)) {
+    line.kind = ExecutedEvent::Kind::Feed;
+  }
+  line.start = {tool_.x, tool_.y, toolZ_};
+  line.end = {to.x, to.y, z};
+  path_.events.push_back(line);
+  tool_ = to;
+  toolZ_ = z;
+}
+
+void RadiusCompensation::emitOffsetBlock(Vector2 to) {
+  const HeldBlock& held = *held_;
+  const PlaneElement& element = held.element;
+  if (!element.arc) {
+    if (dot(to - tool_, element.end - element.start) < 0) {
+      failAtLine(held.line, held.text,
+                 fmt::format("the compensated move runs against the programmed one: the tool "
+                             "radius {:g} overcuts here (interference)",
+                             radius_));
+    }
+    emitLine(held.event, to, held.event.end.z);
+    return;
+  }
+  double radius = offsetArcRadius(element, offset_);
+  if (radius <= 1e-9) {
+    failAtLine(held.line, held.text,
+               fmt::format("the arc of radius {:g} is smaller than the tool radius {:g} on its "
+                           "inside",
+                           element.radius(), radius_));
+  }
+  double programmed = arcSweep(element.start, element.end, element.centre, element.clockwise);
+  if (length(element.end - element.start) == 0) {
+    programmed = 360;
+  }
+  double compensated = arcSweep(tool_, to, element.centre, element.clockwise);
+  if (std::abs(compensated + 360 - programmed) < std::abs(compensated - programmed)) {
+    compensated += 360;
+  }
+  if (std::abs(compensated - programmed) > 180) {
+    failAtLine(held.line, held.text,
+               fmt::format("the compensated arc turns the other way: the tool radius {:g} "
+                           "overcuts here (interference)",
+                           radius_));
+  }
+  emitCompensatedArc(to, compensated);
+}
+
+// The held arc from the tool's point to `to`, turning `sweep` degrees. Sweeps
+// within `sweepTolerance` of 0 or 360 are a point or a full circle: their
+// ends differ by rounding only, and an arc whose ends nearly meet would be
+// read as a whole turn or none.
+void RadiusCompensation::emitCompensatedArc(Vector2 to, double sweep) {
+  constexpr double sweepTolerance = 1e-6; // degrees
+  const ExecutedEvent& held = held_->event;
+  double startZ = held.start.z;
+  double endZ = held.end.z;
+  if (sweep < sweepTolerance) {
+    emitLine(held, to, endZ);
+    return;
+  }
+  ExecutedEvent arc = held;
+  if (sweep > 360 - sweepTolerance) {
+    // A full circle first, then what the offset adds beyond it.
+    double circleZ = sweep > 360 + sweepTolerance ? startZ + (endZ - startZ) * 360 / sweep : endZ;
+    arc.start = {tool_.x, tool_.y, toolZ_};
+    arc.end = {tool_.x, tool_.y, circleZ};
+    path_.events.push_back(arc);
+    toolZ_ = circleZ;
+    if (sweep <= 360 + sweepTolerance) {
+      tool_ = to;
+      return;
+    }
+  }
+  arc.start = {tool_.x, tool_.y, toolZ_};
+  arc.end = {to.x, to.y, endZ};
+  path_.events.push_back(arc);
+  tool_ = to;
+  toolZ_ = endZ;
+}
+
+void RadiusCompensation::flushWaiting() {
+  for (ExecutedEvent event : waiting_) {
+    if (isMotion(event)) {
+      event.start = {tool_.x, tool_.y, toolZ_};
+      event.end.x = tool_.x;
+      event.end.y = tool_.y;
+      toolZ_ = event.end.z;
+    }
+    path_.events.push_back(event);
+  }
+  waiting_.clear();
+}
+
+void RadiusCompensation::endOfBlock(const Block& block) {
+  bool moved = movedInPlane_;
+  movedInPlane_ = false;
+  if (state_ == State::Cancelling && !moved) {
+    failInBlock(block, "G40 in a block without an X or Y move while compensating is not "
+                       "simulated: write G40 on the lead-out move");
+  }
+  if (!held_ || moved) {
+    blocksWithoutPlaneMotion_ = 0;
+    return;
+  }
+  if (++blocksWithoutPlaneMotion_ >= 2) {
+    failInBlock(block, "two blocks in a row without an X or Y move while G41/G42 is on: how "
+                       "far the control looks ahead differs, so the path is not simulated");
+  }
+}
+
+void RadiusCompensation::finish(const Block& block) const {
+  if (state_ == State::On || state_ == State::Cancelling) {
+    failInBlock(block, "the program ends with cutter compensation on: cancel it with G40 on a "
+                       "move");
+  }
+}
+
+} // namespace cncc::backends::sim

@@ -1,0 +1,84 @@
+// Cutter radius compensation C (G41/G42 with a D register) as Fanuc runs it
+// with start-up and cancel type A: every executed event passes through here
+// on its way to the path. While compensation is on, a block in the plane is
+// held until the next one is known, because where its offset ends depends on
+// the corner it makes with the next (sim_offset_geometry.h). Moves without X
+// or Y motion between them (a plunge, M codes) run at the corner; more than
+// one such block in a row is refused, as the controls' look-ahead differs.
+//
+//   start-up: the first G00/G01 in the plane after G41/G42 goes from the
+//             uncompensated position to its end point offset normal to the
+//             next block's start;
+//   cancel:   the G00/G01 in the plane with G40 starts where the last offset
+//             block ends (offset normal to its end) and goes to its
+//             uncompensated end point.
+#pragma once
+
+#include "cncc/backends/virtual_controller.h"
+
+#include "cncc/backends/sim_offset_geometry.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cncc::backends::sim {
+
+class RadiusCompensation {
+public:
+  explicit RadiusCompensation(ExecutedPath& path) : path_(path) {}
+
+  // G41 (`left`) or G42 with the radius of the D register: a negative radius
+  // puts the tool on the other side, as the controls do.
+  void start(bool left, double radius, const Block& block);
+  // G40.
+  void cancel(const Block& block);
+  bool isOn() const { return state_ != State::Off; }
+  // 40, 41 or 42, as #4007 reads it.
+  int modalCode() const {
+    return state_ == State::Off || state_ == State::Cancelling ? 40 : left_ ? 41 : 42;
+  }
+
+  // Every event the program executes, in order.
+  void add(const ExecutedEvent& event, const Block& block);
+  // After each block of address words.
+  void endOfBlock(const Block& block);
+  // M30/M02: compensation must have been cancelled.
+  void finish(const Block& block) const;
+
+private:
+  enum class State { Off, Starting, On, Cancelling };
+
+  struct HeldBlock {
+    ExecutedEvent event;
+    PlaneElement element;
+    bool startUp = false;
+    int line = 0; // of its block, for alarms found once the next block is known
+    std::string text;
+  };
+
+  void addInPlane(const ExecutedEvent& event, const Block& block);
+  // Runs the held block to corner[0], the waiting events, then lines through
+  // the rest of `corner` at the feed of `next`.
+  void emitHeld(const std::vector<Vector2>& corner, const ExecutedEvent& next);
+  void emitLine(const ExecutedEvent& model, Vector2 to, double z);
+  void emitOffsetBlock(Vector2 to);
+  void emitCompensatedArc(Vector2 to, double sweep);
+  void flushWaiting();
+
+  ExecutedPath& path_;
+  State state_ = State::Off;
+  double offset_ = 0; // signed: positive to the left of the path
+  bool left_ = true;
+  double radius_ = 0;
+  std::optional<HeldBlock> held_;
+  Vector2 tool_;                       // where the compensated path is
+  double toolZ_ = 0;                   // its Z
+  std::vector<ExecutedEvent> waiting_; // events after the held block
+  int blocksWithoutPlaneMotion_ = 0;
+  bool movedInPlane_ = false; // in the current block
+};
+
+bool isArc(const ExecutedEvent& event);
+
+} // namespace cncc::backends::sim
