@@ -243,6 +243,8 @@ int runVerify(const DriverOptions& options) {
   execution.text = std::move(*text);
   execution.profile = options.profile;
   execution.machineProfile = machineProfile(options);
+  execution.lowerCaseComments =
+      machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
@@ -270,6 +272,8 @@ int printVerifiedStatistics(const BackendRequest& request) {
   execution.text = std::move(*text);
   execution.profile = options.profile;
   execution.machineProfile = machineProfile(options);
+  execution.lowerCaseComments =
+      machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);

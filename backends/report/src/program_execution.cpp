@@ -121,6 +121,7 @@ ProgramExecution runOnController(const ExecutionRequest& request,
                                  const ControllerProfile& profile) {
   sim::SimulationOptions options;
   options.runAsMacroCall = request.callable;
+  options.reading.lowerCaseComments = request.lowerCaseComments;
   std::string problem;
   std::optional<std::string> text = applyParameters(request, profile, options, problem);
   if (!text) {
@@ -138,7 +139,7 @@ ProgramExecution runOnController(const ExecutionRequest& request,
   }
   double sagitta = result.path.inches ? kArcSagitta / 25.4 : kArcSagitta;
   execution.path = executedPathOfToolPath(sim::flattenPath(result.path, sagitta));
-  sim::ProgramText program = sim::readProgram(execution.text, profile);
+  sim::ProgramText program = sim::readProgram(execution.text, profile, options.reading);
   sim::LoopOperationCounts operations = sim::countLoopOperations(program, result);
   if (operations.feedMoves > 0) {
     execution.operations = operations;

@@ -35,7 +35,7 @@ void checkCharacters(int line, std::string_view text, const ReadingRules& rules)
     if (!rules.strict) {
       continue;
     }
-    if (c >= 'a' && c <= 'z') {
+    if (c >= 'a' && c <= 'z' && !rules.lowerCaseComments) {
       failAt(line, text, "lower-case letters are not allowed; write programs in upper case");
     }
     if (c == ';') {

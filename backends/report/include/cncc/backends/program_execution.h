@@ -43,6 +43,8 @@ struct ExecutionRequest {
   // Only the parameters the operator sets; the others keep their defaults.
   std::vector<ParameterValue> parameters;
   bool callable = false; // the program ends with M99: it runs as if called by G65
+  // The machine writes comments as the source has them (lower case too).
+  bool lowerCaseComments = false;
 };
 
 // The controller refused the program: the message names its line.

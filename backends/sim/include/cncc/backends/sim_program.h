@@ -150,6 +150,9 @@ enum class ControllerFamily { Fanuc, Mitsubishi };
 struct ReadingRules {
   bool strict = true;
   ControllerFamily family = ControllerFamily::Fanuc;
+  // Strict, but comments may hold lower case: the compiler's output for a
+  // machine that writes comments as the source has them.
+  bool lowerCaseComments = false;
 
   bool allowsAbbreviations() const { return !strict && family == ControllerFamily::Fanuc; }
 };
