@@ -120,6 +120,10 @@ public:
         machine.profile->maximumSpindleSpeed = machine.maximumSpindleSpeed;
       }
     }
+    if (machine.profile) {
+      machine.profile->maximumExtendedWorkOffset =
+          machine.setup.extendedWorkOffset.empty() ? 0 : machine.setup.maximumExtendedWorkOffset;
+    }
     if (diagnostics_.size() != before) {
       return std::nullopt;
     }

@@ -109,6 +109,7 @@ private:
   Next executeAddressWords(const Block& block, std::size_t& next);
   void executeAxisWords(const Block& block, const BlockWords& words);
   // sim_modal_codes.cpp
+  void checkExtendedWorkOffset(const Block& block, const BlockWords& words) const;
   void applyModalCodes(const Block& block, const BlockWords& words);
   void applyFeedSpindleTool(const Block& block, const BlockWords& words);
   Next executeMCode(const Block& block, const BlockWords& words, std::size_t& next);

@@ -85,9 +85,29 @@ void Machine::applyModalCodes(const Block& block, const BlockWords& words) {
     case 670:
       modal_.modalCall.reset();
       break;
+    case 541:
+      checkExtendedWorkOffset(block, words);
+      break;
     default:
       break; // G04, G17, G54-G59, G61, G64, G94: no effect on the path
     }
+  }
+}
+
+// G54.1 Pn: a work offset the machine has.
+void Machine::checkExtendedWorkOffset(const Block& block, const BlockWords& words) const {
+  auto p = words.values.find('P');
+  if (p == words.values.end()) {
+    failInBlock(block, "G54.1 without P: which extended work offset?");
+  }
+  if (profile_.maximumExtendedWorkOffset == 0) {
+    failInBlock(block, "this machine has no extended work offsets (G54.1)");
+  }
+  if (p->second < 1 || p->second > profile_.maximumExtendedWorkOffset ||
+      p->second != std::floor(p->second)) {
+    failInBlock(block,
+                fmt::format("G54.1 P{:g}: this machine's extended work offsets are P1 to P{}",
+                            p->second, profile_.maximumExtendedWorkOffset));
   }
 }
 

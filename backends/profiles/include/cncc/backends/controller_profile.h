@@ -65,6 +65,9 @@ struct ControllerProfile {
   // machine file's [limits]; 0: none. The virtual controller alarms past them.
   double maximumFeed = 0;
   double maximumSpindleSpeed = 0;
+  // The extended work offsets G54.1 P1 .. P(this) the machine has (0:
+  // none), from its machine file; the virtual controller alarms past them.
+  int maximumExtendedWorkOffset = 48;
 
   // The letter of the G65 argument that reaches local `variable`, if any.
   std::optional<char> letterForLocal(int variable) const;
