@@ -35,16 +35,7 @@ void Machine::applyModalCodes(const Block& block, const BlockWords& words) {
       modal_.motion = tenths / 10;
       setCycleMode(block, tenths);
       break;
-    case 730:
-    case 740:
-    case 800:
-    case 810:
-    case 820:
-    case 830:
-    case 840:
-    case 850:
-    case 860:
-    case 890:
+    case 800: // G80 cancels, G98/G99 choose the return level
     case 980:
     case 990:
       setCycleMode(block, tenths);
@@ -89,7 +80,10 @@ void Machine::applyModalCodes(const Block& block, const BlockWords& words) {
       checkExtendedWorkOffset(block, words);
       break;
     default:
-      break; // G04, G17, G54-G59, G61, G64, G94: no effect on the path
+      if (isCycleCode(tenths)) {
+        setCycleMode(block, tenths);
+      }
+      break; // else G04, G17, G54-G59, G61, G64, G94: no effect on the path
     }
   }
 }
