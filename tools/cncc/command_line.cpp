@@ -98,6 +98,8 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
   app.add_option("--rapid-rate", raw.rapidRate,
                  "The rapid rate the --stats time estimate assumes (default 10000)")
       ->type_name("MM/MIN");
+  app.add_flag("--annotate", raw.annotate,
+               "Put a comment naming the CDL file and line before the first block of each cut");
   app.add_option("--source-map", raw.sourceMap,
                  "Also write where each program line comes from: CDL file, line and column, "
                  "for 'cncc where' (JSON)")

@@ -55,6 +55,7 @@ struct RawOptions {
   std::string dependencyFile;     // -MF
   std::string dependencyTarget;   // -MT
   std::string sourceMap;          // --source-map
+  bool annotate = false;          // --annotate
   std::string whereProgram;
   std::string whereLocation;
 };

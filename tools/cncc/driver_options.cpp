@@ -268,6 +268,10 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
                      "target that prints a program (not jit)");
   }
   options.sourceMap = raw.sourceMap;
+  if (raw.annotate && (options.command != Command::Compile || options.target == "jit")) {
+    throw UsageError("--annotate comments a compiled program; it does not apply here");
+  }
+  options.annotate = raw.annotate;
   if (options.command != Command::ListDiagnostics) {
     options.importPaths = importPaths(raw.includeDirectories);
   }

@@ -87,7 +87,8 @@ struct DriverOptions {
   // and the program line asked about (a line number or Nnnnn).
   std::string sourceMap;
   std::string whereLocation;
-  bool plotPng = false; // plot --format=png
+  bool plotPng = false;  // plot --format=png
+  bool annotate = false; // --annotate: (file.cdl:12) before each cut
 };
 
 // What parsing the command line decided: options to run with, or an exit

@@ -55,10 +55,7 @@ void linuxcncBackend(const BackendRequest& request) {
                                fmt::format("the part does not fit LinuxCNC: {}", error));
   }
   if (program.errors.empty()) {
-    request.output.write(program.text);
-    if (request.lineSpans != nullptr) {
-      *request.lineSpans = std::move(program.lineSpans);
-    }
+    writeProgram(request, program.text, std::move(program.lineSpans));
   }
 }
 

@@ -70,10 +70,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
         fmt::format("the part does not fit the {} profile: {}", profile->name, error));
   }
   if (program.errors.empty()) {
-    request.output.write(program.text);
-    if (request.lineSpans != nullptr) {
-      *request.lineSpans = std::move(program.lineSpans);
-    }
+    writeProgram(request, program.text, std::move(program.lineSpans));
   }
 }
 

@@ -108,10 +108,7 @@ backends::ExecutedProgram executeSinumerik(const backends::SinumerikProgram& pro
 void sinumerikBackend(const BackendRequest& request) {
   std::optional<SinumerikCompilation> compiled = compileForSinumerik(request);
   if (compiled) {
-    request.output.write(compiled->program.text);
-    if (request.lineSpans != nullptr) {
-      *request.lineSpans = std::move(compiled->program.lineSpans);
-    }
+    writeProgram(request, compiled->program.text, std::move(compiled->program.lineSpans));
   }
 }
 

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <map>
 #include <regex>
 #include <utility>
@@ -172,6 +174,46 @@ std::string sourceMapJson(const SourceMapInput& input) {
     text += (i == 0 ? "\n  " : ",\n  ") + mapped[i].dump();
   }
   return text + "\n ]\n}\n";
+}
+
+} // namespace cncc::driver
+
+namespace cncc::driver {
+
+std::string annotatedProgram(std::string_view text, std::vector<frontend::SourceSpan>& lineSpans,
+                             const frontend::CheckedProgram& program,
+                             const frontend::SourceManager& sources,
+                             const backends::MachineSetup& setup) {
+  StatementKinds kinds;
+  collectStatements(program.selectedPart->body, kinds);
+  bool semicolon = setup.dialect == "sinumerik" || setup.dialect == "linuxcnc";
+  std::vector<std::string_view> lines = programLines(text);
+  std::string annotated;
+  std::vector<frontend::SourceSpan> spans;
+  frontend::SourceSpan previous; // the last cut annotated
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    SourceSpan span = i < lineSpans.size() ? lineSpans[i] : SourceSpan{};
+    auto kind = kinds.find({span.file.index, span.begin});
+    // Once per run of one cut statement's lines, even where the lines of
+    // the loop around it come between.
+    if (span.valid() && span != previous && kind != kinds.end() && kind->second == "cut") {
+      previous = span;
+      std::string path = sources.file(span.file).path();
+      std::string where = fmt::format("{}:{}", path.substr(path.find_last_of('/') + 1),
+                                      sources.file(span.file).lineColumn(span.begin).line);
+      if (setup.commentCase == backends::CommentCase::Upper) {
+        std::transform(where.begin(), where.end(), where.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+      }
+      annotated += semicolon ? fmt::format("; {}\n", where) : fmt::format("({})\n", where);
+      spans.push_back(span);
+    }
+    annotated += lines[i];
+    annotated += '\n';
+    spans.push_back(span);
+  }
+  lineSpans = std::move(spans);
+  return annotated;
 }
 
 } // namespace cncc::driver

@@ -14,6 +14,7 @@
 // "loopDepth" how many controller loops (WHILE, o-word while) hold the line.
 #pragma once
 
+#include "cncc/backends/machine_setup.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 
@@ -35,6 +36,14 @@ struct SourceMapInput {
 };
 
 std::string sourceMapJson(const SourceMapInput& input);
+
+// --annotate: a comment `(file.cdl:12)` (`; file.cdl:12` on Sinumerik and
+// LinuxCNC) before the first line a cut statement printed, and again where
+// another cut's lines came between; `lineSpans` gets the comments' spans too.
+std::string annotatedProgram(std::string_view text, std::vector<frontend::SourceSpan>& lineSpans,
+                             const frontend::CheckedProgram& program,
+                             const frontend::SourceManager& sources,
+                             const backends::MachineSetup& setup);
 
 // FNV-1a, 64 bits, in hex: what a map checks its program against.
 std::string programHash(std::string_view text);

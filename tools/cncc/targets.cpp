@@ -1,5 +1,7 @@
 #include "targets.h"
 
+#include "source_map.h"
+
 #include "commands.h"
 #include "jit_module.h"
 #include "linuxcnc_target.h"
@@ -29,10 +31,7 @@ void gcodeBackend(const BackendRequest& request) {
     return;
   }
   backends::GcodeProgram program = backends::writeGcodeProgram(*path, gcodeOptionsFor(request));
-  request.output.write(program.text);
-  if (request.lineSpans != nullptr) {
-    *request.lineSpans = std::move(program.lineSpans);
-  }
+  writeProgram(request, program.text, std::move(program.lineSpans));
 }
 
 void jitBackend(const BackendRequest& request) {
@@ -129,6 +128,20 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
                                fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;
+  }
+}
+
+void writeProgram(const BackendRequest& request, std::string_view text,
+                  std::vector<frontend::SourceSpan> lineSpans) {
+  if (request.options.annotate) {
+    std::string annotated = annotatedProgram(text, lineSpans, request.program, request.sources,
+                                             machineSetup(request.options));
+    request.output.write(annotated);
+  } else {
+    request.output.write(text);
+  }
+  if (request.lineSpans != nullptr) {
+    *request.lineSpans = std::move(lineSpans);
   }
 }
 

@@ -34,6 +34,11 @@ struct BackendRequest {
   std::vector<frontend::SourceSpan>* lineSpans = nullptr;
 };
 
+// Writes a printed program to the request's output, with --annotate's
+// comments, and gives its line spans to the request (for --source-map).
+void writeProgram(const BackendRequest& request, std::string_view text,
+                  std::vector<frontend::SourceSpan> lineSpans);
+
 // Writes the program; problems go to the request's diagnostics.
 using BackendFunction = void (*)(const BackendRequest& request);
 // How the target lowers a part: what its backend lowers with, and what
