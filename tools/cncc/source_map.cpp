@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
-#include <regex>
 #include <utility>
 
 namespace cncc::driver {
@@ -72,34 +71,74 @@ std::vector<std::string_view> programLines(std::string_view text) {
   return lines;
 }
 
+// The words of a line's code: its comments ( ) and after ';' dropped, split
+// at anything but letters, digits and '_'.
+std::vector<std::string> codeWords(std::string_view line) {
+  std::vector<std::string> words;
+  std::string word;
+  bool inComment = false;
+  for (char c : line) {
+    if (c == ';' && !inComment) {
+      break;
+    }
+    inComment = (inComment && c != ')') || c == '(';
+    if (!inComment && (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_')) {
+      word += c;
+    } else if (!word.empty()) {
+      words.push_back(std::move(word));
+      word.clear();
+    }
+  }
+  if (!word.empty()) {
+    words.push_back(std::move(word));
+  }
+  if (!words.empty() && words.front().size() > 1 && words.front()[0] == 'N' &&
+      std::all_of(words.front().begin() + 1, words.front().end(),
+                  [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; })) {
+    words.erase(words.begin()); // a block number
+  }
+  return words;
+}
+
+bool isOWord(const std::string& word) {
+  return word.size() > 1 && word[0] == 'o' && std::all_of(word.begin() + 1, word.end(), [](char c) {
+           return std::isdigit(static_cast<unsigned char>(c)) != 0;
+         });
+}
+
+bool isFanucEnd(const std::string& word) {
+  return word.size() > 3 && word.starts_with("END") &&
+         std::all_of(word.begin() + 3, word.end(),
+                     [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
+}
+
 // How many controller loops hold each line (the loop's first and last
 // lines count as inside it): WHILE .. DOn / ENDn, o-word while / endwhile
 // and do / while, Sinumerik WHILE / ENDWHILE.
 std::vector<int> loopDepths(const std::vector<std::string_view>& lines) {
-  static const std::regex comment(R"(\([^)]*\)|;.*$)");
-  static const std::regex opens(R"(\bWHILE\b|^\s*(N\d+\s+)?o\d+\s+(while|do)\b)");
-  static const std::regex closes(R"(\bEND\d\b|\bENDWHILE\b|^\s*(N\d+\s+)?o\d+\s+endwhile\b)");
-  static const std::regex doWhile(R"(^\s*(N\d+\s+)?o(\d+)\s+(do|while)\b)");
   std::vector<int> depths;
   std::vector<std::string> doLabels; // LinuxCNC `oN do` loops open
   int depth = 0;
   for (std::string_view line : lines) {
-    std::string code = std::regex_replace(std::string(line), comment, "");
-    std::smatch oWord;
-    bool isOWord = std::regex_search(code, oWord, doWhile);
-    if (isOWord && oWord[3] == "while" && !doLabels.empty() && doLabels.back() == oWord[2]) {
+    std::vector<std::string> words = codeWords(line);
+    bool oWord = words.size() > 1 && isOWord(words[0]);
+    if (oWord && words[1] == "while" && !doLabels.empty() && doLabels.back() == words[0]) {
       depths.push_back(depth--); // the `while` that closes a do loop
       doLabels.pop_back();
       continue;
     }
-    if (isOWord && oWord[3] == "do") {
-      doLabels.push_back(oWord[2]);
+    if (oWord && words[1] == "do") {
+      doLabels.push_back(words[0]);
     }
-    if (std::regex_search(code, opens)) {
-      ++depth;
-    }
+    bool opens = (oWord && (words[1] == "while" || words[1] == "do")) ||
+                 std::find(words.begin(), words.end(), "WHILE") != words.end();
+    bool closes = (oWord && words[1] == "endwhile") ||
+                  std::any_of(words.begin(), words.end(), [](const std::string& word) {
+                    return isFanucEnd(word) || word == "ENDWHILE";
+                  });
+    depth += opens ? 1 : 0;
     depths.push_back(depth);
-    if (std::regex_search(code, closes) && depth > 0) {
+    if (closes && depth > 0) {
       --depth;
     }
   }
