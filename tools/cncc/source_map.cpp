@@ -1,12 +1,14 @@
 #include "source_map.h"
 
 #include "cncc/frontend/ast.h"
+#include "cncc/lsp/program_map.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <map>
 #include <utility>
 
@@ -160,12 +162,7 @@ nlohmann::json parameterValues(const frontend::PartItem& part) {
 } // namespace
 
 std::string programHash(std::string_view text) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (char c : text) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ull;
-  }
-  return fmt::format("{:016x}", hash);
+  return lsp::programHash(text);
 }
 
 std::string sourceMapJson(const SourceMapInput& input) {
@@ -203,7 +200,8 @@ std::string sourceMapJson(const SourceMapInput& input) {
                            {"target", input.target},
                            {"part", std::string(part.name)},
                            {"parameters", parameterValues(part)},
-                           {"sources", sources}};
+                           {"sources", sources},
+                           {"directory", std::filesystem::current_path().string()}};
   // One line per program line, so that the map reads (and diffs) as the
   // program does.
   std::string text = header.dump(1);

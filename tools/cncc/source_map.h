@@ -7,6 +7,7 @@
 //    "target": "fanuc", "part": "ring",
 //    "parameters": {"radius": 20, ...},
 //    "sources": ["ring.cdl", "/.../std/curves.cdl"],
+//    "directory": "/home/shop/parts",  (what relative sources are relative to)
 //    "lines": [{"source": 0, "line": 12, "column": 3, "statement": "cut",
 //               "loopDepth": 1}, ...]}
 // `lines[i]` is line i + 1 of the program; "statement" is the kind of CDL

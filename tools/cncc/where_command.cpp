@@ -9,6 +9,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -160,7 +161,11 @@ int runWhere(const DriverOptions& options) {
     std::size_t column = entry.value("column", std::size_t{0});
     fmt::print("{}:{}: {}\n", programPath, line, lines[line - 1]);
     fmt::print("{}:{}:{}: note: {}\n", sourcePath, sourceLine, column, describe(entry, map));
-    printSourceLine(sourcePath, sourceLine, column);
+    std::filesystem::path readable = sourcePath;
+    if (readable.is_relative() && map.contains("directory") && map["directory"].is_string()) {
+      readable = std::filesystem::path(map["directory"].get<std::string>()) / readable;
+    }
+    printSourceLine(readable.string(), sourceLine, column);
     printParameters(map["parameters"]);
     return 0;
   } catch (const WhereError& error) {

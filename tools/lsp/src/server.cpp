@@ -3,6 +3,7 @@
 #include "cncc/lsp/server.h"
 
 #include "cncc/lsp/features.h"
+#include "cncc/lsp/program_map.h"
 #include "cncc/lsp/protocol_json.h"
 
 #include <cstdlib>
@@ -23,10 +24,18 @@ void Server::registerHandlers() {
   requests_["initialize"] = [this](const Json& params) { return initialize(params); };
   requests_["shutdown"] = [this](const Json&) { return shutdown(); };
   requests_["textDocument/hover"] = [this](const Json& params) {
-    return hover(analysisOf(params), positionParam(params));
+    Position position = positionParam(params); // checked first, as by every request
+    if (const Document* program = mappedProgram(params)) {
+      return programHover(documentUri(params), program->text, position);
+    }
+    return hover(analysisOf(params), position);
   };
   requests_["textDocument/definition"] = [this](const Json& params) {
-    return definition(analysisOf(params), positionParam(params));
+    Position position = positionParam(params);
+    if (const Document* program = mappedProgram(params)) {
+      return programDefinition(documentUri(params), program->text, position);
+    }
+    return definition(analysisOf(params), position);
   };
   requests_["textDocument/completion"] = [this](const Json& params) {
     CompletionOptions options{clientSnippets_, options_.stdlibDirectory};

@@ -1,6 +1,7 @@
 // The server's document notifications: keeping the text in step with the
 // editor, checking it after every change and publishing the diagnostics.
 #include "cncc/lsp/features.h"
+#include "cncc/lsp/program_map.h"
 #include "cncc/lsp/protocol_json.h"
 #include "cncc/lsp/server.h"
 
@@ -36,7 +37,9 @@ void Server::didOpen(const Json& params) {
   std::string uri = requireMember(document, "uri", Json::value_t::string).get<std::string>();
   std::string text = requireMember(document, "text", Json::value_t::string).get<std::string>();
   documents_.open(uri, std::move(text), versionOf(document));
-  analyse(uri);
+  if (!isMappedProgram(uri)) { // a compiled program is not CDL
+    analyse(uri);
+  }
 }
 
 void Server::didChange(const Json& params) {
@@ -46,7 +49,9 @@ void Server::didChange(const Json& params) {
   if (!documents_.change(uri, changes, version)) {
     throw RequestError(ErrorCode::InvalidParams, fmt::format("'{}' is not open", uri));
   }
-  analyse(uri);
+  if (!isMappedProgram(uri)) {
+    analyse(uri);
+  }
 }
 
 void Server::didClose(const Json& params) {
@@ -72,6 +77,12 @@ void Server::analyse(const std::string& uri) {
     retired_.push_back(std::move(slot));
   }
   slot = std::move(analysis);
+}
+
+const Document* Server::mappedProgram(const Json& params) const {
+  std::string uri = documentUri(params);
+  const Document* document = documents_.find(uri);
+  return document != nullptr && isMappedProgram(uri) ? document : nullptr;
 }
 
 const Analysis& Server::analysisOf(const Json& params) const {

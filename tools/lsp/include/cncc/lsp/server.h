@@ -67,6 +67,8 @@ private:
   void didClose(const Json& params);
   void analyse(const std::string& uri);
   const Analysis& analysisOf(const Json& params) const;
+  // The open document of `params` when it is a program with a source map.
+  const Document* mappedProgram(const Json& params) const;
 
   ServerOptions options_;
   State state_ = State::Uninitialized;
