@@ -7,7 +7,8 @@
   program, maps to a CDL location inside its source file, the cuts' lines
   to cut statements, and the map is the program's (its hash);
 - on the macro targets a line inside a controller loop maps to the cut
-  statement that made the loop, and `cncc where` says so;
+  statement that made the loop, and `cncc where` says so; every parameter
+  has the variable that holds it;
 - `cncc where` refuses a line past the end, a block number the program does
   not have, a map of another program, a missing map and a malformed one
   (exit 1, a message naming the problem).
@@ -81,6 +82,15 @@ class Checks:
         if inside and not any(entry["statement"] == "cut" for entry in inside):
             self.fail(f"{name}: no line inside a controller loop maps to a cut")
 
+    def check_variables(self, name, source_map):
+        meanings = [held["meaning"] for held in source_map.get("variables", {}).values()]
+        for parameter in source_map["parameters"]:
+            if f"parameter {parameter}" not in meanings:
+                self.fail(f"{name}: no variable holds parameter {parameter}: {meanings}")
+        if source_map["parameters"] and not any(
+                held["statements"] for held in source_map["variables"].values()):
+            self.fail(f"{name}: no variable names the statements of its values")
+
     def run_examples(self):
         for source, part in example_parts():
             for target in TARGETS:
@@ -94,6 +104,8 @@ class Checks:
                     self.fail(f"{name}: no line maps to a cut statement")
                 if target in ("fanuc", "m80", "linuxcnc"):
                     self.check_controller_loops(name, source_map)
+                if target in ("fanuc", "m80"):
+                    self.check_variables(name, source_map)
 
     def where(self, *arguments):
         return subprocess.run([self.cncc, "where", *map(str, arguments)], cwd=ROOT,

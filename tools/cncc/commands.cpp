@@ -83,13 +83,18 @@ std::string emittedText(const DriverOptions& options, SourceManager& sources,
 // The source map of the program just written to options.output.
 bool writeSourceMap(DiagnosticOutput& output, const DriverOptions& options,
                     const frontend::CheckedProgram& program, const SourceManager& sources,
-                    std::vector<frontend::SourceSpan> lineSpans) {
+                    ProgramOrigins origins) {
   std::ifstream written(options.output, std::ios::binary);
   std::ostringstream text;
   text << written.rdbuf();
   std::string programText = text.str();
-  SourceMapInput input{options.output, programText, options.target,
-                       &program,       &sources,    std::move(lineSpans)};
+  SourceMapInput input{options.output,
+                       programText,
+                       options.target,
+                       &program,
+                       &sources,
+                       std::move(origins.lineSpans),
+                       std::move(origins.variables)};
   std::error_code error;
   if (!writeFileAtomically(options.sourceMap, sourceMapJson(input), error)) {
     reportWriteFailure(output, options.sourceMap, error);
@@ -123,8 +128,10 @@ int runCompile(const DriverOptions& options) {
   }
   DiagnosticEngine backendDiagnostics(options.errorLimit);
   std::vector<frontend::SourceSpan> lineSpans;
+  std::map<int, backends::VariableMeaning> variables;
+  bool mapped = !options.sourceMap.empty();
   target.backend({*program, sources, options, backendDiagnostics, *file,
-                  options.sourceMap.empty() ? nullptr : &lineSpans});
+                  mapped ? &lineSpans : nullptr, mapped ? &variables : nullptr});
   output.print(backendDiagnostics, sources);
   if (backendDiagnostics.hasErrors()) {
     return 1; // the file discards what the backend wrote
@@ -133,8 +140,8 @@ int runCompile(const DriverOptions& options) {
     reportWriteFailure(output, options.output, error);
     return 1;
   }
-  if (!options.sourceMap.empty() &&
-      !writeSourceMap(output, options, *program, sources, std::move(lineSpans))) {
+  if (!options.sourceMap.empty() && !writeSourceMap(output, options, *program, sources,
+                                                    {std::move(lineSpans), std::move(variables)})) {
     return 1;
   }
   if (!options.dependencyFile.empty()) {

@@ -71,6 +71,9 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   }
   if (program.errors.empty()) {
     writeProgram(request, program.text, std::move(program.lineSpans));
+    if (request.variables != nullptr) {
+      *request.variables = std::move(program.variables);
+    }
   }
 }
 

@@ -202,6 +202,21 @@ std::string sourceMapJson(const SourceMapInput& input) {
                            {"parameters", parameterValues(part)},
                            {"sources", sources},
                            {"directory", std::filesystem::current_path().string()}};
+  if (!input.variables.empty()) {
+    nlohmann::json variables = nlohmann::json::object();
+    for (const auto& [variable, meaning] : input.variables) {
+      nlohmann::json statements = nlohmann::json::array();
+      for (SourceSpan span : meaning.spans) {
+        frontend::LineColumn at = input.sources->file(span.file).lineColumn(span.begin);
+        statements.push_back(
+            {{"source", sourceOf(span.file)}, {"line", at.line}, {"column", at.column}});
+      }
+      variables[std::to_string(variable)] = {{"meaning", meaning.meaning},
+                                             {"statements", statements}};
+    }
+    header["variables"] = std::move(variables);
+    header["sources"] = sources; // the variables' statements may add some
+  }
   // One line per program line, so that the map reads (and diffs) as the
   // program does.
   std::string text = header.dump(1);

@@ -9,16 +9,20 @@
 //    "sources": ["ring.cdl", "/.../std/curves.cdl"],
 //    "directory": "/home/shop/parts",  (what relative sources are relative to)
 //    "lines": [{"source": 0, "line": 12, "column": 3, "statement": "cut",
-//               "loopDepth": 1}, ...]}
+//               "loopDepth": 1}, ...],
+//    "variables": {"6": {"meaning": "work values", "statements":
+//                  [{"source": 0, "line": 16, "column": 5}]}, ...}}  (macro targets)
 // `lines[i]` is line i + 1 of the program; "statement" is the kind of CDL
 // statement (part, tool, cut, for, if, let, origin, coolant, feed, ...),
 // "loopDepth" how many controller loops (WHILE, o-word while) hold the line.
 #pragma once
 
 #include "cncc/backends/machine_setup.h"
+#include "cncc/backends/macro_program.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,6 +38,14 @@ struct SourceMapInput {
   const frontend::SourceManager* sources = nullptr;
   // The span of each program line (invalid: the part's own).
   std::vector<frontend::SourceSpan> lineSpans;
+  // Macro targets: what each variable holds.
+  std::map<int, backends::VariableMeaning> variables;
+};
+
+// Where a program's lines and variables come from, as its backend said.
+struct ProgramOrigins {
+  std::vector<frontend::SourceSpan> lineSpans;
+  std::map<int, backends::VariableMeaning> variables;
 };
 
 std::string sourceMapJson(const SourceMapInput& input);

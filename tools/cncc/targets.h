@@ -9,10 +9,12 @@
 
 #include "cncc/backends/executed_path.h"
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/macro_program.h"
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/ir/lowering.h"
 
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -32,6 +34,8 @@ struct BackendRequest {
   // When given, the backend puts here the CDL span of each line it wrote
   // (for --source-map).
   std::vector<frontend::SourceSpan>* lineSpans = nullptr;
+  // And, on the macro targets, what each variable holds.
+  std::map<int, backends::VariableMeaning>* variables = nullptr;
 };
 
 // Writes a printed program to the request's output, with --annotate's

@@ -70,10 +70,9 @@ public:
   ProgramPrinter(const ir::Function& function, const ir::Allocation& allocation,
                  const SteppedLoops& stepped, const ControllerProfile& profile,
                  const MacroProgramOptions& options, std::vector<std::string>& errors,
-                 int* longestBlock = nullptr,
-                 std::vector<frontend::SourceSpan>* printedSpans = nullptr)
+                 int* longestBlock = nullptr, MacroProgram* mapped = nullptr)
       : function_(function), allocation_(allocation), profile_(profile), options_(options),
-        errors_(errors), longestBlock_(longestBlock), printedSpans_(printedSpans),
+        errors_(errors), longestBlock_(longestBlock), mapped_(mapped),
         expressions_(function, allocation, profile, errors), steppedLoops_(stepped.scaleOfIndex),
         scaledValues_(stepped.scaledValues) {}
 
@@ -101,8 +100,9 @@ public:
     int tooLong = 0;
     std::vector<frontend::SourceSpan> spans = lineSpans_.spans(lines_.size());
     FormattedProgram formatted = formatProgram(std::move(lines_), options_.setup, errors_);
-    if (printedSpans_ != nullptr) {
-      *printedSpans_ = LineSpans::kept(spans, formatted.printedLine);
+    if (mapped_ != nullptr) {
+      mapped_->lineSpans = LineSpans::kept(spans, formatted.printedLine);
+      mapped_->variables = std::move(variableMeanings_);
     }
     for (const std::string& block : formatted.lines) {
       if (static_cast<int>(block.size()) > profile_.maximumBlockLength) {
@@ -154,6 +154,8 @@ private:
       comment(fmt::format(
           "#{} {}, {} {}", allocation_.parameterVariables[i], function_.parameters[i].name,
           function_.parameters[i].fixed ? "FIXED AT" : "DEFAULT", parameterDefault(i)));
+      variableMeanings_[allocation_.parameterVariables[i]].meaning =
+          fmt::format("parameter {}", function_.parameters[i].name);
     }
     for (const auto& [base, tables] : ir::tablesByBase(function_, allocation_)) {
       int count = static_cast<int>(function_.tables[tables.front()].size());
@@ -161,6 +163,25 @@ private:
                           fmt::join(tables, " AND "), count));
     }
     printValueVariables();
+  }
+
+  // For source maps: what `variable` holds (meanings joined when it is
+  // reused) and from which statements.
+  void noteVariable(int variable, const std::string& upperMeaning, frontend::SourceSpan span) {
+    VariableMeaning& noted = variableMeanings_[variable];
+    std::string meaning = upperMeaning;
+    std::transform(meaning.begin(), meaning.end(), meaning.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    // One variable's: "loop index", "work value".
+    meaning = meaning.ends_with("indexes") ? meaning.substr(0, meaning.size() - 2)
+                                           : meaning.substr(0, meaning.size() - 1);
+    if (noted.meaning.find(meaning) == std::string::npos) {
+      noted.meaning += (noted.meaning.empty() ? "" : ", ") + meaning;
+    }
+    if (span.valid() &&
+        std::find(noted.spans.begin(), noted.spans.end(), span) == noted.spans.end()) {
+      noted.spans.push_back(span);
+    }
   }
 
   // Variables of values, one line per meaning: `(#4-#8 #10 WORK VALUES)`.
@@ -189,6 +210,7 @@ private:
         meaning = "STEP COUNTS";
       }
       variables[meaning].insert(variable);
+      noteVariable(variable, meaning, instruction.span);
     }
     // Meanings joined on as few lines as the block length allows.
     std::string text;
@@ -706,7 +728,8 @@ private:
   const MacroProgramOptions& options_;
   std::vector<std::string>& errors_;
   int* longestBlock_;
-  std::vector<frontend::SourceSpan>* printedSpans_;
+  MacroProgram* mapped_;
+  std::map<int, VariableMeaning> variableMeanings_;
   MacroExpressionWriter expressions_;
   const std::map<std::uint32_t, double>& steppedLoops_;
   const std::set<std::uint32_t>& scaledValues_;
@@ -821,7 +844,7 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
     SteppedLoops stepped = stepLoopsByTheirScale(simplified, allocated.allocation);
     int longest = 0;
     text = ProgramPrinter(simplified, allocated.allocation, stepped, profile, options,
-                          program.errors, &longest, &program.lineSpans)
+                          program.errors, &longest, &program)
                .print();
     bool onlyTooLong = program.errors.size() == 1 && longest > profile.maximumBlockLength;
     if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -30,8 +32,16 @@ std::optional<std::string> mapPath(std::string_view uri) {
   return *path + ".map.json";
 }
 
-std::optional<MappedLine> mappedLine(std::string_view uri, std::string_view text,
-                                     std::uint32_t line) {
+std::string sourceLine(const std::string& path, std::uint32_t line) {
+  std::ifstream file(path, std::ios::binary);
+  std::string text;
+  for (std::uint32_t k = 0; k < line && std::getline(file, text); ++k) {
+  }
+  return text;
+}
+
+// The map beside the program, if it is this text's.
+std::optional<Json> mapOf(std::string_view uri, std::string_view text) {
   std::optional<std::string> path = mapPath(uri);
   std::ifstream file(path.value_or(""), std::ios::binary);
   if (!path || !file) {
@@ -40,11 +50,15 @@ std::optional<MappedLine> mappedLine(std::string_view uri, std::string_view text
   Json map = Json::parse(file, nullptr, false);
   if (!map.is_object() || map.value("version", 0) != 1 ||
       map.value("programHash", std::string()) != programHash(text) || !map.contains("lines") ||
-      !map["lines"].is_array() || line >= map["lines"].size() || !map["sources"].is_array()) {
+      !map["lines"].is_array() || !map.contains("sources") || !map["sources"].is_array()) {
     return std::nullopt;
   }
-  const Json& entry = map["lines"][line];
-  std::size_t source = entry.value("source", std::size_t{0});
+  return map;
+}
+
+// A {"source", "line", "column", ...} entry of the map, its source resolved.
+std::optional<MappedLine> mappedEntry(const Json& map, const Json& entry) {
+  std::size_t source = entry.is_object() ? entry.value("source", std::size_t{0}) : 0;
   if (!entry.is_object() || source >= map["sources"].size() ||
       !map["sources"][source].is_string()) {
     return std::nullopt;
@@ -57,12 +71,61 @@ std::optional<MappedLine> mappedLine(std::string_view uri, std::string_view text
                     entry.value("statement", std::string("part")), entry.value("loopDepth", 0)};
 }
 
-std::string sourceLine(const std::string& path, std::uint32_t line) {
-  std::ifstream file(path, std::ios::binary);
-  std::string text;
-  for (std::uint32_t k = 0; k < line && std::getline(file, text); ++k) {
+std::optional<MappedLine> mappedLine(std::string_view uri, std::string_view text,
+                                     std::uint32_t line) {
+  std::optional<Json> map = mapOf(uri, text);
+  if (!map || line >= (*map)["lines"].size()) {
+    return std::nullopt;
   }
-  return text;
+  return mappedEntry(*map, (*map)["lines"][line]);
+}
+
+// The `#n` under the cursor on `line` of the program, if any.
+std::optional<int> variableAt(std::string_view text, Position position) {
+  for (std::uint32_t k = 0; k < position.line && !text.empty(); ++k) {
+    std::size_t newline = text.find('\n');
+    text = newline == std::string_view::npos ? std::string_view() : text.substr(newline + 1);
+  }
+  std::string_view line = text.substr(0, text.find('\n'));
+  std::size_t at = std::min<std::size_t>(position.character, line.size());
+  std::size_t begin = at;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(line[begin - 1])) != 0) {
+    --begin;
+  }
+  if (begin < line.size() && line[begin] == '#') {
+    ++begin; // the cursor on the '#'
+  } else if (begin == 0 || line[begin - 1] != '#') {
+    return std::nullopt;
+  }
+  std::size_t end = begin;
+  while (end < line.size() && end - begin < 6 &&
+         std::isdigit(static_cast<unsigned char>(line[end])) != 0) {
+    ++end;
+  }
+  if (end == begin) {
+    return std::nullopt;
+  }
+  return std::stoi(std::string(line.substr(begin, end - begin)));
+}
+
+// The hover of `#variable`: what it holds and the statements it comes from.
+Json variableHover(const Json& map, int variable) {
+  if (!map.contains("variables") || !map["variables"].is_object() ||
+      !map["variables"].contains(std::to_string(variable))) {
+    return nullptr;
+  }
+  const Json& held = map["variables"][std::to_string(variable)];
+  std::string value = fmt::format("`#{}`: {}", variable, held.value("meaning", std::string("?")));
+  if (held.contains("statements") && held["statements"].is_array()) {
+    for (const Json& statement : held["statements"]) {
+      if (std::optional<MappedLine> from = mappedEntry(map, statement)) {
+        value +=
+            fmt::format("\n\n{}:{}: `{}`", std::filesystem::path(from->source).filename().string(),
+                        from->line, sourceLine(from->source, from->line));
+      }
+    }
+  }
+  return {{"contents", {{"kind", "markdown"}, {"value", value}}}};
 }
 
 } // namespace
@@ -92,6 +155,10 @@ Json programDefinition(std::string_view uri, std::string_view text, Position pos
 }
 
 Json programHover(std::string_view uri, std::string_view text, Position position) {
+  if (std::optional<int> variable = variableAt(text, position)) {
+    std::optional<Json> map = mapOf(uri, text);
+    return map ? variableHover(*map, *variable) : Json(nullptr);
+  }
   std::optional<MappedLine> mapped = mappedLine(uri, text, position.line);
   if (!mapped || mapped->line == 0) {
     return nullptr;

@@ -19,6 +19,7 @@
 #include "cncc/ir/register_allocation.h"
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct MacroProgramStatistics {
   std::size_t bytesWithoutComments = 0; // without comments and comment-only lines
 };
 
+// What a variable of the program holds, for source maps: "parameter
+// holes", "loop index", "work value", ..., and the CDL statements of the
+// values it holds.
+struct VariableMeaning {
+  std::string meaning;
+  std::vector<frontend::SourceSpan> spans;
+};
+
 struct MacroProgram {
   std::string text;                // empty when errors is not
   std::vector<std::string> errors; // each names the limit and the count
@@ -48,6 +57,7 @@ struct MacroProgram {
   // The CDL span each line of `text` was printed from (invalid: the part's
   // header, before any statement).
   std::vector<frontend::SourceSpan> lineSpans;
+  std::map<int, VariableMeaning> variables; // by variable number
 };
 
 // Where the part parameters go: G65 argument locals in letter order

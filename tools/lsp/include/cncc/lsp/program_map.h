@@ -21,7 +21,9 @@ bool isMappedProgram(std::string_view uri);
 // the CDL location its map gives, or null (no map, a map of another
 // version of the program, a line it does not have).
 Json programDefinition(std::string_view uri, std::string_view text, Position position);
-// `textDocument/hover` there: the statement, its location and source line.
+// `textDocument/hover` there: on a `#n` variable what it holds and from
+// which statements (macro programs), else the line's statement, its
+// location and source line.
 Json programHover(std::string_view uri, std::string_view text, Position position);
 
 } // namespace cncc::lsp
