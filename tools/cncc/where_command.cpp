@@ -3,13 +3,14 @@
 #include "commands.h"
 #include "source_map.h"
 
+#include "cncc/lsp/program_map.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <cctype>
 #include <charconv>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -161,11 +162,7 @@ int runWhere(const DriverOptions& options) {
     std::size_t column = entry.value("column", std::size_t{0});
     fmt::print("{}:{}: {}\n", programPath, line, lines[line - 1]);
     fmt::print("{}:{}:{}: note: {}\n", sourcePath, sourceLine, column, describe(entry, map));
-    std::filesystem::path readable = sourcePath;
-    if (readable.is_relative() && map.contains("directory") && map["directory"].is_string()) {
-      readable = std::filesystem::path(map["directory"].get<std::string>()) / readable;
-    }
-    printSourceLine(readable.string(), sourceLine, column);
+    printSourceLine(lsp::resolvedSourcePath(map, sourcePath), sourceLine, column);
     printParameters(map["parameters"]);
     return 0;
   } catch (const WhereError& error) {

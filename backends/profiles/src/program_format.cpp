@@ -240,20 +240,4 @@ FormattedProgram formatProgram(std::vector<std::string> lines, const MachineSetu
   return program;
 }
 
-std::string formatProgramText(std::string_view text, const MachineSetup& setup,
-                              std::vector<std::string>& errors) {
-  std::vector<std::string> lines;
-  while (!text.empty()) {
-    std::size_t newline = text.find('\n');
-    lines.emplace_back(text.substr(0, newline));
-    text = newline == std::string_view::npos ? std::string_view() : text.substr(newline + 1);
-  }
-  std::string formatted;
-  for (const std::string& line : formatProgram(std::move(lines), setup, errors).lines) {
-    formatted += line;
-    formatted += '\n';
-  }
-  return formatted;
-}
-
 } // namespace cncc::backends

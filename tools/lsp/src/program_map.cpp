@@ -63,11 +63,8 @@ std::optional<MappedLine> mappedEntry(const Json& map, const Json& entry) {
       !map["sources"][source].is_string()) {
     return std::nullopt;
   }
-  std::filesystem::path sourcePath = map["sources"][source].get<std::string>();
-  if (sourcePath.is_relative() && map.contains("directory") && map["directory"].is_string()) {
-    sourcePath = std::filesystem::path(map["directory"].get<std::string>()) / sourcePath;
-  }
-  return MappedLine{sourcePath.string(), entry.value("line", 0u), entry.value("column", 0u),
+  return MappedLine{resolvedSourcePath(map, map["sources"][source].get<std::string>()),
+                    entry.value("line", 0u), entry.value("column", 0u),
                     entry.value("statement", std::string("part")), entry.value("loopDepth", 0)};
 }
 
@@ -137,6 +134,15 @@ std::string programHash(std::string_view text) {
     hash *= 1099511628211ull;
   }
   return fmt::format("{:016x}", hash);
+}
+
+std::string resolvedSourcePath(const Json& map, const std::string& source) {
+  std::filesystem::path path = source;
+  auto directory = map.find("directory");
+  if (path.is_relative() && directory != map.end() && directory->is_string()) {
+    path = std::filesystem::path(directory->get<std::string>()) / path;
+  }
+  return path.string();
 }
 
 bool isMappedProgram(std::string_view uri) {

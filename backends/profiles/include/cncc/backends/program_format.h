@@ -25,8 +25,4 @@ struct FormattedProgram {
 FormattedProgram formatProgram(std::vector<std::string> lines, const MachineSetup& setup,
                                std::vector<std::string>& errors);
 
-// The same for a whole program text, one block per line.
-std::string formatProgramText(std::string_view text, const MachineSetup& setup,
-                              std::vector<std::string>& errors);
-
 } // namespace cncc::backends

@@ -14,6 +14,10 @@ namespace cncc::lsp {
 // FNV-1a, 64 bits, in hex: the hash a source map keeps of its program.
 std::string programHash(std::string_view text);
 
+// Where a source of the map is: `source` as the map names it, read against
+// the map's "directory" when it is relative (what `cncc where` reads too).
+std::string resolvedSourcePath(const Json& map, const std::string& source);
+
 // Whether `uri` is a program (not a .cdl file) with a source map beside it.
 bool isMappedProgram(std::string_view uri);
 
