@@ -10,7 +10,7 @@
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 #ifdef CNCC_HAVE_JIT
 #include "cncc/backends/jit_compiler.h"
 #endif

@@ -50,11 +50,11 @@ class Checks:
     def fail(self, message):
         self.failures.append(message)
 
-    def compile(self, source, part, target, name):
+    def compile(self, source, part, target, name, *extra):
         program = self.work / f"{name}.nc"
         source_map = self.work / f"{name}.nc.map.json"
         result = subprocess.run([self.cncc, str(source), "-p", part, "-t", target, "-o",
-                                 str(program), "--source-map", str(source_map)],
+                                 str(program), "--source-map", str(source_map), *extra],
                                 cwd=ROOT, capture_output=True, text=True)
         if result.returncode != 0:
             self.fail(f"{name}: does not compile: {result.stderr}")
@@ -76,6 +76,28 @@ class Checks:
                     entry["column"] > len(source[entry["line"] - 1]) + 1:
                 self.fail(f"{name}:{number}: maps to {entry}, outside its source")
                 return
+
+    def check_cuts(self, name, program, source_map, measured):
+        """Each cut entry sums the blocks and bytes of the lines mapped to its
+        statement; with --stats it has the deviation, within the tolerance."""
+        lines = program.read_text().splitlines()
+        expected = {}
+        for text, entry in zip(lines, source_map["lines"]):
+            if entry["statement"] == "cut":
+                key = (entry["source"], entry["line"], entry["column"])
+                blocks, size = expected.get(key, (0, 0))
+                code = text.split("(")[0].split(";")[0].strip()
+                expected[key] = (blocks + (1 if code else 0), size + len(text) + 1)
+        found = {(cut["source"], cut["line"], cut["column"]): (cut["blocks"], cut["bytes"])
+                 for cut in source_map["cuts"]}
+        if found != expected:
+            self.fail(f"{name}: the cuts say {found}, the lines {expected}")
+        for cut in source_map["cuts"]:
+            if measured != ("deviation" in cut):
+                self.fail(f"{name}: deviation {'missing' if measured else 'unmeasured'}: {cut}")
+            elif measured and cut["tolerance"] is not None and \
+                    not cut["deviation"] <= cut["tolerance"]:
+                self.fail(f"{name}: the cut's deviation is over its tolerance: {cut}")
 
     def check_controller_loops(self, name, source_map):
         inside = [entry for entry in source_map["lines"] if entry["loopDepth"] > 0]
@@ -100,12 +122,21 @@ class Checks:
                     continue
                 self.programs += 1
                 self.check_map(name, program, source_map)
+                self.check_cuts(name, program, source_map, False)
                 if not any(entry["statement"] == "cut" for entry in source_map["lines"]):
                     self.fail(f"{name}: no line maps to a cut statement")
                 if target in ("fanuc", "m80", "linuxcnc"):
                     self.check_controller_loops(name, source_map)
                 if target in ("fanuc", "m80"):
                     self.check_variables(name, source_map)
+
+    def run_measured(self):
+        for target in ("fanuc", "gcode"):
+            name = f"measured-{target}"
+            program, source_map = self.compile(ROOT / "examples/s_profile.cdl", "s_profile",
+                                               target, name, "--stats")
+            if program is not None:
+                self.check_cuts(name, program, source_map, True)
 
     def where(self, *arguments):
         return subprocess.run([self.cncc, "where", *map(str, arguments)], cwd=ROOT,
@@ -156,6 +187,7 @@ def main():
     checks = Checks(str(Path(options.cncc).resolve()), options.work)
     checks.run_examples()
     checks.run_where()
+    checks.run_measured()
     for failure in checks.failures:
         print(f"FAIL {failure}")
     print(f"{checks.programs} programs mapped line by line; {len(checks.failures)} failures")

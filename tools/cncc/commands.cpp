@@ -10,9 +10,9 @@
 
 #include "cncc/frontend/ast_printer.h"
 #include "cncc/frontend/lexer.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <fmt/format.h>
 
@@ -94,10 +94,29 @@ bool writeSourceMap(DiagnosticOutput& output, const DriverOptions& options,
                        &program,
                        &sources,
                        std::move(origins.lineSpans),
-                       std::move(origins.variables)};
+                       std::move(origins.variables),
+                       program.selectedPart != nullptr &&
+                           ir::partUnits(*program.selectedPart) == ir::PartUnits::Inches,
+                       std::move(origins.deviations)};
   std::error_code error;
   if (!writeFileAtomically(options.sourceMap, sourceMapJson(input), error)) {
     reportWriteFailure(output, options.sourceMap, error);
+    return false;
+  }
+  return true;
+}
+
+// The Make/Ninja depfile of the compile: the sources and the machine file.
+bool writeDependencyFile(DiagnosticOutput& output, const DriverOptions& options,
+                         const SourceManager& sources) {
+  std::vector<std::string> inputs = sources.paths();
+  if (!options.machineFile.empty()) {
+    inputs.push_back(options.machineFile);
+  }
+  std::error_code error;
+  if (!writeFileAtomically(options.dependencyFile,
+                           dependencyFileText(options.dependencyTarget, inputs), error)) {
+    reportWriteFailure(output, options.dependencyFile, error);
     return false;
   }
   return true;
@@ -140,26 +159,24 @@ int runCompile(const DriverOptions& options) {
     reportWriteFailure(output, options.output, error);
     return 1;
   }
-  if (!options.sourceMap.empty() && !writeSourceMap(output, options, *program, sources,
-                                                    {std::move(lineSpans), std::move(variables)})) {
+  if (!options.dependencyFile.empty() && !writeDependencyFile(output, options, sources)) {
     return 1;
   }
-  if (!options.dependencyFile.empty()) {
-    std::vector<std::string> inputs = sources.paths();
-    if (!options.machineFile.empty()) {
-      inputs.push_back(options.machineFile);
-    }
-    if (!writeFileAtomically(options.dependencyFile,
-                             dependencyFileText(options.dependencyTarget, inputs), error)) {
-      reportWriteFailure(output, options.dependencyFile, error);
-      return 1;
-    }
+  // --stats before the map, which records the deviations it measured.
+  int status = 0;
+  std::vector<MeasuredCutDeviation> deviations;
+  if (options.stats) {
+    BackendRequest measured{*program, sources, options, backendDiagnostics, *file};
+    std::vector<MeasuredCutDeviation>* collected = mapped ? &deviations : nullptr;
+    status = canMeasure(options.target) ? printStatistics(measured, collected)
+                                        : printVerifiedStatistics(measured, collected);
   }
-  if (!options.stats) {
-    return 0;
+  if (mapped &&
+      !writeSourceMap(output, options, *program, sources,
+                      {std::move(lineSpans), std::move(variables), std::move(deviations)})) {
+    return 1;
   }
-  BackendRequest measured{*program, sources, options, backendDiagnostics, *file};
-  return canMeasure(options.target) ? printStatistics(measured) : printVerifiedStatistics(measured);
+  return status;
 }
 
 int runEmit(const DriverOptions& options) {

@@ -5,11 +5,15 @@
 #pragma once
 
 #include "driver_options.h"
+#include "source_map.h"
 
+#include "cncc/backends/path_statistics.h"
 #include "cncc/ir/passes.h"
 #include "targets.h"
 
+#include <span>
 #include <stdexcept>
+#include <vector>
 
 namespace cncc::driver {
 
@@ -34,9 +38,16 @@ int runFormat(const DriverOptions& options);
 int runLanguageServer();
 // cncc plot FILE [-o OUT.svg] [-t TARGET] (plot_command.cpp)
 int runPlot(const DriverOptions& options);
+// The cuts' deviations of a measured part, as `measured` gets them.
+void collectCutDeviations(const backends::PathStatistics& statistics,
+                          std::span<const ir::CutGeometry> cuts,
+                          std::vector<MeasuredCutDeviation>* measured);
+
 // After a compile with --stats: measures what the target wrote and prints
-// the statistics to stderr (stats_command.cpp). Returns the exit code.
-int printStatistics(const BackendRequest& request);
+// the statistics to stderr (stats_command.cpp); each cut's deviation goes to
+// `measured` when given. Returns the exit code.
+int printStatistics(const BackendRequest& request,
+                    std::vector<MeasuredCutDeviation>* measured = nullptr);
 
 // cncc opt FILE.ir [--passes=a,b] (opt_command.cpp)
 int runOptimize(const DriverOptions& options);
@@ -57,7 +68,8 @@ int runWhere(const DriverOptions& options);
 bool canVerify(std::string_view name);
 // --stats of a target measured by running its program on the virtual
 // controller (m80, fanuc): the report of verify, on stderr.
-int printVerifiedStatistics(const BackendRequest& request);
+int printVerifiedStatistics(const BackendRequest& request,
+                            std::vector<MeasuredCutDeviation>* measured = nullptr);
 
 // Runs the command `options` names.
 int runCommand(const DriverOptions& options);

@@ -5,8 +5,8 @@
 #include "targets.h"
 
 #include "cncc/backends/linuxcnc_program.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <fmt/format.h>
 

@@ -6,8 +6,8 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/backends/macro_program.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <fmt/format.h>
 

@@ -6,7 +6,7 @@
 
 #include "cncc/backends/executed_path.h"
 #include "cncc/backends/sinumerik_writer.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include <optional>
 #include <vector>

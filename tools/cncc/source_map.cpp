@@ -8,8 +8,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <tuple>
 #include <utility>
 
 namespace cncc::driver {
@@ -159,6 +162,39 @@ nlohmann::json parameterValues(const frontend::PartItem& part) {
   return values;
 }
 
+// What the map says of one cut statement (see source_map.h).
+struct CutSummary {
+  std::size_t blocks = 0;
+  std::size_t bytes = 0;
+  bool measured = false;
+  double deviation = std::numeric_limits<double>::quiet_NaN();
+  double tolerance = std::numeric_limits<double>::quiet_NaN();
+
+  void addMeasurement(const MeasuredCutDeviation& measurement) {
+    measured = true;
+    if (!(deviation >= measurement.deviation)) { // NaN counts as nothing measured
+      deviation = std::isnan(measurement.deviation) ? deviation : measurement.deviation;
+    }
+    if (!(tolerance <= measurement.tolerance)) {
+      tolerance = std::isnan(measurement.tolerance) ? tolerance : measurement.tolerance;
+    }
+  }
+};
+
+// `,\n "name": [` and an element per line.
+std::string compactArray(std::string_view name, const nlohmann::json& elements) {
+  std::string text = fmt::format(",\n \"{}\": [", name);
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    text += (i == 0 ? "\n  " : ",\n  ") + elements[i].dump();
+  }
+  return text + (elements.empty() ? "]" : "\n ]");
+}
+
+// A number, or null for NaN (JSON has no NaN).
+nlohmann::json numberOrNull(double value) {
+  return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
+}
+
 } // namespace
 
 std::string programHash(std::string_view text) {
@@ -181,6 +217,8 @@ std::string sourceMapJson(const SourceMapInput& input) {
   std::vector<std::string_view> lines = programLines(input.programText);
   std::vector<int> depths = loopDepths(lines);
   nlohmann::json mapped = nlohmann::json::array();
+  // Keyed by (source, line, column), in the order the statements are written.
+  std::map<std::tuple<std::size_t, std::uint32_t, std::uint32_t>, CutSummary> cuts;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     SourceSpan span = i < input.lineSpans.size() ? input.lineSpans[i] : SourceSpan{};
     if (!span.valid()) {
@@ -188,11 +226,35 @@ std::string sourceMapJson(const SourceMapInput& input) {
     }
     frontend::LineColumn at = input.sources->file(span.file).lineColumn(span.begin);
     auto kind = kinds.find({span.file.index, span.begin});
+    std::string_view statement = kind == kinds.end() ? "part" : kind->second;
     mapped.push_back({{"source", sourceOf(span.file)},
                       {"line", at.line},
                       {"column", at.column},
-                      {"statement", kind == kinds.end() ? "part" : kind->second},
+                      {"statement", statement},
                       {"loopDepth", depths[i]}});
+    if (statement == "cut") {
+      CutSummary& cut = cuts[{sourceOf(span.file), at.line, at.column}];
+      cut.blocks += codeWords(lines[i]).empty() ? 0 : 1;
+      cut.bytes += lines[i].size() + 1;
+    }
+  }
+  for (const MeasuredCutDeviation& measurement : input.deviations) {
+    frontend::LineColumn at =
+        input.sources->file(measurement.statement.file).lineColumn(measurement.statement.begin);
+    cuts[{sourceOf(measurement.statement.file), at.line, at.column}].addMeasurement(measurement);
+  }
+  nlohmann::json cutEntries = nlohmann::json::array();
+  for (const auto& [where, cut] : cuts) {
+    nlohmann::json entry = {{"source", std::get<0>(where)},
+                            {"line", std::get<1>(where)},
+                            {"column", std::get<2>(where)},
+                            {"blocks", cut.blocks},
+                            {"bytes", cut.bytes}};
+    if (cut.measured) {
+      entry["deviation"] = numberOrNull(cut.deviation);
+      entry["tolerance"] = numberOrNull(cut.tolerance);
+    }
+    cutEntries.push_back(std::move(entry));
   }
   nlohmann::json header = {{"version", 1},
                            {"program", input.programPath},
@@ -215,17 +277,15 @@ std::string sourceMapJson(const SourceMapInput& input) {
                                              {"statements", statements}};
     }
     header["variables"] = std::move(variables);
-    header["sources"] = sources; // the variables' statements may add some
   }
+  header["unit"] = input.inches ? "in" : "mm";
+  header["sources"] = sources; // the variables' and cuts' statements may add some
   // One line per program line, so that the map reads (and diffs) as the
   // program does.
   std::string text = header.dump(1);
   text.erase(text.find_last_not_of(" \n", text.rfind('}') - 1) + 1);
-  text += ",\n \"lines\": [";
-  for (std::size_t i = 0; i < mapped.size(); ++i) {
-    text += (i == 0 ? "\n  " : ",\n  ") + mapped[i].dump();
-  }
-  return text + "\n ]\n}\n";
+  text += compactArray("cuts", cutEntries) + compactArray("lines", mapped);
+  return text + "\n}\n";
 }
 
 } // namespace cncc::driver

@@ -11,7 +11,15 @@
 //    "lines": [{"source": 0, "line": 12, "column": 3, "statement": "cut",
 //               "loopDepth": 1}, ...],
 //    "variables": {"6": {"meaning": "work values", "statements":
-//                  [{"source": 0, "line": 16, "column": 5}]}, ...}}  (macro targets)
+//                  [{"source": 0, "line": 16, "column": 5}]}, ...},  (macro targets)
+//    "unit": "mm",
+//    "cuts": [{"source": 0, "line": 12, "column": 3, "blocks": 40, "bytes": 1210,
+//              "deviation": 0.0061, "tolerance": 0.01}, ...]}
+// "cuts" has one entry per cut statement that printed lines: the blocks
+// (lines with code) and bytes of those lines, and when the compile measured
+// them (--stats) the largest deviation of its executed path from the curve
+// over every time the statement ran, and its tolerance (null: samples= or
+// spacing= chose the points), in "unit".
 // `lines[i]` is line i + 1 of the program; "statement" is the kind of CDL
 // statement (part, tool, cut, for, if, let, origin, coolant, feed, ...),
 // "loopDepth" how many controller loops (WHILE, o-word while) hold the line.
@@ -30,6 +38,13 @@
 
 namespace cncc::driver {
 
+// The largest deviation --stats measured for one cut of the part.
+struct MeasuredCutDeviation {
+  frontend::SourceSpan statement; // the cut's `curve` statement
+  double deviation = 0;           // NaN: no feed move
+  double tolerance = 0;           // NaN: samples= or spacing= chose the points
+};
+
 struct SourceMapInput {
   std::string programPath;
   std::string_view programText;
@@ -40,12 +55,16 @@ struct SourceMapInput {
   std::vector<frontend::SourceSpan> lineSpans;
   // Macro targets: what each variable holds.
   std::map<int, backends::VariableMeaning> variables;
+  bool inches = false;
+  // Empty unless --stats measured the program.
+  std::vector<MeasuredCutDeviation> deviations;
 };
 
 // Where a program's lines and variables come from, as its backend said.
 struct ProgramOrigins {
   std::vector<frontend::SourceSpan> lineSpans;
   std::map<int, backends::VariableMeaning> variables;
+  std::vector<MeasuredCutDeviation> deviations;
 };
 
 std::string sourceMapJson(const SourceMapInput& input);

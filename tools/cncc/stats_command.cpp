@@ -18,7 +18,20 @@ constexpr double kMillimetresPerInch = 25.4;
 
 } // namespace
 
-int printStatistics(const BackendRequest& request) {
+void collectCutDeviations(const backends::PathStatistics& statistics,
+                          std::span<const ir::CutGeometry> cuts,
+                          std::vector<MeasuredCutDeviation>* measured) {
+  if (measured == nullptr) {
+    return;
+  }
+  for (const backends::CutDeviation& cut : statistics.cuts) {
+    if (cut.cut < cuts.size()) {
+      measured->push_back({cuts[cut.cut].span, cut.maxDeviation, cut.tolerance});
+    }
+  }
+}
+
+int printStatistics(const BackendRequest& request, std::vector<MeasuredCutDeviation>* deviations) {
   const DriverOptions& options = request.options;
   // The compile before --stats printed the warnings.
   DiagnosticOutput output =
@@ -38,6 +51,7 @@ int printStatistics(const BackendRequest& request) {
   statisticsOptions.cutNames = measured->cutNames;
   backends::PathStatistics statistics =
       backends::measureProgram(measured->program, measured->cuts, statisticsOptions);
+  collectCutDeviations(statistics, measured->cuts, deviations);
   fmt::print(stderr, "statistics of part {} for target {}:\n{}", request.program.selectedPart->name,
              options.target, backends::formatStatistics(statistics, statisticsOptions));
   return 0;

@@ -6,7 +6,7 @@
 #include "targets.h"
 
 #include "cncc/backends/executed_path.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include <optional>
 #include <string>

@@ -13,8 +13,8 @@
 #include "cncc/backends/machine_file.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <fmt/format.h>
 

@@ -12,7 +12,7 @@
 #include "cncc/backends/macro_program.h"
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include <map>
 #include <optional>

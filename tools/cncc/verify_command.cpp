@@ -15,8 +15,8 @@
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/verification.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <fmt/format.h>
 
@@ -257,7 +257,8 @@ int runVerify(const DriverOptions& options) {
   return report.passed() ? 0 : 1;
 }
 
-int printVerifiedStatistics(const BackendRequest& request) {
+int printVerifiedStatistics(const BackendRequest& request,
+                            std::vector<MeasuredCutDeviation>* deviations) {
   const DriverOptions& options = request.options;
   // The compile before --stats printed the warnings.
   DiagnosticOutput output =
@@ -279,6 +280,7 @@ int printVerifiedStatistics(const BackendRequest& request) {
       statisticsOptions(request.program, request.sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(
       {options.target, std::move(execution), reference->path, reference->cuts}, statistics);
+  collectCutDeviations(report.statistics, reference->cuts, deviations);
   fmt::print(stderr, "statistics of part {} for target {}:\n{}", request.program.selectedPart->name,
              options.target, backends::formatVerification(report, statistics));
   return report.failure ? 1 : 0;

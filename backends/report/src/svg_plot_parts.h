@@ -4,7 +4,7 @@
 #pragma once
 
 #include "cncc/backends/executed_path.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/cut_geometry.h"
 
 #include <Eigen/Core>
 

@@ -16,9 +16,9 @@
 #include "cncc/frontend/source_manager.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
 

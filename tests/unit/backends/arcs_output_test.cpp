@@ -10,7 +10,7 @@
 #include "cncc/frontend/source_manager.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
 

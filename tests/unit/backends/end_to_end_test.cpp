@@ -12,8 +12,8 @@
 #include "cncc/geom/function_curve.h"
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
 

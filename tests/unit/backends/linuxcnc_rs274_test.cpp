@@ -14,9 +14,9 @@
 #include "cncc/geom/deviation.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
 

@@ -14,8 +14,8 @@
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "cncc/geom/line_arc_curves.h"
-#include "cncc/ir/lowering.h"
 #include "cncc/ir/tool_path.h"
+#include "cncc/lowering/lowering.h"
 
 #include <cmath>
 #include <memory>

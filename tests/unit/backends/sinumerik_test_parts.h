@@ -8,7 +8,7 @@
 #include "cncc/frontend/source_manager.h"
 #include "cncc/geom/curve_deviation.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,12 @@
 #include "cncc/lsp/features.h"
 #include "cncc/lsp/program_map.h"
 #include "cncc/lsp/protocol_json.h"
+#include "cncc/lsp/uri.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <fmt/format.h>
+#include <optional>
 
 namespace cncc::lsp {
 
@@ -52,6 +55,15 @@ void Server::registerHandlers() {
     }
     return formatting(uri, document->text);
   };
+  requests_["textDocument/codeLens"] = [this](const Json& params) {
+    std::string uri = documentUri(params);
+    std::vector<std::string> directories = workspaceFolders_;
+    if (std::optional<std::string> path = pathFromUri(uri)) {
+      directories.push_back(std::filesystem::path(*path).parent_path().string());
+    }
+    cutLenses_.setDirectories(std::move(directories));
+    return cutLenses_.lenses(uri);
+  };
   requests_["textDocument/semanticTokens/full"] = [this](const Json& params) {
     return semanticTokens(analysisOf(params));
   };
@@ -77,6 +89,29 @@ bool clientExpandsSnippets(const Json& params) {
   return value->is_boolean() && value->get<bool>();
 }
 
+// The folders of the workspace: `workspaceFolders`, else `rootUri`.
+std::vector<std::string> workspaceFolderPaths(const Json& params) {
+  std::vector<std::string> folders;
+  auto addUri = [&](const Json& uri) {
+    if (uri.is_string()) {
+      if (std::optional<std::string> path = pathFromUri(uri.get<std::string>())) {
+        folders.push_back(*path);
+      }
+    }
+  };
+  if (params.contains("workspaceFolders") && params["workspaceFolders"].is_array()) {
+    for (const Json& folder : params["workspaceFolders"]) {
+      if (folder.is_object() && folder.contains("uri")) {
+        addUri(folder["uri"]);
+      }
+    }
+  }
+  if (folders.empty() && params.contains("rootUri")) {
+    addUri(params["rootUri"]);
+  }
+  return folders;
+}
+
 } // namespace
 
 Json Server::initialize(const Json& params) {
@@ -85,6 +120,8 @@ Json Server::initialize(const Json& params) {
   }
   state_ = State::Running;
   clientSnippets_ = clientExpandsSnippets(params);
+  workspaceFolders_ =
+      params.is_object() ? workspaceFolderPaths(params) : std::vector<std::string>{};
   Json capabilities = {
       {"positionEncoding", "utf-16"},
       {"textDocumentSync", {{"openClose", true}, {"change", 2}}}, // 2: incremental
@@ -93,6 +130,7 @@ Json Server::initialize(const Json& params) {
       {"completionProvider", {{"triggerCharacters", {"\"", "/", "="}}}},
       {"documentSymbolProvider", true},
       {"documentFormattingProvider", true},
+      {"codeLensProvider", {{"resolveProvider", false}}},
       {"semanticTokensProvider", {{"legend", semanticTokensLegend()}, {"full", true}}},
   };
   return {{"capabilities", capabilities},

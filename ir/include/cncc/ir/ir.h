@@ -6,7 +6,7 @@
 // each other by index.
 #pragma once
 
-#include "cncc/frontend/source_manager.h"
+#include "cncc/frontend/source_span.h"
 
 #include <cstdint>
 #include <limits>

@@ -2,7 +2,7 @@
 // interpreter and the JIT, and the input of the numeric backends.
 #pragma once
 
-#include "cncc/frontend/source_manager.h"
+#include "cncc/frontend/source_span.h"
 
 #include <cstdint>
 #include <string>

@@ -19,8 +19,9 @@
 #pragma once
 
 #include "cncc/backends/machine_setup.h"
+#include "cncc/ir/cut_geometry.h"
 #include "cncc/ir/ir.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/lowering_options.h"
 
 #include <string>
 #include <vector>

@@ -15,7 +15,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/machine_setup.h"
 #include "cncc/ir/ir.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/lowering_options.h"
 #include "cncc/ir/register_allocation.h"
 
 #include <cstddef>

@@ -3,7 +3,7 @@
 // writes them, and the lines between inherit the span before them.
 #pragma once
 
-#include "cncc/frontend/source_manager.h"
+#include "cncc/frontend/source_span.h"
 
 #include <cstddef>
 #include <string>

@@ -12,7 +12,7 @@
 
 #include "cncc/backends/executed_path.h"
 #include "cncc/geom/curve.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/cut_geometry.h"
 
 #include <Eigen/Core>
 

@@ -10,7 +10,7 @@
 
 #include "cncc/backends/path_statistics.h"
 #include "cncc/backends/program_execution.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/cut_geometry.h"
 
 #include <Eigen/Core>
 

@@ -5,7 +5,8 @@
 #pragma once
 
 #include "cncc/backends/machine_setup.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/cut_geometry.h"
+#include "cncc/ir/lowering_options.h"
 #include "cncc/ir/tool_path.h"
 
 #include <cstddef>

@@ -5,6 +5,8 @@
 // server_loop.h, so tests drive the server message by message.
 #pragma once
 
+#include "cncc/lsp/cut_lenses.h"
+
 #include "cncc/lsp/analysis.h"
 #include "cncc/lsp/document_store.h"
 #include "cncc/lsp/json_rpc.h"
@@ -80,6 +82,9 @@ private:
   std::map<std::string, RequestHandler> requests_;
   std::map<std::string, NotificationHandler> notifications_;
   std::vector<Json> outgoing_;
+  // The workspace's folders and each document's own: where source maps are.
+  std::vector<std::string> workspaceFolders_;
+  CutLensIndex cutLenses_{CutLensSearch{}};
 };
 
 // Reads the params' `textDocument.uri` and `position`, or throws

@@ -2,7 +2,7 @@
 // translate/rotate/scale composed into one transform per piece), the whole
 // as one geom curve for choosing the points, and each piece's point in IR
 // arithmetic at a parameter the IR loads from a table.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/function_curve.h"

@@ -1,4 +1,4 @@
-#include "lowering/affine.h"
+#include "affine.h"
 
 #include <cmath>
 

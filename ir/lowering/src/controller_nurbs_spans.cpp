@@ -2,7 +2,7 @@
 // moved by a transform of controller values, and a span whose control
 // points depend on parameters, split into literals and the dependent
 // points' share, with the bound of |C''| its step count comes from.
-#include "lowering/controller_segment.h"
+#include "controller_segment.h"
 
 #include <fmt/format.h>
 

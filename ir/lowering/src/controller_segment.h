@@ -3,7 +3,7 @@
 // control points depend on parameters).
 #pragma once
 
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <array>
 #include <optional>

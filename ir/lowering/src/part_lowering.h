@@ -3,8 +3,8 @@
 // cuts.cpp of this folder.
 #pragma once
 
-#include "lowering/affine.h"
-#include "lowering/tolerance_budget.h"
+#include "affine.h"
+#include "tolerance_budget.h"
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/value.h"
@@ -14,7 +14,7 @@
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include <array>
 #include <functional>

@@ -1,4 +1,4 @@
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 namespace cncc::ir::lowering {
 

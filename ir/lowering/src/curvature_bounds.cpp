@@ -13,7 +13,7 @@
 //   differentiation with each term bounded by its size). Other functions
 //   of t are not bounded, and such a piece keeps the compile-time tables.
 // A transform multiplies M by its stretch.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <cmath>
 #include <functional>

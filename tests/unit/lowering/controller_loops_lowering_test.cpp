@@ -4,7 +4,7 @@
 // is run by the interpreter with parameter values other than the defaults
 // and its points are measured against the true curve for those values: the
 // chords must stay within the tolerance less the increment rounding.
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"

@@ -1,5 +1,5 @@
 // The lowering's entry points.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include "cncc/geom/geometry_error.h"
 

@@ -16,7 +16,7 @@
 //   way stop the program with an alarm, as do values that leave it no
 //   radius, before the cut starts).
 // A piece's own z (a helix) and the pass depth or ramp descent add up.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include "cncc/geom/line_arc_curves.h"
 

@@ -1,4 +1,4 @@
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
@@ -130,7 +130,8 @@ std::pair<frontend::DiagnosticKind, std::string> lastDiagnostic(const Lowering& 
     return {};
   }
   const frontend::Diagnostic& diagnostic = lowered.diagnostics.diagnostics().back();
-  return {diagnostic.kind, text.substr(diagnostic.span.begin, diagnostic.span.end - diagnostic.span.begin)};
+  return {diagnostic.kind,
+          text.substr(diagnostic.span.begin, diagnostic.span.end - diagnostic.span.begin)};
 }
 
 TEST(Lowering, FeedsAndSpindleSpeedsWithinTheMachinesMaximum) {
@@ -142,8 +143,7 @@ TEST(Lowering, FeedsAndSpindleSpeedsWithinTheMachinesMaximum) {
            "\n  safe z=2\n  curve line((0, 0), (10, 0)) sweep depth=1 step=1 " + cut + "\n}\n";
   };
   EXPECT_TRUE(lower(part("spindle=10000 feed=5000", "feed=f"), machine)->function);
-  for (auto [tool, cut, over] :
-       std::vector<std::tuple<std::string, std::string, std::string>>{
+  for (auto [tool, cut, over] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"spindle=12000 feed=300", "", "12000"},
            {"spindle=8000 feed=300", "feed=6000", "6000"},
            {"spindle=8000 feed=2*f*10", "", "2*f*10"}}) {

@@ -2,7 +2,7 @@
 // loop bound, an `if` condition, a curve sampled into tables, a transform's
 // offset. The controller cannot recompute these, so a program that lets the
 // operator edit the parameter checks it still has the compiled-in value.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <fmt/format.h>
 

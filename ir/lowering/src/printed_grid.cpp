@@ -1,4 +1,4 @@
-#include "lowering/printed_grid.h"
+#include "printed_grid.h"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 // its condition chooses. For controllers that run loops themselves, a `for`
 // or `if` over parameters is tried as a controller loop or branch first
 // (runtime_control.cpp).
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 // (LoweredPart::fixedParameters): a loop bound and a sampled polar curve's
 // radius fix theirs, a sweep depth computed on the controller does not; the
 // warning is given for controller-side targets only.
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"

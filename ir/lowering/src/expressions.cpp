@@ -1,7 +1,7 @@
 // Expressions as IR arithmetic. What depends on a bound IR value (a part
 // parameter, a let computed from one, a curve's `t`) becomes arithmetic;
 // everything else is evaluated by the frontend's evaluator to a constant.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <fmt/format.h>
 

@@ -9,8 +9,8 @@
 // makes. The arcs are the host's, so on a controller-side target a cut
 // whose geometry depends on a part parameter keeps its controller loops,
 // with an arcs-as-chords warning saying why.
-#include "lowering/part_lowering.h"
-#include "lowering/printed_grid.h"
+#include "part_lowering.h"
+#include "printed_grid.h"
 
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/geometry_error.h"

@@ -5,7 +5,7 @@
 // stays an IR value: the arguments of the fns that make a piece, the
 // piece's range, and the offsets, angles and factors of the transforms
 // around it.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <cmath>
 

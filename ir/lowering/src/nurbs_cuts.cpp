@@ -7,8 +7,8 @@
 // weight that is a part parameter is its SSA value, so the printer writes
 // it as that parameter's variable (`R#3`) and the operator's edit reaches
 // the curve. Every other number of the curve is fixed at its default.
-#include "lowering/part_lowering.h"
-#include "lowering/printed_grid.h"
+#include "part_lowering.h"
+#include "printed_grid.h"
 
 #include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/geometry_error.h"

@@ -11,7 +11,7 @@
 // it, fixing what the bounds read, as on the host targets. A branch is
 // likewise tried and, when either branch cannot be lowered, chosen at
 // compile time. Diagnostics of an attempt are held until it succeeds.
-#include "lowering/part_lowering.h"
+#include "part_lowering.h"
 
 #include <fmt/format.h>
 

@@ -27,7 +27,7 @@
 // whose dependence on parameters the bounds do not follow, a ramp whose
 // shares would change with the parameters) is lowered by the table-driven
 // lowering of cuts.cpp, and what it reads is fixed.
-#include "lowering/controller_segment.h"
+#include "controller_segment.h"
 
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/discretisation.h"

@@ -1,0 +1,31 @@
+// The part's cut table: for each `cut.begin n` of a function, the cut's true
+// curve, its tolerance and how its moves use arcs. What verify measures
+// the executed path against, and what plots draw.
+#pragma once
+
+#include "cncc/frontend/source_span.h"
+#include "cncc/geom/curve.h"
+
+#include <memory>
+#include <string>
+
+namespace cncc::ir {
+
+enum class CutArcs { None, Native, Fitted };
+
+// One cut of the part: what `cut.begin index` refers to.
+struct CutGeometry {
+  // The true curve in part coordinates, transforms applied (XY plane).
+  std::shared_ptr<const geom::Curve> curve;
+  // The cut's promise in mm; NaN when samples= or spacing= chose the points.
+  double tolerance = 0;
+  // The `curve` statement.
+  frontend::SourceSpan span;
+  // The cut's method= word (linear, aspline, bspline, cspline, nurbs); empty without one.
+  std::string method;
+  // How its passes use move.arc: not at all, for the curve's own arc pieces
+  // (native circular interpolation), or as arcs fitted to the curve.
+  CutArcs arcMoves = CutArcs::None;
+};
+
+} // namespace cncc::ir

@@ -1,0 +1,47 @@
+// How a target wants its parts lowered: what it interpolates natively
+// (arcs, NURBS blocks, splines), whether curve loops run on the controller,
+// and the machine's limits the lowering checks. The lowering library
+// (cncc/lowering/lowering.h) reads it; a backend says what it wants.
+#pragma once
+
+namespace cncc::ir {
+
+struct LoweringOptions {
+  // The chord tolerance of a cut without tolerance=, samples= or spacing=.
+  double defaultTolerance = 0.01;
+  // Whether the target interpolates splines (method=cspline, aspline,
+  // bspline, nurbs) itself. Without it such a cut is cut as straight feed
+  // moves within its tolerance, with a spline-as-chords warning.
+  bool splineInterpolation = false;
+  // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
+  // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
+  bool nurbsBlocks = false;
+  // Targets that print host-fitted G02/G03 arcs: a cut that wants arcs
+  // (arcs=true, or arcsOnEveryCut without arcs=false) is lowered as the
+  // fitted move.arc ops on the printed grid (arc_cuts.cpp).
+  bool arcBlocks = false;
+  bool arcsOnEveryCut = false; // --arcs
+  // Controller-side targets (macro programs): each cut becomes loops the
+  // controller runs over uniform parameter steps, a pass loop over the sweep
+  // and no constant tables; what depends on part parameters (step counts
+  // included) is computed on the controller. See controller_cuts.cpp.
+  bool controllerLoops = false;
+  // The controller's least input increment (mm or inch; 0: none). Its
+  // rounding of every executed coordinate, half an increment per axis, is
+  // taken from the tolerance before the chord error is chosen.
+  double coordinateIncrement = 0;
+  // How deep the controller nests loops (0: no limit). A `for` run on the
+  // controller that would nest deeper is unrolled instead.
+  int maximumLoopNesting = 0;
+  // What the machine's set-up has: `origin G54.1 Pn` up to this n (0: no
+  // extended work offsets), and a code for through-spindle coolant.
+  int maximumExtendedWorkOffset = 0;
+  bool throughSpindleCoolant = false;
+  // The machine's largest feed (mm/min, whatever the part's units) and
+  // spindle speed (rpm); 0: no limit. A constant beyond it is an error at
+  // the statement that sets it.
+  double maximumFeed = 0;
+  double maximumSpindleSpeed = 0;
+};
+
+} // namespace cncc::ir

@@ -1,0 +1,57 @@
+// Lowering from the checked AST to the IR: one Function per part.
+//
+// The part's parameters become the function's parameters, their values (the
+// defaults, or -D overrides) as defaults. Tool, spindle, feed and safe height
+// become effects and lowered values; each cut becomes its passes: a rapid
+// over the start at the safe height, a plunge at the cut's feed, a loop over
+// a table of curve parameters chosen at compile time (chord tolerance,
+// samples= or spacing=) that evaluates the curve point in IR arithmetic, and
+// a retract. What this version cannot lower yet is an error diagnostic at its
+// source span; lowering never skips a construct silently.
+#pragma once
+
+#include "cncc/frontend/diagnostics.h"
+#include "cncc/frontend/sema.h"
+#include "cncc/geom/curve.h"
+#include "cncc/ir/cut_geometry.h"
+#include "cncc/ir/ir.h"
+#include "cncc/ir/lowering_options.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cncc::ir {
+
+// A part parameter whose default the lowering read as a constant, and the
+// first use that did.
+struct FixedParameter {
+  std::string name;
+  frontend::SourceSpan use;
+};
+
+struct LoweredPart {
+  Function function;
+  // In the order first fixed; each also has Parameter::fixed set.
+  std::vector<FixedParameter> fixedParameters;
+  // Indexed by cut.begin; a cut in an unrolled loop has one per iteration.
+  std::vector<CutGeometry> cuts;
+};
+
+// The lowered part, or nullopt after an error diagnostic.
+std::optional<LoweredPart> lowerPartWithCuts(const frontend::CheckedProgram& program,
+                                             const frontend::PartItem& part,
+                                             frontend::DiagnosticEngine& diagnostics,
+                                             const LoweringOptions& options = {});
+// The same, the function only.
+std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
+                                  const frontend::PartItem& part,
+                                  frontend::DiagnosticEngine& diagnostics,
+                                  const LoweringOptions& options = {});
+
+enum class PartUnits { Millimetres, Inches };
+// The `units` statement at the top of the part's body (millimetres without one).
+PartUnits partUnits(const frontend::PartItem& part);
+
+} // namespace cncc::ir
