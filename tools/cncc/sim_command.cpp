@@ -107,7 +107,13 @@ int runSimulate(const DriverOptions& options) {
   simulation.runAsMacroCall = !options.macroArguments.empty();
   simulation.reading.strict = options.strictReading;
   simulation.reading.family = backends::sim::controllerFamilyOf(options.target);
-  simulation.toolRadii = options.toolRadii;
+  // The machine file's registers, with --tool-radius over them.
+  if (options.machine) {
+    simulation.toolRadii = options.machine->radiusOffsets;
+  }
+  for (const auto& [registerNumber, radius] : options.toolRadii) {
+    simulation.toolRadii[registerNumber] = radius;
+  }
   simulation.peckRetract = options.peckRetract;
   simulation.peckClearance = options.peckClearance;
 

@@ -14,10 +14,12 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <exception>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <system_error>
 
@@ -96,7 +98,10 @@ public:
 
   std::optional<MachineDescription> read(const toml::table& root) {
     std::size_t before = diagnostics_.size();
-    checkKeys(root, {"name", "description", "target", "profile", "setup", "program", "limits"}, "");
+    checkKeys(root,
+              {"name", "description", "target", "profile", "setup", "program", "limits",
+               "radius_offsets"},
+              "");
     MachineDescription machine;
     readString(root, "name", machine.name);
     readString(root, "description", machine.description);
@@ -119,6 +124,9 @@ public:
         machine.profile->maximumFeed = machine.maximumFeed;
         machine.profile->maximumSpindleSpeed = machine.maximumSpindleSpeed;
       }
+    }
+    if (const toml::table* offsets = tableAt(root, "radius_offsets")) {
+      readRadiusOffsets(*offsets, machine.radiusOffsets);
     }
     if (machine.profile) {
       machine.profile->maximumExtendedWorkOffset =
@@ -210,6 +218,40 @@ private:
       return;
     }
     into = value;
+  }
+
+  // `[radius_offsets]`: register = radius, registers 1 .. 9999 (D1 ..).
+  void readRadiusOffsets(const toml::table& table, std::map<int, double>& into) {
+    // In the file's order (the table keeps its keys sorted).
+    std::vector<std::pair<const toml::key*, const toml::node*>> entries;
+    for (const auto& [key, node] : table) {
+      entries.emplace_back(&key, &node);
+    }
+    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+      return a.first->source().begin.line < b.first->source().begin.line;
+    });
+    for (const auto& [key, node] : entries) {
+      std::string_view name = key->str();
+      int registerNumber = 0;
+      auto [end, problem] = std::from_chars(name.data(), name.data() + name.size(), registerNumber);
+      if (problem != std::errc() || end != name.data() + name.size() || registerNumber < 1 ||
+          registerNumber > maximumRadiusOffsetRegister) {
+        report(key->source(), "machine-unknown-key",
+               fmt::format("'{}' in [radius_offsets] is not a register from 1 to {}", name,
+                           maximumRadiusOffsetRegister));
+        continue;
+      }
+      double radius = 0;
+      if (number(table, name, radius) == nullptr) {
+        continue;
+      }
+      if (!std::isfinite(radius)) {
+        report(node->source(), "machine-out-of-range",
+               fmt::format("the radius of register {} must be a finite number", registerNumber));
+        continue;
+      }
+      into[registerNumber] = radius;
+    }
   }
 
   void readTarget(const toml::table& root, MachineDescription& machine) {

@@ -180,7 +180,8 @@ void Machine::setCompensation(const Block& block, int tenths) {
     auto found = options_.toolRadii.find(registerNumber);
     if (found == options_.toolRadii.end()) {
       failInBlock(block, fmt::format("D{}: the radius in offset register {} is not known; give "
-                                     "it with --tool-radius {}=R",
+                                     "it with --tool-radius {}=R or in the machine file's "
+                                     "[radius_offsets]",
                                      registerNumber, registerNumber, registerNumber));
     }
     radius = found->second;

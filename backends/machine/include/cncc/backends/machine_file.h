@@ -50,6 +50,10 @@
 //   [limits]
 //   maximum_feed = 10000                 # mm/min, > 0
 //   maximum_spindle_speed = 12000        # rpm, > 0
+//   [radius_offsets]                     # the tool radius offset registers
+//   1 = 4.0                              # (D1 ..) as the shop measured them,
+//   5 = 3.98                             # for `cncc sim` of programs with
+//                                        # G41/G42; registers 1 .. 9999
 //
 // Every block must be a block of the target's dialect: words of a letter
 // and a number and (comments) on the ISO targets, with no #-expressions;
@@ -61,6 +65,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/machine_setup.h"
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -85,7 +90,12 @@ struct MachineDescription {
   std::optional<ControllerProfile> profile;
   double maximumFeed = 0;         // mm/min; 0: no limit
   double maximumSpindleSpeed = 0; // rpm; 0: no limit
+  // Register -> radius, what `D n` selects for G41/G42 in `cncc sim`.
+  std::map<int, double> radiusOffsets;
 };
+
+// The largest tool radius offset register a machine file may set.
+inline constexpr int maximumRadiusOffsetRegister = 9999;
 
 // The machine described in the file at `path`; nullopt, with at least one
 // diagnostic, when it cannot be read or is not valid. Never throws.
