@@ -2,42 +2,34 @@
 // them, and a one-line description for hovers and completion.
 #include "cncc/frontend/sema.h"
 
+#include "cncc/geom/math_functions.h"
+
 namespace cncc::frontend {
 
 namespace {
 
-BuiltinInfo math1(std::string name, std::string description) {
-  return {name, {{"x", true}}, false, name + "(x)", std::move(description)};
-}
-
-BuiltinInfo math2(std::string name, std::string first, std::string second,
-                  std::string description) {
-  return {name,
-          {{first, true}, {second, true}},
-          false,
-          name + "(" + first + ", " + second + ")",
-          std::move(description)};
+// The math functions, from the one table the IR computes them by too.
+void addMathFunctions(std::vector<BuiltinInfo>& builtins) {
+  for (const geom::MathFunctionInfo& info : geom::mathFunctions) {
+    if (info.function == geom::MathFunction::Rem) { // the `%` operator
+      continue;
+    }
+    std::string name(info.name);
+    std::vector<BuiltinParameter> parameters;
+    std::string signature = name + "(";
+    for (int i = 0; i < info.arity; ++i) {
+      parameters.push_back({std::string(info.parameters[i]), true});
+      signature += (i > 0 ? ", " : "") + std::string(info.parameters[i]);
+    }
+    builtins.push_back(
+        {name, std::move(parameters), false, signature + ")", std::string(info.description)});
+  }
 }
 
 std::vector<BuiltinInfo> makeBuiltins() {
-  std::vector<BuiltinInfo> builtins = {
-      math1("sin", "sine of an angle in radians"),
-      math1("cos", "cosine of an angle in radians"),
-      math1("tan", "tangent of an angle in radians"),
-      math1("asin", "arc sine, in radians"),
-      math1("acos", "arc cosine, in radians"),
-      math1("atan", "arc tangent, in radians"),
-      math2("atan2", "y", "x", "angle of the point (x, y), in radians, -pi .. pi"),
-      math1("sqrt", "square root"),
-      math1("abs", "absolute value"),
-      math2("min", "a", "b", "the smaller of two numbers"),
-      math2("max", "a", "b", "the larger of two numbers"),
-      math2("pow", "base", "exponent", "base raised to exponent (also written base ^ exponent)"),
-      math1("exp", "e raised to x"),
-      math1("ln", "natural logarithm"),
-      math1("floor", "largest whole number not above x"),
-      math1("ceil", "smallest whole number not below x"),
-      math1("round", "nearest whole number, halves away from zero"),
+  std::vector<BuiltinInfo> builtins;
+  addMathFunctions(builtins);
+  std::vector<BuiltinInfo> others = {
       {"len", {{"list", true}}, false, "len(list)", "number of elements of a list"},
       {"nurbs",
        {{"order", false},
@@ -92,6 +84,7 @@ std::vector<BuiltinInfo> makeBuiltins() {
        "scale(curve, factor)",
        "the curve scaled about the origin"},
   };
+  builtins.insert(builtins.end(), others.begin(), others.end());
   return builtins;
 }
 

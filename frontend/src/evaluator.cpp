@@ -489,13 +489,14 @@ Value Evaluator::evaluateArithmetic(const BinaryExpr& binary, const Value& left,
     if (l == TypeKind::Point) {
       return scalePoint(left, 1.0 / b);
     }
-    return checkedNumber(op == BinaryOperator::Divide ? a / b : std::fmod(a, b), binary.span,
-                         [] { return std::string("the quotient"); });
+    return checkedNumber(
+        op == BinaryOperator::Divide ? a / b : geom::computeMath(geom::MathFunction::Rem, a, b),
+        binary.span, [] { return std::string("the quotient"); });
   case BinaryOperator::Power:
     if (!numbers) {
       return mismatch();
     }
-    return checkedNumber(std::pow(a, b), binary.span,
+    return checkedNumber(geom::computeMath(geom::MathFunction::Pow, a, b), binary.span,
                          [&] { return fmt::format("{:g} ^ {:g}", a, b); });
   default:
     return mismatch();
@@ -556,106 +557,6 @@ Value Evaluator::evaluateFunctionCall(const CallExpr& call, const Declaration& f
   return result;
 }
 
-namespace arithmetic {
-
-MathFunction mathFunction(std::string_view name) {
-  // By length, then by spelling: a few comparisons per call.
-  switch (name.size()) {
-  case 2:
-    return name == "ln" ? MathFunction::Ln : MathFunction::Other;
-  case 3: {
-    struct Entry {
-      std::string_view name;
-      MathFunction function;
-    };
-    static constexpr Entry entries[] = {
-        {"cos", MathFunction::Cos}, {"sin", MathFunction::Sin}, {"len", MathFunction::Len},
-        {"pow", MathFunction::Pow}, {"min", MathFunction::Min}, {"max", MathFunction::Max},
-        {"tan", MathFunction::Tan}, {"abs", MathFunction::Abs}, {"exp", MathFunction::Exp},
-    };
-    for (const Entry& entry : entries) {
-      if (entry.name[0] == name[0] && entry.name == name) {
-        return entry.function;
-      }
-    }
-    return MathFunction::Other;
-  }
-  case 4:
-    return name == "sqrt"   ? MathFunction::Sqrt
-           : name == "atan" ? MathFunction::Atan
-           : name == "asin" ? MathFunction::Asin
-           : name == "acos" ? MathFunction::Acos
-           : name == "ceil" ? MathFunction::Ceil
-                            : MathFunction::Other;
-  case 5:
-    return name == "atan2"   ? MathFunction::Atan2
-           : name == "floor" ? MathFunction::Floor
-           : name == "round" ? MathFunction::Round
-                             : MathFunction::Other;
-  default:
-    return MathFunction::Other;
-  }
-}
-
-double applyUnary(MathFunction function, double x) {
-  switch (function) {
-  case MathFunction::Sin:
-    return std::sin(x);
-  case MathFunction::Cos:
-    return std::cos(x);
-  case MathFunction::Tan:
-    return std::tan(x);
-  case MathFunction::Asin:
-    return std::asin(x);
-  case MathFunction::Acos:
-    return std::acos(x);
-  case MathFunction::Atan:
-    return std::atan(x);
-  case MathFunction::Sqrt:
-    return std::sqrt(x);
-  case MathFunction::Abs:
-    return std::abs(x);
-  case MathFunction::Exp:
-    return std::exp(x);
-  case MathFunction::Ln:
-    return std::log(x); // as the IR computes it: -inf at 0, NaN below
-  case MathFunction::Floor:
-    return std::floor(x);
-  case MathFunction::Ceil:
-    return std::ceil(x);
-  case MathFunction::Round:
-    return std::round(x);
-  default:
-    return 0;
-  }
-}
-
-double applyBinary(MathFunction function, double a, double b) {
-  switch (function) {
-  case MathFunction::Atan2:
-    return std::atan2(a, b);
-  case MathFunction::Pow:
-    return std::pow(a, b);
-  case MathFunction::Min:
-    return std::min(a, b);
-  default:
-    return std::max(a, b);
-  }
-}
-
-std::array<std::string_view, 2> binaryParameterNames(MathFunction function) {
-  switch (function) {
-  case MathFunction::Atan2:
-    return {"y", "x"};
-  case MathFunction::Pow:
-    return {"base", "exponent"};
-  default:
-    return {"a", "b"};
-  }
-}
-
-} // namespace arithmetic
-
 bool isArithmetic(BinaryOperator op) {
   switch (op) {
   case BinaryOperator::Add:
@@ -676,12 +577,9 @@ std::optional<arithmetic::MathFunction> numericMathCall(const CallExpr& call) {
       call.type.kind == TypeKind::Curve) {
     return std::nullopt;
   }
-  std::size_t count = call.arguments.size();
-  if (count != 1 && count != 2) {
-    return std::nullopt;
-  }
-  arithmetic::MathFunction function = arithmetic::mathFunction(call.callee);
-  if (function == arithmetic::MathFunction::Len) {
+  std::optional<arithmetic::MathFunction> function = arithmetic::mathFunction(call.callee);
+  if (!function ||
+      static_cast<int>(call.arguments.size()) != geom::mathFunctionInfo(*function).arity) {
     return std::nullopt;
   }
   return function;
@@ -713,13 +611,18 @@ Value Evaluator::evaluateMathCall(const CallExpr& call, const Bindings& bindings
 Value Evaluator::applyMathFunction(const CallExpr& call, const Value* values, std::size_t count) {
   using namespace arithmetic;
   std::string_view name = call.callee;
-  MathFunction function = mathFunction(name);
-  if (function == MathFunction::Len) {
+  if (name == "len") {
     if (count != 1 || values[0].type.kind != TypeKind::List) {
       return typeError(call.span, "len(...) needs a list");
     }
     return Value::ofNumber(static_cast<double>(values[0].list->size()));
   }
+  std::optional<MathFunction> found = mathFunction(name);
+  if (!found || static_cast<int>(count) != geom::mathFunctionInfo(*found).arity) {
+    return typeError(call.span,
+                     fmt::format("'{}' is no math function of {} arguments", name, count));
+  }
+  MathFunction function = *found;
   for (std::size_t i = 0; i < count; ++i) {
     if (values[i].type.kind != TypeKind::Num) {
       return typeError(call.arguments[i].value->span,
@@ -736,9 +639,6 @@ Value Evaluator::applyMathFunction(const CallExpr& call, const Value* values, st
     double result = applyBinary(function, a, b);
     return checkedNumber(result, call.span,
                          [&] { return fmt::format("{}({:g}, {:g})", name, a, b); });
-  }
-  if (count != 1) {
-    return {};
   }
   double x = values[0].number;
   double result = applyUnary(function, x);

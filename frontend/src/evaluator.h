@@ -6,6 +6,8 @@
 
 #include "sema_context.h"
 
+#include "cncc/geom/math_functions.h"
+
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -258,34 +260,27 @@ private:
   std::size_t stepsKept_ = 0;
 };
 
-// The arithmetic both evaluation paths share, so they agree to the bit.
+// The arithmetic both evaluation paths share, so they agree to the bit: the
+// one table of math functions the IR, its interpreter and the JIT compute
+// by too (cncc/geom/math_functions.h).
 namespace arithmetic {
-enum class MathFunction {
-  Other,
-  Len,
-  Atan2,
-  Pow,
-  Min,
-  Max,
-  Sin,
-  Cos,
-  Tan,
-  Asin,
-  Acos,
-  Atan,
-  Sqrt,
-  Abs,
-  Exp,
-  Ln,
-  Floor,
-  Ceil,
-  Round,
-};
-MathFunction mathFunction(std::string_view name);
-double applyUnary(MathFunction function, double x);
-double applyBinary(MathFunction function, double a, double b);
+using geom::MathFunction;
+// The math function CDL calls `name`; nullopt for any other name (len, a
+// curve constructor).
+inline std::optional<MathFunction> mathFunction(std::string_view name) {
+  const geom::MathFunctionInfo* info = geom::findMathFunction(name);
+  return info != nullptr ? std::optional(info->function) : std::nullopt;
+}
+inline double applyUnary(MathFunction function, double x) {
+  return geom::computeMath(function, x);
+}
+inline double applyBinary(MathFunction function, double a, double b) {
+  return geom::computeMath(function, a, b);
+}
 // The parameter names of a two-argument math function, in order.
-std::array<std::string_view, 2> binaryParameterNames(MathFunction function);
+inline std::array<std::string_view, 2> binaryParameterNames(MathFunction function) {
+  return geom::mathFunctionInfo(function).parameters;
+}
 } // namespace arithmetic
 
 // What the number fast paths (number_evaluation.cpp, number_sampling.cpp)

@@ -114,10 +114,12 @@ bool Evaluator::numberOfBinary(const BinaryExpr& binary, const Bindings& binding
     if (b == 0) {
       return false;
     }
-    result = op == BinaryOperator::Divide ? a / b : std::fmod(a, b);
+    result = op == BinaryOperator::Divide
+                 ? a / b
+                 : arithmetic::applyBinary(arithmetic::MathFunction::Rem, a, b);
     break;
   default:
-    result = std::pow(a, b);
+    result = arithmetic::applyBinary(arithmetic::MathFunction::Pow, a, b);
     break;
   }
   return std::isfinite(result);

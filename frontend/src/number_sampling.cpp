@@ -208,10 +208,14 @@ private:
       if (anyZero(right)) {
         return false;
       }
-      combine(left, right, result, [](double a, double b) { return std::fmod(a, b); });
+      combine(left, right, result, [](double a, double b) {
+        return arithmetic::applyBinary(arithmetic::MathFunction::Rem, a, b);
+      });
       break;
     default:
-      combine(left, right, result, [](double a, double b) { return std::pow(a, b); });
+      combine(left, right, result, [](double a, double b) {
+        return arithmetic::applyBinary(arithmetic::MathFunction::Pow, a, b);
+      });
       break;
     }
     return allFinite(result);

@@ -3,6 +3,8 @@
 // everything else is evaluated by the frontend's evaluator to a constant.
 #include "part_lowering.h"
 
+#include "cncc/ir/arithmetic.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -10,27 +12,6 @@
 namespace cncc::ir::lowering {
 
 using namespace frontend;
-
-namespace {
-
-const std::map<std::string, Opcode, std::less<>>& unaryMath() {
-  static const std::map<std::string, Opcode, std::less<>> table = {
-      {"sin", Opcode::Sin},     {"cos", Opcode::Cos},     {"tan", Opcode::Tan},
-      {"asin", Opcode::Asin},   {"acos", Opcode::Acos},   {"atan", Opcode::Atan},
-      {"sqrt", Opcode::Sqrt},   {"abs", Opcode::Abs},     {"exp", Opcode::Exp},
-      {"ln", Opcode::Ln},       {"floor", Opcode::Floor}, {"ceil", Opcode::Ceil},
-      {"round", Opcode::Round},
-  };
-  return table;
-}
-
-const std::map<std::string, Opcode, std::less<>>& binaryMath() {
-  static const std::map<std::string, Opcode, std::less<>> table = {
-      {"atan2", Opcode::Atan2}, {"min", Opcode::Min}, {"max", Opcode::Max}, {"pow", Opcode::Pow}};
-  return table;
-}
-
-} // namespace
 
 bool dependsOn(const Expr& expression, const Bindings& bindings) {
   auto any = [&](const auto& children) {
@@ -314,16 +295,15 @@ std::optional<Lowered> PartLowering::lowerCall(const CallExpr& call, const Bindi
         return std::nullopt;
       }
     }
-    if (auto found = unaryMath().find(call.callee);
-        found != unaryMath().end() && arguments.size() == 1) {
-      return Lowered{TypeKind::Num,
-                     {arithmetic_.unary(found->second, arguments[0].values.front())}};
+    // The math functions' table (cncc/geom/math_functions.h).
+    std::optional<Opcode> opcode = mathOpcode(call.callee, static_cast<int>(arguments.size()));
+    if (opcode && arguments.size() == 1) {
+      return Lowered{TypeKind::Num, {arithmetic_.unary(*opcode, arguments[0].values.front())}};
     }
-    if (auto found = binaryMath().find(call.callee);
-        found != binaryMath().end() && arguments.size() == 2) {
-      return Lowered{TypeKind::Num,
-                     {arithmetic_.binary(found->second, arguments[0].values.front(),
-                                         arguments[1].values.front())}};
+    if (opcode && arguments.size() == 2) {
+      return Lowered{
+          TypeKind::Num,
+          {arithmetic_.binary(*opcode, arguments[0].values.front(), arguments[1].values.front())}};
     }
     return std::nullopt;
   }

@@ -2,6 +2,9 @@
 
 #include "jit_runtime.h"
 
+#include "cncc/geom/math_functions.h"
+#include "cncc/ir/arithmetic.h"
+
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/Function.h>
 #include <llvm/IR/IRBuilder.h>
@@ -11,6 +14,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 
 namespace cncc::backends::jit {
 
@@ -24,34 +29,11 @@ bool endsStepSegment(Opcode opcode) {
   return opcode == Opcode::TableLoad || opcode == Opcode::Loop || opcode == Opcode::If;
 }
 
-// The libm function the interpreter calls for an operation, or nullptr.
-const char* libmFunction(Opcode opcode) {
-  switch (opcode) {
-  case Opcode::Sin:
-    return "sin";
-  case Opcode::Cos:
-    return "cos";
-  case Opcode::Tan:
-    return "tan";
-  case Opcode::Asin:
-    return "asin";
-  case Opcode::Acos:
-    return "acos";
-  case Opcode::Atan:
-    return "atan";
-  case Opcode::Exp:
-    return "exp";
-  case Opcode::Ln:
-    return "log";
-  case Opcode::Rem:
-    return "fmod";
-  case Opcode::Pow:
-    return "pow";
-  case Opcode::Atan2:
-    return "atan2";
-  default:
-    return nullptr;
-  }
+// The C library function the interpreter computes an operation by (the one
+// table of math functions, cncc/geom/math_functions.h).
+std::string libmFunction(Opcode opcode) {
+  std::optional<geom::MathFunction> function = ir::mathFunctionOf(opcode);
+  return function ? std::string(geom::mathFunctionInfo(*function).cFunction) : std::string();
 }
 
 class ModuleGenerator {
