@@ -347,6 +347,9 @@ private:
     case Opcode::Nurbs:
       printNurbs(instruction);
       return;
+    case Opcode::Spline: // lowered only for the sinumerik target
+      errors_.push_back("this controller has no Sinumerik spline blocks (move.spline)");
+      return;
     case Opcode::Spindle:
       line(fmt::format("S{} M3", spindleSpeed(instruction.operands[0])));
       spindleOn_ = true;

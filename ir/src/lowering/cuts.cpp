@@ -336,6 +336,9 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (!nativeArcs && lowerArcCut(cut, curve)) {
     return;
   }
+  if (!nativeArcs && lowerSplineCut(cut, curve)) {
+    return;
+  }
   if (lowerControllerCut(cut, curve)) {
     return;
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "lowering/affine.h"
+#include "lowering/spline_fitting.h"
 #include "lowering/tolerance_budget.h"
 
 #include "cncc/frontend/sema.h"
@@ -398,6 +399,12 @@ private:
                                                        const CutCurve& curve);
   geom::NurbsCurve nurbsForBlocks(const frontend::CutStmt& cut, const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
+
+  // spline_cuts.cpp
+  bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);
+  std::optional<Eigen::Vector3d> rampArrival(const geom::CurveSamples& samples);
+  FittedSplineBlocks splineBlocksFor(const frontend::CutStmt& cut, const CutCurve& curve,
+                                     SplineKind kind, const geom::CurveSamples& samples, bool ramp);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);

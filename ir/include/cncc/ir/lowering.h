@@ -22,6 +22,15 @@
 
 namespace cncc::ir {
 
+// How A and C spline blocks begin and end (--spline-ends).
+enum class SplineEnds {
+  // A tangent start where the block before the spline moves in XY (the
+  // last chord of a ramp), a natural one after a vertical plunge; a natural end.
+  Automatic,
+  Natural, // BNAT ENAT
+  Auto,    // BAUTO EAUTO
+};
+
 struct LoweringOptions {
   // The chord tolerance of a cut without tolerance=, samples= or spacing=.
   double defaultTolerance = 0.01;
@@ -32,6 +41,11 @@ struct LoweringOptions {
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;
+  // Sinumerik: a method=bspline, nurbs, cspline or aspline cut in a plane
+  // z = constant is lowered as move.spline blocks fitted once, on the
+  // printed grid (spline_cuts.cpp), their ends as `splineEnds` says.
+  bool splineBlocks = false;
+  SplineEnds splineEnds = SplineEnds::Automatic;
   // Targets that print host-fitted G02/G03 arcs: a cut that wants arcs
   // (arcs=true, or arcsOnEveryCut without arcs=false) is lowered as the
   // fitted move.arc ops on the printed grid (arc_cuts.cpp).
@@ -75,6 +89,9 @@ struct CutGeometry {
   // How its passes use move.arc: not at all, for the curve's own arc pieces
   // (native circular interpolation), or as arcs fitted to the curve.
   CutArcs arcMoves = CutArcs::None;
+  // Cut as spline blocks (move.spline): how they were found, as the
+  // program's comment says it; empty otherwise.
+  std::string splineBlocks = {};
 };
 
 // A part parameter whose default the lowering read as a constant, and the
