@@ -325,6 +325,38 @@ void PartLowering::beginCutMoves(CutGeometry geometry) {
   builder_.cutBegin(index);
 }
 
+std::vector<SampleRun> PartLowering::lapRuns(const CutCurve& curve,
+                                             const geom::CurveSamples& samples,
+                                             const std::vector<RampSegment>* ramp) {
+  std::vector<SampleLocation> locations;
+  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
+    locations.push_back(locate(curve, samples.parameters[i]));
+  }
+  return sampleRuns(curve, locations, ramp);
+}
+
+void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
+                                  const Eigen::Vector3d& start, const Eigen::Vector3d& finish,
+                                  ValueId feed, ValueId safe, const LapEmitter& lap) {
+  double previous = 0;
+  for (double depth : depths) {
+    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
+    double passZ = depth == 0 ? 0.0 : -depth;
+    double entryZ = ramp ? previous : passZ;
+    ValueId startX = builder_.constant(start.x());
+    ValueId startY = builder_.constant(start.y());
+    builder_.rapid(startX, startY, safe);
+    builder_.feed(startX, startY, builder_.constant(entryZ + start.z()), feed);
+    if (ramp) {
+      builder_.comment("ramp");
+      lap(entryZ, passZ);
+    }
+    lap(passZ, passZ);
+    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safe);
+    previous = passZ;
+  }
+}
+
 void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerNurbsCut(cut)) {
     return;
@@ -374,11 +406,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (ramp) {
     rampShares = rampSegments(curve, cut);
   }
-  std::vector<SampleLocation> locations;
-  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
-    locations.push_back(locate(curve, samples.parameters[i]));
-  }
-  std::vector<SampleRun> runs = sampleRuns(curve, locations, ramp ? &rampShares : nullptr);
+  std::vector<SampleRun> runs = lapRuns(curve, samples, ramp ? &rampShares : nullptr);
   auto lap = [&](double zFrom, double zTo) {
     emitSampleRuns(curve, runs, zFrom, zTo, feedValue, cut);
   };

@@ -374,6 +374,17 @@ private:
                                     const std::vector<RampSegment>* ramp);
   void emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs, double zFrom,
                       double zTo, ValueId feed, const frontend::CutStmt& cut);
+  // The runs of the samples after the first (the start, which the plunge reaches).
+  std::vector<SampleRun> lapRuns(const CutCurve& curve, const geom::CurveSamples& samples,
+                                 const std::vector<RampSegment>* ramp);
+  // The passes of a cut whose start and finish are constants: per depth its
+  // comment, a rapid over `start` at the safe height, the plunge (to the
+  // previous pass's height and a ramp lap down with `ramp`), the lap at the
+  // pass height and a rapid up over `finish`.
+  using LapEmitter = std::function<void(double zFrom, double zTo)>;
+  void emitHostPasses(const std::vector<double>& depths, bool ramp, const Eigen::Vector3d& start,
+                      const Eigen::Vector3d& finish, ValueId feed, ValueId safe,
+                      const LapEmitter& lap);
   std::vector<SampleRun> pieceSampleRuns(const CutCurve& curve, std::size_t piece, double budget,
                                          const std::vector<RampSegment>* ramp,
                                          const frontend::CutStmt& cut);

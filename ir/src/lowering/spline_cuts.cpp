@@ -142,32 +142,18 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<SampleRun> runs;
   if (ramp) {
     rampShares = rampSegments(curve, cut);
-    std::vector<SampleLocation> locations;
-    for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
-      locations.push_back(locate(curve, samples.parameters[i]));
-    }
-    runs = sampleRuns(curve, locations, &rampShares);
+    runs = lapRuns(curve, samples, &rampShares);
   }
-  const Eigen::Vector3d& start = blocks.start;
-  const Eigen::Vector3d& end = blocks.data.points.back();
-  double previous = 0;
-  for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double passZ = depth == 0 ? 0.0 : -depth;
-    double entryZ = ramp ? previous : passZ;
-    ValueId startX = builder_.constant(start.x());
-    ValueId startY = builder_.constant(start.y());
-    builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, builder_.constant(entryZ + start.z()), feedValue);
-    if (ramp) {
-      builder_.comment("ramp");
-      emitSampleRuns(curve, runs, entryZ, passZ, feedValue, cut);
+  // The ramp's lap as chords, the lap at the pass height as the blocks.
+  auto lap = [&](double zFrom, double zTo) {
+    if (zFrom != zTo) {
+      emitSampleRuns(curve, runs, zFrom, zTo, feedValue, cut);
+      return;
     }
     builder_.comment(comment);
-    builder_.spline(table, builder_.constant(passZ), feedValue);
-    builder_.rapid(builder_.constant(end.x()), builder_.constant(end.y()), safeValue);
-    previous = passZ;
-  }
+    builder_.spline(table, builder_.constant(zTo), feedValue);
+  };
+  emitHostPasses(depths, ramp, blocks.start, blocks.data.points.back(), feedValue, safeValue, lap);
   return true;
 }
 
