@@ -148,6 +148,20 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
   }
 }
 
+geom::CurveSamples PartLowering::checkedSamplesFor(const CutStmt& cut, const geom::Curve& curve) {
+  geom::CurveSamples samples = samplesFor(cut, curve);
+  for (const Eigen::Vector3d& point : samples.points) {
+    if (!point.allFinite()) {
+      fail(cut.curve->span, "this curve has a point that is not a finite number",
+           DiagnosticKind::NonFiniteValue);
+    }
+  }
+  if (samples.parameters.size() < 2) {
+    fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
+  }
+  return samples;
+}
+
 std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
   const Expr* depthExpression = modifierValue(cut, "depth");
   const Expr* stepExpression = modifierValue(cut, "step");
@@ -379,16 +393,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     return;
   }
   auto [feed, ramp] = beginHostCut(cut);
-  geom::CurveSamples samples = samplesFor(cut, *curve.geometry);
-  for (const Eigen::Vector3d& point : samples.points) {
-    if (!point.allFinite()) {
-      fail(cut.curve->span, "this curve has a point that is not a finite number",
-           DiagnosticKind::NonFiniteValue);
-    }
-  }
-  if (samples.parameters.size() < 2) {
-    fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
-  }
+  geom::CurveSamples samples = checkedSamplesFor(cut, *curve.geometry);
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);

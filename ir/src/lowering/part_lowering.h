@@ -361,6 +361,8 @@ private:
   ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // The same, every point finite and at least two of them (else an error).
+  geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
   // The share of the descent done at a sample (SampleLocation.local).

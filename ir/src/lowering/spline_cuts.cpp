@@ -116,13 +116,7 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
     return false;
   }
   auto [feed, ramp] = beginHostCut(cut);
-  geom::CurveSamples samples = samplesFor(cut, *curve.geometry);
-  for (const Eigen::Vector3d& point : samples.points) {
-    if (!point.allFinite()) {
-      fail(cut.curve->span, "this curve has a point that is not a finite number",
-           DiagnosticKind::NonFiniteValue);
-    }
-  }
+  geom::CurveSamples samples = checkedSamplesFor(cut, *curve.geometry);
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
