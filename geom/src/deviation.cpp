@@ -25,9 +25,11 @@ bool isLocalMaximum(const std::vector<double>& values, std::size_t i) {
 }
 
 // Sampled local maxima worth refining: refinement can lift a sample by about the
-// sampling accuracy, or more where the samples are coarse relative to the peak.
-bool worthRefining(double value, double largestSample, double accuracy) {
-  return value >= std::min(0.5 * largestSample, largestSample - 4.0 * accuracy);
+// sampling accuracy, or more where the samples are coarse relative to the peak;
+// `margin` is four times the accuracy, six where the samples themselves are off by
+// up to the accuracy.
+bool worthRefining(double value, double largestSample, double margin) {
+  return value >= std::min(0.5 * largestSample, largestSample - margin);
 }
 
 } // namespace
@@ -54,6 +56,10 @@ CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(cur
 }
 
 CurveProximity::~CurveProximity() = default;
+
+double CurveProximity::sampledDistance(const Eigen::Vector3d& p) const {
+  return index_->tree.nearest(p).distance;
+}
 
 CurveProximity::ClosestPoint CurveProximity::closestPoint(const Eigen::Vector3d& p) const {
   // The nearest segment of the sample polyline locates the closest curve point to
@@ -128,7 +134,7 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
   };
   auto distanceAt = [&](double s) { return path.nearest(curve.point(s)).distance; };
   for (std::size_t i = 0; i < t.size(); ++i) {
-    if (!isLocalMaximum(distance, i) || !worthRefining(distance[i], largestSample, accuracy))
+    if (!isLocalMaximum(distance, i) || !worthRefining(distance[i], largestSample, 4.0 * accuracy))
       continue;
     record(t[i]);
     double lo = t[i == 0 ? 0 : i - 1], hi = t[std::min(i + 1, t.size() - 1)];
@@ -156,9 +162,26 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     double length = (pointOn(j, 1.0) - pointOn(j, 0.0)).norm();
     double wanted = std::ceil(length / step);
     int n = static_cast<int>(std::clamp(wanted, 1.0, double(kMaxSamplesPerSegment)));
+    // The distance to the curve's sample polyline, within `accuracy` of the
+    // distance to the curve: the maxima worth it are refined on the curve.
     for (int k = 0; k <= n; ++k) {
-      distance[j].push_back(proximity.closestPoint(pointOn(j, double(k) / n)).distance);
+      distance[j].push_back(proximity.sampledDistance(pointOn(j, double(k) / n)));
       largestSample = std::max(largestSample, distance[j].back());
+    }
+  }
+
+  // The samples in order along the whole polyline (a vertex once): a peak of
+  // the distance is refined once, not once per segment that ends at it.
+  struct Sample {
+    std::size_t segment;
+    std::size_t k;
+  };
+  std::vector<Sample> order;
+  std::vector<double> along;
+  for (std::size_t j = 0; j < segments; ++j) {
+    for (std::size_t k = j == 0 ? 0 : 1; k < distance[j].size(); ++k) {
+      order.push_back({j, k});
+      along.push_back(distance[j][k]);
     }
   }
 
@@ -170,19 +193,25 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     if (c.distance > worst.distance)
       worst = {c.distance, p, c.point, c.parameter, j};
   };
-  for (std::size_t j = 0; j < segments; ++j) {
+  // Refines about sample k of segment j, within the samples beside it on that segment.
+  auto refine = [&](std::size_t j, std::size_t k) {
     const std::vector<double>& g = distance[j];
     double n = double(g.size() - 1);
     auto distanceAt = [&](double u) { return proximity.closestPoint(pointOn(j, u)).distance; };
-    for (std::size_t k = 0; k < g.size(); ++k) {
-      if (!isLocalMaximum(g, k) || !worthRefining(g[k], largestSample, accuracy))
-        continue;
-      record(j, double(k) / n);
-      double lo = double(k == 0 ? 0 : k - 1) / n;
-      double hi = double(std::min(k + 1, g.size() - 1)) / n;
-      if (lo < hi)
-        record(j, detail::maximiseBrent(distanceAt, lo, hi).t);
-    }
+    double lo = double(k == 0 ? 0 : k - 1) / n;
+    double hi = double(std::min(k + 1, g.size() - 1)) / n;
+    if (lo < hi)
+      record(j, detail::maximiseBrent(distanceAt, lo, hi).t);
+  };
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (!isLocalMaximum(along, i) || !worthRefining(along[i], largestSample, 6.0 * accuracy))
+      continue;
+    auto [j, k] = order[i];
+    record(j, double(k) / double(distance[j].size() - 1));
+    refine(j, k);
+    // A vertex: the next segment's first samples too.
+    if (k + 1 == distance[j].size() && j + 1 < segments)
+      refine(j + 1, 0);
   }
   return worst;
 }

@@ -131,6 +131,14 @@ void FunctionBuilder::nurbs(std::uint32_t table, ValueId z, ValueId feedRate,
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::spline(std::uint32_t table, ValueId z, ValueId feedRate) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Spline;
+  instruction.index = table;
+  instruction.operands = {z, feedRate};
+  append(std::move(instruction), ValueType::None);
+}
+
 void FunctionBuilder::spindle(ValueId speed) {
   operation(Opcode::Spindle, {speed});
 }

@@ -2,6 +2,7 @@
 
 #include "cncc/ir/arithmetic.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/spline_move.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,6 +69,9 @@ private:
       return;
     case Opcode::Nurbs:
       recordNurbs(instruction);
+      return;
+    case Opcode::Spline:
+      recordSpline(instruction);
       return;
     case Opcode::Alarm:
       throw InterpreterError("alarm: " + instruction.text);
@@ -175,6 +179,17 @@ private:
     std::size_t first = path_.events.size();
     nurbsMove(position_, function_.tables[instruction.index], value(instruction.operands[0]),
               value(instruction.operands[1]), weights, path_.events);
+    for (std::size_t k = first; k < path_.events.size(); ++k) {
+      path_.events[k].span = instruction.span;
+    }
+    const MachineEvent& end = path_.events.back();
+    position_ = {end.x, end.y, end.z};
+  }
+
+  void recordSpline(const Instruction& instruction) {
+    std::size_t first = path_.events.size();
+    splineMove(instruction.index, function_.tables[instruction.index],
+               value(instruction.operands[0]), value(instruction.operands[1]), path_.events);
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;
     }

@@ -223,6 +223,15 @@ private:
       builder_->nurbs(table, value(parts[1]), value(parts[2]), weights);
       return;
     }
+    case Opcode::Spline: {
+      std::vector<std::string_view> parts = splitList(rest);
+      if (parts.size() != 3 || !startsWith(parts[0], "@")) {
+        throw Failure{"expected 'move.spline @n, %z, %f'"};
+      }
+      auto table = static_cast<std::uint32_t>(parseNumber(parts[0].substr(1)));
+      builder_->spline(table, value(parts[1]), value(parts[2]));
+      return;
+    }
     case Opcode::Tool:
       parseTool(rest);
       return;

@@ -76,6 +76,7 @@ private:
       return;
     case Opcode::TableLoad:
     case Opcode::Nurbs:
+    case Opcode::Spline:
       out_ +=
           fmt::format("{}{}{} @{}, {}\n", indent, result, spelling, instruction.index, operandText);
       return;

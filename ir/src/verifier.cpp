@@ -1,6 +1,7 @@
 #include "cncc/ir/verifier.h"
 
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/spline_move.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -141,6 +142,9 @@ private:
     if (instruction.opcode == Opcode::Nurbs) {
       checkNurbs(instruction, where);
     }
+    if (instruction.opcode == Opcode::Spline) {
+      checkSpline(instruction, where);
+    }
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
     }
@@ -180,6 +184,16 @@ private:
     if (!readNurbsMoveTable(function_.tables[instruction.index], instruction.operands.size() - 2,
                             &why)) {
       problem(fmt::format("{} with {} weights: {}", where, instruction.operands.size() - 2, why));
+    }
+  }
+
+  // Its table holds spline blocks (spline_move.h).
+  void checkSpline(const Instruction& instruction, const std::string& where) {
+    std::string why;
+    if (instruction.index >= function_.tables.size()) {
+      problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
+    } else if (!readSplineMoveTable(function_.tables[instruction.index], &why)) {
+      problem(fmt::format("{}: {}", where, why));
     }
   }
 

@@ -34,26 +34,22 @@ backends::SinumerikOptions sinumerikOptionsFor(const BackendRequest& request) {
   options.inches = ir::partUnits(part) == ir::PartUnits::Inches;
   options.subprograms = request.options.subprograms;
   options.setup = machineSetup(request.options);
-  const std::string& ends = request.options.splineEnds;
-  options.transitions = ends == "natural" ? backends::SinumerikTransitions::Natural
-                        : ends == "auto"  ? backends::SinumerikTransitions::Auto
-                                          : backends::SinumerikTransitions::Automatic;
   return options;
 }
 
-std::vector<backends::SinumerikCut> sinumerikCuts(std::vector<ir::CutGeometry> geometries) {
-  std::vector<backends::SinumerikCut> cuts;
-  for (ir::CutGeometry& geometry : geometries) {
-    std::string method = geometry.method;
-    cuts.push_back({std::move(geometry), std::move(method)});
-  }
-  return cuts;
+ir::SplineEnds splineEndsOf(const std::string& ends) {
+  return ends == "natural" ? ir::SplineEnds::Natural
+         : ends == "auto"  ? ir::SplineEnds::Auto
+                           : ir::SplineEnds::Automatic;
 }
 
 } // namespace
 
-ir::LoweringOptions sinumerikLoweringOptions(const frontend::PartItem&, const DriverOptions&) {
-  return backends::sinumerikLoweringOptions();
+ir::LoweringOptions sinumerikLoweringOptions(const frontend::PartItem&,
+                                             const DriverOptions& options) {
+  backends::SinumerikOptions sinumerik;
+  sinumerik.transitions = splineEndsOf(options.splineEnds);
+  return backends::sinumerikLoweringOptions(sinumerik);
 }
 
 std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& request) {
@@ -80,16 +76,9 @@ std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& re
                                fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;
   }
-  std::vector<backends::SinumerikCut> cuts = sinumerikCuts(std::move(lowered->cuts));
-  try {
-    backends::SinumerikProgram program =
-        backends::writeSinumerik(path, cuts, sinumerikOptionsFor(request));
-    return SinumerikCompilation{std::move(program), std::move(cuts)};
-  } catch (const backends::SinumerikError& error) {
-    request.diagnostics.report(frontend::DiagnosticKind::DegenerateCurve,
-                               cuts[error.cut()].geometry.span, error.what());
-    return std::nullopt;
-  }
+  backends::SinumerikProgram program = backends::writeSinumerik(
+      path, lowered->function.tables, lowered->cuts.size(), sinumerikOptionsFor(request));
+  return SinumerikCompilation{std::move(program), std::move(lowered->cuts)};
 }
 
 backends::ExecutedProgram executeSinumerik(const backends::SinumerikProgram& program) {
@@ -105,9 +94,28 @@ backends::ExecutedProgram executeSinumerik(const backends::SinumerikProgram& pro
   return executed;
 }
 
+namespace {
+
+// With --stats: how each cut's spline blocks were found (a NURBS as it is,
+// reparametrised or re-fitted), before the measured statistics.
+void printSplineBlocks(const BackendRequest& request, const std::vector<ir::CutGeometry>& cuts) {
+  std::string text;
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    if (!cuts[i].splineBlocks.empty()) {
+      text += fmt::format("  cut {}: {}\n", i + 1, cuts[i].splineBlocks);
+    }
+  }
+  if (request.options.stats && !text.empty()) {
+    fmt::print(stderr, "spline blocks of part {}:\n{}", request.program.selectedPart->name, text);
+  }
+}
+
+} // namespace
+
 void sinumerikBackend(const BackendRequest& request) {
   std::optional<SinumerikCompilation> compiled = compileForSinumerik(request);
   if (compiled) {
+    printSplineBlocks(request, compiled->cuts);
     writeProgram(request, compiled->program.text, std::move(compiled->program.lineSpans));
   }
 }

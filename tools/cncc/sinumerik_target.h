@@ -15,7 +15,7 @@ namespace cncc::driver {
 
 struct SinumerikCompilation {
   backends::SinumerikProgram program;
-  std::vector<backends::SinumerikCut> cuts;
+  std::vector<ir::CutGeometry> cuts;
 };
 
 // The request's part compiled for Sinumerik; nullopt after a diagnostic.

@@ -68,7 +68,9 @@ std::optional<std::string> compiledText(const CheckedProgram& program, const Sou
   }
   DiagnosticEngine diagnostics(options.errorLimit);
   AtomicOutputFile memory = AtomicOutputFile::inMemory();
-  target->backend({program, sources, options, diagnostics, memory});
+  DriverOptions compile = options; // what a compile with --stats adds is printed once, before
+  compile.stats = false;
+  target->backend({program, sources, compile, diagnostics, memory});
   output.print(diagnostics, sources);
   if (diagnostics.hasErrors()) {
     return std::nullopt;

@@ -189,6 +189,10 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
   case Opcode::Nurbs:
     printNurbs(instruction);
     return;
+  case Opcode::Spline: // lowered only for the sinumerik target
+    errors_.push_back(
+        fmt::format("{} has no Sinumerik spline blocks (move.spline)", dialect_.controllerName));
+    return;
   case Opcode::Spindle:
     printSpindle(instruction);
     return;

@@ -1,13 +1,11 @@
 #include "cncc/backends/sinumerik_writer.h"
 #include "cncc/backends/program_format.h"
 
-#include "sinumerik_splines.h"
-
-#include "cncc/geom/discretisation.h"
-#include "cncc/geom/geometry_error.h"
+#include "cncc/ir/spline_move.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -29,33 +27,15 @@ std::string formatSinumerikNumber(double value, int decimals) {
 namespace {
 
 using ir::MachineEvent;
-using sinumerik::SplineBlocks;
-using sinumerik::SplineKind;
-
-constexpr double kSameZ = 1e-9;
-constexpr double kSamePoint = 1e-6;
 constexpr std::size_t kMaximumNameLength = 24;
 
-std::optional<SplineKind> splineKindOf(const std::string& method) {
-  if (method == "bspline" || method == "nurbs") {
-    return SplineKind::BSpline;
-  }
-  if (method == "cspline") {
-    return SplineKind::CSpline;
-  }
-  if (method == "aspline") {
-    return SplineKind::ASpline;
-  }
-  return std::nullopt;
-}
-
-std::string methodName(SplineKind kind) {
+std::string methodName(ir::SplineKind kind) {
   switch (kind) {
-  case SplineKind::BSpline:
+  case ir::SplineKind::BSpline:
     return "bspline";
-  case SplineKind::CSpline:
+  case ir::SplineKind::CSpline:
     return "cspline";
-  case SplineKind::ASpline:
+  case ir::SplineKind::ASpline:
     return "aspline";
   }
   return "";
@@ -111,19 +91,18 @@ const char* endWord(geom::SplineEndCondition condition) {
   return "";
 }
 
-// The spline blocks of one cut for one start direction.
-struct CachedSpline {
-  std::optional<Eigen::Vector3d> startDirection;
-  SplineBlocks blocks;
-  std::string subprogram; // its name, in the subprogram layout
+// A spline move's subprogram (the subprogram layout).
+struct SplineSubprogram {
+  std::uint32_t table = 0;
+  std::string name;
 };
 
 class ProgramWriter {
 public:
-  ProgramWriter(const ir::ToolPath& path, std::span<const SinumerikCut> cuts,
-                const SinumerikOptions& options)
-      : path_(path), cuts_(cuts), options_(options), name_(programNameOf(options.programName)) {
-    program_.cuts.resize(cuts.size());
+  ProgramWriter(const ir::ToolPath& path, std::span<const std::vector<double>> tables,
+                std::size_t cutCount, const SinumerikOptions& options)
+      : path_(path), tables_(tables), options_(options), name_(programNameOf(options.programName)) {
+    program_.cuts.resize(cutCount);
   }
 
   SinumerikProgram write() {
@@ -157,12 +136,8 @@ public:
 
 private:
   bool usesSplines() const {
-    for (const SinumerikCut& cut : cuts_) {
-      if (splineKindOf(cut.method)) {
-        return true;
-      }
-    }
-    return false;
+    return std::any_of(path_.events.begin(), path_.events.end(),
+                       [](const MachineEvent& e) { return e.splineTable != 0; });
   }
 
   void line(std::string text) {
@@ -254,8 +229,14 @@ private:
 
   // Up first and down last, as the G-code writer does.
   void rapid(const MachineEvent& e) {
-    exact_ = Eigen::Vector3d(e.x, e.y, e.z);
-    Eigen::Vector3d target = sinumerik::roundPoint({e.x, e.y, e.z}, options_.decimals);
+    // The G1 blocks of a pass of a cut without splines: its chords after the plunge.
+    if (cut_ && *cut_ < program_.cuts.size() && feedsInPass_ > 0 &&
+        program_.cuts[*cut_].method.empty()) {
+      program_.cuts[*cut_].method = "linear";
+      program_.cuts[*cut_].blocksPerPass = feedsInPass_ - 1;
+    }
+    feedsInPass_ = 0;
+    Eigen::Vector3d target = roundPoint({e.x, e.y, e.z});
     bool rising = !position_ || target.z() > position_->z() + 1e-12;
     if (rising) {
       move("G0", std::nullopt, std::nullopt, target.z(), std::nullopt);
@@ -264,9 +245,7 @@ private:
       move("G0", target.x(), target.y(), std::nullopt, std::nullopt);
       move("G0", std::nullopt, std::nullopt, target.z(), std::nullopt);
     }
-    previous_ = position_;
     position_ = target;
-    lastWasFeed_ = false;
   }
 
   void move(const char* code, std::optional<double> x, std::optional<double> y,
@@ -302,17 +281,12 @@ private:
   }
 
   std::size_t feed(std::size_t i) {
-    if (std::optional<Lap> lap = lapAt(i)) {
-      std::optional<SplineKind> kind = splineKindOf(cuts_[*cut_].method);
-      if (kind && lap->flat) {
-        spline(i, lap->end, *kind);
-      } else {
-        chords(i, *lap);
-      }
-      return lap->end - 1;
-    }
     const MachineEvent& e = path_.events[i];
+    if (e.splineTable != 0) {
+      return spline(i);
+    }
     linear({e.x, e.y, e.z}, e.feed);
+    ++feedsInPass_;
     return i;
   }
 
@@ -320,8 +294,7 @@ private:
   // helix, I J incremental from the start as printed.
   void arc(const MachineEvent& e) {
     Eigen::Vector3d start = position_.value_or(Eigen::Vector3d::Zero());
-    exact_ = Eigen::Vector3d(e.x, e.y, e.z);
-    Eigen::Vector3d target = sinumerik::roundPoint(*exact_, options_.decimals);
+    Eigen::Vector3d target = roundPoint({e.x, e.y, e.z});
     const char* code = e.clockwise ? "G2" : "G3";
     std::string words = code == motion_ ? "" : code;
     motion_ = code;
@@ -338,184 +311,75 @@ private:
       feed_ = feed;
     }
     line(words.front() == ' ' ? words.substr(1) : words);
-    previous_ = position_;
     position_ = target;
-    lastWasFeed_ = false;
   }
 
   void linear(const Eigen::Vector3d& point, double feed) {
-    exact_ = point;
-    Eigen::Vector3d target = sinumerik::roundPoint(point, options_.decimals);
+    Eigen::Vector3d target = roundPoint(point);
     move("G1", target.x(), target.y(), target.z(), feed);
-    previous_ = position_;
     position_ = target;
-    lastWasFeed_ = true;
   }
 
-  // A run of feeds that traces the cut's whole curve once, from the current
-  // position: at one height, or descending (a ramp) in proportion to the
-  // chord length done.
-  struct Lap {
-    std::size_t end = 0; // one past its last feed
-    bool flat = true;
-  };
-
-  std::optional<Lap> lapAt(std::size_t i) const {
-    if (!cut_ || *cut_ >= cuts_.size() || !exact_ || cuts_[*cut_].geometry.curve == nullptr) {
-      return std::nullopt;
+  // The blocks of the move.spline whose first chord is event `first`;
+  // returns its last chord.
+  std::size_t spline(std::size_t first) {
+    std::uint32_t table = path_.events[first].splineTable - 1;
+    std::string problem;
+    std::optional<ir::SplineBlockData> blocks =
+        table < tables_.size() ? ir::readSplineMoveTable(tables_[table], &problem) : std::nullopt;
+    if (!blocks) {
+      throw std::logic_error("a spline move without its blocks: " + problem);
     }
-    const geom::Curve& curve = *cuts_[*cut_].geometry.curve;
-    geom::ParameterRange domain = curve.domain();
-    auto inPlane = [](const Eigen::Vector3d& point) {
-      return Eigen::Vector2d(point.x(), point.y());
-    };
-    if ((inPlane(*exact_) - inPlane(curve.point(domain.t0))).norm() > kSamePoint) {
-      return std::nullopt;
+    std::size_t last = first;
+    while (last + 1 < path_.events.size() && path_.events[last + 1].splineTable == table + 1 &&
+           !path_.events[last + 1].splineStart) {
+      ++last;
     }
-    const MachineEvent& first = path_.events[i];
-    if ((Eigen::Vector2d(first.x, first.y) - inPlane(*exact_)).norm() <= kSamePoint) {
-      return std::nullopt; // a plunge
-    }
-    Eigen::Vector2d finish = inPlane(curve.point(domain.t1));
-    Lap lap;
-    lap.flat = isPlanar(curve);
-    for (std::size_t j = i; j < path_.events.size(); ++j) {
-      const MachineEvent& e = path_.events[j];
-      if (e.kind != MachineEvent::Kind::Feed) {
-        return std::nullopt;
-      }
-      lap.flat = lap.flat && std::abs(e.z - exact_->z()) <= kSameZ + 1e-9 * std::abs(e.z);
-      if ((Eigen::Vector2d(e.x, e.y) - finish).norm() <= kSamePoint) {
-        lap.end = j + 1;
-        return lap;
-      }
-    }
-    return std::nullopt;
-  }
-
-  // Whether the curve lies in a plane z = constant (the spline axes are X, Y).
-  static bool isPlanar(const geom::Curve& curve) {
-    constexpr int kProbes = 16;
-    geom::ParameterRange domain = curve.domain();
-    double z = curve.point(domain.t0).z();
-    for (int k = 1; k <= kProbes; ++k) {
-      if (std::abs(curve.point(domain.t0 + domain.length() * k / kProbes).z() - z) > kSameZ) {
-        return false;
-      }
-    }
-    return true;
-  }
-
-  // A lap that is not a spline: the tool path's chords, which left room for
-  // the printed rounding already (LoweringOptions::coordinateIncrement).
-  void chords(std::size_t first, const Lap& lap) {
-    for (std::size_t j = first; j < lap.end; ++j) {
-      const MachineEvent& e = path_.events[j];
-      linear({e.x, e.y, e.z}, e.feed);
-    }
-    SinumerikCutSummary& summary = program_.cuts[*cut_];
-    if (summary.method.empty()) {
-      summary.method = "linear";
-      summary.blocksPerPass = lap.end - first;
-    }
-  }
-
-  // The XY direction of the feed move that arrived at the current position.
-  std::optional<Eigen::Vector3d> arrivalDirection() const {
-    if (!lastWasFeed_ || !previous_ || !position_) {
-      return std::nullopt;
-    }
-    Eigen::Vector3d direction = *position_ - *previous_;
-    direction.z() = 0;
-    if (direction.norm() <= kSamePoint) {
-      return std::nullopt;
-    }
-    return direction.normalized();
-  }
-
-  const CachedSpline& splineFor(std::size_t first, std::size_t end, SplineKind kind) {
-    std::optional<Eigen::Vector3d> direction =
-        kind == SplineKind::BSpline ? std::nullopt : arrivalDirection();
-    std::vector<CachedSpline>& cached = cache_[*cut_];
-    for (const CachedSpline& entry : cached) {
-      bool same = entry.startDirection.has_value() == direction.has_value() &&
-                  (!direction || (*entry.startDirection - *direction).norm() <= 1e-12);
-      if (same) {
-        return entry;
-      }
-    }
-    const SinumerikCut& cut = cuts_[*cut_];
-    sinumerik::SplineRequest request;
-    request.curve = cut.geometry.curve.get();
-    request.kind = kind;
-    request.tolerance = cut.geometry.tolerance;
-    request.samples.push_back({exact_->x(), exact_->y(), 0.0});
-    for (std::size_t j = first; j < end; ++j) {
-      request.samples.push_back({path_.events[j].x, path_.events[j].y, 0.0});
-    }
-    request.startDirection = direction;
-    request.transitions = options_.transitions;
-    request.decimals = options_.decimals;
-    CachedSpline entry;
-    entry.startDirection = direction;
-    try {
-      entry.blocks = sinumerik::chooseSplineBlocks(request);
-    } catch (const geom::GeometryError& error) {
-      throw SinumerikError(
-          *cut_, fmt::format("cannot write cut {} as {}: {}", *cut_ + 1, cut.method, error.what()));
-    }
-    std::size_t index = cached.size();
-    entry.subprogram = index == 0 ? fmt::format("{}_CUT{}", name_, *cut_ + 1)
-                                  : fmt::format("{}_CUT{}_{}", name_, *cut_ + 1, index + 1);
-    SinumerikCutSummary& summary = program_.cuts[*cut_];
-    summary.method = methodName(kind);
-    summary.blocksPerPass = entry.blocks.points.size();
-    summary.modelledDeviation = std::max(summary.modelledDeviation, entry.blocks.deviation);
-    summary.exact = entry.blocks.exact;
-    summary.note = entry.blocks.note;
-    cached.push_back(std::move(entry));
-    if (options_.subprograms) {
-      subprogramOrder_.push_back({*cut_, index});
-    }
-    return cached.back();
-  }
-
-  void spline(std::size_t first, std::size_t end, SplineKind kind) {
-    const CachedSpline& entry = splineFor(first, end, kind);
-    const SplineBlocks& blocks = entry.blocks;
-    line(fmt::format(
-        "; {} {} {}, deviation {:.2g} mm{}{}", blocks.points.size(),
-        kind == SplineKind::BSpline ? "BSPLINE"
-                                    : (kind == SplineKind::CSpline ? "CSPLINE" : "ASPLINE"),
-        kind == SplineKind::BSpline ? "control points" : "knots", blocks.deviation,
-        blocks.exact ? ", the NURBS as it is" : "", blocks.note.empty() ? "" : ", " + blocks.note));
-    double lapFeed = path_.events[first].feed;
-    std::string feedText = number(lapFeed);
+    std::string feedText = number(path_.events[first].feed);
     if (feedText != feed_) {
       line("F" + feedText);
       feed_ = feedText;
     }
     if (options_.subprograms) {
-      line(entry.subprogram);
+      line(subprogramOf(table));
     } else {
-      splineBlocks(blocks, [this](std::string text) { line(std::move(text)); });
+      splineBlocks(*blocks, [this](std::string text) { line(std::move(text)); });
     }
-    // The spline ends where the curve does, at the lap's height.
-    const MachineEvent& last = path_.events[end - 1];
-    exact_ = Eigen::Vector3d(last.x, last.y, last.z);
-    previous_ = std::nullopt;
-    position_ = sinumerik::roundPoint({last.x, last.y, last.z}, options_.decimals);
-    x_ = number(blocks.points.back().x());
-    y_ = number(blocks.points.back().y());
+    if (cut_ && *cut_ < program_.cuts.size()) {
+      SinumerikCutSummary& summary = program_.cuts[*cut_];
+      summary.method = methodName(blocks->kind);
+      summary.blocksPerPass = blocks->points.size();
+    }
+    // The spline ends at its last point, at the pass height.
+    const MachineEvent& end = path_.events[last];
+    position_ = roundPoint({end.x, end.y, end.z});
+    x_ = number(blocks->points.back().x());
+    y_ = number(blocks->points.back().y());
     motion_ = "spline";
-    lastWasFeed_ = false;
+    return last;
   }
 
-  template <typename Emit> void splineBlocks(const SplineBlocks& blocks, Emit emit) const {
+  const std::string& subprogramOf(std::uint32_t table) {
+    for (const SplineSubprogram& subprogram : subprograms_) {
+      if (subprogram.table == table) {
+        return subprogram.name;
+      }
+    }
+    std::size_t cut = cut_.value_or(0);
+    std::size_t index = subprogramsOfCut_[cut]++;
+    subprograms_.push_back({table, index == 0
+                                       ? fmt::format("{}_CUT{}", name_, cut + 1)
+                                       : fmt::format("{}_CUT{}_{}", name_, cut + 1, index + 1)});
+    subprogramCuts_.push_back(cut_);
+    return subprograms_.back().name;
+  }
+
+  template <typename Emit> void splineBlocks(const ir::SplineBlockData& blocks, Emit emit) const {
+    bool bspline = blocks.kind == ir::SplineKind::BSpline;
     for (std::size_t i = 0; i < blocks.points.size(); ++i) {
       std::string words =
           fmt::format("X{} Y{}", number(blocks.points[i].x()), number(blocks.points[i].y()));
-      if (blocks.kind == SplineKind::BSpline) {
+      if (bspline) {
         words += fmt::format(" PW={} PL={}", formatSinumerikNumber(blocks.weights[i], 4),
                              formatSinumerikNumber(blocks.intervals[i], options_.decimals + 3));
         if (i == 0) {
@@ -523,27 +387,34 @@ private:
         }
       } else if (i == 0) {
         emit(fmt::format("{} {}", startWord(blocks.start), endWord(blocks.end)));
-        words = (blocks.kind == SplineKind::CSpline ? "CSPLINE " : "ASPLINE ") + words;
+        words = (blocks.kind == ir::SplineKind::CSpline ? "CSPLINE " : "ASPLINE ") + words;
       }
       emit(words);
     }
   }
 
   void writeSubprograms() {
-    for (const auto& [cut, index] : subprogramOrder_) {
-      const CachedSpline& entry = cache_[cut][index];
-      cut_ = cut;
-      line(fmt::format("%_N_{}_SPF", entry.subprogram));
+    for (std::size_t k = 0; k < subprograms_.size(); ++k) {
+      const SplineSubprogram& subprogram = subprograms_[k];
+      cut_ = subprogramCuts_[k];
+      std::optional<ir::SplineBlockData> blocks =
+          ir::readSplineMoveTable(tables_[subprogram.table]);
+      line(fmt::format("%_N_{}_SPF", subprogram.name));
       line(";$PATH=/_N_SPF_DIR");
       line(fmt::format("; cut {}: the spline of every pass, at the height the caller is at",
-                       cut + 1));
-      splineBlocks(entry.blocks, [this](std::string text) { line(std::move(text)); });
+                       cut_.value_or(0) + 1));
+      splineBlocks(*blocks, [this](std::string text) { line(std::move(text)); });
       line("M17");
     }
   }
 
+  Eigen::Vector3d roundPoint(const Eigen::Vector3d& point) const {
+    auto rounded = [this](double value) { return std::stod(number(value)); };
+    return {rounded(point.x()), rounded(point.y()), rounded(point.z())};
+  }
+
   const ir::ToolPath& path_;
-  std::span<const SinumerikCut> cuts_;
+  std::span<const std::vector<double>> tables_;
   const SinumerikOptions& options_;
   std::string name_;
   SinumerikProgram program_;
@@ -552,14 +423,14 @@ private:
   std::vector<frontend::SourceSpan> spanOfPrintedLine_;
   frontend::SourceSpan span_; // of the event being written
   std::optional<std::size_t> cut_;
-  std::optional<Eigen::Vector3d> position_, previous_;
-  std::optional<Eigen::Vector3d> exact_; // the tool path's position, unrounded
-  bool lastWasFeed_ = false;
+  std::optional<Eigen::Vector3d> position_;
+  std::size_t feedsInPass_ = 0; // G1 blocks since the last rapid
   bool spindleOn_ = false;
   bool pathModeWritten_ = false;
   std::string motion_, x_, y_, z_, feed_;
-  std::map<std::size_t, std::vector<CachedSpline>> cache_;
-  std::vector<std::pair<std::size_t, std::size_t>> subprogramOrder_;
+  std::vector<SplineSubprogram> subprograms_;
+  std::vector<std::optional<std::size_t>> subprogramCuts_;
+  std::map<std::size_t, std::size_t> subprogramsOfCut_;
 };
 
 } // namespace
@@ -567,13 +438,16 @@ private:
 ir::LoweringOptions sinumerikLoweringOptions(const SinumerikOptions& options) {
   ir::LoweringOptions lowering;
   lowering.splineInterpolation = true;
+  lowering.splineBlocks = true;
+  lowering.splineEnds = options.transitions;
   lowering.coordinateIncrement = std::pow(10.0, -options.decimals);
   return lowering;
 }
 
-SinumerikProgram writeSinumerik(const ir::ToolPath& path, std::span<const SinumerikCut> cuts,
+SinumerikProgram writeSinumerik(const ir::ToolPath& path,
+                                std::span<const std::vector<double>> tables, std::size_t cutCount,
                                 const SinumerikOptions& options) {
-  return ProgramWriter(path, cuts, options).write();
+  return ProgramWriter(path, tables, cutCount, options).write();
 }
 
 } // namespace cncc::backends

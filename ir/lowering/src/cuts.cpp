@@ -148,6 +148,20 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
   }
 }
 
+geom::CurveSamples PartLowering::checkedSamplesFor(const CutStmt& cut, const geom::Curve& curve) {
+  geom::CurveSamples samples = samplesFor(cut, curve);
+  for (const Eigen::Vector3d& point : samples.points) {
+    if (!point.allFinite()) {
+      fail(cut.curve->span, "this curve has a point that is not a finite number",
+           DiagnosticKind::NonFiniteValue);
+    }
+  }
+  if (samples.parameters.size() < 2) {
+    fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
+  }
+  return samples;
+}
+
 std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
   const Expr* depthExpression = modifierValue(cut, "depth");
   const Expr* stepExpression = modifierValue(cut, "step");
@@ -325,6 +339,38 @@ void PartLowering::beginCutMoves(CutGeometry geometry) {
   builder_.cutBegin(index);
 }
 
+std::vector<SampleRun> PartLowering::lapRuns(const CutCurve& curve,
+                                             const geom::CurveSamples& samples,
+                                             const std::vector<RampSegment>* ramp) {
+  std::vector<SampleLocation> locations;
+  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
+    locations.push_back(locate(curve, samples.parameters[i]));
+  }
+  return sampleRuns(curve, locations, ramp);
+}
+
+void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
+                                  const Eigen::Vector3d& start, const Eigen::Vector3d& finish,
+                                  ValueId feed, ValueId safe, const LapEmitter& lap) {
+  double previous = 0;
+  for (double depth : depths) {
+    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
+    double passZ = depth == 0 ? 0.0 : -depth;
+    double entryZ = ramp ? previous : passZ;
+    ValueId startX = builder_.constant(start.x());
+    ValueId startY = builder_.constant(start.y());
+    builder_.rapid(startX, startY, safe);
+    builder_.feed(startX, startY, builder_.constant(entryZ + start.z()), feed);
+    if (ramp) {
+      builder_.comment("ramp");
+      lap(entryZ, passZ);
+    }
+    lap(passZ, passZ);
+    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safe);
+    previous = passZ;
+  }
+}
+
 void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerNurbsCut(cut)) {
     return;
@@ -336,6 +382,9 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (!nativeArcs && lowerArcCut(cut, curve)) {
     return;
   }
+  if (!nativeArcs && lowerSplineCut(cut, curve)) {
+    return;
+  }
   if (lowerControllerCut(cut, curve)) {
     return;
   }
@@ -344,16 +393,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     return;
   }
   auto [feed, ramp] = beginHostCut(cut);
-  geom::CurveSamples samples = samplesFor(cut, *curve.geometry);
-  for (const Eigen::Vector3d& point : samples.points) {
-    if (!point.allFinite()) {
-      fail(cut.curve->span, "this curve has a point that is not a finite number",
-           DiagnosticKind::NonFiniteValue);
-    }
-  }
-  if (samples.parameters.size() < 2) {
-    fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
-  }
+  geom::CurveSamples samples = checkedSamplesFor(cut, *curve.geometry);
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
@@ -371,11 +411,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (ramp) {
     rampShares = rampSegments(curve, cut);
   }
-  std::vector<SampleLocation> locations;
-  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
-    locations.push_back(locate(curve, samples.parameters[i]));
-  }
-  std::vector<SampleRun> runs = sampleRuns(curve, locations, ramp ? &rampShares : nullptr);
+  std::vector<SampleRun> runs = lapRuns(curve, samples, ramp ? &rampShares : nullptr);
   auto lap = [&](double zFrom, double zTo) {
     emitSampleRuns(curve, runs, zFrom, zTo, feedValue, cut);
   };

@@ -266,23 +266,7 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   geom::ParameterRange domain = curve.geometry->domain();
   Eigen::Vector3d start = curve.geometry->point(domain.t0);
   Eigen::Vector3d finish = curve.geometry->point(domain.t1);
-  double previous = 0;
-  for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double passZ = depth == 0 ? 0.0 : -depth;
-    double entryZ = ramp ? previous : passZ;
-    ValueId startX = builder_.constant(start.x());
-    ValueId startY = builder_.constant(start.y());
-    builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, builder_.constant(entryZ + start.z()), feedValue);
-    if (ramp) {
-      builder_.comment("ramp");
-      lap(entryZ, passZ);
-    }
-    lap(passZ, passZ);
-    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safeValue);
-    previous = passZ;
-  }
+  emitHostPasses(depths, ramp, start, finish, feedValue, safeValue, lap);
 }
 
 } // namespace cncc::ir::lowering

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "affine.h"
+#include "spline_fitting.h"
 #include "tolerance_budget.h"
 
 #include "cncc/frontend/sema.h"
@@ -360,6 +361,8 @@ private:
   ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // The same, every point finite and at least two of them (else an error).
+  geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
   // The share of the descent done at a sample (SampleLocation.local).
@@ -373,6 +376,17 @@ private:
                                     const std::vector<RampSegment>* ramp);
   void emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs, double zFrom,
                       double zTo, ValueId feed, const frontend::CutStmt& cut);
+  // The runs of the samples after the first (the start, which the plunge reaches).
+  std::vector<SampleRun> lapRuns(const CutCurve& curve, const geom::CurveSamples& samples,
+                                 const std::vector<RampSegment>* ramp);
+  // The passes of a cut whose start and finish are constants: per depth its
+  // comment, a rapid over `start` at the safe height, the plunge (to the
+  // previous pass's height and a ramp lap down with `ramp`), the lap at the
+  // pass height and a rapid up over `finish`.
+  using LapEmitter = std::function<void(double zFrom, double zTo)>;
+  void emitHostPasses(const std::vector<double>& depths, bool ramp, const Eigen::Vector3d& start,
+                      const Eigen::Vector3d& finish, ValueId feed, ValueId safe,
+                      const LapEmitter& lap);
   std::vector<SampleRun> pieceSampleRuns(const CutCurve& curve, std::size_t piece, double budget,
                                          const std::vector<RampSegment>* ramp,
                                          const frontend::CutStmt& cut);
@@ -398,6 +412,12 @@ private:
                                                        const CutCurve& curve);
   geom::NurbsCurve nurbsForBlocks(const frontend::CutStmt& cut, const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
+
+  // spline_cuts.cpp
+  bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);
+  std::optional<Eigen::Vector3d> rampArrival(const geom::CurveSamples& samples);
+  FittedSplineBlocks splineBlocksFor(const frontend::CutStmt& cut, const CutCurve& curve,
+                                     SplineKind kind, const geom::CurveSamples& samples, bool ramp);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);

@@ -1,6 +1,7 @@
 // A cut's tolerance, split once between the approximation (chords, arcs,
-// fitted splines) and the controller's rounding of the printed numbers, and
-// read by every way of lowering the cut: nothing else computes the rounding.
+// fitted splines), the controller's rounding of the printed numbers and the
+// spline model's error, and read by every way of lowering the cut: nothing
+// else computes the rounding.
 #pragma once
 
 #include <cmath>
@@ -23,6 +24,19 @@ struct ToleranceBudget {
   // What is left for the chords between rounded points, and for arcs.
   double forPoints(int axes = 3) const { return tolerance - pointRounding(axes); }
   double forArcs() const { return tolerance - arcRounding(); }
+
+  // The spline model's error (spline_fitting.cpp): how accurately the
+  // deviation of a modelled spline from the curve is measured, and how far
+  // an analytic curve's stand-in, on which the fits search, may be off.
+  double measurementAccuracy() const { return tolerance * 1e-3; }
+  double standInError() const { return tolerance * 1e-4; }
+  // What is left for a B spline's control points, which rounding moves the
+  // spline by at most as much; and for the knots of a C or A spline, where
+  // rounding a knot also turns its neighbours' tangents.
+  double forSplineControlPoints() const {
+    return tolerance - measurementAccuracy() - pointRounding();
+  }
+  double forSplineKnots() const { return tolerance - measurementAccuracy() - 3 * pointRounding(); }
 };
 
 } // namespace cncc::ir::lowering

@@ -25,7 +25,8 @@ struct SinumerikPart {
   frontend::SourceManager sources;
   frontend::DiagnosticEngine diagnostics;
   std::optional<frontend::CheckedProgram> program;
-  std::vector<backends::SinumerikCut> cuts;
+  std::vector<ir::CutGeometry> cuts;
+  ir::Function function; // as lowered
   ir::ToolPath path;
   backends::SinumerikProgram output;
 };
@@ -58,19 +59,18 @@ inline std::unique_ptr<SinumerikPart> compileForSinumerik(const std::string& tex
     ADD_FAILURE() << "the part does not check";
     return nullptr;
   }
-  ir::LoweringOptions lowering = backends::sinumerikLoweringOptions();
+  ir::LoweringOptions lowering = backends::sinumerikLoweringOptions(options);
   std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
       *part->program, *part->program->selectedPart, part->diagnostics, lowering);
   if (!lowered) {
     ADD_FAILURE() << "the part does not lower";
     return nullptr;
   }
+  part->function = lowered->function;
   part->path = ir::interpret(lowered->function);
-  for (ir::CutGeometry& geometry : lowered->cuts) {
-    std::string method = geometry.method;
-    part->cuts.push_back({std::move(geometry), std::move(method)});
-  }
-  part->output = backends::writeSinumerik(part->path, part->cuts, options);
+  part->cuts = std::move(lowered->cuts);
+  part->output =
+      backends::writeSinumerik(part->path, part->function.tables, part->cuts.size(), options);
   return part;
 }
 

@@ -31,13 +31,10 @@ struct Verified {
 Verified verify(const SinumerikPart& part) {
   // Chords sagging a thousandth of the tolerance, at least 1e-6 mm.
   sinumerik::SinumerikRunOptions options;
-  options.sampleTolerance = std::max(1e-6, part.cuts.front().geometry.tolerance * 1e-3);
+  options.sampleTolerance = std::max(1e-6, part.cuts.front().tolerance * 1e-3);
   sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(part.output.text, options);
   EXPECT_FALSE(run.error) << (run.error ? run.error->what() : "");
-  std::vector<ir::CutGeometry> cuts;
-  for (const SinumerikCut& cut : part.cuts) {
-    cuts.push_back(cut.geometry);
-  }
+  const std::vector<ir::CutGeometry>& cuts = part.cuts;
   ExecutedProgram program{part.output.text, 0,
                           sinumerik::executedPathOf(run, part.output.cutOfLine)};
   PathStatistics statistics = measureProgram(program, cuts, {});
@@ -99,30 +96,45 @@ TEST(SinumerikWriter, SProfileNurbsIsWrittenExactly) {
   EXPECT_EQ(countLines(text, "BSPLINE SD=3 X42.8735 Y24.1467 PW=1 PL=0"), 3u);
   EXPECT_EQ(countLines(text, "X132.4671 Y35.1148 PW=3 PL=0.25"), 3u);
   EXPECT_EQ(part->output.cuts[0].blocksPerPass, 6u);
-  EXPECT_TRUE(part->output.cuts[0].exact);
+  EXPECT_EQ(countLines(text, "; 6 BSPLINE control points, deviation "), 3u);
+  EXPECT_NE(text.find("mm, the NURBS as it is\n"), std::string::npos);
   Verified verified = verify(*part);
   EXPECT_LT(verified.splineDeviation, 1e-6);
   EXPECT_LE(verified.pathDeviation, 1e-5); // the sampled path, chords of 1e-6 mm
 }
 
-TEST(SinumerikWriter, WeightsOutsidePwAreRefittedNotClipped) {
-  // w6 = 5 is outside PW's 0..3 (relative to the first weight, 1).
+TEST(SinumerikWriter, WeightsOutsidePwAreReparametrisedNotClipped) {
+  // w6 = 5 is outside PW's 0..3 (relative to the first weight, 1): a
+  // reparametrisation brings it in, the curve unchanged.
   auto part = compileForSinumerik(replaced(
       replaced(exampleText("s_profile.cdl"), "tolerance=0.01", "tolerance=0.01 method=bspline"),
       "w6 = 3", "w6 = 5"));
   ASSERT_TRUE(part);
-  EXPECT_FALSE(part->output.cuts[0].exact);
-  EXPECT_NE(part->output.cuts[0].note.find("PW"), std::string::npos);
+  EXPECT_NE(part->output.text.find("the NURBS as it is, reparametrised (lambda "),
+            std::string::npos);
   EXPECT_EQ(part->output.text.find("PW=5"), std::string::npos);
+  EXPECT_EQ(part->output.cuts[0].blocksPerPass, 6u);
   Verified verified = verify(*part);
-  EXPECT_LE(verified.splineDeviation, 0.01);
+  // Only the printed numbers move it: PW in steps of 0.0001 (2.3e-4 mm).
+  EXPECT_LE(verified.splineDeviation, 5e-4);
   EXPECT_LE(verified.pathDeviation, 0.01);
+  // A weight no reparametrisation brings into PW's range: re-fitted.
+  auto refitted = compileForSinumerik(replaced(
+      replaced(exampleText("s_profile.cdl"), "tolerance=0.01", "tolerance=0.01 method=bspline"),
+      "weights=[1,1,1,1,1,w6,1]", "weights=[1,1,1,0.000001,1,1,1]"));
+  ASSERT_TRUE(refitted);
+  EXPECT_NE(refitted->output.text.find(", re-fitted: no reparametrisation brings its weights"),
+            std::string::npos);
+  EXPECT_EQ(refitted->output.text.find("the NURBS as it is"), std::string::npos);
+  Verified refit = verify(*refitted);
+  EXPECT_LE(refit.splineDeviation, 0.01);
+  EXPECT_LE(refit.pathDeviation, 0.01);
   // Scaling all weights keeps a NURBS: first weight 2, the others up to 6.
   auto scaled = compileForSinumerik(replaced(
       replaced(exampleText("s_profile.cdl"), "tolerance=0.01", "tolerance=0.01 method=bspline"),
       "weights=[1,1,1,1,1,w6,1]", "weights=[2,2,2,2,2,6,2]"));
   ASSERT_TRUE(scaled);
-  EXPECT_TRUE(scaled->output.cuts[0].exact);
+  EXPECT_NE(scaled->output.text.find("mm, the NURBS as it is\n"), std::string::npos);
   EXPECT_EQ(countLines(scaled->output.text, "X132.4671 Y35.1148 PW=3 PL=0.25"), 3u);
 }
 
@@ -136,7 +148,7 @@ TEST(SinumerikWriter, QuadraticNurbsIsSdTwoWithRoundedWeights) {
   ASSERT_TRUE(part);
   EXPECT_EQ(countLines(part->output.text, "BSPLINE SD=2 X10 Y10 PW=0.7071 PL=0"), 1u);
   EXPECT_EQ(countLines(part->output.text, "X0 Y10 PW=1 PL=1"), 1u);
-  EXPECT_TRUE(part->output.cuts[0].exact);
+  EXPECT_NE(part->output.text.find("the NURBS as it is"), std::string::npos);
   Verified verified = verify(*part);
   EXPECT_LT(verified.splineDeviation, 1e-4);
   EXPECT_GT(verified.splineDeviation, 1e-7); // the rounded weight is what runs
@@ -230,10 +242,7 @@ void expectEveryCutWithinTolerance(const SinumerikPart& part) {
   options.sampleTolerance = 1e-5; // the tightest tolerance here is 0.005 mm
   sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(part.output.text, options);
   ASSERT_FALSE(run.error) << run.error->what();
-  std::vector<ir::CutGeometry> cuts;
-  for (const SinumerikCut& cut : part.cuts) {
-    cuts.push_back(cut.geometry);
-  }
+  const std::vector<ir::CutGeometry>& cuts = part.cuts;
   ExecutedProgram program{part.output.text, 0,
                           sinumerik::executedPathOf(run, part.output.cutOfLine)};
   PathStatistics statistics = measureProgram(program, cuts, {});

@@ -7,6 +7,7 @@
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/spline_move.h"
 #include "cncc/ir/verifier.h"
 
 #include <gtest/gtest.h>
@@ -193,6 +194,29 @@ OpcodeCase nurbsCase() {
   return {"nurbs", builder.finish()};
 }
 
+// A C spline after a ramp's chord (a tangent start), then a B spline.
+OpcodeCase splineCase() {
+  FunctionBuilder builder("spline");
+  ir::SplineBlockData cspline;
+  cspline.kind = ir::SplineKind::CSpline;
+  cspline.start = geom::SplineEndCondition::Tangent;
+  cspline.points = {{5, 3, 0}, {10, 0, 0}, {15, 2, 0}};
+  ir::SplineBlockData bspline;
+  bspline.degree = 2;
+  bspline.points = {{20, 5, 0}, {25, 0, 0}};
+  bspline.weights = {2, 1};
+  bspline.intervals = {0, 1};
+  std::uint32_t first = builder.addTable(ir::splineMoveTable(cspline));
+  std::uint32_t second = builder.addTable(ir::splineMoveTable(bspline));
+  ValueId feed = builder.constant(250);
+  ValueId depth = builder.parameter(builder.addParameter("depth", -0.5));
+  builder.rapid(builder.constant(-4), builder.constant(0), builder.constant(1));
+  builder.feed(builder.constant(0), builder.constant(0), depth, feed);
+  builder.spline(first, depth, feed);
+  builder.spline(second, depth, feed);
+  return {"spline", builder.finish()};
+}
+
 std::vector<OpcodeCase> opcodeCases() {
   std::vector<OpcodeCase> cases;
   for (Opcode opcode : {Opcode::Neg, Opcode::Abs, Opcode::Sqrt, Opcode::Sin, Opcode::Cos,
@@ -214,6 +238,7 @@ std::vector<OpcodeCase> opcodeCases() {
   cases.push_back(loopsCase());
   cases.push_back(arcsCase());
   cases.push_back(nurbsCase());
+  cases.push_back(splineCase());
   return cases;
 }
 

@@ -2,6 +2,7 @@
 
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/spline_move.h"
 
 #include <fmt/format.h>
 
@@ -110,6 +111,21 @@ static std::int32_t cncc_jit_nurbs(RunContext* context, std::uint32_t table, dou
   }
 }
 
+// `move.spline`, as the interpreter's splineMove records it.
+static std::int32_t cncc_jit_spline(RunContext* context, std::uint32_t table, double z,
+                                    double feed) {
+  if (context->exception) {
+    return 1;
+  }
+  try {
+    ir::splineMove(table, (*context->tables)[table], z, feed, *context->events);
+    return 0;
+  } catch (...) {
+    context->exception = std::current_exception();
+    return 1;
+  }
+}
+
 static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
   return record(context, [&] {
     ir::MachineEvent event;
@@ -196,6 +212,7 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_arc", reinterpret_cast<void*>(&cncc_jit_arc)},
       {"cncc_jit_nurbs_weight", reinterpret_cast<void*>(&cncc_jit_nurbs_weight)},
       {"cncc_jit_nurbs", reinterpret_cast<void*>(&cncc_jit_nurbs)},
+      {"cncc_jit_spline", reinterpret_cast<void*>(&cncc_jit_spline)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
       {"cncc_jit_setting", reinterpret_cast<void*>(&cncc_jit_setting)},

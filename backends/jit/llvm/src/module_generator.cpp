@@ -198,6 +198,7 @@ private:
     case Opcode::Feed:
     case Opcode::Arc:
     case Opcode::Nurbs:
+    case Opcode::Spline:
     case Opcode::Alarm:
     case Opcode::Spindle:
     case Opcode::Tool:
@@ -384,6 +385,10 @@ private:
         callRuntime("cncc_jit_nurbs_weight", {f64_}, {arguments[k]});
       }
       callback = "cncc_jit_nurbs";
+      arguments = {builder_.getInt32(instruction.index), arguments[0], arguments[1]};
+      break;
+    case Opcode::Spline:
+      callback = "cncc_jit_spline";
       arguments = {builder_.getInt32(instruction.index), arguments[0], arguments[1]};
       break;
     case Opcode::Spindle:

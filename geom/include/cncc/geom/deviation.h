@@ -63,6 +63,9 @@ public:
     Eigen::Vector3d point;
   };
   ClosestPoint closestPoint(const Eigen::Vector3d& p) const;
+  /// The distance from p to the polyline through the samples, within `accuracy` of
+  /// its distance to the curve, without evaluating the curve.
+  double sampledDistance(const Eigen::Vector3d& p) const;
 
   const std::vector<double>& sampleParameters() const { return parameters_; }
   const std::vector<Eigen::Vector3d>& samplePoints() const { return points_; }

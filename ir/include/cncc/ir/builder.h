@@ -43,6 +43,8 @@ public:
   void arc(ArcTurn turn, ValueId x, ValueId y, ValueId z, ValueId i, ValueId j, ValueId feedRate);
   // `move.nurbs @table, %z, %f, %weights...` (nurbs_move.h).
   void nurbs(std::uint32_t table, ValueId z, ValueId feedRate, const std::vector<ValueId>& weights);
+  // `move.spline @table, %z, %f` (spline_move.h).
+  void spline(std::uint32_t table, ValueId z, ValueId feedRate);
   void spindle(ValueId speed);
   // lengthRegister 0: the dialect's default register for the tool.
   void tool(double number, ValueId diameter, std::uint32_t lengthRegister = 0);

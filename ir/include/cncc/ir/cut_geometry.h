@@ -26,6 +26,9 @@ struct CutGeometry {
   // How its passes use move.arc: not at all, for the curve's own arc pieces
   // (native circular interpolation), or as arcs fitted to the curve.
   CutArcs arcMoves = CutArcs::None;
+  // Cut as spline blocks (move.spline): how they were found, as the
+  // program's comment says it; empty otherwise.
+  std::string splineBlocks = {};
 };
 
 } // namespace cncc::ir

@@ -81,7 +81,7 @@ struct Instruction {
   ValueId result;              // invalid when the operation has none
   double number = 0;           // Const value, ConstBool (0 or 1), Tool number, Origin code
                                // (54 .. 59, 54.1), Contouring tolerance (0: off)
-  std::uint32_t index = 0;     // TableLoad, Nurbs: the table; Param: the parameter;
+  std::uint32_t index = 0;     // TableLoad, Nurbs, Spline: the table; Param: the parameter;
                                // CutBegin: the cut; Arc: its ArcTurn; Tool: its length
                                // offset register; Origin 54.1: P; Coolant: its CoolantMode
   std::string text;            // Comment, Alarm: the text

@@ -6,6 +6,15 @@
 
 namespace cncc::ir {
 
+// How A and C spline blocks begin and end (--spline-ends).
+enum class SplineEnds {
+  // A tangent start where the block before the spline moves in XY (the
+  // last chord of a ramp), a natural one after a vertical plunge; a natural end.
+  Automatic,
+  Natural, // BNAT ENAT
+  Auto,    // BAUTO EAUTO
+};
+
 struct LoweringOptions {
   // The chord tolerance of a cut without tolerance=, samples= or spacing=.
   double defaultTolerance = 0.01;
@@ -16,6 +25,11 @@ struct LoweringOptions {
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;
+  // Sinumerik: a method=bspline, nurbs, cspline or aspline cut in a plane
+  // z = constant is lowered as move.spline blocks fitted once, on the
+  // printed grid (spline_cuts.cpp), their ends as `splineEnds` says.
+  bool splineBlocks = false;
+  SplineEnds splineEnds = SplineEnds::Automatic;
   // Targets that print host-fitted G02/G03 arcs: a cut that wants arcs
   // (arcs=true, or arcsOnEveryCut without arcs=false) is lowered as the
   // fitted move.arc ops on the printed grid (arc_cuts.cpp).

@@ -40,7 +40,11 @@ struct MachineEvent {
   double diameter = 0;              // Tool
   std::uint32_t offsetRegister = 0; // Tool: length offset (0: default); Origin 54.1: P
   std::string text;                 // Comment
-  frontend::SourceSpan span;        // the instruction's (Instruction::span)
+  // Feed: a chord of a move.spline, its table + 1 (0: none), and whether it
+  // is the move's first (spline_move.h).
+  std::uint32_t splineTable = 0;
+  bool splineStart = false;
+  frontend::SourceSpan span; // the instruction's (Instruction::span)
 };
 
 struct ToolPath {

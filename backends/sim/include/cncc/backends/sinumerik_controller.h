@@ -15,6 +15,7 @@
 #pragma once
 
 #include "cncc/backends/executed_path.h"
+#include "cncc/geom/controller_bspline.h"
 #include "cncc/geom/curve.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/interpolating_splines.h"
@@ -45,12 +46,9 @@ private:
   int line_;
 };
 
-// The clamped B spline of a BSPLINE group, as described above. Throws
-// geom::GeometryError when the numbers do not make one.
-geom::NurbsCurve bsplineOfBlocks(const Eigen::Vector3d& start, int degree,
-                                 const std::vector<Eigen::Vector3d>& points,
-                                 const std::vector<double>& weights,
-                                 const std::vector<double>& intervals);
+// The clamped B spline of a BSPLINE group, as described above (geom's
+// model, which the IR's move.spline builds too).
+using geom::bsplineOfBlocks;
 
 enum class MotionKind { Rapid, Linear, BSpline, CSpline, ASpline };
 

@@ -1,7 +1,6 @@
 // Siemens Sinumerik 840D programs computed on the host: the part's tool path
-// as G0/G1 blocks, each cut's curve as the spline blocks its method= asks
-// for (BSPLINE with PW/PL, CSPLINE or ASPLINE through knots on the curve), or
-// as G1 chords.
+// as G0/G1/G2/G3 blocks, and each move.spline the lowering fitted as the
+// BSPLINE (PW/PL), CSPLINE or ASPLINE blocks its table holds.
 #pragma once
 
 #include "cncc/backends/machine_setup.h"
@@ -18,14 +17,8 @@
 
 namespace cncc::backends {
 
-// How the A and C splines begin and end.
-enum class SinumerikTransitions {
-  // BTAN where the block before the spline moves in XY (the last lap of a
-  // ramp), BNAT after a vertical plunge; ENAT before the retract.
-  Automatic,
-  Natural, // BNAT ENAT
-  Auto,    // BAUTO EAUTO
-};
+// How the A and C splines begin and end (the lowering fits them so).
+using SinumerikTransitions = ir::SplineEnds;
 
 struct SinumerikOptions {
   std::string sourceName; // for the header comment, e.g. "s_profile.cdl"
@@ -35,7 +28,7 @@ struct SinumerikOptions {
   // The most decimals a coordinate is printed with. The controller keeps
   // 10^decimals increments per mm only if its computational resolution
   // ($MN_INT_INCR_PER_MM) is at least that; the rounding is taken off the
-  // tolerance before splines are fitted.
+  // tolerance before splines are fitted (sinumerikLoweringOptions).
   int decimals = 5;
   bool soft = true; // SOFT: jerk-limited acceleration, which spline paths want
   SinumerikTransitions transitions = SinumerikTransitions::Automatic;
@@ -47,13 +40,10 @@ struct SinumerikOptions {
   MachineSetup setup = builtinMachineSetup("sinumerik");
 };
 
-// What the writer did with one cut.
+// What the writer printed for one cut.
 struct SinumerikCutSummary {
   std::string method;            // linear, bspline, cspline, aspline
   std::size_t blocksPerPass = 0; // spline blocks (control points or knots), or G1 blocks
-  double modelledDeviation = 0;  // of the spline from the curve, as the writer modelled it
-  bool exact = false;            // a NURBS source written as it is
-  std::string note;              // why a NURBS was re-fitted, if it was
 };
 
 struct SinumerikProgram {
@@ -65,37 +55,21 @@ struct SinumerikProgram {
   std::vector<frontend::SourceSpan> lineSpans;
 };
 
-// A cut the controller cannot be given within its tolerance.
-class SinumerikError : public std::runtime_error {
-public:
-  SinumerikError(std::size_t cut, const std::string& message)
-      : std::runtime_error(message), cut_(cut) {}
-  std::size_t cut() const { return cut_; }
-
-private:
-  std::size_t cut_;
-};
-
 // `10`, `0.5`, `-1.25`: at most `decimals` decimals, no trailing zeros and
 // no trailing point, never `-0`.
 std::string formatSinumerikNumber(double value, int decimals);
 
-// How to lower a part for this writer: spline cuts reach it as curves, and
-// chords leave room for the rounding to `options.decimals`, so that the
-// writer prints the tool path's chords as they are.
+// How to lower a part for this writer: spline cuts as move.spline blocks
+// fitted on the printed grid of `options.decimals` with its transitions,
+// chords leaving room for the rounding, so that the writer prints the IR's
+// moves as they are.
 ir::LoweringOptions sinumerikLoweringOptions(const SinumerikOptions& options = {});
 
-// One cut: its true curve and how it asks to be cut.
-struct SinumerikCut {
-  ir::CutGeometry geometry;
-  // The cut's method= word: linear, bspline, nurbs (as bspline), cspline,
-  // aspline; empty for linear.
-  std::string method;
-};
-
-// The program for `path` (the IR's tool path) with the curves of `cuts`
-// (indexed as the path's CutBegin events). Throws SinumerikError.
-SinumerikProgram writeSinumerik(const ir::ToolPath& path, std::span<const SinumerikCut> cuts,
+// The program for `path` (the IR's tool path, whose move.spline chords
+// name their blocks in `tables`, the function's tables) with `cutCount`
+// cuts (indexed as the path's CutBegin events).
+SinumerikProgram writeSinumerik(const ir::ToolPath& path,
+                                std::span<const std::vector<double>> tables, std::size_t cutCount,
                                 const SinumerikOptions& options);
 
 } // namespace cncc::backends
