@@ -176,6 +176,17 @@ std::string LinuxcncExpressionWriter::tableRead(const ir::Instruction& instructi
                      bracketedUnlessTighter(value(index), LinuxcncForm::Multiplicative));
 }
 
+namespace {
+
+// The right operand of a binary operator: a sign right after the operator
+// (`#1*-0.5`) is written in brackets, the portable form (TARGETS.md).
+std::string rightOperand(const LinuxcncText& text, LinuxcncForm loosest) {
+  std::string written = bracketedUnlessTighter(text, loosest);
+  return written.starts_with('-') ? "[" + written + "]" : written;
+}
+
+} // namespace
+
 LinuxcncText LinuxcncExpressionWriter::arithmetic(const ir::Instruction& instruction) const {
   const std::vector<ir::ValueId>& operands = instruction.operands;
   LinuxcncText left = value(operands[0]);
@@ -186,13 +197,13 @@ LinuxcncText LinuxcncExpressionWriter::arithmetic(const ir::Instruction& instruc
   switch (instruction.opcode) {
   case Opcode::Pow: // `-2**2` is 4 in LinuxCNC: a unary minus binds first
     return {bracketedUnlessTighter(left, LinuxcncForm::Negation) + "**" +
-                bracketedUnlessTighter(right, LinuxcncForm::Negation),
+                rightOperand(right, LinuxcncForm::Negation),
             LinuxcncForm::Power};
   case Opcode::Mul:
   case Opcode::Div:
     return {bracketedUnlessTighter(left, LinuxcncForm::Multiplicative) +
                 (instruction.opcode == Opcode::Mul ? "*" : "/") +
-                bracketedUnlessTighter(right, LinuxcncForm::Power),
+                rightOperand(right, LinuxcncForm::Power),
             LinuxcncForm::Multiplicative};
   default:
     break;
@@ -204,7 +215,7 @@ LinuxcncText LinuxcncExpressionWriter::arithmetic(const ir::Instruction& instruc
     right = {constant(-*number), LinuxcncForm::Atom};
   }
   return {bracketedUnlessTighter(left, LinuxcncForm::Additive) + sign +
-              bracketedUnlessTighter(right, LinuxcncForm::Multiplicative),
+              rightOperand(right, LinuxcncForm::Multiplicative),
           LinuxcncForm::Additive};
 }
 
