@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace cncc::geom {
 
@@ -108,14 +109,38 @@ const DeviationWitness& DeviationReport::worst() const {
   return polylineToCurve.distance >= curveToPolyline.distance ? polylineToCurve : curveToPolyline;
 }
 
+MeasurementTooLarge::MeasurementTooLarge(double limit)
+    : GeometryError("measuring the deviation needs more than " +
+                    std::to_string(static_cast<long long>(limit)) + " segment distances"),
+      limit(limit) {}
+
+std::size_t CurveProximity::segmentsMeasured() const {
+  return index_->tree.segmentsMeasured();
+}
+
 namespace {
 
+// The work of one measurement so far against its limit.
+struct WorkBudget {
+  const CurveProximity& proximity;
+  const detail::SegmentTree& path;
+  double limit;
+
+  void check() const {
+    if (static_cast<double>(proximity.segmentsMeasured() + path.segmentsMeasured()) > limit)
+      throw MeasurementTooLarge(limit);
+  }
+};
+
 DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proximity,
-                                 const detail::SegmentTree& path, double accuracy) {
+                                 const detail::SegmentTree& path, double accuracy,
+                                 const WorkBudget& budget) {
   const std::vector<double>& t = proximity.sampleParameters();
   std::vector<double> distance;
-  for (const Eigen::Vector3d& c : proximity.samplePoints())
+  for (const Eigen::Vector3d& c : proximity.samplePoints()) {
     distance.push_back(path.nearest(c).distance);
+    budget.check();
+  }
   double largestSample = *std::max_element(distance.begin(), distance.end());
 
   DeviationWitness worst;
@@ -130,6 +155,7 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (!isLocalMaximum(distance, i) || !worthRefining(distance[i], largestSample, accuracy))
       continue;
+    budget.check();
     record(t[i]);
     double lo = t[i == 0 ? 0 : i - 1], hi = t[std::min(i + 1, t.size() - 1)];
     if (lo < hi)
@@ -139,7 +165,8 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
 }
 
 DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
-                                 const CurveProximity& proximity, double accuracy) {
+                                 const CurveProximity& proximity, double accuracy,
+                                 const WorkBudget& budget) {
   // Steps along each segment such that a sampled maximum misses the true one by about
   // `accuracy` where the distance bends like the curve (sagitta of the tightest radius).
   double radius = std::min(proximity.smallestSampledRadius(), 1e12);
@@ -160,6 +187,7 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
       distance[j].push_back(proximity.closestPoint(pointOn(j, double(k) / n)).distance);
       largestSample = std::max(largestSample, distance[j].back());
     }
+    budget.check();
   }
 
   DeviationWitness worst;
@@ -177,6 +205,7 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     for (std::size_t k = 0; k < g.size(); ++k) {
       if (!isLocalMaximum(g, k) || !worthRefining(g[k], largestSample, accuracy))
         continue;
+      budget.check();
       record(j, double(k) / n);
       double lo = double(k == 0 ? 0 : k - 1) / n;
       double hi = double(std::min(k + 1, g.size() - 1)) / n;
@@ -196,8 +225,9 @@ DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline, c
   CurveProximity proximity(curve, options.accuracy);
   detail::SegmentTree path(polyline);
   DeviationReport report;
-  report.curveToPolyline = curveToPolyline(curve, proximity, path, options.accuracy);
-  report.polylineToCurve = polylineToCurve(polyline, proximity, options.accuracy);
+  WorkBudget budget{proximity, path, options.maximumWork};
+  report.curveToPolyline = curveToPolyline(curve, proximity, path, options.accuracy, budget);
+  report.polylineToCurve = polylineToCurve(polyline, proximity, options.accuracy, budget);
   return report;
 }
 

@@ -22,7 +22,7 @@ Eigen::Vector3d inPlane(const Eigen::Vector3d& point) {
 // 1e-7 on a 0.01 mm cut (a helix's turns overlap in plan view, so each
 // sample is compared with every turn).
 geom::DeviationOptions measurementAccuracy(double tolerance) {
-  return {std::isnan(tolerance) ? 1e-7 : std::max(1e-7, tolerance * 1e-3)};
+  return {std::isnan(tolerance) ? 1e-7 : std::max(1e-7, tolerance * 1e-3), kMaximumMeasurementWork};
 }
 
 // The deviation of every stretch of the cut, the largest kept.

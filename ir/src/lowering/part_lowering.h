@@ -360,6 +360,11 @@ private:
   ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // Before any point is computed: the curve and the depth within the
+  // target's number range, and no more points than a cut may have.
+  void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // The target's largest number in the part's units.
+  double largestNumberInUnits() const;
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
   // The share of the descent done at a sample (SampleLocation.local).

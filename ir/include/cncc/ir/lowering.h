@@ -15,6 +15,7 @@
 #include "cncc/geom/curve.h"
 #include "cncc/ir/ir.h"
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,6 +59,11 @@ struct LoweringOptions {
   // the statement that sets it.
   double maximumFeed = 0;
   double maximumSpindleSpeed = 0;
+  // The largest coordinate, radius or feed (mm, mm/min) the target's
+  // programs can write; a tenth of it in inches. A cut whose curve, depth or
+  // feed at the values compiled with goes beyond it is a coordinate-range
+  // error.
+  double largestNumber = std::numeric_limits<double>::infinity();
 };
 
 enum class CutArcs { None, Native, Fitted };

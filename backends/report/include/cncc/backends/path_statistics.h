@@ -59,8 +59,15 @@ struct PathStatistics {
 // stretch of consecutive feed moves, without repeated points.
 std::vector<std::vector<Eigen::Vector3d>> cutPolylines(const ExecutedPath& path, std::size_t cut);
 
+// The segment distances one stretch of a cut may take to measure
+// (geom::DeviationOptions::maximumWork): three times what the largest example
+// takes; a path that wanders over a large curve's inside (every sample about
+// as far from it) takes a hundred times more.
+inline constexpr double kMaximumMeasurementWork = 10'000'000;
+
 // Measures `program` against the part's cuts (indexed as the moves' cut).
-// Throws ExecutionMismatch for a move whose cut is not in `cuts`.
+// Throws ExecutionMismatch for a move whose cut is not in `cuts`, and
+// geom::MeasurementTooLarge past kMaximumMeasurementWork.
 PathStatistics measureProgram(const ExecutedProgram& program, std::span<const ir::CutGeometry> cuts,
                               const StatisticsOptions& options);
 
