@@ -33,7 +33,8 @@ double referenceDeviation(const ExecutedPath& reference, std::size_t cut,
   PlaneProjection plan(*geometry.curve);
   for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(reference, cut)) {
     largest = std::max(
-        largest, geom::measureDeviation(polyline, plan, {.maximumWork = kMaximumMeasurementWork})
+        largest, geom::measureDeviation(polyline, plan,
+                                        {.maximumWork = maximumMeasurementWork(polyline.size())})
                      .maxDeviation());
   }
   return largest;
@@ -144,8 +145,10 @@ std::string formatVerification(const VerificationReport& report, const Statistic
     text += formatOperations(*report.operations);
   }
   if (report.failure && report.failure->line == 0) { // no block of the program
-    text += fmt::format("the program cannot be verified: {}\n", report.failure->message);
-  } else if (report.failure) {
+    return text + fmt::format("the program cannot be verified: {}\nverdict: FAILED\n",
+                              report.failure->message);
+  }
+  if (report.failure) {
     text += fmt::format("the controller stopped the program: line {}: {}\n", report.failure->line,
                         report.failure->message);
     if (!report.failure->lineText.empty()) {
