@@ -146,6 +146,7 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
     }
     // A controller that rounds every coordinate to its increment takes up to
     // half an increment per axis of the tolerance (LoweringOptions).
+    checkChordCount(cut, curve, toleranceBudget(cut).forPoints());
     return geom::discretiseByChordTolerance(curve, toleranceBudget(cut).forPoints(),
                                             maximumChordsPerCut);
   } catch (const geom::ChordLimitExceeded& error) {
@@ -177,10 +178,9 @@ void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) 
            DiagnosticKind::CoordinateRange);
     }
   }
-  std::optional<double> tolerance = chordTolerance(cut);
   geom::DiscretisationEstimate estimate;
   try {
-    estimate = geom::estimateDiscretisation(curve, tolerance.value_or(0.0));
+    estimate = geom::estimateDiscretisation(curve, 0.0);
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);
@@ -196,11 +196,16 @@ void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) 
                      estimate.largestCoordinate, unit, largest, unit),
          DiagnosticKind::CoordinateRange);
   }
-  if (!(estimate.chords <= static_cast<double>(maximumChordsPerCut))) {
+}
+
+void PartLowering::checkChordCount(const CutStmt& cut, const geom::Curve& curve, double tolerance) {
+  double chords = geom::estimateDiscretisation(curve, tolerance).chords;
+  if (!(chords <= static_cast<double>(maximumChordsPerCut))) {
+    std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
     fail(cut.span,
-         fmt::format("this curve needs about {:.3g} chords within its tolerance of {:g} {}; the "
+         fmt::format("this curve needs about {:.3g} chords to keep within {:.3g} {} of it; the "
                      "limit of one cut is {}",
-                     estimate.chords, *tolerance, unit, maximumChordsPerCut),
+                     chords, tolerance, unit, maximumChordsPerCut),
          DiagnosticKind::ProgramTooLarge);
   }
 }
@@ -343,6 +348,7 @@ std::vector<SampleRun> PartLowering::pieceSampleRuns(const CutCurve& curve, std:
   auto moved = std::make_shared<TransformedCurve>(own.geometry, own.transform);
   geom::CurveSamples samples;
   try {
+    checkChordCount(cut, *moved, budget);
     samples = geom::discretiseByChordTolerance(*moved, budget, maximumChordsPerCut);
   } catch (const geom::ChordLimitExceeded& error) {
     fail(cut.span,

@@ -361,8 +361,10 @@ private:
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before any point is computed: the curve and the depth within the
-  // target's number range, and no more points than a cut may have.
+  // target's number range.
   void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // Before the chords are chosen: no more than a cut may have.
+  void checkChordCount(const frontend::CutStmt& cut, const geom::Curve& curve, double tolerance);
   // The target's largest number in the part's units.
   double largestNumberInUnits() const;
   std::vector<double> passDepths(const frontend::CutStmt& cut);
