@@ -198,8 +198,8 @@ DiscretisationEstimate estimateDiscretisation(const Curve& curve, double toleran
   std::size_t pieces = breaks.size() < 2 ? 1 : breaks.size() - 1;
   if (breaks.size() < 2)
     breaks = {curve.domain().t0, curve.domain().t1};
-  // A few thousand samples in all, at least eight a piece.
-  int perPiece = static_cast<int>(std::clamp<std::size_t>(4096 / pieces, 8, 256));
+  // About a thousand samples in all, at least eight a piece.
+  int perPiece = static_cast<int>(std::clamp<std::size_t>(1024 / pieces, 8, 256));
   bool counting = tolerance > 0.0 && std::isfinite(tolerance);
   DiscretisationEstimate estimate;
   for (std::size_t p = 0; p + 1 < breaks.size(); ++p) {

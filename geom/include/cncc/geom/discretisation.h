@@ -52,7 +52,7 @@ public:
   std::size_t limit;
 };
 
-/// What discretising a curve would take, from a few hundred samples of it (cheap
+/// What discretising a curve would take, from about a thousand samples of it (cheap
 /// next to the walk itself).
 struct DiscretisationEstimate {
   /// The chords a curve of the sampled curvature k needs, the integral of
