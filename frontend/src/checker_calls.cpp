@@ -120,6 +120,10 @@ void Checker::bindNamedArgument(const CallExpr& call, const Argument& argument,
 
 void Checker::reportMissing(const CallExpr& call, ParameterList parameters,
                             ArgumentBinding& binding) {
+  if (call.argumentsCutShort) {
+    binding.ok = false; // the syntax error is the message
+    return;
+  }
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     if (binding.unknownName) {
       binding.ok = false;
@@ -274,7 +278,7 @@ Type Checker::checkBuiltinCall(CallExpr& call, const BuiltinSpec& spec, const Sc
       }
     }
   }
-  if (info->variadic && binding.extra == 0) {
+  if (info->variadic && binding.extra == 0 && !call.argumentsCutShort) {
     context_.report(DiagnosticKind::MissingArgument, call.calleeSpan,
                     fmt::format("'{}' needs at least one curve", info->name));
     ok = false;
@@ -295,6 +299,10 @@ void Checker::checkOrderOrDegree(const CallExpr& call, ArgumentBinding& binding)
     context_.diagnostics.addNote(diagnostic, order->span(), "'order' is given here");
     binding.ok = false;
   } else if (order == nullptr && degree == nullptr) {
+    if (call.argumentsCutShort) {
+      binding.ok = false;
+      return;
+    }
     context_.report(DiagnosticKind::MissingArgument, call.calleeSpan,
                     fmt::format("'{}' needs 'order=' or 'degree='", call.callee));
     binding.ok = false;

@@ -442,11 +442,20 @@ private:
         break;
       }
     }
-    NodeList<Parameter> parameters = arena_->takeList(parameterStack_, first);
     if (!panicking_) {
       expectClosing(TokenKind::RightParen, opening, "to close the parameter list");
     }
-    return parameters;
+    if (panicking_) {
+      // The list ends at a syntax error: a parameter whose default was not
+      // read has an erroneous one, not a missing one the checker would
+      // report before the syntax error (`part p(depth 3)`).
+      for (std::size_t i = first; i < parameterStack_.size(); ++i) {
+        if (!parameterStack_[i].defaultValue) {
+          parameterStack_[i].defaultValue = arena_->make<ErrorExpr>(parameterStack_[i].nameSpan);
+        }
+      }
+    }
+    return arena_->takeList(parameterStack_, first);
   }
 
   // ---------------------------------------------------------------- statements
@@ -1077,6 +1086,11 @@ private:
       }
       argument.value = parseExpression();
       argumentStack_.push_back(std::move(argument));
+      if (panicking_ && check(TokenKind::Comma) && !argumentStack_.back().name.empty()) {
+        // `order=,`: the value is missing, reported; the arguments after the
+        // comma are read, so that none is called missing or unused.
+        panicking_ = false;
+      }
       if (!match(TokenKind::Comma)) {
         break;
       }
@@ -1087,7 +1101,10 @@ private:
       expectClosing(TokenKind::RightParen, opening,
                     fmt::format("to close the arguments of '{}'", name.text));
     }
-    return arena_->make<CallExpr>(spanFrom(name.span), name.text, name.span, std::move(arguments));
+    auto call =
+        arena_->make<CallExpr>(spanFrom(name.span), name.text, name.span, std::move(arguments));
+    call->argumentsCutShort = panicking_;
+    return call;
   }
 
   // (e) is grouping; (x, y) and (x, y, z) are points.

@@ -15,6 +15,12 @@ namespace {
 // cannot agree by accident on a curve that oscillates across the whole piece.
 constexpr int kInitialIntervalsPerPiece = 8;
 constexpr int kMaxDepth = 40;
+// Splits one integration may make in all. A speed computed by finite
+// differences (polar and param curves) carries noise far above a tight
+// tolerance, and without a budget every interval would split to kMaxDepth
+// (2^40 of them); past the budget the estimates so far are accepted, which
+// on such a curve is as exact as its noise allows.
+constexpr int kMaxSplits = 1 << 13;
 
 double speedIntegral(const Curve& curve, double a, double b) {
   return detail::integrateGaussLegendre([&](double t) { return curve.derivative(t).norm(); }, a, b);
@@ -28,19 +34,20 @@ struct Interval {
 // Splits [a, b] until an interval's estimate agrees with the sum over its halves within
 // its share of the tolerance; appends the accepted halves in order.
 void integrateAdaptively(const Curve& curve, double a, double b, double whole, double tolerance,
-                         int depth, std::vector<Interval>& accepted) {
+                         int depth, int& splitsLeft, std::vector<Interval>& accepted) {
   double middle = 0.5 * (a + b);
   double left = speedIntegral(curve, a, middle);
   double right = speedIntegral(curve, middle, b);
   double floor = 8.0 * std::numeric_limits<double>::epsilon() * std::fabs(left + right);
   bool converged = std::fabs(left + right - whole) <= std::max(tolerance, floor);
-  if (converged || depth >= kMaxDepth || !(a < middle && middle < b)) {
+  if (converged || depth >= kMaxDepth || splitsLeft <= 0 || !(a < middle && middle < b)) {
     accepted.push_back({a, left});
     accepted.push_back({middle, right});
     return;
   }
-  integrateAdaptively(curve, a, middle, left, 0.5 * tolerance, depth + 1, accepted);
-  integrateAdaptively(curve, middle, b, right, 0.5 * tolerance, depth + 1, accepted);
+  --splitsLeft;
+  integrateAdaptively(curve, a, middle, left, 0.5 * tolerance, depth + 1, splitsLeft, accepted);
+  integrateAdaptively(curve, middle, b, right, 0.5 * tolerance, depth + 1, splitsLeft, accepted);
 }
 
 std::vector<Interval> integrateRange(const Curve& curve, double ta, double tb, double tolerance) {
@@ -52,6 +59,7 @@ std::vector<Interval> integrateRange(const Curve& curve, double ta, double tb, d
   int count = static_cast<int>(cuts.size() - 1) * kInitialIntervalsPerPiece;
   double share = tolerance / count;
   std::vector<Interval> accepted;
+  int splitsLeft = kMaxSplits;
   for (std::size_t piece = 0; piece + 1 < cuts.size(); ++piece) {
     double a = cuts[piece], b = cuts[piece + 1];
     for (int i = 0; i < kInitialIntervalsPerPiece; ++i) {
@@ -59,7 +67,8 @@ std::vector<Interval> integrateRange(const Curve& curve, double ta, double tb, d
       double hi = i + 1 == kInitialIntervalsPerPiece
                       ? b
                       : a + (b - a) * (i + 1) / kInitialIntervalsPerPiece;
-      integrateAdaptively(curve, lo, hi, speedIntegral(curve, lo, hi), share, 0, accepted);
+      integrateAdaptively(curve, lo, hi, speedIntegral(curve, lo, hi), share, 0, splitsLeft,
+                          accepted);
     }
   }
   return accepted;

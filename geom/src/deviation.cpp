@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace cncc::geom {
 
@@ -114,14 +115,38 @@ const DeviationWitness& DeviationReport::worst() const {
   return polylineToCurve.distance >= curveToPolyline.distance ? polylineToCurve : curveToPolyline;
 }
 
+MeasurementTooLarge::MeasurementTooLarge(double limit)
+    : GeometryError("measuring the deviation needs more than " +
+                    std::to_string(static_cast<long long>(limit)) + " segment distances"),
+      limit(limit) {}
+
+std::size_t CurveProximity::segmentsMeasured() const {
+  return index_->tree.segmentsMeasured();
+}
+
 namespace {
 
+// The work of one measurement so far against its limit.
+struct WorkBudget {
+  const CurveProximity& proximity;
+  const detail::SegmentTree& path;
+  double limit;
+
+  void check() const {
+    if (static_cast<double>(proximity.segmentsMeasured() + path.segmentsMeasured()) > limit)
+      throw MeasurementTooLarge(limit);
+  }
+};
+
 DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proximity,
-                                 const detail::SegmentTree& path, double accuracy) {
+                                 const detail::SegmentTree& path, double accuracy,
+                                 const WorkBudget& budget) {
   const std::vector<double>& t = proximity.sampleParameters();
   std::vector<double> distance;
-  for (const Eigen::Vector3d& c : proximity.samplePoints())
+  for (const Eigen::Vector3d& c : proximity.samplePoints()) {
     distance.push_back(path.nearest(c).distance);
+    budget.check();
+  }
   double largestSample = *std::max_element(distance.begin(), distance.end());
 
   DeviationWitness worst;
@@ -136,6 +161,7 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (!isLocalMaximum(distance, i) || !worthRefining(distance[i], largestSample, 4.0 * accuracy))
       continue;
+    budget.check();
     record(t[i]);
     double lo = t[i == 0 ? 0 : i - 1], hi = t[std::min(i + 1, t.size() - 1)];
     if (lo < hi)
@@ -145,7 +171,8 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
 }
 
 DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
-                                 const CurveProximity& proximity, double accuracy) {
+                                 const CurveProximity& proximity, double accuracy,
+                                 const WorkBudget& budget) {
   // Steps along each segment such that a sampled maximum misses the true one by about
   // `accuracy` where the distance bends like the curve (sagitta of the tightest radius).
   double radius = std::min(proximity.smallestSampledRadius(), 1e12);
@@ -168,6 +195,7 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
       distance[j].push_back(proximity.sampledDistance(pointOn(j, double(k) / n)));
       largestSample = std::max(largestSample, distance[j].back());
     }
+    budget.check();
   }
 
   // The samples in order along the whole polyline (a vertex once): a peak of
@@ -206,6 +234,7 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
   for (std::size_t i = 0; i < order.size(); ++i) {
     if (!isLocalMaximum(along, i) || !worthRefining(along[i], largestSample, 6.0 * accuracy))
       continue;
+    budget.check();
     auto [j, k] = order[i];
     record(j, double(k) / double(distance[j].size() - 1));
     refine(j, k);
@@ -225,8 +254,9 @@ DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline, c
   CurveProximity proximity(curve, options.accuracy);
   detail::SegmentTree path(polyline);
   DeviationReport report;
-  report.curveToPolyline = curveToPolyline(curve, proximity, path, options.accuracy);
-  report.polylineToCurve = polylineToCurve(polyline, proximity, options.accuracy);
+  WorkBudget budget{proximity, path, options.maximumWork};
+  report.curveToPolyline = curveToPolyline(curve, proximity, path, options.accuracy, budget);
+  report.polylineToCurve = polylineToCurve(polyline, proximity, options.accuracy, budget);
   return report;
 }
 

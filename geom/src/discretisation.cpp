@@ -168,7 +168,13 @@ double chordDeviation(const Curve& curve, double ta, double tb) {
   return chordDeviationBeyond(curve, ta, tb, std::numeric_limits<double>::infinity());
 }
 
-CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance) {
+ChordLimitExceeded::ChordLimitExceeded(std::size_t limit)
+    : GeometryError("the curve needs more than " + std::to_string(limit) +
+                    " chords within its tolerance"),
+      limit(limit) {}
+
+CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance,
+                                        std::size_t maximumChords) {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     throw GeometryError("the chord tolerance must be positive");
   ParameterRange range = curve.domain();
@@ -178,10 +184,39 @@ CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance) {
   double resolution = std::max(kReachResolution * std::max(1.0, range.length()), ulps);
   ChordFeasibility feasible(curve, tolerance);
   std::vector<double> parameters{range.t0};
-  while (parameters.back() < range.t1)
+  while (parameters.back() < range.t1) {
+    if (parameters.size() > maximumChords)
+      throw ChordLimitExceeded(maximumChords);
     parameters.push_back(
         farthestReach(curve, feasible, parameters.back(), range.t1, tolerance, resolution));
+  }
   return samplesAt(curve, std::move(parameters));
+}
+
+DiscretisationEstimate estimateDiscretisation(const Curve& curve, double tolerance) {
+  std::vector<double> breaks = curve.breakpoints();
+  std::size_t pieces = breaks.size() < 2 ? 1 : breaks.size() - 1;
+  if (breaks.size() < 2)
+    breaks = {curve.domain().t0, curve.domain().t1};
+  // About a thousand samples in all, at least eight a piece.
+  int perPiece = static_cast<int>(std::clamp<std::size_t>(1024 / pieces, 8, 256));
+  bool counting = tolerance > 0.0 && std::isfinite(tolerance);
+  DiscretisationEstimate estimate;
+  for (std::size_t p = 0; p + 1 < breaks.size(); ++p) {
+    double step = (breaks[p + 1] - breaks[p]) / perPiece;
+    estimate.chords += counting ? 1.0 : 0.0;
+    for (int i = 0; i <= perPiece; ++i) {
+      CurveDerivatives d = curve.derivatives(i == perPiece ? breaks[p + 1] : breaks[p] + i * step);
+      estimate.largestCoordinate =
+          std::max(estimate.largestCoordinate, d.point.lpNorm<Eigen::Infinity>());
+      if (!d.point.allFinite())
+        estimate.largestCoordinate = std::numeric_limits<double>::infinity();
+      // The midpoint rule: each sample stands for one step of the parameter.
+      if (counting && i < perPiece)
+        estimate.chords += std::sqrt(curvatureOf(d) / (8.0 * tolerance)) * d.first.norm() * step;
+    }
+  }
+  return estimate;
 }
 
 CurveSamples sampleUniformParameter(const Curve& curve, std::size_t count) {

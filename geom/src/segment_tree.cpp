@@ -59,6 +59,7 @@ SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
     if (node.box.exteriorDistance(p) >= best.distance)
       continue;
     if (node.left < 0) {
+      segmentsMeasured_ += node.count;
       for (std::size_t i = node.first; i < node.first + node.count; ++i) {
         const Eigen::Vector3d& a = segmentStart(i);
         const Eigen::Vector3d& b = segmentEnd(i);

@@ -26,6 +26,8 @@ public:
   Nearest nearest(const Eigen::Vector3d& p) const;
 
   std::size_t segmentCount() const { return segmentCount_; }
+  /// Segments measured by nearest() so far: the work of the queries.
+  std::size_t segmentsMeasured() const { return segmentsMeasured_; }
   const Eigen::Vector3d& segmentStart(std::size_t i) const { return vertices_[i]; }
   const Eigen::Vector3d& segmentEnd(std::size_t i) const;
 
@@ -42,6 +44,7 @@ private:
   std::vector<Eigen::Vector3d> vertices_;
   std::size_t segmentCount_;
   std::vector<Node> nodes_;
+  mutable std::size_t segmentsMeasured_ = 0;
 };
 
 } // namespace cncc::geom::detail

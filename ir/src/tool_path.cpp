@@ -26,19 +26,26 @@ struct Position {
 
 } // namespace
 
-void appendArcChords(double startX, double startY, double startZ, const MachineEvent& arc,
-                     double maximumSagitta, std::vector<MachineEvent>& out) {
-  Position start{startX, startY, startZ};
-  double startRadius = std::hypot(start.x - arc.centreX, start.y - arc.centreY);
+int arcChordCount(double startX, double startY, const MachineEvent& arc, double maximumSagitta) {
+  double startRadius = std::hypot(startX - arc.centreX, startY - arc.centreY);
   double endRadius = std::hypot(arc.x - arc.centreX, arc.y - arc.centreY);
   double radius = std::max(startRadius, endRadius);
-  double sweep = arcSweep(start.x, start.y, arc);
+  double sweep = arcSweep(startX, startY, arc);
   // A chord of angle a has sagitta r (1 - cos(a / 2)).
   double stepLimit =
       maximumSagitta >= radius ? std::numbers::pi / 2 : 2 * std::acos(1 - maximumSagitta / radius);
   double chords = std::ceil(sweep / stepLimit);
   // NaN (a coordinate that is no number) gives one chord, not a bad cast.
-  int count = static_cast<int>(chords >= 1 ? std::min(chords, maximumChordsPerArc) : 1.0);
+  return static_cast<int>(chords >= 1 ? std::min(chords, maximumChordsPerArc) : 1.0);
+}
+
+void appendArcChords(double startX, double startY, double startZ, const MachineEvent& arc,
+                     double maximumSagitta, std::vector<MachineEvent>& out) {
+  Position start{startX, startY, startZ};
+  double startRadius = std::hypot(start.x - arc.centreX, start.y - arc.centreY);
+  double endRadius = std::hypot(arc.x - arc.centreX, arc.y - arc.centreY);
+  double sweep = arcSweep(start.x, start.y, arc);
+  int count = arcChordCount(start.x, start.y, arc, maximumSagitta);
   double direction = arc.clockwise ? -1 : 1;
   double startAngle = std::atan2(start.y - arc.centreY, start.x - arc.centreX);
   for (int index = 1; index < count; ++index) {
@@ -63,6 +70,21 @@ double arcSweep(double startX, double startY, const MachineEvent& arc, double cl
     sweep += fullTurn;
   }
   return sweep;
+}
+
+double flattenedEventCount(const ToolPath& path, double maximumSagitta) {
+  double count = 0;
+  Position position;
+  for (const MachineEvent& event : path.events) {
+    count += event.kind == MachineEvent::Kind::Arc
+                 ? arcChordCount(position.x, position.y, event, maximumSagitta)
+                 : 1;
+    if (event.kind == MachineEvent::Kind::Rapid || event.kind == MachineEvent::Kind::Feed ||
+        event.kind == MachineEvent::Kind::Arc) {
+      position = {event.x, event.y, event.z};
+    }
+  }
+  return count;
 }
 
 ToolPath flattenArcs(const ToolPath& path, double maximumSagitta) {

@@ -19,6 +19,7 @@
 #include "cncc/frontend/parser.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
+#include "contained_imports.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -51,26 +52,6 @@ void checkSpan(const SourceManager& sources, SourceSpan span, const char* what) 
   if (span.begin > span.end || span.end > file.text().size()) {
     fail(what);
   }
-}
-
-// An import the checker may follow: relative, inside the import directory.
-bool isContainedImport(std::string_view path) {
-  if (path.empty() || path.front() == '/' || path.find('\0') != std::string_view::npos ||
-      path.find('\\') != std::string_view::npos) {
-    return false;
-  }
-  std::size_t begin = 0;
-  while (begin <= path.size()) {
-    std::size_t end = path.find('/', begin);
-    if (end == std::string_view::npos) {
-      end = path.size();
-    }
-    if (path.substr(begin, end - begin) == "..") {
-      return false;
-    }
-    begin = end + 1;
-  }
-  return true;
 }
 
 void checkTokens(const SourceManager& sources, const std::vector<Token>& tokens) {
@@ -126,7 +107,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     for (std::size_t i = 0; i + 1 < tokens.size(); ++i) {
       if (tokens[i].kind == TokenKind::KwImport && tokens[i + 1].kind == TokenKind::String &&
-          !isContainedImport(tokens[i + 1].text)) {
+          !cncc::fuzz::isContainedImport(tokens[i + 1].text)) {
         importsContained = false;
       }
     }

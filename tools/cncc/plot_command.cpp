@@ -7,6 +7,7 @@
 #include "stats_measurement.h"
 
 #include "cncc/backends/svg_plot.h"
+#include "cncc/geom/deviation.h"
 
 #include <fmt/format.h>
 
@@ -89,7 +90,13 @@ int runPlot(const DriverOptions& options) {
   plotOptions.title = plotTitle(options, *program->selectedPart);
   plotOptions.unit = unitName(measured->inches);
   plotOptions.cutNames = measured->cutNames;
-  std::string svg = backends::plotSvg(measured->program.path, measured->cuts, plotOptions);
+  std::string svg;
+  try {
+    svg = backends::plotSvg(measured->program.path, measured->cuts, plotOptions);
+  } catch (const geom::MeasurementTooLarge& error) {
+    output.driverError(fmt::format("{} in one stretch of a cut: too large to plot", error.what()));
+    return 1;
+  }
   if (options.plotPng) {
     std::string problem;
     std::optional<std::string> png = pngOf(svg, problem);

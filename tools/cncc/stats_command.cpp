@@ -5,6 +5,7 @@
 #include "stats_measurement.h"
 
 #include "cncc/backends/path_statistics.h"
+#include "cncc/geom/deviation.h"
 
 #include <fmt/format.h>
 
@@ -49,8 +50,14 @@ int printStatistics(const BackendRequest& request, std::vector<MeasuredCutDeviat
   statisticsOptions.rapidRate =
       measured->inches ? options.rapidRate / kMillimetresPerInch : options.rapidRate;
   statisticsOptions.cutNames = measured->cutNames;
-  backends::PathStatistics statistics =
-      backends::measureProgram(measured->program, measured->cuts, statisticsOptions);
+  backends::PathStatistics statistics;
+  try {
+    statistics = backends::measureProgram(measured->program, measured->cuts, statisticsOptions);
+  } catch (const geom::MeasurementTooLarge& error) {
+    output.driverError(
+        fmt::format("{} in one stretch of a cut: too large to measure", error.what()));
+    return 1;
+  }
   collectCutDeviations(statistics, measured->cuts, deviations);
   fmt::print(stderr, "statistics of part {} for target {}:\n{}", request.program.selectedPart->name,
              options.target, backends::formatStatistics(statistics, statisticsOptions));

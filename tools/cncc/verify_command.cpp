@@ -192,7 +192,10 @@ std::string parameterLine(const DriverOptions& options) {
 }
 
 void reportFailure(const backends::VerificationReport& report, const DriverOptions& options) {
-  if (report.failure) {
+  if (report.failure && report.failure->line == 0) { // no block of the program
+    fmt::print(stderr, "cncc: error: the {} program cannot be verified: {}\n", options.target,
+               report.failure->message);
+  } else if (report.failure) {
     fmt::print(stderr, "cncc: error: the {} program fails on the controller at line {}: {}\n",
                options.target, report.failure->line, report.failure->message);
   } else if (!report.passed()) {

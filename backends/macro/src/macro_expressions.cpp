@@ -31,6 +31,12 @@ std::string MacroExpressionWriter::at(const MacroText& text, MacroPosition posit
   return dialect_.bare(text.form, position) ? text.text : "[" + text.text + "]";
 }
 
+std::string MacroExpressionWriter::rightOperand(const MacroText& text,
+                                                MacroPosition position) const {
+  std::string written = at(text, position);
+  return written.starts_with('-') ? "[" + written + "]" : written;
+}
+
 std::string MacroExpressionWriter::constant(double value) const {
   const MacroNumberFormat& format = dialect_.numbers;
   double magnitude = std::abs(value);
@@ -173,7 +179,7 @@ MacroText MacroExpressionWriter::arithmetic(const ir::Instruction& instruction) 
   MacroText right = value(operands[1]);
   if (instruction.opcode == Opcode::Mul || instruction.opcode == Opcode::Div) {
     char sign = instruction.opcode == Opcode::Mul ? '*' : '/';
-    return {at(left, LeftOfMultiplicative) + sign + at(right, RightOfMultiplicative),
+    return {at(left, LeftOfMultiplicative) + sign + rightOperand(right, RightOfMultiplicative),
             MacroForm::Multiplicative};
   }
   char sign = instruction.opcode == Opcode::Add ? '+' : '-';
@@ -182,7 +188,8 @@ MacroText MacroExpressionWriter::arithmetic(const ir::Instruction& instruction) 
     sign = sign == '+' ? '-' : '+';
     right = {constant(-*number), MacroForm::Atom};
   }
-  return {at(left, LeftOfAdditive) + sign + at(right, RightOfAdditive), MacroForm::Additive};
+  return {at(left, LeftOfAdditive) + sign + rightOperand(right, RightOfAdditive),
+          MacroForm::Additive};
 }
 
 MacroText MacroExpressionWriter::power(const ir::Instruction& instruction) const {
@@ -195,7 +202,7 @@ MacroText MacroExpressionWriter::power(const ir::Instruction& instruction) const
     return {fmt::format("EXP[LN[{}]*{}]", base.text, at(exponent, RightOfMultiplicative)),
             MacroForm::Function};
   case PowerStyle::Operator: // `-2**2` is 4 in LinuxCNC: a unary minus binds first
-    return {at(base, PowerOperand) + "**" + at(exponent, PowerOperand), MacroForm::Power};
+    return {at(base, PowerOperand) + "**" + rightOperand(exponent, PowerOperand), MacroForm::Power};
   }
   return {};
 }

@@ -57,6 +57,10 @@ public:
   std::optional<double> constantOf(ir::ValueId value) const;
   // The text, bracketed unless it stands bare at `position`.
   std::string at(const MacroText& text, MacroPosition position) const;
+  // The right operand of a binary operator: a sign right after the operator
+  // (`#1*-.5`) is not read by every control; the bracketed form is
+  // (TARGETS.md: `#1*[-.5]`).
+  std::string rightOperand(const MacroText& text, MacroPosition position) const;
 
 private:
   MacroText instructionText(const ir::Instruction& instruction) const;

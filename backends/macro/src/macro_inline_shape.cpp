@@ -76,6 +76,7 @@ int ownCharacters(const ir::Function& function, const ir::Instruction& instructi
           formatGcodeNumber(definition.number, std::max(0, significantDigits - whole));
       bool leadingZero = text.starts_with("0.") || text.starts_with("-0.");
       characters += static_cast<int>(text.size()) - (leadingZero && text.size() > 2 ? 1 : 0);
+      characters += multiplicative && i == 1 && definition.number < 0 ? 2 : 0; // `*[-.5]`
     } else {
       characters += 3; // #nn
     }
@@ -99,11 +100,16 @@ InlineShape macroInlineShape(const ControllerProfile& profile, const ir::Functio
   return shape;
 }
 
-InlineShape macroInlineShape(const ir::Function&, const ir::Instruction& instruction,
+InlineShape macroInlineShape(const ir::Function& function, const ir::Instruction& instruction,
                              std::span<const InlineShape> operands) {
   Opcode opcode = instruction.opcode;
   int operations = operationsOf(operands);
   auto at = [&](std::size_t i, Position position) { return depthAt(operands[i], position); };
+  // `#1*[-.5]`: a negative literal right of `*` or `/` is bracketed.
+  auto negativeLiteral = [&](std::size_t i) {
+    const ir::Instruction& definition = function.definition(instruction.operands[i]);
+    return definition.opcode == Opcode::Const && definition.number < 0 ? 1 : 0;
+  };
   switch (opcode) {
   case Opcode::Const:
   case Opcode::Param:
@@ -117,7 +123,8 @@ InlineShape macroInlineShape(const ir::Function&, const ir::Instruction& instruc
             InlineForm::Additive, operations};
   case Opcode::Mul:
   case Opcode::Div:
-    return {std::max(at(0, Position::LeftOfMultiplicative), at(1, Position::RightOfMultiplicative)),
+    return {std::max(at(0, Position::LeftOfMultiplicative),
+                     at(1, Position::RightOfMultiplicative) + negativeLiteral(1)),
             InlineForm::Multiplicative, operations};
   case Opcode::Neg:
     return {at(0, Position::UnderNegation), InlineForm::Negation, operations};

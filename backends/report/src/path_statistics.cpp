@@ -21,8 +21,10 @@ Eigen::Vector3d inPlane(const Eigen::Vector3d& point) {
 // the verdict and the printed figures, and ten times fewer samples than
 // 1e-7 on a 0.01 mm cut (a helix's turns overlap in plan view, so each
 // sample is compared with every turn).
-geom::DeviationOptions measurementAccuracy(double tolerance) {
-  return {std::isnan(tolerance) ? 1e-7 : std::max(1e-7, tolerance * 1e-3)};
+// The work limit grows with the stretch (maximumMeasurementWork).
+geom::DeviationOptions measurementOptions(double tolerance, std::size_t points) {
+  return {std::isnan(tolerance) ? 1e-7 : std::max(1e-7, tolerance * 1e-3),
+          maximumMeasurementWork(points)};
 }
 
 // The deviation of every stretch of the cut, the largest kept.
@@ -53,8 +55,8 @@ CutDeviation measureCut(const ExecutedPath& path, std::size_t cut,
       }
       continue;
     }
-    geom::DeviationReport report =
-        geom::measureDeviation(polyline, plan, measurementAccuracy(geometry.tolerance));
+    geom::DeviationReport report = geom::measureDeviation(
+        polyline, plan, measurementOptions(geometry.tolerance, polyline.size()));
     if (!(report.maxDeviation() <= deviation.maxDeviation)) {
       deviation.maxDeviation = report.maxDeviation();
       deviation.where = report.worst().polylinePoint;

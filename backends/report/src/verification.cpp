@@ -32,7 +32,10 @@ double referenceDeviation(const ExecutedPath& reference, std::size_t cut,
   }
   PlaneProjection plan(*geometry.curve);
   for (const std::vector<Eigen::Vector3d>& polyline : cutPolylines(reference, cut)) {
-    largest = std::max(largest, geom::measureDeviation(polyline, plan).maxDeviation());
+    largest = std::max(
+        largest, geom::measureDeviation(polyline, plan,
+                                        {.maximumWork = maximumMeasurementWork(polyline.size())})
+                     .maxDeviation());
   }
   return largest;
 }
@@ -113,9 +116,16 @@ VerificationReport verifyProgram(const VerificationInput& input, const Statistic
     return report;
   }
   double rounding = 2 * execution.increment;
-  report.stray = assignCuts(execution.path, input.reference, allowances(input, rounding), rounding);
-  report.statistics =
-      measureProgram({execution.text, report.blocks, execution.path}, input.cuts, options);
+  try {
+    report.stray =
+        assignCuts(execution.path, input.reference, allowances(input, rounding), rounding);
+    report.statistics =
+        measureProgram({execution.text, report.blocks, execution.path}, input.cuts, options);
+  } catch (const geom::MeasurementTooLarge& error) {
+    report.failure = ControllerFailure{
+        0, fmt::format("{} in one stretch of a cut: too large to verify", error.what()), ""};
+    return report;
+  }
   for (std::size_t cut = 0; cut < input.cuts.size(); ++cut) {
     if (hasFeedMoves(input.reference, cut) && !hasFeedMoves(execution.path, cut)) {
       report.missedCuts.push_back(cut);
@@ -133,6 +143,10 @@ std::string formatVerification(const VerificationReport& report, const Statistic
   }
   if (report.operations) {
     text += formatOperations(*report.operations);
+  }
+  if (report.failure && report.failure->line == 0) { // no block of the program
+    return text + fmt::format("the program cannot be verified: {}\nverdict: FAILED\n",
+                              report.failure->message);
   }
   if (report.failure) {
     text += fmt::format("the controller stopped the program: line {}: {}\n", report.failure->line,

@@ -3,7 +3,7 @@
 
 namespace cncc::backends::sim {
 
-ir::ToolPath flattenPath(const ExecutedPath& path, double maximumSagitta) {
+ir::ToolPath executedToolPath(const ExecutedPath& path) {
   ir::ToolPath out;
   for (const ExecutedEvent& event : path.events) {
     ir::MachineEvent flat;
@@ -42,7 +42,11 @@ ir::ToolPath flattenPath(const ExecutedPath& path, double maximumSagitta) {
       break;
     }
   }
-  return ir::flattenArcs(out, maximumSagitta);
+  return out;
+}
+
+ir::ToolPath flattenPath(const ExecutedPath& path, double maximumSagitta) {
+  return ir::flattenArcs(executedToolPath(path), maximumSagitta);
 }
 
 } // namespace cncc::backends::sim

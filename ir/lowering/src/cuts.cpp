@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 namespace cncc::ir::lowering {
 
@@ -20,6 +21,10 @@ using namespace frontend;
 namespace {
 
 constexpr double maximumPointsPerCut = 1'000'000;
+// The chords a cut's points may have when the tolerance chooses them: the
+// farthest-reach walk costs tens of microseconds a chord, and a program of
+// this many blocks a cut is beyond any real 2.5D part.
+constexpr std::size_t maximumChordsPerCut = 100'000;
 
 } // namespace
 
@@ -141,7 +146,15 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
     }
     // A controller that rounds every coordinate to its increment takes up to
     // half an increment per axis of the tolerance (LoweringOptions).
-    return geom::discretiseByChordTolerance(curve, toleranceBudget(cut).forPoints());
+    checkChordCount(cut, curve, toleranceBudget(cut).forPoints());
+    return geom::discretiseByChordTolerance(curve, toleranceBudget(cut).forPoints(),
+                                            maximumChordsPerCut);
+  } catch (const geom::ChordLimitExceeded& error) {
+    fail(cut.span,
+         fmt::format("this curve needs more than {} chords within its tolerance; that is the "
+                     "limit of one cut",
+                     error.limit),
+         DiagnosticKind::ProgramTooLarge);
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);
@@ -160,6 +173,55 @@ geom::CurveSamples PartLowering::checkedSamplesFor(const CutStmt& cut, const geo
     fail(cut.curve->span, "this curve gave fewer than two points", DiagnosticKind::TooFewPoints);
   }
   return samples;
+}
+
+double PartLowering::largestNumberInUnits() const {
+  return partUnits(part_) == PartUnits::Inches ? options_.largestNumber / 10
+                                               : options_.largestNumber;
+}
+
+void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) {
+  std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
+  double largest = largestNumberInUnits();
+  if (const Expr* depth = modifierValue(cut, "depth")) {
+    Value atDefaults = evaluate(*depth, environment_);
+    if (atDefaults.type.kind == TypeKind::Num && !(std::abs(atDefaults.number) <= largest)) {
+      fail(depth->span,
+           fmt::format("the depth {:g} {} is beyond this target's number range of +-{} {}",
+                       atDefaults.number, unit, largest, unit),
+           DiagnosticKind::CoordinateRange);
+    }
+  }
+  geom::DiscretisationEstimate estimate;
+  try {
+    estimate = geom::estimateDiscretisation(curve, 0.0);
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
+  }
+  if (!std::isfinite(estimate.largestCoordinate)) {
+    fail(cut.curve->span, "this curve has a point that is not a finite number",
+         DiagnosticKind::NonFiniteValue);
+  }
+  if (estimate.largestCoordinate > largest) {
+    fail(cut.curve->span,
+         fmt::format("this curve reaches a coordinate of {:g} {} at the values compiled with; "
+                     "this target's number range is +-{} {}",
+                     estimate.largestCoordinate, unit, largest, unit),
+         DiagnosticKind::CoordinateRange);
+  }
+}
+
+void PartLowering::checkChordCount(const CutStmt& cut, const geom::Curve& curve, double tolerance) {
+  double chords = geom::estimateDiscretisation(curve, tolerance).chords;
+  if (!(chords <= static_cast<double>(maximumChordsPerCut))) {
+    std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
+    fail(cut.span,
+         fmt::format("this curve needs about {:.3g} chords to keep within {:.3g} {} of it; the "
+                     "limit of one cut is {}",
+                     chords, tolerance, unit, maximumChordsPerCut),
+         DiagnosticKind::ProgramTooLarge);
+  }
 }
 
 std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
@@ -300,7 +362,14 @@ std::vector<SampleRun> PartLowering::pieceSampleRuns(const CutCurve& curve, std:
   auto moved = std::make_shared<TransformedCurve>(own.geometry, own.transform);
   geom::CurveSamples samples;
   try {
-    samples = geom::discretiseByChordTolerance(*moved, budget);
+    checkChordCount(cut, *moved, budget);
+    samples = geom::discretiseByChordTolerance(*moved, budget, maximumChordsPerCut);
+  } catch (const geom::ChordLimitExceeded& error) {
+    fail(cut.span,
+         fmt::format("this curve needs more than {} chords within its tolerance; that is the "
+                     "limit of one cut",
+                     error.limit),
+         DiagnosticKind::ProgramTooLarge);
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);
@@ -378,6 +447,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   // The curve is built once for whichever way lowers the cut. Arc pieces
   // are printed as circles (native_arcs.cpp), not fitted arcs.
   CutCurve curve = cutCurve(cut);
+  checkCutBounds(cut, *curve.geometry);
   bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
   if (!nativeArcs && lowerArcCut(cut, curve)) {
     return;

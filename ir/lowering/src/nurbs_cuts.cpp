@@ -119,6 +119,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   }
   Scalar feed = cutFeed(cut);
   CutCurve curve = cutCurve(cut);
+  checkCutBounds(cut, *curve.geometry);
   std::vector<std::optional<ValueId>> parameters = parameterWeights(cut, curve);
   fixNurbsBlockParameters(cut);
   geom::NurbsCurve blocks = nurbsForBlocks(cut, curve);

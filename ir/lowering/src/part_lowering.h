@@ -363,6 +363,13 @@ private:
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // Before any point is computed: the curve and the depth within the
+  // target's number range.
+  void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // Before the chords are chosen: no more than a cut may have.
+  void checkChordCount(const frontend::CutStmt& cut, const geom::Curve& curve, double tolerance);
+  // The target's largest number in the part's units.
+  double largestNumberInUnits() const;
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
   // The share of the descent done at a sample (SampleLocation.local).

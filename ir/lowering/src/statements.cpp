@@ -138,8 +138,17 @@ void PartLowering::ensureOrigin() {
 
 Scalar PartLowering::feedRate(const Expr& expression) {
   bool inches = partUnits(part_) == PartUnits::Inches;
-  return withinMachineLimit(expression, options_.maximumFeed / (inches ? 25.4 : 1.0), "feed",
-                            inches ? "inch/min" : "mm/min");
+  std::string_view unit = inches ? "inch/min" : "mm/min";
+  Scalar feed =
+      withinMachineLimit(expression, options_.maximumFeed / (inches ? 25.4 : 1.0), "feed", unit);
+  Value atDefaults = evaluate(expression, environment_);
+  if (atDefaults.type.kind == TypeKind::Num && !(atDefaults.number <= largestNumberInUnits())) {
+    fail(expression.span,
+         fmt::format("the feed {:g} {} is beyond this target's number range of {} {}",
+                     atDefaults.number, unit, largestNumberInUnits(), unit),
+         DiagnosticKind::CoordinateRange);
+  }
+  return feed;
 }
 
 Scalar PartLowering::spindleSpeed(const Expr& expression) {

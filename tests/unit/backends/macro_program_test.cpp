@@ -126,7 +126,8 @@ TEST(MacroProgram, FormatsNumbersWithinTheProfilesDigits) {
   ir::FunctionBuilder builder("numbers");
   ValueId a = builder.parameter(builder.addParameter("a", 0.5));
   ValueId zero = builder.constant(0);
-  // 123.456789 has 9 digits; 8 are kept. -0.25 keeps no leading zero.
+  // 123.456789 has 9 digits; 8 are kept. -0.25 keeps no leading zero, and
+  // after the operator it is bracketed (TARGETS.md's portable form).
   ValueId x = builder.binary(Opcode::Add, a, builder.constant(123.456789));
   ValueId y = builder.binary(Opcode::Mul, a, builder.constant(-0.25));
   builder.rapid(x, y, builder.constant(12.34567));
@@ -135,7 +136,7 @@ TEST(MacroProgram, FormatsNumbersWithinTheProfilesDigits) {
   EXPECT_THAT(program.text, HasSubstr("#1=.5\n"));
   EXPECT_THAT(program.text, HasSubstr("G0 Z12.346\n"));    // a literal coordinate: 3 decimals
   EXPECT_THAT(program.text, HasSubstr("X[#1+123.45679]")); // a constant: 8 digits
-  EXPECT_THAT(program.text, HasSubstr("Y[#1*-.25]"));
+  EXPECT_THAT(program.text, HasSubstr("Y[#1*[-.25]]"));
   (void)zero;
 }
 

@@ -191,6 +191,9 @@ struct CallExpr : Expr {
   const Declaration* declaration = nullptr; // the fn or builtin, set by the checker
   // polar(...) and param(...): the declaration of their `t`, set by the checker.
   const Declaration* curveParameter = nullptr;
+  // The argument list ended at a syntax error: arguments after it were never
+  // read, so the checker does not call them missing.
+  bool argumentsCutShort = false;
 };
 
 struct PointExpr : Expr {

@@ -1,10 +1,12 @@
 #pragma once
 
 #include "cncc/geom/curve.h"
+#include "cncc/geom/geometry_error.h"
 
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -43,6 +45,18 @@ struct DeviationOptions {
   /// a peak narrower than the sampling could be under-reported, by about `accuracy`.
   /// Work grows like length / sqrt(accuracy * smallest radius of curvature).
   double accuracy = 1e-7;
+  /// The most polyline and curve-sample segments the closest-point queries may
+  /// measure in all (the work of a measurement, which grows with the length of
+  /// the polyline times, for points far from the curve, the curve's samples);
+  /// past it measureDeviation throws MeasurementTooLarge.
+  double maximumWork = std::numeric_limits<double>::infinity();
+};
+
+/// Thrown by measureDeviation past DeviationOptions::maximumWork.
+class MeasurementTooLarge : public GeometryError {
+public:
+  explicit MeasurementTooLarge(double limit);
+  double limit;
 };
 
 /// Closest points on a curve, from a dense polyline through curve samples (chosen so
@@ -68,6 +82,8 @@ public:
   double sampledDistance(const Eigen::Vector3d& p) const;
 
   const std::vector<double>& sampleParameters() const { return parameters_; }
+  /// Segments of the curve's samples the queries have measured so far.
+  std::size_t segmentsMeasured() const;
   const std::vector<Eigen::Vector3d>& samplePoints() const { return points_; }
   /// Smallest radius of curvature seen at the samples (for choosing step sizes).
   double smallestSampledRadius() const { return smallestRadius_; }

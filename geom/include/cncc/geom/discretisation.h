@@ -1,10 +1,12 @@
 #pragma once
 
 #include "cncc/geom/curve.h"
+#include "cncc/geom/geometry_error.h"
 
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace cncc::geom {
@@ -38,7 +40,30 @@ double chordDeviation(const Curve& curve, double ta, double tb);
 /// other valid chain, so no chain has fewer chords. The walk starts at t0; for a
 /// closed curve the count is the fewest for a chain with a vertex at t0. Throws
 /// GeometryError for a tolerance <= 0.
-CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance);
+/// With `maximumChords`, throws ChordLimitExceeded as soon as the walk passes that
+/// many chords (the work of a walk grows with its chords).
+CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance,
+                                        std::size_t maximumChords = SIZE_MAX);
+
+/// Thrown by discretiseByChordTolerance past its chord limit.
+class ChordLimitExceeded : public GeometryError {
+public:
+  explicit ChordLimitExceeded(std::size_t limit);
+  std::size_t limit;
+};
+
+/// What discretising a curve would take, from about a thousand samples of it (cheap
+/// next to the walk itself).
+struct DiscretisationEstimate {
+  /// The chords a curve of the sampled curvature k needs, the integral of
+  /// sqrt(k / (8 tolerance)) over the arc length (a chord of length c on a circle
+  /// of curvature k deviates c^2 k / 8), plus one per smooth piece; 0 when the
+  /// tolerance is not a positive number.
+  double chords = 0.0;
+  /// The largest |x|, |y| or |z| of the samples.
+  double largestCoordinate = 0.0;
+};
+DiscretisationEstimate estimateDiscretisation(const Curve& curve, double tolerance);
 
 /// `count` >= 2 samples at equal parameter steps from t0 to t1 inclusive.
 CurveSamples sampleUniformParameter(const Curve& curve, std::size_t count);

@@ -4,6 +4,8 @@
 // (cncc/lowering/lowering.h) reads it; a backend says what it wants.
 #pragma once
 
+#include <limits>
+
 namespace cncc::ir {
 
 // How A and C spline blocks begin and end (--spline-ends).
@@ -56,6 +58,11 @@ struct LoweringOptions {
   // the statement that sets it.
   double maximumFeed = 0;
   double maximumSpindleSpeed = 0;
+  // The largest coordinate, radius or feed (mm, mm/min) the target's
+  // programs can write; a tenth of it in inches. A cut whose curve, depth or
+  // feed at the values compiled with goes beyond it is a coordinate-range
+  // error.
+  double largestNumber = std::numeric_limits<double>::infinity();
 };
 
 } // namespace cncc::ir

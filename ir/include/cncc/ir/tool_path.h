@@ -56,6 +56,9 @@ struct ToolPath {
 // mm) is a full turn.
 double arcSweep(double startX, double startY, const MachineEvent& arc, double closing = 1e-9);
 
+// How many chords appendArcChords cuts `arc` from (startX, startY) into.
+int arcChordCount(double startX, double startY, const MachineEvent& arc, double maximumSagitta);
+
 // Appends feed moves along `arc` from (startX, startY, startZ) whose chords
 // stay within `maximumSagitta` of it, the last one to its end.
 void appendArcChords(double startX, double startY, double startZ, const MachineEvent& arc,
@@ -65,6 +68,8 @@ void appendArcChords(double startX, double startY, double startZ, const MachineE
 // `maximumSagitta` of it (the arc's radius goes evenly from its start's to
 // its end's, as controllers move). At most `maximumChordsPerArc` per arc.
 ToolPath flattenArcs(const ToolPath& path, double maximumSagitta);
+// How many events flattenArcs(path, maximumSagitta) has, without making them.
+double flattenedEventCount(const ToolPath& path, double maximumSagitta);
 inline constexpr double maximumChordsPerArc = 4'000'000;
 
 } // namespace cncc::ir

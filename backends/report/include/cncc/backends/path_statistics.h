@@ -59,8 +59,19 @@ struct PathStatistics {
 // stretch of consecutive feed moves, without repeated points.
 std::vector<std::vector<Eigen::Vector3d>> cutPolylines(const ExecutedPath& path, std::size_t cut);
 
+// The segment distances measuring one stretch of a cut of `points` points
+// may take (geom::DeviationOptions::maximumWork): a path along its curve
+// takes a few hundred a point, a helix of twelve turns (each sample near
+// every turn in plan view) about 2,800; a path wandering over the inside of
+// a large closed curve, every point about as near to all of it, ten
+// thousand and more, and minutes in all.
+inline double maximumMeasurementWork(std::size_t points) {
+  return 50e6 + 4000.0 * static_cast<double>(points);
+}
+
 // Measures `program` against the part's cuts (indexed as the moves' cut).
-// Throws ExecutionMismatch for a move whose cut is not in `cuts`.
+// Throws ExecutionMismatch for a move whose cut is not in `cuts`, and
+// geom::MeasurementTooLarge past maximumMeasurementWork.
 PathStatistics measureProgram(const ExecutedProgram& program, std::span<const ir::CutGeometry> cuts,
                               const StatisticsOptions& options);
 

@@ -99,5 +99,7 @@ parseMacroArgument(std::string_view text, const ControllerProfile& profile, std:
 // The path as a polyline: arcs split into chords whose sagitta is at most
 // `maximumSagitta` (program units), tool changes and spindle speeds kept.
 ir::ToolPath flattenPath(const ExecutedPath& path, double maximumSagitta = 1e-4);
+// The path as tool path events, arcs kept as arcs.
+ir::ToolPath executedToolPath(const ExecutedPath& path);
 
 } // namespace cncc::backends::sim
