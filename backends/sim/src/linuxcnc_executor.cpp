@@ -22,48 +22,6 @@ constexpr int callParameters = 30;
 constexpr std::size_t maximumCallDepth = 10;
 constexpr int firstSystemParameter = 5000;
 
-// LinuxCNC's predefined read-only named parameters: not modelled.
-constexpr std::array<std::string_view, 40> predefinedParameters{"_vmajor",
-                                                                "_vminor",
-                                                                "_line",
-                                                                "_motion_mode",
-                                                                "_plane",
-                                                                "_ccomp",
-                                                                "_metric",
-                                                                "_imperial",
-                                                                "_absolute",
-                                                                "_incremental",
-                                                                "_inverse_time",
-                                                                "_units_per_minute",
-                                                                "_units_per_rev",
-                                                                "_coord_system",
-                                                                "_tool_offset",
-                                                                "_retract_r_plane",
-                                                                "_retract_old_z",
-                                                                "_spindle_rpm_mode",
-                                                                "_spindle_css_mode",
-                                                                "_ijk_absolute_mode",
-                                                                "_lathe_diameter_mode",
-                                                                "_lathe_radius_mode",
-                                                                "_spindle_on",
-                                                                "_spindle_cw",
-                                                                "_mist",
-                                                                "_flood",
-                                                                "_speed_override",
-                                                                "_feed_override",
-                                                                "_adaptive_feed",
-                                                                "_feed_hold",
-                                                                "_feed",
-                                                                "_rpm",
-                                                                "_x",
-                                                                "_y",
-                                                                "_z",
-                                                                "_current_tool",
-                                                                "_selected_tool",
-                                                                "_value",
-                                                                "_value_returned",
-                                                                "_call_level"};
-
 struct Frame {
   std::size_t returnTo = 0;
   std::array<double, callParameters> savedArguments{};
@@ -131,11 +89,11 @@ double Executor::named(const std::string& name, const LineContext& context) cons
   if (found != scope.end()) {
     return found->second;
   }
-  if (std::find(predefinedParameters.begin(), predefinedParameters.end(), name) !=
-      predefinedParameters.end()) {
-    failAt(context, fmt::format("the predefined parameter #<{}> is not modelled", name));
-  }
-  failAt(context, fmt::format("#<{}> is read before it is set", name));
+  // LinuxCNC's predefined parameters (#<_x>, #<_value>, ...) are not
+  // modelled: they too are unset here.
+  failAt(context, fmt::format("#<{}> is read before it is set (LinuxCNC's predefined "
+                              "parameters are not modelled)",
+                              name));
 }
 
 bool Executor::exists(const std::string& name) const {
@@ -212,10 +170,6 @@ bool Executor::words(const Block& block) {
       numbered_[*settings[i].first] = settings[i].second;
     } else {
       const std::string& name = block.settings[i].name;
-      if (std::find(predefinedParameters.begin(), predefinedParameters.end(), name) !=
-          predefinedParameters.end()) {
-        failAt(block.context(), fmt::format("#<{}> is LinuxCNC's, read-only", name));
-      }
       (name.starts_with('_') ? globals_ : frames_.back().named)[name] = settings[i].second;
     }
   }
