@@ -7,8 +7,10 @@
 // arc's end point; the operations counted per point come from blocks that
 // ran, and the loop feed moves are feed moves of the path. The first byte
 // picks the profile and whether the program runs as a G65 call with
-// arguments.
+// arguments; with its top bit set the program is read in LinuxCNC's
+// dialect instead (linuxcnc_controller.h), under the same contract.
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/linuxcnc_controller.h"
 #include "cncc/backends/sim_operation_count.h"
 #include "cncc/backends/virtual_controller.h"
 
@@ -81,10 +83,29 @@ void checkOperationCounts(std::string_view text, const ControllerProfile& profil
   }
 }
 
+void runLinuxcnc(std::string_view text) {
+  sim::LinuxcncRunOptions options;
+  options.stepLimit = 20000;
+  sim::LinuxcncRun run = sim::runLinuxcncProgram(text, options);
+  if (run.error && (run.error->line() < 0 || run.error->line() > lineCount(text))) {
+    fail("a LinuxCNC error names a line outside the program");
+  }
+  if (run.blocksExecuted > options.stepLimit + 1) {
+    fail("the step limit was not enforced on a LinuxCNC program");
+  }
+  if (run.moves.size() <= 500) { // each arc may be up to 1000 turns
+    checkPath(sim::executedPathOf(run));
+  }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) {
+    return 0;
+  }
+  if (data[0] & 0x80) {
+    runLinuxcnc(std::string_view(reinterpret_cast<const char*>(data + 1), size - 1));
     return 0;
   }
   static const char* const profileNames[] = {"fanuc", "m80", "fanuc-0i-small"};

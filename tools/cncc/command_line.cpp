@@ -177,8 +177,9 @@ CLI::App* addOptCommand(CLI::App& app, RawOptions& raw) {
 // cncc sim: -t, -o and --profile are the main command's options.
 CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* simulate = app.add_subcommand(
-      "sim", "Run an m80/fanuc/sinumerik program on a virtual controller and print its path as "
-             "CSV");
+      "sim",
+      "Run an m80/fanuc/linuxcnc/sinumerik program on a virtual controller and print its path as "
+      "CSV");
   simulate->add_option("PROGRAM", raw.simulateInput, "The program file")->type_name("")->required();
   simulate
       ->add_option("-a", raw.macroArguments,
@@ -211,7 +212,7 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
       ->check(CLI::Range(1e-6, 10.0));
   simulate->fallthrough();
   simulate->footer(
-      "\nTakes -t fanuc|m80|sinumerik, --profile NAME and -o OUT ('-': standard output).");
+      "\nTakes -t fanuc|m80|linuxcnc|sinumerik, --profile NAME and -o OUT ('-': standard output).");
   return simulate;
 }
 

@@ -397,14 +397,16 @@ std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
 
 DriverOptions simulateOptions(const RawOptions& raw) {
   const Target* target = findTarget(raw.target);
-  bool sinumerik = raw.target == "sinumerik";
-  if (!sinumerik && (target == nullptr || target->controllerProfile.empty())) {
-    throw UsageError("'sim' needs -t fanuc, -t m80 or -t sinumerik");
+  // Sinumerik and LinuxCNC programs have readers of their own, without a profile.
+  bool ownReader = raw.target == "sinumerik" || raw.target == "linuxcnc";
+  if (!ownReader && (target == nullptr || target->controllerProfile.empty())) {
+    throw UsageError("'sim' needs -t fanuc, -t m80, -t linuxcnc or -t sinumerik");
   }
-  if (sinumerik && (!raw.macroArguments.empty() || raw.strictReading || !raw.toolRadii.empty() ||
+  if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || !raw.toolRadii.empty() ||
                     raw.peckRetract || raw.peckClearance || !raw.profile.empty())) {
-    throw UsageError("-a, --strict, --tool-radius, --peck-retract, --peck-clearance and "
-                     "--profile apply to 'sim -t fanuc' and '-t m80', not to sinumerik");
+    throw UsageError(fmt::format("-a, --strict, --tool-radius, --peck-retract, --peck-clearance "
+                                 "and --profile apply to 'sim -t fanuc' and '-t m80', not to {}",
+                                 raw.target));
   }
   DriverOptions options;
   options.command = Command::Simulate;

@@ -1,11 +1,12 @@
-// cncc sim: runs a program on a virtual controller (backends/sim: Fanuc/M80
-// or Sinumerik) and prints the executed path as CSV, arcs and splines split
+// cncc sim: runs a program on a virtual controller (backends/sim: Fanuc/M80,
+// LinuxCNC or Sinumerik) and prints the executed path as CSV, arcs and splines split
 // into fine chords.
 #include "atomic_output_file.h"
 #include "commands.h"
 #include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/linuxcnc_controller.h"
 #include "cncc/backends/sinumerik_controller.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/backends/virtual_controller.h"
@@ -81,17 +82,36 @@ int runSinumerik(const DriverOptions& options, const std::string& path, const st
   return writeCsv(options, toolPath);
 }
 
+// Prints a virtual controller's error at its line, with the line.
+int reportError(const std::string& path, const backends::sim::SimulationError& error) {
+  fmt::print(stderr, "{}:{}: error: {}\n", path, error.line(), error.what());
+  if (!error.lineText().empty()) {
+    fmt::print(stderr, "    {}\n", error.lineText());
+  }
+  return 1;
+}
+
+int runLinuxcnc(const DriverOptions& options, const std::string& path, const std::string& text) {
+  backends::sim::LinuxcncRun run = backends::sim::runLinuxcncProgram(text);
+  if (run.error) {
+    return reportError(path, *run.error);
+  }
+  return writeCsv(
+      options, backends::sim::flattenPath(backends::sim::executedPathOf(run), options.chordError));
+}
+
 } // namespace
 
 int runSimulate(const DriverOptions& options) {
-  if (options.target == "sinumerik") {
+  if (options.target == "sinumerik" || options.target == "linuxcnc") {
     const std::string& path = options.inputs.front();
     std::optional<std::string> text = readWholeFile(path);
     if (!text) {
       fmt::print(stderr, "cncc: error: cannot read '{}'\n", path);
       return 1;
     }
-    return runSinumerik(options, path, *text);
+    return options.target == "sinumerik" ? runSinumerik(options, path, *text)
+                                         : runLinuxcnc(options, path, *text);
   }
   const backends::ControllerProfile* profile = &controllerProfile(options, options.target);
   backends::sim::SimulationOptions simulation;
@@ -126,11 +146,7 @@ int runSimulate(const DriverOptions& options) {
   backends::sim::SimulationResult result =
       backends::sim::simulateProgram(*text, *profile, simulation);
   if (result.error) {
-    fmt::print(stderr, "{}:{}: error: {}\n", path, result.error->line(), result.error->what());
-    if (!result.error->lineText().empty()) {
-      fmt::print(stderr, "    {}\n", result.error->lineText());
-    }
-    return 1;
+    return reportError(path, *result.error);
   }
   return writeCsv(options, backends::sim::flattenPath(result.path, options.chordError));
 }
