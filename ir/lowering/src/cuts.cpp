@@ -146,15 +146,7 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
     }
     // A controller that rounds every coordinate to its increment takes up to
     // half an increment per axis of the tolerance (LoweringOptions).
-    checkChordCount(cut, curve, toleranceBudget(cut).forPoints());
-    return geom::discretiseByChordTolerance(curve, toleranceBudget(cut).forPoints(),
-                                            maximumChordsPerCut);
-  } catch (const geom::ChordLimitExceeded& error) {
-    fail(cut.span,
-         fmt::format("this curve needs more than {} chords within its tolerance; that is the "
-                     "limit of one cut",
-                     error.limit),
-         DiagnosticKind::ProgramTooLarge);
+    return chordsWithinBudget(cut, curve, toleranceBudget(cut).forPoints());
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);
@@ -221,6 +213,23 @@ void PartLowering::checkChordCount(const CutStmt& cut, const geom::Curve& curve,
                      "limit of one cut is {}",
                      chords, tolerance, unit, maximumChordsPerCut),
          DiagnosticKind::ProgramTooLarge);
+  }
+}
+
+geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const geom::Curve& curve,
+                                                    double budget) {
+  try {
+    checkChordCount(cut, curve, budget);
+    return geom::discretiseByChordTolerance(curve, budget, maximumChordsPerCut);
+  } catch (const geom::ChordLimitExceeded& error) {
+    fail(cut.span,
+         fmt::format("this curve needs more than {} chords within its tolerance; that is the "
+                     "limit of one cut",
+                     error.limit),
+         DiagnosticKind::ProgramTooLarge);
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
   }
 }
 
@@ -360,20 +369,7 @@ std::vector<SampleRun> PartLowering::pieceSampleRuns(const CutCurve& curve, std:
                                                      const CutStmt& cut) {
   const CurvePiece& own = curve.pieces[piece];
   auto moved = std::make_shared<TransformedCurve>(own.geometry, own.transform);
-  geom::CurveSamples samples;
-  try {
-    checkChordCount(cut, *moved, budget);
-    samples = geom::discretiseByChordTolerance(*moved, budget, maximumChordsPerCut);
-  } catch (const geom::ChordLimitExceeded& error) {
-    fail(cut.span,
-         fmt::format("this curve needs more than {} chords within its tolerance; that is the "
-                     "limit of one cut",
-                     error.limit),
-         DiagnosticKind::ProgramTooLarge);
-  } catch (const geom::GeometryError& error) {
-    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
-         DiagnosticKind::DegenerateCurve);
-  }
+  geom::CurveSamples samples = chordsWithinBudget(cut, *moved, budget);
   std::vector<SampleLocation> locations;
   for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
     locations.push_back(locateInPiece(curve, piece, samples.parameters[i]));

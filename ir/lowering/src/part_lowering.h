@@ -368,6 +368,10 @@ private:
   void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before the chords are chosen: no more than a cut may have.
   void checkChordCount(const frontend::CutStmt& cut, const geom::Curve& curve, double tolerance);
+  // The chords of `curve` within `budget`, checked and bounded as above; an
+  // error at the cut when they cannot be found.
+  geom::CurveSamples chordsWithinBudget(const frontend::CutStmt& cut, const geom::Curve& curve,
+                                        double budget);
   // The target's largest number in the part's units.
   double largestNumberInUnits() const;
   std::vector<double> passDepths(const frontend::CutStmt& cut);
