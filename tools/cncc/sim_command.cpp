@@ -6,6 +6,7 @@
 #include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/heidenhain_controller.h"
 #include "cncc/backends/sinumerik_controller.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/backends/virtual_controller.h"
@@ -81,17 +82,40 @@ int runSinumerik(const DriverOptions& options, const std::string& path, const st
   return writeCsv(options, toolPath);
 }
 
+// The virtual TNC's run: its arcs in chords of the --chord-error.
+int runHeidenhain(const DriverOptions& options, const std::string& path, const std::string& text) {
+  backends::heidenhain::TncRunOptions settings;
+  if (!options.profile.empty()) {
+    const backends::TncProfile* profile = backends::findTncProfile(options.profile);
+    if (profile == nullptr) {
+      return usageError(
+          fmt::format("--profile {}: the TNC profiles are tnc640 and itnc530", options.profile));
+    }
+    settings.profile = *profile;
+  }
+  backends::heidenhain::TncRun run = backends::heidenhain::runTncProgram(text, settings);
+  if (run.error) {
+    fmt::print(stderr, "{}:{}: error: {}\n", path, run.error->line, run.error->message);
+    if (!run.error->lineText.empty()) {
+      fmt::print(stderr, "    {}\n", run.error->lineText);
+    }
+    return 1;
+  }
+  return writeCsv(options, ir::flattenArcs(run.path, options.chordError));
+}
+
 } // namespace
 
 int runSimulate(const DriverOptions& options) {
-  if (options.target == "sinumerik") {
+  if (options.target == "sinumerik" || options.target == "heidenhain") {
     const std::string& path = options.inputs.front();
     std::optional<std::string> text = readWholeFile(path);
     if (!text) {
       fmt::print(stderr, "cncc: error: cannot read '{}'\n", path);
       return 1;
     }
-    return runSinumerik(options, path, *text);
+    return options.target == "sinumerik" ? runSinumerik(options, path, *text)
+                                         : runHeidenhain(options, path, *text);
   }
   const backends::ControllerProfile* profile = &controllerProfile(options, options.target);
   backends::sim::SimulationOptions simulation;

@@ -172,6 +172,21 @@ parameterValues(const frontend::PartItem& part, const DriverOptions& options,
   return values;
 }
 
+// The -D values in the variables the target's own kind of program sets at its top.
+std::vector<backends::ParameterValue> ownParameterValues(const frontend::PartItem& part,
+                                                         const DriverOptions& options,
+                                                         const Target& target) {
+  std::vector<int> variables = target.parameterVariables(part.parameters.size(), options);
+  std::vector<backends::ParameterValue> values;
+  for (std::size_t i = 0; i < part.parameters.size() && i < variables.size(); ++i) {
+    auto define = options.defines.find(part.parameters[i].name);
+    if (define != options.defines.end()) {
+      values.push_back({define->first, variables[i], define->second});
+    }
+  }
+  return values;
+}
+
 backends::StatisticsOptions statisticsOptions(const CheckedProgram& program,
                                               const SourceManager& sources,
                                               const HostReference& reference) {
@@ -212,7 +227,8 @@ int runVerify(const DriverOptions& options) {
     return 1;
   }
   const Target* target = findTarget(options.target);
-  bool symbolic = target != nullptr && !target->controllerProfile.empty();
+  bool symbolic = target != nullptr &&
+                  (!target->controllerProfile.empty() || target->parameterVariables != nullptr);
   backends::ExecutionRequest execution;
   std::optional<std::string> text;
   if (symbolic) {
@@ -226,7 +242,10 @@ int runVerify(const DriverOptions& options) {
       return 1;
     }
     std::optional<std::vector<backends::ParameterValue>> values =
-        parameterValues(*truth->program->selectedPart, options, target->controllerProfile, output);
+        target->parameterVariables != nullptr
+            ? ownParameterValues(*truth->program->selectedPart, options, *target)
+            : parameterValues(*truth->program->selectedPart, options, target->controllerProfile,
+                              output);
     if (!values) {
       return 1;
     }
