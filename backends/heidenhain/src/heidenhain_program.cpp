@@ -388,7 +388,7 @@ private:
       printAtan2(instruction, target);
       return;
     default:
-      blocks_.assign(target, instruction.result);
+      line(fmt::format("{} = {}", target, formulas_.definition(instruction.result).text));
       return;
     }
   }

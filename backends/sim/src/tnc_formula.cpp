@@ -131,7 +131,7 @@ private:
       ++position_;
     }
     std::string_view word = text_.substr(start, position_ - start);
-    if (word.empty()) {
+    if (word.empty() || std::isdigit(static_cast<unsigned char>(word[0]))) {
       position_ = start;
       return number();
     }
@@ -149,7 +149,7 @@ private:
         return function;
       }
     }
-    if (word[0] == 'Q' || std::isdigit(static_cast<unsigned char>(word[0]))) {
+    if (word[0] == 'Q') {
       return parseTncOperand(word, line_);
     }
     fail(fmt::format("'{}' is no number, parameter or function of a formula", word));
