@@ -64,8 +64,8 @@ std::string tncBracketedUnlessTighter(const TncText& text, TncForm loosest) {
 }
 
 std::vector<Opcode> tncStatementOpcodes() {
-  return {Opcode::Min,  Opcode::Max,   Opcode::Select, Opcode::Floor,
-          Opcode::Ceil, Opcode::Round, Opcode::Atan2,  Opcode::Rem};
+  return {Opcode::Min,   Opcode::Max,   Opcode::Select, Opcode::Floor,    Opcode::Ceil,
+          Opcode::Round, Opcode::Atan2, Opcode::Rem,    Opcode::TableLoad};
 }
 
 ir::InlineShape tncInlineShape(const ir::Function&, const ir::Instruction& instruction,
@@ -105,6 +105,32 @@ std::string TncFormulaWriter::number(double value) const {
 std::string TncFormulaWriter::signedNumber(double value) const {
   std::string text = number(value);
   return text.starts_with('-') ? text : "+" + text;
+}
+
+std::string TncFormulaWriter::splineCoefficient(double value) const {
+  constexpr int decimals = 8; // as the TNC's largest K, 9.99999999, has
+  constexpr int largestExponent = 255;
+  if (!std::isfinite(value)) {
+    errors_.push_back(fmt::format("an SPL coefficient {} is not a number", value));
+    return "+0";
+  }
+  auto signedText = [](std::string text) { return text.starts_with('-') ? text : "+" + text; };
+  double largest = profile_.maximumSplineCoefficient;
+  if (std::abs(std::stod(fixed(value, decimals))) <= largest) {
+    return signedText(fixed(value, decimals));
+  }
+  // Rescaled: a mantissa from 1 to under 10 (rounded up to 10: one more power).
+  int exponent = static_cast<int>(std::floor(std::log10(std::abs(value))));
+  std::string mantissa = fixed(value / std::pow(10.0, exponent), decimals);
+  if (std::abs(std::stod(mantissa)) > largest) {
+    ++exponent;
+    mantissa = fixed(value / std::pow(10.0, exponent), decimals);
+  }
+  if (exponent > largestExponent) {
+    errors_.push_back(fmt::format("an SPL coefficient {:g} is beyond the TNC's exponent of {}",
+                                  value, largestExponent));
+  }
+  return fmt::format("{} E+{}", signedText(mantissa), exponent);
 }
 
 std::string TncFormulaWriter::signedCoordinate(double value) const {
@@ -159,11 +185,9 @@ TncText TncFormulaWriter::instructionText(const ir::Instruction& instruction) co
   case Opcode::Pow:
     return arithmetic(instruction);
   case Opcode::TableLoad:
-    if (std::optional<double> index = constantOf(instruction.operands[0])) {
-      int base = allocation_.tableBase.at(instruction.index);
-      return {tncParameterName(base + static_cast<int>(std::llround(*index))), TncForm::Atom};
-    }
-    errors_.push_back("a TNC program cannot read a table at a computed index (table.load)");
+    // Never inline: the printer writes a table read as blocks of its own
+    // (tncStatementOpcodes).
+    errors_.push_back("a table read inside a formula (table.load)");
     return {"0", TncForm::Atom};
   default:
     return function(instruction);

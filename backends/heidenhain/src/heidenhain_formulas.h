@@ -34,7 +34,8 @@ ir::InlineShape tncInlineShape(const ir::Function& function, const ir::Instructi
                                std::span<const ir::InlineShape> operands);
 
 // Operations the printer writes as several blocks (jumps around
-// assignments): min, max, select, floor, ceil, round, atan2, rem.
+// assignments): min, max, select, floor, ceil, round, atan2, rem, and
+// table.load (jumps to the entry's value).
 std::vector<ir::Opcode> tncStatementOpcodes();
 
 class TncFormulaWriter {
@@ -49,6 +50,9 @@ public:
   std::string signedNumber(double value) const;
   // A coordinate to the profile's decimals (one more in inches), signed.
   std::string signedCoordinate(double value) const;
+  // An SPL coefficient: `+0.12345678`, or beyond the profile's largest
+  // |K| a mantissa within it and an exponent word, `+1.2345678 E+2`.
+  std::string splineCoefficient(double value) const;
   // `3`, `-0.5`: a number inside a formula.
   std::string number(double value) const;
 

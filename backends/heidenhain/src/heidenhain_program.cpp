@@ -23,6 +23,8 @@ using ir::ValueId;
 // was compiled for, and an alarm of the part (a degenerate arc).
 constexpr int fixedParameterError = 1;
 constexpr int partAlarmError = 2;
+// A table read at an index outside the table.
+constexpr int tableIndexError = 3;
 
 constexpr double pi = 3.14159265358979;
 
@@ -176,6 +178,10 @@ private:
       flushTool();
       blocks_.arc(instruction.index == static_cast<std::uint32_t>(ir::ArcTurn::Clockwise),
                   operands);
+      return;
+    case Opcode::Polynomial:
+      flushTool();
+      blocks_.spline(operands);
       return;
     case Opcode::Nurbs: // lowered only for targets with NURBS blocks
       errors_.push_back("the TNC has no NURBS blocks of the G06.2 kind (move.nurbs)");
@@ -342,6 +348,41 @@ private:
     line(fmt::format("{} = {}", target, angle));
   }
 
+  // A TNC program has no indexed parameters: a table read at a computed
+  // index is a chain of FN 12 jumps, one per entry, to an FN 0 of the
+  // entry's value. As the IR reads it, the index is truncated (a jump
+  // below k + 1 takes entry k), and one outside the table stops the program.
+  void printTableRead(const ir::Instruction& instruction, const std::string& target) {
+    const std::vector<double>& table = function_.tables.at(instruction.index);
+    if (std::optional<double> constant = formulas_.constantOf(instruction.operands[0]);
+        constant && *constant >= 0 && *constant < static_cast<double>(table.size())) {
+      line(fmt::format("FN 0: {} = {}", target,
+                       formulas_.signedNumber(table[static_cast<std::size_t>(*constant)])));
+      return;
+    }
+    std::string index = blocks_.operand(instruction.operands[0]);
+    int outside = blocks_.newLabel();
+    line(fmt::format("FN 12: IF {} LT +0 GOTO LBL {}", index, outside));
+    std::vector<int> entries;
+    for (std::size_t k = 0; k < table.size(); ++k) {
+      entries.push_back(blocks_.newLabel());
+      line(fmt::format("FN 12: IF {} LT +{} GOTO LBL {}", index, k + 1, entries.back()));
+    }
+    blocks_.label(outside);
+    line(commentLine(
+        fmt::format("index outside table @{} of {} entries", instruction.index, table.size())));
+    line(fmt::format("FN 14: ERROR = {}", tableIndexError));
+    int done = blocks_.newLabel();
+    for (std::size_t k = 0; k < table.size(); ++k) {
+      blocks_.label(entries[k]);
+      line(fmt::format("FN 0: {} = {}", target, formulas_.signedNumber(table[k])));
+      if (k + 1 < table.size()) {
+        blocks_.jump(done);
+      }
+    }
+    blocks_.label(done);
+  }
+
   static std::string term(const std::string& operand) {
     return operand.starts_with('+') ? operand.substr(1) : "( " + operand + " )";
   }
@@ -386,6 +427,9 @@ private:
     }
     case Opcode::Atan2:
       printAtan2(instruction, target);
+      return;
+    case Opcode::TableLoad:
+      printTableRead(instruction, target);
       return;
     default:
       line(fmt::format("{} = {}", target, formulas_.definition(instruction.result).text));
@@ -477,6 +521,7 @@ ir::LoweringOptions heidenhainLoweringOptions(const TncProfile& profile, bool in
   ir::LoweringOptions options;
   options.controllerLoops = true;
   options.arcBlocks = true;
+  options.polynomialBlocks = true;
   options.coordinateIncrement = std::pow(10.0, -(profile.coordinateDecimals + (inches ? 1 : 0)));
   return options;
 }
