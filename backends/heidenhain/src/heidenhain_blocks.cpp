@@ -273,4 +273,26 @@ void TncBlockWriter::arc(bool clockwise, std::span<const ir::ValueId> operands) 
   motion("C" + words + feedWord(operands[5]), z);
 }
 
+void TncBlockWriter::spline(std::span<const ir::ValueId> operands) {
+  std::string text = "SPL";
+  for (int axis = 0; axis < 3; ++axis) {
+    text += fmt::format(" {}{}", "XYZ"[axis], operand(operands[axis], true));
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int k = 0; k < 3; ++k) {
+      std::optional<double> coefficient = formulas_.constantOf(operands[3 + 3 * axis + k]);
+      if (!coefficient) {
+        errors_.push_back("an SPL coefficient the compiler does not know (the TNC takes numbers)");
+        return;
+      }
+      text +=
+          fmt::format(" K{}{}{}", 3 - k, "XYZ"[axis], formulas_.splineCoefficient(*coefficient));
+    }
+  }
+  for (char letter : {'X', 'Y', 'Z'}) {
+    literals_.erase(letter); // the next block writes its coordinates again
+  }
+  motion(text + feedWord(operands[12]), operands[2]);
+}
+
 } // namespace cncc::backends

@@ -50,6 +50,10 @@ public:
   // move.arc: `CC IX.. IY..` (the centre from the start), then `C X.. Y..
   // DR-|DR+`, a helix with `IZ` the rise from the Z before it.
   void arc(bool clockwise, std::span<const ir::ValueId> operands);
+  // move.polynomial: `SPL X.. Y.. Z.. K3X.. K2X.. K1X.. K3Y.. .. K1Z.. F..`,
+  // every coordinate and coefficient written (the TNC needs K3 to K1 of
+  // each axis it names).
+  void spline(std::span<const ir::ValueId> operands);
   // An M function for the next motion block (M3 after a tool call).
   void beforeNextMove(std::string words) { pendingWords_ += " " + words; }
   // A block of its own for the pending M functions and `words`.

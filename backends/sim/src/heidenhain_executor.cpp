@@ -2,6 +2,9 @@
 // repeats, and the motion blocks, counting the operations of loop blocks.
 #include "tnc_program_text.h"
 
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/polynomial_move.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -254,6 +257,9 @@ private:
     case TncBlock::Kind::Circle:
       circle(block, index);
       return std::nullopt;
+    case TncBlock::Kind::Spline:
+      spline(block, index);
+      return std::nullopt;
     default: // comments, BLK FORM, cycle 32, END PGM
       return std::nullopt;
     }
@@ -427,6 +433,41 @@ private:
     event.clockwise = *block.clockwise;
     event.feed = feed;
     record(event, index);
+  }
+
+  // SPL: per axis K3 t^3 + K2 t^2 + K1 t + end, t from 1 to 0; an axis
+  // with an end coordinate needs all three coefficients, one without stays.
+  void spline(const TncBlock& block, std::size_t index) {
+    machineFunctions(block);
+    if (!position_.known()) {
+      fail(block, "SPL from an unknown position");
+    }
+    Position end = target(block);
+    const std::optional<TncAxisWord>* words[3] = {&block.x, &block.y, &block.z};
+    std::array<double, 12> values{};
+    for (int axis = 0; axis < 3; ++axis) {
+      values[axis] = *end.axes[axis];
+      for (int k = 0; k < 3; ++k) {
+        const std::optional<double>& coefficient = block.splineCoefficients[axis][k];
+        if (words[axis]->has_value() != coefficient.has_value()) {
+          fail(block, fmt::format("SPL needs K3{0} K2{0} K1{0} with {0}, and no K{1}{0} without",
+                                  "XYZ"[axis], 3 - k));
+        }
+        values[3 + 3 * axis + k] = coefficient.value_or(0);
+      }
+    }
+    double feed = feedOf(block);
+    std::array<double, 3> start{*position_.axes[0], *position_.axes[1], *position_.axes[2]};
+    std::vector<ir::MachineEvent> events;
+    try {
+      ir::polynomialMove(start, ir::polynomialMoveOf(values), feed, events);
+    } catch (const ir::InterpreterError& error) {
+      fail(block, error.what());
+    }
+    position_ = end;
+    for (const ir::MachineEvent& event : events) {
+      record(event, index);
+    }
   }
 
   std::vector<TncBlock> blocks_;

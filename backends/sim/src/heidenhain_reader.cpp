@@ -6,6 +6,7 @@
 
 #include <array>
 #include <charconv>
+#include <cmath>
 
 namespace cncc::backends::heidenhain {
 
@@ -64,6 +65,8 @@ public:
       readToolCall(words);
     } else if (first == "L" || first == "C" || first == "CC") {
       readMotion(words);
+    } else if (first == "SPL") {
+      readSpline(words);
     } else if (first == "LBL") {
       readLabel(words);
     } else if (first == "CALL") {
@@ -171,6 +174,58 @@ private:
         fail(fmt::format("'{}' is no word of {} the model knows", word, words[0]));
       }
     }
+  }
+
+  // `SPL X.. Y.. Z.. K3X.. K2X.. K1X.. K3Y.. .. F..`: absolute end
+  // coordinates; a coefficient may be followed by an exponent word `E+2`.
+  void readSpline(const std::vector<std::string_view>& words) {
+    block_.kind = TncBlock::Kind::Spline;
+    std::optional<double>* last = nullptr;
+    for (std::size_t i = 1; i < words.size(); ++i) {
+      std::string_view word = words[i];
+      char letter = word[0];
+      if ((letter == 'X' || letter == 'Y' || letter == 'Z') && word.size() > 1) {
+        std::optional<TncAxisWord>& axis = letter == 'X'   ? block_.x
+                                           : letter == 'Y' ? block_.y
+                                                           : block_.z;
+        if (axis) {
+          fail(fmt::format("{} twice in one block", letter));
+        }
+        axis = TncAxisWord{parseTncOperand(word.substr(1), block_.line), false};
+      } else if (letter == 'K' && word.size() > 3 && word[1] >= '1' && word[1] <= '3' &&
+                 (word[2] == 'X' || word[2] == 'Y' || word[2] == 'Z')) {
+        int axis = word[2] - 'X';
+        std::optional<double>& coefficient = block_.splineCoefficients[axis]['3' - word[1]];
+        if (coefficient) {
+          fail(fmt::format("{} twice in one block", word.substr(0, 3)));
+        }
+        coefficient = decimal(word.substr(3));
+        last = &coefficient;
+      } else if (letter == 'E' && word.size() > 1 && last != nullptr) {
+        std::optional<int> exponent = wholeNumber(word.substr(word[1] == '+' ? 2 : 1));
+        if (!exponent || *exponent < -255 || *exponent > 255) {
+          fail(fmt::format("'{}' is no exponent of -255 to +255", word));
+        }
+        **last *= std::pow(10.0, *exponent);
+        last = nullptr;
+      } else if (word.starts_with('F') && word.size() > 1) {
+        block_.feed = parseTncOperand(word.substr(1), block_.line);
+      } else if (word.starts_with('M')) {
+        block_.mFunctions.push_back(number(word.substr(1), "M function"));
+      } else {
+        fail(fmt::format("'{}' is no word of SPL the model knows", word));
+      }
+    }
+  }
+
+  double decimal(std::string_view text) const {
+    TncExpression operand = parseTncOperand(text, block_.line);
+    bool negated = operand.kind == TncExpression::Kind::Negation;
+    const TncExpression& number = negated ? operand.operands[0] : operand;
+    if (number.kind != TncExpression::Kind::Number) {
+      fail(fmt::format("'{}' is no number for a spline coefficient", text));
+    }
+    return negated ? -number.number : number.number;
   }
 
   void readLabel(const std::vector<std::string_view>& words) {

@@ -5,6 +5,7 @@
 
 #include "cncc/backends/heidenhain_controller.h"
 
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -53,6 +54,7 @@ struct TncBlock {
     Line,
     CircleCentre,
     Circle,
+    Spline,
     Label,
     CallLabel,
     Assign,
@@ -71,6 +73,8 @@ struct TncBlock {
   std::optional<TncExpression> feed; // F..
   bool rapid = false;                // FMAX
   std::optional<bool> clockwise;     // C: DR- / DR+
+  // SPL: K3, K2 and K1 (in that order) of the X, Y and Z axes.
+  std::array<std::array<std::optional<double>, 3>, 3> splineCoefficients;
   std::vector<int> mFunctions;
   // ToolCall
   std::optional<int> tool;

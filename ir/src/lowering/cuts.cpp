@@ -326,7 +326,7 @@ void PartLowering::beginCutMoves(CutGeometry geometry) {
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
-  if (lowerNurbsCut(cut)) {
+  if (lowerNurbsCut(cut) || lowerPolynomialCut(cut)) {
     return;
   }
   // The curve is built once for whichever way lowers the cut. Arc pieces

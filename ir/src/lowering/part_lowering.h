@@ -15,6 +15,7 @@
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/lowering.h"
+#include "cncc/ir/polynomial_move.h"
 
 #include <array>
 #include <functional>
@@ -398,6 +399,11 @@ private:
                                                        const CutCurve& curve);
   geom::NurbsCurve nurbsForBlocks(const frontend::CutStmt& cut, const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
+
+  // polynomial_cuts.cpp
+  bool lowerPolynomialCut(const frontend::CutStmt& cut);
+  std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
+  void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);

@@ -100,6 +100,26 @@ TEST(TncController, RunsArcsAndHelicesAboutTheCentre) {
   EXPECT_NEAR(ir::arcSweep(0, 10, helix), 2 * 3.14159265358979, 1e-9);
 }
 
+// SPL: per axis K3 t^3 + K2 t^2 + K1 t + the end, t from 1 to 0; an
+// exponent word scales the coefficient before it; an axis without a
+// coordinate stays where it is.
+TEST(TncController, RunsSplineBlocks) {
+  TncRun run = runTncProgram(program({
+      "L X+20 Y+0 Z-1 R0 FMAX",
+      "SPL X+0 Y+0 K3X+0 K2X+0 K1X+2 E+1 K3Y+1 K2Y-1 K1Y+0 F250",
+  }));
+  ASSERT_FALSE(run.error) << run.error->message;
+  ASSERT_GT(run.path.events.size(), 3u);
+  for (const ir::MachineEvent& event : run.path.events) {
+    double t = event.x / 20; // x(t) = 20 t
+    EXPECT_NEAR(event.y, t * t * t - t * t, 1e-12);
+    EXPECT_EQ(event.z, -1);
+  }
+  const ir::MachineEvent& last = run.path.events.back();
+  EXPECT_EQ(last.x, 0);
+  EXPECT_EQ(last.feed, 250);
+}
+
 TEST(TncController, EditsTheBlockThatSetsAParameter) {
   std::string text = program({"FN 0: Q1 = +3", "FN 0: QL2 = +4", "L X+Q1 Y+QL2 Z+0 R0 FMAX"});
   std::optional<std::string> edited = withEditedParameter(text, 1, -2.5);
@@ -129,6 +149,12 @@ TEST(TncController, NamesTheLineOfWhatItCannotRun) {
       {{"L X+1 RL F100"}, 2, "RL/RR"},
       {{"LBL 1", "FN 9: IF +0 EQU +0 GOTO LBL 1"}, 3, "more than"},
       {{"FN 0: Q1 = +1e12"}, 2, "beyond the control's"},
+      {{"L X+1 Y+0 Z+0 R0 FMAX", "SPL X+0 Y+0 Z+0 K3X+0 K2X+0 K1X+1 F100"}, 3, "K3Y K2Y K1Y"},
+      {{"L X+1 Y+0 Z+0 R0 FMAX", "SPL X+0 Y+0 Z+0 K3X+0 K2X+0 K1X+1.01 K3Y+0 K2Y+0 K1Y+0 K3Z+0 "
+                                 "K2Z+0 K1Z+0 F100"},
+       3,
+       "from where the machine is"},
+      {{"L X+1 Y+0 Z+0 R0 FMAX", "SPL X+0 K3X+0 K2X+0 K1X+1 E+256 F100"}, 3, "no exponent"},
   };
   for (const BadProgram& bad : cases) {
     TncRunOptions options;

@@ -169,6 +169,43 @@ TEST(HeidenhainProgram, RefusesANumberBeyondTheControlsFormat) {
   EXPECT_THAT(program.errors.front(), HasSubstr("999999999"));
 }
 
+// move.polynomial as SPL, a coefficient beyond 9.99999999 rescaled with
+// an exponent word, run on the virtual TNC as the interpreter runs it.
+TEST(HeidenhainProgram, PrintsPolynomialSpansAsSplineBlocks) {
+  ir::Function function = parsed(R"(func @spans() {
+  %zero = const 0
+  %safe = const 5
+  %feed = const 400
+  %startX = const 130
+  %depth = const -1
+  %k3x = const 4
+  %k2x = const -2.5
+  %k1x = const 128.5
+  %k3y = const 0.75
+  %k2y = const -0.25
+  %k1y = const -0.5
+  move.rapid %startX, %zero, %safe
+  move.feed %startX, %zero, %depth, %feed
+  move.polynomial %zero, %zero, %depth, %k3x, %k2x, %k1x, %k3y, %k2y, %k1y, %zero, %zero, %zero, %feed
+}
+)");
+  HeidenhainProgramOptions options;
+  options.partName = "spans";
+  HeidenhainProgram program = writeHeidenhainProgram(function, options);
+  ASSERT_TRUE(program.errors.empty()) << program.errors.front();
+  EXPECT_THAT(program.text, HasSubstr(" SPL X+0 Y+0 Z-1 K3X+4 K2X-2.5 K1X+1.285 E+2 K3Y+0.75 "
+                                      "K2Y-0.25 K1Y-0.5 K3Z+0 K2Z+0 K1Z+0"));
+  heidenhain::TncRun run = heidenhain::runTncProgram(program.text);
+  ASSERT_FALSE(run.error) << run.error->message;
+  std::vector<ir::MachineEvent> expected = moves(ir::interpret(function));
+  std::vector<ir::MachineEvent> actual = moves(run.path);
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < actual.size(); ++i) {
+    EXPECT_NEAR(actual[i].x, expected[i].x, 1e-9) << i;
+    EXPECT_NEAR(actual[i].y, expected[i].y, 1e-9) << i;
+  }
+}
+
 TEST(HeidenhainProgram, BlankSurroundsTheFeedMoves) {
   auto event = [](ir::MachineEvent::Kind kind, double x, double y, double z) {
     ir::MachineEvent made;

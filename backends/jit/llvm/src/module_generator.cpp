@@ -216,6 +216,7 @@ private:
     case Opcode::Feed:
     case Opcode::Arc:
     case Opcode::Nurbs:
+    case Opcode::Polynomial:
     case Opcode::Alarm:
     case Opcode::Spindle:
     case Opcode::Tool:
@@ -403,6 +404,9 @@ private:
       }
       callback = "cncc_jit_nurbs";
       arguments = {builder_.getInt32(instruction.index), arguments[0], arguments[1]};
+      break;
+    case Opcode::Polynomial:
+      callback = "cncc_jit_polynomial";
       break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";

@@ -32,6 +32,9 @@ struct LoweringOptions {
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;
+  // Heidenhain SPL: a spline-method cut (cspline, aspline, bspline, nurbs) is
+  // lowered as move.polynomial cubic spans (polynomial_cuts.cpp).
+  bool polynomialBlocks = false;
   // Targets that print host-fitted G02/G03 arcs: a cut that wants arcs
   // (arcs=true, or arcsOnEveryCut without arcs=false) is lowered as the
   // fitted move.arc ops on the printed grid (arc_cuts.cpp).

@@ -1,7 +1,8 @@
 // A virtual Heidenhain TNC: reads a conversational (Klartext) program and
 // runs it: Q parameters (FN 0..4, formula entry), labels with FN 9..12
 // jumps, CALL LBL subprograms and repeats, FN 14 errors, and the motion
-// blocks L, CC and C (helices with IZ), on a profile's limits. What the
+// blocks L, CC, C (helices with IZ) and SPL (polynomial_move.h), on a
+// profile's limits. What the
 // model does not know (FN 5..8, RL/RR, cycles but 32) is an error naming
 // the line, never a guess; so is reading a Q parameter no block has set.
 #pragma once
