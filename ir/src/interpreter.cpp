@@ -2,9 +2,11 @@
 
 #include "cncc/ir/arithmetic.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/spline_move.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -72,6 +74,9 @@ private:
       return;
     case Opcode::Spline:
       recordSpline(instruction);
+      return;
+    case Opcode::Polynomial:
+      recordPolynomial(instruction);
       return;
     case Opcode::Alarm:
       throw InterpreterError("alarm: " + instruction.text);
@@ -190,6 +195,21 @@ private:
     std::size_t first = path_.events.size();
     splineMove(instruction.index, function_.tables[instruction.index],
                value(instruction.operands[0]), value(instruction.operands[1]), path_.events);
+    for (std::size_t k = first; k < path_.events.size(); ++k) {
+      path_.events[k].span = instruction.span;
+    }
+    const MachineEvent& end = path_.events.back();
+    position_ = {end.x, end.y, end.z};
+  }
+
+  void recordPolynomial(const Instruction& instruction) {
+    std::array<double, 12> values{};
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      values[k] = value(instruction.operands[k]);
+    }
+    std::size_t first = path_.events.size();
+    polynomialMove(position_, polynomialMoveOf(values), value(instruction.operands[12]),
+                   path_.events);
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;
     }

@@ -7,9 +7,11 @@
 // arc's end point; the operations counted per point come from blocks that
 // ran, and the loop feed moves are feed moves of the path. The first byte
 // picks the profile and whether the program runs as a G65 call with
-// arguments; with its top bit set the program is read in LinuxCNC's
-// dialect instead (linuxcnc_controller.h), under the same contract.
+// arguments; with its top bit set the program is read in another dialect
+// under the same contract: a Heidenhain TNC program (heidenhain_controller.h)
+// when the next bit is set too, else LinuxCNC's (linuxcnc_controller.h).
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/heidenhain_controller.h"
 #include "cncc/backends/linuxcnc_controller.h"
 #include "cncc/backends/sim_operation_count.h"
 #include "cncc/backends/virtual_controller.h"
@@ -98,6 +100,34 @@ void runLinuxcnc(std::string_view text) {
   }
 }
 
+// The virtual TNC: errors name a line of the program, the step limit
+// holds, every point is finite, loop feed moves are moves of the path.
+void runHeidenhain(std::uint8_t selector, std::string_view text) {
+  namespace hh = cncc::backends::heidenhain;
+  hh::TncRunOptions options;
+  const TncProfile* profile = findTncProfile(selector & 1 ? "itnc530" : "tnc640");
+  if (profile == nullptr) {
+    fail("a built-in TNC profile is missing");
+  }
+  options.profile = *profile;
+  options.stepLimit = 20000;
+  hh::TncRun run = hh::runTncProgram(text, options);
+  if (run.error && (run.error->line < 1 || run.error->line > lineCount(text))) {
+    fail("a TNC error names a line outside the program");
+  }
+  if (run.blocksExecuted > options.stepLimit + 1) {
+    fail("the TNC step limit was not enforced");
+  }
+  for (const cncc::ir::MachineEvent& event : run.path.events) {
+    if (!std::isfinite(event.x) || !std::isfinite(event.y) || !std::isfinite(event.z)) {
+      fail("a point of the TNC path is not finite");
+    }
+  }
+  if (run.loopOperations.feedMoves > run.path.events.size()) {
+    fail("more TNC loop feed moves than moves");
+  }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -105,7 +135,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (data[0] & 0x80) {
-    runLinuxcnc(std::string_view(reinterpret_cast<const char*>(data + 1), size - 1));
+    std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
+    if (data[0] & 0x40) {
+      runHeidenhain(data[0], text);
+    } else {
+      runLinuxcnc(text);
+    }
     return 0;
   }
   static const char* const profileNames[] = {"fanuc", "m80", "fanuc-0i-small"};

@@ -22,7 +22,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent.parent
-TARGETS = ["fanuc", "m80", "linuxcnc", "gcode", "sinumerik"]
+TARGETS = ["fanuc", "m80", "linuxcnc", "gcode", "sinumerik", "heidenhain"]
 
 
 def fnv1a(text):

@@ -77,9 +77,10 @@ void addCompileOptions(CLI::App& app, RawOptions& raw) {
       ->type_name("local|common")
       ->check(CLI::IsMember({"local", "common"}));
   app.add_option("--profile", raw.profile,
-                 "m80/fanuc: the controller profile (fanuc, fanuc-0i-small, m80)")
+                 "m80/fanuc: the controller profile (fanuc, fanuc-0i-small, m80); "
+                 "heidenhain: tnc640 or itnc530")
       ->type_name("NAME")
-      ->check(CLI::IsMember({"fanuc", "fanuc-0i-small", "m80"}));
+      ->check(CLI::IsMember({"fanuc", "fanuc-0i-small", "m80", "tnc640", "itnc530"}));
   app.add_flag(
       "--arcs", raw.arcs,
       "gcode, linuxcnc, m80, fanuc: cut planar curves as G02/G03 arcs within their tolerance "
@@ -178,8 +179,8 @@ CLI::App* addOptCommand(CLI::App& app, RawOptions& raw) {
 CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
   CLI::App* simulate = app.add_subcommand(
       "sim",
-      "Run an m80/fanuc/linuxcnc/sinumerik program on a virtual controller and print its path as "
-      "CSV");
+      "Run an m80/fanuc/linuxcnc/sinumerik/heidenhain program on a virtual controller and print "
+      "its path as CSV");
   simulate->add_option("PROGRAM", raw.simulateInput, "The program file")->type_name("")->required();
   simulate
       ->add_option("-a", raw.macroArguments,
@@ -212,7 +213,8 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
       ->check(CLI::Range(1e-6, 10.0));
   simulate->fallthrough();
   simulate->footer(
-      "\nTakes -t fanuc|m80|linuxcnc|sinumerik, --profile NAME and -o OUT ('-': standard output).");
+      "\nTakes -t fanuc|m80|linuxcnc|sinumerik|heidenhain, --profile NAME and -o OUT ('-': "
+      "standard output).");
   return simulate;
 }
 

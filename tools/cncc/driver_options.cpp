@@ -1,5 +1,7 @@
 #include "driver_options.h"
 
+#include "cncc/backends/tnc_profile.h"
+
 #include "command_line.h"
 #include "commands.h"
 #include "machine_options.h"
@@ -207,6 +209,17 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   }
 }
 
+// --profile names a TNC profile for the heidenhain target, a macro
+// controller's for the others.
+void checkProfileFitsTarget(const RawOptions& raw) {
+  bool tnc = backends::findTncProfile(raw.profile) != nullptr;
+  if (!raw.profile.empty() && tnc != (raw.target == "heidenhain")) {
+    throw UsageError(fmt::format("--profile {} is {}", raw.profile,
+                                 tnc ? "a TNC profile, for -t heidenhain"
+                                     : "no TNC profile: -t heidenhain takes tnc640 or itnc530"));
+  }
+}
+
 // How diagnostics are printed: the same options for every command.
 void setDiagnosticOutput(const RawOptions& raw, DriverOptions& options) {
   options.diagnosticsFormat =
@@ -255,6 +268,7 @@ DriverOptions validatedOptions(const RawOptions& raw, const CLI::App& app, bool 
   options.splineEnds = raw.splineEnds.empty() ? "tangent" : raw.splineEnds;
   options.macroCall = raw.macroCall;
   options.parametersInCommon = raw.parameterStorage == "common";
+  checkProfileFitsTarget(raw);
   options.profile = raw.profile;
   options.rapidRate = parseRapidRate(raw.rapidRate);
   setOptimisation(raw, options);
@@ -397,17 +411,21 @@ std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
 
 DriverOptions simulateOptions(const RawOptions& raw) {
   const Target* target = findTarget(raw.target);
-  // Sinumerik and LinuxCNC programs have readers of their own, without a profile.
-  bool ownReader = raw.target == "sinumerik" || raw.target == "linuxcnc";
+  // Sinumerik, LinuxCNC and Heidenhain programs run in readers of their own;
+  // only the Heidenhain one takes a --profile (tnc640, itnc530).
+  bool ownReader =
+      raw.target == "sinumerik" || raw.target == "linuxcnc" || raw.target == "heidenhain";
   if (!ownReader && (target == nullptr || target->controllerProfile.empty())) {
-    throw UsageError("'sim' needs -t fanuc, -t m80, -t linuxcnc or -t sinumerik");
+    throw UsageError("'sim' needs -t fanuc, -t m80, -t linuxcnc, -t sinumerik or -t heidenhain");
   }
   if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || !raw.toolRadii.empty() ||
-                    raw.peckRetract || raw.peckClearance || !raw.profile.empty())) {
+                    raw.peckRetract || raw.peckClearance ||
+                    (!raw.profile.empty() && raw.target != "heidenhain"))) {
     throw UsageError(fmt::format("-a, --strict, --tool-radius, --peck-retract, --peck-clearance "
                                  "and --profile apply to 'sim -t fanuc' and '-t m80', not to {}",
                                  raw.target));
   }
+  checkProfileFitsTarget(raw);
   DriverOptions options;
   options.command = Command::Simulate;
   options.inputs = {raw.simulateInput};

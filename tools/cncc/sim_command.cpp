@@ -6,6 +6,7 @@
 #include "machine_options.h"
 
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/heidenhain_controller.h"
 #include "cncc/backends/linuxcnc_controller.h"
 #include "cncc/backends/sinumerik_controller.h"
 #include "cncc/backends/tool_path_csv.h"
@@ -83,10 +84,11 @@ int runSinumerik(const DriverOptions& options, const std::string& path, const st
 }
 
 // Prints a virtual controller's error at its line, with the line.
-int reportError(const std::string& path, const backends::sim::SimulationError& error) {
-  fmt::print(stderr, "{}:{}: error: {}\n", path, error.line(), error.what());
-  if (!error.lineText().empty()) {
-    fmt::print(stderr, "    {}\n", error.lineText());
+int reportError(const std::string& path, int line, const std::string& message,
+                const std::string& lineText) {
+  fmt::print(stderr, "{}:{}: error: {}\n", path, line, message);
+  if (!lineText.empty()) {
+    fmt::print(stderr, "    {}\n", lineText);
   }
   return 1;
 }
@@ -94,24 +96,44 @@ int reportError(const std::string& path, const backends::sim::SimulationError& e
 int runLinuxcnc(const DriverOptions& options, const std::string& path, const std::string& text) {
   backends::sim::LinuxcncRun run = backends::sim::runLinuxcncProgram(text);
   if (run.error) {
-    return reportError(path, *run.error);
+    return reportError(path, run.error->line(), run.error->what(), run.error->lineText());
   }
   return writeCsv(
       options, backends::sim::flattenPath(backends::sim::executedPathOf(run), options.chordError));
 }
 
+// The virtual TNC's run: its arcs in chords of the --chord-error.
+int runHeidenhain(const DriverOptions& options, const std::string& path, const std::string& text) {
+  backends::heidenhain::TncRunOptions settings;
+  if (!options.profile.empty()) {
+    const backends::TncProfile* profile = backends::findTncProfile(options.profile);
+    if (profile == nullptr) {
+      return usageError(
+          fmt::format("--profile {}: the TNC profiles are tnc640 and itnc530", options.profile));
+    }
+    settings.profile = *profile;
+  }
+  backends::heidenhain::TncRun run = backends::heidenhain::runTncProgram(text, settings);
+  if (run.error) {
+    return reportError(path, run.error->line, run.error->message, run.error->lineText);
+  }
+  return writeCsv(options, ir::flattenArcs(run.path, options.chordError));
+}
+
 } // namespace
 
 int runSimulate(const DriverOptions& options) {
-  if (options.target == "sinumerik" || options.target == "linuxcnc") {
+  if (options.target == "sinumerik" || options.target == "linuxcnc" ||
+      options.target == "heidenhain") {
     const std::string& path = options.inputs.front();
     std::optional<std::string> text = readWholeFile(path);
     if (!text) {
       fmt::print(stderr, "cncc: error: cannot read '{}'\n", path);
       return 1;
     }
-    return options.target == "sinumerik" ? runSinumerik(options, path, *text)
-                                         : runLinuxcnc(options, path, *text);
+    return options.target == "sinumerik"  ? runSinumerik(options, path, *text)
+           : options.target == "linuxcnc" ? runLinuxcnc(options, path, *text)
+                                          : runHeidenhain(options, path, *text);
   }
   const backends::ControllerProfile* profile = &controllerProfile(options, options.target);
   backends::sim::SimulationOptions simulation;

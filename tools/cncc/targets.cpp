@@ -3,6 +3,7 @@
 #include "source_map.h"
 
 #include "commands.h"
+#include "heidenhain_target.h"
 #include "jit_module.h"
 #include "linuxcnc_target.h"
 #include "machine_options.h"
@@ -86,6 +87,13 @@ constexpr Target targetTable[] = {
      .backend = linuxcncBackend,
      .lowering = linuxcncLoweringOptions,
      .fittedArcs = true},
+    {.name = "heidenhain",
+     .description = "Heidenhain TNC conversational program with Q parameters (parameters stay "
+                    "editable)",
+     .backend = heidenhainBackend,
+     .lowering = heidenhainLoweringOptions,
+     .fittedArcs = true,
+     .parameterVariables = heidenhainParameterQ},
     {.name = "jit",
      .description = "run the part on the host and print the tool path",
      .backend = jitBackend,

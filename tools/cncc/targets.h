@@ -55,6 +55,9 @@ using LoweringFunction = ir::LoweringOptions (*)(const frontend::PartItem& part,
 using HostProgramFunction = backends::ExecutedProgram (*)(const BackendRequest& request,
                                                           const ir::ToolPath& path);
 
+using ParameterVariablesFunction = std::vector<int> (*)(std::size_t count,
+                                                        const DriverOptions& options);
+
 struct Target {
   std::string_view name;        // what `-t` takes
   std::string_view description; // one line, for --help
@@ -70,6 +73,10 @@ struct Target {
   std::string_view controllerProfile = {};
   // Computed on the host: its program and execution, for --stats.
   HostProgramFunction hostProgram = nullptr;
+  // A program that keeps the part parameters in variables of a kind of its
+  // own (Heidenhain's Q), set at its top: the variable of each, which
+  // `verify -D` edits there.
+  ParameterVariablesFunction parameterVariables = nullptr;
 
   bool available() const { return backend != nullptr; }
   // How it lowers the part: `lowering`, with what the target's machine

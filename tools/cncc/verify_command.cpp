@@ -152,6 +152,20 @@ backends::ParameterPassing parameterPassing(const DriverOptions& options) {
                            : backends::ParameterPassing::EditedDefaults;
 }
 
+// The -D values, each with the variable the program reads its parameter from.
+std::vector<backends::ParameterValue> definedValues(const frontend::PartItem& part,
+                                                    const DriverOptions& options,
+                                                    const std::vector<int>& variables) {
+  std::vector<backends::ParameterValue> values;
+  for (std::size_t i = 0; i < part.parameters.size() && i < variables.size(); ++i) {
+    auto define = options.defines.find(part.parameters[i].name);
+    if (define != options.defines.end()) {
+      values.push_back({define->first, variables[i], define->second});
+    }
+  }
+  return values;
+}
+
 // The -D values and the variables the program reads them from.
 std::optional<std::vector<backends::ParameterValue>>
 parameterValues(const frontend::PartItem& part, const DriverOptions& options,
@@ -164,14 +178,14 @@ parameterValues(const frontend::PartItem& part, const DriverOptions& options,
     output.driverError(errors.front());
     return std::nullopt;
   }
-  std::vector<backends::ParameterValue> values;
-  for (std::size_t i = 0; i < part.parameters.size() && i < variables.size(); ++i) {
-    auto define = options.defines.find(part.parameters[i].name);
-    if (define != options.defines.end()) {
-      values.push_back({define->first, variables[i], define->second});
-    }
-  }
-  return values;
+  return definedValues(part, options, variables);
+}
+
+// The -D values in the variables the target's own kind of program sets at its top.
+std::vector<backends::ParameterValue> ownParameterValues(const frontend::PartItem& part,
+                                                         const DriverOptions& options,
+                                                         const Target& target) {
+  return definedValues(part, options, target.parameterVariables(part.parameters.size(), options));
 }
 
 backends::StatisticsOptions statisticsOptions(const CheckedProgram& program,
@@ -217,7 +231,8 @@ int runVerify(const DriverOptions& options) {
     return 1;
   }
   const Target* target = findTarget(options.target);
-  bool symbolic = target != nullptr && !target->controllerProfile.empty();
+  bool symbolic = target != nullptr &&
+                  (!target->controllerProfile.empty() || target->parameterVariables != nullptr);
   backends::ExecutionRequest execution;
   std::optional<std::string> text;
   if (symbolic) {
@@ -231,7 +246,10 @@ int runVerify(const DriverOptions& options) {
       return 1;
     }
     std::optional<std::vector<backends::ParameterValue>> values =
-        parameterValues(*truth->program->selectedPart, options, target->controllerProfile, output);
+        target->parameterVariables != nullptr
+            ? ownParameterValues(*truth->program->selectedPart, options, *target)
+            : parameterValues(*truth->program->selectedPart, options, target->controllerProfile,
+                              output);
     if (!values) {
       return 1;
     }

@@ -2,6 +2,7 @@
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/gcode_writer.h"
+#include "cncc/backends/heidenhain_controller.h"
 #include "cncc/backends/linuxcnc_canon.h"
 #include "cncc/backends/rs274.h"
 #include "cncc/backends/sinumerik_controller.h"
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 #include <set>
 
 namespace cncc::backends {
@@ -302,9 +304,54 @@ ProgramExecution runLinuxcnc(const ExecutionRequest& request) {
   return execution;
 }
 
+// A Heidenhain program in the virtual TNC, the -D values edited into the
+// `FN 0` blocks that set its Q parameters.
+ProgramExecution runHeidenhain(const ExecutionRequest& request) {
+  heidenhain::TncRunOptions options;
+  if (!request.profile.empty()) {
+    const TncProfile* profile = findTncProfile(request.profile);
+    if (profile == nullptr) {
+      return failed(request.text, 0, fmt::format("unknown TNC profile '{}'", request.profile));
+    }
+    options.profile = *profile;
+  }
+  std::string text = request.text;
+  for (const ParameterValue& parameter : request.parameters) {
+    std::optional<std::string> edited =
+        heidenhain::withEditedParameter(text, parameter.variable, parameter.value);
+    if (!edited) {
+      return failed(request.text, 0,
+                    fmt::format("the program sets no {} for parameter {}",
+                                tncParameterName(parameter.variable), parameter.name));
+    }
+    text = std::move(*edited);
+  }
+  heidenhain::TncRun run = heidenhain::runTncProgram(text, options);
+  ProgramExecution execution;
+  execution.text = std::move(text);
+  execution.increment =
+      std::pow(10.0, -(options.profile.coordinateDecimals + (run.inches ? 1 : 0)));
+  if (run.error) {
+    execution.failure = ControllerFailure{run.error->line, run.error->message, run.error->lineText};
+    return execution;
+  }
+  double sagitta = run.inches ? kArcSagitta / 25.4 : kArcSagitta;
+  execution.path = executedPathOfToolPath(run.path, sagitta);
+  if (run.loopOperations.feedMoves > 0) {
+    execution.operations = run.loopOperations;
+  }
+  execution.variables = run.parametersNamed;
+  return execution;
+}
+
 constexpr TargetExecutor executorTable[] = {
-    {"m80", runM80}, {"fanuc", runFanuc},         {"gcode", runGcode},
-    {"jit", runJit}, {"sinumerik", runSinumerik}, {"linuxcnc", runLinuxcnc},
+    {"m80", runM80},
+    {"fanuc", runFanuc},
+    {"gcode", runGcode},
+    {"jit", runJit},
+    {"sinumerik", runSinumerik},
+    {"linuxcnc", runLinuxcnc},
+    {"heidenhain", runHeidenhain},
 };
 
 } // namespace

@@ -437,7 +437,7 @@ void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
-  if (lowerNurbsCut(cut)) {
+  if (lowerNurbsCut(cut) || lowerPolynomialCut(cut)) {
     return;
   }
   // The curve is built once for whichever way lowers the cut. Arc pieces

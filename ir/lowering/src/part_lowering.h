@@ -15,6 +15,7 @@
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
+#include "cncc/ir/polynomial_move.h"
 #include "cncc/lowering/lowering.h"
 
 #include <array>
@@ -429,6 +430,10 @@ private:
   std::optional<Eigen::Vector3d> rampArrival(const geom::CurveSamples& samples);
   FittedSplineBlocks splineBlocksFor(const frontend::CutStmt& cut, const CutCurve& curve,
                                      SplineKind kind, const geom::CurveSamples& samples, bool ramp);
+  // polynomial_cuts.cpp
+  bool lowerPolynomialCut(const frontend::CutStmt& cut);
+  std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
+  void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);

@@ -225,7 +225,8 @@ TEST(Verification, ReadsTheJitTargetsToolPathBack) {
 }
 
 TEST(Verification, HasAnExecutorForEachTargetItRuns) {
-  for (std::string_view target : {"m80", "fanuc", "gcode", "jit", "sinumerik", "linuxcnc"}) {
+  for (std::string_view target :
+       {"m80", "fanuc", "gcode", "jit", "sinumerik", "linuxcnc", "heidenhain"}) {
     const TargetExecutor* executor = findTargetExecutor(target);
     ASSERT_NE(executor, nullptr) << target;
     EXPECT_EQ(executor->target, target);

@@ -217,6 +217,24 @@ OpcodeCase splineCase() {
   return {"spline", builder.finish()};
 }
 
+// A cubic span (Heidenhain SPL) from a plunge onto its start, its end a
+// parameter's value: x(t) = 3t^3 - 2t^2 + (9 - x) t + x, y(t) = t^2 - t.
+OpcodeCase polynomialCase() {
+  FunctionBuilder builder("polynomial");
+  ValueId endX = builder.parameter(builder.addParameter("x", 1));
+  ValueId zero = builder.constant(0);
+  ValueId ten = builder.constant(10);
+  ValueId feed = builder.constant(150);
+  ValueId depth = builder.constant(-1);
+  builder.rapid(ten, zero, zero);
+  builder.feed(ten, zero, depth, feed);
+  ValueId k1x = builder.binary(Opcode::Sub, builder.constant(9), endX);
+  builder.operation(Opcode::Polynomial,
+                    {endX, zero, depth, builder.constant(3), builder.constant(-2), k1x, zero,
+                     builder.constant(1), builder.constant(-1), zero, zero, zero, feed});
+  return {"polynomial", builder.finish()};
+}
+
 std::vector<OpcodeCase> opcodeCases() {
   std::vector<OpcodeCase> cases;
   for (Opcode opcode : {Opcode::Neg, Opcode::Abs, Opcode::Sqrt, Opcode::Sin, Opcode::Cos,
@@ -239,6 +257,7 @@ std::vector<OpcodeCase> opcodeCases() {
   cases.push_back(arcsCase());
   cases.push_back(nurbsCase());
   cases.push_back(splineCase());
+  cases.push_back(polynomialCase());
   return cases;
 }
 

@@ -2,6 +2,7 @@
 
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/spline_move.h"
 
 #include <fmt/format.h>
@@ -111,6 +112,25 @@ static std::int32_t cncc_jit_nurbs(RunContext* context, std::uint32_t table, dou
   }
 }
 
+// `move.polynomial`, as the interpreter's polynomialMove records it.
+static std::int32_t cncc_jit_polynomial(RunContext* context, double x, double y, double z,
+                                        double k3x, double k2x, double k1x, double k3y, double k2y,
+                                        double k1y, double k3z, double k2z, double k1z,
+                                        double feed) {
+  if (context->exception) {
+    return 1;
+  }
+  try {
+    std::array<double, 12> values{x, y, z, k3x, k2x, k1x, k3y, k2y, k1y, k3z, k2z, k1z};
+    ir::polynomialMove(lastPosition(*context), ir::polynomialMoveOf(values), feed,
+                       *context->events);
+    return 0;
+  } catch (...) {
+    context->exception = std::current_exception();
+    return 1;
+  }
+}
+
 // `move.spline`, as the interpreter's splineMove records it.
 static std::int32_t cncc_jit_spline(RunContext* context, std::uint32_t table, double z,
                                     double feed) {
@@ -213,6 +233,7 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_nurbs_weight", reinterpret_cast<void*>(&cncc_jit_nurbs_weight)},
       {"cncc_jit_nurbs", reinterpret_cast<void*>(&cncc_jit_nurbs)},
       {"cncc_jit_spline", reinterpret_cast<void*>(&cncc_jit_spline)},
+      {"cncc_jit_polynomial", reinterpret_cast<void*>(&cncc_jit_polynomial)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
       {"cncc_jit_setting", reinterpret_cast<void*>(&cncc_jit_setting)},

@@ -199,6 +199,7 @@ private:
     case Opcode::Arc:
     case Opcode::Nurbs:
     case Opcode::Spline:
+    case Opcode::Polynomial:
     case Opcode::Alarm:
     case Opcode::Spindle:
     case Opcode::Tool:
@@ -390,6 +391,9 @@ private:
     case Opcode::Spline:
       callback = "cncc_jit_spline";
       arguments = {builder_.getInt32(instruction.index), arguments[0], arguments[1]};
+      break;
+    case Opcode::Polynomial:
+      callback = "cncc_jit_polynomial";
       break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";

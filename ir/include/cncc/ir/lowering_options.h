@@ -27,6 +27,9 @@ struct LoweringOptions {
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;
+  // Heidenhain SPL: a spline-method cut (cspline, aspline, bspline, nurbs) is
+  // lowered as move.polynomial cubic spans (polynomial_cuts.cpp).
+  bool polynomialBlocks = false;
   // Sinumerik: a method=bspline, nurbs, cspline or aspline cut in a plane
   // z = constant is lowered as move.spline blocks fitted once, on the
   // printed grid (spline_cuts.cpp), their ends as `splineEnds` says.

@@ -1,0 +1,18 @@
+0 BEGIN PGM SQUARE MM
+1 ; a square with a rounded corner, in a loop of two passes
+2 TOOL CALL 1 Z S2000
+3 L X+0 Y+0 Z+2 R0 FMAX M3
+4 FN 0: QL1 = +1
+5 LBL 1
+6 FN 11: IF +QL1 GT +2 GOTO LBL 2
+7 QL2 = QL1 * -0.5
+8 L Z+QL2 F100
+9 L X+10
+10 CC X+10 Y+5
+11 C X+15 Y+5 DR+
+12 L X+0 Y+0
+13 QL1 = QL1 + 1
+14 FN 9: IF +0 EQU +0 GOTO LBL 1
+15 LBL 2
+16 L Z+2 R0 FMAX M5
+17 END PGM SQUARE MM

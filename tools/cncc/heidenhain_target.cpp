@@ -1,0 +1,86 @@
+#include "heidenhain_target.h"
+
+#include "commands.h"
+
+#include "cncc/backends/heidenhain_program.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/lowering.h"
+#include "cncc/ir/verifier.h"
+
+#include <fmt/format.h>
+
+#include <optional>
+
+namespace cncc::driver {
+
+namespace {
+
+// The blank of BLK FORM: the part run on the host with its defaults; a part
+// that cannot run there gets no BLK FORM (its compile reports why elsewhere).
+std::optional<backends::HeidenhainBlank> blankOf(const ir::Function& function) {
+  try {
+    return backends::heidenhainBlank(ir::interpret(function));
+  } catch (const ir::InterpreterError&) {
+    return std::nullopt;
+  }
+}
+
+} // namespace
+
+const backends::TncProfile& tncProfile(const DriverOptions& options) {
+  std::string_view name = options.profile.empty() ? "tnc640" : std::string_view(options.profile);
+  const backends::TncProfile* profile = backends::findTncProfile(name);
+  if (profile == nullptr) {
+    throw InternalError(fmt::format("unknown TNC profile '{}'", name));
+  }
+  return *profile;
+}
+
+std::vector<int> heidenhainParameterQ(std::size_t count, const DriverOptions& options) {
+  std::vector<std::string> errors;
+  return backends::heidenhainParameterVariables(count, tncProfile(options), errors);
+}
+
+ir::LoweringOptions heidenhainLoweringOptions(const frontend::PartItem& part,
+                                              const DriverOptions& options) {
+  ir::LoweringOptions lowering = backends::heidenhainLoweringOptions(
+      tncProfile(options), ir::partUnits(part) == ir::PartUnits::Inches);
+  lowering.arcsOnEveryCut = options.arcs;
+  return lowering;
+}
+
+void heidenhainBackend(const BackendRequest& request) {
+  const frontend::PartItem* part = request.program.selectedPart;
+  if (part == nullptr) {
+    return;
+  }
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      request.program, *part, request.diagnostics,
+      findTarget(request.options.target)->loweringOptions(*part, request.options));
+  if (!lowered) {
+    return;
+  }
+  optimise(lowered->function, request.options);
+  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
+  if (!problems.empty()) {
+    throw InternalError("the lowered IR does not verify: " + problems.front());
+  }
+  backends::GcodeOptions names = gcodeOptionsFor(request);
+  backends::HeidenhainProgramOptions options;
+  options.sourceName = names.sourceName;
+  options.partName = names.partName;
+  options.inches = names.inches;
+  options.profile = tncProfile(request.options);
+  options.blank = blankOf(lowered->function);
+  backends::HeidenhainProgram program =
+      backends::writeHeidenhainProgram(lowered->function, options);
+  for (const std::string& error : program.errors) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
+                               fmt::format("the part does not fit the TNC: {}", error));
+  }
+  if (program.errors.empty()) {
+    writeProgram(request, program.text, std::move(program.lineSpans));
+  }
+}
+
+} // namespace cncc::driver
