@@ -14,13 +14,20 @@ struct Segment {
   Eigen::Vector3d start, end;
 };
 
-double distanceToSegment(const Eigen::Vector3d& point, const Segment& segment) {
+// The distance from a point to a segment, and where along the segment (0 to
+// 1) the nearest point lies.
+struct SegmentDistance {
+  double distance;
+  double fraction;
+};
+
+SegmentDistance distanceToSegment(const Eigen::Vector3d& point, const Segment& segment) {
   Eigen::Vector3d direction = segment.end - segment.start;
   double lengthSquared = direction.squaredNorm();
   double along = lengthSquared == 0
                      ? 0.0
                      : std::clamp((point - segment.start).dot(direction) / lengthSquared, 0.0, 1.0);
-  return (segment.start + along * direction - point).norm();
+  return {(segment.start + along * direction - point).norm(), along};
 }
 
 // A path's segments in runs of a few, each run with its bounding box, so
@@ -35,28 +42,46 @@ public:
     }
     Run& run = runs_.back();
     run.segments.push_back(segment);
+    run.lengthBefore.push_back(length_);
+    length_ += (segment.end - segment.start).norm();
     run.box.extend(segment.start);
     run.box.extend(segment.end);
     box_.extend(segment.start);
     box_.extend(segment.end);
   }
 
+  // The length of the path (its segments one after another).
+  double length() const { return length_; }
+
   // At most the distance to the path; infinity for an empty path.
   double lowerBound(const Eigen::Vector3d& point) const {
     return runs_.empty() ? std::numeric_limits<double>::infinity() : box_.exteriorDistance(point);
   }
 
-  double distance(const Eigen::Vector3d& point) const {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Run& run : runs_) {
-      if (run.box.exteriorDistance(point) >= nearest) {
+  // The distance from a point to the path and the path length up to the
+  // nearest point. Consecutive queries walk along the path, so the run
+  // nearest to the last point is measured first: its distance prunes most
+  // other runs by box.
+  struct Nearest {
+    double distance = std::numeric_limits<double>::infinity();
+    double along = 0;
+  };
+  Nearest nearest(const Eigen::Vector3d& point) const {
+    if (runs_.empty()) {
+      return {};
+    }
+    Nearest best = nearestInRun(runs_[nearestRun_], point);
+    for (std::size_t i = 0; i < runs_.size(); ++i) {
+      if (i == nearestRun_ || runs_[i].box.exteriorDistance(point) >= best.distance) {
         continue;
       }
-      for (const Segment& segment : run.segments) {
-        nearest = std::min(nearest, distanceToSegment(point, segment));
+      Nearest found = nearestInRun(runs_[i], point);
+      if (found.distance < best.distance) {
+        best = found;
+        nearestRun_ = i;
       }
     }
-    return nearest;
+    return best;
   }
 
   // How far a move is from the path: the farthest of its start, middle and
@@ -69,17 +94,35 @@ public:
     if (bound >= better) {
       return std::nullopt;
     }
-    return std::max({distance(move.start), distance(middle), distance(move.end)});
+    return std::max(
+        {nearest(move.start).distance, nearest(middle).distance, nearest(move.end).distance});
   }
 
 private:
   static constexpr std::size_t segmentsPerRun = 32;
   struct Run {
     std::vector<Segment> segments;
+    std::vector<double> lengthBefore; // of the path, up to each segment
     Eigen::AlignedBox3d box;
   };
+
+  static Nearest nearestInRun(const Run& run, const Eigen::Vector3d& point) {
+    Nearest best;
+    for (std::size_t k = 0; k < run.segments.size(); ++k) {
+      SegmentDistance found = distanceToSegment(point, run.segments[k]);
+      if (found.distance < best.distance) {
+        const Segment& segment = run.segments[k];
+        best = {found.distance,
+                run.lengthBefore[k] + found.fraction * (segment.end - segment.start).norm()};
+      }
+    }
+    return best;
+  }
+
   std::vector<Run> runs_;
   Eigen::AlignedBox3d box_;
+  double length_ = 0;
+  mutable std::size_t nearestRun_ = 0;
 };
 
 // The reference's feed moves by cut, the cuts in the order they start.
@@ -111,6 +154,19 @@ struct ReferenceCuts {
 // How many cuts ahead of the current one a move may belong to: a program
 // that skips a cut is still followed (and the cut reported as missed).
 constexpr std::size_t kLookAhead = 4;
+// A move that ends this close to the end of its cut's path (mm, or inches in
+// an inch part) may already belong to the next cut, which starts there.
+constexpr double kEndOfCut = 1.0;
+
+// Whether a move keeps to the current cut, before the end of its path: it
+// stays with that cut, even where a later cut runs over the same place
+// (overlapping pockets). Cuts are executed in order, so only a move that
+// leaves the current cut, or reaches its end, may start the next.
+bool keepsToCut(const SegmentPath& cut, const Segment& move, double allowance) {
+  std::optional<double> distance = cut.distance(move, std::numeric_limits<double>::infinity());
+  return distance && *distance <= allowance &&
+         cut.nearest(move.end).along < cut.length() - kEndOfCut;
+}
 // Distances this close are ties, which the earlier cut wins.
 constexpr double kTie = 1e-9;
 
@@ -129,6 +185,14 @@ StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
     Segment executed{path.startOf(i), move.end};
     double best = std::numeric_limits<double>::infinity();
     std::optional<std::size_t> chosen;
+    if (current < cuts.order.size()) {
+      std::size_t cut = cuts.order[current];
+      if (keepsToCut(cuts.byCut[cut], executed,
+                     cut < allowance.size() ? allowance[cut] : outsideAllowance)) {
+        move.cut = cut;
+        continue;
+      }
+    }
     std::size_t last = std::min(cuts.order.size(), current + kLookAhead + 1);
     for (std::size_t k = current; k < last; ++k) {
       std::optional<double> distance = cuts.byCut[cuts.order[k]].distance(executed, best - kTie);

@@ -208,6 +208,39 @@ TEST(Verification, MissesACutTheProgramDoesNotCut) {
   EXPECT_THAT(formatVerification(report, {}), HasSubstr("NOT CUT"));
 }
 
+// Two cuts at the same depth over the same place (overlapping pockets): the
+// first cut's chords run nearer to the second cut's line than to its own,
+// yet within its allowance, so they stay with the first cut.
+TEST(CutAssignment, KeepsMovesWithTheCurrentCutWhereALaterCutOverlapsIt) {
+  auto feedTo = [](ExecutedPath& path, double x, double y, std::optional<std::size_t> cut) {
+    path.moves.push_back({false, Eigen::Vector3d(x, y, -1), 100, cut});
+  };
+  auto rapidTo = [](ExecutedPath& path, double x, double y) {
+    path.moves.push_back({true, Eigen::Vector3d(x, y, -1), 0, std::nullopt});
+  };
+  ExecutedPath reference;
+  reference.start = Eigen::Vector3d(0, 0, -1);
+  feedTo(reference, 20, 0, 0); // cut 0: (0, 0) to (20, 0)
+  rapidTo(reference, 5, 0.004);
+  feedTo(reference, 15, 0.004, 1); // cut 1: just beside cut 0's middle
+  feedTo(reference, 15, 5, 1);
+  ExecutedPath executed;
+  executed.start = reference.start;
+  feedTo(executed, 5, 0.004, std::nullopt);
+  feedTo(executed, 15, 0.004, std::nullopt); // on cut 1's line, 0.004 from cut 0
+  feedTo(executed, 20, 0, std::nullopt);
+  rapidTo(executed, 15, 0.004);
+  feedTo(executed, 15, 5, std::nullopt);
+  StrayMoves stray = assignCuts(executed, reference, {0.01, 0.01}, 0.002);
+  EXPECT_EQ(stray.count, 0u);
+  std::vector<std::optional<std::size_t>> cuts;
+  for (const ExecutedMove& move : executed.moves) {
+    cuts.push_back(move.cut);
+  }
+  std::vector<std::optional<std::size_t>> expected = {0, 0, 0, std::nullopt, 1};
+  EXPECT_EQ(cuts, expected);
+}
+
 TEST(Verification, ReadsTheJitTargetsToolPathBack) {
   Reference part = reference(5, 0.025);
   ExecutionRequest execution;

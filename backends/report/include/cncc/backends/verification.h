@@ -54,9 +54,11 @@ struct VerificationReport {
   bool passed() const;
 };
 
-// Gives each feed move of `path` the cut of the reference path it is
-// nearest to, following the reference's order of cuts (a move nearest to a
-// reference feed move outside every cut gets none); moves farther than
+// Gives each feed move of `path` a cut of the reference path, following the
+// reference's order of cuts: the current cut while the move keeps within its
+// allowance of it short of the cut's end (a later cut over the same place
+// does not take it), else the nearest of the next few (a move nearest to a reference feed move
+// outside every cut gets none); moves farther than
 // `allowance[cut]` (`outsideAllowance` outside cuts) from that reference
 // path are counted in the result.
 StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
