@@ -4,7 +4,7 @@
 
 #include "cncc/backends/heidenhain_program.h"
 #include "cncc/ir/interpreter.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/lowering/lowering.h"
 #include "cncc/ir/verifier.h"
 
 #include <fmt/format.h>

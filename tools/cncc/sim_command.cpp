@@ -168,7 +168,7 @@ int runSimulate(const DriverOptions& options) {
   backends::sim::SimulationResult result =
       backends::sim::simulateProgram(*text, *profile, simulation);
   if (result.error) {
-    return reportError(path, *result.error);
+    return reportError(path, result.error->line(), result.error->what(), result.error->lineText());
   }
   return writeCsv(options, backends::sim::flattenPath(result.path, options.chordError));
 }

@@ -191,10 +191,13 @@ ir::LoweringOptions Target::loweringOptions(const frontend::PartItem& part,
       setup.extendedWorkOffset.empty() ? 0 : setup.maximumExtendedWorkOffset;
   lowered.throughSpindleCoolant = !setup.coolantThrough.empty();
   // Every program's numbers stay within the controller profile's range (the
-  // conservative Fanuc one for the targets without a profile of their own;
-  // jit's tool path is for a controller too).
-  std::string_view profile = controllerProfile.empty() ? "fanuc" : controllerProfile;
-  lowered.largestNumber = driver::controllerProfile(options, profile).maximumCoordinate;
+  // conservative Fanuc one for the targets without a macro profile of their
+  // own, whose --profile, if any, names another kind; jit's tool path is for
+  // a controller too).
+  lowered.largestNumber =
+      controllerProfile.empty() && !machineProfile(options)
+          ? backends::findControllerProfile("fanuc")->maximumCoordinate
+          : driver::controllerProfile(options, controllerProfile).maximumCoordinate;
   if (options.machine) {
     lowered.maximumFeed = options.machine->maximumFeed;
     lowered.maximumSpindleSpeed = options.machine->maximumSpindleSpeed;

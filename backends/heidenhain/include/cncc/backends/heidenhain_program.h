@@ -26,7 +26,7 @@
 #include "cncc/backends/tnc_profile.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/ir.h"
-#include "cncc/ir/lowering.h"
+#include "cncc/ir/lowering_options.h"
 #include "cncc/ir/tool_path.h"
 
 #include <optional>
