@@ -12,6 +12,14 @@ comment line in IR too). The first line of a case may give the arguments:
 %d its folder, %% a percent sign). Without it the arguments are `check %s`.
 cncc runs in the repository root, colour off, with a 120 s timeout.
 
+A case whose leading comment has the line
+
+    // SANITIZERS: skip (why)
+
+is left out with --sanitized (the build under AddressSanitizer and
+UndefinedBehaviorSanitizer, many times slower): a case that measures
+hundreds of thousands of moves, whose code paths smaller cases run there.
+
 NAME.expected holds what must happen, byte for byte:
 
     exit code: 1
@@ -62,6 +70,15 @@ class Case:
         self.source = source
         self.expected = source.with_suffix(".expected")
         self.relative = source.relative_to(ROOT).as_posix()
+
+    def skipped_when_sanitized(self):
+        with open(self.source, encoding="utf-8", errors="replace") as file:
+            for line in file:
+                if not line.startswith("//"):
+                    return False
+                if re.match(r"//\s*SANITIZERS:\s*skip\b", line):
+                    return True
+        return False
 
     def arguments(self):
         with open(self.source, encoding="utf-8", errors="replace") as file:
@@ -259,11 +276,19 @@ def main():
     parser.add_argument("--update", action="store_true", help="rewrite the .expected files")
     parser.add_argument("--coverage", action="store_true",
                         help="check that every diagnostic appears in some expectation")
+    parser.add_argument("--sanitized", action="store_true",
+                        help="leave out the cases marked '// SANITIZERS: skip'")
     arguments = parser.parse_args()
     cncc = find_cncc(arguments, "run_golden.py")
     if arguments.coverage:
         return check_coverage(cncc)
-    return run_cases(cncc, select_cases(arguments.selectors), arguments.update)
+    cases = select_cases(arguments.selectors)
+    if arguments.sanitized:
+        skipped = [case for case in cases if case.skipped_when_sanitized()]
+        for case in skipped:
+            print(f"skipped under the sanitizers: {case.relative}")
+        cases = [case for case in cases if case not in skipped]
+    return run_cases(cncc, cases, arguments.update)
 
 
 if __name__ == "__main__":

@@ -186,6 +186,9 @@ private:
     case Opcode::Nurbs: // lowered only for targets with NURBS blocks
       errors_.push_back("the TNC has no NURBS blocks of the G06.2 kind (move.nurbs)");
       return;
+    case Opcode::Spline: // lowered only for the sinumerik target
+      errors_.push_back("the TNC has no Sinumerik spline blocks (move.spline)");
+      return;
     case Opcode::Spindle:
       printSpindle(instruction);
       return;

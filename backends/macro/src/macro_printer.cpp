@@ -193,6 +193,10 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
     errors_.push_back(
         fmt::format("{} has no Sinumerik spline blocks (move.spline)", dialect_.controllerName));
     return;
+  case Opcode::Polynomial: // lowered only for the heidenhain target
+    errors_.push_back(fmt::format("{} has no polynomial spline blocks (move.polynomial)",
+                                  dialect_.controllerName));
+    return;
   case Opcode::Spindle:
     printSpindle(instruction);
     return;
