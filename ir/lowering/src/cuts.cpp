@@ -437,6 +437,9 @@ void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
+  if (lowerOffsetCut(cut)) {
+    return;
+  }
   if (lowerNurbsCut(cut) || lowerPolynomialCut(cut)) {
     return;
   }

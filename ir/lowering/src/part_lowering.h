@@ -435,6 +435,29 @@ private:
   std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
   void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);
 
+  // offset_cuts.cpp: cuts beside the curve (side=left|right).
+  bool lowerOffsetCut(const frontend::CutStmt& cut);
+  // The signed offset (the tool's radius, > 0 to the left), after checking
+  // what the offset needs; an error at the cut otherwise.
+  double offsetDistance(const frontend::CutStmt& cut, const frontend::Modifier& side);
+  // The exact offset of the cut's curve, or tool-too-large at the cut.
+  std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
+                                                   const CutCurve& curve, double distance);
+  std::optional<std::vector<geom::ArcSegment>> fittedOffsetArcs(const frontend::CutStmt& cut,
+                                                                const geom::Curve& offset);
+  // The chords' ends after the first, each with its share of the lap's
+  // length (for a ramp); on a host target also as constant tables.
+  struct OffsetChords {
+    std::vector<Eigen::Vector3d> ends;
+    std::vector<double> progress;
+    bool tables = false;
+    std::uint32_t x = 0, y = 0, z = 0, progressTable = 0;
+    bool planar = true; // every z is 0: no z table
+  };
+  OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
+  geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
+  void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed);
+
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
@@ -539,6 +562,8 @@ private:
   frontend::Environment environment_;
   std::optional<Scalar> feed_;
   std::optional<Scalar> safe_;
+  // The current tool's diameter= (null before the first tool).
+  const frontend::Expr* toolDiameter_ = nullptr;
   MachineSettings machine_;
   std::vector<CutGeometry> cuts_;
   std::size_t unrolledIterations_ = 0;
