@@ -118,13 +118,7 @@ std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& of
 } // namespace
 
 double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side) {
-  if (const Modifier* comp = findModifier(cut, "comp");
-      comp != nullptr && comp->value && wordOf(*comp->value) == "controller") {
-    fail(comp->span(),
-         "comp=controller (the controller's cutter radius compensation, G41/G42) is not "
-         "available for this target yet",
-         DiagnosticKind::CompensationUnavailable);
-  }
+  // comp=controller is refused by the checker (compensation-unavailable).
   if (const Modifier* lead = findModifier(cut, "lead")) {
     unsupported(lead->span(), "lead= (tangent arc lead-in and lead-out) with comp=host");
   }
@@ -171,7 +165,9 @@ PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double di
          DiagnosticKind::ToolTooLarge);
   };
   for (const auto& piece : pieces) {
-    if (dynamic_cast<const geom::LineCurve*>(piece.get()) != nullptr) {
+    // A line never bends; an arc's offset radius is checked as it is built.
+    if (dynamic_cast<const geom::LineCurve*>(piece.get()) != nullptr ||
+        dynamic_cast<const geom::ArcCurve*>(piece.get()) != nullptr) {
       continue;
     }
     geom::CurvatureExtreme concave = geom::offsetClearance(*piece, distance).concave;
@@ -184,7 +180,7 @@ PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double di
     offset = geom::offsetOfPieces(pieces, distance);
   } catch (const geom::OffsetError& error) {
     if (error.radius > 0) {
-      tooLarge(error.place, error.radius, "an arc's radius is");
+      tooLarge(error.place, error.radius, "the radius of an arc it runs inside is");
     }
     fail(cut.span, fmt::format("cannot cut beside this path: {}", error.what()),
          DiagnosticKind::UnsupportedConstruct);
