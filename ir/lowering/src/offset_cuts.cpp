@@ -206,16 +206,12 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     return false;
   }
   double distance = offsetDistance(cut, *side);
-  if (std::string method = methodOf(cut); !method.empty() && method != "linear") {
-    diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
-                         fmt::format("a cut beside the curve (side=) is cut as straight feed "
-                                     "moves or arcs within its tolerance of the exact offset; "
-                                     "method={} with side= is not built yet",
-                                     method));
-  }
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
   checkCutBounds(cut, *offset);
+  if (lowerOffsetSplineCut(cut, offset)) {
+    return true;
+  }
   HostCut begun = beginHostCut(cut);
   geom::ParameterRange domain = offset->domain();
   if (begun.ramp && (offset->point(domain.t0) - offset->point(domain.t1)).norm() > 1e-6) {
@@ -261,6 +257,34 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   }
   emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap);
   return true;
+}
+
+// Spline blocks fitted to the offset where the target prints them
+// (Sinumerik BSPLINE/CSPLINE/ASPLINE, Heidenhain SPL): the ways of lowering
+// that read only the curve's geometry take the offset in a stand-in with
+// no pieces. A ramp's lap descends along the statement's pieces there, so
+// a ramped cut is cut as chords.
+bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
+                                        const std::shared_ptr<const geom::Curve>& offset) {
+  std::string method = methodOf(cut);
+  if (method.empty() || method == "linear") {
+    return false;
+  }
+  CutCurve stand{{}, offset, {}};
+  if (!rampEntry(cut) && (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand))) {
+    return true;
+  }
+  // A target without spline blocks cuts the method as chords anyway (and
+  // checkMethod says so where it has no spline interpolation at all).
+  if (options_.splineInterpolation &&
+      (options_.splineBlocks || options_.polynomialBlocks || options_.nurbsBlocks)) {
+    diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
+                         fmt::format("this cut beside the curve (side=) is cut as straight feed "
+                                     "moves within its tolerance of the exact offset: method={} "
+                                     "is not built for offsets{} on this target yet",
+                                     method, rampEntry(cut) ? " with entry=ramp" : ""));
+  }
+  return false;
 }
 
 std::optional<std::vector<geom::ArcSegment>>

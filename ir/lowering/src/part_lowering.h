@@ -431,7 +431,8 @@ private:
   FittedSplineBlocks splineBlocksFor(const frontend::CutStmt& cut, const CutCurve& curve,
                                      SplineKind kind, const geom::CurveSamples& samples, bool ramp);
   // polynomial_cuts.cpp
-  bool lowerPolynomialCut(const frontend::CutStmt& cut);
+  // `given`: the curve to cut instead of the statement's (an offset's stand-in).
+  bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
   void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);
 
@@ -443,6 +444,8 @@ private:
   // The exact offset of the cut's curve, or tool-too-large at the cut.
   std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
                                                    const CutCurve& curve, double distance);
+  bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
+                            const std::shared_ptr<const geom::Curve>& offset);
   std::optional<std::vector<geom::ArcSegment>> fittedOffsetArcs(const frontend::CutStmt& cut,
                                                                 const geom::Curve& offset);
   // The chords' ends after the first, each with its share of the lap's
