@@ -182,8 +182,9 @@ PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double di
     if (error.radius > 0) {
       tooLarge(error.place, error.radius, "the radius of an arc it runs inside is");
     }
-    fail(cut.span, fmt::format("cannot cut beside this path: {}", error.what()),
-         DiagnosticKind::UnsupportedConstruct);
+    fail(cut.span,
+         fmt::format("the tool's radius {:g} is too large for this path: {}", radius, error.what()),
+         DiagnosticKind::ToolTooLarge);
   } catch (const geom::GeometryError& error) {
     fail(cut.curve->span, fmt::format("cannot offset this curve: {}", error.what()),
          DiagnosticKind::DegenerateCurve);

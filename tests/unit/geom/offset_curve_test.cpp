@@ -80,29 +80,72 @@ TEST(OffsetCurve, ArcStaysAnArcAndALineALine) {
 }
 
 // A square counter-clockwise: outside (right) its corners are convex and get
-// quarter circles of the tool's radius; inside they are concave.
-TEST(OffsetCurve, ConvexCornersGetArcsConcaveOnesAreRefused) {
+// quarter circles of the tool's radius, the closing corner included; inside
+// they are concave and the sides are cut back to where their offsets cross.
+TEST(OffsetCurve, ConvexCornersGetArcsConcaveOnesAreTrimmed) {
   std::vector<Eigen::Vector3d> corners = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
   std::vector<std::shared_ptr<const Curve>> sides;
   for (std::size_t i = 0; i < 4; ++i) {
     sides.push_back(std::make_shared<LineCurve>(corners[i], corners[(i + 1) % 4]));
   }
-  auto outside = offsetOfPieces(sides, -2.0);
-  auto composite = std::dynamic_pointer_cast<const CompositeCurve>(outside);
-  ASSERT_TRUE(composite);
-  EXPECT_EQ(composite->pieceCount(), 7u); // four sides, three corners between them
-  auto arc = dynamic_cast<const ArcCurve*>(&composite->piece(1));
+  auto outside = std::dynamic_pointer_cast<const CompositeCurve>(offsetOfPieces(sides, -2.0));
+  ASSERT_TRUE(outside);
+  EXPECT_EQ(outside->pieceCount(), 8u); // four sides, four corners
+  auto arc = dynamic_cast<const ArcCurve*>(&outside->piece(1));
   ASSERT_NE(arc, nullptr);
   EXPECT_DOUBLE_EQ(arc->radius(), 2.0);
   EXPECT_NEAR(arc->sweep(), kPi / 2, 1e-12);
   EXPECT_NEAR((arc->point(arc->domain().t1) - Eigen::Vector3d(12, 0, 0)).norm(), 0.0, 1e-12);
+  ParameterRange whole = outside->domain();
+  EXPECT_NEAR((outside->point(whole.t0) - outside->point(whole.t1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(whole.length(), 40 + 2 * kPi * 2, 1e-9);
+
+  auto inside = std::dynamic_pointer_cast<const CompositeCurve>(offsetOfPieces(sides, 2.0));
+  ASSERT_TRUE(inside);
+  ASSERT_EQ(inside->pieceCount(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Curve& side = inside->piece(i);
+    ASSERT_NE(dynamic_cast<const LineCurve*>(&side), nullptr);
+    EXPECT_NEAR(side.domain().length(), 6.0, 1e-12) << i;
+  }
+  EXPECT_NEAR((inside->point(0) - Eigen::Vector3d(2, 2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((inside->point(inside->domain().t1) - Eigen::Vector3d(2, 2, 0)).norm(), 0.0, 1e-12);
+}
+
+// A concave corner next to a piece shorter than the tool's radius: the
+// offsets do not cross within the pieces.
+TEST(OffsetCurve, ConcaveCornerOfAShortPieceIsRefused) {
+  std::vector<std::shared_ptr<const Curve>> pieces = {
+      std::make_shared<LineCurve>(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 0, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(10, 1, 0))};
   try {
-    offsetOfPieces(sides, 2.0);
-    FAIL() << "a concave corner was offset";
+    offsetOfPieces(pieces, 2.0);
+    FAIL() << "the offsets were joined";
   } catch (const OffsetError& error) {
     EXPECT_NEAR((error.place - Eigen::Vector3d(10, 0, 0)).norm(), 0.0, 1e-12);
     EXPECT_EQ(error.radius, 0.0);
   }
+}
+
+// A line into an arc turning to the tool's side: the trimmed offsets stay a line
+// and an arc, and meet.
+TEST(OffsetCurve, ConcaveCornerOfALineAndAnArcIsTrimmedExactly) {
+  // A line from the origin into an arc counter-clockwise about (10, 5) from
+  // below its centre: a left turn where they join.
+  auto arc = std::make_shared<ArcCurve>(Eigen::Vector2d(10, 5), 5.0, -kPi / 2 + 0.5, 2.0);
+  auto start =
+      Eigen::Vector3d(10 + 5 * std::cos(-kPi / 2 + 0.5), 5 + 5 * std::sin(-kPi / 2 + 0.5), 0);
+  auto lead = std::make_shared<LineCurve>(Eigen::Vector3d(0, 0, 0), start);
+  auto offset = std::dynamic_pointer_cast<const CompositeCurve>(offsetOfPieces({lead, arc}, 1.0));
+  ASSERT_TRUE(offset);
+  ASSERT_EQ(offset->pieceCount(), 2u);
+  const auto* trimmedLine = dynamic_cast<const LineCurve*>(&offset->piece(0));
+  const auto* trimmedArc = dynamic_cast<const ArcCurve*>(&offset->piece(1));
+  ASSERT_TRUE(trimmedLine != nullptr && trimmedArc != nullptr);
+  EXPECT_DOUBLE_EQ(trimmedArc->radius(), 4.0);
+  Eigen::Vector3d meeting = trimmedLine->point(trimmedLine->domain().t1);
+  EXPECT_NEAR((meeting - trimmedArc->point(0)).norm(), 0.0, 1e-10);
+  EXPECT_NEAR((meeting.head<2>() - Eigen::Vector2d(10, 5)).norm(), 4.0, 1e-10);
 }
 
 // REFERENCE-CASES.md case 3 (counter-clockwise): outside (right) its tightest

@@ -63,10 +63,13 @@ public:
 /// smooth, joined end to start: a LineCurve stays a line and an ArcCurve an arc of
 /// radius R - d (counter-clockwise) or R + d (clockwise); other pieces become
 /// OffsetCurves. Where two pieces meet at a corner on the side away from the offset
-/// (convex) an arc of radius |d| about the corner joins their offsets. Throws
-/// OffsetError at a corner on the offset's side (concave: its trimming is not built
-/// yet) and where an arc's offset radius would not be positive; GeometryError for
-/// d = 0 or no pieces. One piece gives its offset alone; several a CompositeCurve.
+/// (convex) an arc of radius |d| about the corner joins their offsets; at a corner on
+/// the offset's side (concave) both offsets are cut back to where they cross (a line
+/// or an arc stays one). A path whose end meets its start is joined there too.
+/// Throws OffsetError where two offsets at a concave corner do not cross within their
+/// pieces (radius 0) and where an arc's offset radius would not be positive (the
+/// arc's radius); GeometryError for d = 0 or no pieces. One piece gives its offset
+/// alone; several a CompositeCurve.
 std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<const Curve>>& pieces,
                                             double distance);
 
