@@ -126,27 +126,16 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side) {
     fail(side.span(), "side= runs the tool at its radius beside the curve, but no tool is chosen",
          DiagnosticKind::SideWithoutTool);
   }
-  if (options_.controllerLoops) {
-    // Offsets are computed here: what they depend on must be known.
-    std::pair<const char*, const Expr*> uses[] = {{"curve", cut.curve.get()},
-                                                  {"tool diameter", toolDiameter_},
-                                                  {"depth", modifierValue(cut, "depth")},
-                                                  {"step", modifierValue(cut, "step")}};
-    for (const auto& [what, expression] : uses) {
-      if (expression == nullptr) {
-        continue;
-      }
-      std::set<std::string> parameters = parametersOf(*expression);
-      unrollForLoopVariables(parameters);
-      if (!parameters.empty()) {
-        fail(cut.span,
-             fmt::format("this cut beside the curve (side=) has its {} depend on parameter '{}': "
-                         "on this target the offset path is computed by the compiler, which "
-                         "needs its value; offsets computed on the controller are a later step",
-                         what, *parameters.begin()),
-             DiagnosticKind::UnsupportedConstruct);
-      }
-    }
+  // Offsets are computed here: on a controller-side target what they
+  // depend on must not be a parameter.
+  if (std::optional<ParameterUse> use =
+          options_.controllerLoops ? parameterUse(cut, toolDiameter_) : std::nullopt) {
+    fail(cut.span,
+         fmt::format("this cut beside the curve (side=) has its {} depend on parameter '{}': on "
+                     "this target the offset path is computed by the compiler, which needs its "
+                     "value; offsets computed on the controller are a later step",
+                     use->what, use->parameter),
+         DiagnosticKind::UnsupportedConstruct);
   }
   double radius = constantNumber(*toolDiameter_, "the tool diameter") / 2;
   return wordOf(*side.value) == "left" ? radius : -radius;

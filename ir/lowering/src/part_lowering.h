@@ -148,6 +148,12 @@ struct ArcPath {
 // The height added to an arc's own z at a fraction of it (the pass, a ramp).
 using ArcHeight = std::function<Scalar(Scalar fraction)>;
 
+// What of a cut depends on a part parameter (cuts.cpp, parameterUse).
+struct ParameterUse {
+  std::string what;
+  std::string parameter;
+};
+
 // What a cut computed on the host starts with (cuts.cpp, beginHostCut).
 struct HostCut {
   Scalar feed;
@@ -355,6 +361,11 @@ private:
   // reference.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);
+  // The first of the cut's curve, depth, step and `toolDiameter` that
+  // depends on a part parameter; nullopt when none does. A controller
+  // loop's variable unrolls the loop instead (NeedsUnrolling).
+  std::optional<ParameterUse> parameterUse(const frontend::CutStmt& cut,
+                                           const frontend::Expr* toolDiameter = nullptr);
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
