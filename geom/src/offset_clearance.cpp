@@ -105,9 +105,18 @@ OffsetClearance offsetClearance(const Curve& curve, double distance) {
 
 std::optional<Eigen::Vector3d> offsetSelfCrossing(const Curve& offset, int samplesPerPiece) {
   std::size_t pieces = std::max<std::size_t>(offset.breakpoints().size() - 1, 1);
-  int perPiece =
-      std::max(4, std::min(samplesPerPiece, kMaximumCrossingChords / static_cast<int>(pieces)));
-  std::vector<double> parameters = sampleParameters(offset, perPiece, 0);
+  std::vector<double> parameters;
+  if (pieces * 4 <= kMaximumCrossingChords) {
+    int perPiece =
+        std::max(4, std::min(samplesPerPiece, kMaximumCrossingChords / static_cast<int>(pieces)));
+    parameters = sampleParameters(offset, perPiece, 0);
+  } else {
+    // Too many pieces for four chords each: equal steps over the whole curve.
+    ParameterRange domain = offset.domain();
+    for (int i = 0; i <= kMaximumCrossingChords; ++i) {
+      parameters.push_back(domain.t0 + domain.length() * i / kMaximumCrossingChords);
+    }
+  }
   std::vector<Eigen::Vector2d> points;
   for (double t : parameters) {
     points.push_back(offset.point(t).head<2>());

@@ -32,7 +32,8 @@ OffsetClearance offsetClearance(const Curve& curve, double distance);
 /// narrow neck two tool radii wide): the first crossing of two non-adjacent chords of
 /// the offset sampled at `samples` parameters per smooth piece (and the breakpoints),
 /// nullopt when none. The chords' work grows with the square of their number, so
-/// the samples in all are capped at 4096.
+/// they are capped at 4096 (a curve of more than 1024 pieces is sampled at equal
+/// parameter steps instead).
 std::optional<Eigen::Vector3d> offsetSelfCrossing(const Curve& offset, int samplesPerPiece = 256);
 
 } // namespace cncc::geom
