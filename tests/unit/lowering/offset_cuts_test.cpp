@@ -21,29 +21,32 @@ namespace {
 
 // A part compiled with `options`: its lowering (nullopt after an error) and
 // the diagnostics.
-struct Compiled {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-  std::optional<LoweredPart> part;
-
+class Compiled {
+public:
   Compiled(const std::string& text, const LoweringOptions& options) {
     frontend::CheckOptions checking;
     checking.requirePart = true;
-    program = frontend::checkProgram(sources, sources.addFile("offsets.cdl", text), checking,
-                                     diagnostics);
-    EXPECT_FALSE(diagnostics.hasErrors());
-    part = lowerPartWithCuts(*program, *program->selectedPart, diagnostics, options);
+    program_ = frontend::checkProgram(sources_, sources_.addFile("offsets.cdl", text), checking,
+                                      diagnostics_);
+    EXPECT_FALSE(diagnostics_.hasErrors());
+    part = lowerPartWithCuts(*program_, *program_->selectedPart, diagnostics_, options);
   }
 
   bool reported(frontend::DiagnosticKind kind) const {
-    for (const frontend::Diagnostic& diagnostic : diagnostics.diagnostics()) {
+    for (const frontend::Diagnostic& diagnostic : diagnostics_.diagnostics()) {
       if (diagnostic.kind == kind) {
         return true;
       }
     }
     return false;
   }
+
+  std::optional<LoweredPart> part;
+
+private:
+  frontend::SourceManager sources_;
+  frontend::DiagnosticEngine diagnostics_;
+  std::optional<frontend::CheckedProgram> program_;
 };
 
 std::string polarPart(const char* side) {
