@@ -96,9 +96,9 @@ const std::vector<BuiltinInfo>& builtinFunctions() {
 }
 
 const std::vector<std::string>& cutModifierNames() {
-  static const std::vector<std::string> names = {"sweep",   "depth",   "step",   "tolerance",
-                                                 "samples", "spacing", "method", "feed",
-                                                 "entry",   "arcs"};
+  static const std::vector<std::string> names = {
+      "sweep", "depth", "step", "tolerance", "samples", "spacing", "method",
+      "feed",  "entry", "arcs", "side",      "comp",    "lead"};
   return names;
 }
 

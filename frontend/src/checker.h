@@ -128,6 +128,7 @@ private:
   // already given.
   void checkModifier(Modifier& modifier, const Scope& scope, std::span<const Modifier*> seen);
   void checkChoice(Modifier& modifier, std::span<const std::string_view> choices);
+  void checkToolSide(const Modifier* side, const Modifier* comp, const Modifier* lead);
 
   // expressions (checker_expressions.cpp)
   void expectNumber(Expr& expression, const Scope& scope, std::string_view context) {

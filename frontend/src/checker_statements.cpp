@@ -21,12 +21,14 @@ static_assert(std::size(toolSettings) <= maxSettings && std::size(safeSettings) 
 
 constexpr std::string_view methodChoices[] = {"linear", "aspline", "bspline", "cspline", "nurbs"};
 constexpr std::string_view entryChoices[] = {"plunge", "ramp"};
+constexpr std::string_view sideChoices[] = {"center", "left", "right"};
+constexpr std::string_view compChoices[] = {"host", "controller"};
 
 // Where the modifiers checkCut and checkModifier look at are in
 // cutModifierNames(); the number of names for one that is not there.
 struct ModifierPlaces {
   const std::vector<std::string>* names;
-  std::size_t sweep, depth, step, samples, spacing, method, entry, arcs;
+  std::size_t sweep, depth, step, samples, spacing, method, entry, arcs, side, comp, lead;
 };
 
 const ModifierPlaces& modifierPlaces() {
@@ -35,9 +37,9 @@ const ModifierPlaces& modifierPlaces() {
     auto place = [&](std::string_view name) {
       return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
     };
-    return ModifierPlaces{&names,          place("sweep"),   place("depth"),
-                          place("step"),   place("samples"), place("spacing"),
-                          place("method"), place("entry"),   place("arcs")};
+    return ModifierPlaces{&names,           place("sweep"),   place("depth"),  place("step"),
+                          place("samples"), place("spacing"), place("method"), place("entry"),
+                          place("arcs"),    place("side"),    place("comp"),   place("lead")};
   }();
   return places;
 }
@@ -45,6 +47,14 @@ const ModifierPlaces& modifierPlaces() {
 // The modifier seen at `place`, null when none (or no such modifier).
 const Modifier* seenAt(std::span<const Modifier*> seen, std::size_t place) {
   return place < seen.size() ? seen[place] : nullptr;
+}
+
+// The word a choice modifier was given, empty when it is not a name.
+std::string_view choiceWord(const Modifier* modifier) {
+  if (modifier == nullptr || !modifier->value || modifier->value->kind != ExprKind::Name) {
+    return {};
+  }
+  return as<NameExpr>(*modifier->value).name;
 }
 
 } // namespace
@@ -338,6 +348,36 @@ void Checker::checkCut(CutStmt& cut, const Scope& scope) {
                         "'samples=' and 'spacing=' both choose the points; give only one");
     context_.diagnostics.addNote(diagnostic, samples->nameSpan, "'samples=' is given here");
   }
+  checkToolSide(seenAt(seen, places.side), seenAt(seen, places.comp), seenAt(seen, places.lead));
+}
+
+// `comp=` and `lead=` say how the tool runs beside the curve, so they need
+// `side=left|right`; the controller's compensation is not built yet.
+void Checker::checkToolSide(const Modifier* side, const Modifier* comp, const Modifier* lead) {
+  std::string_view sideWord = choiceWord(side);
+  bool beside = sideWord == "left"sv || sideWord == "right"sv;
+  // A side= that is not a valid choice is reported already.
+  bool sideInvalid = side != nullptr && !beside && sideWord != "center"sv;
+  for (const Modifier* modifier : {comp, lead}) {
+    if (modifier == nullptr || beside || sideInvalid) {
+      continue;
+    }
+    Diagnostic* diagnostic = context_.report(
+        DiagnosticKind::OffsetWithoutSide, modifier->nameSpan,
+        fmt::format("'{}=' is for a tool running beside the curve; add 'side=left' or "
+                    "'side=right'",
+                    modifier->name));
+    if (side != nullptr) {
+      context_.diagnostics.addNote(diagnostic, side->span(),
+                                   "with side=center the tool's centre runs on the curve");
+    }
+  }
+  if (beside && choiceWord(comp) == "controller"sv) {
+    context_.report(DiagnosticKind::CompensationUnavailable, comp->span(),
+                    "comp=controller (the controller's cutter radius compensation, G41/G42) is "
+                    "not available for this target yet; leave comp= out for the compiler's "
+                    "exact offset (comp=host)");
+  }
 }
 
 void Checker::checkModifier(Modifier& modifier, const Scope& scope,
@@ -382,6 +422,10 @@ void Checker::checkModifier(Modifier& modifier, const Scope& scope,
     checkChoice(modifier, methodChoices);
   } else if (place == places.entry) {
     checkChoice(modifier, entryChoices);
+  } else if (place == places.side) {
+    checkChoice(modifier, sideChoices);
+  } else if (place == places.comp) {
+    checkChoice(modifier, compChoices);
   } else if (place == places.arcs) {
     // A switch of the printed program, so a literal rather than an expression.
     if (modifier.value->kind != ExprKind::Bool) {

@@ -278,7 +278,7 @@ private:
     modifierValues_.clear();
     for (const Modifier& modifier : cut.modifiers) {
       if (!modifier.value || modifier.name == "method"sv || modifier.name == "entry"sv ||
-          modifier.name == "arcs"sv) {
+          modifier.name == "arcs"sv || modifier.name == "side"sv || modifier.name == "comp"sv) {
         continue;
       }
       if (std::optional<double> value = number(*modifier.value, environment)) {
@@ -307,12 +307,13 @@ private:
                                       value, maximumSamples));
       }
     }
-    for (const char* name : {"spacing", "feed"}) {
+    for (const char* name : {"spacing", "feed", "lead"}) {
       if (const auto* found = modifierValue(name); found != nullptr && !(found->first > 0)) {
         evaluator_.report(DiagnosticKind::ValueNotPositive, found->second->value->span,
                           fmt::format("{}={:g}: it must be greater than 0", name, found->first));
       }
     }
+    checkSideHasTool(cut);
     // Reported once per part: the first cut shows what is missing.
     if (!toolKnown_ && !toolReported_) {
       toolReported_ = true;
@@ -333,6 +334,27 @@ private:
       evaluator_.report(DiagnosticKind::NoFeed, cut.span,
                         "this cut has no feed rate; give the tool 'feed=F', write 'feed F', or "
                         "add 'feed=F' to the cut");
+    }
+  }
+
+  // A cut beside the curve runs at the tool's radius: a tool must be chosen.
+  void checkSideHasTool(const CutStmt& cut) {
+    if (toolKnown_) {
+      return;
+    }
+    for (const Modifier& modifier : cut.modifiers) {
+      if (modifier.name != "side"sv || !modifier.value || modifier.value->kind != ExprKind::Name) {
+        continue;
+      }
+      std::string_view side = as<NameExpr>(*modifier.value).name;
+      if (side == "left"sv || side == "right"sv) {
+        toolReported_ = true; // this says it more precisely than no-tool
+        evaluator_.report(DiagnosticKind::SideWithoutTool, modifier.span(),
+                          fmt::format("side={} runs the tool at its radius beside the curve, but "
+                                      "no tool diameter is known here; write 'tool N diameter=D' "
+                                      "before this cut",
+                                      side));
+      }
     }
   }
 

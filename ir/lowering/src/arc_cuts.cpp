@@ -64,18 +64,9 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
   if (rampEntry(cut)) {
     return "its entry=ramp laps are computed on the controller";
   }
-  std::pair<const char*, const Expr*> uses[] = {{"curve", cut.curve.get()},
-                                                {"depth", modifierValue(cut, "depth")},
-                                                {"step", modifierValue(cut, "step")}};
-  for (const auto& [what, expression] : uses) {
-    if (expression == nullptr) {
-      continue;
-    }
-    std::set<std::string> parameters = parametersOf(*expression);
-    unrollForLoopVariables(parameters); // unrolled, each copy's arcs are fitted
-    if (!parameters.empty()) {
-      return fmt::format("its {} depends on parameter '{}'", what, *parameters.begin());
-    }
+  // A loop variable unrolls the loop: each copy's arcs are fitted.
+  if (std::optional<ParameterUse> use = parameterUse(cut)) {
+    return fmt::format("its {} depends on parameter '{}'", use->what, use->parameter);
   }
   return std::nullopt;
 }

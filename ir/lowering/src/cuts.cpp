@@ -57,6 +57,25 @@ std::string methodOf(const CutStmt& cut) {
   return method != nullptr && method->value ? wordOf(*method->value) : "";
 }
 
+std::optional<ParameterUse> PartLowering::parameterUse(const CutStmt& cut,
+                                                       const Expr* toolDiameter) {
+  std::pair<const char*, const Expr*> uses[] = {{"curve", cut.curve.get()},
+                                                {"depth", modifierValue(cut, "depth")},
+                                                {"step", modifierValue(cut, "step")},
+                                                {"tool diameter", toolDiameter}};
+  for (const auto& [what, expression] : uses) {
+    if (expression == nullptr) {
+      continue;
+    }
+    std::set<std::string> parameters = parametersOf(*expression);
+    unrollForLoopVariables(parameters);
+    if (!parameters.empty()) {
+      return ParameterUse{what, *parameters.begin()};
+    }
+  }
+  return std::nullopt;
+}
+
 void PartLowering::checkMethod(const CutStmt& cut) {
   const Modifier* method = findModifier(cut, "method");
   if (method == nullptr) {
@@ -437,6 +456,9 @@ void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
+  if (lowerOffsetCut(cut)) {
+    return;
+  }
   if (lowerNurbsCut(cut) || lowerPolynomialCut(cut)) {
     return;
   }

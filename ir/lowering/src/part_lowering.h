@@ -148,6 +148,12 @@ struct ArcPath {
 // The height added to an arc's own z at a fraction of it (the pass, a ramp).
 using ArcHeight = std::function<Scalar(Scalar fraction)>;
 
+// What of a cut depends on a part parameter (cuts.cpp, parameterUse).
+struct ParameterUse {
+  std::string what;
+  std::string parameter;
+};
+
 // What a cut computed on the host starts with (cuts.cpp, beginHostCut).
 struct HostCut {
   Scalar feed;
@@ -355,6 +361,11 @@ private:
   // reference.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);
+  // The first of the cut's curve, depth, step and `toolDiameter` that
+  // depends on a part parameter; nullopt when none does. A controller
+  // loop's variable unrolls the loop instead (NeedsUnrolling).
+  std::optional<ParameterUse> parameterUse(const frontend::CutStmt& cut,
+                                           const frontend::Expr* toolDiameter = nullptr);
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
@@ -431,9 +442,35 @@ private:
   FittedSplineBlocks splineBlocksFor(const frontend::CutStmt& cut, const CutCurve& curve,
                                      SplineKind kind, const geom::CurveSamples& samples, bool ramp);
   // polynomial_cuts.cpp
-  bool lowerPolynomialCut(const frontend::CutStmt& cut);
+  // `given`: the curve to cut instead of the statement's (an offset's stand-in).
+  bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
   void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);
+
+  // offset_cuts.cpp: cuts beside the curve (side=left|right).
+  bool lowerOffsetCut(const frontend::CutStmt& cut);
+  // The signed offset (the tool's radius, > 0 to the left), after checking
+  // what the offset needs; an error at the cut otherwise.
+  double offsetDistance(const frontend::CutStmt& cut, const frontend::Modifier& side);
+  // The exact offset of the cut's curve, or tool-too-large at the cut.
+  std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
+                                                   const CutCurve& curve, double distance);
+  bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
+                            const std::shared_ptr<const geom::Curve>& offset);
+  std::optional<std::vector<geom::ArcSegment>> fittedOffsetArcs(const frontend::CutStmt& cut,
+                                                                const geom::Curve& offset);
+  // The chords' ends after the first, each with its share of the lap's
+  // length (for a ramp); on a host target also as constant tables.
+  struct OffsetChords {
+    std::vector<Eigen::Vector3d> ends;
+    std::vector<double> progress;
+    bool tables = false;
+    std::uint32_t x = 0, y = 0, z = 0, progressTable = 0;
+    bool planar = true; // every z is 0: no z table
+  };
+  OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
+  geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
+  void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
@@ -539,6 +576,8 @@ private:
   frontend::Environment environment_;
   std::optional<Scalar> feed_;
   std::optional<Scalar> safe_;
+  // The current tool's diameter= (null before the first tool).
+  const frontend::Expr* toolDiameter_ = nullptr;
   MachineSettings machine_;
   std::vector<CutGeometry> cuts_;
   std::size_t unrolledIterations_ = 0;

@@ -102,7 +102,7 @@ void PartLowering::reportSplineCorners(const CutStmt& cut,
   }
 }
 
-bool PartLowering::lowerPolynomialCut(const CutStmt& cut) {
+bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
   bool spline = word == "cspline" || word == "aspline" || word == "bspline" || word == "nurbs";
@@ -114,7 +114,7 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut) {
          DiagnosticKind::NoSafeHeight);
   }
   Scalar feed = cutFeed(cut);
-  CutCurve curve = cutCurve(cut);
+  CutCurve curve = given != nullptr ? *given : cutCurve(cut);
   fixParameters(*cut.curve, cut.curve->span, "this curve's points");
   std::vector<PolynomialMove> spans = polynomialSpans(cut, curve);
   reportSplineCorners(cut, spans);

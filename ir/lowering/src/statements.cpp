@@ -235,6 +235,7 @@ void PartLowering::lowerTool(const ToolStmt& tool) {
           static_cast<std::uint32_t>(constantNumber(*setting.value, "the length offset register"));
     } else if (setting.name == "diameter") {
       diameter = number(*setting.value);
+      toolDiameter_ = setting.value.get();
     } else if (setting.name == "spindle") {
       spindle = spindleSpeed(*setting.value);
     } else if (setting.name == "feed") {

@@ -244,6 +244,7 @@ std::vector<ProgramCase> programCases() {
       {"cam_profile.cdl", "cam_profile"},
       {"helix_bore.cdl", "bore_plate_mm"},
       {"helix_bore.cdl", "bore_plate_inch"},
+      {"offset_contours.cdl", "offset_contours"},
       {"polar_contour.cdl", "polar_contour"},
       {"rosette_plate.cdl", "rosette_plate"},
       {"s_profile.cdl", "s_profile"}};

@@ -110,14 +110,14 @@ bool endsAfterExpression(std::string_view written) {
 }
 
 // After `curve <expression> ` on the same line: the cut's modifiers, or the
-// choices after `method=` and `entry=`.
+// choices after `method=`, `entry=`, `side=` and `comp=`.
 bool completeModifiers(ItemBuilder& items, const CursorLine& line) {
   std::optional<std::string_view> rest = afterStatementWord(line, "curve");
   if (!rest) {
     return false;
   }
   std::string cut(*rest);
-  for (std::string_view modifier : {"method=", "entry="}) {
+  for (std::string_view modifier : {"method=", "entry=", "side=", "comp="}) {
     if (cut.size() >= modifier.size() && cut.substr(cut.size() - modifier.size()) == modifier) {
       addModifierChoices(items, modifier.substr(0, modifier.size() - 1));
       return true;

@@ -138,6 +138,14 @@ const std::vector<ModifierInfo>& modifierInfos() {
       {"entry", "entry=${1|plunge,ramp|}", "straight plunge, or ramped descent along the curve"},
       {"arcs", "arcs=${1|true,false|}",
        "gcode: G02/G03 arcs fitted within the tolerance instead of G01 chords (also --arcs)"},
+      {"side", "side=${1|center,left,right|}",
+       "the tool's centre on the curve, or beside it at the tool's radius, left or right of the "
+       "curve in the direction of travel"},
+      {"comp", "comp=${1|host,controller|}",
+       "with side=left|right: the compiler computes the exact offset path (host), or the "
+       "controller's G41/G42 does"},
+      {"lead", "lead=${1:5}",
+       "with side=left|right: tangent arc lead-in and lead-out of radius R off the curve"},
   };
   return infos;
 }
@@ -223,6 +231,13 @@ void addModifierChoices(ItemBuilder& items, std::string_view modifier) {
             {"cspline", "Sinumerik C spline (cubic)"},
             {"nurbs", "Fanuc G06.2 NURBS"}}},
           {"entry", {{"plunge", "straight plunge"}, {"ramp", "ramped descent along the curve"}}},
+          {"side",
+           {{"center", "the tool's centre on the curve"},
+            {"left", "beside the curve at the tool's radius, to its left"},
+            {"right", "beside the curve at the tool's radius, to its right"}}},
+          {"comp",
+           {{"host", "the compiler computes the exact offset path"},
+            {"controller", "the controller's cutter radius compensation (G41/G42)"}}},
       };
   auto found = choices.find(modifier);
   if (found == choices.end()) {

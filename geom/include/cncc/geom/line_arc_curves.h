@@ -42,8 +42,12 @@ public:
   static ArcCurve fromCentre(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                              const Eigen::Vector2d& centre, ArcDirection direction);
 
+  const Eigen::Vector2d& centre() const { return centre_; }
   double radius() const { return radius_; }
+  double startAngle() const { return startAngle_; }
   double sweep() const { return sweep_; }
+  double startZ() const { return startZ_; }
+  double zChange() const { return zChange_; }
   double length() const { return length_; }
 
   ParameterRange domain() const override { return {0.0, length_}; }

@@ -1,0 +1,373 @@
+// A cut beside its curve (`side=left|right`, `comp=host`): the tool centre
+// runs on the exact offset of the curve by the tool's radius
+// (geom/offset_curve.h), computed here at the values compiled with. The
+// offset is the cut's curve in the cut table, so verify measures the
+// executed path against it. Line and arc pieces stay lines and arcs
+// (printed as native arcs unless samples= or spacing= choose the points);
+// other curves are cut as chords within the cut's tolerance of the offset,
+// or as fitted arcs where the target prints them. Before anything is
+// emitted the tool must fit: no concave bend tighter than its radius, no
+// offset crossing itself (tool-too-large at the cut).
+#include "part_lowering.h"
+#include "printed_grid.h"
+
+#include "cncc/geom/arc_fitting.h"
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/geom/offset_clearance.h"
+#include "cncc/geom/offset_curve.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+// An arc piece under a translate/rotate/scale chain is still an arc: its
+// centre moved, its radius scaled, its angles turned. Nullptr when the map
+// is not a rotation times a positive scale.
+std::shared_ptr<const geom::Curve> movedArc(const geom::ArcCurve& arc, const Affine& transform) {
+  const Eigen::Matrix2d& linear = transform.linear;
+  double determinant = linear(0, 0) * linear(1, 1) - linear(0, 1) * linear(1, 0);
+  double scale = std::sqrt(std::fabs(determinant));
+  double turn = std::atan2(linear(1, 0), linear(0, 0));
+  Eigen::Matrix2d rotation;
+  rotation << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
+  if (!(scale > 0) || (linear - scale * rotation).norm() > 1e-12 * (1 + scale)) {
+    return nullptr;
+  }
+  return std::make_shared<geom::ArcCurve>(
+      linear * arc.centre() + transform.offset, scale * arc.radius(), arc.startAngle() + turn,
+      arc.sweep(), transform.zScale * arc.startZ(), transform.zScale * arc.zChange());
+}
+
+// The cut's pieces in part coordinates, lines and arcs kept as such.
+std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve) {
+  std::vector<std::shared_ptr<const geom::Curve>> pieces;
+  for (const CurvePiece& piece : curve.pieces) {
+    const geom::Curve& own = *piece.geometry;
+    if (piece.transform.isIdentity()) {
+      pieces.push_back(piece.geometry);
+    } else if (const auto* line = dynamic_cast<const geom::LineCurve*>(&own)) {
+      geom::ParameterRange domain = line->domain();
+      pieces.push_back(
+          std::make_shared<geom::LineCurve>(piece.transform.apply(line->point(domain.t0)),
+                                            piece.transform.apply(line->point(domain.t1))));
+    } else if (auto arc = dynamic_cast<const geom::ArcCurve*>(&own);
+               arc != nullptr && movedArc(*arc, piece.transform)) {
+      pieces.push_back(movedArc(*arc, piece.transform));
+    } else {
+      pieces.push_back(std::make_shared<TransformedCurve>(piece.geometry, piece.transform));
+    }
+  }
+  return pieces;
+}
+
+// The offset as line and arc moves, when it is made of nothing else.
+std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& offset) {
+  std::vector<const geom::Curve*> parts;
+  if (const auto* composite = dynamic_cast<const geom::CompositeCurve*>(&offset)) {
+    for (std::size_t i = 0; i < composite->pieceCount(); ++i) {
+      parts.push_back(&composite->piece(i));
+    }
+  } else {
+    parts.push_back(&offset);
+  }
+  std::vector<geom::ArcSegment> segments;
+  for (const geom::Curve* part : parts) {
+    geom::ParameterRange domain = part->domain();
+    geom::ArcSegment segment;
+    segment.start = part->point(domain.t0);
+    segment.end = part->point(domain.t1);
+    if (const auto* arc = dynamic_cast<const geom::ArcCurve*>(part)) {
+      if (arc->zChange() != 0) {
+        return std::nullopt; // a helix: its height is not an arc move's
+      }
+      // One move turns at most half a circle (ArcSegment), so a longer arc
+      // is split into equal parts.
+      int count = static_cast<int>(std::ceil(std::fabs(arc->sweep()) / std::numbers::pi - 1e-12));
+      for (int k = 0; k < count; ++k) {
+        double from = domain.t0 + domain.length() * k / count;
+        double to = domain.t0 + domain.length() * (k + 1) / count;
+        geom::ArcSegment piece;
+        piece.kind = geom::ArcSegmentKind::Arc;
+        piece.start = arc->point(from);
+        piece.end = arc->point(to);
+        piece.centre = arc->centre();
+        piece.radius = arc->radius();
+        piece.sweep = arc->sweep() / count;
+        piece.direction =
+            arc->sweep() > 0 ? geom::ArcDirection::CounterClockwise : geom::ArcDirection::Clockwise;
+        segments.push_back(piece);
+      }
+    } else if (dynamic_cast<const geom::LineCurve*>(part) != nullptr) {
+      segments.push_back(segment);
+    } else {
+      return std::nullopt;
+    }
+  }
+  return segments;
+}
+
+} // namespace
+
+double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side) {
+  // comp=controller is refused by the checker (compensation-unavailable).
+  if (const Modifier* lead = findModifier(cut, "lead")) {
+    unsupported(lead->span(), "lead= (tangent arc lead-in and lead-out) with comp=host");
+  }
+  if (toolDiameter_ == nullptr) {
+    fail(side.span(), "side= runs the tool at its radius beside the curve, but no tool is chosen",
+         DiagnosticKind::SideWithoutTool);
+  }
+  // Offsets are computed here: on a controller-side target what they
+  // depend on must not be a parameter.
+  if (std::optional<ParameterUse> use =
+          options_.controllerLoops ? parameterUse(cut, toolDiameter_) : std::nullopt) {
+    fail(cut.span,
+         fmt::format("this cut beside the curve (side=) has its {} depend on parameter '{}': on "
+                     "this target the offset path is computed by the compiler, which needs its "
+                     "value; offsets computed on the controller are a later step",
+                     use->what, use->parameter),
+         DiagnosticKind::UnsupportedConstruct);
+  }
+  double radius = constantNumber(*toolDiameter_, "the tool diameter") / 2;
+  return wordOf(*side.value) == "left" ? radius : -radius;
+}
+
+std::shared_ptr<const geom::Curve>
+PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double distance) {
+  std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
+  double radius = std::fabs(distance);
+  auto tooLarge = [&](const Eigen::Vector3d& place, double found, std::string_view what) {
+    fail(cut.span,
+         fmt::format("the tool's radius {:g} is too large for this curve: {} {:.4g} at ({:.4f}, "
+                     "{:.4f}), where the tool runs on the inside of the bend; it would cut into "
+                     "the part there",
+                     radius, what, found, place.x(), place.y()),
+         DiagnosticKind::ToolTooLarge);
+  };
+  for (const auto& piece : pieces) {
+    // A line never bends; an arc's offset radius is checked as it is built.
+    if (dynamic_cast<const geom::LineCurve*>(piece.get()) != nullptr ||
+        dynamic_cast<const geom::ArcCurve*>(piece.get()) != nullptr) {
+      continue;
+    }
+    geom::CurvatureExtreme concave = geom::offsetClearance(*piece, distance).concave;
+    if (!(concave.radius > radius)) {
+      tooLarge(concave.point, concave.radius, "its radius of curvature is");
+    }
+  }
+  std::shared_ptr<const geom::Curve> offset;
+  try {
+    offset = geom::offsetOfPieces(pieces, distance);
+  } catch (const geom::OffsetError& error) {
+    if (error.radius > 0) {
+      tooLarge(error.place, error.radius, "the radius of an arc it runs inside is");
+    }
+    fail(cut.span,
+         fmt::format("the tool's radius {:g} is too large for this path: {}", radius, error.what()),
+         DiagnosticKind::ToolTooLarge);
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot offset this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
+  }
+  if (std::optional<Eigen::Vector3d> crossing = geom::offsetSelfCrossing(*offset)) {
+    fail(cut.span,
+         fmt::format("the tool's radius {:g} is too large for this curve: the offset path "
+                     "crosses itself at ({:.4f}, {:.4f}), where the curve's sides are less than "
+                     "two tool radii apart",
+                     radius, crossing->x(), crossing->y()),
+         DiagnosticKind::ToolTooLarge);
+  }
+  return offset;
+}
+
+bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
+  const Modifier* side = findModifier(cut, "side");
+  std::string word = side != nullptr && side->value ? wordOf(*side->value) : "";
+  if (word != "left" && word != "right") {
+    return false;
+  }
+  double distance = offsetDistance(cut, *side);
+  CutCurve curve = cutCurve(cut);
+  std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
+  checkCutBounds(cut, *offset);
+  if (lowerOffsetSplineCut(cut, offset)) {
+    return true;
+  }
+  HostCut begun = beginHostCut(cut);
+  geom::ParameterRange domain = offset->domain();
+  if (begun.ramp && (offset->point(domain.t0) - offset->point(domain.t1)).norm() > 1e-6) {
+    unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
+  }
+  std::optional<std::vector<geom::ArcSegment>> arcs;
+  CutArcs arcMoves = CutArcs::None;
+  if (wantsNativeArcs(cut)) {
+    arcs = exactSegments(*offset);
+    arcMoves = arcs ? CutArcs::Native : CutArcs::None;
+  }
+  if (!arcs) {
+    arcs = fittedOffsetArcs(cut, *offset);
+    arcMoves = arcs ? CutArcs::Fitted : CutArcs::None;
+  }
+  // Chords for the lap without arcs, and for a ramp lap.
+  geom::CurveSamples samples;
+  if (!arcs || begun.ramp) {
+    samples = offsetSamples(cut, *offset);
+  }
+  ValueId feed = arithmetic_.value(begun.feed);
+  ValueId safe = arithmetic_.value(*safe_);
+  beginCutMoves({offset, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+                 cut.span, methodOf(cut), arcMoves});
+  OffsetChords chords = offsetChords(samples, begun.ramp);
+  auto lap = [&](double zFrom, double zTo) {
+    if (arcs && zFrom == zTo) {
+      double planeZ = arcs->front().start.z();
+      emitArcLap(*arcs,
+                 builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)),
+                 feed);
+    } else {
+      emitChordLap(chords, zFrom, zTo, feed);
+    }
+  };
+  Eigen::Vector3d start = offset->point(domain.t0);
+  Eigen::Vector3d finish = offset->point(domain.t1);
+  if (arcs) {
+    double increment = options_.coordinateIncrement;
+    for (Eigen::Vector3d* end : {&start, &finish}) {
+      *end = {onPrintedGrid(end->x(), increment), onPrintedGrid(end->y(), increment), end->z()};
+    }
+  }
+  emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap);
+  return true;
+}
+
+// Spline blocks fitted to the offset where the target prints them
+// (Sinumerik BSPLINE/CSPLINE/ASPLINE, Heidenhain SPL): the ways of lowering
+// that read only the curve's geometry take the offset in a stand-in with
+// no pieces. A ramp's lap descends along the statement's pieces there, so
+// a ramped cut is cut as chords.
+bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
+                                        const std::shared_ptr<const geom::Curve>& offset) {
+  std::string method = methodOf(cut);
+  if (method.empty() || method == "linear") {
+    return false;
+  }
+  CutCurve stand{{}, offset, {}};
+  if (!rampEntry(cut) && (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand))) {
+    return true;
+  }
+  // A target without spline blocks cuts the method as chords anyway (and
+  // checkMethod says so where it has no spline interpolation at all).
+  if (options_.splineInterpolation &&
+      (options_.splineBlocks || options_.polynomialBlocks || options_.nurbsBlocks)) {
+    diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
+                         fmt::format("this cut beside the curve (side=) is cut as straight feed "
+                                     "moves within its tolerance of the exact offset: method={} "
+                                     "is not built for offsets{} on this target yet",
+                                     method, rampEntry(cut) ? " with entry=ramp" : ""));
+  }
+  return false;
+}
+
+std::optional<std::vector<geom::ArcSegment>>
+PartLowering::fittedOffsetArcs(const CutStmt& cut, const geom::Curve& offset) {
+  CutCurve stand{{}, std::shared_ptr<const geom::Curve>(&offset, [](const geom::Curve*) {}), {}};
+  std::optional<bool> wanted;
+  if (const Expr* arcs = modifierValue(cut, "arcs");
+      arcs != nullptr && arcs->kind == ExprKind::Bool) {
+    wanted = as<BoolExpr>(*arcs).value;
+  }
+  if (!options_.arcBlocks || !wanted.value_or(options_.arcsOnEveryCut)) {
+    return std::nullopt;
+  }
+  std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, stand);
+  if (const std::string* problem = std::get_if<std::string>(&fitted)) {
+    diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
+                         fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
+    return std::nullopt;
+  }
+  return std::get<geom::ArcFit>(fitted).segments;
+}
+
+geom::CurveSamples PartLowering::offsetSamples(const CutStmt& cut, const geom::Curve& offset) {
+  if (!options_.controllerLoops || !chordTolerance(cut)) {
+    return checkedSamplesFor(cut, offset);
+  }
+  // The points a controller-side target prints are read back by tools that
+  // print fewer digits than the controller keeps (LinuxCNC's rs274: 4
+  // decimals): a hundredth of the tolerance is left for them.
+  ToleranceBudget budget = toleranceBudget(cut);
+  return chordsWithinBudget(cut, offset, budget.forPoints() - budget.tolerance / 100);
+}
+
+PartLowering::OffsetChords PartLowering::offsetChords(const geom::CurveSamples& samples,
+                                                      bool ramp) {
+  OffsetChords chords;
+  double travelled = 0;
+  for (std::size_t i = 1; i < samples.points.size(); ++i) {
+    chords.ends.push_back(samples.points[i]);
+    travelled += (samples.points[i] - samples.points[i - 1]).head<2>().norm();
+    chords.progress.push_back(travelled);
+  }
+  for (double& done : chords.progress) {
+    done = travelled > 0 ? done / travelled : 1.0;
+  }
+  // A controller-side target prints the points as they are: its programs
+  // keep numbers in a few hundred variables, not in tables of thousands.
+  if (options_.controllerLoops || chords.ends.empty()) {
+    return chords;
+  }
+  std::vector<double> x, y, z;
+  for (const Eigen::Vector3d& end : chords.ends) {
+    x.push_back(end.x());
+    y.push_back(end.y());
+    z.push_back(end.z());
+    chords.planar = chords.planar && end.z() == 0;
+  }
+  chords.tables = true;
+  chords.x = builder_.addTable(x);
+  chords.y = builder_.addTable(y);
+  if (!chords.planar) {
+    chords.z = builder_.addTable(z);
+  }
+  if (ramp) {
+    chords.progressTable = builder_.addTable(chords.progress);
+  }
+  return chords;
+}
+
+void PartLowering::emitChordLap(const OffsetChords& chords, double zFrom, double zTo,
+                                ValueId feed) {
+  if (!chords.tables) {
+    for (std::size_t i = 0; i < chords.ends.size(); ++i) {
+      const Eigen::Vector3d& end = chords.ends[i];
+      double z = zFrom + (zTo - zFrom) * chords.progress[i] + end.z();
+      builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()), builder_.constant(z),
+                    feed);
+    }
+    return;
+  }
+  double last = static_cast<double>(chords.ends.size()) - 1;
+  ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
+  Scalar z = Scalar::of(zTo);
+  if (zFrom != zTo) {
+    Scalar progress = Scalar::of(builder_.tableLoad(chords.progressTable, i), ValueType::F64);
+    z = arithmetic_.add(Scalar::of(zFrom), arithmetic_.multiply(Scalar::of(zTo - zFrom), progress));
+  }
+  if (!chords.planar) {
+    z = arithmetic_.add(z, Scalar::of(builder_.tableLoad(chords.z, i), ValueType::F64));
+  }
+  builder_.feed(builder_.tableLoad(chords.x, i), builder_.tableLoad(chords.y, i),
+                arithmetic_.value(z), feed);
+  builder_.endLoop();
+}
+
+} // namespace cncc::ir::lowering

@@ -1,0 +1,136 @@
+// Cuts beside the curve (side=left|right): the cut table holds the exact
+// offset, the IR's tool path lies on it within the tolerance, lines and arcs
+// stay native arcs, and what a target cannot offset is an error at the cut.
+#include "cncc/lowering/lowering.h"
+
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/deviation.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/geom/offset_curve.h"
+#include "cncc/ir/interpreter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace cncc::ir {
+namespace {
+
+// A part compiled with `options`: its lowering (nullopt after an error) and
+// the diagnostics.
+class Compiled {
+public:
+  Compiled(const std::string& text, const LoweringOptions& options) {
+    frontend::CheckOptions checking;
+    checking.requirePart = true;
+    program_ = frontend::checkProgram(sources_, sources_.addFile("offsets.cdl", text), checking,
+                                      diagnostics_);
+    EXPECT_FALSE(diagnostics_.hasErrors());
+    part = lowerPartWithCuts(*program_, *program_->selectedPart, diagnostics_, options);
+  }
+
+  bool reported(frontend::DiagnosticKind kind) const {
+    for (const frontend::Diagnostic& diagnostic : diagnostics_.diagnostics()) {
+      if (diagnostic.kind == kind) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  std::optional<LoweredPart> part;
+
+private:
+  frontend::SourceManager sources_;
+  frontend::DiagnosticEngine diagnostics_;
+  std::optional<frontend::CheckedProgram> program_;
+};
+
+std::string polarPart(const char* side) {
+  return std::string("part p() {\n  tool 1 diameter=4 feed=300\n  safe z=5\n"
+                     "  curve polar(r = 18 + 4*cos(2*t)*cos(6*t), t = 0 .. 2*pi) side=") +
+         side + " tolerance=0.01\n}\n";
+}
+
+TEST(OffsetCuts, TheCutTableHoldsTheExactOffsetAndTheToolPathFollowsIt) {
+  for (const char* side : {"left", "right"}) {
+    Compiled compiled(polarPart(side), {});
+    ASSERT_TRUE(compiled.part) << side;
+    ASSERT_EQ(compiled.part->cuts.size(), 1u);
+    const auto* offset =
+        dynamic_cast<const geom::OffsetCurve*>(compiled.part->cuts.front().curve.get());
+    ASSERT_NE(offset, nullptr) << side;
+    EXPECT_EQ(offset->distance(), std::string(side) == "left" ? 2.0 : -2.0);
+    for (double t = 0; t < 6.28; t += 0.1) {
+      EXPECT_NEAR((offset->point(t) - offset->base().point(t)).norm(), 2.0, 1e-12);
+    }
+    // Every feed of the cut ends on the offset, and every chord keeps within
+    // the tolerance of it.
+    ToolPath path = interpret(compiled.part->function);
+    std::vector<Eigen::Vector3d> points;
+    for (const MachineEvent& event : path.events) {
+      if (event.kind == MachineEvent::Kind::Feed && event.z == 0) {
+        points.emplace_back(event.x, event.y, 0);
+      }
+    }
+    ASSERT_GT(points.size(), 150u) << side;
+    // The first feed is the plunge's end at the start; the lap closes there.
+    points.push_back(points.front());
+    geom::DeviationOptions coarse;
+    coarse.accuracy = 1e-5;
+    double deviation = geom::measureDeviation(points, *offset, coarse).maxDeviation();
+    EXPECT_LE(deviation, 0.01 + coarse.accuracy) << side;
+    EXPECT_GT(deviation, 0.005) << side; // the chords use the tolerance
+  }
+}
+
+TEST(OffsetCuts, LinesAndArcsStayNativeArcs) {
+  Compiled compiled("part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n"
+                    "  curve path(line((0, 0), (30, 0)), arc(center=(30, 10), radius=10, "
+                    "from=-pi/2, to=pi/2), line((30, 20), (0, 20)), line((0, 20), (0, 0))) "
+                    "side=right\n}\n",
+                    {});
+  ASSERT_TRUE(compiled.part);
+  const CutGeometry& cut = compiled.part->cuts.front();
+  EXPECT_EQ(cut.arcMoves, CutArcs::Native);
+  const auto* offset = dynamic_cast<const geom::CompositeCurve*>(cut.curve.get());
+  ASSERT_NE(offset, nullptr);
+  ASSERT_EQ(offset->pieceCount(), 6u); // four pieces, arcs at two corners
+  const auto* arc = dynamic_cast<const geom::ArcCurve*>(&offset->piece(1));
+  ASSERT_NE(arc, nullptr);
+  EXPECT_DOUBLE_EQ(arc->radius(), 13.0);
+  int arcMoves = 0;
+  for (const MachineEvent& event : interpret(compiled.part->function).events) {
+    arcMoves += event.kind == MachineEvent::Kind::Arc ? 1 : 0;
+  }
+  EXPECT_EQ(arcMoves, 3); // the slot's end and the two corners
+}
+
+TEST(OffsetCuts, ControllerTargetsRefuseAnOffsetThatDependsOnAParameter) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  Compiled compiled("part p(size = 20) {\n  tool 1 diameter=4 feed=300\n  safe z=5\n"
+                    "  curve arc(center=(0, 0), radius=size, from=0, to=2*pi) side=left\n}\n",
+                    controller);
+  EXPECT_FALSE(compiled.part);
+  EXPECT_TRUE(compiled.reported(frontend::DiagnosticKind::UnsupportedConstruct));
+  // The host computes it at the default.
+  Compiled host("part p(size = 20) {\n  tool 1 diameter=4 feed=300\n  safe z=5\n"
+                "  curve arc(center=(0, 0), radius=size, from=0, to=2*pi) side=left\n}\n",
+                {});
+  ASSERT_TRUE(host.part);
+  EXPECT_NEAR(host.part->cuts.front().curve->point(0).x(), 18.0, 1e-12);
+}
+
+TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {
+  Compiled compiled(
+      polarPart("right").replace(polarPart("right").find("diameter=4"), 10, "diameter=5"), {});
+  EXPECT_FALSE(compiled.part);
+  EXPECT_TRUE(compiled.reported(frontend::DiagnosticKind::ToolTooLarge));
+}
+
+} // namespace
+} // namespace cncc::ir
