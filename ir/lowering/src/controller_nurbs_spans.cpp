@@ -1,8 +1,10 @@
 // NURBS spans on the controller (controller_cuts.cpp plans them): a span
 // moved by a transform of controller values, and a span whose control
 // points depend on parameters, split into literals and the dependent
-// points' share, with the bound of |C''| its step count comes from.
+// points' share, with the chord bound its step count comes from.
 #include "controller_segment.h"
+
+#include "cncc/lowering/rational_span_steps.h"
 
 #include <fmt/format.h>
 
@@ -63,26 +65,110 @@ Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
   return sum;
 }
 
+namespace {
+
+// The controller's arithmetic for rationalSpanSteps: the span's homogeneous
+// Bezier control points are sums of constant multiples of controller values
+// (LinearForm), so each combination of them is one flat sum.
+class ControllerSpanMath {
+public:
+  using Number = Scalar;
+
+  ControllerSpanMath(Arithmetic& math, std::vector<std::array<LinearForm, 4>> points)
+      : math_(math), points_(std::move(points)) {}
+
+  Scalar constant(double value) { return Scalar::of(value); }
+  bool isZero(const Scalar& value) { return value.isConstant() && value.constant == 0; }
+  Scalar add(Scalar a, Scalar b) { return math_.add(a, b); }
+  Scalar subtract(Scalar a, Scalar b) { return math_.binary(Opcode::Sub, a, b); }
+  // The bounds are finite: a product with a literal zero is zero.
+  Scalar multiply(Scalar a, Scalar b) {
+    return isZero(a) || isZero(b) ? Scalar::of(0) : math_.multiply(a, b);
+  }
+  Scalar divide(Scalar a, Scalar b) { return math_.binary(Opcode::Div, a, b); }
+  Scalar magnitude(Scalar a) {
+    return a.isConstant() ? Scalar::of(std::abs(a.constant)) : math_.unary(Opcode::Abs, a);
+  }
+  Scalar squareRoot(Scalar a) {
+    return a.isConstant() ? Scalar::of(std::sqrt(a.constant)) : math_.unary(Opcode::Sqrt, a);
+  }
+  // max(a, b) = (a + b + |a - b|) / 2, min likewise: one inline expression.
+  Scalar larger(Scalar a, Scalar b) { return extreme(a, b, Opcode::Add); }
+  Scalar smaller(Scalar a, Scalar b) { return extreme(a, b, Opcode::Sub); }
+
+  std::array<Scalar, 4> combination(const std::vector<double>& coefficients) {
+    std::array<Scalar, 4> result;
+    for (std::size_t c = 0; c < 4; ++c) {
+      LinearForm sum;
+      double scale = 0;
+      for (std::size_t j = 0; j < coefficients.size(); ++j) {
+        if (coefficients[j] != 0) {
+          sum.add(points_[j][c], coefficients[j]);
+          scale += std::abs(coefficients[j]) * sizeOf(points_[j][c]);
+        }
+      }
+      result[c] = withoutNoise(sum, 1e-12 * scale).scalar(math_);
+    }
+    return result;
+  }
+
+private:
+  static double sizeOf(const LinearForm& form) {
+    double largest = std::abs(form.constant);
+    for (const auto& term : form.terms) {
+      largest = std::max(largest, std::abs(term.second));
+    }
+    return largest;
+  }
+  // Differences cancel: what is left of a coefficient at the rounding of
+  // the sum's inputs is nothing.
+  static LinearForm withoutNoise(const LinearForm& form, double noise) {
+    LinearForm cleaned{std::abs(form.constant) <= noise ? 0.0 : form.constant, {}};
+    for (const auto& [value, factor] : form.terms) {
+      if (std::abs(factor) > noise) {
+        cleaned.terms.emplace_back(value, factor);
+      }
+    }
+    return cleaned;
+  }
+
+  Scalar extreme(Scalar a, Scalar b, Opcode gap) {
+    if (a.isConstant() && b.isConstant()) {
+      return Scalar::of(gap == Opcode::Add ? std::max(a.constant, b.constant)
+                                           : std::min(a.constant, b.constant));
+    }
+    Scalar difference = magnitude(subtract(a, b));
+    return math_.multiply(Scalar::of(0.5), math_.binary(gap, add(a, b), difference));
+  }
+
+  Arithmetic& math_;
+  std::vector<std::array<LinearForm, 4>> points_;
+};
+
+} // namespace
+
+// A weight the program computes stops it with an alarm before anything is
+// divided by it, unless positive (the controller's own error would name
+// neither the curve nor the weight).
+void PartLowering::guardWeights(const SymbolicList& weights) {
+  for (const std::optional<Lowered>& weight : weights) {
+    if (weight && weight->kind == TypeKind::Num && !weight->values.front().isConstant()) {
+      builder_.beginIf(
+          arithmetic_.value(arithmetic_.binary(Opcode::Le, weight->values.front(), Scalar::of(0))));
+      builder_.alarm("a weight of a NURBS is not positive");
+      builder_.endIf();
+    }
+  }
+}
+
 // A NURBS span with control points that depend on parameters (planned as
-// `split`, see ControllerSegment), and its step count on the controller.
-//
-// The bound of |C''| in the span's u in [0, 1], for positive weights. Let
-// c be a fixed point, P(u) = sum_i w_i (q_i - c) N_i(u) and W(u) = sum_i
-// w_i N_i(u), so C - c = P / W. Differentiating W (C - c) = P twice:
-//   C' = (P' - W' (C - c)) / W,  C'' = (P'' - W'' (C - c) - 2 W' C') / W.
-// With W >= wmin (the smallest weight of the span: the N_i are a partition
-// of unity), |C - c| <= R (the curve stays in the hull of its control
-// points) and bounds P1 >= |P'|, P2 >= |P''|, W1 >= |W'|, W2 >= |W''|:
-//   |C'| <= D1 = (P1 + W1 R) / wmin,  |C''| <= (P2 + W2 R + 2 W1 D1) / wmin.
-// Each P_k, W_k is the bound of the constant control points' share (the
-// largest Bernstein coefficient of the derivative's polynomial, exact at
-// compile time) plus, per dependent control point, |w_i| |q_i - c| (for
-// P) or |w_i - w0| (for W: the N_i^(k) sum to zero, so W^(k) = sum (w_i -
-// w0) N_i^(k) for the reference weight w0 = 1) times the bound of N_i^(k),
-// computed on the controller; R is the
-// constant points' largest distance from c (c their centroid) plus the
-// dependent points' distances. Without parameter-dependent or unequal
-// weights W' = W'' = 0 and the bound is P2 / w.
+// `split`, see ControllerSegment), and its step count on the controller:
+// rationalSpanSteps (cncc/lowering/rational_span_steps.h, where the bound is
+// derived) over the span's homogeneous Bezier control points. Each is a
+// combination of the B-spline's homogeneous control points (w_i q_i, w_i)
+// with the Bernstein coefficients of the span's basis functions, so a
+// combination of the constant points' share (a literal) and the dependent
+// points' homogeneous points (controller values).
 void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
                                  const SymbolicList* points, ControllerSegment& segment,
                                  double budget, Scalar norm) {
@@ -142,53 +228,19 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     coordinate.assign(degree, 0.0);
   }
   double reference = segment.referenceWeight;
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  int constantPoints = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (active[i] && qConstant[i]) {
-      centre += Eigen::Vector3d(q[i][0].constant, q[i][1].constant, q[i][2].constant);
-      ++constantPoints;
-    }
-  }
-  if (constantPoints > 0) {
-    centre /= constantPoints;
-  }
-  // Shares of the constant control points: evaluation (Xc, Wc) and bound.
-  std::array<Polynomial, 3> translated;
-  Polynomial constantWeights(degree, 0.0);
-  for (Polynomial& coordinate : translated) {
-    coordinate.assign(degree, 0.0);
-  }
-  double constantRadius = 0;
-  std::optional<double> smallestConstantWeight;
   bool unequalWeights = false;
   for (std::size_t i = 0; i < count; ++i) {
     if (!active[i]) {
       continue;
     }
-    if (wConstant[i]) {
-      double weight = w[i].constant;
-      unequalWeights = unequalWeights || weight != reference;
-      smallestConstantWeight = std::min(smallestConstantWeight.value_or(weight), weight);
-      for (std::size_t k = 0; k < degree; ++k) {
-        // W' = sum (w_i - reference) N_i' (the N_i' sum to zero): the share
-        // of weights equal to the reference is nothing.
-        constantWeights[k] += (weight - reference) * basis[i][k];
-      }
-    } else {
-      unequalWeights = true;
-    }
-    if (qConstant[i]) {
-      Eigen::Vector3d point(q[i][0].constant, q[i][1].constant, q[i][2].constant);
-      constantRadius = std::max(constantRadius, (point - centre).norm());
-    }
+    unequalWeights = unequalWeights || !wConstant[i] || w[i].constant != reference;
     if (qConstant[i] && wConstant[i]) {
       double weight = w[i].constant;
       for (std::size_t k = 0; k < degree; ++k) {
         for (int c = 0; c < 3; ++c) {
           segment.constantPart[c][k] += weight * q[i][c].constant * basis[i][k];
-          translated[c][k] += weight * (q[i][c].constant - centre[c]) * basis[i][k];
         }
+        // W = reference + sum (w_i - reference) N_i (the N_i sum to one).
         segment.constantPart[3][k] += (weight - reference) * basis[i][k];
       }
     }
@@ -197,26 +249,8 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     coefficient = std::abs(coefficient) <= 1e-12 ? 0.0 : coefficient;
   }
   segment.rational = unequalWeights;
-  // Homogeneous points of the dependent control points, on the controller,
-  // and the bounds as sums of constant multiples of controller values.
+  // Homogeneous points of the dependent control points, computed once.
   Arithmetic& math = arithmetic_;
-  LinearForm radius{constantRadius, {}};
-  LinearForm weightSlope, weightCurve;
-  std::array<Polynomial, 3> translatedSlope, translatedCurve;
-  for (int c = 0; c < 3; ++c) {
-    translatedSlope[c] = derivativeOf(translated[c]);
-    translatedCurve[c] = derivativeOf(translatedSlope[c]);
-  }
-  LinearForm pointSlope{
-      vectorSupremumBound({translatedSlope[0], translatedSlope[1], translatedSlope[2]}), {}};
-  LinearForm pointCurve{
-      vectorSupremumBound({translatedCurve[0], translatedCurve[1], translatedCurve[2]}), {}};
-  if (unequalWeights) {
-    weightSlope.constant = supremumBound(derivativeOf(constantWeights));
-    weightCurve.constant = supremumBound(derivativeOf(derivativeOf(constantWeights)));
-  }
-  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
-  bool haveSmallest = smallestConstantWeight.has_value();
   for (std::size_t d : dependent) {
     segment.dependentBasis.push_back(basis[d]);
     // A zero coordinate stays a literal zero (x * 0 is not folded: x may be
@@ -227,69 +261,90 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     };
     segment.dependentPoints.push_back({weighted(q[d][0]), weighted(q[d][1]), weighted(q[d][2]),
                                        math.binary(Opcode::Sub, w[d], Scalar::of(reference))});
-    double slopeBound = supremumBound(derivativeOf(basis[d]));
-    double curveBound = supremumBound(derivativeOf(derivativeOf(basis[d])));
-    // |q_d - c|: a literal for a constant point.
-    LinearForm distance;
-    if (qConstant[d]) {
-      Eigen::Vector3d point(q[d][0].constant, q[d][1].constant, q[d][2].constant);
-      distance.constant = (point - centre).norm();
-    } else {
-      Scalar squares = Scalar::of(0);
-      for (int c = 0; c < 3; ++c) {
-        Scalar offset = math.binary(Opcode::Sub, q[d][c], Scalar::of(centre[c]));
-        squares = math.add(squares, math.multiply(offset, offset));
+  }
+  // The Bezier control points: Bernstein coefficients of the basis functions.
+  std::vector<Polynomial> bezier(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    bezier[i] = active[i] ? bernsteinCoefficients(basis[i]) : Polynomial(degree, 0.0);
+  }
+  // Their centre at the defaults (any point would do; a near one keeps R small).
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (std::size_t j = 0; j < degree; ++j) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weightSum = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      double weight = value.weights.empty() ? 1.0 : value.weights[i];
+      sum += bezier[i][j] * weight *
+             Eigen::Vector3d(value.points[i][0], value.points[i][1], value.points[i][2]);
+      weightSum += bezier[i][j] * weight;
+    }
+    centre += sum / weightSum / static_cast<double>(degree);
+  }
+  // (w_j (b_j - centre), w_j) per Bezier control point j.
+  std::vector<std::array<LinearForm, 4>> homogeneous(degree);
+  for (std::size_t j = 0; j < degree; ++j) {
+    for (std::size_t i = 0; i < count; ++i) {
+      double share = bezier[i][j];
+      if (share == 0) {
+        continue;
       }
-      distance.add(math.unary(Opcode::Sqrt, squares), 1);
-      radius.add(distance, 1);
-    }
-    // The weights are positive (the bound divides by the smallest), so |w| = w.
-    LinearForm size{wConstant[d] ? w[d].constant : 0, {}};
-    if (!wConstant[d]) {
-      size.add(w[d], 1);
-    }
-    LinearForm homogeneous = size.times(distance, math);
-    pointSlope.add(homogeneous, slopeBound);
-    pointCurve.add(homogeneous, curveBound);
-    if (!wConstant[d]) {
-      LinearForm offset;
-      offset.add(math.unary(Opcode::Abs, math.binary(Opcode::Sub, w[d], Scalar::of(reference))), 1);
-      weightSlope.add(offset, slopeBound);
-      weightCurve.add(offset, curveBound);
-      // min(a, b) = (a + b - |a - b|) / 2, one inline expression.
-      smallestWeight =
-          haveSmallest
-              ? math.multiply(
-                    Scalar::of(0.5),
-                    math.binary(
-                        Opcode::Sub, math.add(smallestWeight, w[d]),
-                        math.unary(Opcode::Abs, math.binary(Opcode::Sub, smallestWeight, w[d]))))
-              : w[d];
-      haveSmallest = true;
+      std::array<LinearForm, 4>& point = homogeneous[j];
+      point[3].add(w[i], share);
+      for (int c = 0; c < 3; ++c) {
+        if (qConstant[i]) {
+          // w_i (q_i - centre) with q_i a literal: a multiple of the weight.
+          point[c].add(w[i], share * (q[i][c].constant - centre[c]));
+          continue;
+        }
+        std::size_t d = static_cast<std::size_t>(std::find(dependent.begin(), dependent.end(), i) -
+                                                 dependent.begin());
+        point[c].add(segment.dependentPoints[d][c], share);
+        if (centre[c] != 0) {
+          point[c].add(w[i], -share * centre[c]);
+        }
+      }
     }
   }
-  // M / (8 budget), the constant factor taken into the sums' coefficients:
-  // M = (P2 + W2 R + 2 W1 (P1 + W1 R) / wmin) / wmin.
-  double factor = 1 / (8 * budget);
-  LinearForm curveNumerator;
-  curveNumerator.add(pointCurve, factor);
-  Scalar scaledBound;
-  if (unequalWeights) {
-    LinearForm slopeNumerator = pointSlope;
-    slopeNumerator.add(weightSlope.times(radius, math), 1);
-    curveNumerator.add(weightCurve.times(radius, math), factor);
-    LinearForm doubledSlope;
-    doubledSlope.add(weightSlope, 2 * factor);
-    Scalar cross = math.binary(
-        Opcode::Div, math.multiply(doubledSlope.scalar(math), slopeNumerator.scalar(math)),
-        smallestWeight);
-    scaledBound =
-        math.binary(Opcode::Div, math.add(curveNumerator.scalar(math), cross), smallestWeight);
-  } else {
-    scaledBound = math.binary(Opcode::Div, curveNumerator.scalar(math), smallestWeight);
+  // The Bezier weights are convex combinations of the active ones (knot
+  // insertion), the Bezier points lie in the hull of the active points: the
+  // smallest active weight and the largest distance bound them (a sum of the
+  // dependent points' distances, as the controller has no max).
+  std::optional<double> smallestConstantWeight;
+  double constantRadius = 0;
+  LinearForm radius;
+  std::vector<Scalar> runtimeWeights;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!active[i]) {
+      continue;
+    }
+    if (wConstant[i]) {
+      smallestConstantWeight =
+          std::min(smallestConstantWeight.value_or(w[i].constant), w[i].constant);
+    } else {
+      runtimeWeights.push_back(w[i]);
+    }
+    if (qConstant[i]) {
+      Eigen::Vector3d point(q[i][0].constant, q[i][1].constant, q[i][2].constant);
+      constantRadius = std::max(constantRadius, (point - centre).norm());
+      continue;
+    }
+    Scalar squares = Scalar::of(0);
+    for (int c = 0; c < 3; ++c) {
+      Scalar offset = math.binary(Opcode::Sub, q[i][c], Scalar::of(centre[c]));
+      squares = math.add(squares, math.multiply(offset, offset));
+    }
+    radius.add(math.unary(Opcode::Sqrt, squares), 1);
   }
-  // N >= sqrt(M / (8 budget)) steps of u; a transform stretches M by its norm.
-  Scalar steps = math.unary(Opcode::Sqrt, times(scaledBound, norm));
+  radius.constant = constantRadius;
+  ControllerSpanMath spanMath(math, std::move(homogeneous));
+  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
+  for (std::size_t k = 0; k < runtimeWeights.size(); ++k) {
+    smallestWeight = k == 0 && !smallestConstantWeight
+                         ? runtimeWeights[k]
+                         : spanMath.smaller(smallestWeight, runtimeWeights[k]);
+  }
+  Scalar steps = rationalSpanSteps(spanMath, degree - 1, 1 / (8 * budget), norm, smallestWeight,
+                                   radius.scalar(math));
   segment.stepCount = roundedUpSteps(steps);
 }
 
