@@ -71,14 +71,20 @@ Number largestOf(Math& math, const std::vector<Number>& values) {
 // |x, y, z| of a homogeneous point (its weight left out).
 template <class Math, class Number = typename Math::Number>
 Number lengthOf(Math& math, const std::array<Number, 4>& point) {
-  std::optional<Number> squares;
+  std::vector<Number> coordinates;
   for (std::size_t c = 0; c < 3; ++c) {
     if (!math.isZero(point[c])) {
-      Number square = math.multiply(point[c], point[c]);
-      squares = squares ? math.add(*squares, square) : square;
+      coordinates.push_back(point[c]);
     }
   }
-  return squares ? math.squareRoot(*squares) : math.constant(0);
+  if (coordinates.size() <= 1) {
+    return coordinates.empty() ? math.constant(0) : math.magnitude(coordinates.front());
+  }
+  Number squares = math.multiply(coordinates.front(), coordinates.front());
+  for (std::size_t c = 1; c < coordinates.size(); ++c) {
+    squares = math.add(squares, math.multiply(coordinates[c], coordinates[c]));
+  }
+  return math.squareRoot(squares);
 }
 
 // The coefficients of the k-th difference of order `order` (0, 1 or 2) of
@@ -98,8 +104,9 @@ inline std::vector<double> differenceOf(std::size_t points, std::size_t j, int o
 
 // The fewest steps the bound above allows, before rounding up: the larger
 // of sqrt(G stretch chordFactor / wmin) (chordFactor = 1 / (8 budget)) and
-// W1 / wmin, W1 taken as n times the sum of the weights' |differences|. `smallestWeight` is a positive lower bound of the weights,
-// `radius` an upper bound of the control points' distances from the centre.
+// W1 / wmin, W1 taken as n times the sum of the weights' |differences|. `smallestWeight` is a
+// positive lower bound of the weights, `radius` an upper bound of the control points' distances
+// from the centre.
 template <class Math, class Number = typename Math::Number>
 Number rationalSpanSteps(Math& math, std::size_t degree, double chordFactor, Number stretch,
                          Number smallestWeight, Number radius) {
