@@ -2,7 +2,7 @@
 // moved by a transform of controller values, and a span whose control
 // points depend on parameters, split into literals and the dependent
 // points' share, with the chord bound its step count comes from.
-#include "controller_segment.h"
+#include "controller_span_math.h"
 
 #include "cncc/lowering/rational_span_steps.h"
 
@@ -64,88 +64,6 @@ Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
   }
   return sum;
 }
-
-namespace {
-
-// The controller's arithmetic for rationalSpanSteps: the span's homogeneous
-// Bezier control points are sums of constant multiples of controller values
-// (LinearForm), so each combination of them is one flat sum.
-class ControllerSpanMath {
-public:
-  using Number = Scalar;
-
-  ControllerSpanMath(Arithmetic& math, std::vector<std::array<LinearForm, 4>> points)
-      : math_(math), points_(std::move(points)) {}
-
-  Scalar constant(double value) { return Scalar::of(value); }
-  bool isZero(const Scalar& value) { return value.isConstant() && value.constant == 0; }
-  Scalar add(Scalar a, Scalar b) { return math_.add(a, b); }
-  Scalar subtract(Scalar a, Scalar b) { return math_.binary(Opcode::Sub, a, b); }
-  // The bounds are finite: a product with a literal zero is zero.
-  Scalar multiply(Scalar a, Scalar b) {
-    return isZero(a) || isZero(b) ? Scalar::of(0) : math_.multiply(a, b);
-  }
-  Scalar divide(Scalar a, Scalar b) { return math_.binary(Opcode::Div, a, b); }
-  Scalar magnitude(Scalar a) {
-    return a.isConstant() ? Scalar::of(std::abs(a.constant)) : math_.unary(Opcode::Abs, a);
-  }
-  Scalar squareRoot(Scalar a) {
-    return a.isConstant() ? Scalar::of(std::sqrt(a.constant)) : math_.unary(Opcode::Sqrt, a);
-  }
-  // max(a, b) = (a + b + |a - b|) / 2, min likewise: one inline expression.
-  Scalar larger(Scalar a, Scalar b) { return extreme(a, b, Opcode::Add); }
-  Scalar smaller(Scalar a, Scalar b) { return extreme(a, b, Opcode::Sub); }
-
-  std::array<Scalar, 4> combination(const std::vector<double>& coefficients) {
-    std::array<Scalar, 4> result;
-    for (std::size_t c = 0; c < 4; ++c) {
-      LinearForm sum;
-      double scale = 0;
-      for (std::size_t j = 0; j < coefficients.size(); ++j) {
-        if (coefficients[j] != 0) {
-          sum.add(points_[j][c], coefficients[j]);
-          scale += std::abs(coefficients[j]) * sizeOf(points_[j][c]);
-        }
-      }
-      result[c] = withoutNoise(sum, 1e-12 * scale).scalar(math_);
-    }
-    return result;
-  }
-
-private:
-  static double sizeOf(const LinearForm& form) {
-    double largest = std::abs(form.constant);
-    for (const auto& term : form.terms) {
-      largest = std::max(largest, std::abs(term.second));
-    }
-    return largest;
-  }
-  // Differences cancel: what is left of a coefficient at the rounding of
-  // the sum's inputs is nothing.
-  static LinearForm withoutNoise(const LinearForm& form, double noise) {
-    LinearForm cleaned{std::abs(form.constant) <= noise ? 0.0 : form.constant, {}};
-    for (const auto& [value, factor] : form.terms) {
-      if (std::abs(factor) > noise) {
-        cleaned.terms.emplace_back(value, factor);
-      }
-    }
-    return cleaned;
-  }
-
-  Scalar extreme(Scalar a, Scalar b, Opcode gap) {
-    if (a.isConstant() && b.isConstant()) {
-      return Scalar::of(gap == Opcode::Add ? std::max(a.constant, b.constant)
-                                           : std::min(a.constant, b.constant));
-    }
-    Scalar difference = magnitude(subtract(a, b));
-    return math_.multiply(Scalar::of(0.5), math_.binary(gap, add(a, b), difference));
-  }
-
-  Arithmetic& math_;
-  std::vector<std::array<LinearForm, 4>> points_;
-};
-
-} // namespace
 
 // A weight the program computes stops it with an alarm before anything is
 // divided by it, unless positive (the controller's own error would name
@@ -281,7 +199,7 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     centre += sum / weightSum / static_cast<double>(degree);
   }
   // (w_j (b_j - centre), w_j) per Bezier control point j.
-  std::vector<std::array<LinearForm, 4>> homogeneous(degree);
+  std::vector<ControllerSpanMath::Point> homogeneous(degree);
   for (std::size_t j = 0; j < degree; ++j) {
     for (std::size_t i = 0; i < count; ++i) {
       double share = bezier[i][j];

@@ -40,6 +40,7 @@ struct Span {
 class DoubleMath {
 public:
   using Number = double;
+  using Point = std::array<double, 4>;
 
   DoubleMath(const Span& span, Eigen::Vector3d centre) : span_(span), centre_(std::move(centre)) {}
 
@@ -48,11 +49,20 @@ public:
   double add(double a, double b) { return a + b; }
   double multiply(double a, double b) { return a * b; }
   double divide(double a, double b) { return a / b; }
-  double magnitude(double a) { return std::abs(a); }
   double squareRoot(double a) { return std::sqrt(a); }
   double larger(double a, double b) { return std::max(a, b); }
-  std::array<double, 4> combination(const std::vector<double>& coefficients) {
-    std::array<double, 4> sum{0, 0, 0, 0};
+  double length(const Point& point) { return std::hypot(point[0], point[1], point[2]); }
+  double weight(const Point& point) { return point[3]; }
+  double weightTimes(const Point& point, double factor) { return std::abs(point[3]) * factor; }
+  double sumOfSquaredWeights(const std::vector<Point>& points) {
+    double sum = 0;
+    for (const Point& point : points) {
+      sum += point[3] * point[3];
+    }
+    return sum;
+  }
+  Point combination(const std::vector<double>& coefficients) {
+    Point sum{0, 0, 0, 0};
     for (std::size_t j = 0; j < coefficients.size(); ++j) {
       double weight = span_.weights[j];
       Eigen::Vector3d offset = weight * (span_.points[j] - centre_);
@@ -98,7 +108,8 @@ TEST(RationalSpanSteps, ChordsOfTheCountStayWithinTheBudgetForRandomWeights) {
   std::uniform_real_distribution<double> logWeight(std::log(0.05), std::log(20.0));
   std::uniform_real_distribution<double> logBudget(std::log(0.01), std::log(1.0));
   std::uniform_int_distribution<int> degree(2, 5);
-  int tightest = 0; // how often a chord uses more than half the budget
+  int tightest = 0; // how often a chord uses more than a quarter of the budget
+  double closest = 0;
   int measured = 0;
   for (int trial = 0; trial < 150; ++trial) {
     Span span;
@@ -118,11 +129,13 @@ TEST(RationalSpanSteps, ChordsOfTheCountStayWithinTheBudgetForRandomWeights) {
     ++measured;
     double deviation = largestChordDeviation(span.curve(), count);
     EXPECT_LE(deviation, budget) << "trial " << trial << ", " << count << " steps";
-    tightest += deviation > budget / 2 ? 1 : 0;
+    tightest += deviation > budget / 4 ? 1 : 0;
+    closest = std::max(closest, deviation / budget);
   }
   EXPECT_GT(measured, 100);
   // The bound is not vacuous: some counts come close to what the curve needs.
-  EXPECT_GT(tightest, 5);
+  EXPECT_GT(tightest, measured / 10) << "of " << measured;
+  EXPECT_GT(closest, 0.7);
 }
 
 TEST(RationalSpanSteps, AStretchedSpanTakesTheStretchedCount) {
@@ -164,10 +177,11 @@ TEST(RationalSpanSteps, FastChangingWeightsNeedFewerStepsThanABoundOfTheSecondDe
 }
 
 TEST(RationalSpanSteps, WeightsThatChangeFastKeepEachStepsChordAhead) {
-  // Collinear points: no chord deviation at all, but the steps follow W1 /
-  // wmin, n times the sum of the weights' differences (2 (9 + 9) / 1).
+  // Collinear points and a budget of a kilometre: the steps are those the
+  // weights ask for, sqrt(n^3 sum of squared differences) / wmin =
+  // sqrt(8 (81 + 81)) / 1, which is n |difference| / wmin here.
   Span line{{{0, 0, 0}, {50, 0, 0}, {100, 0, 0}}, {1, 10, 1}};
-  EXPECT_NEAR(boundSteps(line, 1e6), 36, 1e-9);
+  EXPECT_NEAR(boundSteps(line, 1e12), 36, 1e-9);
 }
 
 } // namespace

@@ -32,7 +32,11 @@
 // of the chord is that close to the curve too. Hence
 //   N >= sqrt(G / (8 budget wmin))  and  N >= W1 / wmin
 // uniform steps keep every chord within the budget; an affine map that
-// stretches lengths by at most `stretch` multiplies G by it.
+// stretches lengths by at most `stretch` multiplies G by it. The count
+// taken is N = sqrt(G / (8 budget wmin) + n^3 sum_j (w_(j+1) - w_j)^2 /
+// wmin^2), at least both (W1^2 <= n^2 n sum of the n squared differences):
+// one expression for the controller, without a maximum, whose operands
+// would each take a block of their own.
 //
 // This is sharper than a bound of |C''|: C'' = (P'' - W'' C - 2 W' C') / W,
 // and the chord takes up the tangential term 2 W' C' / W, the largest one
@@ -42,10 +46,12 @@
 //
 // Math provides the number type and its operations:
 //   using Number; Number constant(double); add, multiply, divide, larger
-//   (Number, Number); magnitude(Number) (|x|);
-//   squareRoot(Number); bool isZero(const Number&);
-//   std::array<Number, 4> combination(const std::vector<double>& k): sum_j
-//   k_j (w_j (b_j - c), w_j) over the span's n + 1 control points.
+//   (Number, Number); squareRoot(Number); bool isZero(const Number&);
+//   using Point; Point combination(const std::vector<double>& k): sum_j k_j
+//   (w_j (b_j - c), w_j) over the span's n + 1 control points;
+//   Number length(const Point&) (|x, y, z|), weight(const Point&),
+//   weightTimes(const Point&, Number factor) (|weight| factor),
+//   sumOfSquaredWeights(const std::vector<Point>&).
 #pragma once
 
 #include <array>
@@ -57,38 +63,8 @@ namespace cncc::ir::lowering {
 
 namespace rational_span {
 
-template <class Math, class Number = typename Math::Number>
-Number largestOf(Math& math, const std::vector<Number>& values) {
-  std::optional<Number> largest;
-  for (const Number& value : values) {
-    if (!math.isZero(value)) {
-      largest = largest ? math.larger(*largest, value) : value;
-    }
-  }
-  return largest ? *largest : math.constant(0);
-}
-
-// |x, y, z| of a homogeneous point (its weight left out).
-template <class Math, class Number = typename Math::Number>
-Number lengthOf(Math& math, const std::array<Number, 4>& point) {
-  std::vector<Number> coordinates;
-  for (std::size_t c = 0; c < 3; ++c) {
-    if (!math.isZero(point[c])) {
-      coordinates.push_back(point[c]);
-    }
-  }
-  if (coordinates.size() <= 1) {
-    return coordinates.empty() ? math.constant(0) : math.magnitude(coordinates.front());
-  }
-  Number squares = math.multiply(coordinates.front(), coordinates.front());
-  for (std::size_t c = 1; c < coordinates.size(); ++c) {
-    squares = math.add(squares, math.multiply(coordinates[c], coordinates[c]));
-  }
-  return math.squareRoot(squares);
-}
-
-// The coefficients of the k-th difference of order `order` (0, 1 or 2) of
-// n + 1 control points, starting at j.
+// The coefficients of the difference of order `order` (0, 1 or 2) of the
+// control points, starting at j.
 inline std::vector<double> differenceOf(std::size_t points, std::size_t j, int order) {
   std::vector<double> coefficients(points, 0.0);
   static constexpr std::array<std::array<double, 3>, 3> rows = {
@@ -102,46 +78,41 @@ inline std::vector<double> differenceOf(std::size_t points, std::size_t j, int o
 
 } // namespace rational_span
 
-// The fewest steps the bound above allows, before rounding up: the larger
-// of sqrt(G stretch chordFactor / wmin) (chordFactor = 1 / (8 budget)) and
-// W1 / wmin, W1 taken as n times the sum of the weights' |differences|. `smallestWeight` is a
-// positive lower bound of the weights, `radius` an upper bound of the control points' distances
-// from the centre.
+// The steps the bound above asks for, before rounding up. `smallestWeight`
+// is a positive lower bound of the weights, `radius` an upper bound of the
+// control points' distances from the centre, chordFactor = 1 / (8 budget).
 template <class Math, class Number = typename Math::Number>
 Number rationalSpanSteps(Math& math, std::size_t degree, double chordFactor, Number stretch,
                          Number smallestWeight, Number radius) {
   using rational_span::differenceOf;
   std::size_t points = degree + 1;
   double n = static_cast<double>(degree);
-  std::vector<Number> curveTerms, weightSlopes;
+  std::optional<Number> largestTerm;
   for (std::size_t j = 0; j + 2 < points; ++j) {
-    std::array<Number, 4> second = math.combination(differenceOf(points, j, 2));
-    Number term = rational_span::lengthOf(math, second);
-    if (!math.isZero(second[3])) {
-      term = math.add(term, math.multiply(math.magnitude(second[3]), radius));
+    auto second = math.combination(differenceOf(points, j, 2));
+    Number term = math.length(second);
+    if (!math.isZero(math.weight(second))) {
+      term = math.add(term, math.weightTimes(second, radius));
     }
-    curveTerms.push_back(term);
+    largestTerm = largestTerm ? math.larger(*largestTerm, term) : term;
   }
+  Number chord = math.constant(0); // G stretch / (8 budget)
+  if (largestTerm) {
+    chord = math.multiply(math.multiply(*largestTerm, stretch),
+                          math.constant(n * (n - 1) * chordFactor));
+  }
+  std::vector<typename Math::Point> slopes;
   for (std::size_t j = 0; j + 1 < points; ++j) {
-    Number slope = math.combination(differenceOf(points, j, 1))[3];
-    if (!math.isZero(slope)) {
-      weightSlopes.push_back(math.magnitude(slope));
-    }
+    slopes.push_back(math.combination(differenceOf(points, j, 1)));
   }
-  Number curve = math.multiply(rational_span::largestOf(math, curveTerms),
-                               math.constant(n * (n - 1) * chordFactor));
-  Number chordSteps = math.squareRoot(math.divide(math.multiply(curve, stretch), smallestWeight));
-  if (weightSlopes.empty()) {
-    return chordSteps;
+  Number slopeSquares = math.sumOfSquaredWeights(slopes);
+  if (!math.isZero(slopeSquares)) {
+    // (chord + n^3 sum / wmin) / wmin: wmin is one value, its square would
+    // be another.
+    chord = math.add(
+        chord, math.divide(math.multiply(slopeSquares, math.constant(n * n * n)), smallestWeight));
   }
-  // max |differences| <= their sum, which the controller computes in one
-  // expression (this count is rarely the larger).
-  Number weightSlope = weightSlopes.front();
-  for (std::size_t k = 1; k < weightSlopes.size(); ++k) {
-    weightSlope = math.add(weightSlope, weightSlopes[k]);
-  }
-  weightSlope = math.multiply(weightSlope, math.constant(n));
-  return math.larger(chordSteps, math.divide(weightSlope, smallestWeight));
+  return math.squareRoot(math.divide(chord, smallestWeight));
 }
 
 } // namespace cncc::ir::lowering
