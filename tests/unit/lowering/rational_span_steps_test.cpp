@@ -178,10 +178,10 @@ TEST(RationalSpanSteps, FastChangingWeightsNeedFewerStepsThanABoundOfTheSecondDe
 
 TEST(RationalSpanSteps, WeightsThatChangeFastKeepEachStepsChordAhead) {
   // Collinear points and a budget of a kilometre: the steps are those the
-  // weights ask for, sqrt(n^3 sum of squared differences) / wmin =
-  // sqrt(8 (81 + 81)) / 1, which is n |difference| / wmin here.
+  // weights ask for, sqrt(n^2 sum of squared differences) / wmin = 2
+  // sqrt(81 + 81), at least n max |difference| / wmin = 18.
   Span line{{{0, 0, 0}, {50, 0, 0}, {100, 0, 0}}, {1, 10, 1}};
-  EXPECT_NEAR(boundSteps(line, 1e12), 36, 1e-9);
+  EXPECT_NEAR(boundSteps(line, 1e12), 2 * std::sqrt(162.0), 1e-9);
 }
 
 } // namespace

@@ -33,10 +33,10 @@
 //   N >= sqrt(G / (8 budget wmin))  and  N >= W1 / wmin
 // uniform steps keep every chord within the budget; an affine map that
 // stretches lengths by at most `stretch` multiplies G by it. The count
-// taken is N = sqrt(G / (8 budget wmin) + n^3 sum_j (w_(j+1) - w_j)^2 /
-// wmin^2), at least both (W1^2 <= n^2 n sum of the n squared differences):
-// one expression for the controller, without a maximum, whose operands
-// would each take a block of their own.
+// taken is N = sqrt(G / (8 budget wmin) + n^2 sum_j (w_(j+1) - w_j)^2 /
+// wmin^2), at least both (W1^2 <= n^2 times the sum of the squared
+// differences): the two conditions in one expression for the controller,
+// without a maximum, whose operands would each take a block of their own.
 //
 // This is sharper than a bound of |C''|: C'' = (P'' - W'' C - 2 W' C') / W,
 // and the chord takes up the tangential term 2 W' C' / W, the largest one
@@ -107,10 +107,10 @@ Number rationalSpanSteps(Math& math, std::size_t degree, double chordFactor, Num
   }
   Number slopeSquares = math.sumOfSquaredWeights(slopes);
   if (!math.isZero(slopeSquares)) {
-    // (chord + n^3 sum / wmin) / wmin: wmin is one value, its square would
+    // (chord + n^2 sum / wmin) / wmin: wmin is one value, its square would
     // be another.
     chord = math.add(
-        chord, math.divide(math.multiply(slopeSquares, math.constant(n * n * n)), smallestWeight));
+        chord, math.divide(math.multiply(slopeSquares, math.constant(n * n)), smallestWeight));
   }
   return math.squareRoot(math.divide(chord, smallestWeight));
 }
