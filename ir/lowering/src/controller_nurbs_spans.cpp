@@ -65,6 +65,130 @@ Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
   return sum;
 }
 
+namespace {
+
+// What planSplitSpan knows of a span's control points: the B-spline's
+// points q and weights w (literals or controller values), which are
+// active on the span, which depend on parameters, the basis functions.
+struct SpanControlPoints {
+  const CurveValue& value;
+  const std::vector<std::array<Scalar, 3>>& q;
+  const std::vector<Scalar>& w;
+  const std::vector<bool>& qConstant;
+  const std::vector<bool>& wConstant;
+  const std::vector<bool>& active;
+  const std::vector<std::size_t>& dependent;
+  const std::vector<Polynomial>& basis;
+};
+
+// The centre of the span's Bezier control points at the defaults (any
+// point would do; a near one keeps R small).
+Eigen::Vector3d bezierCentre(const SpanControlPoints& span, const std::vector<Polynomial>& bezier) {
+  const CurveValue& value = span.value;
+  std::size_t points = span.basis.front().size();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (std::size_t j = 0; j < points; ++j) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weightSum = 0;
+    for (std::size_t i = 0; i < value.points.size(); ++i) {
+      double weight = value.weights.empty() ? 1.0 : value.weights[i];
+      sum += bezier[i][j] * weight *
+             Eigen::Vector3d(value.points[i][0], value.points[i][1], value.points[i][2]);
+      weightSum += bezier[i][j] * weight;
+    }
+    centre += sum / weightSum / static_cast<double>(points);
+  }
+  return centre;
+}
+
+// (w_j (b_j - centre), w_j) per Bezier control point j: bezier[i][j] is the
+// share of the B-spline's control point i in it.
+std::vector<ControllerSpanMath::Point>
+homogeneousBezierPoints(const SpanControlPoints& span, const std::vector<Polynomial>& bezier,
+                        const ControllerSegment& segment, const Eigen::Vector3d& centre) {
+  std::vector<ControllerSpanMath::Point> homogeneous(span.basis.front().size());
+  for (std::size_t j = 0; j < homogeneous.size(); ++j) {
+    for (std::size_t i = 0; i < span.q.size(); ++i) {
+      double share = bezier[i][j];
+      if (share == 0) {
+        continue;
+      }
+      ControllerSpanMath::Point& point = homogeneous[j];
+      point[3].add(span.w[i], share);
+      for (int c = 0; c < 3; ++c) {
+        if (span.qConstant[i]) {
+          // w_i (q_i - centre) with q_i a literal: a multiple of the weight.
+          point[c].add(span.w[i], share * (span.q[i][c].constant - centre[c]));
+          continue;
+        }
+        std::size_t d = static_cast<std::size_t>(
+            std::find(span.dependent.begin(), span.dependent.end(), i) - span.dependent.begin());
+        point[c].add(segment.dependentPoints[d][c], share);
+        if (centre[c] != 0) {
+          point[c].add(span.w[i], -share * centre[c]);
+        }
+      }
+    }
+  }
+  return homogeneous;
+}
+
+// The steps rationalSpanSteps asks for (before rounding up) over the
+// span's homogeneous Bezier control points.
+Scalar chordSteps(Arithmetic& math, const SpanControlPoints& span, const ControllerSegment& segment,
+                  double budget, Scalar norm) {
+  std::size_t count = span.q.size();
+  std::size_t points = span.basis.front().size();
+  // The Bezier control points: Bernstein coefficients of the basis functions.
+  std::vector<Polynomial> bezier(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    bezier[i] = span.active[i] ? bernsteinCoefficients(span.basis[i]) : Polynomial(points, 0.0);
+  }
+  Eigen::Vector3d centre = bezierCentre(span, bezier);
+  // The Bezier weights are convex combinations of the active ones (knot
+  // insertion), the Bezier points lie in the hull of the active points: the
+  // smallest active weight and the largest distance bound them (a sum of the
+  // dependent points' distances, as the controller has no max).
+  std::optional<double> smallestConstantWeight;
+  double constantRadius = 0;
+  LinearForm radius;
+  std::vector<Scalar> runtimeWeights;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!span.active[i]) {
+      continue;
+    }
+    if (span.wConstant[i]) {
+      smallestConstantWeight =
+          std::min(smallestConstantWeight.value_or(span.w[i].constant), span.w[i].constant);
+    } else {
+      runtimeWeights.push_back(span.w[i]);
+    }
+    if (span.qConstant[i]) {
+      Eigen::Vector3d point(span.q[i][0].constant, span.q[i][1].constant, span.q[i][2].constant);
+      constantRadius = std::max(constantRadius, (point - centre).norm());
+      continue;
+    }
+    Scalar squares = Scalar::of(0);
+    for (int c = 0; c < 3; ++c) {
+      Scalar offset = math.binary(Opcode::Sub, span.q[i][c], Scalar::of(centre[c]));
+      squares = math.add(squares, math.multiply(offset, offset));
+    }
+    radius.add(math.unary(Opcode::Sqrt, squares), 1);
+  }
+  radius.constant = constantRadius;
+  ControllerSpanMath spanMath(math, homogeneousBezierPoints(span, bezier, segment, centre));
+  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
+  for (std::size_t k = 0; k < runtimeWeights.size(); ++k) {
+    smallestWeight = k == 0 && !smallestConstantWeight
+                         ? runtimeWeights[k]
+                         : spanMath.smaller(smallestWeight, runtimeWeights[k]);
+  }
+  return rationalSpanSteps(spanMath, points - 1, 1 / (8 * budget), norm, smallestWeight,
+                           radius.scalar(math));
+}
+
+} // namespace
+
 // A weight the program computes stops it with an alarm before anything is
 // divided by it, unless positive (the controller's own error would name
 // neither the curve nor the weight).
@@ -180,89 +304,8 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     segment.dependentPoints.push_back({weighted(q[d][0]), weighted(q[d][1]), weighted(q[d][2]),
                                        math.binary(Opcode::Sub, w[d], Scalar::of(reference))});
   }
-  // The Bezier control points: Bernstein coefficients of the basis functions.
-  std::vector<Polynomial> bezier(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    bezier[i] = active[i] ? bernsteinCoefficients(basis[i]) : Polynomial(degree, 0.0);
-  }
-  // Their centre at the defaults (any point would do; a near one keeps R small).
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (std::size_t j = 0; j < degree; ++j) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    double weightSum = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      double weight = value.weights.empty() ? 1.0 : value.weights[i];
-      sum += bezier[i][j] * weight *
-             Eigen::Vector3d(value.points[i][0], value.points[i][1], value.points[i][2]);
-      weightSum += bezier[i][j] * weight;
-    }
-    centre += sum / weightSum / static_cast<double>(degree);
-  }
-  // (w_j (b_j - centre), w_j) per Bezier control point j.
-  std::vector<ControllerSpanMath::Point> homogeneous(degree);
-  for (std::size_t j = 0; j < degree; ++j) {
-    for (std::size_t i = 0; i < count; ++i) {
-      double share = bezier[i][j];
-      if (share == 0) {
-        continue;
-      }
-      std::array<LinearForm, 4>& point = homogeneous[j];
-      point[3].add(w[i], share);
-      for (int c = 0; c < 3; ++c) {
-        if (qConstant[i]) {
-          // w_i (q_i - centre) with q_i a literal: a multiple of the weight.
-          point[c].add(w[i], share * (q[i][c].constant - centre[c]));
-          continue;
-        }
-        std::size_t d = static_cast<std::size_t>(std::find(dependent.begin(), dependent.end(), i) -
-                                                 dependent.begin());
-        point[c].add(segment.dependentPoints[d][c], share);
-        if (centre[c] != 0) {
-          point[c].add(w[i], -share * centre[c]);
-        }
-      }
-    }
-  }
-  // The Bezier weights are convex combinations of the active ones (knot
-  // insertion), the Bezier points lie in the hull of the active points: the
-  // smallest active weight and the largest distance bound them (a sum of the
-  // dependent points' distances, as the controller has no max).
-  std::optional<double> smallestConstantWeight;
-  double constantRadius = 0;
-  LinearForm radius;
-  std::vector<Scalar> runtimeWeights;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (!active[i]) {
-      continue;
-    }
-    if (wConstant[i]) {
-      smallestConstantWeight =
-          std::min(smallestConstantWeight.value_or(w[i].constant), w[i].constant);
-    } else {
-      runtimeWeights.push_back(w[i]);
-    }
-    if (qConstant[i]) {
-      Eigen::Vector3d point(q[i][0].constant, q[i][1].constant, q[i][2].constant);
-      constantRadius = std::max(constantRadius, (point - centre).norm());
-      continue;
-    }
-    Scalar squares = Scalar::of(0);
-    for (int c = 0; c < 3; ++c) {
-      Scalar offset = math.binary(Opcode::Sub, q[i][c], Scalar::of(centre[c]));
-      squares = math.add(squares, math.multiply(offset, offset));
-    }
-    radius.add(math.unary(Opcode::Sqrt, squares), 1);
-  }
-  radius.constant = constantRadius;
-  ControllerSpanMath spanMath(math, std::move(homogeneous));
-  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
-  for (std::size_t k = 0; k < runtimeWeights.size(); ++k) {
-    smallestWeight = k == 0 && !smallestConstantWeight
-                         ? runtimeWeights[k]
-                         : spanMath.smaller(smallestWeight, runtimeWeights[k]);
-  }
-  Scalar steps = rationalSpanSteps(spanMath, degree - 1, 1 / (8 * budget), norm, smallestWeight,
-                                   radius.scalar(math));
+  SpanControlPoints span{value, q, w, qConstant, wConstant, active, dependent, basis};
+  Scalar steps = chordSteps(math, span, segment, budget, norm);
   segment.stepCount = roundedUpSteps(steps);
 }
 
