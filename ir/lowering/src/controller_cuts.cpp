@@ -19,8 +19,11 @@
 //   piece: a chord over a parameter step h deviates at most h^2 M / 8, so
 //   N = (length of the domain) * sqrt(M / (8 budget)) steps, rounded up,
 //   suffice. The bounds are derived with the functions that compute them
-//   (controller_nurbs_spans.cpp for NURBS spans, curvature_bounds.cpp for
-//   the others); the pieces' symbolic forms come from symbolic_curves.cpp.
+//   (curvature_bounds.cpp); a NURBS span whose control points depend on
+//   parameters bounds its chords more tightly from its Bezier control
+//   points (cncc/lowering/rational_span_steps.h, used by
+//   controller_nurbs_spans.cpp). The pieces' symbolic forms come from
+//   symbolic_curves.cpp.
 // samples=N gives N - 1 equal steps of a single piece's parameter, and
 // entry=ramp a first lap descending along each segment (RampSegment). A cut
 // this mode cannot treat (spacing=, samples= over several pieces, a curve
@@ -115,13 +118,9 @@ Polynomial derivativeOf(const Polynomial& polynomial) {
   return derivative;
 }
 
-// An upper bound of |p(u)| on [0, 1]: the largest Bernstein coefficient of
-// p (the curve of a polynomial lies in the hull of its Bezier coefficients).
-double supremumBound(const Polynomial& polynomial) {
+// The coefficients of p in the Bernstein basis of its degree on [0, 1].
+Polynomial bernsteinCoefficients(const Polynomial& polynomial) {
   std::size_t n = polynomial.size();
-  if (n == 0) {
-    return 0;
-  }
   auto choose = [](std::size_t a, std::size_t b) {
     double value = 1;
     for (std::size_t i = 1; i <= b; ++i) {
@@ -129,14 +128,22 @@ double supremumBound(const Polynomial& polynomial) {
     }
     return value;
   };
-  double largest = 0;
-  std::size_t degree = n - 1;
-  for (std::size_t j = 0; j <= degree; ++j) {
-    double bernstein = 0;
+  Polynomial coefficients(n, 0.0);
+  std::size_t degree = n == 0 ? 0 : n - 1;
+  for (std::size_t j = 0; j < n; ++j) {
     for (std::size_t k = 0; k <= j; ++k) {
-      bernstein += choose(j, k) / choose(degree, k) * polynomial[k];
+      coefficients[j] += choose(j, k) / choose(degree, k) * polynomial[k];
     }
-    largest = std::max(largest, std::abs(bernstein));
+  }
+  return coefficients;
+}
+
+// An upper bound of |p(u)| on [0, 1]: the largest Bernstein coefficient of
+// p (the curve of a polynomial lies in the hull of its Bezier coefficients).
+double supremumBound(const Polynomial& polynomial) {
+  double largest = 0;
+  for (double coefficient : bernsteinCoefficients(polynomial)) {
+    largest = std::max(largest, std::abs(coefficient));
   }
   // A few ulp for the rounding of the conversion.
   return largest * (1 + 1e-12);
@@ -488,6 +495,9 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
           return std::nullopt;
         }
         found = lists.emplace(segment.piece, std::move(*pointsAndWeights)).first;
+        if (found->second.weights) {
+          guardWeights(*found->second.weights);
+        }
       }
       const std::optional<SymbolicList>& points = found->second.points;
       const std::optional<SymbolicList>& weights = found->second.weights;

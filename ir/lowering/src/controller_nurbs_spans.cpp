@@ -1,8 +1,10 @@
 // NURBS spans on the controller (controller_cuts.cpp plans them): a span
 // moved by a transform of controller values, and a span whose control
 // points depend on parameters, split into literals and the dependent
-// points' share, with the bound of |C''| its step count comes from.
-#include "controller_segment.h"
+// points' share, with the chord bound its step count comes from.
+#include "controller_span_math.h"
+
+#include "cncc/lowering/rational_span_steps.h"
 
 #include <fmt/format.h>
 
@@ -63,26 +65,152 @@ Scalar PartLowering::hornerOf(const std::vector<double>& polynomial, Scalar u) {
   return sum;
 }
 
+namespace {
+
+// What planSplitSpan knows of a span's control points: the B-spline's
+// points q and weights w (literals or controller values), which are
+// active on the span, which depend on parameters, the basis functions.
+struct SpanControlPoints {
+  const CurveValue& value;
+  const std::vector<std::array<Scalar, 3>>& q;
+  const std::vector<Scalar>& w;
+  const std::vector<bool>& qConstant;
+  const std::vector<bool>& wConstant;
+  const std::vector<bool>& active;
+  const std::vector<std::size_t>& dependent;
+  const std::vector<Polynomial>& basis;
+};
+
+// The centre of the span's Bezier control points at the defaults (any
+// point would do; a near one keeps R small).
+Eigen::Vector3d bezierCentre(const SpanControlPoints& span, const std::vector<Polynomial>& bezier) {
+  const CurveValue& value = span.value;
+  std::size_t points = span.basis.front().size();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (std::size_t j = 0; j < points; ++j) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weightSum = 0;
+    for (std::size_t i = 0; i < value.points.size(); ++i) {
+      double weight = value.weights.empty() ? 1.0 : value.weights[i];
+      sum += bezier[i][j] * weight *
+             Eigen::Vector3d(value.points[i][0], value.points[i][1], value.points[i][2]);
+      weightSum += bezier[i][j] * weight;
+    }
+    centre += sum / weightSum / static_cast<double>(points);
+  }
+  return centre;
+}
+
+// (w_j (b_j - centre), w_j) per Bezier control point j: bezier[i][j] is the
+// share of the B-spline's control point i in it.
+std::vector<ControllerSpanMath::Point>
+homogeneousBezierPoints(const SpanControlPoints& span, const std::vector<Polynomial>& bezier,
+                        const ControllerSegment& segment, const Eigen::Vector3d& centre) {
+  std::vector<ControllerSpanMath::Point> homogeneous(span.basis.front().size());
+  for (std::size_t j = 0; j < homogeneous.size(); ++j) {
+    for (std::size_t i = 0; i < span.q.size(); ++i) {
+      double share = bezier[i][j];
+      if (share == 0) {
+        continue;
+      }
+      ControllerSpanMath::Point& point = homogeneous[j];
+      point[3].add(span.w[i], share);
+      for (int c = 0; c < 3; ++c) {
+        if (span.qConstant[i]) {
+          // w_i (q_i - centre) with q_i a literal: a multiple of the weight.
+          point[c].add(span.w[i], share * (span.q[i][c].constant - centre[c]));
+          continue;
+        }
+        std::size_t d = static_cast<std::size_t>(
+            std::find(span.dependent.begin(), span.dependent.end(), i) - span.dependent.begin());
+        point[c].add(segment.dependentPoints[d][c], share);
+        if (centre[c] != 0) {
+          point[c].add(span.w[i], -share * centre[c]);
+        }
+      }
+    }
+  }
+  return homogeneous;
+}
+
+// The steps rationalSpanSteps asks for (before rounding up) over the
+// span's homogeneous Bezier control points.
+Scalar chordSteps(Arithmetic& math, const SpanControlPoints& span, const ControllerSegment& segment,
+                  double budget, Scalar norm) {
+  std::size_t count = span.q.size();
+  std::size_t points = span.basis.front().size();
+  // The Bezier control points: Bernstein coefficients of the basis functions.
+  std::vector<Polynomial> bezier(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    bezier[i] = span.active[i] ? bernsteinCoefficients(span.basis[i]) : Polynomial(points, 0.0);
+  }
+  Eigen::Vector3d centre = bezierCentre(span, bezier);
+  // The Bezier weights are convex combinations of the active ones (knot
+  // insertion), the Bezier points lie in the hull of the active points: the
+  // smallest active weight and the largest distance bound them (a sum of the
+  // dependent points' distances, as the controller has no max).
+  std::optional<double> smallestConstantWeight;
+  double constantRadius = 0;
+  LinearForm radius;
+  std::vector<Scalar> runtimeWeights;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!span.active[i]) {
+      continue;
+    }
+    if (span.wConstant[i]) {
+      smallestConstantWeight =
+          std::min(smallestConstantWeight.value_or(span.w[i].constant), span.w[i].constant);
+    } else {
+      runtimeWeights.push_back(span.w[i]);
+    }
+    if (span.qConstant[i]) {
+      Eigen::Vector3d point(span.q[i][0].constant, span.q[i][1].constant, span.q[i][2].constant);
+      constantRadius = std::max(constantRadius, (point - centre).norm());
+      continue;
+    }
+    Scalar squares = Scalar::of(0);
+    for (int c = 0; c < 3; ++c) {
+      Scalar offset = math.binary(Opcode::Sub, span.q[i][c], Scalar::of(centre[c]));
+      squares = math.add(squares, math.multiply(offset, offset));
+    }
+    radius.add(math.unary(Opcode::Sqrt, squares), 1);
+  }
+  radius.constant = constantRadius;
+  ControllerSpanMath spanMath(math, homogeneousBezierPoints(span, bezier, segment, centre));
+  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
+  for (std::size_t k = 0; k < runtimeWeights.size(); ++k) {
+    smallestWeight = k == 0 && !smallestConstantWeight
+                         ? runtimeWeights[k]
+                         : spanMath.smaller(smallestWeight, runtimeWeights[k]);
+  }
+  return rationalSpanSteps(spanMath, points - 1, 1 / (8 * budget), norm, smallestWeight,
+                           radius.scalar(math));
+}
+
+} // namespace
+
+// A weight the program computes stops it with an alarm before anything is
+// divided by it, unless positive (the controller's own error would name
+// neither the curve nor the weight).
+void PartLowering::guardWeights(const SymbolicList& weights) {
+  for (const std::optional<Lowered>& weight : weights) {
+    if (weight && weight->kind == TypeKind::Num && !weight->values.front().isConstant()) {
+      builder_.beginIf(
+          arithmetic_.value(arithmetic_.binary(Opcode::Le, weight->values.front(), Scalar::of(0))));
+      builder_.alarm("a weight of a NURBS is not positive");
+      builder_.endIf();
+    }
+  }
+}
+
 // A NURBS span with control points that depend on parameters (planned as
-// `split`, see ControllerSegment), and its step count on the controller.
-//
-// The bound of |C''| in the span's u in [0, 1], for positive weights. Let
-// c be a fixed point, P(u) = sum_i w_i (q_i - c) N_i(u) and W(u) = sum_i
-// w_i N_i(u), so C - c = P / W. Differentiating W (C - c) = P twice:
-//   C' = (P' - W' (C - c)) / W,  C'' = (P'' - W'' (C - c) - 2 W' C') / W.
-// With W >= wmin (the smallest weight of the span: the N_i are a partition
-// of unity), |C - c| <= R (the curve stays in the hull of its control
-// points) and bounds P1 >= |P'|, P2 >= |P''|, W1 >= |W'|, W2 >= |W''|:
-//   |C'| <= D1 = (P1 + W1 R) / wmin,  |C''| <= (P2 + W2 R + 2 W1 D1) / wmin.
-// Each P_k, W_k is the bound of the constant control points' share (the
-// largest Bernstein coefficient of the derivative's polynomial, exact at
-// compile time) plus, per dependent control point, |w_i| |q_i - c| (for
-// P) or |w_i - w0| (for W: the N_i^(k) sum to zero, so W^(k) = sum (w_i -
-// w0) N_i^(k) for the reference weight w0 = 1) times the bound of N_i^(k),
-// computed on the controller; R is the
-// constant points' largest distance from c (c their centroid) plus the
-// dependent points' distances. Without parameter-dependent or unequal
-// weights W' = W'' = 0 and the bound is P2 / w.
+// `split`, see ControllerSegment), and its step count on the controller:
+// rationalSpanSteps (cncc/lowering/rational_span_steps.h, where the bound is
+// derived) over the span's homogeneous Bezier control points. Each is a
+// combination of the B-spline's homogeneous control points (w_i q_i, w_i)
+// with the Bernstein coefficients of the span's basis functions, so a
+// combination of the constant points' share (a literal) and the dependent
+// points' homogeneous points (controller values).
 void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* weights,
                                  const SymbolicList* points, ControllerSegment& segment,
                                  double budget, Scalar norm) {
@@ -142,53 +270,19 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     coordinate.assign(degree, 0.0);
   }
   double reference = segment.referenceWeight;
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  int constantPoints = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (active[i] && qConstant[i]) {
-      centre += Eigen::Vector3d(q[i][0].constant, q[i][1].constant, q[i][2].constant);
-      ++constantPoints;
-    }
-  }
-  if (constantPoints > 0) {
-    centre /= constantPoints;
-  }
-  // Shares of the constant control points: evaluation (Xc, Wc) and bound.
-  std::array<Polynomial, 3> translated;
-  Polynomial constantWeights(degree, 0.0);
-  for (Polynomial& coordinate : translated) {
-    coordinate.assign(degree, 0.0);
-  }
-  double constantRadius = 0;
-  std::optional<double> smallestConstantWeight;
   bool unequalWeights = false;
   for (std::size_t i = 0; i < count; ++i) {
     if (!active[i]) {
       continue;
     }
-    if (wConstant[i]) {
-      double weight = w[i].constant;
-      unequalWeights = unequalWeights || weight != reference;
-      smallestConstantWeight = std::min(smallestConstantWeight.value_or(weight), weight);
-      for (std::size_t k = 0; k < degree; ++k) {
-        // W' = sum (w_i - reference) N_i' (the N_i' sum to zero): the share
-        // of weights equal to the reference is nothing.
-        constantWeights[k] += (weight - reference) * basis[i][k];
-      }
-    } else {
-      unequalWeights = true;
-    }
-    if (qConstant[i]) {
-      Eigen::Vector3d point(q[i][0].constant, q[i][1].constant, q[i][2].constant);
-      constantRadius = std::max(constantRadius, (point - centre).norm());
-    }
+    unequalWeights = unequalWeights || !wConstant[i] || w[i].constant != reference;
     if (qConstant[i] && wConstant[i]) {
       double weight = w[i].constant;
       for (std::size_t k = 0; k < degree; ++k) {
         for (int c = 0; c < 3; ++c) {
           segment.constantPart[c][k] += weight * q[i][c].constant * basis[i][k];
-          translated[c][k] += weight * (q[i][c].constant - centre[c]) * basis[i][k];
         }
+        // W = reference + sum (w_i - reference) N_i (the N_i sum to one).
         segment.constantPart[3][k] += (weight - reference) * basis[i][k];
       }
     }
@@ -197,26 +291,8 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     coefficient = std::abs(coefficient) <= 1e-12 ? 0.0 : coefficient;
   }
   segment.rational = unequalWeights;
-  // Homogeneous points of the dependent control points, on the controller,
-  // and the bounds as sums of constant multiples of controller values.
+  // Homogeneous points of the dependent control points, computed once.
   Arithmetic& math = arithmetic_;
-  LinearForm radius{constantRadius, {}};
-  LinearForm weightSlope, weightCurve;
-  std::array<Polynomial, 3> translatedSlope, translatedCurve;
-  for (int c = 0; c < 3; ++c) {
-    translatedSlope[c] = derivativeOf(translated[c]);
-    translatedCurve[c] = derivativeOf(translatedSlope[c]);
-  }
-  LinearForm pointSlope{
-      vectorSupremumBound({translatedSlope[0], translatedSlope[1], translatedSlope[2]}), {}};
-  LinearForm pointCurve{
-      vectorSupremumBound({translatedCurve[0], translatedCurve[1], translatedCurve[2]}), {}};
-  if (unequalWeights) {
-    weightSlope.constant = supremumBound(derivativeOf(constantWeights));
-    weightCurve.constant = supremumBound(derivativeOf(derivativeOf(constantWeights)));
-  }
-  Scalar smallestWeight = Scalar::of(smallestConstantWeight.value_or(0));
-  bool haveSmallest = smallestConstantWeight.has_value();
   for (std::size_t d : dependent) {
     segment.dependentBasis.push_back(basis[d]);
     // A zero coordinate stays a literal zero (x * 0 is not folded: x may be
@@ -227,69 +303,9 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
     };
     segment.dependentPoints.push_back({weighted(q[d][0]), weighted(q[d][1]), weighted(q[d][2]),
                                        math.binary(Opcode::Sub, w[d], Scalar::of(reference))});
-    double slopeBound = supremumBound(derivativeOf(basis[d]));
-    double curveBound = supremumBound(derivativeOf(derivativeOf(basis[d])));
-    // |q_d - c|: a literal for a constant point.
-    LinearForm distance;
-    if (qConstant[d]) {
-      Eigen::Vector3d point(q[d][0].constant, q[d][1].constant, q[d][2].constant);
-      distance.constant = (point - centre).norm();
-    } else {
-      Scalar squares = Scalar::of(0);
-      for (int c = 0; c < 3; ++c) {
-        Scalar offset = math.binary(Opcode::Sub, q[d][c], Scalar::of(centre[c]));
-        squares = math.add(squares, math.multiply(offset, offset));
-      }
-      distance.add(math.unary(Opcode::Sqrt, squares), 1);
-      radius.add(distance, 1);
-    }
-    // The weights are positive (the bound divides by the smallest), so |w| = w.
-    LinearForm size{wConstant[d] ? w[d].constant : 0, {}};
-    if (!wConstant[d]) {
-      size.add(w[d], 1);
-    }
-    LinearForm homogeneous = size.times(distance, math);
-    pointSlope.add(homogeneous, slopeBound);
-    pointCurve.add(homogeneous, curveBound);
-    if (!wConstant[d]) {
-      LinearForm offset;
-      offset.add(math.unary(Opcode::Abs, math.binary(Opcode::Sub, w[d], Scalar::of(reference))), 1);
-      weightSlope.add(offset, slopeBound);
-      weightCurve.add(offset, curveBound);
-      // min(a, b) = (a + b - |a - b|) / 2, one inline expression.
-      smallestWeight =
-          haveSmallest
-              ? math.multiply(
-                    Scalar::of(0.5),
-                    math.binary(
-                        Opcode::Sub, math.add(smallestWeight, w[d]),
-                        math.unary(Opcode::Abs, math.binary(Opcode::Sub, smallestWeight, w[d]))))
-              : w[d];
-      haveSmallest = true;
-    }
   }
-  // M / (8 budget), the constant factor taken into the sums' coefficients:
-  // M = (P2 + W2 R + 2 W1 (P1 + W1 R) / wmin) / wmin.
-  double factor = 1 / (8 * budget);
-  LinearForm curveNumerator;
-  curveNumerator.add(pointCurve, factor);
-  Scalar scaledBound;
-  if (unequalWeights) {
-    LinearForm slopeNumerator = pointSlope;
-    slopeNumerator.add(weightSlope.times(radius, math), 1);
-    curveNumerator.add(weightCurve.times(radius, math), factor);
-    LinearForm doubledSlope;
-    doubledSlope.add(weightSlope, 2 * factor);
-    Scalar cross = math.binary(
-        Opcode::Div, math.multiply(doubledSlope.scalar(math), slopeNumerator.scalar(math)),
-        smallestWeight);
-    scaledBound =
-        math.binary(Opcode::Div, math.add(curveNumerator.scalar(math), cross), smallestWeight);
-  } else {
-    scaledBound = math.binary(Opcode::Div, curveNumerator.scalar(math), smallestWeight);
-  }
-  // N >= sqrt(M / (8 budget)) steps of u; a transform stretches M by its norm.
-  Scalar steps = math.unary(Opcode::Sqrt, times(scaledBound, norm));
+  SpanControlPoints span{value, q, w, qConstant, wConstant, active, dependent, basis};
+  Scalar steps = chordSteps(math, span, segment, budget, norm);
   segment.stepCount = roundedUpSteps(steps);
 }
 

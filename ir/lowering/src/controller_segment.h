@@ -15,6 +15,8 @@ namespace cncc::ir::lowering {
 using Polynomial = std::vector<double>; // ascending powers of u
 
 Polynomial derivativeOf(const Polynomial& polynomial);
+// The coefficients of p in the Bernstein basis of its degree on [0, 1].
+Polynomial bernsteinCoefficients(const Polynomial& polynomial);
 // An upper bound of |p(u)| on [0, 1] (its largest Bernstein coefficient).
 double supremumBound(const Polynomial& polynomial);
 // Every coordinate's bound, as one bound of the vector's length.
@@ -52,18 +54,6 @@ struct LinearForm {
       sum = math.add(sum, factor == 1 ? value : math.multiply(value, Scalar::of(factor)));
     }
     return sum;
-  }
-  // The product; a product of two non-constant forms becomes one term.
-  LinearForm times(const LinearForm& other, Arithmetic& math) const {
-    LinearForm product;
-    if (other.isConstant()) {
-      product.add(*this, other.constant);
-    } else if (isConstant()) {
-      product.add(other, constant);
-    } else {
-      product.add(math.multiply(scalar(math), other.scalar(math)), 1);
-    }
-    return product;
   }
 };
 

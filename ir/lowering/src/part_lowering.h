@@ -513,6 +513,7 @@ private:
     std::optional<SymbolicList> points, weights;
   };
   std::optional<NurbsLists> nurbsLists(const SymbolicPiece& piece);
+  void guardWeights(const SymbolicList& weights);
   CurvePoint movedSplitSpanPoint(const ControllerSegment& segment, Scalar u);
   Scalar hornerOf(const std::vector<double>& polynomial, Scalar u);
 

@@ -194,8 +194,11 @@ TEST(MacroControllerLoops, SProfileFigures) {
   ASSERT_FALSE(compiled.program.text.empty());
   EXPECT_LE(compiled.program.statistics.variables, 40);
   // 60, and the set-up blocks: G54, G05 P10000 on and G05 P0 off, the
-  // retract G91 G28 Z0. and G90.
-  EXPECT_LE(compiled.program.statistics.blocks, 65);
+  // retract G91 G28 Z0. and G90; and since the step counts of the spans w6
+  // moves come from a bound of their chords (2.4 times fewer points at w6 =
+  // 3, 3.6 at w6 = 8), the alarm for a w6 that is not positive and one
+  // more block for those step counts.
+  EXPECT_LE(compiled.program.statistics.blocks, 67);
   EXPECT_EQ(compiled.program.text.find("#["), std::string::npos) << "no tables";
   // w6 stays editable: the program reads it.
   EXPECT_NE(compiled.program.text.find("#3*"), std::string::npos);

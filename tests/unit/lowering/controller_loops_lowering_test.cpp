@@ -131,6 +131,39 @@ TEST_P(SProfileWeights, ChordsStayWithinTheBudgetForTheWeightItRunsWith) {
 
 INSTANTIATE_TEST_SUITE_P(Values, SProfileWeights, ::testing::Values(3.0, 1.0, 8.0, 0.3));
 
+// The points of a pass on the two spans w6 moves (the two others take 108),
+// from the chord bound over their Bezier control points; with the earlier
+// bound of |C''| over the B-spline's hull they were 174, 658 and 1820. The
+// same spans with w6 a literal take 110, 94 and 79 (the fewest, measured).
+TEST(ControllerLoopsLowering, SProfileSpansOfW6TakeFewPointsPerPass) {
+  auto lowered = lowerExample("s_profile.cdl");
+  ASSERT_TRUE(lowered->function);
+  for (auto [w6, points] : {std::pair{1.0, 154u}, std::pair{3.0, 279u}, std::pair{8.0, 500u}}) {
+    InterpreterOptions options;
+    options.parameters = {{"w6", w6}};
+    ToolPath path = interpret(*lowered->function, options);
+    // The pass's feed points less the plunge's end and the two constant spans.
+    EXPECT_EQ(feedPointsAt(path, -1).size() - 1 - 108, points) << "w6 = " << w6;
+  }
+}
+
+TEST(ControllerLoopsLowering, AWeightThatIsNotPositiveStopsTheProgram) {
+  auto lowered = lowerExample("s_profile.cdl");
+  ASSERT_TRUE(lowered->function);
+  for (double w6 : {0.0, -1.0}) {
+    InterpreterOptions options;
+    options.parameters = {{"w6", w6}};
+    try {
+      interpret(*lowered->function, options);
+      ADD_FAILURE() << "w6 = " << w6 << " ran";
+    } catch (const InterpreterError& error) {
+      EXPECT_NE(std::string(error.what()).find("a weight of a NURBS is not positive"),
+                std::string::npos)
+          << error.what();
+    }
+  }
+}
+
 TEST(ControllerLoopsLowering, ConstantCurvesCountTheirStepsAtCompileTime) {
   // The contour is constant; only its depth is a parameter. The ramp lap
   // and the lap at depth are loops of a constant count, the passes a loop
