@@ -30,16 +30,9 @@ void linuxcncBackend(const BackendRequest& request) {
   if (part == nullptr) {
     return;
   }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics,
-      findTarget(request.options.target)->loweringOptions(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
   if (!lowered) {
     return;
-  }
-  optimise(lowered->function, request.options);
-  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
-  if (!problems.empty()) {
-    throw InternalError("the lowered IR does not verify: " + problems.front());
   }
   backends::GcodeOptions names = gcodeOptionsFor(request);
   backends::LinuxcncProgramOptions options;

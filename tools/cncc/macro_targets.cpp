@@ -28,23 +28,11 @@ ir::LoweringOptions macroLowering(const frontend::PartItem& part, const DriverOp
 
 // The lowered, optimised part; nullopt after a diagnostic.
 std::optional<ir::Function> loweredPart(const BackendRequest& request) {
-  const frontend::PartItem* part = request.program.selectedPart;
-  if (part == nullptr) {
-    return std::nullopt;
-  }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics,
-      findTarget(request.options.target)->loweringOptions(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
   if (!lowered) {
     return std::nullopt;
   }
-  std::optional<ir::Function> function = std::move(lowered->function);
-  optimise(*function, request.options);
-  std::vector<std::string> problems = ir::verifyFunction(*function);
-  if (!problems.empty()) {
-    throw InternalError("the lowered IR does not verify: " + problems.front());
-  }
-  return function;
+  return std::move(lowered->function);
 }
 
 void macroBackend(const BackendRequest& request, std::string_view defaultProfile) {

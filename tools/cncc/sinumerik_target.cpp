@@ -53,21 +53,11 @@ ir::LoweringOptions sinumerikLoweringOptions(const frontend::PartItem&,
 }
 
 std::optional<SinumerikCompilation> compileForSinumerik(const BackendRequest& request) {
-  const frontend::PartItem* part = request.program.selectedPart;
-  if (part == nullptr) {
-    return std::nullopt;
-  }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics,
-      findTarget(request.options.target)->loweringOptions(*part, request.options));
+  std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
   if (!lowered) {
     return std::nullopt;
   }
-  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
-  if (!problems.empty()) {
-    throw InternalError("the lowered IR does not verify: " + problems.front());
-  }
-  optimise(lowered->function, request.options);
+  const frontend::PartItem* part = request.program.selectedPart;
   ir::ToolPath path;
   try {
     path = ir::interpret(lowered->function);

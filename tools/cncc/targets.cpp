@@ -103,8 +103,7 @@ constexpr Target targetTable[] = {
 
 } // namespace
 
-std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native,
-                                         std::vector<ir::CutGeometry>* cuts) {
+std::optional<ir::LoweredPart> lowerForTarget(const BackendRequest& request) {
   const frontend::PartItem* part = request.program.selectedPart;
   if (part == nullptr) {
     return std::nullopt;
@@ -115,15 +114,25 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   if (!lowered) {
     return std::nullopt;
   }
-  if (cuts != nullptr) {
-    *cuts = std::move(lowered->cuts);
-  }
-  ir::Function* function = &lowered->function;
-  std::vector<std::string> problems = ir::verifyFunction(*function);
+  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
   if (!problems.empty()) {
     throw InternalError("the lowered IR does not verify: " + problems.front());
   }
-  optimise(*function, request.options); // the IR optimiser, unless -O0
+  optimise(lowered->function, request.options); // the IR optimiser, unless -O0
+  return lowered;
+}
+
+std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native,
+                                         std::vector<ir::CutGeometry>* cuts) {
+  std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
+  if (!lowered) {
+    return std::nullopt;
+  }
+  if (cuts != nullptr) {
+    *cuts = std::move(lowered->cuts);
+  }
+  const frontend::PartItem* part = request.program.selectedPart;
+  ir::Function* function = &lowered->function;
   try {
     // `native`: compiled by the LLVM JIT, which runs as the interpreter does.
     if (native) {
