@@ -40,7 +40,7 @@ std::optional<Eigen::Vector2d> centreFromRadius(const ProgrammedArc& arc, std::s
 } // namespace
 
 std::vector<Eigen::Vector3d> arcChordPoints(const ProgrammedArc& arc, double tolerance,
-                                            std::string& problem) {
+                                            std::size_t maximumPoints, std::string& problem) {
   if (arc.radius && (arc.centre[0] || arc.centre[1])) {
     problem = "a G2/G3 block takes I J or CR=, not both";
     return {};
@@ -83,6 +83,16 @@ std::vector<Eigen::Vector3d> arcChordPoints(const ProgrammedArc& arc, double tol
   double sweep = ir::arcSweep(arc.start.x(), arc.start.y(), last);
   double total = sweep + 2 * std::numbers::pi * arc.turns;
   double dropPerRadian = (arc.end.z() - arc.start.z()) / total;
+  // A chord of angle a sags by r (1 - cos(a / 2)).
+  double chordAngle =
+      tolerance < startRadius ? 2 * std::acos(1 - tolerance / startRadius) : std::numbers::pi;
+  double chordsNeeded = total / chordAngle + arc.turns + 1;
+  if (!(chordsNeeded <= static_cast<double>(maximumPoints))) {
+    problem = fmt::format("this arc needs {:.0f} chords within {:g}, more than the {} points "
+                          "left of the path's limit",
+                          chordsNeeded, tolerance, maximumPoints);
+    return {};
+  }
   std::vector<ir::MachineEvent> chords;
   Eigen::Vector3d from = arc.start;
   for (int turn = 0; turn < arc.turns; ++turn) {

@@ -24,7 +24,9 @@ struct ProgrammedArc {
 
 // The chord end points (the last is the arc's end) within `tolerance` of the
 // arc; `problem` set and empty points when the arc cannot be cut.
+// At most `maximumPoints` points: an arc that needs more is a `problem`
+// found before any is computed.
 std::vector<Eigen::Vector3d> arcChordPoints(const ProgrammedArc& arc, double tolerance,
-                                            std::string& problem);
+                                            std::size_t maximumPoints, std::string& problem);
 
 } // namespace cncc::backends::sinumerik

@@ -417,7 +417,8 @@ private:
     arc.turns = int(std::min(words.turns, 1e6));
     arc.clockwise = motion_ == Motion::ClockwiseArc;
     std::string problem;
-    std::vector<Vector> points = arcChordPoints(arc, options_.sampleTolerance, problem);
+    std::vector<Vector> points =
+        arcChordPoints(arc, options_.sampleTolerance, pointsLeft(), problem);
     if (!problem.empty()) {
       fail(problem);
     }
@@ -427,6 +428,11 @@ private:
     previous_ = start;
     position_ = {arc.end.x(), arc.end.y(), arc.end.z()};
     lastLinear_ = false;
+  }
+
+  // How many more points the sampled path may take.
+  std::size_t pointsLeft() const {
+    return run_.moves.size() < options_.pointLimit ? options_.pointLimit - run_.moves.size() : 0;
   }
 
   bool known() const { return position_[0] && position_[1] && position_[2]; }
@@ -507,6 +513,10 @@ private:
     run_.splines.push_back(
         {kindOf(spline.motion), curve, spline.points.size(), spline.mainLines.front()});
     geom::CurveSamples samples = sampleDensely(*curve, options_.sampleTolerance);
+    if (samples.points.size() > pointsLeft()) {
+      fail(fmt::format("this spline's path has more than the {} points the model samples in all",
+                       options_.pointLimit));
+    }
     // Each sample belongs to the block whose point ends the piece it is on.
     std::vector<double> ends = pieceEnds(spline, *curve);
     std::size_t piece = 0;

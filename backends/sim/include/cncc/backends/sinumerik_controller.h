@@ -73,6 +73,10 @@ struct SinumerikRunOptions {
   double sampleTolerance = 1e-6;
   int cubicSplineWindow = geom::kDefaultCubicSplineWindow; // $MC_CUBIC_SPLINE_BLOCKS
   std::size_t stepLimit = 10'000'000;                      // blocks executed in all
+  // Points of the sampled path in all (arcs and splines as chords): past it
+  // the run stops with an error naming the limit, before sampling the arc
+  // or spline that would pass it.
+  std::size_t pointLimit = 4'000'000;
 };
 
 struct SinumerikRun {
