@@ -47,6 +47,8 @@ std::shared_ptr<const geom::Curve> movedArc(const geom::ArcCurve& arc, const Aff
       arc.sweep(), transform.zScale * arc.startZ(), transform.zScale * arc.zChange());
 }
 
+} // namespace
+
 // The cut's pieces in part coordinates, lines and arcs kept as such.
 std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve) {
   std::vector<std::shared_ptr<const geom::Curve>> pieces;
@@ -115,11 +117,8 @@ std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& of
   return segments;
 }
 
-} // namespace
-
-double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side) {
-  // comp=controller is refused by the checker (compensation-unavailable).
-  if (const Modifier* lead = findModifier(cut, "lead")) {
+double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bool controller) {
+  if (const Modifier* lead = controller ? nullptr : findModifier(cut, "lead")) {
     unsupported(lead->span(), "lead= (tangent arc lead-in and lead-out) with comp=host");
   }
   if (toolDiameter_ == nullptr) {
@@ -195,7 +194,13 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   if (word != "left" && word != "right") {
     return false;
   }
-  double distance = offsetDistance(cut, *side);
+  const Modifier* comp = findModifier(cut, "comp");
+  bool controller = comp != nullptr && comp->value && wordOf(*comp->value) == "controller";
+  double distance = offsetDistance(cut, *side, controller);
+  if (controller) {
+    lowerCompensatedCut(cut, *comp, distance);
+    return true;
+  }
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
   checkCutBounds(cut, *offset);
