@@ -30,11 +30,6 @@ struct CompensatedStretch {
 
 std::shared_ptr<const geom::Curve> pieceOf(const Eigen::Vector3d& from, const MachineEvent& move) {
   Eigen::Vector3d to(move.x, move.y, move.z);
-  if (move.z != from.z()) {
-    throw InterpreterError(
-        fmt::format("a move out of the plane at ({:g}, {:g}) with cutter radius compensation on",
-                    move.x, move.y));
-  }
   if (move.kind != Kind::Arc) {
     return std::make_shared<geom::LineCurve>(from, to);
   }
@@ -87,6 +82,11 @@ void appendCompensated(const CompensatedStretch& stretch, std::vector<MachineEve
   for (std::size_t i = 1; i + 1 < stretch.moves.size(); ++i) {
     const MachineEvent& move = stretch.moves[i];
     Eigen::Vector3d to(move.x, move.y, move.z);
+    if (to.z() != at.z()) {
+      throw InterpreterError(fmt::format(
+          "a move out of the plane to ({:g}, {:g}, {:g}) with cutter radius compensation on",
+          move.x, move.y, move.z));
+    }
     if ((to - at).head<2>().norm() > 0 || move.kind == Kind::Arc) {
       pieces.push_back(pieceOf(at, move));
     }
