@@ -50,14 +50,7 @@ MachineEvent lineTo(const Eigen::Vector3d& point, const MachineEvent& model) {
 // The offset path's lines and arcs as moves at `model`'s feed.
 void appendOffsetMoves(const geom::Curve& offset, const MachineEvent& model,
                        std::vector<MachineEvent>& out) {
-  std::vector<const geom::Curve*> parts;
-  if (const auto* composite = dynamic_cast<const geom::CompositeCurve*>(&offset)) {
-    for (std::size_t i = 0; i < composite->pieceCount(); ++i) {
-      parts.push_back(&composite->piece(i));
-    }
-  } else {
-    parts.push_back(&offset);
-  }
+  std::vector<const geom::Curve*> parts = geom::piecesOf(offset);
   for (const geom::Curve* part : parts) {
     MachineEvent move = lineTo(part->point(part->domain().t1), model);
     if (const auto* arc = dynamic_cast<const geom::ArcCurve*>(part)) {

@@ -73,14 +73,7 @@ std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curv
 
 // The offset as line and arc moves, when it is made of nothing else.
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& offset) {
-  std::vector<const geom::Curve*> parts;
-  if (const auto* composite = dynamic_cast<const geom::CompositeCurve*>(&offset)) {
-    for (std::size_t i = 0; i < composite->pieceCount(); ++i) {
-      parts.push_back(&composite->piece(i));
-    }
-  } else {
-    parts.push_back(&offset);
-  }
+  std::vector<const geom::Curve*> parts = geom::piecesOf(offset);
   std::vector<geom::ArcSegment> segments;
   for (const geom::Curve* part : parts) {
     geom::ParameterRange domain = part->domain();
