@@ -6,7 +6,8 @@ the largest deviation from the exact offset, as `cncc verify` measures them.
 
 writes each case below to a scratch directory, verifies it for each target
 and prints a Markdown table; then the cases that must be refused, with the
-diagnostic each gets.
+diagnostic each gets; then the same cases with the controller's cutter
+radius compensation (comp=controller) on the targets that print it.
 """
 
 import re
@@ -22,6 +23,7 @@ S_PROFILE = (
     "weights=[1,1,1,1,1,3,1])"
 )
 TARGETS = ["gcode", "jit", "sinumerik", "linuxcnc", "fanuc", "m80", "heidenhain"]
+CONTROLLER_TARGETS = ["fanuc", "m80", "gcode"]
 # (name, curve, tool diameter, side)
 CASES = [
     ("polar contour outside", POLAR, 4, "right"),
@@ -37,14 +39,27 @@ REFUSALS = [
 ]
 
 
-def source(curve, diameter, side):
+def source(curve, diameter, side, comp="host"):
     return (
         "part p() {\n"
         f"  tool 1 diameter={diameter} feed=300\n"
         "  safe z=5\n"
-        f"  curve {curve} side={side} tolerance=0.01\n"
+        f"  curve {curve} side={side} comp={comp} tolerance=0.01\n"
         "}\n"
     )
+
+
+def table(cncc, scratch, targets, comp):
+    print("| case | " + " | ".join(targets) + " |")
+    print("|---|" + "---|" * len(targets))
+    for name, curve, diameter, side in CASES:
+        path = Path(scratch) / "case.cdl"
+        path.write_text(source(curve, diameter, side, comp))
+        cells = []
+        for target in targets:
+            figures, error = verify(cncc, path, target)
+            cells.append(f"{figures[0]} / {figures[1]} / {figures[2]}" if figures else error)
+        print(f"| {name} | " + " | ".join(cells) + " |")
 
 
 def verify(cncc, path, target):
@@ -65,16 +80,7 @@ def main():
         sys.exit(__doc__)
     cncc = sys.argv[1]
     with tempfile.TemporaryDirectory() as scratch:
-        print("| case | " + " | ".join(TARGETS) + " |")
-        print("|---|" + "---|" * len(TARGETS))
-        for name, curve, diameter, side in CASES:
-            path = Path(scratch) / "case.cdl"
-            path.write_text(source(curve, diameter, side))
-            cells = []
-            for target in TARGETS:
-                figures, error = verify(cncc, path, target)
-                cells.append(f"{figures[0]} / {figures[1]} / {figures[2]}" if figures else error)
-            print(f"| {name} | " + " | ".join(cells) + " |")
+        table(cncc, scratch, TARGETS, "host")
         print()
         for name, curve, diameter, side in REFUSALS:
             path = Path(scratch) / "case.cdl"
@@ -82,6 +88,8 @@ def main():
             figures, error = verify(cncc, path, "gcode")
             outcome = f"cut: max deviation {figures[2]} mm" if figures else f"refused: {error}"
             print(f"- {name}: {outcome}")
+        print()
+        table(cncc, scratch, CONTROLLER_TARGETS, "controller")
 
 
 if __name__ == "__main__":

@@ -352,7 +352,8 @@ void Checker::checkCut(CutStmt& cut, const Scope& scope) {
 }
 
 // `comp=` and `lead=` say how the tool runs beside the curve, so they need
-// `side=left|right`; the controller's compensation is not built yet.
+// `side=left|right` (which targets have the controller's compensation is
+// the lowering's to say).
 void Checker::checkToolSide(const Modifier* side, const Modifier* comp, const Modifier* lead) {
   std::string_view sideWord = choiceWord(side);
   bool beside = sideWord == "left"sv || sideWord == "right"sv;
@@ -371,12 +372,6 @@ void Checker::checkToolSide(const Modifier* side, const Modifier* comp, const Mo
       context_.diagnostics.addNote(diagnostic, side->span(),
                                    "with side=center the tool's centre runs on the curve");
     }
-  }
-  if (beside && choiceWord(comp) == "controller"sv) {
-    context_.report(DiagnosticKind::CompensationUnavailable, comp->span(),
-                    "comp=controller (the controller's cutter radius compensation, G41/G42) is "
-                    "not available for this target yet; leave comp= out for the compiler's "
-                    "exact offset (comp=host)");
   }
 }
 

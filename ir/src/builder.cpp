@@ -178,6 +178,14 @@ void FunctionBuilder::contouring(double tolerance) {
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::compensation(double offset, std::uint32_t offsetRegister) {
+  Instruction instruction;
+  instruction.opcode = Opcode::Compensation;
+  instruction.number = offset;
+  instruction.index = offsetRegister;
+  append(std::move(instruction), ValueType::None);
+}
+
 void FunctionBuilder::comment(std::string text) {
   Instruction instruction;
   instruction.opcode = Opcode::Comment;

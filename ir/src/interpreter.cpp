@@ -90,6 +90,7 @@ private:
     case Opcode::Home:
     case Opcode::Comment:
     case Opcode::CutBegin:
+    case Opcode::Compensation:
       record(instruction);
       return;
     default:
@@ -152,6 +153,7 @@ private:
     case Opcode::Coolant:
     case Opcode::Contouring:
     case Opcode::Home:
+    case Opcode::Compensation:
       event = settingEvent(instruction.opcode, instruction.number, instruction.index);
       break;
     case Opcode::CutBegin:
@@ -269,6 +271,10 @@ MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index) {
     break;
   case Opcode::Home:
     event.kind = MachineEvent::Kind::Home;
+    break;
+  case Opcode::Compensation:
+    event.kind = MachineEvent::Kind::Compensation;
+    event.offsetRegister = index;
     break;
   default:
     event.kind = MachineEvent::Kind::Contouring;

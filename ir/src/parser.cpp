@@ -255,6 +255,9 @@ private:
     case Opcode::Contouring:
       builder_->contouring(rest == "off" ? 0 : parseNumber(rest));
       return;
+    case Opcode::Compensation:
+      parseCompensation(rest);
+      return;
     case Opcode::Comment:
       builder_->comment(unquote(rest));
       return;
@@ -323,6 +326,20 @@ private:
       throw Failure{"expected 'origin code' or 'origin 54.1 number'"};
     }
     builder_->origin(parseNumber(words[0]), words.size() == 2 ? parseWholeNumber(words[1]) : 0);
+  }
+
+  // `compensation left|right register radius` or `compensation off`.
+  void parseCompensation(std::string_view rest) {
+    std::vector<std::string_view> words = splitWords(rest);
+    if (words.size() == 1 && words[0] == "off") {
+      builder_->compensation(0, 0);
+      return;
+    }
+    if (words.size() != 3 || (words[0] != "left" && words[0] != "right")) {
+      throw Failure{"expected 'compensation left|right register radius' or 'compensation off'"};
+    }
+    double radius = parseNumber(words[2]);
+    builder_->compensation(words[0] == "left" ? radius : -radius, parseWholeNumber(words[1]));
   }
 
   static std::vector<std::string_view> splitWords(std::string_view text) {

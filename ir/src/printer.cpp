@@ -1,5 +1,6 @@
 #include "cncc/ir/printer.h"
 
+#include <cmath>
 #include <fmt/format.h>
 #include <map>
 
@@ -100,6 +101,13 @@ private:
       out_ += instruction.number == 0
                   ? fmt::format("{}contouring off\n", indent)
                   : fmt::format("{}contouring {}\n", indent, instruction.number);
+      return;
+    case Opcode::Compensation:
+      out_ += instruction.number == 0
+                  ? fmt::format("{}compensation off\n", indent)
+                  : fmt::format("{}compensation {} {} {}\n", indent,
+                                instruction.number > 0 ? "left" : "right", instruction.index,
+                                std::fabs(instruction.number));
       return;
     case Opcode::Comment:
     case Opcode::Alarm:

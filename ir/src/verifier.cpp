@@ -161,6 +161,11 @@ private:
         instruction.index > static_cast<std::uint32_t>(CoolantMode::Through)) {
       problem(fmt::format("{} names no coolant mode", where));
     }
+    if (instruction.opcode == Opcode::Compensation &&
+        (!std::isfinite(instruction.number) ||
+         (instruction.number == 0) != (instruction.index == 0))) {
+      problem(fmt::format("{} needs a radius register and a finite offset, or neither", where));
+    }
     if (instruction.opcode == Opcode::Contouring && !(instruction.number >= 0)) {
       problem(fmt::format("{} has a negative tolerance", where));
     }

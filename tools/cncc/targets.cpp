@@ -64,13 +64,15 @@ constexpr Target targetTable[] = {
      .backend = m80Backend,
      .lowering = m80LoweringOptions,
      .fittedArcs = true,
-     .controllerProfile = "m80"},
+     .controllerProfile = "m80",
+     .cutterCompensation = true},
     {.name = "fanuc",
      .description = "Fanuc Custom Macro B program (parameters stay editable)",
      .backend = fanucBackend,
      .lowering = fanucLoweringOptions,
      .fittedArcs = true,
-     .controllerProfile = "fanuc"},
+     .controllerProfile = "fanuc",
+     .cutterCompensation = true},
     {.name = "sinumerik",
      .description = "Siemens Sinumerik program: BSPLINE and A/B/C spline blocks",
      .backend = sinumerikBackend,
@@ -81,7 +83,8 @@ constexpr Target targetTable[] = {
      .backend = gcodeBackend,
      .lowering = gcodeLoweringOptions,
      .fittedArcs = true,
-     .hostProgram = gcodeProgram},
+     .hostProgram = gcodeProgram,
+     .cutterCompensation = true},
     {.name = "linuxcnc",
      .description = "LinuxCNC program with o-word loops and parameters",
      .backend = linuxcncBackend,
@@ -199,6 +202,8 @@ ir::LoweringOptions Target::loweringOptions(const frontend::PartItem& part,
   lowered.maximumExtendedWorkOffset =
       setup.extendedWorkOffset.empty() ? 0 : setup.maximumExtendedWorkOffset;
   lowered.throughSpindleCoolant = !setup.coolantThrough.empty();
+  lowered.targetName = std::string(name);
+  lowered.cutterCompensation = cutterCompensation;
   // Every program's numbers stay within the controller profile's range (the
   // conservative Fanuc one for the targets without a macro profile of their
   // own, whose --profile, if any, names another kind; jit's tool path is for

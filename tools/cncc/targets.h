@@ -77,6 +77,9 @@ struct Target {
   // own (Heidenhain's Q), set at its top: the variable of each, which
   // `verify -D` edits there.
   ParameterVariablesFunction parameterVariables = nullptr;
+  // Prints `comp=controller` cuts with the controller's cutter radius
+  // compensation (G41/G42 D.., G40).
+  bool cutterCompensation = false;
 
   bool available() const { return backend != nullptr; }
   // How it lowers the part: `lowering`, with what the target's machine

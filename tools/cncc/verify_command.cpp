@@ -15,6 +15,7 @@
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/verification.h"
 #include "cncc/ir/interpreter.h"
+#include "cncc/ir/tool_centre_path.h"
 #include "cncc/ir/verifier.h"
 #include "cncc/lowering/lowering.h"
 
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <memory>
 
 namespace cncc::driver {
@@ -81,7 +83,20 @@ std::optional<std::string> compiledText(const CheckedProgram& program, const Sou
 struct HostReference {
   std::vector<ir::CutGeometry> cuts;
   backends::ExecutedPath path;
+  // The tool radius of each register the program's cutter radius
+  // compensation reads, as it was compiled with.
+  std::map<int, double> toolRadii;
 };
+
+std::map<int, double> compensationRadii(const ir::ToolPath& path) {
+  std::map<int, double> radii;
+  for (const ir::MachineEvent& event : path.events) {
+    if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
+      radii[static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
+    }
+  }
+  return radii;
+}
 
 // The part run on the host with the checked parameter values.
 std::optional<HostReference> hostReference(const CheckedProgram& program,
@@ -97,6 +112,7 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
   // Nor does it refuse the machine settings the target's compile accepted.
   reference.maximumExtendedWorkOffset = std::numeric_limits<int>::max();
   reference.throughSpindleCoolant = true;
+  reference.cutterCompensation = true;
   std::optional<ir::LoweredPart> lowered =
       ir::lowerPartWithCuts(program, part, diagnostics, reference);
   output.print(diagnostics, sources);
@@ -108,7 +124,9 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
     throw InternalError("the lowered IR does not verify: " + problems.front());
   }
   try {
-    ir::ToolPath path = ir::interpret(lowered->function);
+    ir::ToolPath programmed = ir::interpret(lowered->function);
+    // Where the tool's centre goes, as the controller compensates the path.
+    ir::ToolPath path = ir::toolCentrePath(programmed);
     // The reference only tells the cuts apart (within twice their
     // tolerance): its arcs need not be finer than a tenth of the smallest.
     double sagitta = std::numeric_limits<double>::infinity();
@@ -117,7 +135,8 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
     }
     sagitta = std::isfinite(sagitta) ? std::max(sagitta, backends::executedArcSagitta)
                                      : backends::executedArcSagitta;
-    return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta)};
+    return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
+                         compensationRadii(programmed)};
   } catch (const ir::InterpreterError& error) {
     output.driverError(fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;
@@ -269,6 +288,7 @@ int runVerify(const DriverOptions& options) {
   execution.lowerCaseComments =
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
+  execution.toolRadii = reference->toolRadii;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(
@@ -299,6 +319,7 @@ int printVerifiedStatistics(const BackendRequest& request,
   execution.lowerCaseComments =
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
+  execution.toolRadii = reference->toolRadii;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(

@@ -132,6 +132,9 @@ public:
   // Words the next block with a Z word carries (the length offset after a
   // tool change).
   void beforeNextZ(std::string words) { beforeZ_ = std::move(words); }
+  // Words the next feed move in the plane carries (G41/G42 D.. or G40: the
+  // controls switch cutter radius compensation on and off on such a move).
+  void beforeNextPlaneMove(std::string words) { beforePlane_ = std::move(words); }
 
 private:
   void block(bool rapid, std::optional<double> x, std::optional<double> y, std::optional<double> z,
@@ -149,6 +152,10 @@ private:
     };
     word('X', x, x_);
     word('Y', y, y_);
+    if (!rapid && !words.empty() && !beforePlane_.empty()) {
+      words.insert(0, " " + beforePlane_);
+      beforePlane_.clear();
+    }
     std::size_t beforeZ = words.size();
     word('Z', z, zText_);
     if (words.size() > beforeZ && !beforeZ_.empty()) {
@@ -179,7 +186,7 @@ private:
   std::vector<std::string> lines_;
   std::vector<frontend::SourceSpan> spans_;
   frontend::SourceSpan span_;
-  std::string x_, y_, zText_, feed_, beforeZ_;
+  std::string x_, y_, zText_, feed_, beforeZ_, beforePlane_;
   double z_ = 0;
   bool known_ = false;
 };
@@ -243,6 +250,9 @@ GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& opt
       writer.line(fmt::format("({})", gcodeCommentText(event.text)));
       break;
     case ir::MachineEvent::Kind::CutBegin: // the cut's own comment already says it
+      break;
+    case ir::MachineEvent::Kind::Compensation:
+      writer.beforeNextPlaneMove(compensationBlock(event.number, event.offsetRegister));
       break;
     }
   }

@@ -189,6 +189,9 @@ private:
     case Opcode::Spline: // lowered only for the sinumerik target
       errors_.push_back("the TNC has no Sinumerik spline blocks (move.spline)");
       return;
+    case Opcode::Compensation: // the lowering refuses comp=controller here
+      errors_.push_back("the TNC target has no cutter radius compensation (RL/RR) yet");
+      return;
     case Opcode::Spindle:
       printSpindle(instruction);
       return;

@@ -215,6 +215,9 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
       moves_.forget();
     }
     return;
+  case Opcode::Compensation:
+    moves_.beforeNextPlaneMove(compensationBlock(instruction.number, instruction.index));
+    return;
   case Opcode::Alarm:
     line(alarmStatement(instruction.text, 0));
     return;

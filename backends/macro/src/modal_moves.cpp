@@ -67,9 +67,14 @@ void ModalMoveWriter::rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z) {
 }
 
 void ModalMoveWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate) {
-  std::string words = word('X', x) + word('Y', y) + zWord(z);
+  std::string plane = word('X', x) + word('Y', y);
+  std::string words = plane + zWord(z);
   if (!words.empty()) {
     words += word('F', feedRate, false);
+  }
+  if (!plane.empty() && !beforePlane_.empty()) {
+    words = " " + beforePlane_ + words;
+    beforePlane_.clear();
   }
   block("G1", words);
   modal_.z = expressions_.constantOf(z);

@@ -55,6 +55,9 @@ public:
   // Words the next move with a Z word carries (the length offset after a
   // tool change).
   void beforeNextZ(std::string words) { beforeZ_ = std::move(words); }
+  // Words the next feed move in the plane carries (G41/G42 D.. or G40: the
+  // controls switch cutter radius compensation on and off on such a move).
+  void beforeNextPlaneMove(std::string words) { beforePlane_ = std::move(words); }
   ModalState& state() { return modal_; }
   void forget() { modal_.forget(); }
 
@@ -69,6 +72,7 @@ private:
   std::vector<std::string>& lines_;
   ModalState modal_;
   std::string beforeZ_;
+  std::string beforePlane_;
 };
 
 } // namespace cncc::backends

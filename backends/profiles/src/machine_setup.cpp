@@ -140,6 +140,13 @@ std::string coolantBlock(const MachineSetup& setup, ir::CoolantMode mode) {
   return setup.coolantOff;
 }
 
+std::string compensationBlock(double offset, std::uint32_t offsetRegister) {
+  if (offset == 0) {
+    return "G40";
+  }
+  return fmt::format("{} D{}", offset > 0 ? "G41" : "G42", offsetRegister);
+}
+
 std::string contouringBlock(const MachineSetup& setup, double tolerance, std::string_view number) {
   if (tolerance == 0) {
     return setup.contouringOff;

@@ -128,6 +128,7 @@ ProgramExecution runOnController(const ExecutionRequest& request,
   sim::SimulationOptions options;
   options.runAsMacroCall = request.callable;
   options.reading.lowerCaseComments = request.lowerCaseComments;
+  options.toolRadii = request.toolRadii;
   std::string problem;
   std::optional<std::string> text = applyParameters(request, profile, options, problem);
   if (!text) {

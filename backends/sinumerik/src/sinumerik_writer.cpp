@@ -199,6 +199,8 @@ private:
       cut_ = static_cast<std::size_t>(e.number);
       line(fmt::format("; cut {}", *cut_ + 1));
       break;
+    case MachineEvent::Kind::Compensation: // the lowering refuses comp=controller here
+      throw std::logic_error("the Sinumerik writer has no cutter radius compensation");
     }
     return i;
   }

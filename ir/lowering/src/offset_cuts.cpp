@@ -47,6 +47,8 @@ std::shared_ptr<const geom::Curve> movedArc(const geom::ArcCurve& arc, const Aff
       arc.sweep(), transform.zScale * arc.startZ(), transform.zScale * arc.zChange());
 }
 
+} // namespace
+
 // The cut's pieces in part coordinates, lines and arcs kept as such.
 std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve) {
   std::vector<std::shared_ptr<const geom::Curve>> pieces;
@@ -71,14 +73,7 @@ std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curv
 
 // The offset as line and arc moves, when it is made of nothing else.
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& offset) {
-  std::vector<const geom::Curve*> parts;
-  if (const auto* composite = dynamic_cast<const geom::CompositeCurve*>(&offset)) {
-    for (std::size_t i = 0; i < composite->pieceCount(); ++i) {
-      parts.push_back(&composite->piece(i));
-    }
-  } else {
-    parts.push_back(&offset);
-  }
+  std::vector<const geom::Curve*> parts = geom::piecesOf(offset);
   std::vector<geom::ArcSegment> segments;
   for (const geom::Curve* part : parts) {
     geom::ParameterRange domain = part->domain();
@@ -115,11 +110,8 @@ std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& of
   return segments;
 }
 
-} // namespace
-
-double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side) {
-  // comp=controller is refused by the checker (compensation-unavailable).
-  if (const Modifier* lead = findModifier(cut, "lead")) {
+double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bool controller) {
+  if (const Modifier* lead = controller ? nullptr : findModifier(cut, "lead")) {
     unsupported(lead->span(), "lead= (tangent arc lead-in and lead-out) with comp=host");
   }
   if (toolDiameter_ == nullptr) {
@@ -195,7 +187,13 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   if (word != "left" && word != "right") {
     return false;
   }
-  double distance = offsetDistance(cut, *side);
+  const Modifier* comp = findModifier(cut, "comp");
+  bool controller = comp != nullptr && comp->value && wordOf(*comp->value) == "controller";
+  double distance = offsetDistance(cut, *side, controller);
+  if (controller) {
+    lowerCompensatedCut(cut, *comp, distance);
+    return true;
+  }
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
   checkCutBounds(cut, *offset);

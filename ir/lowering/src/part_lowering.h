@@ -154,6 +154,20 @@ struct ParameterUse {
   std::string parameter;
 };
 
+// The moves around a comp=controller cut's curve (compensated_cuts.cpp),
+// as programmed: the start-up line from `startUp` to the lead-in arc's
+// start, the lead-in arc onto the curve, the lead-out arc off it, the cancel
+// line to `cancel`. The arcs' radius is the lead's plus the tool's, so the
+// tool's centre runs on an arc of the lead's radius.
+struct CompensatedLeads {
+  Eigen::Vector3d startUp = Eigen::Vector3d::Zero();
+  geom::ArcSegment leadIn;
+  geom::ArcSegment leadOut;
+  Eigen::Vector3d cancel = Eigen::Vector3d::Zero();
+  double offset = 0; // the tool's, left of the direction of travel positive
+  std::uint32_t offsetRegister = 0;
+};
+
 // What a cut computed on the host starts with (cuts.cpp, beginHostCut).
 struct HostCut {
   Scalar feed;
@@ -451,7 +465,8 @@ private:
   bool lowerOffsetCut(const frontend::CutStmt& cut);
   // The signed offset (the tool's radius, > 0 to the left), after checking
   // what the offset needs; an error at the cut otherwise.
-  double offsetDistance(const frontend::CutStmt& cut, const frontend::Modifier& side);
+  double offsetDistance(const frontend::CutStmt& cut, const frontend::Modifier& side,
+                        bool controller);
   // The exact offset of the cut's curve, or tool-too-large at the cut.
   std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
                                                    const CutCurve& curve, double distance);
@@ -471,6 +486,15 @@ private:
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
   void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed);
+
+  // compensated_cuts.cpp: comp=controller, the curve itself with the
+  // controller's cutter radius compensation (G41/G42 D.., G40) and tangent
+  // lead arcs.
+  void lowerCompensatedCut(const frontend::CutStmt& cut, const frontend::Modifier& comp,
+                           double distance);
+  double leadRadius(const frontend::CutStmt& cut, double toolRadius);
+  void emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ, ValueId feed,
+                           const std::function<void(ValueId z)>& contour);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
@@ -579,6 +603,8 @@ private:
   std::optional<Scalar> safe_;
   // The current tool's diameter= (null before the first tool).
   const frontend::Expr* toolDiameter_ = nullptr;
+  // The current tool's radius offset register (radius=, default its number).
+  std::uint32_t radiusRegister_ = 0;
   MachineSettings machine_;
   std::vector<CutGeometry> cuts_;
   std::size_t unrolledIterations_ = 0;
@@ -592,6 +618,10 @@ private:
 };
 
 // Small helpers shared by the files.
+// The cut's pieces in part coordinates, lines and arcs kept as such.
+std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
+// A curve of lines and arcs as line and arc moves; nullopt for other curves.
+std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
 const frontend::Modifier* findModifier(const frontend::CutStmt& cut, std::string_view name);
 const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_view name);
 std::string wordOf(const frontend::Expr& expression);

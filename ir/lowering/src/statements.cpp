@@ -229,8 +229,12 @@ void PartLowering::lowerTool(const ToolStmt& tool) {
   Scalar diameter = Scalar::of(0);
   std::optional<Scalar> spindle;
   std::uint32_t lengthRegister = 0;
+  radiusRegister_ = static_cast<std::uint32_t>(toolNumber);
   for (const Argument& setting : tool.settings) {
-    if (setting.name == "length") {
+    if (setting.name == "radius") {
+      radiusRegister_ =
+          static_cast<std::uint32_t>(constantNumber(*setting.value, "the radius offset register"));
+    } else if (setting.name == "length") {
       lengthRegister =
           static_cast<std::uint32_t>(constantNumber(*setting.value, "the length offset register"));
     } else if (setting.name == "diameter") {

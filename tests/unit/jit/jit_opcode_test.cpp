@@ -115,6 +115,7 @@ OpcodeCase effectsCase() {
   builder.spindle(builder.parameter(speed));
   builder.coolant(ir::CoolantMode::Mist);
   builder.contouring(0.01);
+  builder.compensation(-2.5, 4);
   builder.cutBegin(0);
   ValueId never = builder.constantBool(false);
   ValueId always = builder.constantBool(true);
@@ -129,6 +130,7 @@ OpcodeCase effectsCase() {
   builder.cutBegin(3);
   builder.comment("");
   builder.contouring(0);
+  builder.compensation(0, 0);
   builder.origin(59);
   builder.coolant(ir::CoolantMode::Off);
   builder.home();

@@ -207,6 +207,7 @@ private:
     case Opcode::Coolant:
     case Opcode::Contouring:
     case Opcode::Home:
+    case Opcode::Compensation:
     case Opcode::Comment:
     case Opcode::CutBegin:
       emitEffect(instruction);
@@ -407,6 +408,7 @@ private:
     case Opcode::Coolant:
     case Opcode::Contouring:
     case Opcode::Home:
+    case Opcode::Compensation:
       callback = "cncc_jit_setting";
       arguments = {builder_.getInt32(static_cast<std::uint32_t>(instruction.opcode)),
                    llvm::ConstantFP::get(f64_, instruction.number),

@@ -35,4 +35,17 @@ private:
   std::vector<double> starts_; // global start of each piece, then the global end
 };
 
+/// The pieces of a CompositeCurve, or the curve itself when it is not one.
+inline std::vector<const Curve*> piecesOf(const Curve& curve) {
+  std::vector<const Curve*> pieces;
+  if (const auto* composite = dynamic_cast<const CompositeCurve*>(&curve)) {
+    for (std::size_t i = 0; i < composite->pieceCount(); ++i) {
+      pieces.push_back(&composite->piece(i));
+    }
+  } else {
+    pieces.push_back(&curve);
+  }
+  return pieces;
+}
+
 } // namespace cncc::geom

@@ -53,6 +53,9 @@ public:
   void coolant(CoolantMode mode);
   // tolerance 0 switches the mode off.
   void contouring(double tolerance);
+  // G41 (offset > 0) or G42 (offset < 0) with radius register `offsetRegister`,
+  // or G40 (offset 0, register 0).
+  void compensation(double offset, std::uint32_t offsetRegister);
   void home();
   void comment(std::string text);
   // `alarm "text"`: the program stops with this message.

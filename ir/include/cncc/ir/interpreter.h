@@ -28,7 +28,7 @@ struct InterpreterOptions {
 
 ToolPath interpret(const Function& function, const InterpreterOptions& options = {});
 
-// The event of a setting op (origin, coolant, contouring) or move.home from its
+// The event of a setting op (origin, coolant, contouring, compensation) or move.home from its
 // immediates: what the interpreter records and the JIT's code too.
 MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index);
 

@@ -80,10 +80,12 @@ struct Instruction {
   std::vector<ValueId> operands;
   ValueId result;              // invalid when the operation has none
   double number = 0;           // Const value, ConstBool (0 or 1), Tool number, Origin code
-                               // (54 .. 59, 54.1), Contouring tolerance (0: off)
+                               // (54 .. 59, 54.1), Contouring tolerance (0: off),
+                               // Compensation offset (left positive, 0: off)
   std::uint32_t index = 0;     // TableLoad, Nurbs, Spline: the table; Param: the parameter;
                                // CutBegin: the cut; Arc: its ArcTurn; Tool: its length
-                               // offset register; Origin 54.1: P; Coolant: its CoolantMode
+                               // offset register; Origin 54.1: P; Coolant: its CoolantMode;
+                               // Compensation: the radius register
   std::string text;            // Comment, Alarm: the text
   std::vector<Region> regions; // Loop: {body}; If: {then, else}
   // The CDL statement it was lowered from (the part's name for the set-up

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <limits>
+#include <string>
 
 namespace cncc::ir {
 
@@ -56,6 +57,11 @@ struct LoweringOptions {
   // extended work offsets), and a code for through-spindle coolant.
   int maximumExtendedWorkOffset = 0;
   bool throughSpindleCoolant = false;
+  // The target prints the controller's cutter radius compensation (G41/G42
+  // D.., G40) for `comp=controller`; `targetName` names it in the error
+  // where it does not.
+  bool cutterCompensation = false;
+  std::string targetName;
   // The machine's largest feed (mm/min, whatever the part's units) and
   // spindle speed (rpm); 0: no limit. A constant beyond it is an error at
   // the statement that sets it.

@@ -23,7 +23,8 @@ struct MachineEvent {
     Coolant,
     Contouring,
     Comment,
-    CutBegin
+    CutBegin,
+    Compensation
   };
   Kind kind = Kind::Rapid;
   double x = 0, y = 0, z = 0; // Rapid, Feed, Arc: the target
@@ -35,10 +36,12 @@ struct MachineEvent {
   bool clockwise = false;
   // Spindle: rpm; Tool: the tool number; CutBegin: the cut index; Origin:
   // its code (54 .. 59, 54.1); Coolant: its CoolantMode; Contouring: the
-  // tolerance (0: off).
+  // tolerance (0: off); Compensation: the tool's offset from the programmed
+  // path, left of the direction of travel positive (0: off).
   double number = 0;
   double diameter = 0;              // Tool
-  std::uint32_t offsetRegister = 0; // Tool: length offset (0: default); Origin 54.1: P
+  std::uint32_t offsetRegister = 0; // Tool: length offset (0: default); Origin 54.1: P;
+                                    // Compensation: the radius register (D)
   std::string text;                 // Comment
   // Feed: a chord of a move.spline, its table + 1 (0: none), and whether it
   // is the move's first (spline_move.h).

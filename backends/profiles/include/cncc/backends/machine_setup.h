@@ -92,6 +92,12 @@ std::string coolantBlock(const MachineSetup& setup, ir::CoolantMode mode);
 // prints numbers.
 std::string contouringBlock(const MachineSetup& setup, double tolerance, std::string_view number);
 
+// The block that switches the controller's cutter radius compensation on
+// (G41 for `offset` > 0, left of the direction of travel; G42 right) with
+// the radius of register D`offsetRegister`, or off (G40, `offset` 0): the
+// same on Fanuc, Mitsubishi, LinuxCNC and plain G-code.
+std::string compensationBlock(double offset, std::uint32_t offsetRegister);
+
 // The blocks of an origin, coolant, contouring or move.home op, for the
 // printers that print the IR (none for a code the machine does not have);
 // `tolerance` is the contouring tolerance as printed.

@@ -11,6 +11,7 @@
 #include "cncc/backends/sim_operation_count.h"
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -45,6 +46,8 @@ struct ExecutionRequest {
   bool callable = false; // the program ends with M99: it runs as if called by G65
   // The machine writes comments as the source has them (lower case too).
   bool lowerCaseComments = false;
+  // The tool radius in each offset register the program's G41/G42 read.
+  std::map<int, double> toolRadii;
 };
 
 // The controller refused the program: the message names its line.

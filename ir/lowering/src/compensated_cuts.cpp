@@ -1,0 +1,225 @@
+// A cut beside its curve with the controller's cutter radius compensation
+// (`side=left|right comp=controller`): the program runs the curve itself
+// and the controller offsets it by the radius in the tool's register
+// (G41/G42 D.., TARGETS.md), so a shop can tune the radius there. As the
+// controls require, compensation is switched on by a linear start-up move
+// and off (G40) by a linear move, both off the part, joined to the curve by
+// tangent lead-in and lead-out arcs; no spline blocks run inside it (G06.2
+// is not allowed with G41/G42), so the curve is cut as chords within its
+// tolerance, or as its own lines and arcs.
+//
+// The cut table holds the tool centre's path at the radius compiled with:
+// start-up line, lead-in arc of the lead's radius, the exact offset curve,
+// lead-out arc and cancel line, which verify measures the executed path
+// against (ir/tool_centre_path.h runs the compensation on the host).
+#include "part_lowering.h"
+#include "printed_grid.h"
+
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/geom/offset_curve.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+Eigen::Vector3d leftOf(const Eigen::Vector3d& direction) {
+  return {-direction.y(), direction.x(), 0};
+}
+
+// The unit tangent of the curve's XY projection at t.
+Eigen::Vector3d planeTangent(const geom::Curve& curve, double t) {
+  Eigen::Vector3d derivative = curve.derivative(t);
+  derivative.z() = 0;
+  return derivative.normalized();
+}
+
+// A quarter circle about `centre` from `start`, turning left for offset > 0.
+geom::ArcSegment quarterArc(const Eigen::Vector3d& start, const Eigen::Vector3d& centre,
+                            const Eigen::Vector3d& end, double offset) {
+  geom::ArcSegment arc;
+  arc.kind = geom::ArcSegmentKind::Arc;
+  arc.start = start;
+  arc.end = end;
+  arc.centre = centre.head<2>();
+  arc.radius = (start - centre).head<2>().norm();
+  arc.sweep = offset > 0 ? std::numbers::pi / 2 : -std::numbers::pi / 2;
+  arc.direction = offset > 0 ? geom::ArcDirection::CounterClockwise : geom::ArcDirection::Clockwise;
+  return arc;
+}
+
+// The programmed leads of a curve from `first` to `last` (points and unit
+// tangents): each arc's centre lies the programmed radius away on the tool's
+// side, and the start-up and cancel lines run that far along the normal.
+CompensatedLeads programmedLeads(const Eigen::Vector3d& first, const Eigen::Vector3d& firstTangent,
+                                 const Eigen::Vector3d& last, const Eigen::Vector3d& lastTangent,
+                                 double offset, double radius) {
+  double side = offset > 0 ? 1.0 : -1.0;
+  Eigen::Vector3d inNormal = side * leftOf(firstTangent);
+  Eigen::Vector3d inCentre = first + radius * inNormal;
+  Eigen::Vector3d inStart = inCentre - radius * firstTangent;
+  Eigen::Vector3d outNormal = side * leftOf(lastTangent);
+  Eigen::Vector3d outCentre = last + radius * outNormal;
+  Eigen::Vector3d outEnd = outCentre + radius * lastTangent;
+  CompensatedLeads leads;
+  leads.startUp = inStart + radius * inNormal;
+  leads.leadIn = quarterArc(inStart, inCentre, first, offset);
+  leads.leadOut = quarterArc(last, outCentre, outEnd, offset);
+  leads.cancel = outEnd + radius * outNormal;
+  leads.offset = offset;
+  return leads;
+}
+
+// Where the tool's centre runs when the controller offsets the leads and
+// the curve's pieces as one open chain, at the radius compiled with: what
+// verify measures against. The chain is open even where the curve closes,
+// as the leads join it there.
+std::shared_ptr<const geom::Curve>
+toolCentrePath(const CompensatedLeads& leads,
+               const std::vector<std::shared_ptr<const geom::Curve>>& contour) {
+  std::vector<std::shared_ptr<const geom::Curve>> chain{leads.leadIn.curve()};
+  chain.insert(chain.end(), contour.begin(), contour.end());
+  chain.push_back(leads.leadOut.curve());
+  std::shared_ptr<const geom::Curve> offset = geom::offsetOfPieces(chain, leads.offset);
+  geom::ParameterRange domain = offset->domain();
+  std::vector<std::shared_ptr<const geom::Curve>> pieces{
+      std::make_shared<geom::LineCurve>(leads.startUp, offset->point(domain.t0)), offset,
+      std::make_shared<geom::LineCurve>(offset->point(domain.t1), leads.cancel)};
+  return std::make_shared<geom::CompositeCurve>(std::move(pieces));
+}
+
+} // namespace
+
+double PartLowering::leadRadius(const CutStmt& cut, double toolRadius) {
+  const Modifier* lead = findModifier(cut, "lead");
+  if (lead == nullptr || !lead->value) {
+    return toolRadius;
+  }
+  double radius = constantNumber(*lead->value, "the lead radius");
+  if (!(radius > 0) || !std::isfinite(radius)) {
+    fail(lead->span(),
+         fmt::format("lead= is the radius of the tool centre's lead arcs: it must "
+                     "be positive, not {:g}",
+                     radius),
+         DiagnosticKind::UnsupportedConstruct);
+  }
+  return radius;
+}
+
+void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp, double distance) {
+  if (!options_.cutterCompensation) {
+    fail(comp.span(),
+         fmt::format("comp=controller (the controller's cutter radius compensation, G41/G42) is "
+                     "not available on the {} target yet; leave comp= out for the compiler's "
+                     "exact offset (comp=host)",
+                     options_.targetName.empty() ? std::string("this") : options_.targetName),
+         DiagnosticKind::CompensationUnavailable);
+  }
+  if (rampEntry(cut)) {
+    unsupported(findModifier(cut, "entry")->span(), "entry=ramp with comp=controller");
+  }
+  CutCurve curve = cutCurve(cut);
+  checkedOffset(cut, curve, distance); // the tool fits the curve
+  HostCut begun = beginHostCut(cut);
+  std::string method = methodOf(cut);
+  if (options_.splineInterpolation && !method.empty() && method != "linear") {
+    diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
+                         fmt::format("no spline blocks run inside the controller's cutter radius "
+                                     "compensation (G06.2 is not allowed with G41/G42): "
+                                     "method={} is cut as straight feed moves within the cut's "
+                                     "tolerance",
+                                     method));
+  }
+  std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
+  std::shared_ptr<const geom::Curve> contour =
+      pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces);
+  geom::ParameterRange domain = contour->domain();
+  double increment = options_.coordinateIncrement;
+  double toolRadius = std::fabs(distance);
+  CompensatedLeads leads = programmedLeads(
+      onPrintedGrid(contour->point(domain.t0), increment), planeTangent(*contour, domain.t0),
+      onPrintedGrid(contour->point(domain.t1), increment), planeTangent(*contour, domain.t1),
+      distance, leadRadius(cut, toolRadius) + toolRadius);
+  leads.offsetRegister = radiusRegister_;
+  if ((leads.leadIn.start - leads.leadOut.end).head<2>().norm() < 1e-6) {
+    fail(cut.span,
+         fmt::format("the lead-in and lead-out arcs meet at ({:.4f}, {:.4f}), so the controller "
+                     "would run them as one closed path: start the curve where it is smooth, or "
+                     "away from a right-angle corner",
+                     leads.leadIn.start.x(), leads.leadIn.start.y()),
+         DiagnosticKind::UnsupportedConstruct);
+  }
+  std::shared_ptr<const geom::Curve> centre;
+  try {
+    centre = toolCentrePath(leads, pieces);
+  } catch (const geom::GeometryError& error) {
+    fail(cut.span,
+         fmt::format("the lead arcs of radius {:g} do not join this curve for a tool of radius "
+                     "{:g}: {}",
+                     leads.leadIn.radius - toolRadius, toolRadius, error.what()),
+         DiagnosticKind::ToolTooLarge);
+  }
+  checkCutBounds(cut, *centre);
+  std::optional<std::vector<geom::ArcSegment>> arcs;
+  if (wantsNativeArcs(cut)) {
+    arcs = exactSegments(*contour);
+  }
+  geom::CurveSamples samples;
+  if (!arcs) {
+    samples = offsetSamples(cut, *contour);
+  }
+  ValueId feed = arithmetic_.value(begun.feed);
+  ValueId safe = arithmetic_.value(*safe_);
+  beginCutMoves({centre, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+                 cut.span, method, arcs ? CutArcs::Native : CutArcs::None});
+  OffsetChords chords = offsetChords(samples, false);
+  for (double depth : passDepths(cut)) {
+    builder_.comment(depth != 0 ? fmt::format("pass at depth {}", depth) : "cut");
+    double passZ = depth == 0 ? 0.0 : -depth;
+    emitCompensatedPass(leads, safe, passZ, feed, [&](ValueId z) {
+      if (arcs) {
+        emitArcLap(*arcs, z, feed);
+      } else {
+        emitChordLap(chords, passZ, passZ, feed);
+      }
+    });
+  }
+}
+
+// One pass: down off the part, compensation on with the start-up line, the
+// lead-in arc, the curve, the lead-out arc, compensation off with the
+// cancel line, up.
+void PartLowering::emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ,
+                                       ValueId feed,
+                                       const std::function<void(ValueId z)>& contour) {
+  double increment = options_.coordinateIncrement;
+  double planeZ = leads.leadIn.end.z() + passZ;
+  ValueId z = builder_.constant(onPrintedGrid(planeZ, increment));
+  auto at = [&](const Eigen::Vector3d& point) {
+    return std::pair{builder_.constant(onPrintedGrid(point.x(), increment)),
+                     builder_.constant(onPrintedGrid(point.y(), increment))};
+  };
+  auto [startX, startY] = at(leads.startUp);
+  builder_.rapid(startX, startY, safe);
+  builder_.feed(startX, startY, z, feed);
+  builder_.compensation(leads.offset, leads.offsetRegister);
+  auto [inX, inY] = at(leads.leadIn.start);
+  builder_.feed(inX, inY, z, feed);
+  emitArcLap({leads.leadIn}, z, feed);
+  contour(z);
+  emitArcLap({leads.leadOut}, z, feed);
+  builder_.compensation(0, 0);
+  auto [endX, endY] = at(leads.cancel);
+  builder_.feed(endX, endY, z, feed);
+  builder_.rapid(endX, endY, safe);
+}
+
+} // namespace cncc::ir::lowering
