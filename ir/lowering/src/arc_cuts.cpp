@@ -122,8 +122,7 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<double> depths = passDepths(cut);
   double previous = 0;
   for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double passZ = -depth;
+    double passZ = beginPass(depth, depths.size());
     double entryZ = begun.ramp ? previous : passZ;
     builder_.rapid(builder_.constant(start.x()), builder_.constant(start.y()), safeValue);
     builder_.feed(builder_.constant(start.x()), builder_.constant(start.y()),

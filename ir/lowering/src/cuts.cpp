@@ -252,6 +252,19 @@ geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const ge
   }
 }
 
+double PartLowering::beginPass(double depth, std::size_t passes) {
+  builder_.comment(passes > 1 ? fmt::format("pass at depth {}", depth) : "cut");
+  return depth == 0 ? 0.0 : -depth;
+}
+
+void PartLowering::approachPassStart(const Eigen::Vector3d& start, double z, ValueId safe,
+                                     ValueId feed) {
+  ValueId startX = builder_.constant(start.x());
+  ValueId startY = builder_.constant(start.y());
+  builder_.rapid(startX, startY, safe);
+  builder_.feed(startX, startY, builder_.constant(z + start.z()), feed);
+}
+
 std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
   const Expr* depthExpression = modifierValue(cut, "depth");
   const Expr* stepExpression = modifierValue(cut, "step");
@@ -438,13 +451,9 @@ void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
                                   ValueId feed, ValueId safe, const LapEmitter& lap) {
   double previous = 0;
   for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double passZ = depth == 0 ? 0.0 : -depth;
+    double passZ = beginPass(depth, depths.size());
     double entryZ = ramp ? previous : passZ;
-    ValueId startX = builder_.constant(start.x());
-    ValueId startY = builder_.constant(start.y());
-    builder_.rapid(startX, startY, safe);
-    builder_.feed(startX, startY, builder_.constant(entryZ + start.z()), feed);
+    approachPassStart(start, entryZ, safe, feed);
     if (ramp) {
       builder_.comment("ramp");
       lap(entryZ, passZ);
@@ -508,8 +517,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   SampleLocation end = locate(curve, samples.parameters.back());
   double previous = 0;
   for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double passZ = depth == 0 ? 0.0 : -depth;
+    double passZ = beginPass(depth, depths.size());
     double entryZ = ramp ? previous : passZ;
     CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
     ValueId startX = arithmetic_.value(start.x);

@@ -145,12 +145,8 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   const Eigen::Vector3d& last = blocks.controlPoints().back();
   std::vector<double> depths = passDepths(cut);
   for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double z = depth == 0 ? 0.0 : -depth;
-    ValueId startX = builder_.constant(first.x());
-    ValueId startY = builder_.constant(first.y());
-    builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, builder_.constant(z + first.z()), feedValue);
+    double z = beginPass(depth, depths.size());
+    approachPassStart(first, z, safeValue, feedValue);
     builder_.nurbs(table, builder_.constant(z), feedValue, weights);
     builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
   }

@@ -401,6 +401,11 @@ private:
   // The target's largest number in the part's units.
   double largestNumberInUnits() const;
   std::vector<double> passDepths(const frontend::CutStmt& cut);
+  // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
+  // cut at depth 0, else -depth).
+  double beginPass(double depth, std::size_t passes);
+  // Rapid over `start` at the safe height, then feed down to z + start.z().
+  void approachPassStart(const Eigen::Vector3d& start, double z, ValueId safe, ValueId feed);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
   // The share of the descent done at a sample (SampleLocation.local).
   static double rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,

@@ -130,12 +130,8 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   Eigen::Vector3d first = spans.front().start();
   std::vector<double> depths = passDepths(cut);
   for (double depth : depths) {
-    builder_.comment(depths.size() > 1 ? fmt::format("pass at depth {}", depth) : "cut");
-    double z = depth == 0 ? 0.0 : -depth;
-    ValueId startX = builder_.constant(first.x());
-    ValueId startY = builder_.constant(first.y());
-    builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, builder_.constant(z + first.z()), feedValue);
+    double z = beginPass(depth, depths.size());
+    approachPassStart(first, z, safeValue, feedValue);
     for (const PolynomialMove& span : spans) {
       std::vector<ValueId> operands{builder_.constant(span.end.x()),
                                     builder_.constant(span.end.y()),
