@@ -50,10 +50,6 @@ ir::LoweringOptions heidenhainLoweringOptions(const frontend::PartItem& part,
 }
 
 void heidenhainBackend(const BackendRequest& request) {
-  const frontend::PartItem* part = request.program.selectedPart;
-  if (part == nullptr) {
-    return;
-  }
   std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
   if (!lowered) {
     return;
@@ -67,13 +63,8 @@ void heidenhainBackend(const BackendRequest& request) {
   options.blank = blankOf(lowered->function);
   backends::HeidenhainProgram program =
       backends::writeHeidenhainProgram(lowered->function, options);
-  for (const std::string& error : program.errors) {
-    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
-                               fmt::format("the part does not fit the TNC: {}", error));
-  }
-  if (program.errors.empty()) {
-    writeProgram(request, program.text, std::move(program.lineSpans));
-  }
+  writeProgramIfItFits(request, "the TNC", program.errors, program.text,
+                       std::move(program.lineSpans));
 }
 
 } // namespace cncc::driver

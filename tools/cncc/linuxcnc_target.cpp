@@ -26,10 +26,6 @@ ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem& part,
 }
 
 void linuxcncBackend(const BackendRequest& request) {
-  const frontend::PartItem* part = request.program.selectedPart;
-  if (part == nullptr) {
-    return;
-  }
   std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
   if (!lowered) {
     return;
@@ -43,13 +39,8 @@ void linuxcncBackend(const BackendRequest& request) {
   options.setup = machineSetup(request.options);
   options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
-  for (const std::string& error : program.errors) {
-    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part->nameSpan,
-                               fmt::format("the part does not fit LinuxCNC: {}", error));
-  }
-  if (program.errors.empty()) {
-    writeProgram(request, program.text, std::move(program.lineSpans));
-  }
+  writeProgramIfItFits(request, "LinuxCNC", program.errors, program.text,
+                       std::move(program.lineSpans));
 }
 
 } // namespace cncc::driver

@@ -41,7 +41,6 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   if (!function) {
     return;
   }
-  const frontend::PartItem& part = *request.program.selectedPart;
   backends::GcodeOptions names = gcodeOptionsFor(request);
   backends::MacroProgramOptions options;
   options.programNumber = backends::programNumberFromFileName(request.output.path()).value_or(1000);
@@ -52,13 +51,8 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.parametersInCommon = request.options.parametersInCommon;
   options.setup = machineSetup(request.options);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
-  for (const std::string& error : program.errors) {
-    request.diagnostics.report(
-        frontend::DiagnosticKind::ProgramTooLarge, part.nameSpan,
-        fmt::format("the part does not fit the {} profile: {}", profile->name, error));
-  }
-  if (program.errors.empty()) {
-    writeProgram(request, program.text, std::move(program.lineSpans));
+  if (writeProgramIfItFits(request, fmt::format("the {} profile", profile->name), program.errors,
+                           program.text, std::move(program.lineSpans))) {
     if (request.variables != nullptr) {
       *request.variables = std::move(program.variables);
     }

@@ -151,6 +151,21 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
   }
 }
 
+bool writeProgramIfItFits(const BackendRequest& request, std::string_view controller,
+                          const std::vector<std::string>& errors, std::string_view text,
+                          std::vector<frontend::SourceSpan> lineSpans) {
+  for (const std::string& error : errors) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge,
+                               request.program.selectedPart->nameSpan,
+                               fmt::format("the part does not fit {}: {}", controller, error));
+  }
+  if (!errors.empty()) {
+    return false;
+  }
+  writeProgram(request, text, std::move(lineSpans));
+  return true;
+}
+
 void writeProgram(const BackendRequest& request, std::string_view text,
                   std::vector<frontend::SourceSpan> lineSpans) {
   if (request.options.annotate) {

@@ -43,6 +43,13 @@ struct BackendRequest {
 void writeProgram(const BackendRequest& request, std::string_view text,
                   std::vector<frontend::SourceSpan> lineSpans);
 
+// A printer's result: each of its `errors` reported at the part as not
+// fitting `controller` (the limit it names), else the program written.
+// Whether it was written.
+bool writeProgramIfItFits(const BackendRequest& request, std::string_view controller,
+                          const std::vector<std::string>& errors, std::string_view text,
+                          std::vector<frontend::SourceSpan> lineSpans);
+
 // Writes the program; problems go to the request's diagnostics.
 using BackendFunction = void (*)(const BackendRequest& request);
 // How the target lowers a part: what its backend lowers with, and what
