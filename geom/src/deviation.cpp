@@ -1,9 +1,9 @@
 #include "cncc/geom/deviation.h"
 
 #include "cncc/geom/geometry_error.h"
+#include "cncc/geom/segment_tree.h"
 #include "curve_sampling.h"
 #include "scalar_optimisation.h"
-#include "segment_tree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,10 +33,38 @@ bool worthRefining(double value, double largestSample, double margin) {
   return value >= std::min(0.5 * largestSample, largestSample - margin);
 }
 
+// The sampled local maxima worth refining (indices into `values`), largest first.
+std::vector<std::size_t> peaksLargestFirst(const std::vector<double>& values, double margin) {
+  double largestSample = *std::max_element(values.begin(), values.end());
+  std::vector<std::size_t> peaks;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (isLocalMaximum(values, i) && worthRefining(values[i], largestSample, margin))
+      peaks.push_back(i);
+  }
+  std::stable_sort(peaks.begin(), peaks.end(),
+                   [&](std::size_t a, std::size_t b) { return values[a] > values[b]; });
+  return peaks;
+}
+
+// Refines `peaks` in order (largest sampled distance first) until one's sample
+// is no more than `accuracy` above the largest distance refined so far: a peak
+// the samples put that low could lift the result by about the sampling accuracy
+// at most, so on a path that keeps an even distance from its curve (every
+// sample a local maximum) a few refinements serve instead of thousands.
+template <class Refine>
+void refineLargestFirst(const std::vector<std::size_t>& peaks, const std::vector<double>& values,
+                        double accuracy, const DeviationWitness& worst, Refine refine) {
+  for (std::size_t i : peaks) {
+    if (values[i] <= worst.distance + accuracy)
+      return;
+    refine(i);
+  }
+}
+
 } // namespace
 
 struct CurveProximity::Index {
-  detail::SegmentTree tree;
+  SegmentTree tree;
 };
 
 CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(curve) {
@@ -53,7 +81,7 @@ CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(cur
   }
   smallestRadius_ =
       largestCurvature > 0.0 ? 1.0 / largestCurvature : std::numeric_limits<double>::infinity();
-  index_ = std::make_unique<Index>(Index{detail::SegmentTree(points_)});
+  index_ = std::make_unique<Index>(Index{SegmentTree::throughVertices(points_)});
 }
 
 CurveProximity::~CurveProximity() = default;
@@ -67,7 +95,7 @@ CurveProximity::ClosestPoint CurveProximity::closestPoint(const Eigen::Vector3d&
   // within the sampling accuracy; the parameter is then refined between the samples
   // around it by Newton's method on C'(t).(C(t) - p) = 0, or by Brent's method on the
   // squared distance if Newton leaves the bracket without converging.
-  detail::SegmentTree::Nearest near = index_->tree.nearest(p);
+  SegmentTree::Nearest near = index_->tree.nearest(p);
   std::size_t k = near.segment;
   std::size_t last = parameters_.size() - 1;
   double lo = parameters_[k == 0 ? 0 : k - 1];
@@ -129,7 +157,7 @@ namespace {
 // The work of one measurement so far against its limit.
 struct WorkBudget {
   const CurveProximity& proximity;
-  const detail::SegmentTree& path;
+  const SegmentTree& path;
   double limit;
 
   void check() const {
@@ -139,7 +167,7 @@ struct WorkBudget {
 };
 
 DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proximity,
-                                 const detail::SegmentTree& path, double accuracy,
+                                 const SegmentTree& path, double accuracy,
                                  const WorkBudget& budget) {
   const std::vector<double>& t = proximity.sampleParameters();
   std::vector<double> distance;
@@ -147,26 +175,23 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
     distance.push_back(path.nearest(c).distance);
     budget.check();
   }
-  double largestSample = *std::max_element(distance.begin(), distance.end());
-
   DeviationWitness worst;
   worst.distance = -1.0;
   auto record = [&](double s) {
     Eigen::Vector3d c = curve.point(s);
-    detail::SegmentTree::Nearest near = path.nearest(c);
+    SegmentTree::Nearest near = path.nearest(c);
     if (near.distance > worst.distance)
       worst = {near.distance, near.point, c, s, near.segment};
   };
   auto distanceAt = [&](double s) { return path.nearest(curve.point(s)).distance; };
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    if (!isLocalMaximum(distance, i) || !worthRefining(distance[i], largestSample, 4.0 * accuracy))
-      continue;
-    budget.check();
-    record(t[i]);
-    double lo = t[i == 0 ? 0 : i - 1], hi = t[std::min(i + 1, t.size() - 1)];
-    if (lo < hi)
-      record(detail::maximiseBrent(distanceAt, lo, hi).t);
-  }
+  refineLargestFirst(peaksLargestFirst(distance, 4.0 * accuracy), distance, accuracy, worst,
+                     [&](std::size_t i) {
+                       budget.check();
+                       record(t[i]);
+                       double lo = t[i == 0 ? 0 : i - 1], hi = t[std::min(i + 1, t.size() - 1)];
+                       if (lo < hi)
+                         record(detail::maximiseBrent(distanceAt, lo, hi).t);
+                     });
   return worst;
 }
 
@@ -184,7 +209,6 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     return Eigen::Vector3d(a + u * (b - a));
   };
   std::vector<std::vector<double>> distance(segments);
-  double largestSample = 0.0;
   for (std::size_t j = 0; j < segments; ++j) {
     double length = (pointOn(j, 1.0) - pointOn(j, 0.0)).norm();
     double wanted = std::ceil(length / step);
@@ -193,7 +217,6 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     // distance to the curve: the maxima worth it are refined on the curve.
     for (int k = 0; k <= n; ++k) {
       distance[j].push_back(proximity.sampledDistance(pointOn(j, double(k) / n)));
-      largestSample = std::max(largestSample, distance[j].back());
     }
     budget.check();
   }
@@ -231,17 +254,16 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     if (lo < hi)
       record(j, detail::maximiseBrent(distanceAt, lo, hi).t);
   };
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    if (!isLocalMaximum(along, i) || !worthRefining(along[i], largestSample, 6.0 * accuracy))
-      continue;
-    budget.check();
-    auto [j, k] = order[i];
-    record(j, double(k) / double(distance[j].size() - 1));
-    refine(j, k);
-    // A vertex: the next segment's first samples too.
-    if (k + 1 == distance[j].size() && j + 1 < segments)
-      refine(j + 1, 0);
-  }
+  refineLargestFirst(peaksLargestFirst(along, 6.0 * accuracy), along, accuracy, worst,
+                     [&](std::size_t i) {
+                       budget.check();
+                       auto [j, k] = order[i];
+                       record(j, double(k) / double(distance[j].size() - 1));
+                       refine(j, k);
+                       // A vertex: the next segment's first samples too.
+                       if (k + 1 == distance[j].size() && j + 1 < segments)
+                         refine(j + 1, 0);
+                     });
   return worst;
 }
 
@@ -252,7 +274,7 @@ DeviationReport measureDeviation(const std::vector<Eigen::Vector3d>& polyline, c
   if (polyline.empty())
     throw GeometryError("deviation needs a polyline with at least one vertex");
   CurveProximity proximity(curve, options.accuracy);
-  detail::SegmentTree path(polyline);
+  SegmentTree path = SegmentTree::throughVertices(polyline);
   DeviationReport report;
   WorkBudget budget{proximity, path, options.maximumWork};
   report.curveToPolyline = curveToPolyline(curve, proximity, path, options.accuracy, budget);

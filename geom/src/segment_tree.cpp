@@ -1,11 +1,11 @@
-#include "segment_tree.h"
+#include "cncc/geom/segment_tree.h"
 
 #include "vector_math.h"
 
 #include <array>
 #include <limits>
 
-namespace cncc::geom::detail {
+namespace cncc::geom {
 
 namespace {
 
@@ -13,17 +13,20 @@ constexpr std::size_t kLeafSize = 4;
 
 } // namespace
 
-SegmentTree::SegmentTree(std::vector<Eigen::Vector3d> vertices)
-    : vertices_(std::move(vertices)),
-      segmentCount_(vertices_.size() > 1 ? vertices_.size() - 1 : 1) {
-  if (vertices_.empty())
-    vertices_.push_back(Eigen::Vector3d::Zero());
-  nodes_.reserve(2 * segmentCount_ / kLeafSize + 2);
-  build(0, segmentCount_);
+SegmentTree::SegmentTree(std::vector<LineSegment> segments) : segments_(std::move(segments)) {
+  if (segments_.empty())
+    segments_.push_back({Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
+  nodes_.reserve(2 * segments_.size() / kLeafSize + 2);
+  build(0, segments_.size());
 }
 
-const Eigen::Vector3d& SegmentTree::segmentEnd(std::size_t i) const {
-  return vertices_[std::min(i + 1, vertices_.size() - 1)];
+SegmentTree SegmentTree::throughVertices(const std::vector<Eigen::Vector3d>& vertices) {
+  std::vector<LineSegment> segments;
+  if (vertices.size() == 1)
+    segments.push_back({vertices.front(), vertices.front()});
+  for (std::size_t i = 0; i + 1 < vertices.size(); ++i)
+    segments.push_back({vertices[i], vertices[i + 1]});
+  return SegmentTree(std::move(segments));
 }
 
 int SegmentTree::build(std::size_t first, std::size_t count) {
@@ -32,8 +35,8 @@ int SegmentTree::build(std::size_t first, std::size_t count) {
   node.count = count;
   node.box.setEmpty();
   for (std::size_t i = first; i < first + count; ++i) {
-    node.box.extend(segmentStart(i));
-    node.box.extend(segmentEnd(i));
+    node.box.extend(segments_[i].start);
+    node.box.extend(segments_[i].end);
   }
   int index = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
@@ -48,7 +51,7 @@ int SegmentTree::build(std::size_t first, std::size_t count) {
 }
 
 SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
-  Nearest best{std::numeric_limits<double>::infinity(), 0, 0.0, vertices_.front()};
+  Nearest best{std::numeric_limits<double>::infinity(), 0, 0.0, segments_.front().start};
   // Depth-first, nearer box first; a box farther than the best segment so far is skipped.
   // The tree is balanced, so the stack never holds more than about 2 log2(n) entries.
   std::array<int, 2 * 64> stack;
@@ -61,9 +64,9 @@ SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
     if (node.left < 0) {
       segmentsMeasured_ += node.count;
       for (std::size_t i = node.first; i < node.first + node.count; ++i) {
-        const Eigen::Vector3d& a = segmentStart(i);
-        const Eigen::Vector3d& b = segmentEnd(i);
-        double f = closestFractionOnSegment(p, a, b);
+        const Eigen::Vector3d& a = segments_[i].start;
+        const Eigen::Vector3d& b = segments_[i].end;
+        double f = detail::closestFractionOnSegment(p, a, b);
         Eigen::Vector3d q = a + f * (b - a);
         double d = (p - q).norm();
         if (d < best.distance)
@@ -80,4 +83,4 @@ SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
   return best;
 }
 
-} // namespace cncc::geom::detail
+} // namespace cncc::geom

@@ -39,10 +39,12 @@ struct DeviationReport {
 struct DeviationOptions {
   /// Absolute accuracy (mm). The curve is sampled so that the polyline through its
   /// samples stays within `accuracy` of it, polyline segments are sampled at the
-  /// spacing at which the tightest bend of the curve sags by `accuracy`, and every
-  /// sampled local maximum is refined (Brent's method on the distance). A reported
-  /// distance is therefore one actually attained, exact to rounding (~1e-13 mm); only
-  /// a peak narrower than the sampling could be under-reported, by about `accuracy`.
+  /// spacing at which the tightest bend of the curve sags by `accuracy`, and the
+  /// sampled local maxima are refined (Brent's method on the distance), largest
+  /// first, until the next one's sample is within `accuracy` of the largest refined.
+  /// A reported distance is therefore one actually attained, exact to rounding
+  /// (~1e-13 mm); it falls short of the largest by a few times `accuracy` at most
+  /// (a skipped peak, or one narrower than the sampling).
   /// Work grows like length / sqrt(accuracy * smallest radius of curvature).
   double accuracy = 1e-7;
   /// The most polyline and curve-sample segments the closest-point queries may
