@@ -40,8 +40,15 @@ std::optional<std::string> readWholeFile(const std::string& path) {
 
 namespace {
 
+// The path as CSV, its arcs in chords of the --chord-error.
 int writeCsv(const DriverOptions& options, const ir::ToolPath& path) {
-  std::string csv = backends::writeToolPathCsv(path);
+  std::string csv;
+  try {
+    csv = backends::writeToolPathCsv(path, options.chordError);
+  } catch (const backends::ToolPathTooLarge& tooLarge) {
+    fmt::print(stderr, "cncc: error: {}: too large to print\n", tooLarge.what());
+    return 1;
+  }
   std::error_code error;
   if (!writeFileAtomically(options.output, csv, error)) {
     fmt::print(stderr, "cncc: error: cannot write '{}': {}\n", options.output, error.message());
@@ -98,11 +105,10 @@ int runLinuxcnc(const DriverOptions& options, const std::string& path, const std
   if (run.error) {
     return reportError(path, run.error->line(), run.error->what(), run.error->lineText());
   }
-  return writeCsv(
-      options, backends::sim::flattenPath(backends::sim::executedPathOf(run), options.chordError));
+  return writeCsv(options, backends::sim::executedToolPath(backends::sim::executedPathOf(run)));
 }
 
-// The virtual TNC's run: its arcs in chords of the --chord-error.
+// The virtual TNC's run.
 int runHeidenhain(const DriverOptions& options, const std::string& path, const std::string& text) {
   backends::heidenhain::TncRunOptions settings;
   if (!options.profile.empty()) {
@@ -117,7 +123,7 @@ int runHeidenhain(const DriverOptions& options, const std::string& path, const s
   if (run.error) {
     return reportError(path, run.error->line, run.error->message, run.error->lineText);
   }
-  return writeCsv(options, ir::flattenArcs(run.path, options.chordError));
+  return writeCsv(options, run.path);
 }
 
 } // namespace
@@ -170,7 +176,7 @@ int runSimulate(const DriverOptions& options) {
   if (result.error) {
     return reportError(path, result.error->line(), result.error->what(), result.error->lineText());
   }
-  return writeCsv(options, backends::sim::flattenPath(result.path, options.chordError));
+  return writeCsv(options, backends::sim::executedToolPath(result.path));
 }
 
 } // namespace cncc::driver

@@ -2,6 +2,7 @@
 
 #include "commands.h"
 
+#include "cncc/backends/executed_path.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/verifier.h"
 
@@ -62,6 +63,17 @@ std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
   }
   std::optional<HostRun> run = runOnHost(request);
   if (!run) {
+    return std::nullopt;
+  }
+  // The executed path has the arcs as chords within executedArcSagitta at
+  // most (the G-code reader's, finer than the CSV's): bounded before it is made.
+  if (!(ir::flattenedEventCount(run->toolPath, backends::executedArcSagitta) <=
+        backends::maximumMeasuredPoints)) {
+    request.diagnostics.report(
+        frontend::DiagnosticKind::ProgramTooLarge, request.program.selectedPart->nameSpan,
+        fmt::format("the part is too large to measure: its path has more than {:.0f} points (arcs "
+                    "as chords within {:g})",
+                    backends::maximumMeasuredPoints, backends::executedArcSagitta));
     return std::nullopt;
   }
   MeasuredPart measured;

@@ -35,10 +35,23 @@ void gcodeBackend(const BackendRequest& request) {
   writeProgram(request, program.text, std::move(program.lineSpans));
 }
 
+// The tool path as CSV, or an error at the part where it has too many rows.
+std::optional<std::string> toolPathCsv(const BackendRequest& request, const ir::ToolPath& path) {
+  try {
+    return backends::writeToolPathCsv(path);
+  } catch (const backends::ToolPathTooLarge& tooLarge) {
+    request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge,
+                               request.program.selectedPart->nameSpan,
+                               fmt::format("the part is too large to print: {}", tooLarge.what()));
+    return std::nullopt;
+  }
+}
+
 void jitBackend(const BackendRequest& request) {
   std::optional<ir::ToolPath> path = hostToolPath(request, true);
-  if (path) {
-    request.output.write(backends::writeToolPathCsv(*path));
+  std::optional<std::string> csv = path ? toolPathCsv(request, *path) : std::nullopt;
+  if (csv) {
+    request.output.write(*csv);
   }
 }
 
@@ -51,11 +64,13 @@ backends::ExecutedProgram gcodeProgram(const BackendRequest& request, const ir::
   return {std::move(text), blocks, std::move(executed)};
 }
 
-// The jit target's program is the tool path as CSV; a block is a row.
+// The jit target's program is the tool path as CSV; a block is a row, and
+// what runs is its rows (arcs in the CSV's chords). Throws ToolPathTooLarge.
 backends::ExecutedProgram jitProgram(const BackendRequest&, const ir::ToolPath& path) {
   std::string text = backends::writeToolPathCsv(path);
   std::size_t rows = backends::countProgramBlocks(text) - 1; // without the header
-  return {std::move(text), rows, backends::executedPathOfToolPath(path)};
+  return {std::move(text), rows,
+          backends::executedPathOfToolPath(path, backends::toolPathCsvArcSagitta)};
 }
 
 constexpr Target targetTable[] = {

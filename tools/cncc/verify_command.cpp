@@ -135,6 +135,14 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
     }
     sagitta = std::isfinite(sagitta) ? std::max(sagitta, backends::executedArcSagitta)
                                      : backends::executedArcSagitta;
+    if (!(ir::flattenedEventCount(path, sagitta) <= backends::maximumMeasuredPoints)) {
+      output.driverError(
+          fmt::format("the part cannot be verified: its path has more than {:.0f} points to "
+                      "measure (arcs as chords within {:g}); verify a smaller part, or fewer "
+                      "turns",
+                      backends::maximumMeasuredPoints, sagitta));
+      return std::nullopt;
+    }
     return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
                          compensationRadii(programmed)};
   } catch (const ir::InterpreterError& error) {

@@ -532,22 +532,42 @@ ir::LoweringOptions heidenhainLoweringOptions(const TncProfile& profile, bool in
   return options;
 }
 
+namespace {
+
+void extendBlank(std::optional<HeidenhainBlank>& blank, const ir::MachineEvent& point) {
+  if (!blank) {
+    blank = HeidenhainBlank{point.x, point.y, point.z, point.x, point.y, point.z};
+  }
+  blank->minX = std::min(blank->minX, point.x);
+  blank->minY = std::min(blank->minY, point.y);
+  blank->minZ = std::min(blank->minZ, point.z);
+  blank->maxX = std::max(blank->maxX, point.x);
+  blank->maxY = std::max(blank->maxY, point.y);
+  blank->maxZ = std::max(blank->maxZ, point.z);
+}
+
+} // namespace
+
 std::optional<HeidenhainBlank> heidenhainBlank(const ir::ToolPath& path) {
-  ir::ToolPath flat = ir::flattenArcs(path, 0.01);
+  // Feed moves and arcs (as chords within 0.01 mm), one arc at a time: a
+  // helix of thousands of turns is thousands of arcs.
   std::optional<HeidenhainBlank> blank;
-  for (const ir::MachineEvent& event : flat.events) {
-    if (event.kind != ir::MachineEvent::Kind::Feed) {
-      continue;
+  ir::MachineEvent position;
+  std::vector<ir::MachineEvent> chords;
+  for (const ir::MachineEvent& event : path.events) {
+    if (event.kind == ir::MachineEvent::Kind::Feed) {
+      extendBlank(blank, event);
+    } else if (event.kind == ir::MachineEvent::Kind::Arc) {
+      chords.clear();
+      ir::appendArcChords(position.x, position.y, position.z, event, 0.01, chords);
+      for (const ir::MachineEvent& chord : chords) {
+        extendBlank(blank, chord);
+      }
     }
-    if (!blank) {
-      blank = HeidenhainBlank{event.x, event.y, event.z, event.x, event.y, event.z};
+    if (event.kind == ir::MachineEvent::Kind::Rapid || event.kind == ir::MachineEvent::Kind::Feed ||
+        event.kind == ir::MachineEvent::Kind::Arc) {
+      position = event;
     }
-    blank->minX = std::min(blank->minX, event.x);
-    blank->minY = std::min(blank->minY, event.y);
-    blank->minZ = std::min(blank->minZ, event.z);
-    blank->maxX = std::max(blank->maxX, event.x);
-    blank->maxY = std::max(blank->maxY, event.y);
-    blank->maxZ = std::max(blank->maxZ, event.z);
   }
   if (blank) {
     blank->maxZ = std::max(blank->maxZ, 0.0);

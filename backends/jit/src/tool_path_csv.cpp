@@ -15,9 +15,14 @@ std::string formatCsvNumber(double value) {
   return text == "-0" ? std::string("0") : text;
 }
 
-std::string writeToolPathCsv(const ir::ToolPath& path) {
+std::string writeToolPathCsv(const ir::ToolPath& path, double arcSagitta) {
+  if (!(ir::flattenedEventCount(path, arcSagitta) <= maximumToolPathCsvRows)) {
+    throw ToolPathTooLarge(fmt::format("the tool path has more than {:.0f} moves (arcs as chords "
+                                       "within {:g} mm)",
+                                       maximumToolPathCsvRows, arcSagitta));
+  }
   std::string out = "x,y,z,feed,rapid\n";
-  for (const ir::MachineEvent& event : ir::flattenArcs(path, toolPathCsvArcSagitta).events) {
+  for (const ir::MachineEvent& event : ir::flattenArcs(path, arcSagitta).events) {
     bool rapid = event.kind == ir::MachineEvent::Kind::Rapid;
     if (!rapid && event.kind != ir::MachineEvent::Kind::Feed) {
       continue;

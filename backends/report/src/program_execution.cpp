@@ -23,10 +23,6 @@ namespace {
 // deviation measured, and coarse enough that the many turns of a helix
 // stay quick to measure.
 constexpr double kArcSagitta = 2e-5;
-// The points of an executed path that verification measures, arcs
-// flattened: measuring costs a few microseconds a point, and a 2.5D part
-// within a controller's range has far fewer.
-constexpr double kMaximumMeasuredPoints = 4'000'000;
 
 ProgramExecution failed(std::string text, int line, std::string message) {
   ProgramExecution execution;
@@ -146,12 +142,12 @@ ProgramExecution runOnController(const ExecutionRequest& request,
   }
   double sagitta = result.path.inches ? kArcSagitta / 25.4 : kArcSagitta;
   ir::ToolPath moves = sim::executedToolPath(result.path);
-  if (!(ir::flattenedEventCount(moves, sagitta) <= kMaximumMeasuredPoints)) {
+  if (!(ir::flattenedEventCount(moves, sagitta) <= maximumMeasuredPoints)) {
     execution.failure = ControllerFailure{
         0,
         fmt::format("the executed path has more than {:.0f} points to measure (arcs as chords "
                     "within {:g}): too large to verify",
-                    kMaximumMeasuredPoints, sagitta),
+                    maximumMeasuredPoints, sagitta),
         ""};
     return execution;
   }

@@ -5,6 +5,7 @@
 
 #include "cncc/ir/tool_path.h"
 
+#include <stdexcept>
 #include <string>
 
 namespace cncc::backends {
@@ -18,6 +19,17 @@ inline constexpr double toolPathCsvArcSagitta = 1e-4;
 // `0.5`, `-1.25`; never `-0`.
 std::string formatCsvNumber(double value);
 
-std::string writeToolPathCsv(const ir::ToolPath& path);
+// The most rows a tool path's CSV may have (about 160 MB of text).
+inline constexpr double maximumToolPathCsvRows = 4'000'000;
+
+// A tool path whose CSV would have more than maximumToolPathCsvRows rows.
+class ToolPathTooLarge : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+// The path as CSV, its arcs as chords within `arcSagitta`; throws
+// ToolPathTooLarge, before writing any, past maximumToolPathCsvRows.
+std::string writeToolPathCsv(const ir::ToolPath& path, double arcSagitta = toolPathCsvArcSagitta);
 
 } // namespace cncc::backends

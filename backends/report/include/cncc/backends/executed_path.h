@@ -52,6 +52,10 @@ public:
 // The tool path itself, exactly: what a host run (the jit target) executes;
 // its arcs as chords within `arcSagitta` of them.
 inline constexpr double executedArcSagitta = 1e-5;
+// The points of an executed path (arcs flattened) that verification measures
+// at most: measuring costs a few microseconds a point, and a 2.5D part
+// within a controller's range has far fewer.
+inline constexpr double maximumMeasuredPoints = 4'000'000;
 ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath,
                                     double arcSagitta = executedArcSagitta);
 
