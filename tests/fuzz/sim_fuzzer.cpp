@@ -111,6 +111,7 @@ void runHeidenhain(std::uint8_t selector, std::string_view text) {
   }
   options.profile = *profile;
   options.stepLimit = 20000;
+  options.toolRadii[1] = 2; // RL/RR with tool 1 run the compensation
   hh::TncRun run = hh::runTncProgram(text, options);
   if (run.error && (run.error->line < 1 || run.error->line > lineCount(text))) {
     fail("a TNC error names a line outside the program");

@@ -119,6 +119,7 @@ int runHeidenhain(const DriverOptions& options, const std::string& path, const s
     }
     settings.profile = *profile;
   }
+  settings.toolRadii = options.toolRadii;
   backends::heidenhain::TncRun run = backends::heidenhain::runTncProgram(text, settings);
   if (run.error) {
     return reportError(path, run.error->line, run.error->message, run.error->lineText);

@@ -84,15 +84,22 @@ struct HostReference {
   std::vector<ir::CutGeometry> cuts;
   backends::ExecutedPath path;
   // The tool radius of each register the program's cutter radius
-  // compensation reads, as it was compiled with.
+  // compensation reads, as it was compiled with, and of each tool number
+  // that compensates (a TNC's tool table).
   std::map<int, double> toolRadii;
+  std::map<int, double> toolTableRadii;
 };
 
-std::map<int, double> compensationRadii(const ir::ToolPath& path) {
+// The radii by register, or (`byTool`) by the number of the tool in use.
+std::map<int, double> compensationRadii(const ir::ToolPath& path, bool byTool) {
   std::map<int, double> radii;
+  int tool = 0;
   for (const ir::MachineEvent& event : path.events) {
+    if (event.kind == ir::MachineEvent::Kind::Tool) {
+      tool = static_cast<int>(std::lround(event.number));
+    }
     if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
-      radii[static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
+      radii[byTool ? tool : static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
     }
   }
   return radii;
@@ -144,7 +151,7 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
       return std::nullopt;
     }
     return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
-                         compensationRadii(programmed)};
+                         compensationRadii(programmed, false), compensationRadii(programmed, true)};
   } catch (const ir::InterpreterError& error) {
     output.driverError(fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;
@@ -297,6 +304,7 @@ int runVerify(const DriverOptions& options) {
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   execution.toolRadii = reference->toolRadii;
+  execution.toolTableRadii = reference->toolTableRadii;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(
@@ -328,6 +336,7 @@ int printVerifiedStatistics(const BackendRequest& request,
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   execution.toolRadii = reference->toolRadii;
+  execution.toolTableRadii = reference->toolTableRadii;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(

@@ -233,14 +233,28 @@ void TncBlockWriter::rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z) {
 }
 
 void TncBlockWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate) {
-  std::string words = word('X', x) + word('Y', y) + word('Z', z);
+  // Z, Y, X: the order their scratch parameters have always been assigned in.
+  std::string zWord = word('Z', z);
+  std::string yWord = word('Y', y);
+  std::string plane = word('X', x) + yWord;
+  std::string words = plane + zWord;
   if (words.empty()) {
     return;
+  }
+  if (!plane.empty() && !pendingRadius_.empty()) {
+    words += " " + pendingRadius_;
+    pendingRadius_.clear();
   }
   motion("L" + words + feedWord(feedRate), z);
 }
 
 void TncBlockWriter::arc(bool clockwise, std::span<const ir::ValueId> operands) {
+  if (!pendingRadius_.empty()) {
+    errors_.push_back(fmt::format("{} on an arc: the TNC switches radius compensation on and off "
+                                  "on a straight line",
+                                  pendingRadius_));
+    pendingRadius_.clear();
+  }
   std::string centre =
       fmt::format("CC IX{} IY{}", operand(operands[3], true), operand(operands[4], true));
   block(std::move(centre));

@@ -54,6 +54,9 @@ public:
   // every coordinate and coefficient written (the TNC needs K3 to K1 of
   // each axis it names).
   void spline(std::span<const ir::ValueId> operands);
+  // `RL`, `RR` or `R0` on the next L block that moves in the plane (the
+  // TNC switches radius compensation on and off on straight lines).
+  void radiusCompensation(std::string word) { pendingRadius_ = std::move(word); }
   // An M function for the next motion block (M3 after a tool call).
   void beforeNextMove(std::string words) { pendingWords_ += " " + words; }
   // A block of its own for the pending M functions and `words`.
@@ -78,6 +81,7 @@ private:
   std::map<char, std::string> literals_;
   std::string feed_;
   std::string pendingWords_;
+  std::string pendingRadius_;
   std::optional<ir::ValueId> z_; // the value the last move left Z at
   int zParameter_ = -1;
   int nextScratch_ = 0;

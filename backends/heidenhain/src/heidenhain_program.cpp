@@ -189,8 +189,8 @@ private:
     case Opcode::Spline: // lowered only for the sinumerik target
       errors_.push_back("the TNC has no Sinumerik spline blocks (move.spline)");
       return;
-    case Opcode::Compensation: // the lowering refuses comp=controller here
-      errors_.push_back("the TNC target has no cutter radius compensation (RL/RR) yet");
+    case Opcode::Compensation:
+      printCompensation(instruction);
       return;
     case Opcode::Spindle:
       printSpindle(instruction);
@@ -222,6 +222,29 @@ private:
     }
   }
 
+  // Radius compensation: `RL`/`RR` on the start-up line, `R0` on the
+  // cancel line, plain L and CC/C blocks between, as the lowering wrote
+  // them. The TNC offsets by R of the called tool's row in its tool table
+  // (plus any DR of the TOOL CALL): the program writes no DR, so the radius
+  // the shop keeps in the table is the one used, as a Fanuc's D register.
+  // APPR/DEP would have the control work out the lead arcs; the lines and
+  // arcs the compiler computed are what it measures the path against, and a
+  // TNC runs them as they are.
+  void printCompensation(const ir::Instruction& instruction) {
+    flushTool();
+    if (instruction.number == 0) {
+      blocks_.radiusCompensation("R0");
+      return;
+    }
+    if (currentTool_ && instruction.index != *currentTool_ && explainedTool_ != currentTool_) {
+      explainedTool_ = currentTool_;
+      line(commentLine(fmt::format("radius of tool {} from the tool table (register {} is for "
+                                   "G41/G42 controls)",
+                                   *currentTool_, instruction.index)));
+    }
+    blocks_.radiusCompensation(instruction.number > 0 ? "RL" : "RR");
+  }
+
   // `TOOL CALL n Z S..`: the tool waits for its spindle speed.
   void printTool(const ir::Instruction& instruction) {
     flushTool();
@@ -230,6 +253,7 @@ private:
       spindleOn_ = false;
     }
     pendingTool_ = std::llround(instruction.number);
+    currentTool_ = *pendingTool_;
     if (std::optional<double> diameter = formulas_.constantOf(instruction.operands[0])) {
       line(commentLine(fmt::format("tool diameter {}", formulas_.number(*diameter))));
     }
@@ -487,6 +511,8 @@ private:
   frontend::SourceSpan currentSpan_;
   std::vector<frontend::SourceSpan> printedSpans_;
   std::optional<long long> pendingTool_;
+  std::optional<long long> currentTool_;   // for the radius RL/RR take
+  std::optional<long long> explainedTool_; // whose radius register the comment named
   bool spindleOn_ = false;
 };
 

@@ -312,6 +312,7 @@ ProgramExecution runHeidenhain(const ExecutionRequest& request) {
     }
     options.profile = *profile;
   }
+  options.toolRadii = request.toolTableRadii;
   std::string text = request.text;
   for (const ParameterValue& parameter : request.parameters) {
     std::optional<std::string> edited =

@@ -1,5 +1,8 @@
 // Runs a read TNC program: Q arithmetic, jumps, subprogram calls and
 // repeats, and the motion blocks, counting the operations of loop blocks.
+// Radius compensation RL/RR runs the blocks through the virtual Fanuc's
+// compensation (sim_compensation.h) with the TNC's transition arcs.
+#include "sim_compensation.h"
 #include "tnc_program_text.h"
 
 #include "cncc/ir/interpreter.h"
@@ -27,7 +30,8 @@ struct Position {
 class TncExecutor {
 public:
   TncExecutor(std::vector<TncBlock> blocks, const TncRunOptions& options, TncRun& run)
-      : blocks_(std::move(blocks)), options_(options), run_(run) {}
+      : blocks_(std::move(blocks)), options_(options), run_(run),
+        compensation_(compensated_, {"RL/RR", "R0", true}) {}
 
   void execute() {
     if (blocks_.empty() || blocks_.front().kind != TncBlock::Kind::Begin) {
@@ -49,6 +53,7 @@ public:
       }
       std::optional<std::size_t> jump = step(next);
       if (blocks_[next].kind == TncBlock::Kind::End) {
+        compensation_.finish(simBlock(blocks_[next]));
         return;
       }
       next = jump ? *jump : next + 1;
@@ -241,6 +246,12 @@ private:
       }
       return std::nullopt;
     case TncBlock::Kind::ToolCall:
+      if (compensation_.isOn()) {
+        fail(block, "TOOL CALL while radius compensation RL/RR is on: cancel it with R0 first");
+      }
+      if (block.tool) {
+        tool_ = block.tool;
+      }
       if (block.speed) {
         double speed = evaluate(block, *block.speed);
         if (speed < 0) {
@@ -367,6 +378,9 @@ private:
     bool machineCoordinates =
         std::find(block.mFunctions.begin(), block.mFunctions.end(), 91) != block.mFunctions.end();
     if (machineCoordinates) {
+      if (compensation_.isOn()) {
+        fail(block, "M91 while radius compensation RL/RR is on: cancel it with R0 first");
+      }
       ir::MachineEvent home;
       home.kind = ir::MachineEvent::Kind::Home;
       run_.path.events.push_back(home);
@@ -377,6 +391,13 @@ private:
     double feed = moves && !rapid ? feedOf(block) : 0;
     if (!moves && block.feed) {
       feedOf(block);
+    }
+    setCompensation(block, end);
+    if (compensation_.isOn()) {
+      sim::ExecutedEvent event;
+      event.kind = rapid ? sim::ExecutedEvent::Kind::Rapid : sim::ExecutedEvent::Kind::Feed;
+      compensate(block, index, event, end, moves, feed);
+      return;
     }
     position_ = end;
     if (!moves) {
@@ -422,6 +443,15 @@ private:
                               std::abs(startRadius - endRadius)));
     }
     double feed = feedOf(block);
+    setCompensation(block, end);
+    if (compensation_.isOn()) {
+      sim::ExecutedEvent event;
+      event.kind = *block.clockwise ? sim::ExecutedEvent::Kind::ClockwiseArc
+                                    : sim::ExecutedEvent::Kind::CounterclockwiseArc;
+      event.centre = {centre_->first, centre_->second, *position_.axes[2]};
+      compensate(block, index, event, end, true, feed);
+      return;
+    }
     position_ = end;
     ir::MachineEvent event;
     event.kind = ir::MachineEvent::Kind::Arc;
@@ -439,6 +469,9 @@ private:
   // with an end coordinate needs all three coefficients, one without stays.
   void spline(const TncBlock& block, std::size_t index) {
     machineFunctions(block);
+    if (compensation_.isOn()) {
+      fail(block, "SPL while radius compensation RL/RR is on is not modelled");
+    }
     if (!position_.known()) {
       fail(block, "SPL from an unknown position");
     }
@@ -470,6 +503,95 @@ private:
     }
   }
 
+  // ---- radius compensation ----------------------------------------------------
+
+  static sim::Block simBlock(const TncBlock& block) {
+    sim::Block words;
+    words.kind = sim::Block::Kind::Words;
+    words.line = block.line;
+    words.text = block.text;
+    return words;
+  }
+
+  // RL/RR switch compensation on, with the tool table's R of the called
+  // tool, on an L block in the plane (the TNC's rule); R0 switches it off
+  // on one. A block without the word keeps what is in force.
+  void setCompensation(const TncBlock& block, const Position& end) {
+    if (!block.radiusCompensation) {
+      return;
+    }
+    bool circle = block.kind == TncBlock::Kind::Circle;
+    bool inPlane = (end.axes[0] != position_.axes[0] || end.axes[1] != position_.axes[1]);
+    char word = *block.radiusCompensation;
+    if (word == '0') {
+      if (!compensation_.isOn()) {
+        return;
+      }
+      if (circle || !inPlane) {
+        fail(block, circle ? "R0 on a C block: the TNC cancels radius compensation on a "
+                             "straight line (L) in the plane"
+                           : "R0 on a block without an X or Y move while RL/RR is on: the TNC "
+                             "cancels radius compensation on a straight line in the plane");
+      }
+      compensation_.cancel(simBlock(block));
+      return;
+    }
+    bool left = word == 'L';
+    if (compensation_.isOn()) {
+      if (left != compensatingLeft_) {
+        fail(block, fmt::format("{} while {} is on: the TNC needs a move with R0 between them",
+                                left ? "RL" : "RR", left ? "RR" : "RL"));
+      }
+      return;
+    }
+    if (circle) {
+      fail(block, "RL/RR on a C block: the TNC starts radius compensation on a straight line (L) "
+                  "in the plane, not on an arc");
+    }
+    if (!position_.known() || !inPlane) {
+      fail(block, !position_.known() ? "RL/RR from an unknown position"
+                                     : "RL/RR on a block without an X or Y move: the TNC starts "
+                                       "radius compensation on a straight line in the plane");
+    }
+    if (!tool_) {
+      fail(block, "RL/RR before any TOOL CALL: no tool radius to compensate by");
+    }
+    auto radius = options_.toolRadii.find(*tool_);
+    if (radius == options_.toolRadii.end()) {
+      fail(block, fmt::format("RL/RR: the radius R of tool {0} is not in the tool table; give it "
+                              "with --tool-radius {0}=R",
+                              *tool_));
+    }
+    compensatingLeft_ = left;
+    compensation_.start(left, radius->second, simBlock(block));
+  }
+
+  // A move of `block` to `end` (`event`'s kind and centre set) through the
+  // compensation, and what it let through onto the path.
+  void compensate(const TncBlock& block, std::size_t index, sim::ExecutedEvent event,
+                  const Position& end, bool moves, double feed) {
+    if (!end.known()) {
+      fail(block, "a move with radius compensation from an unknown position");
+    }
+    event.start = {*position_.axes[0], *position_.axes[1], *position_.axes[2]};
+    event.end = {*end.axes[0], *end.axes[1], *end.axes[2]};
+    event.feed = feed;
+    event.line = block.line;
+    position_ = end;
+    sim::Block words = simBlock(block);
+    if (moves) {
+      if (event.kind != sim::ExecutedEvent::Kind::Rapid && inLoop_[index]) {
+        ++run_.loopOperations.feedMoves;
+      }
+      compensation_.add(event, words);
+    }
+    compensation_.endOfBlock(words);
+    for (const ir::MachineEvent& executed : sim::executedToolPath(compensated_).events) {
+      run_.path.events.push_back(executed);
+    }
+    compensated_.events.clear();
+  }
+
   std::vector<TncBlock> blocks_;
   const TncRunOptions& options_;
   TncRun& run_;
@@ -484,6 +606,10 @@ private:
   std::optional<std::pair<double, double>> centre_;
   std::optional<double> feed_;
   bool started_ = false;
+  std::optional<int> tool_; // of the last TOOL CALL that named one
+  sim::ExecutedPath compensated_;
+  sim::RadiusCompensation compensation_;
+  bool compensatingLeft_ = false;
 };
 
 std::string lineText(std::string_view text, int line) {
@@ -504,6 +630,8 @@ TncRun runTncProgram(std::string_view text, const TncRunOptions& options) {
   try {
     TncExecutor(readTncProgram(text), options, run).execute();
   } catch (const TncProgramError& error) {
+    run.error = TncError{error.line(), error.what(), lineText(text, error.line())};
+  } catch (const sim::SimulationError& error) { // from the radius compensation
     run.error = TncError{error.line(), error.what(), lineText(text, error.line())};
   }
   return run;

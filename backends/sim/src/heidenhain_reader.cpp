@@ -162,10 +162,11 @@ private:
         block_.rapid = true;
       } else if (word.starts_with('F') && word.size() > 1) {
         block_.feed = parseTncOperand(word.substr(1), block_.line);
-      } else if (word == "R0") {
-        continue;
-      } else if (word == "RL" || word == "RR") {
-        fail("radius compensation RL/RR is not modelled");
+      } else if (word == "R0" || word == "RL" || word == "RR") {
+        if (block_.radiusCompensation) {
+          fail("two radius compensation words in one block");
+        }
+        block_.radiusCompensation = word[1];
       } else if ((word == "DR+" || word == "DR-") && block_.kind == TncBlock::Kind::Circle) {
         block_.clockwise = word == "DR-";
       } else if (word.starts_with('M')) {

@@ -47,8 +47,9 @@ bool isArc(const ExecutedEvent& event) {
 void RadiusCompensation::start(bool left, double radius, const Block& block) {
   if (state_ == State::On || state_ == State::Cancelling) {
     if (left != left_ || radius != radius_) {
-      failInBlock(block, "changing G41/G42 or the D register while compensating is not "
-                         "simulated; cancel with G40 first");
+      failInBlock(block, fmt::format("changing {} or the radius while compensating is not "
+                                     "simulated; cancel with {} first",
+                                     dialect_.on, dialect_.off));
     }
     return;
   }
@@ -101,8 +102,9 @@ void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& blo
       failInBlock(block, "G40 cancels on an arc: the cancel move must be a G00 or G01");
     }
     if (held_->startUp) {
-      failInBlock(block, "G40 right after the start-up move is not simulated: the compensation "
-                         "never reached a block to offset");
+      failInBlock(block, fmt::format("{} right after the start-up move is not simulated: the "
+                                     "compensation never reached a block to offset",
+                                     dialect_.off));
     }
     Vector2 end = held_->element.end + offset_ * leftNormal(endTangent(held_->element));
     emitHeld({end}, event);
@@ -112,6 +114,16 @@ void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& blo
     return;
   }
   std::vector<Vector2> corner;
+  std::optional<TransitionArc> arc;
+  if (!held_->startUp && dialect_.transitionArcs) {
+    arc = transitionArc(held_->element, element, offset_);
+  }
+  if (arc) {
+    emitHeld({arc->start}, event);
+    emitTransitionArc(*arc, event);
+    held_ = HeldBlock{event, element, false, block.line, block.text};
+    return;
+  }
   if (held_->startUp) {
     corner = {element.start + offset_ * leftNormal(startTangent(element))};
   } else if (std::optional<std::vector<Vector2>> points =
@@ -223,6 +235,21 @@ void RadiusCompensation::emitCompensatedArc(Vector2 to, double sweep) {
   toolZ_ = endZ;
 }
 
+// Round an outside corner at the feed of the block after it.
+void RadiusCompensation::emitTransitionArc(const TransitionArc& arc, const ExecutedEvent& next) {
+  if (length(arc.end - tool_) == 0) {
+    return;
+  }
+  ExecutedEvent move = next;
+  move.kind =
+      arc.clockwise ? ExecutedEvent::Kind::ClockwiseArc : ExecutedEvent::Kind::CounterclockwiseArc;
+  move.start = {tool_.x, tool_.y, toolZ_};
+  move.end = {arc.end.x, arc.end.y, toolZ_};
+  move.centre = {arc.centre.x, arc.centre.y, toolZ_};
+  path_.events.push_back(move);
+  tool_ = arc.end;
+}
+
 void RadiusCompensation::flushWaiting() {
   for (ExecutedEvent event : waiting_) {
     if (isMotion(event)) {
@@ -248,15 +275,18 @@ void RadiusCompensation::endOfBlock(const Block& block) {
     return;
   }
   if (++blocksWithoutPlaneMotion_ >= 2) {
-    failInBlock(block, "two blocks in a row without an X or Y move while G41/G42 is on: how "
-                       "far the control looks ahead differs, so the path is not simulated");
+    failInBlock(block, fmt::format("two blocks in a row without an X or Y move while {} is on: "
+                                   "how far the control looks ahead differs, so the path is not "
+                                   "simulated",
+                                   dialect_.on));
   }
 }
 
 void RadiusCompensation::finish(const Block& block) const {
   if (state_ == State::On || state_ == State::Cancelling) {
-    failInBlock(block, "the program ends with cutter compensation on: cancel it with G40 on a "
-                       "move");
+    failInBlock(block, fmt::format("the program ends with cutter compensation on: cancel it with "
+                                   "{} on a move",
+                                   dialect_.off));
   }
 }
 

@@ -20,13 +20,25 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cncc::backends::sim {
 
+// What differs between the controls that run it: the words in messages,
+// and how an outside corner is gone round.
+struct CompensationDialect {
+  std::string on = "G41/G42";
+  std::string off = "G40";
+  // The Heidenhain TNC's arc about every outside corner (transitionArc)
+  // rather than Fanuc's type A.
+  bool transitionArcs = false;
+};
+
 class RadiusCompensation {
 public:
-  explicit RadiusCompensation(ExecutedPath& path) : path_(path) {}
+  explicit RadiusCompensation(ExecutedPath& path, CompensationDialect dialect = {})
+      : path_(path), dialect_(std::move(dialect)) {}
 
   // G41 (`left`) or G42 with the radius of the D register: a negative radius
   // puts the tool on the other side, as the controls do.
@@ -64,9 +76,11 @@ private:
   void emitLine(const ExecutedEvent& model, Vector2 to, double z);
   void emitOffsetBlock(Vector2 to);
   void emitCompensatedArc(Vector2 to, double sweep);
+  void emitTransitionArc(const TransitionArc& arc, const ExecutedEvent& next);
   void flushWaiting();
 
   ExecutedPath& path_;
+  CompensationDialect dialect_;
   State state_ = State::Off;
   double offset_ = 0; // signed: positive to the left of the path
   bool left_ = true;

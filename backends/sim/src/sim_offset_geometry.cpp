@@ -168,6 +168,22 @@ std::optional<std::vector<Vector2>> offsetCorner(const PlaneElement& before,
   return points;
 }
 
+std::optional<TransitionArc> transitionArc(const PlaneElement& before, const PlaneElement& after,
+                                           double offset) {
+  Vector2 corner = before.end;
+  Vector2 incoming = endTangent(before);
+  Vector2 outgoing = startTangent(after);
+  double turn = cross(incoming, outgoing);
+  bool parallel = std::abs(turn) <= tangentTolerance;
+  bool along = dot(incoming, outgoing) > 0;
+  if ((parallel && along) || (!parallel && offset * turn > 0)) {
+    return std::nullopt;
+  }
+  // Left of the path the tool turns right round the corner (or reverses): clockwise.
+  return TransitionArc{corner + offset * leftNormal(incoming),
+                       corner + offset * leftNormal(outgoing), corner, offset > 0};
+}
+
 double arcSweep(Vector2 start, Vector2 end, Vector2 centre, bool clockwise) {
   double from = std::atan2(start.y - centre.y, start.x - centre.x);
   double to = std::atan2(end.y - centre.y, end.x - centre.x);

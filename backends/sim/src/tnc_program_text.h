@@ -73,6 +73,8 @@ struct TncBlock {
   std::optional<TncExpression> feed; // F..
   bool rapid = false;                // FMAX
   std::optional<bool> clockwise;     // C: DR- / DR+
+  // L, C: radius compensation RL ('L'), RR ('R') or R0 ('0'); none keeps it
+  std::optional<char> radiusCompensation;
   // SPL: K3, K2 and K1 (in that order) of the X, Y and Z axes.
   std::array<std::array<std::optional<double>, 3>, 3> splineCoefficients;
   std::vector<int> mFunctions;

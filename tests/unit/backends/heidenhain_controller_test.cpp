@@ -1,6 +1,6 @@
 // The virtual TNC on programs written here: formula precedence, FN
-// arithmetic, jumps, repeats and subprograms, arcs and helices, and the
-// errors it names by line.
+// arithmetic, jumps, repeats and subprograms, arcs and helices, radius
+// compensation RL/RR, and the errors it names by line.
 #include "cncc/backends/heidenhain_controller.h"
 
 #include <gmock/gmock.h>
@@ -146,7 +146,7 @@ TEST(TncController, NamesTheLineOfWhatItCannotRun) {
       {{"L X+0 Y+0 Z+0 R0 FMAX", "L X+4"}, 3, "before any feed rate"},
       {{"Q1 = 2 * ( 3 + 4"}, 2, "without its ')'"},
       {{"Q1 = 1 / 0"}, 2, "division by zero"},
-      {{"L X+1 RL F100"}, 2, "RL/RR"},
+      {{"L X+1 RL F100"}, 2, "RL/RR from an unknown position"},
       {{"LBL 1", "FN 9: IF +0 EQU +0 GOTO LBL 1"}, 3, "more than"},
       {{"FN 0: Q1 = +1e12"}, 2, "beyond the control's"},
       {{"L X+1 Y+0 Z+0 R0 FMAX", "SPL X+0 Y+0 Z+0 K3X+0 K2X+0 K1X+1 F100"}, 3, "K3Y K2Y K1Y"},
@@ -171,6 +171,121 @@ TEST(TncController, NamesTheLineOfWhatItCannotRun) {
   TncRun unended = runTncProgram("0 BEGIN PGM T MM\n1 L X+1\n");
   ASSERT_TRUE(unended.error);
   EXPECT_THAT(unended.error->message, HasSubstr("END PGM"));
+}
+
+// ---- radius compensation RL/RR/R0 -------------------------------------------
+
+// Tool 1 down at (-10, -10), `body` with the tool table's R of tool 1 at 2,
+// up again.
+TncRun compensated(const std::vector<std::string>& body, double radius = 2) {
+  std::vector<std::string> blocks = {"TOOL CALL 1 Z S1000", "L X-10 Y-10 Z+5 R0 FMAX",
+                                     "L Z-1 F100"};
+  blocks.insert(blocks.end(), body.begin(), body.end());
+  blocks.push_back("L Z+5 R0 FMAX");
+  TncRunOptions options;
+  options.toolRadii[1] = radius;
+  return runTncProgram(program(blocks), options);
+}
+
+struct Move {
+  ir::MachineEvent::Kind kind;
+  double x, y;
+};
+
+// The moves after the plunge, up to the retract.
+void expectMoves(const TncRun& run, const std::vector<Move>& expected) {
+  ASSERT_FALSE(run.error) << run.error->line << ": " << run.error->message;
+  std::vector<ir::MachineEvent> moves(run.path.events.begin() + 2, run.path.events.end() - 1);
+  ASSERT_EQ(moves.size(), expected.size());
+  for (std::size_t index = 0; index < expected.size(); ++index) {
+    EXPECT_EQ(moves[index].kind, expected[index].kind) << "move " << index;
+    EXPECT_NEAR(moves[index].x, expected[index].x, 1e-9) << "move " << index;
+    EXPECT_NEAR(moves[index].y, expected[index].y, 1e-9) << "move " << index;
+    EXPECT_DOUBLE_EQ(moves[index].z, -1) << "move " << index;
+  }
+}
+
+constexpr auto Line = ir::MachineEvent::Kind::Feed;
+constexpr auto Arc = ir::MachineEvent::Kind::Arc;
+
+TEST(TncCompensation, GoesRoundTheOutsideCornersOfASquareOnArcs) {
+  // Clockwise round the square (0,0)-(20,20): RL is outside. The TNC
+  // inserts an arc of the tool radius about each outside corner, where a
+  // Fanuc's type A meets at the intersection.
+  TncRun run =
+      compensated({"L X+0 Y+0 RL", "L Y+20", "L X+20", "L Y+0", "L X+0", "L X-10 Y-10 R0"});
+  expectMoves(run, {{Line, -2, 0}, // start-up: normal to the first side at its start
+                    {Line, -2, 20},
+                    {Arc, 0, 22}, // about the corner (0, 20)
+                    {Line, 20, 22},
+                    {Arc, 22, 20},
+                    {Line, 22, 0},
+                    {Arc, 20, -2},
+                    {Line, 0, -2},      // the last side ends normal to itself
+                    {Line, -10, -10}}); // R0: back to the programmed point
+  const ir::MachineEvent& corner = run.path.events[4];
+  EXPECT_TRUE(corner.clockwise);
+  EXPECT_DOUBLE_EQ(corner.centreX, 0);
+  EXPECT_DOUBLE_EQ(corner.centreY, 20);
+  EXPECT_EQ(corner.feed, 100);
+}
+
+TEST(TncCompensation, MeetsAtTheIntersectionInsideTheSquareWithRR) {
+  TncRun run =
+      compensated({"L X+0 Y+0 RR", "L Y+20", "L X+20", "L Y+0", "L X+0", "L X-10 Y-10 R0"});
+  expectMoves(
+      run,
+      {{Line, 2, 0}, {Line, 2, 18}, {Line, 18, 18}, {Line, 18, 2}, {Line, 0, 2}, {Line, -10, -10}});
+}
+
+TEST(TncCompensation, OffsetsAFullCircleBetweenTangentLines) {
+  // Up to the circle of radius 10 about (10, 0), once round it clockwise
+  // with RL (outside: radius 10 + 3), away on a tangent line.
+  TncRun run = compensated(
+      {"L X+0 Y-10 RL", "L Y+0", "CC X+10 Y+0", "C X+0 Y+0 DR-", "L Y+10", "L X-10 Y-10 R0"}, 3);
+  expectMoves(run, {{Line, -3, -10},
+                    {Line, -3, 0},
+                    {Arc, -3, 0}, // a full turn at radius 13
+                    {Line, -3, 10},
+                    {Line, -10, -10}});
+  const ir::MachineEvent& circle = run.path.events[4];
+  EXPECT_TRUE(circle.clockwise);
+  EXPECT_DOUBLE_EQ(circle.centreX, 10);
+  EXPECT_DOUBLE_EQ(circle.centreY, 0);
+}
+
+TEST(TncCompensation, NamesTheLineOfWhatItCannotRun) {
+  struct Case {
+    std::vector<std::string> body; // from line 5
+    int line;
+    std::string message;
+  };
+  const Case bad[] = {
+      {{"CC X-10 Y+0", "C X-10 Y+10 DR+ RL"}, 6, "RL/RR on a C block"},
+      {{"L Z-2 RL"}, 5, "on a block without an X or Y move"},
+      {{"L X+0 Y+0 RL", "L Y+20", "CC X+0 Y+30", "C X+0 Y+40 DR- R0"}, 8, "R0 on a C block"},
+      {{"L X+0 Y+0 RL", "L Y+20", "L X+5 RR"}, 7, "RR while RL is on"},
+      {{"L X+0 Y+0 RL", "L Y+20"}, 7, "R0 on a block without an X or Y move"},
+      // A hole of radius 1 for a tool of radius 2, counterclockwise with
+      // RL: the offset circle does not exist (the line of the C block).
+      {{"L X+0 Y+0 R0", "L X+1 RL", "CC X+0 Y+0", "C X+1 Y+0 DR+", "L X+0 R0"},
+       8,
+       "smaller than the tool radius"},
+      {{"TOOL CALL 2 Z", "L X+0 Y+0 RL", "L Y+20", "L X-10 R0"}, 6, "--tool-radius 2=R"},
+  };
+  for (const Case& one : bad) {
+    TncRun run = compensated(one.body);
+    ASSERT_TRUE(run.error) << one.message;
+    EXPECT_EQ(run.error->line, one.line) << one.message << ": " << run.error->message;
+    EXPECT_THAT(run.error->message, HasSubstr(one.message));
+  }
+  TncRunOptions options;
+  options.toolRadii[1] = 2;
+  TncRun unended = runTncProgram(
+      program({"TOOL CALL 1 Z", "L X+0 Y+0 Z+0 R0 FMAX", "L X+5 RL F100", "L Y+5"}), options);
+  ASSERT_TRUE(unended.error);
+  EXPECT_EQ(unended.error->line, 6);
+  EXPECT_THAT(unended.error->message, HasSubstr("cancel it with R0"));
 }
 
 } // namespace

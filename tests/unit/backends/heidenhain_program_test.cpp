@@ -3,11 +3,14 @@
 // round, rem, atan2), loops, ifs with and/or, arcs and helices, printed as
 // a TNC program, run on the virtual TNC with several parameter values
 // edited into its FN 0 blocks, and compared move by move with the
-// interpreter's run of the same values. And the limits the printer names.
+// interpreter's run of the same values. Radius compensation printed as
+// RR/R0 and run on the virtual TNC against the host's tool centre path. And
+// the limits the printer names.
 #include "cncc/backends/heidenhain_controller.h"
 #include "cncc/backends/heidenhain_program.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/printer.h"
+#include "cncc/ir/tool_centre_path.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -230,6 +233,50 @@ TEST(HeidenhainProgram, BlankSurroundsTheFeedMoves) {
   EXPECT_NEAR(blank->maxY, 5, 0.011);
   EXPECT_EQ(blank->minZ, -2);
   EXPECT_EQ(blank->maxZ, 0);
+}
+
+TEST(HeidenhainProgram, RadiusCompensationRunsAsTheHostOffsetsIt) {
+  // Right of a line, a tangent arc (outside: radius 12), a line, and a
+  // convex corner the TNC goes round on an arc, as the host's offset does;
+  // register 3 is tool 3, whose R the tool table holds.
+  ir::Function function = parsed(R"(func @compensated() {
+  %zero = const 0
+  %diameter = const 4
+  %feed = const 100
+  %below = const -10
+  %ten = const 10
+  %twenty = const 20
+  %thirty = const 30
+  tool 3 length 3, %diameter
+  move.rapid %zero, %below, %zero
+  compensation right 3 2
+  move.feed %zero, %zero, %zero, %feed
+  move.feed %twenty, %zero, %zero, %feed
+  move.arc ccw %thirty, %ten, %zero, %zero, %ten, %feed
+  move.feed %thirty, %twenty, %zero, %feed
+  move.feed %ten, %twenty, %zero, %feed
+  compensation off
+  move.feed %ten, %thirty, %zero, %feed
+}
+)");
+  HeidenhainProgramOptions options;
+  options.partName = "compensated";
+  HeidenhainProgram program = writeHeidenhainProgram(function, options);
+  ASSERT_TRUE(program.errors.empty()) << program.errors.front();
+  EXPECT_THAT(program.text, HasSubstr(" L Y+0 RR F100\n"));
+  EXPECT_THAT(program.text, HasSubstr(" L Y+30 R0\n"));
+  heidenhain::TncRunOptions run;
+  run.toolRadii[3] = 2;
+  heidenhain::TncRun executed = heidenhain::runTncProgram(program.text, run);
+  ASSERT_FALSE(executed.error) << executed.error->line << ": " << executed.error->message << "\n"
+                               << program.text;
+  std::vector<ir::MachineEvent> expected = moves(ir::toolCentrePath(ir::interpret(function)));
+  std::vector<ir::MachineEvent> actual = moves(executed.path);
+  ASSERT_EQ(actual.size(), expected.size()) << program.text;
+  for (std::size_t i = 0; i < actual.size(); ++i) {
+    EXPECT_NEAR(actual[i].x, expected[i].x, 1e-9) << i;
+    EXPECT_NEAR(actual[i].y, expected[i].y, 1e-9) << i;
+  }
 }
 
 } // namespace

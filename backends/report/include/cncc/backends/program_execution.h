@@ -48,6 +48,9 @@ struct ExecutionRequest {
   bool lowerCaseComments = false;
   // The tool radius in each offset register the program's G41/G42 read.
   std::map<int, double> toolRadii;
+  // The tool radius of each tool number, for a control that takes it from
+  // its tool table (the TNC's RL/RR).
+  std::map<int, double> toolTableRadii;
 };
 
 // The controller refused the program: the message names its line.

@@ -2,9 +2,10 @@
 // runs it: Q parameters (FN 0..4, formula entry), labels with FN 9..12
 // jumps, CALL LBL subprograms and repeats, FN 14 errors, and the motion
 // blocks L, CC, C (helices with IZ) and SPL (polynomial_move.h), on a
-// profile's limits. What the
-// model does not know (FN 5..8, RL/RR, cycles but 32) is an error naming
-// the line, never a guess; so is reading a Q parameter no block has set.
+// profile's limits, with radius compensation RL/RR/R0 by the tool table's
+// R. What the model does not know (FN 5..8, cycles but 32) is an error
+// naming the line, never a guess; so is reading a Q parameter no block has
+// set, or the radius of a tool the table does not hold.
 #pragma once
 
 #include "cncc/backends/sim_operation_count.h"
@@ -12,6 +13,7 @@
 #include "cncc/ir/tool_path.h"
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +25,8 @@ struct TncRunOptions {
   std::size_t stepLimit = 10'000'000; // blocks executed in all
   // How far an arc's end may be off the circle through its start (mm).
   double arcRadiusTolerance = 0.001;
+  // The tool table: R of each tool number, which RL/RR offset the path by.
+  std::map<int, double> toolRadii;
 };
 
 struct TncError {

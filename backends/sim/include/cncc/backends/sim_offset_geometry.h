@@ -52,6 +52,18 @@ double offsetArcRadius(const PlaneElement& element, double offset);
 std::optional<std::vector<Vector2>> offsetCorner(const PlaneElement& before,
                                                  const PlaneElement& after, double offset);
 
+// The Heidenhain TNC goes round an outside corner on an arc of radius
+// `|offset|` about the programmed corner, from where the offset `before`
+// ends to where the offset `after` starts (the TNC's transition arc, as
+// geom::offsetOfPieces joins a convex corner). nullopt at an inner or a
+// tangent corner, which meet as offsetCorner says.
+struct TransitionArc {
+  Vector2 start, end, centre;
+  bool clockwise = false;
+};
+std::optional<TransitionArc> transitionArc(const PlaneElement& before, const PlaneElement& after,
+                                           double offset);
+
 // The sweep of an arc from `start` to `end` around `centre` in its direction,
 // in degrees, in [0, 360).
 double arcSweep(Vector2 start, Vector2 end, Vector2 centre, bool clockwise);

@@ -1,0 +1,13 @@
+0 BEGIN PGM SQUARE MM
+1 ; outside of the square (0,0)-(20,20), clockwise with RL
+2 TOOL CALL 1 Z S8000
+3 L X-10 Y-10 Z+5 R0 FMAX M3
+4 L Z-1 F200
+5 L X+0 Y+0 RL
+6 L Y+20
+7 L X+20
+8 L Y+0
+9 L X+0
+10 L X-10 Y-10 R0
+11 L Z+5 R0 FMAX
+12 END PGM SQUARE MM
