@@ -192,7 +192,8 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
                      "no ';', macro words in full");
   simulate
       ->add_option("--tool-radius", raw.toolRadii,
-                   "The radius in offset register N, read by D N for G41/G42 (1=5.)")
+                   "The radius in offset register N, read by D N for G41/G42 (1=5.); "
+                   "on sinumerik the radius of tool N's cutting edges")
       ->type_name("N=R")
       ->allow_extra_args(false);
   simulate

@@ -418,11 +418,16 @@ DriverOptions simulateOptions(const RawOptions& raw) {
   if (!ownReader && (target == nullptr || target->controllerProfile.empty())) {
     throw UsageError("'sim' needs -t fanuc, -t m80, -t linuxcnc, -t sinumerik or -t heidenhain");
   }
-  if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || !raw.toolRadii.empty() ||
-                    raw.peckRetract || raw.peckClearance ||
-                    (!raw.profile.empty() && raw.target != "heidenhain"))) {
-    throw UsageError(fmt::format("-a, --strict, --tool-radius, --peck-retract, --peck-clearance "
-                                 "and --profile apply to 'sim -t fanuc' and '-t m80', not to {}",
+  if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || raw.peckRetract ||
+                    raw.peckClearance || (!raw.profile.empty() && raw.target != "heidenhain"))) {
+    throw UsageError(fmt::format("-a, --strict, --peck-retract, --peck-clearance and --profile "
+                                 "apply to 'sim -t fanuc' and '-t m80', not to {}",
+                                 raw.target));
+  }
+  // On sinumerik N is the tool whose cutting edges have radius R.
+  if (ownReader && !raw.toolRadii.empty() && raw.target != "sinumerik") {
+    throw UsageError(fmt::format("--tool-radius applies to 'sim -t fanuc', '-t m80' and "
+                                 "'-t sinumerik', not to {}",
                                  raw.target));
   }
   checkProfileFitsTarget(raw);

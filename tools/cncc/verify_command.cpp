@@ -86,13 +86,18 @@ struct HostReference {
   // The tool radius of each register the program's cutter radius
   // compensation reads, as it was compiled with.
   std::map<int, double> toolRadii;
+  // And of each tool, by its number.
+  std::map<int, double> radiiOfTools;
 };
 
-std::map<int, double> compensationRadii(const ir::ToolPath& path) {
+std::map<int, double> compensationRadii(const ir::ToolPath& path, bool byTool) {
   std::map<int, double> radii;
+  int tool = 0;
   for (const ir::MachineEvent& event : path.events) {
-    if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
-      radii[static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
+    if (event.kind == ir::MachineEvent::Kind::Tool) {
+      tool = static_cast<int>(std::lround(event.number));
+    } else if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
+      radii[byTool ? tool : static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
     }
   }
   return radii;
@@ -136,7 +141,7 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
     sagitta = std::isfinite(sagitta) ? std::max(sagitta, backends::executedArcSagitta)
                                      : backends::executedArcSagitta;
     return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
-                         compensationRadii(programmed)};
+                         compensationRadii(programmed, false), compensationRadii(programmed, true)};
   } catch (const ir::InterpreterError& error) {
     output.driverError(fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;
@@ -289,6 +294,7 @@ int runVerify(const DriverOptions& options) {
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   execution.toolRadii = reference->toolRadii;
+  execution.radiiOfTools = reference->radiiOfTools;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(
@@ -320,6 +326,7 @@ int printVerifiedStatistics(const BackendRequest& request,
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   execution.toolRadii = reference->toolRadii;
+  execution.radiiOfTools = reference->radiiOfTools;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(

@@ -48,6 +48,9 @@ struct ExecutionRequest {
   bool lowerCaseComments = false;
   // The tool radius in each offset register the program's G41/G42 read.
   std::map<int, double> toolRadii;
+  // The radius of each tool, by its number, that the program compensates
+  // with: a Sinumerik's G41/G42 read the active tool's cutting edge.
+  std::map<int, double> radiiOfTools;
 };
 
 // The controller refused the program: the message names its line.
