@@ -192,8 +192,9 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
                      "no ';', macro words in full");
   simulate
       ->add_option("--tool-radius", raw.toolRadii,
-                   "The radius in offset register N, read by D N for G41/G42 (1=5.); for "
-                   "-t heidenhain the tool table's R of tool N, read by RL/RR")
+                   "The radius in offset register N, read by D N for G41/G42 (1=5.); "
+                   "on sinumerik the radius of tool N's cutting edges, on heidenhain the "
+                   "tool table's R of tool N, read by RL/RR")
       ->type_name("N=R")
       ->allow_extra_args(false);
   simulate

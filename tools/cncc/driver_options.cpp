@@ -418,14 +418,19 @@ DriverOptions simulateOptions(const RawOptions& raw) {
   if (!ownReader && (target == nullptr || target->controllerProfile.empty())) {
     throw UsageError("'sim' needs -t fanuc, -t m80, -t linuxcnc, -t sinumerik or -t heidenhain");
   }
-  // The TNC's --tool-radius is its tool table: N is a tool number.
-  bool tnc = raw.target == "heidenhain";
-  if (ownReader &&
-      (!raw.macroArguments.empty() || raw.strictReading || (!raw.toolRadii.empty() && !tnc) ||
-       raw.peckRetract || raw.peckClearance || (!raw.profile.empty() && !tnc))) {
-    throw UsageError(fmt::format("-a, --strict, --tool-radius, --peck-retract, --peck-clearance "
-                                 "and --profile apply to 'sim -t fanuc' and '-t m80' (--profile "
-                                 "and --tool-radius also to -t heidenhain), not to {}",
+  if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || raw.peckRetract ||
+                    raw.peckClearance || (!raw.profile.empty() && raw.target != "heidenhain"))) {
+    throw UsageError(fmt::format("-a, --strict, --peck-retract, --peck-clearance and --profile "
+                                 "apply to 'sim -t fanuc' and '-t m80' (--profile also to "
+                                 "-t heidenhain), not to {}",
+                                 raw.target));
+  }
+  // On sinumerik and heidenhain N is the tool whose radius is R (its
+  // cutting edges, its row of the tool table).
+  if (ownReader && !raw.toolRadii.empty() && raw.target != "sinumerik" &&
+      raw.target != "heidenhain") {
+    throw UsageError(fmt::format("--tool-radius applies to 'sim -t fanuc', '-t m80', "
+                                 "'-t sinumerik' and '-t heidenhain', not to {}",
                                  raw.target));
   }
   checkProfileFitsTarget(raw);

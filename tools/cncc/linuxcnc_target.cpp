@@ -22,6 +22,9 @@ ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem& part,
   lowering.coordinateIncrement = ir::partUnits(part) == ir::PartUnits::Inches ? 1e-6 : 1e-5;
   lowering.arcBlocks = true;
   lowering.arcsOnEveryCut = options.arcs;
+  // LinuxCNC's TOLERANCE_CONCAVE_CORNER: cutter compensation takes corners
+  // below it as tangent (seen in rs274's compensated moves).
+  lowering.compensationTangentAngle = 0.05;
   return lowering;
 }
 

@@ -62,6 +62,7 @@ int writeCsv(const DriverOptions& options, const ir::ToolPath& path) {
 int runSinumerik(const DriverOptions& options, const std::string& path, const std::string& text) {
   backends::sinumerik::SinumerikRunOptions settings;
   settings.sampleTolerance = options.chordError;
+  settings.toolRadii = options.toolRadii; // --tool-radius: by tool number
   backends::sinumerik::SinumerikRun run = backends::sinumerik::runSinumerikProgram(text, settings);
   if (run.error) {
     // The message starts "[NAME, ]line N: ", which the location says already.

@@ -84,10 +84,11 @@ struct HostReference {
   std::vector<ir::CutGeometry> cuts;
   backends::ExecutedPath path;
   // The tool radius of each register the program's cutter radius
-  // compensation reads, as it was compiled with, and of each tool number
-  // that compensates (a TNC's tool table).
+  // compensation reads, as it was compiled with.
   std::map<int, double> toolRadii;
-  std::map<int, double> toolTableRadii;
+  // And of each tool that compensates, by its number (a Sinumerik's cutting
+  // edge, a TNC's tool table).
+  std::map<int, double> radiiOfTools;
 };
 
 // The radii by register, or (`byTool`) by the number of the tool in use.
@@ -97,8 +98,7 @@ std::map<int, double> compensationRadii(const ir::ToolPath& path, bool byTool) {
   for (const ir::MachineEvent& event : path.events) {
     if (event.kind == ir::MachineEvent::Kind::Tool) {
       tool = static_cast<int>(std::lround(event.number));
-    }
-    if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
+    } else if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
       radii[byTool ? tool : static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
     }
   }
@@ -304,7 +304,7 @@ int runVerify(const DriverOptions& options) {
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   execution.toolRadii = reference->toolRadii;
-  execution.toolTableRadii = reference->toolTableRadii;
+  execution.radiiOfTools = reference->radiiOfTools;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(
@@ -336,7 +336,7 @@ int printVerifiedStatistics(const BackendRequest& request,
       machineSetup(options).commentCase == backends::CommentCase::AsWritten;
   execution.callable = options.macroCall;
   execution.toolRadii = reference->toolRadii;
-  execution.toolTableRadii = reference->toolTableRadii;
+  execution.radiiOfTools = reference->radiiOfTools;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);
   backends::VerificationReport report = backends::verifyProgram(

@@ -81,6 +81,8 @@ MacroDialect linuxcncDialect(int coordinateDecimals) {
   dialect.falseComparison = "1 EQ 0";
   dialect.comparesBoolVariables = true;
   dialect.hasNurbsBlocks = false;
+  // G41.1/G42.1 D<diameter>: compensation needs no tool table entry.
+  dialect.dynamicCompensation = true;
   return dialect;
 }
 

@@ -52,7 +52,8 @@ std::optional<std::string> findRs274() {
   return std::nullopt;
 }
 
-std::string rs274ToolTable(std::string_view program) {
+std::string rs274ToolTable(std::string_view program, const std::map<int, double>& radii,
+                           bool inches) {
   std::set<long> tools;
   bool comment = false;
   for (std::size_t i = 0; i < program.size(); ++i) {
@@ -67,9 +68,14 @@ std::string rs274ToolTable(std::string_view program) {
       tools.insert(std::strtol(program.data() + i + 1, nullptr, 10));
     }
   }
+  for (const auto& [tool, radius] : radii) {
+    tools.insert(tool);
+  }
   std::string table;
   for (long tool : tools) {
-    table += "T" + std::to_string(tool) + " P" + std::to_string(tool) + " D0 ;\n";
+    auto radius = radii.find(static_cast<int>(tool));
+    double diameter = radius == radii.end() ? 0 : 2 * radius->second / (inches ? 1 : 25.4);
+    table += fmt::format("T{} P{} D{:.10g} ;\n", tool, tool, diameter);
   }
   return table;
 }

@@ -138,6 +138,10 @@ struct MacroDialect {
   // ---- moves
   bool hasNurbsBlocks = true; // G06.2
   NurbsDialect nurbs = NurbsDialect::Fanuc;
+  // Cutter radius compensation with the tool's own register is printed as
+  // `G41.1/G42.1 D<diameter>` (LinuxCNC's dynamic compensation) rather than
+  // `G41/G42 D<register>`.
+  bool dynamicCompensation = false;
 
   bool bare(MacroForm form, MacroPosition position) const {
     return (bareForms[static_cast<std::size_t>(position)] & formBit(form)) != 0;

@@ -216,7 +216,7 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
     }
     return;
   case Opcode::Compensation:
-    moves_.beforeNextPlaneMove(compensationBlock(instruction.number, instruction.index));
+    moves_.beforeNextPlaneMove(compensationWords(instruction));
     return;
   case Opcode::Alarm:
     line(alarmStatement(instruction.text, 0));

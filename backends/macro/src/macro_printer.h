@@ -124,6 +124,7 @@ private:
   void printArctangent(const ir::Instruction& instruction, const std::string& target);
   void printSpindle(const ir::Instruction& instruction);
   void printTool(const ir::Instruction& instruction);
+  std::string compensationWords(const ir::Instruction& instruction);
   void printNurbs(const ir::Instruction& instruction);
 
   const ir::Function& function_;
@@ -141,6 +142,7 @@ private:
   bool reportedLoopDepth_ = false;
   int nextLabel_;
   bool spindleOn_ = false;
+  long long toolNumber_ = 0; // of the last tool change
   LineSpans lineSpans_;
   frontend::SourceSpan currentSpan_;
 };

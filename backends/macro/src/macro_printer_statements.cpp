@@ -149,9 +149,24 @@ void MacroProgramPrinter::printTool(const ir::Instruction& instruction) {
   if (diameter && !dialect_.diameterOnToolBlock) {
     comment(keyword("tool diameter") + " " + diameterText);
   }
+  toolNumber_ = std::llround(instruction.number);
   moves_.forget();
   moves_.beforeNextZ(lengthOffsetWords(
       *options_.setup, static_cast<int>(std::llround(instruction.number)), instruction.index));
+}
+
+// G41/G42 D<register> or G40. With dynamic compensation (LinuxCNC) the
+// tool's own register, the default, becomes `G41.1/G42.1 D<diameter>`:
+// the diameter compiled with, in the program, so that no tool table entry
+// need hold it; a register of its own (`tool N radius=R`) says the shop
+// keeps the diameter in that entry of the tool table, read by `G41 D<R>`.
+std::string MacroProgramPrinter::compensationWords(const ir::Instruction& instruction) {
+  bool ownRegister = static_cast<long long>(instruction.index) == toolNumber_;
+  if (instruction.number == 0 || !dialect_.dynamicCompensation || !ownRegister) {
+    return compensationBlock(instruction.number, instruction.index);
+  }
+  return fmt::format("{} D{}", instruction.number > 0 ? "G41.1" : "G42.1",
+                     expressions_.coordinateLiteral(2 * std::fabs(instruction.number)));
 }
 
 // move.nurbs: the G06.2 blocks of its table at the pass height; a weight

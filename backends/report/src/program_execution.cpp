@@ -255,7 +255,9 @@ ProgramExecution runSinumerik(const ExecutionRequest& request) {
   ProgramExecution execution;
   execution.text = request.text;
   execution.increment = 1e-5;
-  sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(request.text);
+  sinumerik::SinumerikRunOptions options;
+  options.toolRadii = request.radiiOfTools;
+  sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(request.text, options);
   if (run.error) {
     std::string_view text = request.text;
     std::size_t begin = 0;
@@ -273,6 +275,25 @@ ProgramExecution runSinumerik(const ExecutionRequest& request) {
   return execution;
 }
 
+// What rs274 says on standard error, after its `executing`: the message,
+// then the block it stopped at.
+std::string rs274Error(std::string_view errors) {
+  std::vector<std::string_view> lines;
+  while (!errors.empty()) {
+    std::size_t newline = errors.find('\n');
+    std::string_view line = errors.substr(0, newline);
+    errors = newline == std::string_view::npos ? std::string_view() : errors.substr(newline + 1);
+    if (!line.empty() && line != "executing") {
+      lines.push_back(line);
+    }
+  }
+  if (lines.empty()) {
+    return "it stopped with an error and no message";
+  }
+  return lines.size() == 1 ? std::string(lines[0])
+                           : fmt::format("{}, at the block `{}`", lines[0], lines[1]);
+}
+
 // A LinuxCNC program through LinuxCNC's own interpreter, rs274, which
 // prints 4 decimals; the program's parameters are the values it sets.
 ProgramExecution runLinuxcnc(const ExecutionRequest& request) {
@@ -283,11 +304,14 @@ ProgramExecution runLinuxcnc(const ExecutionRequest& request) {
                   "(Debian package linuxcnc-uspace)");
   }
   constexpr int seconds = 60;
-  Rs274Run run = runRs274(*rs274, request.text, rs274ToolTable(request.text), seconds);
+  // The tool table holds the diameters that `G41 D<n>` reads.
+  bool inches = request.text.find("G20") != std::string::npos;
+  Rs274Run run = runRs274(*rs274, request.text,
+                          rs274ToolTable(request.text, request.toolRadii, inches), seconds);
   if (run.exitCode != 0) {
     std::string message = run.exitCode < 0
                               ? fmt::format("rs274 did not finish within {} s", seconds)
-                              : run.errors.substr(0, run.errors.find('\n'));
+                              : rs274Error(run.errors);
     return failed(request.text, 0, "rs274: " + message);
   }
   ProgramExecution execution;
@@ -312,7 +336,7 @@ ProgramExecution runHeidenhain(const ExecutionRequest& request) {
     }
     options.profile = *profile;
   }
-  options.toolRadii = request.toolTableRadii;
+  options.toolRadii = request.radiiOfTools;
   std::string text = request.text;
   for (const ParameterValue& parameter : request.parameters) {
     std::optional<std::string> edited =

@@ -2,6 +2,7 @@
 
 #include "sinumerik_arc.h"
 #include "sinumerik_blocks.h"
+#include "sinumerik_compensation.h"
 #include "sinumerik_expression.h"
 #include "sinumerik_program_state.h"
 #include "sinumerik_sampling.h"
@@ -171,9 +172,7 @@ private:
       } else if (a == "CYCLE832") {
         highSpeedCycle(word);
       } else if (a == "T") {
-        if (word.text.empty() && !word.value) {
-          fail("T needs a tool name or number");
-        }
+        selectTool(word);
       } else if (a == "PW") {
         weight = needNumber(word);
         if (!(*weight >= 0 && *weight <= 3)) {
@@ -262,6 +261,16 @@ private:
     case 3:
       setMotion(code == 2 ? Motion::ClockwiseArc : Motion::CounterClockwiseArc);
       return true;
+    case 40:
+      compensation_.cancel();
+      return false;
+    case 41:
+    case 42:
+      selectCompensation(code == 41);
+      return false;
+    case 451:
+      fail("G451 (outside corners to the offsets' intersection) is not modelled; G450 is");
+    case 450:
     case 17:
     case 90:
     case 54:
@@ -299,6 +308,7 @@ private:
       if (depth_ != 1) {
         fail("M30 inside a subprogram");
       }
+      withCompensation([&] { compensation_.finish(line_); });
       return true;
     case 17:
       if (depth_ == 1) {
@@ -310,11 +320,104 @@ private:
     }
   }
 
-  // D1 .. D32000: the cutting edge whose length offset is active.
-  void toolEdge(const SinumerikWord& word) const {
+  // D1 .. D32000: the cutting edge whose offsets are active (D0: none).
+  void toolEdge(const SinumerikWord& word) {
     double edge = needNumber(word);
     if (!(edge >= 0 && edge <= 32000) || edge != std::floor(edge)) {
       fail(fmt::format("D{:g}: a cutting edge is a whole number 0 .. 32000", edge));
+    }
+    if (compensation_.engaged()) {
+      fail("changing the cutting edge with G41/G42 on is not modelled");
+    }
+    edge_ = int(edge);
+  }
+
+  // T="T5", T5 or T=5: the tool whose edges the D words select; a tool
+  // change activates its first edge (the default $MC_CUTTING_EDGE_DEFAULT).
+  void selectTool(const SinumerikWord& word) {
+    if (word.text.empty() && !word.value) {
+      fail("T needs a tool name or number");
+    }
+    if (compensation_.engaged()) {
+      fail("a tool change with G41/G42 on");
+    }
+    tool_.reset();
+    if (word.value) {
+      tool_ = *word.value;
+    } else {
+      std::size_t digits = word.text.find_last_not_of("0123456789");
+      digits = digits == std::string::npos ? 0 : digits + 1;
+      if (digits < word.text.size()) {
+        tool_ = std::stod(word.text.substr(digits));
+      }
+    }
+    toolName_ = word.text.empty() ? fmt::format("{:g}", *word.value) : word.text;
+    edge_ = 1;
+  }
+
+  // G41/G42 with the radius of the active tool's active edge.
+  void selectCompensation(bool left) {
+    if (toolName_.empty() || edge_ == 0) {
+      fail(fmt::format("G{} without an active cutting edge (T and D)", left ? 41 : 42));
+    }
+    auto radius = tool_ ? options_.toolRadii.find(int(*tool_)) : options_.toolRadii.end();
+    if (radius == options_.toolRadii.end()) {
+      fail(fmt::format("G{}: the model is given no radius for tool {}'s cutting edges",
+                       left ? 41 : 42, toolName_));
+    }
+    withCompensation([&] { compensation_.select(left, radius->second, line_); });
+  }
+
+  // A CompensationError as the line's ProgramError.
+  template <typename Action> void withCompensation(Action action) const {
+    try {
+      action();
+    } catch (const CompensationError& error) {
+      throw ProgramError(program_, error.line(), error.what());
+    }
+  }
+
+  // A programmed line or arc in the plane, while compensation is engaged.
+  void compensate(const Vector& start, const Vector& end, const sim::PlaneElement& element,
+                  bool rapid) {
+    if (end.z() != start.z()) {
+      fail("a move in Z with G41/G42 on is not modelled");
+    }
+    if (!element.arc && end.x() == start.x() && end.y() == start.y()) {
+      fail("a block without X or Y motion with G41/G42 on is not modelled");
+    }
+    PlaneMove move;
+    move.element = element;
+    move.z = end.z();
+    move.feed = feed_.value_or(0.0);
+    move.rapid = rapid;
+    move.line = line_;
+    move.mainLine = mainLine_;
+    withCompensation([&] { compensation_.add(move); });
+  }
+
+  // A move of the tool's centre that compensation worked out.
+  void recordCompensated(const PlaneMove& move) {
+    const sim::PlaneElement& element = move.element;
+    Vector end(element.end.x, element.end.y, move.z);
+    if (!element.arc) {
+      run_.moves.push_back({move.rapid ? MotionKind::Rapid : MotionKind::Linear, end, move.feed,
+                            move.line, move.mainLine});
+      return;
+    }
+    ProgrammedArc arc;
+    arc.start = {element.start.x, element.start.y, move.z};
+    arc.end = end;
+    arc.centre = {element.centre.x - element.start.x, element.centre.y - element.start.y};
+    arc.clockwise = element.clockwise;
+    std::string problem;
+    std::vector<Vector> points =
+        arcChordPoints(arc, options_.sampleTolerance, pointsLeft(), problem);
+    if (!problem.empty()) {
+      throw ProgramError(program_, move.line, problem);
+    }
+    for (const Vector& point : points) {
+      run_.moves.push_back({MotionKind::Linear, point, move.feed, move.line, move.mainLine});
     }
   }
 
@@ -373,6 +476,9 @@ private:
       if (axes[2] && !splineZ_) {
         fail("Z in a spline block, but the spline axes are X and Y (SPLINEPATH)");
       }
+      if (compensation_.engaged()) {
+        fail("spline blocks with G41/G42 on are not modelled");
+      }
       splinePoint(target, weight, interval);
       return;
     }
@@ -380,7 +486,17 @@ private:
     if (motion_ == Motion::Linear && !feed_) {
       fail("a G1 move without a feed rate");
     }
-    record(motion_ == Motion::Rapid ? MotionKind::Rapid : MotionKind::Linear, target, axes);
+    if (compensation_.engaged()) {
+      if (!known()) {
+        fail("G41/G42 before every axis is known");
+      }
+      sim::PlaneElement line;
+      line.start = {current().x(), current().y()};
+      line.end = {target.x(), target.y()};
+      compensate(current(), target, line, motion_ == Motion::Rapid);
+    } else {
+      record(motion_ == Motion::Rapid ? MotionKind::Rapid : MotionKind::Linear, target, axes);
+    }
     previous_ = known() ? std::optional<Vector>(current()) : std::nullopt;
     for (std::size_t k = 0; k < 3; ++k) {
       if (axes[k]) {
@@ -416,6 +532,10 @@ private:
     arc.radius = words.radius;
     arc.turns = int(std::min(words.turns, 1e6));
     arc.clockwise = motion_ == Motion::ClockwiseArc;
+    if (compensation_.engaged()) {
+      compensateArc(arc);
+      return;
+    }
     std::string problem;
     std::vector<Vector> points =
         arcChordPoints(arc, options_.sampleTolerance, pointsLeft(), problem);
@@ -426,6 +546,27 @@ private:
       run_.moves.push_back({MotionKind::Linear, point, *feed_, line_, mainLine_});
     }
     previous_ = start;
+    position_ = {arc.end.x(), arc.end.y(), arc.end.z()};
+    lastLinear_ = false;
+  }
+
+  // An arc given by I J, without turns, in the plane of compensation.
+  void compensateArc(const ProgrammedArc& arc) {
+    if (!arc.centre[0] && !arc.centre[1]) {
+      fail("a CR= arc with G41/G42 on is not modelled: give I and J");
+    }
+    if (arc.turns != 0) {
+      fail("TURN= with G41/G42 on is not modelled");
+    }
+    sim::PlaneElement element;
+    element.arc = true;
+    element.clockwise = arc.clockwise;
+    element.start = {arc.start.x(), arc.start.y()};
+    element.end = {arc.end.x(), arc.end.y()};
+    element.centre = {arc.start.x() + arc.centre[0].value_or(0.0),
+                      arc.start.y() + arc.centre[1].value_or(0.0)};
+    compensate(arc.start, arc.end, element, false);
+    previous_ = arc.start;
     position_ = {arc.end.x(), arc.end.y(), arc.end.z()};
     lastLinear_ = false;
   }
@@ -596,6 +737,10 @@ private:
   geom::SplineEndCondition startCondition_ = geom::SplineEndCondition::Tangent;
   geom::SplineEndCondition endCondition_ = geom::SplineEndCondition::Tangent;
   std::optional<PendingSpline> pending_;
+  std::optional<double> tool_; // its number, when it has one
+  std::string toolName_;       // as the T word gives it
+  int edge_ = 0;               // D: the active cutting edge
+  CutterCompensation compensation_{[this](const PlaneMove& move) { recordCompensated(move); }};
 };
 
 } // namespace

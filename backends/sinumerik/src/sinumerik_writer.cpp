@@ -199,8 +199,9 @@ private:
       cut_ = static_cast<std::size_t>(e.number);
       line(fmt::format("; cut {}", *cut_ + 1));
       break;
-    case MachineEvent::Kind::Compensation: // the lowering refuses comp=controller here
-      throw std::logic_error("the Sinumerik writer has no cutter radius compensation");
+    case MachineEvent::Kind::Compensation:
+      compensation(e);
+      break;
     }
     return i;
   }
@@ -228,6 +229,23 @@ private:
   }
 
   std::string number_(double value) const { return number(value); }
+
+  // G41/G42 (left/right) with the radius of the active cutting edge, the D
+  // of the tool change, or G40, on the next G1 in the plane. G450 (a
+  // transition arc round an outside corner, as the compiler's offset and
+  // verify's reference run it) is said once rather than left to the
+  // machine's reset state, which may be G451.
+  void compensation(const MachineEvent& e) {
+    if (e.number == 0) {
+      beforePlane_ = "G40";
+      return;
+    }
+    beforePlane_ = e.number > 0 ? "G41" : "G42";
+    if (!cornerModeWritten_) {
+      beforePlane_ += " G450";
+      cornerModeWritten_ = true;
+    }
+  }
 
   // Up first and down last, as the G-code writer does.
   void rapid(const MachineEvent& e) {
@@ -264,6 +282,10 @@ private:
     };
     word('X', x, x_);
     word('Y', y, y_);
+    if (!words.empty() && !beforePlane_.empty() && std::string_view(code) == "G1") {
+      words.insert(0, " " + beforePlane_);
+      beforePlane_.clear();
+    }
     word('Z', z, z_);
     if (words.empty()) {
       return;
@@ -429,6 +451,8 @@ private:
   std::size_t feedsInPass_ = 0; // G1 blocks since the last rapid
   bool spindleOn_ = false;
   bool pathModeWritten_ = false;
+  bool cornerModeWritten_ = false; // G450
+  std::string beforePlane_;        // G41/G42/G40 for the next G1 in the plane
   std::string motion_, x_, y_, z_, feed_;
   std::vector<SplineSubprogram> subprograms_;
   std::vector<std::optional<std::size_t>> subprogramCuts_;

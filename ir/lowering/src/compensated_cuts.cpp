@@ -10,6 +10,7 @@
 //
 // The cut table holds the tool centre's path at the radius compiled with:
 // start-up line, lead-in arc of the lead's radius, the exact offset curve,
+// a straight run-out where the curve bends away from the tool at its end,
 // lead-out arc and cancel line, which verify measures the executed path
 // against (ir/tool_centre_path.h runs the compensation on the host).
 #include "part_lowering.h"
@@ -87,6 +88,10 @@ toolCentrePath(const CompensatedLeads& leads,
                const std::vector<std::shared_ptr<const geom::Curve>>& contour) {
   std::vector<std::shared_ptr<const geom::Curve>> chain{leads.leadIn.curve()};
   chain.insert(chain.end(), contour.begin(), contour.end());
+  if (leads.runOut) {
+    chain.push_back(std::make_shared<geom::LineCurve>(
+        contour.back()->point(contour.back()->domain().t1), leads.leadOut.start));
+  }
   chain.push_back(leads.leadOut.curve());
   std::shared_ptr<const geom::Curve> offset = geom::offsetOfPieces(chain, leads.offset);
   geom::ParameterRange domain = offset->domain();
@@ -94,6 +99,89 @@ toolCentrePath(const CompensatedLeads& leads,
       std::make_shared<geom::LineCurve>(leads.startUp, offset->point(domain.t0)), offset,
       std::make_shared<geom::LineCurve>(offset->point(domain.t1), leads.cancel)};
   return std::make_shared<geom::CompositeCurve>(std::move(pieces));
+}
+
+// The largest distance of the exact offset over [ta, tb] from the line the
+// controller offsets the chord C(ta)C(tb) to: where the curve's bend varies
+// along the chord (an inflection, a tight bend at one end), the offset strays
+// further from its chord than the curve from its own.
+double offsetChordDeviation(const geom::Curve& curve, double ta, double tb, double offset) {
+  Eigen::Vector3d chord = curve.point(tb) - curve.point(ta);
+  chord.z() = 0;
+  if (!(chord.norm() > 0)) {
+    return 0;
+  }
+  Eigen::Vector3d along = chord.normalized();
+  Eigen::Vector3d base = curve.point(ta) + offset * leftOf(along);
+  constexpr int steps = 16;
+  double worst = 0;
+  for (int i = 0; i <= steps; ++i) {
+    double t = ta + (tb - ta) * i / steps;
+    Eigen::Vector3d tangent = planeTangent(curve, t);
+    if (!tangent.allFinite()) {
+      continue;
+    }
+    Eigen::Vector3d away = curve.point(t) + offset * leftOf(tangent) - base;
+    worst = std::max(worst, std::fabs(along.x() * away.y() - along.y() * away.x()));
+  }
+  return worst;
+}
+
+// The chord to `end` (at parameter tb) from ta, halved until its offset keeps
+// within `budget` of the exact offset (at most `depth` more times).
+void appendOffsetChord(const geom::Curve& curve, double ta, double tb, const Eigen::Vector3d& end,
+                       double offset, double budget, int depth, geom::CurveSamples& out) {
+  if (depth > 0 && offsetChordDeviation(curve, ta, tb, offset) > budget) {
+    double middle = (ta + tb) / 2;
+    appendOffsetChord(curve, ta, middle, curve.point(middle), offset, budget, depth - 1, out);
+    appendOffsetChord(curve, middle, tb, end, offset, budget, depth - 1, out);
+    return;
+  }
+  out.parameters.push_back(tb);
+  out.points.push_back(end);
+}
+
+// `samples` of the drawn curve, chords split where the controller's offset
+// of them would stray more than `budget` from the exact offset.
+geom::CurveSamples withinOffsetBudget(const geom::CurveSamples& samples, const geom::Curve& curve,
+                                      double offset, double budget) {
+  if (samples.points.size() < 2 || samples.parameters.size() != samples.points.size()) {
+    return samples;
+  }
+  geom::CurveSamples refined;
+  refined.parameters.push_back(samples.parameters.front());
+  refined.points.push_back(samples.points.front());
+  for (std::size_t i = 1; i < samples.points.size(); ++i) {
+    appendOffsetChord(curve, samples.parameters[i - 1], samples.parameters[i], samples.points[i],
+                      offset, budget, 8, refined);
+  }
+  return refined;
+}
+
+// Whether the curve bends away from the tool where it ends (curvature
+// against the offset's side): there its last chord meets the lead-out arc,
+// which bends towards the tool, at a slight outside corner, which LinuxCNC
+// refuses ("arc move in concave corner cannot be reached by the tool
+// without gouging"). A straight run along the end tangent between the two
+// makes the corner one between lines, which every control offsets; on that
+// side the run leaves the part.
+bool needsRunOut(const geom::Curve& contour, double offset) {
+  double t = contour.domain().t1;
+  Eigen::Vector3d first = contour.derivative(t);
+  Eigen::Vector3d second = contour.secondDerivative(t);
+  double bend = first.x() * second.y() - first.y() * second.x(); // left positive
+  return bend * offset < 0;
+}
+
+// The leads with the lead-out, and the cancel line after it, moved
+// `length` along the curve's end tangent.
+void withRunOut(CompensatedLeads& leads, const Eigen::Vector3d& tangent, double length) {
+  Eigen::Vector3d shift = length * tangent;
+  leads.leadOut.start += shift;
+  leads.leadOut.end += shift;
+  leads.leadOut.centre += shift.head<2>();
+  leads.cancel += shift;
+  leads.runOut = true;
 }
 
 } // namespace
@@ -144,11 +232,20 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   geom::ParameterRange domain = contour->domain();
   double increment = options_.coordinateIncrement;
   double toolRadius = std::fabs(distance);
+  std::optional<std::vector<geom::ArcSegment>> arcs;
+  if (wantsNativeArcs(cut)) {
+    arcs = exactSegments(*contour);
+  }
   CompensatedLeads leads = programmedLeads(
       onPrintedGrid(contour->point(domain.t0), increment), planeTangent(*contour, domain.t0),
       onPrintedGrid(contour->point(domain.t1), increment), planeTangent(*contour, domain.t1),
       distance, leadRadius(cut, toolRadius) + toolRadius);
   leads.offsetRegister = radiusRegister_;
+  if (!arcs && needsRunOut(*contour, distance)) {
+    // Half the tool radius, on the printed grid so that every target runs
+    // the same leads as verify's reference.
+    withRunOut(leads, planeTangent(*contour, domain.t1), onPrintedGrid(toolRadius / 2, 0.001));
+  }
   if ((leads.leadIn.start - leads.leadOut.end).head<2>().norm() < 1e-6) {
     fail(cut.span,
          fmt::format("the lead-in and lead-out arcs meet at ({:.4f}, {:.4f}), so the controller "
@@ -168,13 +265,22 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
          DiagnosticKind::ToolTooLarge);
   }
   checkCutBounds(cut, *centre);
-  std::optional<std::vector<geom::ArcSegment>> arcs;
-  if (wantsNativeArcs(cut)) {
-    arcs = exactSegments(*contour);
-  }
   geom::CurveSamples samples;
   if (!arcs) {
     samples = offsetSamples(cut, *contour);
+    if (chordTolerance(cut)) { // the chords' budget for their offsets too (offsetSamples)
+      ToleranceBudget budget = toleranceBudget(cut);
+      double chords = budget.forPoints() - (options_.controllerLoops ? budget.tolerance / 100 : 0);
+      // Where the controller runs slight corners as tangent, what that adds
+      // comes off the chords' budget (down to a quarter of it; beyond, verify
+      // reports the cut).
+      double tangentCorners = toolRadius * (1 - std::cos(options_.compensationTangentAngle));
+      if (tangentCorners > 0) {
+        chords = std::max(chords - tangentCorners, chords / 4);
+        samples = chordsWithinBudget(cut, *contour, chords);
+      }
+      samples = withinOffsetBudget(samples, *contour, distance, chords);
+    }
   }
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
@@ -215,6 +321,10 @@ void PartLowering::emitCompensatedPass(const CompensatedLeads& leads, ValueId sa
   builder_.feed(inX, inY, z, feed);
   emitArcLap({leads.leadIn}, z, feed);
   contour(z);
+  if (leads.runOut) {
+    auto [runX, runY] = at(leads.leadOut.start);
+    builder_.feed(runX, runY, z, feed);
+  }
   emitArcLap({leads.leadOut}, z, feed);
   builder_.compensation(0, 0);
   auto [endX, endY] = at(leads.cancel);

@@ -163,6 +163,9 @@ struct CompensatedLeads {
   Eigen::Vector3d startUp = Eigen::Vector3d::Zero();
   geom::ArcSegment leadIn;
   geom::ArcSegment leadOut;
+  // A straight run along the curve's end tangent before the lead-out
+  // (compensated_cuts.cpp, withRunOut), which then starts at its end.
+  bool runOut = false;
   Eigen::Vector3d cancel = Eigen::Vector3d::Zero();
   double offset = 0; // the tool's, left of the direction of travel positive
   std::uint32_t offsetRegister = 0;

@@ -287,9 +287,43 @@ TEST(Verification, LinuxcncProgramsRunInRs274) {
   EXPECT_EQ(run.failure->message.rfind("rs274: ", 0), 0u) << run.failure->message;
 }
 
+// rs274 runs G41/G42 and reports the tool centre's moves; the diameter of
+// `G41 D<n>` comes from the request's radii, and what rs274 refuses (an
+// entry move not longer than the radius) fails the run.
+TEST(Verification, LinuxcncCompensationRunsInRs274) {
+  const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
+  ASSERT_NE(linuxcnc, nullptr);
+  ExecutionRequest request;
+  request.text = "G21 G90\nT1 M6\nG0 X0 Y-10 Z0\nG1 X0 Y-10 F100\nG42 D7 X0 Y0\nG1 X10\n"
+                 "G40 G1 X10 Y-10\nM2\n";
+  request.toolRadii = {{7, 2}};
+  ProgramExecution run = linuxcnc->execute(request);
+  ASSERT_FALSE(run.failure) << run.failure->message;
+  // Right of +X by 2 from (0, 0) to (10, 0), then the cancel move.
+  bool offsetSide = false;
+  for (const ExecutedMove& move : run.path.moves) {
+    offsetSide |= std::abs(move.end.x() - 10) < 1e-9 && std::abs(move.end.y() + 2) < 1e-9;
+  }
+  EXPECT_TRUE(offsetSide);
+  request.text = "G21 G90\nT1 M6\nG0 X0 Y-1 Z0\nG1 X0 Y-1 F100\nG42.1 D4 X0 Y0\nG1 X10\n"
+                 "G40 G1 X10 Y-10\nM2\n";
+  run = linuxcnc->execute(request);
+  ASSERT_TRUE(run.failure);
+  EXPECT_NE(run.failure->message.find("entry move is not greater than the tool radius"),
+            std::string::npos)
+      << run.failure->message;
+}
+
 TEST(Rs274, ToolTableHasEveryToolTheProgramNames) {
   EXPECT_EQ(rs274ToolTable("T1 M6\n(T9 IN A COMMENT)\nG0 X1\nt12 m6\nM2\n"),
             "T1 P1 D0 ;\nT12 P12 D0 ;\n");
+}
+
+TEST(Rs274, ToolTableHoldsTheCompensationDiametersInInches) {
+  // `G41 D21` reads entry 21, which the program names nowhere else; rs274
+  // keeps the table in inches whatever the program's units.
+  EXPECT_EQ(rs274ToolTable("T1 M6\nG42 D21 X1\n", {{21, 3 * 25.4}}), "T1 P1 D0 ;\nT21 P21 D6 ;\n");
+  EXPECT_EQ(rs274ToolTable("G20\nT2 M6\n", {{2, 0.25}}, true), "T2 P2 D0.5 ;\n");
 }
 
 TEST(OperationCounts, CountsEachKindOfOperationInABlock) {

@@ -61,6 +61,10 @@ struct LoweringOptions {
   // D.., G40) for `comp=controller`; `targetName` names it in the error
   // where it does not.
   bool cutterCompensation = false;
+  // Corners of less than this (radians) between compensated moves the
+  // controller runs as tangent: it goes straight on from the offset end of
+  // one move, off the exact offset by up to r (1 - cos) (LinuxCNC: 0.05).
+  double compensationTangentAngle = 0;
   std::string targetName;
   // The machine's largest feed (mm/min, whatever the part's units) and
   // spindle speed (rpm); 0: no limit. A constant beyond it is an error at

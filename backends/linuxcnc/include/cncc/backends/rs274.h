@@ -4,6 +4,7 @@
 // readLinuxcncCanon (linuxcnc_canon.h).
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,8 +16,11 @@ std::optional<std::string> findRs274();
 
 // A tool table (`T5 P5 D0 ;`) with every tool the program names in a `T`
 // or `H` word: rs274 refuses `T5 M6` or `G43 H5` for a tool its table does
-// not have.
-std::string rs274ToolTable(std::string_view program);
+// not have. `radii` (in the program's units, inches with `inches`) gives
+// the entries that `G41 D<n>` reads their diameter from; rs274 keeps its
+// table in inches.
+std::string rs274ToolTable(std::string_view program, const std::map<int, double>& radii = {},
+                           bool inches = false);
 
 // rs274 runs with every work offset's Z at minus this (mm), so that the
 // machine's Z0 (`G53 G0 Z0`, the retract at the end) is this far above the

@@ -48,9 +48,10 @@ struct ExecutionRequest {
   bool lowerCaseComments = false;
   // The tool radius in each offset register the program's G41/G42 read.
   std::map<int, double> toolRadii;
-  // The tool radius of each tool number, for a control that takes it from
-  // its tool table (the TNC's RL/RR).
-  std::map<int, double> toolTableRadii;
+  // The radius of each tool, by its number, that the program compensates
+  // with, for a control that takes it from the tool's data: a Sinumerik's
+  // G41/G42 read the active tool's cutting edge, a TNC's RL/RR its tool table.
+  std::map<int, double> radiiOfTools;
 };
 
 // The controller refused the program: the message names its line.

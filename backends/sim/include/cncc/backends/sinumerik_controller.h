@@ -1,5 +1,6 @@
-// A virtual Sinumerik 840D: reads a program (G0/G1, BSPLINE with SD/PW/PL,
-// CSPLINE and ASPLINE with their transitions, subprogram calls) and runs it,
+// A virtual Sinumerik 840D: reads a program (G0/G1, G2/G3, BSPLINE with
+// SD/PW/PL, CSPLINE and ASPLINE with their transitions, subprogram calls,
+// G41/G42 tool radius compensation with G450 corners) and runs it,
 // building each spline as geom's models say the controller does, and
 // records the executed path with the splines sampled densely. What it does
 // not know is an error naming the line, never a guess.
@@ -24,6 +25,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -77,6 +79,9 @@ struct SinumerikRunOptions {
   // the run stops with an error naming the limit, before sampling the arc
   // or spline that would pass it.
   std::size_t pointLimit = 4'000'000;
+  // The radius of each tool's cutting edges, by tool number (`T5`, `T=5` or
+  // a name ending in it, `T="T5"`): what G41/G42 offset the path by.
+  std::map<int, double> toolRadii;
 };
 
 struct SinumerikRun {
