@@ -23,7 +23,7 @@ S_PROFILE = (
     "weights=[1,1,1,1,1,3,1])"
 )
 TARGETS = ["gcode", "jit", "sinumerik", "linuxcnc", "fanuc", "m80", "heidenhain"]
-CONTROLLER_TARGETS = ["fanuc", "m80", "gcode", "linuxcnc", "sinumerik"]
+CONTROLLER_TARGETS = ["fanuc", "m80", "gcode", "linuxcnc", "sinumerik", "heidenhain"]
 # (name, curve, tool diameter, side)
 CASES = [
     ("polar contour outside", POLAR, 4, "right"),
