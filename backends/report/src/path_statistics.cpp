@@ -48,7 +48,11 @@ CutDeviation measureCut(const ExecutedPath& path, std::size_t cut,
                                [](const auto& polyline) { return polyline.size() > 1; });
   for (const std::vector<Eigen::Vector3d>& polyline : polylines) {
     if (hasExtent && polyline.size() == 1) {
-      double distance = geom::CurveProximity(plan, 1e-7).closestPoint(polyline.front()).distance;
+      // Newton's method refines the closest point: the samples need only the
+      // measurement's accuracy (finer ones cost a long curve millions).
+      double accuracy = measurementOptions(geometry.tolerance, 1).accuracy;
+      double distance =
+          geom::CurveProximity(plan, accuracy).closestPoint(polyline.front()).distance;
       if (!(distance <= deviation.maxDeviation)) {
         deviation.maxDeviation = distance;
         deviation.where = polyline.front();
