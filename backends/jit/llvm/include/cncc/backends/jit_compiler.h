@@ -45,10 +45,11 @@ public:
   // (no allocation when a previous run left enough). After an error the
   // path holds the events recorded before it.
   void run(const ir::InterpreterOptions& options, ir::ToolPath& path) const;
-  // The same events handed to `sink` one by one as the run makes them, none
-  // stored: the run's memory does not grow with its length. After an error
-  // the sink has had the events made before it; an exception the sink
-  // throws stops the run and is rethrown here.
+  // The same events handed to `sink` one by one as the run makes them, not
+  // stored (at most one move.nurbs, move.spline or move.polynomial's chords
+  // are held at a time). After an error the sink has had the events made
+  // before it; an exception the sink throws stops the run and is rethrown
+  // here.
   void run(const ir::InterpreterOptions& options, ir::MachineEventSink& sink) const;
 
 private:
