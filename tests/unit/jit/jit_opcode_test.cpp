@@ -271,6 +271,8 @@ TEST_P(JitOpcodeTest, MatchesTheInterpreter) {
   ASSERT_TRUE(ir::verifyFunction(opcodeCase.function).empty());
   EXPECT_FALSE(ir::interpret(opcodeCase.function).events.empty());
   EXPECT_TRUE(jit_test::jitMatchesInterpreter(opcodeCase.function));
+  // Streamed, the same events as stored.
+  EXPECT_TRUE(jit_test::streamedMatchesStored(backends::CompiledFunction(opcodeCase.function)));
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryOperation, JitOpcodeTest,
@@ -318,6 +320,9 @@ TEST(JitOpcodes, AnArcWithoutARadiusFailsAsInTheInterpreter) {
     EXPECT_EQ(interpreted.failed, radius < 1e-5) << "radius " << radius;
     EXPECT_EQ(interpreted.error == "alarm: no radius", radius == 0) << interpreted.error;
     EXPECT_TRUE(jit_test::jitMatchesInterpreter(opcodeCase.function, options)) << radius;
+    EXPECT_TRUE(
+        jit_test::streamedMatchesStored(backends::CompiledFunction(opcodeCase.function), options))
+        << radius;
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "cncc/backends/jit_compiler.h"
 #include "cncc/ir/interpreter.h"
+#include "cncc/ir/machine_event_sink.h"
 
 #include <gtest/gtest.h>
 
@@ -87,6 +88,83 @@ jitMatchesInterpreter(const ir::Function& function, const ir::InterpreterOptions
   backends::CompiledFunction compiled(function);
   return sameOutcome(outcomeOf([&] { return ir::interpret(function, options); }),
                      outcomeOf([&] { return compiled.run(options); }));
+}
+
+// A sink that keeps what it is handed.
+class CollectingSink : public ir::MachineEventSink {
+public:
+  void event(const ir::MachineEvent& event) override { path.events.push_back(event); }
+  ir::ToolPath path;
+};
+
+// A run into a stored path and a streamed run, each with the events made
+// before an error, if one stops it.
+inline RunOutcome storedOutcome(const backends::CompiledFunction& compiled,
+                                const ir::InterpreterOptions& options = {}) {
+  RunOutcome outcome;
+  try {
+    compiled.run(options, outcome.path);
+  } catch (const ir::InterpreterError& error) {
+    outcome.failed = true;
+    outcome.error = error.what();
+  }
+  return outcome;
+}
+
+inline RunOutcome streamedOutcome(const backends::CompiledFunction& compiled,
+                                  const ir::InterpreterOptions& options = {}) {
+  CollectingSink sink;
+  RunOutcome outcome;
+  try {
+    compiled.run(options, sink);
+  } catch (const ir::InterpreterError& error) {
+    outcome.failed = true;
+    outcome.error = error.what();
+  }
+  outcome.path = std::move(sink.path);
+  return outcome;
+}
+
+inline bool sameBits(double expected, double actual) {
+  return expected == actual || (std::isnan(expected) && std::isnan(actual));
+}
+
+// Not within a tolerance: the same code made both, so every field is equal.
+inline ::testing::AssertionResult identicalOutcomes(const RunOutcome& stored,
+                                                    const RunOutcome& streamed) {
+  if (stored.failed != streamed.failed || stored.error != streamed.error) {
+    return ::testing::AssertionFailure()
+           << "stored: " << (stored.failed ? stored.error : "finishes")
+           << "; streamed: " << (streamed.failed ? streamed.error : "finishes");
+  }
+  if (stored.path.events.size() != streamed.path.events.size()) {
+    return ::testing::AssertionFailure() << "stored " << stored.path.events.size()
+                                         << " events, streamed " << streamed.path.events.size();
+  }
+  for (std::size_t i = 0; i < stored.path.events.size(); ++i) {
+    const ir::MachineEvent& a = stored.path.events[i];
+    const ir::MachineEvent& b = streamed.path.events[i];
+    bool same = a.kind == b.kind && sameBits(a.x, b.x) && sameBits(a.y, b.y) &&
+                sameBits(a.z, b.z) && sameBits(a.feed, b.feed) && sameBits(a.number, b.number) &&
+                sameBits(a.diameter, b.diameter) && sameBits(a.centreX, b.centreX) &&
+                sameBits(a.centreY, b.centreY) && a.clockwise == b.clockwise && a.text == b.text &&
+                a.offsetRegister == b.offsetRegister && a.splineTable == b.splineTable &&
+                a.splineStart == b.splineStart;
+    if (!same) {
+      return ::testing::AssertionFailure()
+             << "event " << i << " differs: stored kind " << static_cast<int>(a.kind) << " (" << a.x
+             << ", " << a.y << ", " << a.z << ", \"" << a.text << "\"), streamed kind "
+             << static_cast<int>(b.kind) << " (" << b.x << ", " << b.y << ", " << b.z << ", \""
+             << b.text << "\")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+inline ::testing::AssertionResult
+streamedMatchesStored(const backends::CompiledFunction& compiled,
+                      const ir::InterpreterOptions& options = {}) {
+  return identicalOutcomes(storedOutcome(compiled, options), streamedOutcome(compiled, options));
 }
 
 } // namespace cncc::jit_test

@@ -141,15 +141,27 @@ ir::ToolPath CompiledFunction::run(const ir::InterpreterOptions& options) const 
 }
 
 void CompiledFunction::run(const ir::InterpreterOptions& options, ir::ToolPath& path) const {
+  path.events.clear();
+  jit::RunContext context;
+  context.events = &path.events;
+  execute(options, context);
+}
+
+void CompiledFunction::run(const ir::InterpreterOptions& options,
+                           ir::MachineEventSink& sink) const {
+  jit::RunContext context;
+  context.sink = &sink;
+  execute(options, context);
+}
+
+void CompiledFunction::execute(const ir::InterpreterOptions& options,
+                               jit::RunContext& context) const {
   std::vector<double> parameters;
   for (const ir::Parameter& parameter : compiled_->parameters) {
     auto given = options.parameters.find(parameter.name);
     parameters.push_back(given == options.parameters.end() ? parameter.defaultValue
                                                            : given->second);
   }
-  path.events.clear();
-  jit::RunContext context;
-  context.events = &path.events;
   context.comments = &compiled_->comments;
   context.tables = &compiled_->tables;
   std::uint64_t steps = 0;

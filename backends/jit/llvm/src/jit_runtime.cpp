@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -14,14 +15,120 @@ namespace cncc::backends::jit {
 
 namespace {
 
-// Records an event; an exception (out of memory) must not unwind through the
-// native code, so it is kept for the caller and reported as a failure.
+bool isMove(ir::MachineEvent::Kind kind) {
+  return kind == ir::MachineEvent::Kind::Rapid || kind == ir::MachineEvent::Kind::Feed ||
+         kind == ir::MachineEvent::Kind::Arc;
+}
+
+void notePosition(RunContext& context, const ir::MachineEvent& event) {
+  if (isMove(event.kind)) {
+    context.previousPosition = context.position;
+    context.position = {event.x, event.y, event.z};
+    context.positionKind = event.kind;
+    context.motions = std::min(context.motions + 1, 2);
+  }
+}
+
+// The last two moves as a stored run's events end with them: what the
+// interpreter's splineMove reads of the events before it.
+void seedLastMotions(const RunContext& context, std::vector<ir::MachineEvent>& events) {
+  if (context.motions == 2) {
+    ir::MachineEvent before;
+    before.kind = ir::MachineEvent::Kind::Rapid;
+    before.x = context.previousPosition[0];
+    before.y = context.previousPosition[1];
+    before.z = context.previousPosition[2];
+    events.push_back(std::move(before));
+  }
+  if (context.motions >= 1) {
+    ir::MachineEvent last;
+    last.kind = context.positionKind;
+    last.x = context.position[0];
+    last.y = context.position[1];
+    last.z = context.position[2];
+    events.push_back(std::move(last));
+  }
+}
+
+// Appends one event to the run's events, or hands it to the sink.
+void deliver(RunContext& context, ir::MachineEvent&& event) {
+  notePosition(context, event);
+  if (context.events != nullptr) {
+    context.events->push_back(std::move(event));
+  } else {
+    context.sink->event(event);
+  }
+}
+
+// Records an event; an exception (out of memory, or the sink's) must not
+// unwind through the native code, so it is kept for the caller and reported
+// as a failure.
 template <typename MakeEvent> std::int32_t record(RunContext* context, MakeEvent makeEvent) {
   try {
-    context->events->push_back(makeEvent());
+    deliver(*context, makeEvent());
     return 0;
   } catch (...) {
     context->exception = std::current_exception();
+    return 1;
+  }
+}
+
+// A move of several events, made by one of the interpreter's functions that
+// append to a vector: appended to the run's events, or made in pendingMoves
+// (after the last two moves when `readsLastMotions`: what the function
+// reads of the events before it) and handed to the sink. The events made
+// before an error are kept (or handed on) as the run's events before it.
+template <typename Append>
+std::int32_t recordMoves(RunContext* context, Append append, bool readsLastMotions = false) {
+  if (context->exception) {
+    return 1;
+  }
+  bool streaming = context->events == nullptr;
+  std::vector<ir::MachineEvent>& target = streaming ? context->pendingMoves : *context->events;
+  // A streaming run's pendingMoves is empty here: the events it hands on
+  // follow the seeded ones.
+  std::size_t first =
+      streaming && readsLastMotions ? static_cast<std::size_t>(context->motions) : target.size();
+  try {
+    if (streaming && readsLastMotions) {
+      seedLastMotions(*context, target);
+    }
+    append(target);
+  } catch (...) {
+    context->exception = std::current_exception();
+  }
+  try {
+    for (std::size_t i = first; i < target.size(); ++i) {
+      notePosition(*context, target[i]);
+      if (streaming) {
+        context->sink->event(target[i]);
+      }
+    }
+  } catch (...) {
+    if (!context->exception) {
+      context->exception = std::current_exception();
+    }
+  }
+  if (streaming) {
+    context->pendingMoves.clear();
+  }
+  return context->exception ? 1 : 0;
+}
+
+// A streaming run's feed move: the context's feed event, handed to the sink
+// with this target and feed (what deliver does, without making an event).
+std::int32_t streamFeed(RunContext& context, double x, double y, double z, double feed) {
+  ir::MachineEvent& event = context.feedEvent;
+  event.x = x;
+  event.y = y;
+  event.z = z;
+  event.feed = feed;
+  notePosition(context, event);
+  try {
+    context.sink->event(event);
+    return 0;
+  } catch (...) {
+    context.exception = std::current_exception();
     return 1;
   }
 }
@@ -33,17 +140,6 @@ template <typename Fill> std::int32_t recordError(RunContext* context, Fill fill
     context->exception = std::current_exception();
   }
   return 1;
-}
-
-// Where the last move ended (the origin before any).
-std::array<double, 3> lastPosition(const RunContext& context) {
-  for (auto event = context.events->rbegin(); event != context.events->rend(); ++event) {
-    if (event->kind == ir::MachineEvent::Kind::Rapid ||
-        event->kind == ir::MachineEvent::Kind::Feed || event->kind == ir::MachineEvent::Kind::Arc) {
-      return {event->x, event->y, event->z};
-    }
-  }
-  return {0, 0, 0};
 }
 
 } // namespace
@@ -62,6 +158,9 @@ static std::int32_t cncc_jit_rapid(RunContext* context, double x, double y, doub
 }
 
 static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, double z, double feed) {
+  if (context->events == nullptr) {
+    return streamFeed(*context, x, y, z, feed);
+  }
   return record(context, [&] {
     ir::MachineEvent event;
     event.kind = ir::MachineEvent::Kind::Feed;
@@ -78,7 +177,7 @@ static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, doubl
 static std::int32_t cncc_jit_arc(RunContext* context, double turn, double x, double y, double z,
                                  double i, double j, double feed) {
   return record(context, [&] {
-    return ir::arcMove(lastPosition(*context), static_cast<ir::ArcTurn>(turn), x, y, z, i, j, feed);
+    return ir::arcMove(context->position, static_cast<ir::ArcTurn>(turn), x, y, z, i, j, feed);
   });
 }
 
@@ -97,19 +196,11 @@ static std::int32_t cncc_jit_nurbs_weight(RunContext* context, double weight) {
 // nurbsMove records it.
 static std::int32_t cncc_jit_nurbs(RunContext* context, std::uint32_t table, double z,
                                    double feed) {
-  if (context->exception) {
-    return 1;
-  }
-  try {
+  return recordMoves(context, [&](std::vector<ir::MachineEvent>& events) {
     std::vector<double> weights = std::move(context->nurbsWeights);
     context->nurbsWeights.clear();
-    ir::nurbsMove(lastPosition(*context), (*context->tables)[table], z, feed, weights,
-                  *context->events);
-    return 0;
-  } catch (...) {
-    context->exception = std::current_exception();
-    return 1;
-  }
+    ir::nurbsMove(context->position, (*context->tables)[table], z, feed, weights, events);
+  });
 }
 
 // `move.polynomial`, as the interpreter's polynomialMove records it.
@@ -117,33 +208,21 @@ static std::int32_t cncc_jit_polynomial(RunContext* context, double x, double y,
                                         double k3x, double k2x, double k1x, double k3y, double k2y,
                                         double k1y, double k3z, double k2z, double k1z,
                                         double feed) {
-  if (context->exception) {
-    return 1;
-  }
-  try {
+  return recordMoves(context, [&](std::vector<ir::MachineEvent>& events) {
     std::array<double, 12> values{x, y, z, k3x, k2x, k1x, k3y, k2y, k1y, k3z, k2z, k1z};
-    ir::polynomialMove(lastPosition(*context), ir::polynomialMoveOf(values), feed,
-                       *context->events);
-    return 0;
-  } catch (...) {
-    context->exception = std::current_exception();
-    return 1;
-  }
+    ir::polynomialMove(context->position, ir::polynomialMoveOf(values), feed, events);
+  });
 }
 
 // `move.spline`, as the interpreter's splineMove records it.
 static std::int32_t cncc_jit_spline(RunContext* context, std::uint32_t table, double z,
                                     double feed) {
-  if (context->exception) {
-    return 1;
-  }
-  try {
-    ir::splineMove(table, (*context->tables)[table], z, feed, *context->events);
-    return 0;
-  } catch (...) {
-    context->exception = std::current_exception();
-    return 1;
-  }
+  return recordMoves(
+      context,
+      [&](std::vector<ir::MachineEvent>& events) {
+        ir::splineMove(table, (*context->tables)[table], z, feed, events);
+      },
+      true);
 }
 
 static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {

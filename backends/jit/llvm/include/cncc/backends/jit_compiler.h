@@ -8,12 +8,17 @@
 
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/ir.h"
+#include "cncc/ir/machine_event_sink.h"
 #include "cncc/ir/tool_path.h"
 
 #include <memory>
 #include <stdexcept>
 
 namespace cncc::backends {
+
+namespace jit {
+struct RunContext;
+}
 
 // A Function the JIT cannot compile: it does not verify, or LLVM failed.
 class JitError : public std::runtime_error {
@@ -40,9 +45,16 @@ public:
   // (no allocation when a previous run left enough). After an error the
   // path holds the events recorded before it.
   void run(const ir::InterpreterOptions& options, ir::ToolPath& path) const;
+  // The same events handed to `sink` one by one as the run makes them, not
+  // stored (at most one move.nurbs, move.spline or move.polynomial's chords
+  // are held at a time). After an error the sink has had the events made
+  // before it; an exception the sink throws stops the run and is rethrown
+  // here.
+  void run(const ir::InterpreterOptions& options, ir::MachineEventSink& sink) const;
 
 private:
   struct Compiled;
+  void execute(const ir::InterpreterOptions& options, jit::RunContext& context) const;
   std::unique_ptr<Compiled> compiled_;
 };
 
