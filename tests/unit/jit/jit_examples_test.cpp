@@ -47,14 +47,7 @@ void compareExample(const std::filesystem::path& path, ExampleParts& parts) {
 }
 
 TEST(JitExamples, EveryLoweredExampleMatchesTheInterpreter) {
-  std::vector<std::filesystem::path> examples;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::string(CNCC_SOURCE_DIR) + "/examples")) {
-    if (entry.path().extension() == ".cdl") {
-      examples.push_back(entry.path());
-    }
-  }
-  std::sort(examples.begin(), examples.end());
+  std::vector<std::filesystem::path> examples = jit_test::exampleFiles();
   ExampleParts parts;
   for (const std::filesystem::path& example : examples) {
     SCOPED_TRACE(example.string());

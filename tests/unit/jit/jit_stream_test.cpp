@@ -58,14 +58,7 @@ void compareExample(const std::filesystem::path& path, std::vector<std::string>&
 }
 
 TEST(JitStream, EveryLoweredExampleStreamsItsStoredEvents) {
-  std::vector<std::filesystem::path> examples;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::string(CNCC_SOURCE_DIR) + "/examples")) {
-    if (entry.path().extension() == ".cdl") {
-      examples.push_back(entry.path());
-    }
-  }
-  std::sort(examples.begin(), examples.end());
+  std::vector<std::filesystem::path> examples = jit_test::exampleFiles();
   std::vector<std::string> compared;
   for (const std::filesystem::path& example : examples) {
     SCOPED_TRACE(example.string());

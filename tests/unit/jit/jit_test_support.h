@@ -9,8 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace cncc::jit_test {
 
@@ -165,6 +168,19 @@ inline ::testing::AssertionResult
 streamedMatchesStored(const backends::CompiledFunction& compiled,
                       const ir::InterpreterOptions& options = {}) {
   return identicalOutcomes(storedOutcome(compiled, options), streamedOutcome(compiled, options));
+}
+
+// The examples' .cdl files (CNCC_SOURCE_DIR/examples), sorted.
+inline std::vector<std::filesystem::path> exampleFiles() {
+  std::vector<std::filesystem::path> examples;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(CNCC_SOURCE_DIR) + "/examples")) {
+    if (entry.path().extension() == ".cdl") {
+      examples.push_back(entry.path());
+    }
+  }
+  std::sort(examples.begin(), examples.end());
+  return examples;
 }
 
 } // namespace cncc::jit_test
