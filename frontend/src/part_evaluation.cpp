@@ -21,6 +21,10 @@ constexpr std::size_t maximumCheckedStatements = 100'000;
 // number of points grows without bound.
 constexpr double minimumTolerance = 1e-5;
 constexpr double maximumSamples = 1'000'000;
+// A T word has at most 8 digits (Fanuc's longest; a machine's own limit may
+// be lower).
+constexpr int toolNumberDigits = 8;
+constexpr double largestToolNumber = 99'999'999;
 // The tool offset registers `length=` and `radius=` can name: H1 .. H999 and
 // D1 .. D999 on the controllers the compiler prints for.
 constexpr double maximumOffsetRegister = 999;
@@ -183,6 +187,11 @@ private:
       evaluator_.report(
           DiagnosticKind::ValueNotPositive, tool.number->span,
           fmt::format("the tool number is {:g}; tools are numbered from 1", *toolNumber));
+    } else if (toolNumber && *toolNumber > largestToolNumber) {
+      evaluator_.report(DiagnosticKind::RegisterOutOfRange, tool.number->span,
+                        fmt::format("the tool number is {:g}; a T word holds at most {} digits, "
+                                    "tools are numbered up to {:.0f}",
+                                    *toolNumber, toolNumberDigits, largestToolNumber));
     }
     for (const Argument& setting : tool.settings) {
       if (std::string_view role = offsetRegisterRole(setting.name); !role.empty()) {
