@@ -21,17 +21,12 @@ constexpr std::size_t kMaximumPoints = 1'000'000;
 // An XY move shorter than this gives no direction (as the controller model).
 constexpr double kNoDirection = 1e-9;
 
-bool isMotion(const MachineEvent& event) {
-  return event.kind == MachineEvent::Kind::Rapid || event.kind == MachineEvent::Kind::Feed ||
-         event.kind == MachineEvent::Kind::Arc;
-}
-
 // Points along a non-rational piecewise polynomial (a C or A spline) whose
 // chords stay within `tolerance`: on each span, |C''(u)| <= sum k (k - 1)
 // |c_k| for u in [0, 1], and a chord of parameter length h sags at most
 // h^2 / 8 of it. Nothing for a rational span.
 std::optional<std::vector<Eigen::Vector3d>> polynomialChords(const geom::Curve& curve,
-                                                            double tolerance) {
+                                                             double tolerance) {
   const auto* pieces = dynamic_cast<const geom::PiecewisePolynomialCurve*>(&curve);
   if (pieces == nullptr) {
     return std::nullopt;
@@ -159,10 +154,10 @@ void splineMove(std::uint32_t table, std::span<const double> data, double z, dou
   // Where the machine is, and the XY direction of the feed move that got it there.
   Eigen::Vector3d start = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> arrival;
-  auto last = std::find_if(events.rbegin(), events.rend(), isMotion);
+  auto last = std::find_if(events.rbegin(), events.rend(), isMove);
   if (last != events.rend()) {
     start = {last->x, last->y, last->z};
-    auto before = std::find_if(last + 1, events.rend(), isMotion);
+    auto before = std::find_if(last + 1, events.rend(), isMove);
     if (last->kind == MachineEvent::Kind::Feed && before != events.rend()) {
       Eigen::Vector3d direction(last->x - before->x, last->y - before->y, 0);
       if (direction.norm() > kNoDirection) {

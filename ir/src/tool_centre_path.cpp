@@ -17,10 +17,6 @@ namespace {
 
 using Kind = MachineEvent::Kind;
 
-bool isMove(const MachineEvent& event) {
-  return event.kind == Kind::Rapid || event.kind == Kind::Feed || event.kind == Kind::Arc;
-}
-
 // The programmed moves of one compensated stretch.
 struct CompensatedStretch {
   double offset = 0;

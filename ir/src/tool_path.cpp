@@ -79,8 +79,7 @@ double flattenedEventCount(const ToolPath& path, double maximumSagitta) {
     count += event.kind == MachineEvent::Kind::Arc
                  ? arcChordCount(position.x, position.y, event, maximumSagitta)
                  : 1;
-    if (event.kind == MachineEvent::Kind::Rapid || event.kind == MachineEvent::Kind::Feed ||
-        event.kind == MachineEvent::Kind::Arc) {
+    if (isMove(event)) {
       position = {event.x, event.y, event.z};
     }
   }
@@ -97,8 +96,7 @@ ToolPath flattenArcs(const ToolPath& path, double maximumSagitta) {
     } else {
       out.events.push_back(event);
     }
-    if (event.kind == MachineEvent::Kind::Rapid || event.kind == MachineEvent::Kind::Feed ||
-        event.kind == MachineEvent::Kind::Arc) {
+    if (isMove(event)) {
       position = {event.x, event.y, event.z};
     }
   }

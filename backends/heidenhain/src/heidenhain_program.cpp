@@ -590,8 +590,7 @@ std::optional<HeidenhainBlank> heidenhainBlank(const ir::ToolPath& path) {
         extendBlank(blank, chord);
       }
     }
-    if (event.kind == ir::MachineEvent::Kind::Rapid || event.kind == ir::MachineEvent::Kind::Feed ||
-        event.kind == ir::MachineEvent::Kind::Arc) {
+    if (ir::isMove(event)) {
       position = event;
     }
   }

@@ -15,13 +15,8 @@ namespace cncc::backends::jit {
 
 namespace {
 
-bool isMove(ir::MachineEvent::Kind kind) {
-  return kind == ir::MachineEvent::Kind::Rapid || kind == ir::MachineEvent::Kind::Feed ||
-         kind == ir::MachineEvent::Kind::Arc;
-}
-
 void notePosition(RunContext& context, const ir::MachineEvent& event) {
-  if (isMove(event.kind)) {
+  if (ir::isMove(event)) {
     context.previousPosition = context.position;
     context.position = {event.x, event.y, event.z};
     context.positionKind = event.kind;

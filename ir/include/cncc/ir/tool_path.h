@@ -54,6 +54,13 @@ struct ToolPath {
   std::vector<MachineEvent> events;
 };
 
+// Whether the event moves the tool (a rapid, a feed move or an arc): where
+// it ends is where the next move starts.
+inline bool isMove(const MachineEvent& event) {
+  return event.kind == MachineEvent::Kind::Rapid || event.kind == MachineEvent::Kind::Feed ||
+         event.kind == MachineEvent::Kind::Arc;
+}
+
 // The angle an arc from (startX, startY) to (endX, endY) about the centre
 // turns, in (0, 2 pi]: an arc that ends where it starts (within `closing`
 // mm) is a full turn.
