@@ -51,17 +51,13 @@ using namespace frontend;
 
 namespace {
 
-constexpr int maximumStepsPerPiece = 100'000;
-// The share of the increment kept for the rounding of printed literals.
-constexpr double literalShare = 0.02;
 // ceil(depth / step) for the pass count, as round(x + offset): a ratio
 // within 1e-8 above a whole number counts as that number (as cuts.cpp's
 // 1e-9 relative rule does), and the literal fits 8 significant digits.
 constexpr double passCountOffset = 0.49999999;
 
-// The fewest uniform steps over [from, to] whose chords all deviate at most
-// `budget` from the curve (found by doubling, then bisection; every count
-// returned has been measured).
+} // namespace
+
 int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
   auto fits = [&](int steps) {
     double previous = from;
@@ -88,6 +84,8 @@ int fewestUniformSteps(const geom::Curve& curve, double from, double to, double 
   }
   return high;
 }
+
+namespace {
 
 // The span without the rounding noise of the conversion: a weight that is
 // constant makes the span polynomial (its coordinates divided by it).
@@ -243,6 +241,9 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   if (!planned) {
     return false;
   }
+  if (runtimeOffset_) {
+    planOffsetSteps(curve, *planned, budget, cut);
+  }
   if (ramp && planned->size() > 1) {
     // The shares of the descent are lengths at the defaults: with pieces
     // that change with parameters, they would not match the pieces cut.
@@ -257,8 +258,14 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   bool activatesLengthOffset = machine_.lengthOffsetPending;
-  beginCutMoves({curve.geometry, tolerance, cut.span, methodOf(cut),
-                 hasArcPiece(curve) && !uniformSteps ? CutArcs::Native : CutArcs::None});
+  bool arcs = hasArcPiece(curve) && !uniformSteps;
+  if (runtimeOffset_) {
+    for (const PieceJoin& join : runtimeOffset_->joins) {
+      arcs = arcs || join.kind == PieceJoin::CornerArc;
+    }
+  }
+  beginCutMoves({runtimeOffset_ ? runtimeOffset_->compiled : curve.geometry, tolerance, cut.span,
+                 methodOf(cut), arcs ? CutArcs::Native : CutArcs::None});
   for (const ControllerSegment& segment : *planned) {
     if (segment.isArc && segment.symbolic != nullptr) {
       guardArc(symbolicArcPath(*segment.symbolic, *curve.pieces[segment.piece].value));
@@ -267,7 +274,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
 
   const ControllerSegment& first = planned->front();
   const ControllerSegment& last = planned->back();
-  auto endPoint = [&](const ControllerSegment& segment, bool atEnd) {
+  auto drawnEndPoint = [&](const ControllerSegment& segment, bool atEnd) {
     if (segment.symbolic != nullptr) {
       return symbolicPointAt(*segment.symbolic, *curve.pieces[segment.piece].value,
                              atEnd ? segment.end : segment.start);
@@ -280,6 +287,10 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
       return nurbsSegmentPoint(curve, segment, Scalar::of(local), cut);
     }
     return pointAt(curve, segment.piece, segment.span, Scalar::of(local), cut);
+  };
+  auto endPoint = [&](const ControllerSegment& segment, bool atEnd) {
+    CurvePoint point = drawnEndPoint(segment, atEnd);
+    return runtimeOffset_ ? offsetSegmentEnd(curve, segment, atEnd, point) : point;
   };
 
   // The passes: one at z = 0 without a sweep, else k = 1 .. ceil(depth /
@@ -332,8 +343,15 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   }
   for (const ControllerSegment& segment : *planned) {
     emitControllerSegment(curve, segment, z, feedValue, cut, nullptr);
+    if (runtimeOffset_) {
+      emitOffsetJoin(curve, segment, z, feedValue, cut);
+    }
   }
   CurvePoint finish = endPoint(last, true);
+  if (runtimeOffset_ && runtimeOffset_->closed &&
+      runtimeOffset_->joins.back().kind == PieceJoin::CornerArc) {
+    finish = start; // after the arc about the corner where the path closes
+  }
   builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
   if (sweep) {
     builder_.endLoop();
@@ -535,12 +553,13 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
                            times(arithmetic_.binary(Opcode::Sub, ramp->to, ramp->from), share));
   };
   if (segment.isArc) {
-    emitArc(segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
-                                        : constantArcPath(curve, segment.piece, cut),
-            heightAt, feed, cut);
+    ArcPath path = segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
+                                               : constantArcPath(curve, segment.piece, cut);
+    emitArc(runtimeOffset_ ? offsetArcPath(segment.piece, std::move(path), cut) : path, heightAt,
+            feed, cut);
     return;
   }
-  auto move = [&](const CurvePoint& point, Scalar index) {
+  std::function<void(const CurvePoint&, Scalar)> move = [&](const CurvePoint& point, Scalar index) {
     Scalar height =
         ramp == nullptr ? z : heightAt(arithmetic_.binary(Opcode::Div, index, stepsOf(segment)));
     builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
@@ -548,16 +567,23 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
   };
   if (segment.steps == 1) {
     Scalar end = Scalar::of(segment.to);
-    move(segment.symbolic  ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
-         : segment.split   ? movedSplitSpanPoint(segment, end)
-         : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
-                           : pointAt(curve, segment.piece, segment.span, end, cut),
-         Scalar::of(1));
+    CurvePoint point = segment.symbolic
+                           ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
+                       : segment.split   ? movedSplitSpanPoint(segment, end)
+                       : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
+                                         : pointAt(curve, segment.piece, segment.span, end, cut);
+    move(runtimeOffset_ ? offsetSegmentEnd(curve, segment, true, point) : point, Scalar::of(1));
     return;
   }
   ValueId count = arithmetic_.value(stepsOf(segment));
   ValueId i = builder_.beginLoop(builder_.constant(1), count);
   Scalar index = Scalar::of(i, ValueType::F64);
+  if (runtimeOffset_) {
+    // The tool centre beside each point, along the derivative in i.
+    move = [&, drawnMove = move](const CurvePoint& point, Scalar at) {
+      drawnMove(offsetAlongDerivative(point, i, cut), at);
+    };
+  }
   if (segment.symbolic != nullptr) {
     Scalar step = arithmetic_.binary(
         Opcode::Div, arithmetic_.binary(Opcode::Sub, segment.end, segment.start),

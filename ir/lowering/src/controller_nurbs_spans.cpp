@@ -195,10 +195,8 @@ Scalar chordSteps(Arithmetic& math, const SpanControlPoints& span, const Control
 void PartLowering::guardWeights(const SymbolicList& weights) {
   for (const std::optional<Lowered>& weight : weights) {
     if (weight && weight->kind == TypeKind::Num && !weight->values.front().isConstant()) {
-      builder_.beginIf(
-          arithmetic_.value(arithmetic_.binary(Opcode::Le, weight->values.front(), Scalar::of(0))));
-      builder_.alarm("a weight of a NURBS is not positive");
-      builder_.endIf();
+      alarmWhen(arithmetic_.binary(Opcode::Le, weight->values.front(), Scalar::of(0)),
+                "a weight of a NURBS is not positive");
     }
   }
 }

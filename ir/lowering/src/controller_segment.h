@@ -14,6 +14,15 @@ namespace cncc::ir::lowering {
 
 using Polynomial = std::vector<double>; // ascending powers of u
 
+inline constexpr int maximumStepsPerPiece = 100'000;
+// The share of the increment kept for the rounding of printed literals.
+inline constexpr double literalShare = 0.02;
+
+// The fewest uniform steps over [from, to] whose chords all deviate at most
+// `budget` from the curve (found by doubling, then bisection; every count
+// returned has been measured); 0 past maximumStepsPerPiece.
+int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget);
+
 Polynomial derivativeOf(const Polynomial& polynomial);
 // The coefficients of p in the Bernstein basis of its degree on [0, 1].
 Polynomial bernsteinCoefficients(const Polynomial& polynomial);

@@ -162,12 +162,13 @@ void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count,
 // radius the values leave none of, or a turn the other way than the
 // defaults', stops it with an alarm, as the controller would alarm at the
 // arc (or cut it mirrored).
+void PartLowering::alarmWhen(Scalar condition, std::string message) {
+  builder_.beginIf(arithmetic_.value(condition));
+  builder_.alarm(std::move(message));
+  builder_.endIf();
+}
+
 void PartLowering::guardArc(const ArcPath& arc) {
-  auto alarmWhen = [&](Scalar condition, std::string message) {
-    builder_.beginIf(arithmetic_.value(condition));
-    builder_.alarm(std::move(message));
-    builder_.endIf();
-  };
   if (!arc.radius.isConstant()) {
     alarmWhen(arithmetic_.binary(Opcode::Le, arc.radius, Scalar::of(0)),
               "the radius of an arc is not positive");

@@ -119,32 +119,29 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
          DiagnosticKind::SideWithoutTool);
   }
   // Offsets are computed here: on a controller-side target what they
-  // depend on must not be a parameter.
+  // depend on must not be a parameter, but for the tool's diameter when the
+  // controller computes the offset (controller_offset_cuts.cpp).
   if (std::optional<ParameterUse> use =
           options_.controllerLoops ? parameterUse(cut, toolDiameter_) : std::nullopt) {
+    if (use->what == "tool diameter" && !controller) {
+      double radius = evaluate(*toolDiameter_, environment_).number / 2;
+      return wordOf(*side.value) == "left" ? radius : -radius;
+    }
     fail(cut.span,
          fmt::format("this cut beside the curve (side=) has its {} depend on parameter '{}': on "
                      "this target the offset path is computed by the compiler, which needs its "
-                     "value; offsets computed on the controller are a later step",
-                     use->what, use->parameter),
+                     "value{}",
+                     use->what, use->parameter,
+                     controller ? "" : " (only the tool diameter may be a parameter)"),
          DiagnosticKind::UnsupportedConstruct);
   }
   double radius = constantNumber(*toolDiameter_, "the tool diameter") / 2;
   return wordOf(*side.value) == "left" ? radius : -radius;
 }
 
-std::shared_ptr<const geom::Curve>
-PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double distance) {
-  std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
+std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
+offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance) {
   double radius = std::fabs(distance);
-  auto tooLarge = [&](const Eigen::Vector3d& place, double found, std::string_view what) {
-    fail(cut.span,
-         fmt::format("the tool's radius {:g} is too large for this curve: {} {:.4g} at ({:.4f}, "
-                     "{:.4f}), where the tool runs on the inside of the bend; it would cut into "
-                     "the part there",
-                     radius, what, found, place.x(), place.y()),
-         DiagnosticKind::ToolTooLarge);
-  };
   for (const auto& piece : pieces) {
     // A line never bends; an arc's offset radius is checked as it is built.
     if (dynamic_cast<const geom::LineCurve*>(piece.get()) != nullptr ||
@@ -153,32 +150,60 @@ PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double di
     }
     geom::CurvatureExtreme concave = geom::offsetClearance(*piece, distance).concave;
     if (!(concave.radius > radius)) {
-      tooLarge(concave.point, concave.radius, "its radius of curvature is");
+      return OffsetTrouble{OffsetTrouble::Bend, concave.point, concave.radius, ""};
     }
   }
   std::shared_ptr<const geom::Curve> offset;
   try {
     offset = geom::offsetOfPieces(pieces, distance);
   } catch (const geom::OffsetError& error) {
-    if (error.radius > 0) {
-      tooLarge(error.place, error.radius, "the radius of an arc it runs inside is");
-    }
-    fail(cut.span,
-         fmt::format("the tool's radius {:g} is too large for this path: {}", radius, error.what()),
-         DiagnosticKind::ToolTooLarge);
+    return OffsetTrouble{error.radius > 0 ? OffsetTrouble::InsideArc : OffsetTrouble::Corner,
+                         error.place, error.radius, error.what()};
   } catch (const geom::GeometryError& error) {
-    fail(cut.curve->span, fmt::format("cannot offset this curve: {}", error.what()),
-         DiagnosticKind::DegenerateCurve);
+    return OffsetTrouble{OffsetTrouble::Degenerate, {}, 0, error.what()};
   }
   if (std::optional<Eigen::Vector3d> crossing = geom::offsetSelfCrossing(*offset)) {
-    fail(cut.span,
-         fmt::format("the tool's radius {:g} is too large for this curve: the offset path "
-                     "crosses itself at ({:.4f}, {:.4f}), where the curve's sides are less than "
-                     "two tool radii apart",
-                     radius, crossing->x(), crossing->y()),
-         DiagnosticKind::ToolTooLarge);
+    return OffsetTrouble{OffsetTrouble::SelfCrossing, *crossing, 0, ""};
   }
   return offset;
+}
+
+std::shared_ptr<const geom::Curve>
+PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double distance) {
+  auto result = offsetOrTrouble(movedPieces(curve), distance);
+  if (auto* offset = std::get_if<std::shared_ptr<const geom::Curve>>(&result)) {
+    return *offset;
+  }
+  const OffsetTrouble& trouble = std::get<OffsetTrouble>(result);
+  double radius = std::fabs(distance);
+  auto inside = [&](std::string_view what) {
+    return fmt::format("the tool's radius {:g} is too large for this curve: {} {:.4g} at ({:.4f}, "
+                       "{:.4f}), where the tool runs on the inside of the bend; it would cut "
+                       "into the part there",
+                       radius, what, trouble.radius, trouble.place.x(), trouble.place.y());
+  };
+  switch (trouble.kind) {
+  case OffsetTrouble::Bend:
+    fail(cut.span, inside("its radius of curvature is"), DiagnosticKind::ToolTooLarge);
+  case OffsetTrouble::InsideArc:
+    fail(cut.span, inside("the radius of an arc it runs inside is"), DiagnosticKind::ToolTooLarge);
+  case OffsetTrouble::Corner:
+    fail(cut.span,
+         fmt::format("the tool's radius {:g} is too large for this path: {}", radius,
+                     trouble.message),
+         DiagnosticKind::ToolTooLarge);
+  case OffsetTrouble::Degenerate:
+    fail(cut.curve->span, fmt::format("cannot offset this curve: {}", trouble.message),
+         DiagnosticKind::DegenerateCurve);
+  case OffsetTrouble::SelfCrossing:
+    break;
+  }
+  fail(cut.span,
+       fmt::format("the tool's radius {:g} is too large for this curve: the offset path "
+                   "crosses itself at ({:.4f}, {:.4f}), where the curve's sides are less than "
+                   "two tool radii apart",
+                   radius, trouble.place.x(), trouble.place.y()),
+       DiagnosticKind::ToolTooLarge);
 }
 
 bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
@@ -193,6 +218,9 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   if (controller) {
     lowerCompensatedCut(cut, *comp, distance);
     return true;
+  }
+  if (options_.controllerLoops && !parametersOf(*toolDiameter_).empty()) {
+    return lowerControllerOffsetCut(cut, distance);
   }
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);

@@ -171,6 +171,46 @@ struct CompensatedLeads {
   std::uint32_t offsetRegister = 0;
 };
 
+// Why the tool cannot run beside a curve at a distance (offset_cuts.cpp):
+// a concave bend or an arc tighter than its radius, offsets that do not
+// cross at a concave corner, an offset crossing itself, or a curve with no
+// offset at all.
+struct OffsetTrouble {
+  enum Kind { Bend, InsideArc, Corner, SelfCrossing, Degenerate } kind = Bend;
+  Eigen::Vector3d place = Eigen::Vector3d::Zero();
+  double radius = 0; // the radius found there (Bend, InsideArc)
+  std::string message;
+};
+
+// How the offsets of two pieces of a path join where the pieces meet, as
+// geom::offsetOfPieces joins them: directly (the pieces meet tangentially),
+// by an arc of the tool's radius about a convex corner, or cut back to
+// their crossing at a concave one.
+struct PieceJoin {
+  enum Kind { Direct, CornerArc, Crossing } kind = Direct;
+  Eigen::Vector3d corner = Eigen::Vector3d::Zero();
+  // The left unit normals of the piece ending and the piece starting there.
+  Eigen::Vector2d before = Eigen::Vector2d::Zero();
+  Eigen::Vector2d after = Eigen::Vector2d::Zero();
+  double turn = 0; // from the one tangent to the other, counter-clockwise positive
+};
+
+// A cut beside its curve whose tool radius the controller knows only when
+// it runs (controller_offset_cuts.cpp).
+struct RuntimeOffset {
+  Scalar distance; // left of the direction of travel positive
+  Scalar radius;   // |distance|
+  double compiledDistance = 0;
+  std::shared_ptr<const geom::Curve> compiled; // the offset at compiledDistance
+  // The largest radius the tool fits the curve with (infinite: any).
+  double largestRadius = 0;
+  std::vector<std::shared_ptr<const geom::Curve>> pieces; // the drawn pieces, moved
+  // joins[p]: piece p's end to piece p + 1's start; for a closed path the
+  // last is its end to its start.
+  std::vector<PieceJoin> joins;
+  bool closed = false;
+};
+
 // What a cut computed on the host starts with (cuts.cpp, beginHostCut).
 struct HostCut {
   Scalar feed;
@@ -442,6 +482,8 @@ private:
   void lowerHostArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
   ArcPath constantArcPath(const CutCurve& curve, std::size_t piece, const frontend::CutStmt& cut);
   ArcPath symbolicArcPath(const SymbolicPiece& piece, const frontend::CurveValue& value);
+  // The program stops with `message` where `condition` holds.
+  void alarmWhen(Scalar condition, std::string message);
   void guardArc(const ArcPath& arc);
   void emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
                const frontend::CutStmt& cut);
@@ -521,6 +563,21 @@ private:
 
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
+  bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance);
+  double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                              double compiledDistance);
+  void planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+                       double budget, const frontend::CutStmt& cut);
+  // base + value * factor, a constant factor's sign as a subtraction.
+  Scalar plusScaled(Scalar base, Scalar value, Scalar factor);
+  CurvePoint besideAt(const CurvePoint& point, const Eigen::Vector2d& normal);
+  CurvePoint offsetSegmentEnd(const CutCurve& curve, const ControllerSegment& segment, bool atEnd,
+                              const CurvePoint& point);
+  CurvePoint offsetAlongDerivative(const CurvePoint& point, ValueId variable,
+                                   const frontend::CutStmt& cut);
+  ArcPath offsetArcPath(std::size_t piece, ArcPath drawn, const frontend::CutStmt& cut);
+  void emitOffsetJoin(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
+                      ValueId feed, const frontend::CutStmt& cut);
   std::optional<std::vector<ControllerSegment>>
   planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget,
                          const std::vector<SymbolicPiece>* symbolic,
@@ -623,6 +680,7 @@ private:
   std::vector<FixedParameter> fixedParameters_;
   // Set while the defaults are only checked, not built into the program.
   bool checkingDefaults_ = false;
+  std::optional<RuntimeOffset> runtimeOffset_;
 };
 
 // Small helpers shared by the files.
@@ -630,6 +688,8 @@ private:
 std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
 // A curve of lines and arcs as line and arc moves; nullopt for other curves.
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
+std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
+offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance);
 const frontend::Modifier* findModifier(const frontend::CutStmt& cut, std::string_view name);
 const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_view name);
 std::string wordOf(const frontend::Expr& expression);

@@ -247,7 +247,8 @@ std::vector<ProgramCase> programCases() {
       {"offset_contours.cdl", "offset_contours"},
       {"polar_contour.cdl", "polar_contour"},
       {"rosette_plate.cdl", "rosette_plate"},
-      {"s_profile.cdl", "s_profile"}};
+      {"s_profile.cdl", "s_profile"},
+      {"worn_cutter.cdl", "worn_cutter"}};
   for (const auto& [file, part] : examples) {
     cases.push_back({std::string("example_") + part, std::string("examples/") + file, part});
   }

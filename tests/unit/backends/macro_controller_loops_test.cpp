@@ -6,6 +6,7 @@
 // programs") are asserted so that a regression fails.
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
+#include "cncc/backends/program_execution.h"
 #include "cncc/backends/verification.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
@@ -175,8 +176,36 @@ INSTANTIATE_TEST_SUITE_P(
                       ParameterCase{"archimedean_spiral.cdl", "fanuc", {}},
                       ParameterCase{"archimedean_spiral.cdl", "fanuc", {{"a", 3}, {"b", 0.5}}},
                       ParameterCase{"archimedean_spiral.cdl", "fanuc", {{"a", 0.5}, {"b", 4}}},
-                      ParameterCase{
-                          "archimedean_spiral.cdl", "m80", {{"a", 0.5}, {"b", 4}}, true}));
+                      ParameterCase{"archimedean_spiral.cdl", "m80", {{"a", 0.5}, {"b", 4}}, true},
+                      // The tool centre beside the curve, at three diameters.
+                      ParameterCase{"worn_cutter.cdl", "fanuc", {{"diameter", 1}}},
+                      ParameterCase{"worn_cutter.cdl", "m80", {{"diameter", 3.96}}},
+                      ParameterCase{"worn_cutter.cdl", "fanuc", {{"diameter", 4.6}}, true}));
+
+// A diameter the curve cannot take: the program stops with its alarm
+// before it cuts (the polar contour's outside bends at 2.331 mm at least).
+TEST(MacroControllerLoops, ToolTooLargeForTheCurveRaisesItsAlarm) {
+  std::string text = exampleText("worn_cutter.cdl");
+  Compiled compiled = compile(text, "fanuc", true);
+  ASSERT_FALSE(compiled.program.text.empty());
+  EXPECT_NE(compiled.program.text.find("IF [#2 GE 2.3313] THEN #3000=1"), std::string::npos)
+      << compiled.program.text;
+  for (double diameter : {4.664, 4.7, 8.0}) {
+    ExecutionRequest execution;
+    execution.text = compiled.program.text;
+    execution.passing = ParameterPassing::MacroArguments;
+    execution.callable = true;
+    execution.parameters.push_back({"diameter", 1, diameter});
+    ProgramExecution executed = findTargetExecutor("fanuc")->execute(execution);
+    ASSERT_TRUE(executed.failure) << diameter;
+    EXPECT_NE(executed.failure->message.find("THE TOOL RADIUS MUST BE BELOW 2.3313"),
+              std::string::npos)
+        << executed.failure->message;
+    for (const ExecutedMove& move : executed.path.moves) {
+      EXPECT_TRUE(move.rapid) << "it cut before the alarm at " << diameter;
+    }
+  }
+}
 
 // Constant geometry: the S-profile's curve with its weights written out.
 const char* constantNurbs(const std::string& weights) {

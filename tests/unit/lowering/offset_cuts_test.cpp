@@ -10,6 +10,7 @@
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_curve.h"
 #include "cncc/ir/interpreter.h"
+#include "cncc/ir/printer.h"
 
 #include <gtest/gtest.h>
 
@@ -123,6 +124,68 @@ TEST(OffsetCuts, ControllerTargetsRefuseAnOffsetThatDependsOnAParameter) {
                 {});
   ASSERT_TRUE(host.part);
   EXPECT_NEAR(host.part->cuts.front().curve->point(0).x(), 18.0, 1e-12);
+}
+
+// With the tool diameter a parameter the controller computes each tool
+// centre from the point and the derivative of the same arithmetic: every
+// feed of the loop is exactly C(t) + d N(t) at its step's t, through
+// exp, sin, sqrt, atan, pow, division and products of t.
+TEST(OffsetCuts, ControllerOffsetsFollowTheCurvesDerivative) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  const char* curve = "param(x = 3*t + 0.2*cos(t), y = exp(t/3)*sin(2*t) + sqrt(1 + t*t) + "
+                      "atan(t) + pow(t, 3)/9 - t/(2 + t), t = 0 .. 3)";
+  for (const char* side : {"left", "right"}) {
+    Compiled compiled(std::string("part p(dia = 1) {\n  tool 1 diameter=dia feed=300\n"
+                                  "  safe z=5\n  curve ") +
+                          curve + " side=" + side + " tolerance=0.01\n}\n",
+                      controller);
+    ASSERT_TRUE(compiled.part) << side;
+    const auto* offset =
+        dynamic_cast<const geom::OffsetCurve*>(compiled.part->cuts.front().curve.get());
+    ASSERT_NE(offset, nullptr);
+    std::vector<Eigen::Vector3d> feeds;
+    for (const MachineEvent& event : interpret(compiled.part->function).events) {
+      if (event.kind == MachineEvent::Kind::Feed && event.z == 0) {
+        feeds.emplace_back(event.x, event.y, 0);
+      }
+    }
+    // The plunge's end, then the loop's steps 1 .. N.
+    ASSERT_GT(feeds.size(), 20u) << side;
+    auto steps = static_cast<double>(feeds.size() - 1);
+    for (std::size_t i = 0; i < feeds.size(); ++i) {
+      Eigen::Vector3d exact = offset->point(3.0 * static_cast<double>(i) / steps);
+      EXPECT_NEAR((feeds[i] - exact).norm(), 0.0, 1e-9) << side << " step " << i;
+    }
+  }
+}
+
+// The program keeps the tool's radius below the largest the curve takes,
+// and grows its step count with the radius (the offset's curvature).
+TEST(OffsetCuts, ControllerOffsetsCheckTheRadiusAndGrowTheirSteps) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  std::string text = polarPart("right").replace(polarPart("right").find("p()"), 3, "p(dia = 4)");
+  text.replace(text.find("diameter=4"), 10, "diameter=dia");
+  Compiled compiled(text, controller);
+  ASSERT_TRUE(compiled.part);
+  std::string printed = printFunction(compiled.part->function);
+  EXPECT_NE(printed.find("the tool radius must be below 2.3313 for this curve"), std::string::npos)
+      << printed;
+  EXPECT_NE(printed.find("the tool diameter is not positive"), std::string::npos);
+  auto feeds = [&](const std::string& diameter) {
+    std::string own = text;
+    own.replace(own.find("dia = 4"), 7, "dia = " + diameter);
+    Compiled at(own, controller);
+    std::size_t count = 0;
+    for (const MachineEvent& event : interpret(at.part->function).events) {
+      count += event.kind == MachineEvent::Kind::Feed ? 1 : 0;
+    }
+    return count;
+  };
+  std::size_t thin = feeds("0.1");
+  std::size_t wide = feeds("4.6");
+  EXPECT_GT(static_cast<double>(wide), 1.2 * static_cast<double>(thin));
 }
 
 TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {

@@ -1,0 +1,381 @@
+// A cut beside its curve (side=) on a target that runs the curve loop
+// itself, when the tool's diameter is a part parameter: the shop edits one
+// number for a worn cutter and the controller computes the offset. The cut
+// is lowered by controller_cuts.cpp with runtimeOffset_ set, and:
+// - each step's point C and its derivative C' come from the same
+//   arithmetic (forward_derivative.h: Horner's rule of a NURBS span and
+//   its derivative, a polar or param curve's expressions differentiated),
+//   the tool centre C + d (-y', x') / |C'| with one SQRT, d = +-diameter/2;
+// - a line is moved along its normal, an arc's radius grows or shrinks by
+//   the tool's radius, a convex corner of a path gets an arc of that radius
+//   about it and a concave corner between two lines their offsets'
+//   crossing, c + d (n1 + n2) / (1 + n1.n2), as geom::offsetOfPieces does;
+// - the step count of a piece grows with the radius: a chord over a
+//   parameter step h deviates from the offset by about h^2 s'^2 |k (1 - d k)|
+//   / 8 (s' the speed, k the signed curvature), at most h^2 (s'^2 |k| + r
+//   s'^2 k^2) / 8, so N(r) = sqrt(N0^2 + Q r) steps, N0 the fewest measured
+//   on the drawn curve and Q from the largest s'^2 k^2 over the piece;
+//   Q is raised where the exact offset at a few radii needs more;
+// - before it cuts, the program raises an alarm for a radius that is not
+//   positive, or not below the largest radius the tool fits the curve with
+//   (its tightest concave bend, a path's concave corner, the offset
+//   crossing itself), found here by bisection.
+#include "controller_segment.h"
+#include "forward_derivative.h"
+
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/geom/offset_clearance.h"
+#include "cncc/geom/offset_curve.h"
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+// The bisection for the largest radius stops within this share of it.
+constexpr double radiusSearchAccuracy = 1e-6;
+constexpr int radiusSearchSteps = 40;
+// Samples of s'^2 k^2 per drawn step, and their bound.
+constexpr int growthSamplesPerStep = 16;
+constexpr int largestGrowthSamples = 100'000;
+// The margin on the sampled largest s'^2 k^2.
+constexpr double growthMargin = 1.1;
+
+Eigen::Vector2d leftNormal(const Eigen::Vector3d& tangent) {
+  return geom::leftNormalOf(tangent).head<2>();
+}
+
+PieceJoin joinOf(const geom::Curve& before, const geom::Curve& after, double distance) {
+  PieceJoin join;
+  geom::ParameterRange own = before.domain();
+  join.corner = before.point(own.t1);
+  Eigen::Vector3d incoming = before.derivative(own.t1);
+  Eigen::Vector3d outgoing = after.derivative(after.domain().t0);
+  join.before = leftNormal(incoming);
+  join.after = leftNormal(outgoing);
+  Eigen::Vector2d in = incoming.head<2>().normalized();
+  Eigen::Vector2d out = outgoing.head<2>().normalized();
+  join.turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+  // Offsets that meet (within geom's tangent join) are joined directly.
+  if (std::fabs(distance) * (join.before - join.after).norm() <= 1e-7) {
+    join.kind = PieceJoin::Direct;
+  } else {
+    join.kind = distance * join.turn < 0 ? PieceJoin::CornerArc : PieceJoin::Crossing;
+  }
+  return join;
+}
+
+bool isLine(const geom::Curve& curve) {
+  return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
+}
+
+// The largest s'^2 k^2 = |C' x C''|^2 / |C'|^4 over [from, to], sampled.
+double largestCurvatureGrowth(const geom::Curve& curve, double from, double to, int samples) {
+  double largest = 0;
+  for (int j = 0; j <= samples; ++j) {
+    geom::CurveDerivatives d = curve.derivatives(from + (to - from) * j / samples);
+    double speedSquared = d.first.head<2>().squaredNorm();
+    if (!(speedSquared > 0)) {
+      continue;
+    }
+    double cross = d.first.x() * d.second.y() - d.first.y() * d.second.x();
+    largest = std::max(largest, cross * cross / (speedSquared * speedSquared));
+  }
+  return largest;
+}
+
+} // namespace
+
+double
+PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                                   double compiledDistance) {
+  double side = compiledDistance > 0 ? 1 : -1;
+  auto fits = [&](double radius) {
+    return std::holds_alternative<std::shared_ptr<const geom::Curve>>(
+        offsetOrTrouble(pieces, side * radius));
+  };
+  // The tightest bend the tool runs inside bounds the radius; without one
+  // the search stops at a hundred times the curve's size.
+  Eigen::AlignedBox3d box;
+  double upper = std::numeric_limits<double>::infinity();
+  for (const auto& piece : pieces) {
+    geom::ParameterRange domain = piece->domain();
+    for (int j = 0; j <= 16; ++j) {
+      box.extend(piece->point(domain.t0 + domain.length() * j / 16));
+    }
+    if (const auto* arc = dynamic_cast<const geom::ArcCurve*>(piece.get())) {
+      if ((arc->sweep() > 0) == (side > 0)) {
+        upper = std::min(upper, arc->radius());
+      }
+    } else if (!isLine(*piece)) {
+      upper = std::min(upper, geom::offsetClearance(*piece, compiledDistance).concave.radius);
+    }
+  }
+  double low = std::fabs(compiledDistance);
+  double high = std::min(upper, low + 100 * box.diagonal().norm());
+  if (fits(high * (1 - 1e-9))) {
+    return high < upper ? std::numeric_limits<double>::infinity() : high * (1 - 1e-9);
+  }
+  for (int step = 0; step < radiusSearchSteps && high - low > radiusSearchAccuracy * high; ++step) {
+    double middle = (low + high) / 2;
+    (fits(middle) ? low : high) = middle;
+  }
+  return low;
+}
+
+bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledDistance) {
+  if (const Modifier* entry = findModifier(cut, "entry"); entry != nullptr && rampEntry(cut)) {
+    unsupported(entry->span(), "entry=ramp beside a curve whose tool diameter is a parameter");
+  }
+  for (std::string_view name : {"samples", "spacing"}) {
+    if (const Modifier* modifier = findModifier(cut, name)) {
+      unsupported(modifier->span(),
+                  fmt::format("{}= beside a curve whose tool diameter is a parameter", name));
+    }
+  }
+  CutCurve curve = cutCurve(cut);
+  RuntimeOffset offset;
+  offset.compiledDistance = compiledDistance;
+  offset.compiled = checkedOffset(cut, curve, compiledDistance);
+  checkCutBounds(cut, *offset.compiled);
+  offset.pieces = movedPieces(curve);
+  const auto& pieces = offset.pieces;
+  for (std::size_t p = 0; p + 1 < pieces.size(); ++p) {
+    offset.joins.push_back(joinOf(*pieces[p], *pieces[p + 1], compiledDistance));
+  }
+  const geom::Curve& first = *pieces.front();
+  const geom::Curve& last = *pieces.back();
+  offset.closed = pieces.size() > 1 &&
+                  (last.point(last.domain().t1) - first.point(first.domain().t0)).norm() <= 1e-9;
+  if (offset.closed) {
+    offset.joins.push_back(joinOf(last, first, compiledDistance));
+  }
+  for (std::size_t j = 0; j < offset.joins.size(); ++j) {
+    std::size_t after = (j + 1) % pieces.size();
+    if (offset.joins[j].kind == PieceJoin::Crossing &&
+        !(isLine(*pieces[j]) && isLine(*pieces[after]))) {
+      unsupported(cut.span, "a concave corner at a piece that is not a line, beside a curve "
+                            "whose tool diameter is a parameter");
+    }
+  }
+  offset.radius = arithmetic_.multiply(number(*toolDiameter_), Scalar::of(0.5));
+  offset.distance =
+      compiledDistance > 0 ? offset.radius : arithmetic_.unary(Opcode::Neg, offset.radius);
+  offset.largestRadius = largestFittingRadius(pieces, compiledDistance);
+
+  alarmWhen(arithmetic_.binary(Opcode::Le, offset.radius, Scalar::of(0)),
+            "the tool diameter is not positive");
+  if (std::isfinite(offset.largestRadius)) {
+    // Printed with four decimals, rounded down: a radius at it is refused.
+    double limit = std::floor(offset.largestRadius * 1e4) / 1e4;
+    alarmWhen(arithmetic_.binary(Opcode::Ge, offset.radius, Scalar::of(limit)),
+              fmt::format("the tool radius must be below {:.4f} for this curve", limit));
+  }
+  runtimeOffset_ = std::move(offset);
+  // Unset however the lowering leaves (an error, a retry with unrolling).
+  struct Unset {
+    std::optional<RuntimeOffset>& offset;
+    ~Unset() { offset.reset(); }
+  } unset{runtimeOffset_};
+  bool lowered = lowerControllerCut(cut, curve);
+  if (!lowered) {
+    unsupported(cut.span, "this cut beside its curve with a tool diameter that is a parameter");
+  }
+  return true;
+}
+
+void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+                                   double budget, const CutStmt& cut) {
+  const RuntimeOffset& offset = *runtimeOffset_;
+  double side = offset.compiledDistance > 0 ? 1 : -1;
+  double compiledRadius = std::fabs(offset.compiledDistance);
+  // Radii the step count is checked at against the exact offset.
+  std::vector<double> radii{compiledRadius / 4, compiledRadius};
+  double wide =
+      std::isfinite(offset.largestRadius) ? 0.9 * offset.largestRadius : 4 * compiledRadius;
+  if (wide > compiledRadius) {
+    radii.push_back(wide);
+  }
+  double measured = budget - options_.coordinateIncrement * literalShare;
+  for (ControllerSegment& segment : segments) {
+    const CurvePiece& piece = curve.pieces[segment.piece];
+    if (segment.isArc || piece.value->kind == CurveKind::Line) {
+      continue;
+    }
+    auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
+    double from = segment.from;
+    double to = segment.to;
+    if (segment.isNurbs) {
+      from = piece.spans[segment.span].t0;
+      to = piece.spans[segment.span].t1;
+    }
+    double drawn = segment.steps;
+    int samples = std::min(largestGrowthSamples, growthSamplesPerStep * segment.steps);
+    double growth = (to - from) * (to - from) * largestCurvatureGrowth(*moved, from, to, samples) /
+                    (8 * measured) * growthMargin;
+    for (double radius : radii) {
+      geom::OffsetCurve exact(moved, side * radius);
+      int needed = fewestUniformSteps(exact, from, to, measured);
+      if (needed == 0) {
+        fail(cut.span,
+             fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
+                         "steps on one piece within its tolerance",
+                         radius, maximumStepsPerPiece),
+             DiagnosticKind::ProgramTooLarge);
+      }
+      growth = std::max(growth, (needed * needed - drawn * drawn) / radius * growthMargin);
+    }
+    Scalar squared = arithmetic_.add(Scalar::of(drawn * drawn),
+                                     arithmetic_.multiply(Scalar::of(growth), offset.radius));
+    segment.stepCount = roundedUpSteps(arithmetic_.unary(Opcode::Sqrt, squared));
+    segment.steps = 0;
+  }
+}
+
+Scalar PartLowering::plusScaled(Scalar base, Scalar value, Scalar factor) {
+  if (!factor.isConstant()) {
+    return arithmetic_.add(base, times(value, factor));
+  }
+  // A normal's share of an axis below 1e-9 is the rounding of a derivative
+  // found by differences, not a direction (and moves the point 1e-9 r).
+  double share = std::fabs(factor.constant) < 1e-9 ? 0.0 : factor.constant;
+  if (share == 0) {
+    return base;
+  }
+  Scalar scaled = std::fabs(share) == 1 ? value : times(value, Scalar::of(std::fabs(share)));
+  if (base.isConstant() && base.constant == 0) {
+    return share > 0 ? scaled : arithmetic_.unary(Opcode::Neg, scaled);
+  }
+  return arithmetic_.binary(share > 0 ? Opcode::Add : Opcode::Sub, base, scaled);
+}
+
+CurvePoint PartLowering::besideAt(const CurvePoint& point, const Eigen::Vector2d& normal) {
+  const Scalar& distance = runtimeOffset_->distance;
+  return {plusScaled(point.x, distance, Scalar::of(normal.x())),
+          plusScaled(point.y, distance, Scalar::of(normal.y())), point.z};
+}
+
+CurvePoint PartLowering::offsetSegmentEnd(const CutCurve& curve, const ControllerSegment& segment,
+                                          bool atEnd, const CurvePoint& point) {
+  const RuntimeOffset& offset = *runtimeOffset_;
+  const CurvePiece& piece = curve.pieces[segment.piece];
+  std::size_t lastPiece = curve.pieces.size() - 1;
+  bool endsPiece = !segment.isNurbs || segment.span + 1 == piece.spans.size();
+  bool startsPiece = !segment.isNurbs || segment.span == 0;
+  // The join at this end, if any.
+  const PieceJoin* join = nullptr;
+  if (atEnd && endsPiece && (segment.piece < lastPiece || offset.closed)) {
+    join = &offset.joins[segment.piece];
+  } else if (!atEnd && startsPiece && segment.piece == 0 && offset.closed) {
+    join = &offset.joins.back();
+  }
+  if (join != nullptr && join->kind == PieceJoin::Crossing) {
+    Eigen::Vector2d shift = (join->before + join->after) / (1 + join->before.dot(join->after));
+    return besideAt({Scalar::of(join->corner.x()), Scalar::of(join->corner.y()), point.z}, shift);
+  }
+  const geom::Curve& drawn = *offset.pieces[segment.piece];
+  double t = atEnd ? drawn.domain().t1 : drawn.domain().t0;
+  if (segment.isNurbs) {
+    const geom::PolynomialSpan& span = piece.spans[segment.span];
+    t = atEnd ? span.t1 : span.t0;
+  }
+  return besideAt(point, leftNormal(drawn.derivative(t)));
+}
+
+CurvePoint PartLowering::offsetAlongDerivative(const CurvePoint& point, ValueId variable,
+                                               const CutStmt& cut) {
+  ForwardDerivative derivative(builder_, arithmetic_, variable);
+  std::optional<Scalar> dx = derivative.of(point.x);
+  std::optional<Scalar> dy = derivative.of(point.y);
+  if (!dx || !dy) {
+    unsupported(cut.curve->span, "this curve's tangent on the controller");
+  }
+  Scalar speed = arithmetic_.unary(Opcode::Sqrt, arithmetic_.add(times(*dx, *dx), times(*dy, *dy)));
+  Scalar share = arithmetic_.binary(Opcode::Div, runtimeOffset_->distance, speed);
+  return {arithmetic_.binary(Opcode::Sub, point.x, times(share, *dy)),
+          arithmetic_.add(point.y, times(share, *dx)), point.z};
+}
+
+ArcPath PartLowering::offsetArcPath(std::size_t piece, ArcPath drawn, const CutStmt& cut) {
+  const auto* arc = dynamic_cast<const geom::ArcCurve*>(runtimeOffset_->pieces[piece].get());
+  if (arc == nullptr) {
+    unsupported(cut.span, "an arc moved by a map that is not a rotation and a scale, beside a "
+                          "curve whose tool diameter is a parameter");
+  }
+  // Left of a counter-clockwise arc is towards its centre.
+  Scalar inwards = arc->sweep() > 0 ? runtimeOffset_->distance
+                                    : arithmetic_.unary(Opcode::Neg, runtimeOffset_->distance);
+  Scalar share = times(inwards, Scalar::of(1 / arc->radius()));
+  Scalar kept = arithmetic_.binary(Opcode::Sub, Scalar::of(1), share);
+  ArcPath path = drawn;
+  path.radius = arithmetic_.binary(Opcode::Sub, Scalar::of(arc->radius()), inwards);
+  path.pointAt = [this, drawn, share](Scalar fraction) {
+    CurvePoint point = drawn.pointAt(fraction);
+    CurvePoint centre = drawn.toCentre(fraction);
+    return CurvePoint{plusScaled(point.x, share, centre.x), plusScaled(point.y, share, centre.y),
+                      point.z};
+  };
+  path.toCentre = [this, drawn, kept](Scalar fraction) {
+    CurvePoint centre = drawn.toCentre(fraction);
+    return CurvePoint{times(kept, centre.x), times(kept, centre.y), centre.z};
+  };
+  return path;
+}
+
+void PartLowering::emitOffsetJoin(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
+                                  ValueId feed, const CutStmt& cut) {
+  const RuntimeOffset& offset = *runtimeOffset_;
+  const CurvePiece& piece = curve.pieces[segment.piece];
+  bool endsPiece = !segment.isNurbs || segment.span + 1 == piece.spans.size();
+  if (!endsPiece || segment.piece >= offset.joins.size()) {
+    return;
+  }
+  const PieceJoin& join = offset.joins[segment.piece];
+  if (join.kind != PieceJoin::CornerArc) {
+    return;
+  }
+  // An arc of the tool's radius about the corner, from d n1 to d n2.
+  Eigen::Vector3d corner = join.corner;
+  Eigen::Vector2d normal = join.before;
+  double turn = join.turn;
+  auto radial = [this, normal, turn](Scalar fraction) {
+    Scalar angle = times(fraction, Scalar::of(turn));
+    Scalar cosine = angle.isConstant() ? Scalar::of(std::cos(angle.constant))
+                                       : arithmetic_.unary(Opcode::Cos, angle);
+    Scalar sine = angle.isConstant() ? Scalar::of(std::sin(angle.constant))
+                                     : arithmetic_.unary(Opcode::Sin, angle);
+    Scalar x = arithmetic_.binary(Opcode::Sub, times(cosine, Scalar::of(normal.x())),
+                                  times(sine, Scalar::of(normal.y())));
+    Scalar y =
+        arithmetic_.add(times(sine, Scalar::of(normal.x())), times(cosine, Scalar::of(normal.y())));
+    return std::pair{x, y}; // times the distance
+  };
+  ArcPath path;
+  path.sweep = Scalar::of(turn);
+  path.turnsCounterClockwise = turn > 0;
+  path.radius = offset.radius;
+  Scalar distance = offset.distance;
+  path.pointAt = [this, radial, corner, distance](Scalar fraction) {
+    auto [x, y] = radial(fraction);
+    return CurvePoint{plusScaled(Scalar::of(corner.x()), distance, x),
+                      plusScaled(Scalar::of(corner.y()), distance, y), Scalar::of(corner.z())};
+  };
+  path.toCentre = [this, radial, distance](Scalar fraction) {
+    auto [x, y] = radial(fraction);
+    Scalar minus = arithmetic_.unary(Opcode::Neg, distance);
+    return CurvePoint{plusScaled(Scalar::of(0), minus, x), plusScaled(Scalar::of(0), minus, y),
+                      Scalar::of(0)};
+  };
+  emitArc(
+      path, [z](Scalar) { return z; }, feed, cut);
+}
+
+} // namespace cncc::ir::lowering
