@@ -17,6 +17,7 @@
 #include "printed_grid.h"
 
 #include "cncc/geom/composite_curve.h"
+#include "cncc/geom/deviation.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_curve.h"
 
@@ -184,7 +185,70 @@ void withRunOut(CompensatedLeads& leads, const Eigen::Vector3d& tangent, double 
   leads.runOut = true;
 }
 
+// The tool centre's arc for a programmed lead arc the controller offsets by
+// `toolRadius` towards its centre: the same centre, the lead's radius.
+geom::ArcSegment centreArc(const geom::ArcSegment& programmed, double toolRadius) {
+  geom::ArcSegment arc = programmed;
+  Eigen::Vector3d centre(programmed.centre.x(), programmed.centre.y(), 0);
+  for (Eigen::Vector3d* end : {&arc.start, &arc.end}) {
+    Eigen::Vector3d inwards = centre - *end;
+    inwards.z() = 0;
+    *end += toolRadius * inwards.normalized();
+  }
+  arc.radius = programmed.radius - toolRadius;
+  return arc;
+}
+
 } // namespace
+
+CompensatedLeads tangentLeads(const geom::Curve& path, double offset, double radius,
+                              double increment) {
+  geom::ParameterRange domain = path.domain();
+  return programmedLeads(onPrintedGrid(path.point(domain.t0), increment),
+                         planeTangent(path, domain.t0),
+                         onPrintedGrid(path.point(domain.t1), increment),
+                         planeTangent(path, domain.t1), offset, radius);
+}
+
+void PartLowering::checkLeadClearance(const CutStmt& cut, const CompensatedLeads& centre,
+                                      const geom::Curve& contour, double toolRadius) {
+  const Modifier* lead = findModifier(cut, "lead");
+  frontend::SourceSpan at = lead != nullptr ? lead->span() : cut.span;
+  // Closest points exact to rounding (Newton on the curve): the slack is
+  // only for that rounding and the printed grid the arcs' ends are on.
+  constexpr double accuracy = 1e-4;
+  constexpr double slack = 1e-4;
+  constexpr int steps = 64;
+  geom::CurveProximity part(contour, accuracy);
+  double planeZ = contour.point(contour.domain().t0).z();
+  auto check = [&](const geom::ArcSegment& arc, bool leadIn, std::string_view which) {
+    std::shared_ptr<const geom::Curve> curve = arc.curve();
+    geom::ParameterRange domain = curve->domain();
+    // The end that joins the path touches the tool's circle about it.
+    double nearest = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d where = Eigen::Vector3d::Zero();
+    for (int k = leadIn ? 0 : 1; k < (leadIn ? steps : steps + 1); ++k) {
+      Eigen::Vector3d point = curve->point(domain.t0 + domain.length() * k / steps);
+      point.z() = planeZ;
+      double distance = part.closestPoint(point).distance;
+      if (distance < nearest) {
+        nearest = distance;
+        where = point;
+      }
+    }
+    if (nearest < toolRadius - slack) {
+      fail(at,
+           fmt::format("the {} arc of radius {:g} runs the tool's centre {:.4f} from the curve "
+                       "at ({:.4f}, {:.4f}), less than the tool's radius {:g}: the tool would "
+                       "cut into the part there; choose a smaller lead= or start the curve "
+                       "where the tool has room beside it",
+                       which, arc.radius, nearest, where.x(), where.y(), toolRadius),
+           DiagnosticKind::ToolTooLarge);
+    }
+  };
+  check(centre.leadIn, true, "lead-in");
+  check(centre.leadOut, false, "lead-out");
+}
 
 double PartLowering::leadRadius(const CutStmt& cut, double toolRadius) {
   const Modifier* lead = findModifier(cut, "lead");
@@ -236,10 +300,8 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   if (wantsNativeArcs(cut)) {
     arcs = exactSegments(*contour);
   }
-  CompensatedLeads leads = programmedLeads(
-      onPrintedGrid(contour->point(domain.t0), increment), planeTangent(*contour, domain.t0),
-      onPrintedGrid(contour->point(domain.t1), increment), planeTangent(*contour, domain.t1),
-      distance, leadRadius(cut, toolRadius) + toolRadius);
+  CompensatedLeads leads =
+      tangentLeads(*contour, distance, leadRadius(cut, toolRadius) + toolRadius, increment);
   leads.offsetRegister = radiusRegister_;
   if (!arcs && needsRunOut(*contour, distance)) {
     // Half the tool radius, on the printed grid so that every target runs
@@ -254,6 +316,10 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
                      leads.leadIn.start.x(), leads.leadIn.start.y()),
          DiagnosticKind::UnsupportedConstruct);
   }
+  CompensatedLeads centreLeads = leads;
+  centreLeads.leadIn = centreArc(leads.leadIn, toolRadius);
+  centreLeads.leadOut = centreArc(leads.leadOut, toolRadius);
+  checkLeadClearance(cut, centreLeads, *contour, toolRadius);
   std::shared_ptr<const geom::Curve> centre;
   try {
     centre = toolCentrePath(leads, pieces);

@@ -135,7 +135,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   if (const Modifier* entry = findModifier(cut, "entry"); entry != nullptr && rampEntry(cut)) {
     unsupported(entry->span(), "entry=ramp beside a curve whose tool diameter is a parameter");
   }
-  for (std::string_view name : {"samples", "spacing"}) {
+  for (std::string_view name : {"lead", "samples", "spacing"}) {
     if (const Modifier* modifier = findModifier(cut, name)) {
       unsupported(modifier->span(),
                   fmt::format("{}= beside a curve whose tool diameter is a parameter", name));

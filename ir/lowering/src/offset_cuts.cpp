@@ -7,7 +7,10 @@
 // other curves are cut as chords within the cut's tolerance of the offset,
 // or as fitted arcs where the target prints them. Before anything is
 // emitted the tool must fit: no concave bend tighter than its radius, no
-// offset crossing itself (tool-too-large at the cut).
+// offset crossing itself (tool-too-large at the cut). With lead=R the tool
+// centre enters on a tangent arc of radius R onto the offset's start and
+// leaves on one off its end, on the tool's side; the arcs are part of the
+// cut's curve in the cut table (as comp=controller's leads are).
 #include "part_lowering.h"
 #include "printed_grid.h"
 
@@ -111,9 +114,6 @@ std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& of
 }
 
 double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bool controller) {
-  if (const Modifier* lead = controller ? nullptr : findModifier(cut, "lead")) {
-    unsupported(lead->span(), "lead= (tangent arc lead-in and lead-out) with comp=host");
-  }
   if (toolDiameter_ == nullptr) {
     fail(side.span(), "side= runs the tool at its radius beside the curve, but no tool is chosen",
          DiagnosticKind::SideWithoutTool);
@@ -224,7 +224,17 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   }
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
-  checkCutBounds(cut, *offset);
+  std::optional<CompensatedLeads> leads = hostLeads(cut, curve, *offset, distance);
+  // With leads the cut's path, which verify measures, runs on their arcs
+  // too; they meet the offset at its ends on the printed grid.
+  std::shared_ptr<const geom::Curve> path = offset;
+  if (leads) {
+    path = std::make_shared<geom::CompositeCurve>(
+        std::vector<std::shared_ptr<const geom::Curve>>{leads->leadIn.curve(), offset,
+                                                        leads->leadOut.curve()},
+        std::max(1e-9, options_.coordinateIncrement));
+  }
+  checkCutBounds(cut, *path);
   if (lowerOffsetSplineCut(cut, offset)) {
     return true;
   }
@@ -250,7 +260,7 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   }
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
-  beginCutMoves({offset, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+  beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                  cut.span, methodOf(cut), arcMoves});
   OffsetChords chords = offsetChords(samples, begun.ramp);
   auto lap = [&](double zFrom, double zTo) {
@@ -271,15 +281,69 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
       *end = {onPrintedGrid(end->x(), increment), onPrintedGrid(end->y(), increment), end->z()};
     }
   }
-  emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap);
+  if (leads) {
+    emitLeadPasses(cut, *leads, begun.ramp, feed, safe, lap);
+  } else {
+    emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap);
+  }
   return true;
+}
+
+// lead=R: the tool centre's tangent arcs of radius R onto the offset's
+// start and off its end, on the tool's side (the arcs comp=controller runs,
+// compensated_cuts.cpp), checked to keep the tool off the part.
+std::optional<CompensatedLeads> PartLowering::hostLeads(const CutStmt& cut, const CutCurve& curve,
+                                                        const geom::Curve& offset,
+                                                        double distance) {
+  if (findModifier(cut, "lead") == nullptr) {
+    return std::nullopt;
+  }
+  double toolRadius = std::fabs(distance);
+  CompensatedLeads leads =
+      tangentLeads(offset, distance, leadRadius(cut, toolRadius), options_.coordinateIncrement);
+  leads.offset = distance;
+  std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
+  std::shared_ptr<const geom::Curve> contour =
+      pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces);
+  checkLeadClearance(cut, leads, *contour, toolRadius);
+  return leads;
+}
+
+// Each pass: down at the lead-in arc's start (at the height a ramp starts
+// from), the lead-in arc, the ramp's lap with entry=ramp, the lap at the
+// pass's depth, the lead-out arc, up.
+void PartLowering::emitLeadPasses(const CutStmt& cut, const CompensatedLeads& leads, bool ramp,
+                                  ValueId feed, ValueId safe, const LapEmitter& lap) {
+  double increment = options_.coordinateIncrement;
+  double planeZ = leads.leadIn.end.z();
+  auto height = [&](double passZ) {
+    return builder_.constant(onPrintedGrid(planeZ + passZ, increment));
+  };
+  Eigen::Vector3d start = onPrintedGrid(leads.leadIn.start, increment);
+  Eigen::Vector3d finish = onPrintedGrid(leads.leadOut.end, increment);
+  std::vector<double> depths = passDepths(cut);
+  double previous = 0;
+  for (double depth : depths) {
+    double passZ = beginPass(depth, depths.size());
+    double entryZ = ramp ? previous : passZ;
+    approachPassStart(start, entryZ, safe, feed);
+    emitArcLap({leads.leadIn}, height(entryZ), feed);
+    if (ramp) {
+      builder_.comment("ramp");
+      lap(entryZ, passZ);
+    }
+    lap(passZ, passZ);
+    emitArcLap({leads.leadOut}, height(passZ), feed);
+    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safe);
+    previous = passZ;
+  }
 }
 
 // Spline blocks fitted to the offset where the target prints them
 // (Sinumerik BSPLINE/CSPLINE/ASPLINE, Heidenhain SPL): the ways of lowering
 // that read only the curve's geometry take the offset in a stand-in with
 // no pieces. A ramp's lap descends along the statement's pieces there, so
-// a ramped cut is cut as chords.
+// a ramped cut is cut as chords, and so is one with lead arcs.
 bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
                                         const std::shared_ptr<const geom::Curve>& offset) {
   std::string method = methodOf(cut);
@@ -287,7 +351,10 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
     return false;
   }
   CutCurve stand{{}, offset, {}};
-  if (!rampEntry(cut) && (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand))) {
+  // The spline ways emit their own passes, without lead arcs.
+  bool leads = findModifier(cut, "lead") != nullptr;
+  if (!rampEntry(cut) && !leads &&
+      (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand))) {
     return true;
   }
   // A target without spline blocks cuts the method as chords anyway (and
@@ -298,7 +365,10 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
                          fmt::format("this cut beside the curve (side=) is cut as straight feed "
                                      "moves within its tolerance of the exact offset: method={} "
                                      "is not built for offsets{} on this target yet",
-                                     method, rampEntry(cut) ? " with entry=ramp" : ""));
+                                     method,
+                                     rampEntry(cut) ? " with entry=ramp"
+                                     : leads        ? " with lead="
+                                                    : ""));
   }
   return false;
 }

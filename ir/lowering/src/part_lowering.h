@@ -158,7 +158,9 @@ struct ParameterUse {
 // as programmed: the start-up line from `startUp` to the lead-in arc's
 // start, the lead-in arc onto the curve, the lead-out arc off it, the cancel
 // line to `cancel`. The arcs' radius is the lead's plus the tool's, so the
-// tool's centre runs on an arc of the lead's radius.
+// tool's centre runs on an arc of the lead's radius. A comp=host cut's leads
+// (offset_cuts.cpp) are the tool centre's own arcs, of the lead's radius,
+// and have no start-up or cancel line.
 struct CompensatedLeads {
   Eigen::Vector3d startUp = Eigen::Vector3d::Zero();
   geom::ArcSegment leadIn;
@@ -520,6 +522,8 @@ private:
   // The exact offset of the cut's curve, or tool-too-large at the cut.
   std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
                                                    const CutCurve& curve, double distance);
+  std::optional<CompensatedLeads> hostLeads(const frontend::CutStmt& cut, const CutCurve& curve,
+                                            const geom::Curve& offset, double distance);
   bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
                             const std::shared_ptr<const geom::Curve>& offset);
   std::optional<std::vector<geom::ArcSegment>> fittedOffsetArcs(const frontend::CutStmt& cut,
@@ -543,6 +547,14 @@ private:
   void lowerCompensatedCut(const frontend::CutStmt& cut, const frontend::Modifier& comp,
                            double distance);
   double leadRadius(const frontend::CutStmt& cut, double toolRadius);
+  // An error at lead= (at the cut without one) where the tool, its centre on
+  // either of `centre`'s arcs (the tool centre's lead arcs), would come
+  // nearer than its radius to `contour`, the curve cut: the lead crosses the
+  // part.
+  void checkLeadClearance(const frontend::CutStmt& cut, const CompensatedLeads& centre,
+                          const geom::Curve& contour, double toolRadius);
+  void emitLeadPasses(const frontend::CutStmt& cut, const CompensatedLeads& leads, bool ramp,
+                      ValueId feed, ValueId safe, const LapEmitter& lap);
   void emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ, ValueId feed,
                            const std::function<void(ValueId z)>& contour);
 
@@ -690,6 +702,12 @@ std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curv
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
 std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
 offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance);
+// Tangent lead arcs of `radius` onto the start of `path` and off its end
+// (both on the printed grid), their centres on the side of `offset` (> 0:
+// left): the start-up and cancel lines run that radius further along the
+// normal (compensated_cuts.cpp).
+CompensatedLeads tangentLeads(const geom::Curve& path, double offset, double radius,
+                              double increment);
 const frontend::Modifier* findModifier(const frontend::CutStmt& cut, std::string_view name);
 const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_view name);
 std::string wordOf(const frontend::Expr& expression);

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 namespace cncc::ir {
@@ -193,6 +194,57 @@ TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {
       polarPart("right").replace(polarPart("right").find("diameter=4"), 10, "diameter=5"), {});
   EXPECT_FALSE(compiled.part);
   EXPECT_TRUE(compiled.reported(frontend::DiagnosticKind::ToolTooLarge));
+}
+
+std::string circlePart(const char* side, const char* lead) {
+  return std::string("part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n"
+                     "  curve arc(center=(0, 0), radius=20, from=0, to=2*pi) side=") +
+         side + " lead=" + lead + "\n}\n";
+}
+
+TEST(OffsetCuts, LeadArcsJoinTheOffsetTangentiallyOnTheToolsSide) {
+  // Outside the circle (side=right of a counter-clockwise circle): the
+  // offset has radius 23 and starts at (23, 0) heading +y; the lead-in's
+  // centre is 5 further out, at (28, 0).
+  Compiled compiled(circlePart("right", "5"), {});
+  ASSERT_TRUE(compiled.part);
+  const auto* path =
+      dynamic_cast<const geom::CompositeCurve*>(compiled.part->cuts.front().curve.get());
+  ASSERT_NE(path, nullptr);
+  ASSERT_EQ(path->pieceCount(), 3u); // lead-in, the offset, lead-out
+  const auto* leadIn = dynamic_cast<const geom::ArcCurve*>(&path->piece(0));
+  const auto* leadOut = dynamic_cast<const geom::ArcCurve*>(&path->piece(2));
+  ASSERT_NE(leadIn, nullptr);
+  ASSERT_NE(leadOut, nullptr);
+  EXPECT_DOUBLE_EQ(leadIn->radius(), 5.0);
+  EXPECT_NEAR((leadIn->centre() - Eigen::Vector2d(28, 0)).norm(), 0, 1e-12);
+  EXPECT_NEAR(std::fabs(leadIn->sweep()), std::numbers::pi / 2, 1e-12);
+  geom::ParameterRange in = leadIn->domain();
+  EXPECT_NEAR((leadIn->point(in.t0) - Eigen::Vector3d(28, -5, 0)).norm(), 0, 1e-12);
+  EXPECT_NEAR((leadIn->point(in.t1) - Eigen::Vector3d(23, 0, 0)).norm(), 0, 1e-12);
+  geom::ParameterRange out = leadOut->domain();
+  EXPECT_NEAR((leadOut->point(out.t1) - Eigen::Vector3d(28, 5, 0)).norm(), 0, 1e-12);
+  // The program lowers the tool at the lead-in's start, and its arcs and
+  // lap are the cut's: the first feed after the plunge is an arc.
+  std::vector<MachineEvent> events = interpret(compiled.part->function).events;
+  std::size_t plunge = 0;
+  while (plunge < events.size() && events[plunge].kind != MachineEvent::Kind::Feed) {
+    ++plunge;
+  }
+  ASSERT_LT(plunge + 1, events.size());
+  EXPECT_NEAR(events[plunge].x, 28, 1e-9);
+  EXPECT_NEAR(events[plunge].y, -5, 1e-9);
+  EXPECT_EQ(events[plunge + 1].kind, MachineEvent::Kind::Arc);
+}
+
+TEST(OffsetCuts, ALeadArcThatCrossesThePartIsRefused) {
+  // Inside the circle the offset has radius 17: an arc of radius 20 tangent
+  // to it from inside runs outside it, into the part.
+  Compiled wide(circlePart("left", "20"), {});
+  EXPECT_FALSE(wide.part);
+  EXPECT_TRUE(wide.reported(frontend::DiagnosticKind::ToolTooLarge));
+  Compiled fits(circlePart("left", "16"), {});
+  EXPECT_TRUE(fits.part);
 }
 
 } // namespace
