@@ -198,6 +198,7 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
   checkCutBounds(cut, *offset);
   if (lowerOffsetSplineCut(cut, offset)) {
+    markCutBeside(curve.geometry, std::fabs(distance));
     return true;
   }
   HostCut begun = beginHostCut(cut);
@@ -224,6 +225,7 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   ValueId safe = arithmetic_.value(*safe_);
   beginCutMoves({offset, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                  cut.span, methodOf(cut), arcMoves});
+  markCutBeside(curve.geometry, std::fabs(distance));
   OffsetChords chords = offsetChords(samples, begun.ramp);
   auto lap = [&](double zFrom, double zTo) {
     if (arcs && zFrom == zTo) {
