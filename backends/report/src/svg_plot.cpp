@@ -139,12 +139,14 @@ Frame frameFor(const ExecutedPath& path, std::span<const ir::CutGeometry> cuts, 
     includeInBounds(move.end, low, high);
   }
   for (const ir::CutGeometry& cut : cuts) {
-    if (cut.curve == nullptr) {
-      continue;
-    }
-    geom::ParameterRange domain = cut.curve->domain();
-    for (int i = 0; i <= 64; ++i) {
-      includeInBounds(cut.curve->point(domain.t0 + domain.length() * i / 64.0), low, high);
+    for (const geom::Curve* curve : {cut.curve.get(), cut.drawnCurve.get()}) {
+      if (curve == nullptr) {
+        continue;
+      }
+      geom::ParameterRange domain = curve->domain();
+      for (int i = 0; i <= 64; ++i) {
+        includeInBounds(curve->point(domain.t0 + domain.length() * i / 64.0), low, high);
+      }
     }
   }
   if (!(low.x() <= high.x())) {
@@ -202,6 +204,36 @@ std::string curveLines(const Frame& frame, std::span<const ir::CutGeometry> cuts
     // Samples within a fifth of a pixel of the curve.
     geom::CurveProximity samples(*cuts[i].curve, 0.2 / frame.scale());
     out += fmt::format("<polyline class=\"curve\" data-cut=\"{}\" points=\"", i);
+    for (const Eigen::Vector3d& point : samples.samplePoints()) {
+      out += fmt::format("{:.2f},{:.2f} ", frame.x(point.x()), frame.y(point.y()));
+    }
+    out.back() = '"';
+    out += "/>\n";
+  }
+  return out + "</g>\n";
+}
+
+bool hasDrawnContours(std::span<const ir::CutGeometry> cuts) {
+  return std::any_of(cuts.begin(), cuts.end(),
+                     [](const ir::CutGeometry& cut) { return cut.drawnCurve != nullptr; });
+}
+
+// The curves as drawn of the cuts beside them (side=), whose offsets the
+// tool centre runs: thin, in their own colour.
+std::string drawnContourLines(const Frame& frame, std::span<const ir::CutGeometry> cuts) {
+  if (!hasDrawnContours(cuts)) {
+    return "";
+  }
+  std::string out =
+      fmt::format("<g class=\"drawn-contours\" fill=\"none\" stroke=\"{}\" stroke-width=\"0.8\">\n",
+                  kDrawnContourColour);
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    if (cuts[i].drawnCurve == nullptr) {
+      continue;
+    }
+    PlaneProjection plan(*cuts[i].drawnCurve);
+    geom::CurveProximity samples(plan, 0.2 / frame.scale());
+    out += fmt::format("<polyline class=\"drawn-contour\" data-cut=\"{}\" points=\"", i);
     for (const Eigen::Vector3d& point : samples.samplePoints()) {
       out += fmt::format("{:.2f},{:.2f} ", frame.x(point.x()), frame.y(point.y()));
     }
@@ -286,6 +318,11 @@ std::string legend(double top, std::span<const ir::CutGeometry> cuts,
   out += swatch(x + 290, y, deviationColour(1, 1), "the tolerance");
   out += swatch(x + 410, y, kBeyondToleranceColour, "beyond it");
   out += swatch(x + 510, y, "#555", "true curve");
+  if (hasDrawnContours(cuts)) {
+    out += swatch(x, y + kLegendLineHeight, kDrawnContourColour,
+                  "drawn contour of a cut beside it (side=): its true curve is the tool "
+                  "centre's offset path");
+  }
   return out + "</g>\n";
 }
 
@@ -356,7 +393,8 @@ std::string plotSvg(const ExecutedPath& path, std::span<const ir::CutGeometry> c
   double panelsTop = frame.bottom() + 66;
   double legendTop = panelsTop + plot::panelsHeight(plotted) + 12;
   double width = frame.right() + kMargin;
-  double height = legendTop + kLegendLineHeight * double(cuts.size() + 1) + 10;
+  double legendLines = double(cuts.size() + 1) + (hasDrawnContours(cuts) ? 1 : 0);
+  double height = legendTop + kLegendLineHeight * legendLines + 10;
   double insetSize = std::min(160.0, (frame.right() - frame.left()) / 3);
   std::string out =
       fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" "
@@ -368,6 +406,7 @@ std::string plotSvg(const ExecutedPath& path, std::span<const ir::CutGeometry> c
                      kMargin, escaped(options.title));
   out += axes(frame, options.unit);
   out += curveLines(frame, cuts);
+  out += drawnContourLines(frame, cuts);
   out += rapidLines(frame, path);
   out += cutPaths(frame, plotted);
   out += plot::worstPointInset(plotted, cuts, frame.right() - insetSize - 6, frame.top() + 6,

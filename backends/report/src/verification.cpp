@@ -6,8 +6,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace cncc::backends {
 
@@ -83,6 +85,41 @@ std::string cutName(std::size_t cut, const StatisticsOptions& options) {
   return cut < options.cutNames.size() ? options.cutNames[cut] : fmt::format("cut {}", cut + 1);
 }
 
+// The contour each cut beside its curve leaves, from its own feed moves.
+std::vector<ContourLeft> contoursLeft(const ExecutedPath& path,
+                                      std::span<const ir::CutGeometry> cuts) {
+  std::vector<ContourLeft> contours;
+  for (std::size_t cut = 0; cut < cuts.size(); ++cut) {
+    const ir::CutGeometry& geometry = cuts[cut];
+    std::vector<std::vector<Eigen::Vector3d>> polylines = cutPolylines(path, cut);
+    if (geometry.drawnCurve == nullptr || polylines.empty()) {
+      continue;
+    }
+    // As the deviation is measured (path_statistics.cpp).
+    double accuracy =
+        std::isnan(geometry.tolerance) ? 1e-7 : std::max(1e-7, geometry.tolerance * 1e-3);
+    contours.push_back(measureContourLeft(cut, geometry, polylines, accuracy));
+  }
+  return contours;
+}
+
+std::string formatContour(const ContourLeft& contour, const StatisticsOptions& options) {
+  auto amount = [&](double value, const Eigen::Vector3d& where) {
+    return value > 0 ? fmt::format("{:.5f} {} at ({:.4f}, {:.4f})", value, options.unit, where.x(),
+                                   where.y())
+                     : std::string("none");
+  };
+  std::string tolerance =
+      std::isnan(contour.tolerance)
+          ? std::string("no tolerance")
+          : fmt::format("tolerance {:g} {}, {}", contour.tolerance, options.unit,
+                        contour.withinTolerance() ? "within" : "EXCEEDED");
+  return fmt::format("  {}: tool radius {:g}, material left {}, cut past the curve {}, {}\n",
+                     cutName(contour.cut, options), contour.toolRadius,
+                     amount(contour.largestUndercut, contour.undercutAt),
+                     amount(contour.largestGouge, contour.gougeAt), tolerance);
+}
+
 } // namespace
 
 bool VerificationReport::passed() const {
@@ -91,6 +128,11 @@ bool VerificationReport::passed() const {
   }
   for (const CutDeviation& cut : statistics.cuts) {
     if (!cut.withinTolerance()) {
+      return false;
+    }
+  }
+  for (const ContourLeft& contour : contours) {
+    if (!contour.withinTolerance()) {
       return false;
     }
   }
@@ -121,6 +163,7 @@ VerificationReport verifyProgram(const VerificationInput& input, const Statistic
         assignCuts(execution.path, input.reference, allowances(input, rounding), rounding);
     report.statistics =
         measureProgram({execution.text, report.blocks, execution.path}, input.cuts, options);
+    report.contours = contoursLeft(execution.path, input.cuts);
   } catch (const geom::MeasurementTooLarge& error) {
     report.failure = ControllerFailure{
         0, fmt::format("{} in one stretch of a cut: too large to verify", error.what()), ""};
@@ -172,6 +215,12 @@ std::string formatVerification(const VerificationReport& report, const Statistic
   }
   text += fmt::format("  overall: max deviation {:.5f} {}\n", report.statistics.maxDeviation(),
                       options.unit);
+  if (!report.contours.empty()) {
+    text += "contour the tool leaves beside the drawn curve (side=), in XY:\n";
+    for (const ContourLeft& contour : report.contours) {
+      text += formatContour(contour, options);
+    }
+  }
   return text + (report.passed() ? "verdict: PASSED\n" : "verdict: FAILED\n");
 }
 

@@ -352,6 +352,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   ValueId safe = arithmetic_.value(*safe_);
   beginCutMoves({centre, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                  cut.span, method, arcs ? CutArcs::Native : CutArcs::None});
+  markCutBeside(contour, toolRadius);
   OffsetChords chords = offsetChords(samples, false);
   for (double depth : passDepths(cut)) {
     builder_.comment(depth != 0 ? fmt::format("pass at depth {}", depth) : "cut");

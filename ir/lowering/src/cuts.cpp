@@ -436,6 +436,11 @@ void PartLowering::beginCutMoves(CutGeometry geometry) {
   builder_.cutBegin(index);
 }
 
+void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius) {
+  cuts_.back().drawnCurve = std::move(drawn);
+  cuts_.back().toolRadius = toolRadius;
+}
+
 std::vector<SampleRun> PartLowering::lapRuns(const CutCurve& curve,
                                              const geom::CurveSamples& samples,
                                              const std::vector<RampSegment>* ramp) {

@@ -236,6 +236,7 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   }
   checkCutBounds(cut, *path);
   if (lowerOffsetSplineCut(cut, offset)) {
+    markCutBeside(curve.geometry, std::fabs(distance));
     return true;
   }
   HostCut begun = beginHostCut(cut);
@@ -262,6 +263,7 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   ValueId safe = arithmetic_.value(*safe_);
   beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                  cut.span, methodOf(cut), arcMoves});
+  markCutBeside(curve.geometry, std::fabs(distance));
   OffsetChords chords = offsetChords(samples, begun.ramp);
   auto lap = [&](double zFrom, double zTo) {
     if (arcs && zFrom == zTo) {

@@ -407,6 +407,8 @@ private:
   // Enters the cut into the part's cut table and starts its moves: the
   // controller's contouring mode for its tolerance, then `cut.begin`.
   void beginCutMoves(CutGeometry geometry);
+  // The cut just begun runs beside `drawn` at `toolRadius` (side=).
+  void markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius);
   // The default work offset (G54) when none has been chosen yet: before
   // the first tool change or move.
   void ensureOrigin();

@@ -15,7 +15,8 @@ enum class CutArcs { None, Native, Fitted };
 
 // One cut of the part: what `cut.begin index` refers to.
 struct CutGeometry {
-  // The true curve in part coordinates, transforms applied (XY plane).
+  // The true curve in part coordinates, transforms applied (XY plane). For
+  // a cut beside its curve (side=), the path the tool's centre must take.
   std::shared_ptr<const geom::Curve> curve;
   // The cut's promise in mm; NaN when samples= or spacing= chose the points.
   double tolerance = 0;
@@ -29,6 +30,11 @@ struct CutGeometry {
   // Cut as spline blocks (move.spline): how they were found, as the
   // program's comment says it; empty otherwise.
   std::string splineBlocks = {};
+  // A cut beside its curve (side=left|right): the curve as drawn, in part
+  // coordinates, and the tool radius it was offset by; the contour the tool
+  // leaves is measured against it. Null (radius 0) for a cut on its curve.
+  std::shared_ptr<const geom::Curve> drawnCurve = nullptr;
+  double toolRadius = 0;
 };
 
 } // namespace cncc::ir

@@ -33,6 +33,8 @@ struct PlotOptions {
 inline constexpr const char* kOnTheCurveColour = "#1a9641";
 inline constexpr const char* kBeyondToleranceColour = "#5e3c99";
 inline constexpr const char* kNoToleranceColour = "#2c7bb6";
+// The drawn curve of a cut beside it (side=), a thin line by the path.
+inline constexpr const char* kDrawnContourColour = "#e7298a";
 
 // The colour of a segment `deviation` away from the curve: from green (0)
 // through yellow (half the tolerance) to red at the tolerance, purple

@@ -4,10 +4,13 @@
 // reference): each executed feed move belongs to the reference cut whose
 // path it lies on. A program passes when it runs without a controller error,
 // every cut the reference cuts is cut, every feed move lies on the
-// reference's path and no cut strays from its curve by more than its
-// tolerance.
+// reference's path, no cut strays from its curve by more than its
+// tolerance, and no cut beside its curve (side=) leaves a contour that
+// gouges the drawn curve or leaves material on it by more than that
+// (contour_left.h).
 #pragma once
 
+#include "cncc/backends/contour_left.h"
 #include "cncc/backends/path_statistics.h"
 #include "cncc/backends/program_execution.h"
 #include "cncc/ir/cut_geometry.h"
@@ -47,6 +50,7 @@ struct VerificationReport {
   std::optional<std::size_t> variables;
   std::optional<sim::LoopOperationCounts> operations;
   PathStatistics statistics;           // its cuts: the deviations
+  std::vector<ContourLeft> contours;   // of its cuts beside their curves
   std::vector<std::size_t> missedCuts; // the reference cuts them, the program does not
   StrayMoves stray;
   std::optional<ControllerFailure> failure;
