@@ -266,6 +266,9 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   }
   beginCutMoves({runtimeOffset_ ? runtimeOffset_->compiled : curve.geometry, tolerance, cut.span,
                  methodOf(cut), arcs ? CutArcs::Native : CutArcs::None});
+  if (runtimeOffset_) {
+    markCutBeside(curve.geometry, std::fabs(runtimeOffset_->compiledDistance));
+  }
   for (const ControllerSegment& segment : *planned) {
     if (segment.isArc && segment.symbolic != nullptr) {
       guardArc(symbolicArcPath(*segment.symbolic, *curve.pieces[segment.piece].value));
