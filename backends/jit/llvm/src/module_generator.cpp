@@ -212,6 +212,8 @@ private:
     case Opcode::CutBegin:
       emitEffect(instruction);
       return;
+    case Opcode::CornerArc: // G39: lowered for the Fanuc and Mitsubishi targets only
+      return;
     }
     values_[instruction.result.index] = result;
   }
