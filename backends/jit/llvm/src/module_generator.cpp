@@ -210,9 +210,8 @@ private:
     case Opcode::Compensation:
     case Opcode::Comment:
     case Opcode::CutBegin:
+    case Opcode::CornerArc:
       emitEffect(instruction);
-      return;
-    case Opcode::CornerArc: // G39: lowered for the Fanuc and Mitsubishi targets only
       return;
     }
     values_[instruction.result.index] = result;
@@ -400,6 +399,9 @@ private:
       break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";
+      break;
+    case Opcode::CornerArc:
+      callback = "cncc_jit_corner_arc";
       break;
     case Opcode::Tool:
       callback = "cncc_jit_tool";
