@@ -186,6 +186,10 @@ void FunctionBuilder::compensation(double offset, std::uint32_t offsetRegister) 
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::cornerArc(ValueId dx, ValueId dy) {
+  operation(Opcode::CornerArc, {dx, dy});
+}
+
 void FunctionBuilder::comment(std::string text) {
   Instruction instruction;
   instruction.opcode = Opcode::Comment;

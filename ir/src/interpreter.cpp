@@ -91,6 +91,7 @@ private:
     case Opcode::Comment:
     case Opcode::CutBegin:
     case Opcode::Compensation:
+    case Opcode::CornerArc:
       record(instruction);
       return;
     default:
@@ -159,6 +160,11 @@ private:
     case Opcode::CutBegin:
       event.kind = MachineEvent::Kind::CutBegin;
       event.number = instruction.index;
+      break;
+    case Opcode::CornerArc:
+      event.kind = MachineEvent::Kind::CornerArc;
+      event.x = value(operands[0]);
+      event.y = value(operands[1]);
       break;
     default:
       event.kind = MachineEvent::Kind::Comment;

@@ -112,6 +112,15 @@ ToolPath toolCentrePath(const ToolPath& programmed) {
       }
       continue;
     }
+    if (event.kind == Kind::CornerArc) {
+      // The offset pieces already go round every convex corner on an arc of
+      // the radius about it, which G39 runs.
+      if (!stretch || cancelling || stretch->moves.size() < 2) {
+        throw InterpreterError("a corner arc (G39) needs cutter radius compensation on and a "
+                               "compensated move before it");
+      }
+      continue;
+    }
     if (!stretch) {
       centre.events.push_back(event);
       continue;

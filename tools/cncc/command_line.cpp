@@ -194,7 +194,8 @@ CLI::App* addSimulateCommand(CLI::App& app, RawOptions& raw) {
       ->add_option("--tool-radius", raw.toolRadii,
                    "The radius in offset register N, read by D N for G41/G42 (1=5.); "
                    "on sinumerik the radius of tool N's cutting edges, on heidenhain the "
-                   "tool table's R of tool N, read by RL/RR")
+                   "tool table's R of tool N, read by RL/RR; on linuxcnc the tool table's radius "
+                   "of tool N, read by G41/G42 D N")
       ->type_name("N=R")
       ->allow_extra_args(false);
   simulate

@@ -425,12 +425,12 @@ DriverOptions simulateOptions(const RawOptions& raw) {
                                  "-t heidenhain), not to {}",
                                  raw.target));
   }
-  // On sinumerik and heidenhain N is the tool whose radius is R (its
-  // cutting edges, its row of the tool table).
+  // On sinumerik, heidenhain and linuxcnc N is the tool whose radius is R
+  // (its cutting edges, its row of the tool table).
   if (ownReader && !raw.toolRadii.empty() && raw.target != "sinumerik" &&
-      raw.target != "heidenhain") {
+      raw.target != "heidenhain" && raw.target != "linuxcnc") {
     throw UsageError(fmt::format("--tool-radius applies to 'sim -t fanuc', '-t m80', "
-                                 "'-t sinumerik' and '-t heidenhain', not to {}",
+                                 "'-t sinumerik', '-t heidenhain' and '-t linuxcnc', not to {}",
                                  raw.target));
   }
   checkProfileFitsTarget(raw);

@@ -102,7 +102,9 @@ int reportError(const std::string& path, int line, const std::string& message,
 }
 
 int runLinuxcnc(const DriverOptions& options, const std::string& path, const std::string& text) {
-  backends::sim::LinuxcncRun run = backends::sim::runLinuxcncProgram(text);
+  backends::sim::LinuxcncRunOptions settings;
+  settings.toolRadii = options.toolRadii; // --tool-radius: by tool number (G41/G42 D<tool>)
+  backends::sim::LinuxcncRun run = backends::sim::runLinuxcncProgram(text, settings);
   if (run.error) {
     return reportError(path, run.error->line(), run.error->what(), run.error->lineText());
   }

@@ -254,6 +254,8 @@ GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& opt
     case ir::MachineEvent::Kind::Compensation:
       writer.beforeNextPlaneMove(compensationBlock(event.number, event.offsetRegister));
       break;
+    case ir::MachineEvent::Kind::CornerArc: // lowered for the Fanuc and Mitsubishi targets only
+      break;
     }
   }
   if (spindleOn) {

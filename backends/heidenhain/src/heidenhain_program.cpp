@@ -192,6 +192,9 @@ private:
     case Opcode::Compensation:
       printCompensation(instruction);
       return;
+    case Opcode::CornerArc: // lowered for the Fanuc and Mitsubishi targets only
+      errors_.push_back("the TNC has no corner arc block of the G39 kind (corner.arc)");
+      return;
     case Opcode::Spindle:
       printSpindle(instruction);
       return;

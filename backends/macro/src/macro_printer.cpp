@@ -218,6 +218,9 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
   case Opcode::Compensation:
     moves_.beforeNextPlaneMove(compensationWords(instruction));
     return;
+  case Opcode::CornerArc:
+    printCornerArc(instruction);
+    return;
   case Opcode::Alarm:
     line(alarmStatement(instruction.text, 0));
     return;

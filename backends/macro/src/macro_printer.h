@@ -125,6 +125,7 @@ private:
   void printSpindle(const ir::Instruction& instruction);
   void printTool(const ir::Instruction& instruction);
   std::string compensationWords(const ir::Instruction& instruction);
+  void printCornerArc(const ir::Instruction& instruction);
   void printNurbs(const ir::Instruction& instruction);
 
   const ir::Function& function_;

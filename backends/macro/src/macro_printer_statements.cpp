@@ -155,6 +155,26 @@ void MacroProgramPrinter::printTool(const ir::Instruction& instruction) {
       *options_.setup, static_cast<int>(std::llround(instruction.number)), instruction.index));
 }
 
+// G39 at the corner the last move ended at: Fanuc in a block of its own
+// with I J towards the next move's start, Mitsubishi on that move's block
+// (controller_profile.h).
+void MacroProgramPrinter::printCornerArc(const ir::Instruction& instruction) {
+  if (options_.profile == nullptr || !options_.profile->cornerArcOnMoveBlock) {
+    line(fmt::format("G39 I{} J{}", expressions_.coordinate(instruction.operands[0]),
+                     expressions_.coordinate(instruction.operands[1])));
+    return;
+  }
+  auto isMotionBlock = [](std::string_view text) {
+    return text.starts_with("G1") || text.starts_with("G2") || text.starts_with("G3") ||
+           text.starts_with("X") || text.starts_with("Y");
+  };
+  if (lines_.empty() || !isMotionBlock(lines_.back())) {
+    errors_.push_back("a corner arc (G39) does not follow a move in the plane");
+    return;
+  }
+  lines_.back() = "G39 " + lines_.back();
+}
+
 // G41/G42 D<register> or G40. With dynamic compensation (LinuxCNC) the
 // tool's own register, the default, becomes `G41.1/G42.1 D<diameter>`:
 // the diameter compiled with, in the program, so that no tool table entry

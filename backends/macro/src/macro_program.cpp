@@ -70,6 +70,8 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
   options.coordinateIncrement =
       inches ? profile.leastInputIncrement / 10 : profile.leastInputIncrement;
   options.maximumLoopNesting = std::min(profile.maximumLoopNesting, profile.maximumLoopIdentifier);
+  options.compensationCornerArcs = true; // G39
+  options.cornerArcsAfterLinesOnly = profile.cornerArcOnMoveBlock;
   return options;
 }
 

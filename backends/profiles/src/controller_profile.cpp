@@ -40,6 +40,7 @@ ControllerProfile mitsubishiProfile() {
   profile.description = "Mitsubishi M70/M80/M800 macro program";
   profile.maximumProgramNumber = 99999999;
   profile.maximumSequenceNumber = 999999;
+  profile.cornerArcOnMoveBlock = true;
   return profile;
 }
 

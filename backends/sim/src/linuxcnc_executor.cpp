@@ -32,8 +32,8 @@ struct Frame {
 class Executor : public ParameterSource {
 public:
   Executor(const Program& program, const LinuxcncRunOptions& options, LinuxcncRun& run)
-      : program_(program), options_(options), run_(run), machine_(run), numbered_(5602, 0.0),
-        frames_(1) {}
+      : program_(program), options_(options), run_(run), machine_(run, options),
+        numbered_(5602, 0.0), frames_(1) {}
 
   void run();
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "linuxcnc_blocks.h"
+#include "sim_compensation.h"
 
 #include "cncc/backends/linuxcnc_controller.h"
 
@@ -30,7 +31,11 @@ BlockWords collectWords(const std::vector<std::pair<char, double>>& words,
 
 class Machine {
 public:
-  explicit Machine(LinuxcncRun& run) : run_(run) {}
+  Machine(LinuxcncRun& run, const LinuxcncRunOptions& options)
+      : run_(run), options_(options),
+        compensation_(
+            compensated_,
+            {.on = "G41/G42", .off = "G40", .transitionArcs = true, .offsetEntry = true}) {}
 
   // Runs a block's words; true when M2 or M30 ends the program.
   bool execute(const BlockWords& words, const LineContext& context);
@@ -39,14 +44,26 @@ public:
   std::optional<double> position(char axis) const;
 
 private:
+  bool executeWords(const BlockWords& words, const LineContext& context);
   void setUnits(bool inches, const LineContext& context);
   void spindle(const BlockWords& words, const LineContext& context);
   void motion(const BlockWords& words, const LineContext& context);
   Point3 target(const BlockWords& words) const;
   void arc(const BlockWords& words, Point3 end, const LineContext& context);
   void emit(LinuxcncMove move);
+  // G40, G41/G42 D<tool>, G41.1/G42.1 D<diameter>.
+  void setCompensation(const BlockWords& words, const LineContext& context);
+  // The moves the compensation has let go of, to the run.
+  void drainCompensated();
 
   LinuxcncRun& run_;
+  const LinuxcncRunOptions& options_;
+  // Cutter radius compensation (sim_compensation.h) with LinuxCNC's arc
+  // about every outside corner and its tangent entry move; while it is on,
+  // every move passes through it into `compensated_`.
+  ExecutedPath compensated_;
+  RadiusCompensation compensation_;
+  sim::Block block_; // the block being executed, for compensation's messages
   Point3 position_;
   bool zInMachineCoordinates_ = false; // after G53 Z: unknown in work coordinates
   int motionMode_ = 800;               // G80: no motion mode

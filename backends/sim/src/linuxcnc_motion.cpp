@@ -1,9 +1,10 @@
 // A block's words in LinuxCNC's order of execution: F, S, T, M6, spindle,
 // coolant, dwell, plane, units, compensation, tool length, coordinate
 // system, path mode, distance modes, motion, then the stops (M0, M1, M2,
-// M30). Arc tolerances are those LinuxCNC's interpreter applies (measured
-// against rs274: an end radius may differ from the start's by 0.0283 mm,
-// 0.00283 inch, or by 0.1 % of the radius).
+// M30). Cutter radius compensation runs through sim::RadiusCompensation
+// with LinuxCNC's tangent entry and arcs about outside corners. Arc tolerances are those LinuxCNC's
+// interpreter applies (measured against rs274: an end radius may differ from the start's by 0.0283
+// mm, 0.00283 inch, or by 0.1 % of the radius).
 #include "linuxcnc_machine.h"
 
 #include <fmt/format.h>
@@ -17,8 +18,9 @@ namespace cncc::backends::sim::linuxcnc {
 namespace {
 
 // The modal groups whose codes exclude each other in a block.
-constexpr std::array<std::array<int, 5>, 7> modalGroups{{
+constexpr std::array<std::array<int, 5>, 8> modalGroups{{
     {0, 10, 20, 30, 800},
+    {400, 410, 411, 420, 421},
     {170, -1, -1, -1, -1},
     {200, 210, -1, -1, -1},
     {430, 490, -1, -1, -1},
@@ -30,9 +32,9 @@ constexpr std::array<std::array<int, 5>, 7> modalGroups{{
 // More turns of one helix are refused: each becomes a circle of the path.
 constexpr int maximumTurns = 1000;
 
-constexpr std::array<int, 29> knownGCodes{0,   10,  20,  30,  40,  170, 200, 210, 400, 430,
-                                          490, 530, 540, 550, 560, 570, 580, 590, 591, 592,
-                                          593, 610, 611, 640, 800, 900, 901, 910, 911};
+constexpr std::array<int, 33> knownGCodes{0,   10,  20,  30,  40,  170, 200, 210, 400, 410, 411,
+                                          420, 421, 430, 490, 530, 540, 550, 560, 570, 580, 590,
+                                          591, 592, 593, 610, 611, 640, 800, 900, 901, 910, 911};
 constexpr std::array<int, 4> acceptedModeCodes{940, 970, 980, 990};
 
 std::string gName(int code) {
@@ -49,10 +51,6 @@ std::string refusalOfG(int code) {
   if (code == 180 || code == 190) {
     return fmt::format("{}: only the XY plane (G17) is modelled", gName(code));
   }
-  if (code >= 410 && code <= 421) {
-    return fmt::format("{}: cutter compensation is not modelled in the LinuxCNC dialect",
-                       gName(code));
-  }
   if ((code >= 810 && code <= 890) || code == 730 || code == 760) {
     return fmt::format("{}: canned cycles are not modelled in the LinuxCNC dialect", gName(code));
   }
@@ -63,8 +61,6 @@ std::string refusalOfLetter(char letter) {
   switch (letter) {
   case 'r':
     return "R arcs are not modelled in the LinuxCNC dialect: give I and J";
-  case 'd':
-    return "D (cutter compensation) is not modelled in the LinuxCNC dialect";
   case 'a':
   case 'b':
   case 'c':
@@ -111,7 +107,7 @@ BlockWords collectWords(const std::vector<std::pair<char, double>>& words,
         failAt(context, fmt::format("M{} is not modelled in the LinuxCNC dialect", code));
       }
       block.mCodes.insert(code);
-    } else if (std::string_view("xyzijkfstpqh").find(letter) == std::string_view::npos) {
+    } else if (std::string_view("xyzijkfstpqhd").find(letter) == std::string_view::npos) {
       failAt(context, refusalOfLetter(letter));
     } else if (!block.values.emplace(letter, value).second) {
       failAt(context,
@@ -142,8 +138,124 @@ std::optional<double> Machine::position(char axis) const {
   return axis == 'x' ? position_.x : position_.y;
 }
 
+namespace {
+
+ExecutedEvent executedEventOf(const LinuxcncMove& move) {
+  ExecutedEvent event;
+  switch (move.kind) {
+  case LinuxcncMove::Kind::Traverse:
+    event.kind = ExecutedEvent::Kind::Rapid;
+    break;
+  case LinuxcncMove::Kind::Feed:
+    event.kind = ExecutedEvent::Kind::Feed;
+    break;
+  case LinuxcncMove::Kind::Arc:
+    event.kind = move.turns > 0 ? ExecutedEvent::Kind::CounterclockwiseArc
+                                : ExecutedEvent::Kind::ClockwiseArc;
+    break;
+  case LinuxcncMove::Kind::ToolChange:
+    event.kind = ExecutedEvent::Kind::ToolChange;
+    break;
+  case LinuxcncMove::Kind::Spindle:
+    event.kind = ExecutedEvent::Kind::Spindle;
+    break;
+  }
+  event.start = move.start;
+  event.end = move.end;
+  event.centre = move.centre;
+  event.feed = move.feed;
+  event.number = move.number;
+  event.line = move.line;
+  return event;
+}
+
+LinuxcncMove linuxcncMoveOf(const ExecutedEvent& event) {
+  LinuxcncMove move;
+  switch (event.kind) {
+  case ExecutedEvent::Kind::Rapid:
+    move.kind = LinuxcncMove::Kind::Traverse;
+    break;
+  case ExecutedEvent::Kind::Feed:
+    move.kind = LinuxcncMove::Kind::Feed;
+    break;
+  case ExecutedEvent::Kind::ClockwiseArc:
+  case ExecutedEvent::Kind::CounterclockwiseArc:
+    move.kind = LinuxcncMove::Kind::Arc;
+    move.turns = event.kind == ExecutedEvent::Kind::CounterclockwiseArc ? 1 : -1;
+    break;
+  case ExecutedEvent::Kind::ToolChange:
+    move.kind = LinuxcncMove::Kind::ToolChange;
+    break;
+  case ExecutedEvent::Kind::Spindle:
+    move.kind = LinuxcncMove::Kind::Spindle;
+    break;
+  }
+  move.start = event.start;
+  move.end = event.end;
+  move.centre = event.centre;
+  move.feed = event.feed;
+  move.number = event.number;
+  move.line = event.line;
+  return move;
+}
+
+} // namespace
+
 void Machine::emit(LinuxcncMove move) {
-  run_.moves.push_back(move);
+  if (!compensation_.isOn()) {
+    run_.moves.push_back(move);
+    return;
+  }
+  if (move.kind == LinuxcncMove::Kind::Arc && std::abs(move.turns) != 1) {
+    failAt({block_.line, block_.text},
+           "an arc of several turns (P) with cutter compensation on is not modelled");
+  }
+  compensation_.add(executedEventOf(move), block_);
+  drainCompensated();
+}
+
+void Machine::drainCompensated() {
+  for (const ExecutedEvent& event : compensated_.events) {
+    run_.moves.push_back(linuxcncMoveOf(event));
+  }
+  compensated_.events.clear();
+}
+
+void Machine::setCompensation(const BlockWords& words, const LineContext& context) {
+  if (words.hasG(400)) {
+    compensation_.cancel(block_);
+    return;
+  }
+  int code = 0;
+  for (int candidate : {410, 411, 420, 421}) {
+    if (words.hasG(candidate)) {
+      code = candidate;
+    }
+  }
+  if (code == 0) {
+    return;
+  }
+  if (!words.has('d')) {
+    failAt(context, fmt::format("{} without D: {}", gName(code),
+                                code % 10 == 1 ? "the tool diameter" : "which tool's radius?"));
+  }
+  double d = words.values.at('d');
+  double radius = 0;
+  if (code % 10 == 1) { // G41.1/G42.1: D is the diameter
+    if (d < 0) {
+      failAt(context, fmt::format("{} D{}: the diameter must not be negative", gName(code), d));
+    }
+    radius = d / 2;
+  } else if (int tool = wholeNumber(d, "D (the tool number)", context); tool != 0) {
+    auto found = options_.toolRadii.find(tool);
+    if (found == options_.toolRadii.end()) {
+      failAt(context, fmt::format("D{}: the radius of tool {} is not known; give it with "
+                                  "--tool-radius {}=R",
+                                  tool, tool, tool));
+    }
+    radius = found->second;
+  }
+  compensation_.start(code == 410 || code == 411, radius, block_);
 }
 
 void Machine::setUnits(bool inches, const LineContext& context) {
@@ -189,6 +301,18 @@ void Machine::spindle(const BlockWords& words, const LineContext& context) {
 }
 
 bool Machine::execute(const BlockWords& words, const LineContext& context) {
+  block_.line = context.line;
+  block_.text = std::string(context.text);
+  bool ends = executeWords(words, context);
+  if (ends) {
+    compensation_.finish(block_);
+  }
+  compensation_.endOfBlock(block_);
+  drainCompensated();
+  return ends;
+}
+
+bool Machine::executeWords(const BlockWords& words, const LineContext& context) {
   if (words.has('f')) {
     if (words.values.at('f') < 0) {
       failAt(context, "F must not be negative");
@@ -213,6 +337,8 @@ bool Machine::execute(const BlockWords& words, const LineContext& context) {
   onlyWith('p', words.hasG(40) || words.hasG(640) || arcNow, "G4, G64, G2 or G3");
   onlyWith('q', words.hasG(640), "G64");
   onlyWith('h', words.hasG(430), "G43");
+  onlyWith('d', words.hasG(410) || words.hasG(411) || words.hasG(420) || words.hasG(421),
+           "G41, G42, G41.1 or G42.1");
   onlyWith('i', arcNow, "G2 or G3");
   onlyWith('j', arcNow, "G2 or G3");
   if (words.has('k')) {
@@ -224,6 +350,7 @@ bool Machine::execute(const BlockWords& words, const LineContext& context) {
   if (words.hasG(200) || words.hasG(210)) {
     setUnits(words.hasG(200), context);
   }
+  setCompensation(words, context);
   if (words.hasG(430) && words.has('h')) {
     wholeNumber(words.values.at('h'), "H", context);
   }

@@ -67,6 +67,45 @@ void RadiusCompensation::cancel(const Block&) {
   }
 }
 
+void RadiusCompensation::cornerArc(std::optional<Vector2> direction, const Block& block) {
+  if (state_ != State::On || !held_ || held_->startUp) {
+    failInBlock(block, fmt::format("G39 (corner arc) needs {} on and a compensated move in the "
+                                   "plane before it",
+                                   dialect_.on));
+  }
+  if (direction && length(*direction) == 0) {
+    failInBlock(block, "G39 I0 J0: the direction after the corner is missing");
+  }
+  held_->cornerArc = true;
+  held_->cornerDirection = direction;
+}
+
+// The held block to the offset normal to its end, the arc of G39 about its
+// end point, and a line to where the offset `next` starts if the arc ends
+// elsewhere (a G39 direction other than the next block's).
+void RadiusCompensation::emitCornerArc(const PlaneElement& next, const ExecutedEvent& event) {
+  Vector2 corner = held_->element.end;
+  Vector2 incoming = endTangent(held_->element);
+  Vector2 outgoing = startTangent(next);
+  if (held_->cornerDirection) {
+    outgoing = (1 / length(*held_->cornerDirection)) * *held_->cornerDirection;
+  }
+  Vector2 from = corner + offset_ * leftNormal(incoming);
+  Vector2 nextStart = next.start + offset_ * leftNormal(startTangent(next));
+  double turn = cross(incoming, outgoing);
+  constexpr double tangent = 1e-9;
+  if (offset_ * turn > tangent || (std::abs(turn) <= tangent && dot(incoming, outgoing) < 0)) {
+    failAtLine(held_->line, held_->text,
+               "G39 (corner arc) at an inside corner: the arc would overcut the corner");
+  }
+  emitHeld({from}, event);
+  TransitionArc arc{from, corner + offset_ * leftNormal(outgoing), corner, offset_ > 0};
+  emitTransitionArc(arc, event);
+  if (length(nextStart - tool_) > 0) {
+    emitLine(event, nextStart, toolZ_);
+  }
+}
+
 void RadiusCompensation::add(const ExecutedEvent& event, const Block& block) {
   if (isMotion(event) && movesInPlane(event)) {
     movedInPlane_ = true;
@@ -91,7 +130,7 @@ void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& blo
       failInBlock(block, "cutter compensation starts on an arc: the start-up move after "
                          "G41/G42 must be a G00 or G01 in the plane");
     }
-    held_ = HeldBlock{event, element, true, block.line, block.text};
+    held_ = HeldBlock{event, element, true, false, std::nullopt, block.line, block.text};
     tool_ = element.start;
     toolZ_ = event.start.z;
     state_ = State::On;
@@ -100,6 +139,9 @@ void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& blo
   if (state_ == State::Cancelling) {
     if (isArc(event)) {
       failInBlock(block, "G40 cancels on an arc: the cancel move must be a G00 or G01");
+    }
+    if (held_->cornerArc) {
+      failInBlock(block, "G39 (corner arc) before the cancel move is not simulated");
     }
     if (held_->startUp) {
       failInBlock(block, fmt::format("{} right after the start-up move is not simulated: the "
@@ -113,18 +155,26 @@ void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& blo
     state_ = State::Off;
     return;
   }
+  bool cornerArcAtEnd = cornerArcPending_;
+  cornerArcPending_ = false;
+  if (held_->cornerArc) {
+    emitCornerArc(element, event);
+    held_ = HeldBlock{event, element, false, cornerArcAtEnd, std::nullopt, block.line, block.text};
+    return;
+  }
   std::vector<Vector2> corner;
   std::optional<TransitionArc> arc;
-  if (!held_->startUp && dialect_.transitionArcs) {
+  bool typeAStartUp = held_->startUp && !dialect_.offsetEntry;
+  if (!typeAStartUp && dialect_.transitionArcs) {
     arc = transitionArc(held_->element, element, offset_);
   }
   if (arc) {
     emitHeld({arc->start}, event);
     emitTransitionArc(*arc, event);
-    held_ = HeldBlock{event, element, false, block.line, block.text};
+    held_ = HeldBlock{event, element, false, cornerArcAtEnd, std::nullopt, block.line, block.text};
     return;
   }
-  if (held_->startUp) {
+  if (typeAStartUp) {
     corner = {element.start + offset_ * leftNormal(startTangent(element))};
   } else if (std::optional<std::vector<Vector2>> points =
                  offsetCorner(held_->element, element, offset_)) {
@@ -135,7 +185,7 @@ void RadiusCompensation::addInPlane(const ExecutedEvent& event, const Block& blo
                                    held_->line, radius_));
   }
   emitHeld(corner, event);
-  held_ = HeldBlock{event, element, false, block.line, block.text};
+  held_ = HeldBlock{event, element, false, cornerArcAtEnd, std::nullopt, block.line, block.text};
 }
 
 void RadiusCompensation::emitHeld(const std::vector<Vector2>& corner, const ExecutedEvent& next) {
@@ -266,6 +316,11 @@ void RadiusCompensation::flushWaiting() {
 void RadiusCompensation::endOfBlock(const Block& block) {
   bool moved = movedInPlane_;
   movedInPlane_ = false;
+  if (cornerArcPending_) {
+    failInBlock(block, fmt::format("G39 (corner arc) on this control goes on a compensated move "
+                                   "in the plane, with {} on: the arc is at its end",
+                                   dialect_.on));
+  }
   if (state_ == State::Cancelling && !moved) {
     failInBlock(block, "G40 in a block without an X or Y move while compensating is not "
                        "simulated: write G40 on the lead-out move");

@@ -33,6 +33,10 @@ struct CompensationDialect {
   // The Heidenhain TNC's arc about every outside corner (transitionArc)
   // rather than Fanuc's type A.
   bool transitionArcs = false;
+  // LinuxCNC's start-up (as rs274 runs it): the entry move goes from where
+  // the tool is to where its own offset meets the next move's, the corner
+  // between them gone round as any other, rather than Fanuc's type A.
+  bool offsetEntry = false;
 };
 
 class RadiusCompensation {
@@ -45,6 +49,15 @@ public:
   void start(bool left, double radius, const Block& block);
   // G40.
   void cancel(const Block& block);
+  // G39, corner circular interpolation: the corner at the end of the last
+  // move in the plane is gone round on an arc of the radius about it, from
+  // the offset normal to that move's end to the offset normal to
+  // `direction` (Fanuc's `G39 I.. J..`), or to the next move's start when
+  // there is none. Refused at an inside corner (the controls overcut there).
+  void cornerArc(std::optional<Vector2> direction, const Block& block);
+  // Mitsubishi's G39 on a move block: the corner at the end of this block's
+  // move in the plane.
+  void cornerArcAfterThisBlock() { cornerArcPending_ = true; }
   bool isOn() const { return state_ != State::Off; }
   // 40, 41 or 42, as #4007 reads it.
   int modalCode() const {
@@ -65,6 +78,9 @@ private:
     ExecutedEvent event;
     PlaneElement element;
     bool startUp = false;
+    // G39 at its end, towards this direction if given (else the next block's).
+    bool cornerArc = false;
+    std::optional<Vector2> cornerDirection;
     int line = 0; // of its block, for alarms found once the next block is known
     std::string text;
   };
@@ -78,6 +94,7 @@ private:
   void emitCompensatedArc(Vector2 to, double sweep);
   void emitTransitionArc(const TransitionArc& arc, const ExecutedEvent& next);
   void flushWaiting();
+  void emitCornerArc(const PlaneElement& next, const ExecutedEvent& event);
 
   ExecutedPath& path_;
   CompensationDialect dialect_;
@@ -90,7 +107,8 @@ private:
   double toolZ_ = 0;                   // its Z
   std::vector<ExecutedEvent> waiting_; // events after the held block
   int blocksWithoutPlaneMotion_ = 0;
-  bool movedInPlane_ = false; // in the current block
+  bool movedInPlane_ = false;     // in the current block
+  bool cornerArcPending_ = false; // Mitsubishi's G39 in the current block
 };
 
 bool isArc(const ExecutedEvent& event);

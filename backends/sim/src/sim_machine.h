@@ -108,6 +108,7 @@ private:
   Next executeWords(const Block& block, std::size_t& next);
   Next executeAddressWords(const Block& block, std::size_t& next);
   void executeAxisWords(const Block& block, const BlockWords& words);
+  void cornerArc(const Block& block, const std::map<char, double>& axes);
   // sim_modal_codes.cpp
   void checkExtendedWorkOffset(const Block& block, const BlockWords& words) const;
   void applyModalCodes(const Block& block, const BlockWords& words);

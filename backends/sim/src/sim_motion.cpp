@@ -19,13 +19,13 @@ struct GCode {
 };
 
 constexpr GCode supportedGCodes[] = {
-    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},
-    {900, 3},  {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},
-    {490, 8},  {800, 9},  {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14},
-    {590, 14}, {610, 15}, {640, 15}, {62, 1},   {50, 0},   {51, 0},   {541, 14},
-    {280, 0},  {410, 7},  {420, 7},  {730, 9},  {740, 9},  {810, 9},  {820, 9},
-    {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},  {980, 10}, {990, 10},
-    {520, 0},  {680, 16}, {690, 16}, {150, 17}, {160, 17}, {660, 12}, {670, 12}};
+    {0, 1},    {10, 1},   {20, 1},   {30, 1},   {40, 0},   {650, 0},  {170, 2},  {900, 3},
+    {910, 3},  {940, 5},  {200, 6},  {210, 6},  {400, 7},  {430, 8},  {490, 8},  {800, 9},
+    {540, 14}, {550, 14}, {560, 14}, {570, 14}, {580, 14}, {590, 14}, {610, 15}, {640, 15},
+    {62, 1},   {50, 0},   {51, 0},   {541, 14}, {280, 0},  {410, 7},  {420, 7},  {730, 9},
+    {740, 9},  {810, 9},  {820, 9},  {830, 9},  {840, 9},  {850, 9},  {860, 9},  {890, 9},
+    {980, 10}, {990, 10}, {520, 0},  {680, 16}, {690, 16}, {150, 17}, {160, 17}, {660, 12},
+    {670, 12}, {390, 0}};
 // G06.2 NURBS and G05 P10000 (sim_nurbs.cpp); G05.1 Q1/Q0 (AI contour
 // control) and G54.1 P.. (extended work offsets) do not change the path.
 
@@ -255,6 +255,10 @@ void Machine::executeAxisWords(const Block& block, const BlockWords& words) {
     }
   } else if (words.hasG(280)) {
     returnToReference(block, axes);
+  } else if (words.hasG(390) && !profile_.cornerArcOnMoveBlock) {
+    cornerArc(block, axes);
+  } else if (words.hasG(390) && axes.empty()) {
+    failInBlock(block, "G39 (corner arc) on this control goes on the move whose end is the corner");
   } else if (modal_.cycle.code &&
              (axes.count('X') + axes.count('Y') + axes.count('Z') + axes.count('R') > 0)) {
     runCycleBlock(block, words.values);
@@ -264,9 +268,41 @@ void Machine::executeAxisWords(const Block& block, const BlockWords& words) {
       failInBlock(block, "a move before any G00, G01, G02 or G03: the power-on motion mode is "
                          "a parameter");
     }
+    if (words.hasG(390)) { // Mitsubishi: the corner at this move's end
+      if (axes.count('I') + axes.count('J') + axes.count('K') + axes.count('R') > 0 ||
+          *modal_.motion != 1) {
+        failInBlock(block, "G39 (corner arc) is simulated on a G01 move with X, Y and Z only");
+      }
+      compensation_.cornerArcAfterThisBlock();
+    }
     move(block, *modal_.motion, axes);
     moveCommanded_ = true;
   }
+}
+
+// Fanuc's G39 [I.. J..]: a block of its own, the corner arc at the end of
+// the move before it, towards I J (incremental from the corner) or the next
+// move's start.
+void Machine::cornerArc(const Block& block, const std::map<char, double>& axes) {
+  for (const auto& [letter, value] : axes) {
+    if (letter != 'I' && letter != 'J') {
+      failInBlock(block, fmt::format("G39 takes the direction after the corner in I and J, not {} "
+                                     "(no move in a G39 block)",
+                                     letter));
+    }
+  }
+  if (!modal_.coordinates.isPlain()) {
+    failInBlock(block, "G39 while G52, G68 or G16 is on is not simulated");
+  }
+  std::optional<Vector2> direction;
+  if (!axes.empty()) {
+    auto word = [&](char letter) {
+      auto found = axes.find(letter);
+      return found == axes.end() ? 0.0 : roundToIncrement(found->second);
+    };
+    direction = Vector2{word('I'), word('J')};
+  }
+  compensation_.cornerArc(direction, block);
 }
 
 // G28: a rapid to the intermediate point the axis words give (none for

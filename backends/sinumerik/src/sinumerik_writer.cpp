@@ -202,6 +202,8 @@ private:
     case MachineEvent::Kind::Compensation:
       compensation(e);
       break;
+    case MachineEvent::Kind::CornerArc: // lowered for the Fanuc and Mitsubishi targets only
+      break;
     }
     return i;
   }

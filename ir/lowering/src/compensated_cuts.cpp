@@ -26,6 +26,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace cncc::ir::lowering {
 
@@ -199,6 +200,94 @@ geom::ArcSegment centreArc(const geom::ArcSegment& programmed, double toolRadius
   return arc;
 }
 
+// A convex corner of the curve: where the controller is told to go round it
+// on an arc of the radius (G39), towards the next move's start direction.
+struct ConvexCorner {
+  Eigen::Vector3d point;
+  Eigen::Vector3d nextTangent; // unit, in the plane
+  double parameter = 0;        // on the pieces joined (geom::CompositeCurve)
+};
+
+// Corners of less than this (radians) are left to the controller's own
+// meeting of the offsets, off the arc by r (1 / cos(a / 2) - 1): 4e-7 r.
+constexpr double cornerArcAngle = 1e-3;
+
+// Whether the turn from `incoming` to `outgoing` (unit tangents) is a convex
+// corner for a tool `offset` to the left (negative: right) of the path.
+bool isConvexCorner(const Eigen::Vector3d& incoming, const Eigen::Vector3d& outgoing,
+                    double offset) {
+  double turn = incoming.x() * outgoing.y() - incoming.y() * outgoing.x(); // left positive
+  double angle = std::atan2(std::fabs(turn), incoming.head<2>().dot(outgoing.head<2>()));
+  return angle > cornerArcAngle && turn * offset < 0;
+}
+
+// The convex corners between the curve's pieces.
+std::vector<ConvexCorner>
+convexCorners(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double offset) {
+  std::vector<ConvexCorner> corners;
+  double join = 0;
+  for (std::size_t i = 0; i + 1 < pieces.size(); ++i) {
+    geom::ParameterRange domain = pieces[i]->domain();
+    join += domain.t1 - domain.t0;
+    Eigen::Vector3d incoming = planeTangent(*pieces[i], domain.t1);
+    Eigen::Vector3d outgoing = planeTangent(*pieces[i + 1], pieces[i + 1]->domain().t0);
+    if (incoming.allFinite() && outgoing.allFinite() &&
+        isConvexCorner(incoming, outgoing, offset)) {
+      corners.push_back({pieces[i]->point(domain.t1), outgoing, join});
+    }
+  }
+  return corners;
+}
+
+// `samples` with a sample at each corner: the curve is sampled as one, so
+// a chord may cut across a corner, and G39 goes where the corner is.
+geom::CurveSamples withCornerSamples(const geom::CurveSamples& samples,
+                                     const std::vector<ConvexCorner>& corners) {
+  if (samples.parameters.size() != samples.points.size()) {
+    return samples;
+  }
+  geom::CurveSamples joined;
+  std::size_t corner = 0;
+  for (std::size_t i = 0; i < samples.points.size(); ++i) {
+    double t = samples.parameters[i];
+    for (; corner < corners.size() && corners[corner].parameter <= t; ++corner) {
+      const ConvexCorner& at = corners[corner];
+      bool sampled = (samples.points[i] - at.point).norm() <= 1e-9 * std::max(1.0, at.point.norm());
+      if (!sampled && i > 0) {
+        joined.parameters.push_back(at.parameter);
+        joined.points.push_back(at.point);
+      }
+    }
+    joined.parameters.push_back(t);
+    joined.points.push_back(samples.points[i]);
+  }
+  return joined;
+}
+
+// The unit tangent of an arc or line segment where it starts (`atEnd`: ends).
+Eigen::Vector3d segmentTangent(const geom::ArcSegment& segment, bool atEnd) {
+  if (segment.kind == geom::ArcSegmentKind::Line) {
+    Eigen::Vector3d along = segment.end - segment.start;
+    along.z() = 0;
+    return along.normalized();
+  }
+  Eigen::Vector3d point = atEnd ? segment.end : segment.start;
+  Eigen::Vector3d radial(point.x() - segment.centre.x(), point.y() - segment.centre.y(), 0);
+  Eigen::Vector3d tangent = leftOf(radial.normalized());
+  return segment.direction == geom::ArcDirection::Clockwise ? Eigen::Vector3d(-tangent) : tangent;
+}
+
+// The index of the sample at `point` from `from` on, if one is there.
+std::optional<std::size_t> sampleAt(const geom::CurveSamples& samples, const Eigen::Vector3d& point,
+                                    std::size_t from) {
+  for (std::size_t i = from; i < samples.points.size(); ++i) {
+    if ((samples.points[i] - point).norm() <= 1e-9 * std::max(1.0, point.norm())) {
+      return i;
+    }
+  }
+  return std::nullopt;
+}
+
 } // namespace
 
 CompensatedLeads tangentLeads(const geom::Curve& path, double offset, double radius,
@@ -248,6 +337,52 @@ void PartLowering::checkLeadClearance(const CutStmt& cut, const CompensatedLeads
   };
   check(centre.leadIn, true, "lead-in");
   check(centre.leadOut, false, "lead-out");
+}
+
+// G39 towards `tangent`: a 10 mm vector, so that the printed direction is
+// true to 0.003 degrees on a 0.001 mm grid.
+void PartLowering::emitCornerArc(const Eigen::Vector3d& tangent) {
+  double increment = options_.coordinateIncrement;
+  builder_.cornerArc(builder_.constant(onPrintedGrid(10 * tangent.x(), increment)),
+                     builder_.constant(onPrintedGrid(10 * tangent.y(), increment)));
+}
+
+// The curve's arcs and lines, with G39 at each convex corner between them.
+void PartLowering::emitArcLapWithCorners(const std::vector<geom::ArcSegment>& segments,
+                                         double offset, ValueId z, ValueId feed) {
+  std::size_t first = 0;
+  for (std::size_t i = 0; i + 1 < segments.size(); ++i) {
+    Eigen::Vector3d outgoing = segmentTangent(segments[i + 1], false);
+    bool afterArc = segments[i].kind == geom::ArcSegmentKind::Arc;
+    if (!isConvexCorner(segmentTangent(segments[i], true), outgoing, offset) ||
+        (afterArc && options_.cornerArcsAfterLinesOnly)) {
+      continue;
+    }
+    emitArcLap({segments.begin() + static_cast<std::ptrdiff_t>(first),
+                segments.begin() + static_cast<std::ptrdiff_t>(i + 1)},
+               z, feed);
+    emitCornerArc(outgoing);
+    first = i + 1;
+  }
+  emitArcLap({segments.begin() + static_cast<std::ptrdiff_t>(first), segments.end()}, z, feed);
+}
+
+// The chords of the curve (constants: a controller-side target), with G39
+// after the chord that ends at each convex corner.
+void PartLowering::emitChordLapWithCorners(const OffsetChords& chords,
+                                           const std::vector<std::size_t>& cornerAfter,
+                                           const std::vector<Eigen::Vector3d>& cornerTangents,
+                                           double passZ, ValueId feed) {
+  std::size_t corner = 0;
+  for (std::size_t i = 0; i < chords.ends.size(); ++i) {
+    const Eigen::Vector3d& end = chords.ends[i];
+    builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()),
+                  builder_.constant(passZ + end.z()), feed);
+    if (corner < cornerAfter.size() && cornerAfter[corner] == i) {
+      emitCornerArc(cornerTangents[corner]);
+      ++corner;
+    }
+  }
 }
 
 double PartLowering::leadRadius(const CutStmt& cut, double toolRadius) {
@@ -353,13 +488,35 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   beginCutMoves({centre, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                  cut.span, method, arcs ? CutArcs::Native : CutArcs::None});
   markCutBeside(contour, toolRadius);
-  OffsetChords chords = offsetChords(samples, false);
+  // G39 after the chord that ends at each convex corner (its index in
+  // chords.ends is the sample's less one).
+  std::vector<std::size_t> cornerAfter;
+  std::vector<Eigen::Vector3d> cornerTangents;
+  bool cornerArcs = options_.compensationCornerArcs && options_.controllerLoops;
+  if (cornerArcs && !arcs) {
+    std::vector<ConvexCorner> corners = convexCorners(pieces, distance);
+    samples = withCornerSamples(samples, corners);
+    std::size_t from = 0; // the corners come in the samples' order
+    for (const ConvexCorner& corner : corners) {
+      std::optional<std::size_t> sample = sampleAt(samples, corner.point, from);
+      if (sample && *sample > 0 && *sample + 1 < samples.points.size()) {
+        from = *sample;
+        cornerAfter.push_back(*sample - 1);
+        cornerTangents.push_back(corner.nextTangent);
+      }
+    }
+  }
+  OffsetChords chords = offsetChords(samples, false); // constants on controllerLoops
   for (double depth : passDepths(cut)) {
     builder_.comment(depth != 0 ? fmt::format("pass at depth {}", depth) : "cut");
     double passZ = depth == 0 ? 0.0 : -depth;
     emitCompensatedPass(leads, safe, passZ, feed, [&](ValueId z) {
-      if (arcs) {
+      if (arcs && cornerArcs) {
+        emitArcLapWithCorners(*arcs, distance, z, feed);
+      } else if (arcs) {
         emitArcLap(*arcs, z, feed);
+      } else if (cornerArcs) {
+        emitChordLapWithCorners(chords, cornerAfter, cornerTangents, passZ, feed);
       } else {
         emitChordLap(chords, passZ, passZ, feed);
       }

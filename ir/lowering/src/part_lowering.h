@@ -559,6 +559,14 @@ private:
                       ValueId feed, ValueId safe, const LapEmitter& lap);
   void emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ, ValueId feed,
                            const std::function<void(ValueId z)>& contour);
+  // G39 (corner.arc) at convex corners (LoweringOptions::compensationCornerArcs).
+  void emitCornerArc(const Eigen::Vector3d& tangent);
+  void emitArcLapWithCorners(const std::vector<geom::ArcSegment>& segments, double offset,
+                             ValueId z, ValueId feed);
+  void emitChordLapWithCorners(const OffsetChords& chords,
+                               const std::vector<std::size_t>& cornerAfter,
+                               const std::vector<Eigen::Vector3d>& cornerTangents, double passZ,
+                               ValueId feed);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);

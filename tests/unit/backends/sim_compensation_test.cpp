@@ -22,10 +22,11 @@ SimulationOptions withRadius(double radius) {
   return options;
 }
 
-SimulationResult run(const std::string& body, const SimulationOptions& options = withRadius(2)) {
+SimulationResult run(const std::string& body, const SimulationOptions& options = withRadius(2),
+                     const char* profile = "fanuc") {
   return simulateProgram("%\nO1000\nG90 G00 X-10. Y-10. Z5.\nG01 Z-1. F100.\n" + body +
                              "G00 Z5.\nM30\n%\n",
-                         *findControllerProfile("fanuc"), options);
+                         *findControllerProfile(profile), options);
 }
 
 struct Step {
@@ -184,6 +185,78 @@ TEST(SimCompensation, OvercutOfAShortStepIsAnAlarm) {
   SimulationResult result = run("G42 D1 G01 X0. Y0.\nY20.\nX1.\nY19.\nX20.\nG40 X30.\n");
   ASSERT_TRUE(result.error);
   EXPECT_THAT(result.error->what(), HasSubstr("interference"));
+}
+
+// Clockwise round the square (0,0)-(20,20) with G41 (outside) and G39 at
+// each corner: the tool centre goes round it on arcs of the radius.
+const std::vector<Step> squareWithCornerArcs = {
+    {-2, 0},  {-2, 20}, {0, 22}, // the side, the arc about (0, 20)
+    {20, 22}, {22, 20}, {22, 0}, {20, -2}, {0, -2}, {-10, -10}, {-10, -10}};
+
+void expectCornerArcsClockwise(const SimulationResult& result) {
+  expectPath(result, squareWithCornerArcs);
+  const ExecutedEvent& arc = result.path.events[4]; // after the rapid, plunge, start-up, side
+  EXPECT_EQ(arc.kind, ExecutedEvent::Kind::ClockwiseArc);
+  EXPECT_NEAR(arc.centre.x, 0, 1e-12);
+  EXPECT_NEAR(arc.centre.y, 20, 1e-12);
+  EXPECT_NEAR(arc.start.x, -2, 1e-12);
+  EXPECT_NEAR(arc.start.y, 20, 1e-12);
+}
+
+TEST(SimCompensation, FanucG39TowardsIAndJGoesRoundTheCorner) {
+  expectCornerArcsClockwise(run("G41 D1 G01 X0. Y0.\n"
+                                "Y20.\n"
+                                "G39 I10. J0.\n"
+                                "X20.\n"
+                                "G39 I0. J-10.\n"
+                                "Y0.\n"
+                                "G39 I-1. J0.\n"
+                                "X0.\n"
+                                "G40 X-10. Y-10.\n"));
+}
+
+TEST(SimCompensation, FanucG39WithoutIAndJTurnsToTheNextBlock) {
+  expectCornerArcsClockwise(run("G41 D1 G01 X0. Y0.\nY20.\nG39\nX20.\nG39\nY0.\nG39\nX0.\n"
+                                "G40 X-10. Y-10.\n"));
+}
+
+TEST(SimCompensation, FanucG39TowardsAnotherDirectionEndsThereThenJoins) {
+  // The arc ends normal to I J (45 degrees), then a line to where the next
+  // block's offset starts.
+  SimulationResult result = run("G41 D1 G01 X0. Y0.\nY20.\nG39 I1. J1.\nX20.\nG40 X30. Y30.\n");
+  double half = std::sqrt(2.0);
+  expectPath(result,
+             {{-2, 0}, {-2, 20}, {-half, 20 + half}, {0, 22}, {20, 22}, {30, 30}, {30, 30}});
+}
+
+TEST(SimCompensation, MitsubishiG39GoesOnTheMoveEndingAtTheCorner) {
+  expectCornerArcsClockwise(run("G41 D1 G01 X0. Y0.\n"
+                                "G39 Y20.\n"
+                                "G39 X20.\n"
+                                "G39 G01 Y0.\n"
+                                "X0.\n"
+                                "G40 X-10. Y-10.\n",
+                                withRadius(2), "m80"));
+}
+
+TEST(SimCompensation, CornerArcRefusedRatherThanGuessed) {
+  auto errorOf = [](const std::string& body, const char* profile = "fanuc") {
+    SimulationResult result = run(body, withRadius(2), profile);
+    return result.error ? std::string(result.error->what()) : std::string("no error");
+  };
+  // G42 keeps the tool inside the clockwise square: its corners are concave.
+  EXPECT_THAT(errorOf("G42 D1 G01 X0. Y0.\nY20.\nG39\nX20.\nG40 X30.\n"),
+              HasSubstr("inside corner"));
+  EXPECT_THAT(errorOf("G01 X0. Y0.\nG39 I1. J0.\nX5.\n"), HasSubstr("needs G41/G42 on"));
+  EXPECT_THAT(errorOf("G41 D1 G01 X0. Y0.\nG39\nY20.\nG40 X-10.\n"), HasSubstr("needs G41/G42 on"));
+  EXPECT_THAT(errorOf("G41 D1 G01 X0. Y0.\nY20.\nG39 X5. Y20.\nX20.\nG40 X30.\n"),
+              HasSubstr("no move in a G39 block"));
+  EXPECT_THAT(errorOf("G41 D1 G01 X0. Y0.\nY20.\nG39\nG40 X-10.\n"),
+              HasSubstr("before the cancel move"));
+  EXPECT_THAT(errorOf("G41 D1 G01 X0. Y0.\nY20.\nG39\nX20.\nG40 X30.\n", "m80"),
+              HasSubstr("goes on the move"));
+  EXPECT_THAT(errorOf("G41 D1 G01 X0. Y0.\nY20.\nG39 Z-2.\nX20.\nG40 X30.\n", "m80"),
+              HasSubstr("compensated move in the plane"));
 }
 
 } // namespace

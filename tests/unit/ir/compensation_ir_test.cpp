@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace cncc::ir {
@@ -108,6 +109,55 @@ TEST(CompensationIrTest, ConvexCornerGetsAnArcOfTheRadius) {
   EXPECT_NEAR(moves[3].centreY, 0, 1e-12);
   EXPECT_NEAR(moves[3].x, 22, 1e-12);
   EXPECT_NEAR(moves[3].y, 0, 1e-12);
+}
+
+// The convex corner of ConvexCornerGetsAnArcOfTheRadius with G39 at it:
+// the op prints, parses and is recorded with its direction; the tool centre
+// is the same (the offset already goes round convex corners on that arc).
+TEST(CompensationIrTest, CornerArcAtAConvexCorner) {
+  FunctionBuilder builder("corner");
+  auto c = [&](double value) { return builder.constant(value); };
+  ValueId zero = c(0);
+  ValueId feed = c(100);
+  builder.rapid(zero, c(-10), zero);
+  builder.compensation(-2, 1);
+  builder.feed(zero, zero, zero, feed);
+  builder.feed(c(20), zero, zero, feed);
+  builder.cornerArc(zero, c(10));
+  builder.feed(c(20), c(10), zero, feed);
+  builder.compensation(0, 0);
+  builder.feed(c(30), c(10), zero, feed);
+  Function function = builder.finish();
+  EXPECT_THAT(verifyFunction(function), IsEmpty());
+  std::string text = printFunction(function);
+  EXPECT_THAT(text, HasSubstr("corner.arc %"));
+  ParseError error;
+  std::optional<Function> parsed = parseFunction(text, error);
+  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
+  EXPECT_EQ(printFunction(*parsed), text);
+  ToolPath path = interpret(function);
+  auto corner = std::find_if(path.events.begin(), path.events.end(), [](const MachineEvent& event) {
+    return event.kind == Kind::CornerArc;
+  });
+  ASSERT_NE(corner, path.events.end());
+  EXPECT_EQ(corner->x, 0);
+  EXPECT_EQ(corner->y, 10);
+  ToolPath centre = toolCentrePath(path);
+  for (const MachineEvent& event : centre.events) {
+    EXPECT_NE(event.kind, Kind::CornerArc);
+  }
+  std::vector<MachineEvent> moves = movesOf(centre);
+  ASSERT_EQ(moves.size(), 6u);
+  EXPECT_EQ(moves[3].kind, Kind::Arc);
+  EXPECT_NEAR(moves[3].x, 22, 1e-12);
+}
+
+TEST(CompensationIrTest, CornerArcWithoutCompensationIsRefused) {
+  FunctionBuilder builder("loose");
+  ValueId zero = builder.constant(0);
+  builder.feed(builder.constant(5), zero, zero, builder.constant(100));
+  builder.cornerArc(zero, builder.constant(1));
+  EXPECT_THROW(toolCentrePath(interpret(builder.finish())), InterpreterError);
 }
 
 TEST(CompensationIrTest, RefusedRatherThanGuessed) {

@@ -116,6 +116,7 @@ OpcodeCase effectsCase() {
   builder.coolant(ir::CoolantMode::Mist);
   builder.contouring(0.01);
   builder.compensation(-2.5, 4);
+  builder.cornerArc(builder.constant(0.6), builder.parameter(speed));
   builder.cutBegin(0);
   ValueId never = builder.constantBool(false);
   ValueId always = builder.constantBool(true);

@@ -229,6 +229,16 @@ static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
   });
 }
 
+static std::int32_t cncc_jit_corner_arc(RunContext* context, double dx, double dy) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::CornerArc;
+    event.x = dx;
+    event.y = dy;
+    return event;
+  });
+}
+
 static std::int32_t cncc_jit_tool(RunContext* context, double number, double diameter,
                                   std::uint32_t lengthRegister) {
   return record(context, [&] {
@@ -309,6 +319,7 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_spline", reinterpret_cast<void*>(&cncc_jit_spline)},
       {"cncc_jit_polynomial", reinterpret_cast<void*>(&cncc_jit_polynomial)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
+      {"cncc_jit_corner_arc", reinterpret_cast<void*>(&cncc_jit_corner_arc)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
       {"cncc_jit_setting", reinterpret_cast<void*>(&cncc_jit_setting)},
       {"cncc_jit_comment", reinterpret_cast<void*>(&cncc_jit_comment)},

@@ -210,6 +210,7 @@ private:
     case Opcode::Compensation:
     case Opcode::Comment:
     case Opcode::CutBegin:
+    case Opcode::CornerArc:
       emitEffect(instruction);
       return;
     }
@@ -398,6 +399,9 @@ private:
       break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";
+      break;
+    case Opcode::CornerArc:
+      callback = "cncc_jit_corner_arc";
       break;
     case Opcode::Tool:
       callback = "cncc_jit_tool";

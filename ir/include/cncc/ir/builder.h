@@ -56,6 +56,9 @@ public:
   // G41 (offset > 0) or G42 (offset < 0) with radius register `offsetRegister`,
   // or G40 (offset 0, register 0).
   void compensation(double offset, std::uint32_t offsetRegister);
+  // G39 at the corner where the last move ended, towards the next move's
+  // start direction (dx, dy).
+  void cornerArc(ValueId dx, ValueId dy);
   void home();
   void comment(std::string text);
   // `alarm "text"`: the program stops with this message.

@@ -65,6 +65,14 @@ struct LoweringOptions {
   // controller runs as tangent: it goes straight on from the offset end of
   // one move, off the exact offset by up to r (1 - cos) (LinuxCNC: 0.05).
   double compensationTangentAngle = 0;
+  // The controller meets the offsets of a convex corner at their crossing
+  // unless told otherwise (Fanuc, Mitsubishi): a `corner.arc` (G39) at each
+  // convex corner of a compensated curve makes it go round on an arc of the
+  // radius, as the exact offset does.
+  bool compensationCornerArcs = false;
+  // ... after a line only (Mitsubishi writes G39 on the move block, and on
+  // an arc block its I J would be the arc's): after an arc the offsets meet.
+  bool cornerArcsAfterLinesOnly = false;
   std::string targetName;
   // The machine's largest feed (mm/min, whatever the part's units) and
   // spindle speed (rpm); 0: no limit. A constant beyond it is an error at

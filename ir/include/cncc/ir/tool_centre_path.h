@@ -9,6 +9,9 @@
 //   offset:   the moves after it, lines and arcs in one plane, offset by the
 //             register's radius (geom::offsetOfPieces: an arc about a convex
 //             corner, the offsets cut back to their crossing at a concave one);
+//   corner:   a `corner.arc` (G39) between two offset moves goes round
+//             their corner on that arc, as the offset does at a convex
+//             corner;
 //   cancel:   the first move after `compensation off` is a line from the end
 //             of the offset path to its uncompensated end point.
 #pragma once

@@ -24,7 +24,8 @@ struct MachineEvent {
     Contouring,
     Comment,
     CutBegin,
-    Compensation
+    Compensation,
+    CornerArc // G39 at the corner the last move ended at, towards x, y (a direction)
   };
   Kind kind = Kind::Rapid;
   double x = 0, y = 0, z = 0; // Rapid, Feed, Arc: the target

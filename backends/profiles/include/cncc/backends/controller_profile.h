@@ -68,6 +68,11 @@ struct ControllerProfile {
   // The extended work offsets G54.1 P1 .. P(this) the machine has (0:
   // none), from its machine file; the virtual controller alarms past them.
   int maximumExtendedWorkOffset = 48;
+  // Where G39 (corner circular interpolation under G41/G42) is written:
+  // Fanuc in a block of its own after the move that ends at the corner,
+  // `G39 I.. J..` towards the next move's start (I J from the corner);
+  // Mitsubishi on that move's block, `G39 G01 X.. Y..`, the arc at its end.
+  bool cornerArcOnMoveBlock = false;
 
   // The letter of the G65 argument that reaches local `variable`, if any.
   std::optional<char> letterForLocal(int variable) const;

@@ -9,6 +9,7 @@
 #include "cncc/backends/virtual_controller.h"
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -32,6 +33,9 @@ struct LinuxcncMove {
 struct LinuxcncRunOptions {
   // The safety net against endless loops: blocks executed in all.
   std::size_t stepLimit = 10'000'000;
+  // The tool table's radii by tool number, read by `G41/G42 D<tool>` (a
+  // tool not given here is an error); `G41.1/G42.1 D<diameter>` needs none.
+  std::map<int, double> toolRadii;
 };
 
 struct LinuxcncRun {
