@@ -13,6 +13,7 @@
 //   differentiation with each term bounded by its size). Other functions
 //   of t are not bounded, and such a piece keeps the compile-time tables.
 // A transform multiplies M by its stretch.
+#include "forward_derivative.h"
 #include "part_lowering.h"
 
 #include <cmath>
@@ -98,20 +99,8 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
                  : isZero(high) ? magnitude(low)
                                 : math.add(magnitude(low), magnitude(high));
 
-  std::map<std::uint32_t, bool> varying;
-  std::function<bool(ValueId)> varies = [&](ValueId id) {
-    if (id == probe) {
-      return true;
-    }
-    if (auto found = varying.find(id.index); found != varying.end()) {
-      return found->second;
-    }
-    bool result = false;
-    for (ValueId operand : builder_.function().definition(id).operands) {
-      result = result || varies(operand);
-    }
-    return varying[id.index] = result;
-  };
+  ValueDependence varies(builder_.function(), probe);
+
   std::map<std::uint32_t, std::optional<DerivativeBounds>> memo;
   std::function<std::optional<DerivativeBounds>(Scalar)> bounds =
       [&](Scalar scalar) -> std::optional<DerivativeBounds> {

@@ -10,7 +10,7 @@ bool isZero(const Scalar& scalar) {
 
 } // namespace
 
-bool ForwardDerivative::varies(ValueId value) {
+bool ValueDependence::operator()(ValueId value) {
   if (value == variable_) {
     return true;
   }
@@ -18,14 +18,14 @@ bool ForwardDerivative::varies(ValueId value) {
     return found->second;
   }
   bool result = false;
-  for (ValueId operand : builder_.function().definition(value).operands) {
-    result = result || varies(operand);
+  for (ValueId operand : function_.definition(value).operands) {
+    result = result || (*this)(operand);
   }
   return varying_[value.index] = result;
 }
 
 std::optional<Scalar> ForwardDerivative::of(Scalar value) {
-  if (value.isConstant() || !varies(value.value)) {
+  if (value.isConstant() || !varies_(value.value)) {
     return Scalar::of(0);
   }
   if (value.value == variable_) {

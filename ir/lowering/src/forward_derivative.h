@@ -13,24 +13,38 @@
 
 namespace cncc::ir::lowering {
 
+// Whether an IR value is computed from `variable` (memoised walk of the
+// instructions that define its operands).
+class ValueDependence {
+public:
+  ValueDependence(const Function& function, ValueId variable)
+      : function_(function), variable_(variable) {}
+  bool operator()(ValueId value);
+
+private:
+  const Function& function_;
+  ValueId variable_;
+  std::map<std::uint32_t, bool> varying_;
+};
+
 class ForwardDerivative {
 public:
   ForwardDerivative(FunctionBuilder& builder, Arithmetic& math, ValueId variable)
-      : builder_(builder), math_(math), variable_(variable) {}
+      : builder_(builder), math_(math), variable_(variable), varies_(builder.function(), variable) {
+  }
 
   // d value / d variable; nullopt where an instruction on the way has no
   // rule here (a table read at an index that varies, a comparison).
   std::optional<Scalar> of(Scalar value);
 
 private:
-  bool varies(ValueId value);
   std::optional<Scalar> rule(const Instruction& instruction,
                              const std::vector<Scalar>& operandDerivatives);
 
   FunctionBuilder& builder_;
   Arithmetic& math_;
   ValueId variable_;
-  std::map<std::uint32_t, bool> varying_;
+  ValueDependence varies_;
   std::map<std::uint32_t, std::optional<Scalar>> derivatives_;
 };
 
