@@ -58,18 +58,20 @@ constexpr double passCountOffset = 0.49999999;
 
 } // namespace
 
-int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
-  auto fits = [&](int steps) {
-    double previous = from;
-    for (int j = 1; j <= steps; ++j) {
-      double next = j == steps ? to : from + (to - from) * j / steps;
-      if (!(geom::chordDeviation(curve, previous, next) <= budget)) {
-        return false;
-      }
-      previous = next;
+bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget) {
+  double previous = from;
+  for (int j = 1; j <= steps; ++j) {
+    double next = j == steps ? to : from + (to - from) * j / steps;
+    if (!(geom::chordDeviation(curve, previous, next) <= budget)) {
+      return false;
     }
-    return true;
-  };
+    previous = next;
+  }
+  return true;
+}
+
+int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
+  auto fits = [&](int steps) { return uniformStepsFit(curve, from, to, steps, budget); };
   int high = 1;
   while (!fits(high)) {
     high *= 2;

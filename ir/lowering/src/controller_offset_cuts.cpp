@@ -15,7 +15,8 @@
 //   / 8 (s' the speed, k the signed curvature), at most h^2 (s'^2 |k| + r
 //   s'^2 k^2) / 8, so N(r) = sqrt(N0^2 + Q r) steps, N0 the fewest measured
 //   on the drawn curve and Q from the largest s'^2 k^2 over the piece;
-//   Q is raised where the exact offset at a few radii needs more;
+//   N(r) is measured on the exact offset at a few radii and Q raised until
+//   it fits;
 // - before it cuts, the program raises an alarm for a radius that is not
 //   positive, or not below the largest radius the tool fits the curve with
 //   (its tightest concave bend, a path's concave corner, the offset
@@ -46,8 +47,11 @@ constexpr int radiusSearchSteps = 40;
 // Samples of s'^2 k^2 per drawn step, and their bound.
 constexpr int growthSamplesPerStep = 16;
 constexpr int largestGrowthSamples = 100'000;
-// The margin on the sampled largest s'^2 k^2.
+// The margin on the sampled largest s'^2 k^2, and how the growth is raised
+// where the exact offset needs more steps (at most growthTries times).
 constexpr double growthMargin = 1.1;
+constexpr double growthRaise = 1.25;
+constexpr int growthTries = 40;
 
 Eigen::Vector2d leftNormal(const Eigen::Vector3d& tangent) {
   return geom::leftNormalOf(tangent).head<2>();
@@ -221,21 +225,40 @@ void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
     int samples = std::min(largestGrowthSamples, growthSamplesPerStep * segment.steps);
     double growth = (to - from) * (to - from) * largestCurvatureGrowth(*moved, from, to, samples) /
                     (8 * measured) * growthMargin;
+    // The count the program computes, checked on the exact offset at each
+    // radius and raised until it fits (past maximumStepsPerPiece near a
+    // cusp of the offset the bound stands alone).
+    auto stepsAt = [&](double radius) {
+      return std::ceil(std::sqrt(drawn * drawn + growth * radius));
+    };
     for (double radius : radii) {
       geom::OffsetCurve exact(moved, side * radius);
-      int needed = fewestUniformSteps(exact, from, to, measured);
-      if (needed == 0) {
+      int tries = 0;
+      while (stepsAt(radius) <= maximumStepsPerPiece &&
+             !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured)) {
+        if (++tries > growthTries) {
+          fail(cut.span,
+               fmt::format("cannot bound the steps of this curve's offset at radius {:g} "
+                           "within its tolerance",
+                           radius),
+               DiagnosticKind::ProgramTooLarge);
+        }
+        growth = growth * growthRaise + 1;
+      }
+      if (radius == compiledRadius && stepsAt(radius) > maximumStepsPerPiece) {
         fail(cut.span,
              fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
                          "steps on one piece within its tolerance",
                          radius, maximumStepsPerPiece),
              DiagnosticKind::ProgramTooLarge);
       }
-      growth = std::max(growth, (needed * needed - drawn * drawn) / radius * growthMargin);
     }
-    Scalar squared = arithmetic_.add(Scalar::of(drawn * drawn),
-                                     arithmetic_.multiply(Scalar::of(growth), offset.radius));
-    segment.stepCount = roundedUpSteps(arithmetic_.unary(Opcode::Sqrt, squared));
+    // N0 SQRT[1 + (Q / N0^2) r]: literals of the size of N0, not its square,
+    // for the controller's digits (a relative 1e-8 of Q is in its margin).
+    Scalar share = arithmetic_.add(
+        Scalar::of(1), arithmetic_.multiply(Scalar::of(growth / (drawn * drawn)), offset.radius));
+    segment.stepCount = roundedUpSteps(
+        arithmetic_.multiply(Scalar::of(drawn), arithmetic_.unary(Opcode::Sqrt, share)));
     segment.steps = 0;
   }
 }

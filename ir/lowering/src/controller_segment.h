@@ -18,6 +18,9 @@ inline constexpr int maximumStepsPerPiece = 100'000;
 // The share of the increment kept for the rounding of printed literals.
 inline constexpr double literalShare = 0.02;
 
+// Whether `steps` uniform steps over [from, to] keep every chord within
+// `budget` of the curve (measured, stopping at the first that does not).
+bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget);
 // The fewest uniform steps over [from, to] whose chords all deviate at most
 // `budget` from the curve (found by doubling, then bisection; every count
 // returned has been measured); 0 past maximumStepsPerPiece.
