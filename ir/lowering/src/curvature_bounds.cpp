@@ -199,53 +199,11 @@ std::optional<Scalar> PartLowering::polarStepCount(const SymbolicPiece& piece,
     return *value;
   };
   Scalar radius = lowerAt(Scalar::of(probe, ValueType::F64));
-  // d r / d t over the IR, or nullopt when r is not affine in t.
-  std::map<std::uint32_t, std::optional<Scalar>> derivatives;
-  std::function<std::optional<Scalar>(Scalar)> derivative =
-      [&](Scalar value) -> std::optional<Scalar> {
-    if (value.isConstant()) {
-      return Scalar::of(0);
-    }
-    if (value.value == probe) {
-      return Scalar::of(1);
-    }
-    if (auto found = derivatives.find(value.value.index); found != derivatives.end()) {
-      return found->second;
-    }
-    // A copy: the arithmetic below appends instructions.
-    Instruction instruction = builder_.function().definition(value.value);
-    std::vector<std::optional<Scalar>> operands;
-    for (ValueId operand : instruction.operands) {
-      operands.push_back(derivative(Scalar::of(operand, ValueType::F64)));
-      if (!operands.back()) {
-        return derivatives[value.value.index] = std::nullopt;
-      }
-    }
-    bool free = std::all_of(operands.begin(), operands.end(),
-                            [](const std::optional<Scalar>& scalar) { return isZero(*scalar); });
-    std::optional<Scalar> result;
-    auto operand = [&](std::size_t i) {
-      return Scalar::of(instruction.operands[i], ValueType::F64);
-    };
-    if (free) {
-      result = Scalar::of(0);
-    } else if (instruction.opcode == Opcode::Add) {
-      result = arithmetic_.add(*operands[0], *operands[1]);
-    } else if (instruction.opcode == Opcode::Sub) {
-      result = arithmetic_.binary(Opcode::Sub, *operands[0], *operands[1]);
-    } else if (instruction.opcode == Opcode::Neg) {
-      result = arithmetic_.unary(Opcode::Neg, *operands[0]);
-    } else if (instruction.opcode == Opcode::Mul && isZero(*operands[0])) {
-      result = arithmetic_.multiply(operand(0), *operands[1]);
-    } else if (instruction.opcode == Opcode::Mul && isZero(*operands[1])) {
-      result = arithmetic_.multiply(*operands[0], operand(1));
-    } else if (instruction.opcode == Opcode::Div && isZero(*operands[1])) {
-      result = arithmetic_.binary(Opcode::Div, *operands[0], operand(1));
-    }
-    return derivatives[value.value.index] = result;
-  };
-  std::optional<Scalar> slope = derivative(radius);
-  if (!slope) {
+  // d r / d t over the IR; nullopt when r is not affine in t (its slope
+  // varies with t).
+  std::optional<Scalar> slope = ForwardDerivative(builder_, arithmetic_, probe).of(radius);
+  if (!slope ||
+      (!slope->isConstant() && ValueDependence(builder_.function(), probe)(slope->value))) {
     return std::nullopt;
   }
   auto [low, high] = symbolicRange(piece);
