@@ -134,10 +134,13 @@ ContourLeft measureContourLeft(std::size_t cutIndex, const ir::CutGeometry& cut,
   geom::CurveProximity exact(ideal, accuracy);
   double r = cut.toolRadius;
   auto executed = [&](double t) { return path.nearest(drawn.point(t)).distance; };
+  // The material left at a point of the drawn curve `distance` from the path.
+  auto leftAt = [&](const Eigen::Vector3d& point, double distance) {
+    return distance > r ? distance - std::max(r, exact.sampledDistance(point)) : distance - r;
+  };
   auto undercut = [&](double t) {
     Eigen::Vector3d point = drawn.point(t);
-    double distance = path.nearest(point).distance;
-    return distance > r ? distance - std::max(r, exact.sampledDistance(point)) : distance - r;
+    return leftAt(point, path.nearest(point).distance);
   };
   double spacing = std::isfinite(cut.tolerance) ? cut.tolerance / 4 : 0;
   std::vector<double> parameters = sampleParameters(drawn, spacing);
@@ -151,8 +154,7 @@ ContourLeft measureContourLeft(std::size_t cutIndex, const ir::CutGeometry& cut,
     previous = point;
     double distance = path.nearest(point).distance;
     gouges.push_back(r - distance);
-    undercuts.push_back(distance > r ? distance - std::max(r, exact.sampledDistance(point))
-                                     : distance - r);
+    undercuts.push_back(leftAt(point, distance));
   }
   Largest gouge = largestOf(parameters, gouges, step, [&](double t) { return r - executed(t); });
   Largest material = largestOf(parameters, undercuts, step, undercut);
