@@ -195,20 +195,25 @@ std::string axes(const Frame& frame, const std::string& unit) {
   return out + "</g>\n";
 }
 
+// Cut `cut`'s curve as a polyline of samples within a fifth of a pixel of it.
+std::string curvePolyline(const Frame& frame, const geom::Curve& curve, std::string_view kind,
+                          std::size_t cut) {
+  geom::CurveProximity samples(curve, 0.2 / frame.scale());
+  std::string out = fmt::format("<polyline class=\"{}\" data-cut=\"{}\" points=\"", kind, cut);
+  for (const Eigen::Vector3d& point : samples.samplePoints()) {
+    out += fmt::format("{:.2f},{:.2f} ", frame.x(point.x()), frame.y(point.y()));
+  }
+  out.back() = '"';
+  return out + "/>\n";
+}
+
 std::string curveLines(const Frame& frame, std::span<const ir::CutGeometry> cuts) {
   std::string out = "<g class=\"curves\" fill=\"none\" stroke=\"#555\" stroke-width=\"0.6\">\n";
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     if (cuts[i].curve == nullptr) {
       continue;
     }
-    // Samples within a fifth of a pixel of the curve.
-    geom::CurveProximity samples(*cuts[i].curve, 0.2 / frame.scale());
-    out += fmt::format("<polyline class=\"curve\" data-cut=\"{}\" points=\"", i);
-    for (const Eigen::Vector3d& point : samples.samplePoints()) {
-      out += fmt::format("{:.2f},{:.2f} ", frame.x(point.x()), frame.y(point.y()));
-    }
-    out.back() = '"';
-    out += "/>\n";
+    out += curvePolyline(frame, *cuts[i].curve, "curve", i);
   }
   return out + "</g>\n";
 }
@@ -231,14 +236,7 @@ std::string drawnContourLines(const Frame& frame, std::span<const ir::CutGeometr
     if (cuts[i].drawnCurve == nullptr) {
       continue;
     }
-    PlaneProjection plan(*cuts[i].drawnCurve);
-    geom::CurveProximity samples(plan, 0.2 / frame.scale());
-    out += fmt::format("<polyline class=\"drawn-contour\" data-cut=\"{}\" points=\"", i);
-    for (const Eigen::Vector3d& point : samples.samplePoints()) {
-      out += fmt::format("{:.2f},{:.2f} ", frame.x(point.x()), frame.y(point.y()));
-    }
-    out.back() = '"';
-    out += "/>\n";
+    out += curvePolyline(frame, PlaneProjection(*cuts[i].drawnCurve), "drawn-contour", i);
   }
   return out + "</g>\n";
 }

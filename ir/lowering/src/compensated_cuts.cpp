@@ -367,24 +367,6 @@ void PartLowering::emitArcLapWithCorners(const std::vector<geom::ArcSegment>& se
   emitArcLap({segments.begin() + static_cast<std::ptrdiff_t>(first), segments.end()}, z, feed);
 }
 
-// The chords of the curve (constants: a controller-side target), with G39
-// after the chord that ends at each convex corner.
-void PartLowering::emitChordLapWithCorners(const OffsetChords& chords,
-                                           const std::vector<std::size_t>& cornerAfter,
-                                           const std::vector<Eigen::Vector3d>& cornerTangents,
-                                           double passZ, ValueId feed) {
-  std::size_t corner = 0;
-  for (std::size_t i = 0; i < chords.ends.size(); ++i) {
-    const Eigen::Vector3d& end = chords.ends[i];
-    builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()),
-                  builder_.constant(passZ + end.z()), feed);
-    if (corner < cornerAfter.size() && cornerAfter[corner] == i) {
-      emitCornerArc(cornerTangents[corner]);
-      ++corner;
-    }
-  }
-}
-
 double PartLowering::leadRadius(const CutStmt& cut, double toolRadius) {
   const Modifier* lead = findModifier(cut, "lead");
   if (lead == nullptr || !lead->value) {
@@ -490,8 +472,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   markCutBeside(contour, toolRadius);
   // G39 after the chord that ends at each convex corner (its index in
   // chords.ends is the sample's less one).
-  std::vector<std::size_t> cornerAfter;
-  std::vector<Eigen::Vector3d> cornerTangents;
+  std::vector<ChordCorner> chordCorners;
   bool cornerArcs = options_.compensationCornerArcs && options_.controllerLoops;
   if (cornerArcs && !arcs) {
     std::vector<ConvexCorner> corners = convexCorners(pieces, distance);
@@ -501,8 +482,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
       std::optional<std::size_t> sample = sampleAt(samples, corner.point, from);
       if (sample && *sample > 0 && *sample + 1 < samples.points.size()) {
         from = *sample;
-        cornerAfter.push_back(*sample - 1);
-        cornerTangents.push_back(corner.nextTangent);
+        chordCorners.push_back({*sample - 1, corner.nextTangent});
       }
     }
   }
@@ -515,10 +495,8 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
         emitArcLapWithCorners(*arcs, distance, z, feed);
       } else if (arcs) {
         emitArcLap(*arcs, z, feed);
-      } else if (cornerArcs) {
-        emitChordLapWithCorners(chords, cornerAfter, cornerTangents, passZ, feed);
       } else {
-        emitChordLap(chords, passZ, passZ, feed);
+        emitChordLap(chords, passZ, passZ, feed, chordCorners); // none without G39
       }
     });
   }

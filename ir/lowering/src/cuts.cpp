@@ -4,6 +4,7 @@
 // start, a plunge (or a ramp lap), loops that evaluate the curve at the
 // tabled parameters, and a rapid retract.
 #include "part_lowering.h"
+#include "printed_grid.h"
 
 #include "cncc/geom/arc_length.h"
 #include "cncc/geom/geometry_error.h"
@@ -453,17 +454,29 @@ std::vector<SampleRun> PartLowering::lapRuns(const CutCurve& curve,
 
 void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
                                   const Eigen::Vector3d& start, const Eigen::Vector3d& finish,
-                                  ValueId feed, ValueId safe, const LapEmitter& lap) {
+                                  ValueId feed, ValueId safe, const LapEmitter& lap,
+                                  const CompensatedLeads* leads) {
+  // A lead arc at a pass's height (its arcs are in the curve's plane).
+  auto leadArc = [&](const geom::ArcSegment& arc, double passZ) {
+    double z = onPrintedGrid(leads->leadIn.end.z() + passZ, options_.coordinateIncrement);
+    emitArcLap({arc}, builder_.constant(z), feed);
+  };
   double previous = 0;
   for (double depth : depths) {
     double passZ = beginPass(depth, depths.size());
     double entryZ = ramp ? previous : passZ;
     approachPassStart(start, entryZ, safe, feed);
+    if (leads != nullptr) {
+      leadArc(leads->leadIn, entryZ);
+    }
     if (ramp) {
       builder_.comment("ramp");
       lap(entryZ, passZ);
     }
     lap(passZ, passZ);
+    if (leads != nullptr) {
+      leadArc(leads->leadOut, passZ);
+    }
     builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safe);
     previous = passZ;
   }

@@ -284,10 +284,11 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     }
   }
   if (leads) {
-    emitLeadPasses(cut, *leads, begun.ramp, feed, safe, lap);
-  } else {
-    emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap);
+    start = onPrintedGrid(leads->leadIn.start, options_.coordinateIncrement);
+    finish = onPrintedGrid(leads->leadOut.end, options_.coordinateIncrement);
   }
+  emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap,
+                 leads ? &*leads : nullptr);
   return true;
 }
 
@@ -309,36 +310,6 @@ std::optional<CompensatedLeads> PartLowering::hostLeads(const CutStmt& cut, cons
       pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces);
   checkLeadClearance(cut, leads, *contour, toolRadius);
   return leads;
-}
-
-// Each pass: down at the lead-in arc's start (at the height a ramp starts
-// from), the lead-in arc, the ramp's lap with entry=ramp, the lap at the
-// pass's depth, the lead-out arc, up.
-void PartLowering::emitLeadPasses(const CutStmt& cut, const CompensatedLeads& leads, bool ramp,
-                                  ValueId feed, ValueId safe, const LapEmitter& lap) {
-  double increment = options_.coordinateIncrement;
-  double planeZ = leads.leadIn.end.z();
-  auto height = [&](double passZ) {
-    return builder_.constant(onPrintedGrid(planeZ + passZ, increment));
-  };
-  Eigen::Vector3d start = onPrintedGrid(leads.leadIn.start, increment);
-  Eigen::Vector3d finish = onPrintedGrid(leads.leadOut.end, increment);
-  std::vector<double> depths = passDepths(cut);
-  double previous = 0;
-  for (double depth : depths) {
-    double passZ = beginPass(depth, depths.size());
-    double entryZ = ramp ? previous : passZ;
-    approachPassStart(start, entryZ, safe, feed);
-    emitArcLap({leads.leadIn}, height(entryZ), feed);
-    if (ramp) {
-      builder_.comment("ramp");
-      lap(entryZ, passZ);
-    }
-    lap(passZ, passZ);
-    emitArcLap({leads.leadOut}, height(passZ), feed);
-    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safe);
-    previous = passZ;
-  }
 }
 
 // Spline blocks fitted to the offset where the target prints them
@@ -442,14 +413,19 @@ PartLowering::OffsetChords PartLowering::offsetChords(const geom::CurveSamples& 
   return chords;
 }
 
-void PartLowering::emitChordLap(const OffsetChords& chords, double zFrom, double zTo,
-                                ValueId feed) {
+void PartLowering::emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed,
+                                std::span<const ChordCorner> corners) {
   if (!chords.tables) {
+    auto corner = corners.begin();
     for (std::size_t i = 0; i < chords.ends.size(); ++i) {
       const Eigen::Vector3d& end = chords.ends[i];
       double z = zFrom + (zTo - zFrom) * chords.progress[i] + end.z();
       builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()), builder_.constant(z),
                     feed);
+      if (corner != corners.end() && corner->after == i) {
+        emitCornerArc(corner->nextTangent);
+        ++corner;
+      }
     }
     return;
   }

@@ -24,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -471,11 +472,14 @@ private:
   // The passes of a cut whose start and finish are constants: per depth its
   // comment, a rapid over `start` at the safe height, the plunge (to the
   // previous pass's height and a ramp lap down with `ramp`), the lap at the
-  // pass height and a rapid up over `finish`.
+  // pass height and a rapid up over `finish`. With `leads` (lead=R beside
+  // the curve) the lead-in arc follows the plunge, at the height a ramp
+  // starts from, and the lead-out arc the lap: `start` and `finish` are then
+  // theirs.
   using LapEmitter = std::function<void(double zFrom, double zTo)>;
   void emitHostPasses(const std::vector<double>& depths, bool ramp, const Eigen::Vector3d& start,
                       const Eigen::Vector3d& finish, ValueId feed, ValueId safe,
-                      const LapEmitter& lap);
+                      const LapEmitter& lap, const CompensatedLeads* leads = nullptr);
   std::vector<SampleRun> pieceSampleRuns(const CutCurve& curve, std::size_t piece, double budget,
                                          const std::vector<RampSegment>* ramp,
                                          const frontend::CutStmt& cut);
@@ -541,7 +545,15 @@ private:
   };
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
-  void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed);
+  // G39 after chord `after` (0-based), towards the next move's direction.
+  struct ChordCorner {
+    std::size_t after = 0;
+    Eigen::Vector3d nextTangent = Eigen::Vector3d::Zero();
+  };
+  // The chords from zFrom to zTo; `corners` (constant chords only, in
+  // order) each get their G39 (compensated_cuts.cpp).
+  void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed,
+                    std::span<const ChordCorner> corners = {});
 
   // compensated_cuts.cpp: comp=controller, the curve itself with the
   // controller's cutter radius compensation (G41/G42 D.., G40) and tangent
@@ -555,18 +567,12 @@ private:
   // part.
   void checkLeadClearance(const frontend::CutStmt& cut, const CompensatedLeads& centre,
                           const geom::Curve& contour, double toolRadius);
-  void emitLeadPasses(const frontend::CutStmt& cut, const CompensatedLeads& leads, bool ramp,
-                      ValueId feed, ValueId safe, const LapEmitter& lap);
   void emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ, ValueId feed,
                            const std::function<void(ValueId z)>& contour);
   // G39 (corner.arc) at convex corners (LoweringOptions::compensationCornerArcs).
   void emitCornerArc(const Eigen::Vector3d& tangent);
   void emitArcLapWithCorners(const std::vector<geom::ArcSegment>& segments, double offset,
                              ValueId z, ValueId feed);
-  void emitChordLapWithCorners(const OffsetChords& chords,
-                               const std::vector<std::size_t>& cornerAfter,
-                               const std::vector<Eigen::Vector3d>& cornerTangents, double passZ,
-                               ValueId feed);
 
   // arc_cuts.cpp
   bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
