@@ -1,9 +1,13 @@
 // The lowering's private parts: one PartLowering per part, its members
 // implemented by concern in statements.cpp, expressions.cpp, curves.cpp and
-// cuts.cpp of this folder.
+// cuts.cpp of this folder (and the others it names); the values it computes
+// with are in lowering_values.h, the plans of cuts beside their curves in
+// beside_curve.h.
 #pragma once
 
 #include "affine.h"
+#include "beside_curve.h"
+#include "lowering_values.h"
 #include "spline_fitting.h"
 #include "tolerance_budget.h"
 
@@ -32,39 +36,6 @@
 
 namespace cncc::ir::lowering {
 
-// A number or bool of the lowering: a constant not yet written to the IR
-// (`value` invalid), or an IR value. Constants are written where they are
-// used, so arithmetic on them folds without leaving dead instructions.
-struct Scalar {
-  ValueId value;
-  double constant = 0;
-  ValueType type = ValueType::F64;
-
-  static Scalar of(double number) { return {ValueId{}, number, ValueType::F64}; }
-  static Scalar ofBool(bool yes) { return {ValueId{}, yes ? 1.0 : 0.0, ValueType::Bool}; }
-  static Scalar of(ValueId id, ValueType type) { return {id, 0, type}; }
-  bool isConstant() const { return !value.valid(); }
-  // The same constant, or the same IR value.
-  bool sameAs(const Scalar& other) const {
-    return isConstant() ? other.isConstant() && other.constant == constant : other.value == value;
-  }
-};
-
-// A lowered CDL value: a num or bool (one scalar) or a point (three).
-struct Lowered {
-  frontend::TypeKind kind = frontend::TypeKind::Num;
-  std::vector<Scalar> values;
-};
-
-using Bindings = std::map<const frontend::Declaration*, Lowered>;
-
-// Thrown to abandon the lowering after its diagnostic has been reported.
-struct LoweringFailed {};
-
-// Thrown where a controller loop's body would need its variable as a
-// compile-time number: the loop is unrolled instead.
-struct NeedsUnrolling {};
-
 // The lowering's state, to go back to when a controller loop or branch
 // cannot be lowered as one (runtime_control.cpp).
 struct LoweringState;
@@ -86,132 +57,10 @@ struct MachineSettings {
   }
 };
 
-// A point of a curve.
-struct CurvePoint {
-  Scalar x, y, z;
-};
-
-// One smooth piece of a cut's curve: a line, an arc, a polar or param
-// curve, or a NURBS (then split into polynomial spans), with the transform
-// that the enclosing translate/rotate/scale calls make.
-struct CurvePiece {
-  std::shared_ptr<const frontend::CurveValue> value;
-  // The piece before its transform, in its own parameter.
-  std::shared_ptr<const geom::Curve> geometry;
-  std::vector<geom::PolynomialSpan> spans; // NURBS only
-  Affine transform;
-};
-
-// A cut's curve: its pieces in order, and the whole of it as one geom curve
-// (transforms applied; a path's pieces joined) whose parameter the samples
-// use.
-struct CutCurve {
-  std::vector<CurvePiece> pieces;
-  std::shared_ptr<const geom::Curve> geometry;
-  // Where each piece starts in the whole curve's parameter, and the end.
-  std::vector<double> pieceStarts;
-};
-
-// Where a sample of the whole curve lies: its piece, the NURBS span in the
-// piece (0 otherwise) and the parameter that piece's IR evaluates at (the
-// span's u in [0, 1], or the piece's own t).
-struct SampleLocation {
-  std::size_t piece = 0;
-  std::size_t span = 0;
-  double local = 0;
-};
-
-// Consecutive samples on the same piece and span: one table, one loop.
-struct SampleRun {
-  std::size_t piece = 0;
-  std::size_t span = 0;
-  std::vector<double> locals;
-  // The share of the descent done at each sample (entry=ramp).
-  std::vector<double> progress;
-  std::uint32_t localTable = 0;
-  std::uint32_t progressTable = 0;
-};
-
-// An arc piece as native_arcs.cpp moves on it: its point at a fraction (0
-// to 1) of the piece, transformed, the helix's own z included; the way from
-// there to its centre; and the angle it turns (to - from: counter-clockwise
-// when positive).
-struct ArcPath {
-  std::function<CurvePoint(Scalar fraction)> pointAt;
-  // From the point at a fraction to the centre, transformed (z: 0).
-  std::function<CurvePoint(Scalar fraction)> toCentre;
-  Scalar sweep;
-  // The radius the controller moves on, transformed (a constant when known).
-  Scalar radius;
-  // The direction it turns with the part's defaults (the sweep's sign).
-  bool turnsCounterClockwise = true;
-};
-// The height added to an arc's own z at a fraction of it (the pass, a ramp).
-using ArcHeight = std::function<Scalar(Scalar fraction)>;
-
 // What of a cut depends on a part parameter (cuts.cpp, parameterUse).
 struct ParameterUse {
   std::string what;
   std::string parameter;
-};
-
-// The moves around a comp=controller cut's curve (compensated_cuts.cpp),
-// as programmed: the start-up line from `startUp` to the lead-in arc's
-// start, the lead-in arc onto the curve, the lead-out arc off it, the cancel
-// line to `cancel`. The arcs' radius is the lead's plus the tool's, so the
-// tool's centre runs on an arc of the lead's radius. A comp=host cut's leads
-// (offset_cuts.cpp) are the tool centre's own arcs, of the lead's radius,
-// and have no start-up or cancel line.
-struct CompensatedLeads {
-  Eigen::Vector3d startUp = Eigen::Vector3d::Zero();
-  geom::ArcSegment leadIn;
-  geom::ArcSegment leadOut;
-  // A straight run along the curve's end tangent before the lead-out
-  // (compensated_cuts.cpp, withRunOut), which then starts at its end.
-  bool runOut = false;
-  Eigen::Vector3d cancel = Eigen::Vector3d::Zero();
-  double offset = 0; // the tool's, left of the direction of travel positive
-  std::uint32_t offsetRegister = 0;
-};
-
-// Why the tool cannot run beside a curve at a distance (offset_cuts.cpp):
-// a concave bend or an arc tighter than its radius, offsets that do not
-// cross at a concave corner, an offset crossing itself, or a curve with no
-// offset at all.
-struct OffsetTrouble {
-  enum Kind { Bend, InsideArc, Corner, SelfCrossing, Degenerate } kind = Bend;
-  Eigen::Vector3d place = Eigen::Vector3d::Zero();
-  double radius = 0; // the radius found there (Bend, InsideArc)
-  std::string message;
-};
-
-// How the offsets of two pieces of a path join where the pieces meet, as
-// geom::offsetOfPieces joins them: directly (the pieces meet tangentially),
-// by an arc of the tool's radius about a convex corner, or cut back to
-// their crossing at a concave one.
-struct PieceJoin {
-  enum Kind { Direct, CornerArc, Crossing } kind = Direct;
-  Eigen::Vector3d corner = Eigen::Vector3d::Zero();
-  // The left unit normals of the piece ending and the piece starting there.
-  Eigen::Vector2d before = Eigen::Vector2d::Zero();
-  Eigen::Vector2d after = Eigen::Vector2d::Zero();
-  double turn = 0; // from the one tangent to the other, counter-clockwise positive
-};
-
-// A cut beside its curve whose tool radius the controller knows only when
-// it runs (controller_offset_cuts.cpp).
-struct RuntimeOffset {
-  Scalar distance; // left of the direction of travel positive
-  Scalar radius;   // |distance|
-  double compiledDistance = 0;
-  std::shared_ptr<const geom::Curve> compiled; // the offset at compiledDistance
-  // The largest radius the tool fits the curve with (infinite: any).
-  double largestRadius = 0;
-  std::vector<std::shared_ptr<const geom::Curve>> pieces; // the drawn pieces, moved
-  // joins[p]: piece p's end to piece p + 1's start; for a closed path the
-  // last is its end to its start.
-  std::vector<PieceJoin> joins;
-  bool closed = false;
 };
 
 // What a cut computed on the host starts with (cuts.cpp, beginHostCut).
@@ -712,18 +561,6 @@ private:
 };
 
 // Small helpers shared by the files.
-// The cut's pieces in part coordinates, lines and arcs kept as such.
-std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
-// A curve of lines and arcs as line and arc moves; nullopt for other curves.
-std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
-std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
-offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance);
-// Tangent lead arcs of `radius` onto the start of `path` and off its end
-// (both on the printed grid), their centres on the side of `offset` (> 0:
-// left): the start-up and cancel lines run that radius further along the
-// normal (compensated_cuts.cpp).
-CompensatedLeads tangentLeads(const geom::Curve& path, double offset, double radius,
-                              double increment);
 const frontend::Modifier* findModifier(const frontend::CutStmt& cut, std::string_view name);
 const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_view name);
 std::string wordOf(const frontend::Expr& expression);

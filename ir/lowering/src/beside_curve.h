@@ -1,0 +1,97 @@
+// What a cut beside its curve (side=) is planned with: the lead arcs of
+// comp=controller and lead=, why an offset cannot be built, how a path's
+// offset pieces join, and the offset the controller computes when the tool
+// diameter is a parameter (offset_cuts.cpp, compensated_cuts.cpp,
+// controller_offset_cuts.cpp).
+#pragma once
+
+#include "lowering_values.h"
+
+#include "cncc/geom/arc_fitting.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace cncc::ir::lowering {
+
+// The moves around a comp=controller cut's curve (compensated_cuts.cpp),
+// as programmed: the start-up line from `startUp` to the lead-in arc's
+// start, the lead-in arc onto the curve, the lead-out arc off it, the cancel
+// line to `cancel`. The arcs' radius is the lead's plus the tool's, so the
+// tool's centre runs on an arc of the lead's radius. A comp=host cut's leads
+// (offset_cuts.cpp) are the tool centre's own arcs, of the lead's radius,
+// and have no start-up or cancel line.
+struct CompensatedLeads {
+  Eigen::Vector3d startUp = Eigen::Vector3d::Zero();
+  geom::ArcSegment leadIn;
+  geom::ArcSegment leadOut;
+  // A straight run along the curve's end tangent before the lead-out
+  // (compensated_cuts.cpp, withRunOut), which then starts at its end.
+  bool runOut = false;
+  Eigen::Vector3d cancel = Eigen::Vector3d::Zero();
+  double offset = 0; // the tool's, left of the direction of travel positive
+  std::uint32_t offsetRegister = 0;
+};
+
+// Why the tool cannot run beside a curve at a distance (offset_cuts.cpp):
+// a concave bend or an arc tighter than its radius, offsets that do not
+// cross at a concave corner, an offset crossing itself, or a curve with no
+// offset at all.
+struct OffsetTrouble {
+  enum Kind { Bend, InsideArc, Corner, SelfCrossing, Degenerate } kind = Bend;
+  Eigen::Vector3d place = Eigen::Vector3d::Zero();
+  double radius = 0; // the radius found there (Bend, InsideArc)
+  std::string message;
+};
+
+// How the offsets of two pieces of a path join where the pieces meet, as
+// geom::offsetOfPieces joins them: directly (the pieces meet tangentially),
+// by an arc of the tool's radius about a convex corner, or cut back to
+// their crossing at a concave one.
+struct PieceJoin {
+  enum Kind { Direct, CornerArc, Crossing } kind = Direct;
+  Eigen::Vector3d corner = Eigen::Vector3d::Zero();
+  // The left unit normals of the piece ending and the piece starting there.
+  Eigen::Vector2d before = Eigen::Vector2d::Zero();
+  Eigen::Vector2d after = Eigen::Vector2d::Zero();
+  double turn = 0; // from the one tangent to the other, counter-clockwise positive
+};
+
+// A cut beside its curve whose tool radius the controller knows only when
+// it runs (controller_offset_cuts.cpp).
+struct RuntimeOffset {
+  Scalar distance; // left of the direction of travel positive
+  Scalar radius;   // |distance|
+  double compiledDistance = 0;
+  std::shared_ptr<const geom::Curve> compiled; // the offset at compiledDistance
+  // The largest radius the tool fits the curve with (infinite: any).
+  double largestRadius = 0;
+  std::vector<std::shared_ptr<const geom::Curve>> pieces; // the drawn pieces, moved
+  // joins[p]: piece p's end to piece p + 1's start; for a closed path the
+  // last is its end to its start.
+  std::vector<PieceJoin> joins;
+  bool closed = false;
+};
+
+// The cut's pieces in part coordinates, lines and arcs kept as such.
+std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
+// A curve of lines and arcs as line and arc moves; nullopt for other curves.
+std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
+// The offset of the pieces at `distance` (geom::offsetOfPieces), or why the
+// tool cannot run there (offset_cuts.cpp).
+std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
+offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance);
+// Tangent lead arcs of `radius` onto the start of `path` and off its end
+// (both on the printed grid), their centres on the side of `offset` (> 0:
+// left): the start-up and cancel lines run that radius further along the
+// normal (compensated_cuts.cpp).
+CompensatedLeads tangentLeads(const geom::Curve& path, double offset, double radius,
+                              double increment);
+
+} // namespace cncc::ir::lowering

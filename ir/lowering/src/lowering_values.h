@@ -1,0 +1,118 @@
+// The values the lowering computes with: scalars that are constants or IR
+// values, lowered CDL values, a cut's curve and its pieces, the runs of its
+// samples, an arc piece as native arcs move on it.
+#pragma once
+
+#include "affine.h"
+
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/value.h"
+#include "cncc/geom/curve.h"
+#include "cncc/geom/polynomial_span.h"
+#include "cncc/ir/builder.h"
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace cncc::ir::lowering {
+
+// A number or bool of the lowering: a constant not yet written to the IR
+// (`value` invalid), or an IR value. Constants are written where they are
+// used, so arithmetic on them folds without leaving dead instructions.
+struct Scalar {
+  ValueId value;
+  double constant = 0;
+  ValueType type = ValueType::F64;
+
+  static Scalar of(double number) { return {ValueId{}, number, ValueType::F64}; }
+  static Scalar ofBool(bool yes) { return {ValueId{}, yes ? 1.0 : 0.0, ValueType::Bool}; }
+  static Scalar of(ValueId id, ValueType type) { return {id, 0, type}; }
+  bool isConstant() const { return !value.valid(); }
+  // The same constant, or the same IR value.
+  bool sameAs(const Scalar& other) const {
+    return isConstant() ? other.isConstant() && other.constant == constant : other.value == value;
+  }
+};
+
+// A lowered CDL value: a num or bool (one scalar) or a point (three).
+struct Lowered {
+  frontend::TypeKind kind = frontend::TypeKind::Num;
+  std::vector<Scalar> values;
+};
+
+using Bindings = std::map<const frontend::Declaration*, Lowered>;
+
+// Thrown to abandon the lowering after its diagnostic has been reported.
+struct LoweringFailed {};
+
+// Thrown where a controller loop's body would need its variable as a
+// compile-time number: the loop is unrolled instead.
+struct NeedsUnrolling {};
+
+// A point of a curve.
+struct CurvePoint {
+  Scalar x, y, z;
+};
+
+// One smooth piece of a cut's curve: a line, an arc, a polar or param
+// curve, or a NURBS (then split into polynomial spans), with the transform
+// that the enclosing translate/rotate/scale calls make.
+struct CurvePiece {
+  std::shared_ptr<const frontend::CurveValue> value;
+  // The piece before its transform, in its own parameter.
+  std::shared_ptr<const geom::Curve> geometry;
+  std::vector<geom::PolynomialSpan> spans; // NURBS only
+  Affine transform;
+};
+
+// A cut's curve: its pieces in order, and the whole of it as one geom curve
+// (transforms applied; a path's pieces joined) whose parameter the samples
+// use.
+struct CutCurve {
+  std::vector<CurvePiece> pieces;
+  std::shared_ptr<const geom::Curve> geometry;
+  // Where each piece starts in the whole curve's parameter, and the end.
+  std::vector<double> pieceStarts;
+};
+
+// Where a sample of the whole curve lies: its piece, the NURBS span in the
+// piece (0 otherwise) and the parameter that piece's IR evaluates at (the
+// span's u in [0, 1], or the piece's own t).
+struct SampleLocation {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  double local = 0;
+};
+
+// Consecutive samples on the same piece and span: one table, one loop.
+struct SampleRun {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  std::vector<double> locals;
+  // The share of the descent done at each sample (entry=ramp).
+  std::vector<double> progress;
+  std::uint32_t localTable = 0;
+  std::uint32_t progressTable = 0;
+};
+
+// An arc piece as native_arcs.cpp moves on it: its point at a fraction (0
+// to 1) of the piece, transformed, the helix's own z included; the way from
+// there to its centre; and the angle it turns (to - from: counter-clockwise
+// when positive).
+struct ArcPath {
+  std::function<CurvePoint(Scalar fraction)> pointAt;
+  // From the point at a fraction to the centre, transformed (z: 0).
+  std::function<CurvePoint(Scalar fraction)> toCentre;
+  Scalar sweep;
+  // The radius the controller moves on, transformed (a constant when known).
+  Scalar radius;
+  // The direction it turns with the part's defaults (the sweep's sign).
+  bool turnsCounterClockwise = true;
+};
+// The height added to an arc's own z at a fraction of it (the pass, a ramp).
+using ArcHeight = std::function<Scalar(Scalar fraction)>;
+
+} // namespace cncc::ir::lowering
