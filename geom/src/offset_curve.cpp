@@ -49,15 +49,6 @@ std::shared_ptr<const Curve> offsetOfPiece(const std::shared_ptr<const Curve>& p
   return std::make_shared<OffsetCurve>(piece, distance);
 }
 
-// The angle the curve turns at a corner from `before` to `after`
-// (counter-clockwise positive), and where the corner is.
-double cornerTurn(const Curve& before, const Curve& after) {
-  Eigen::Vector2d incoming = before.derivative(before.domain().t1).head<2>().normalized();
-  Eigen::Vector2d outgoing = after.derivative(after.domain().t0).head<2>().normalized();
-  double cross = incoming.x() * outgoing.y() - incoming.y() * outgoing.x();
-  return std::atan2(cross, incoming.dot(outgoing));
-}
-
 // The arc about a convex corner (one the curve turns away from the tool's
 // side at) from where one offset ends to where the next starts.
 std::shared_ptr<const Curve> cornerArc(const Curve& before, double turn, double distance) {
@@ -174,6 +165,13 @@ void joinOffset(std::vector<std::shared_ptr<const Curve>>& joined,
 }
 
 } // namespace
+
+double cornerTurn(const Curve& before, const Curve& after) {
+  Eigen::Vector2d incoming = before.derivative(before.domain().t1).head<2>().normalized();
+  Eigen::Vector2d outgoing = after.derivative(after.domain().t0).head<2>().normalized();
+  double cross = incoming.x() * outgoing.y() - incoming.y() * outgoing.x();
+  return std::atan2(cross, incoming.dot(outgoing));
+}
 
 double signedCurvatureOf(const CurveDerivatives& d) {
   double speed = d.first.head<2>().norm();

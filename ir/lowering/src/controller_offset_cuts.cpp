@@ -65,9 +65,7 @@ PieceJoin joinOf(const geom::Curve& before, const geom::Curve& after, double dis
   Eigen::Vector3d outgoing = after.derivative(after.domain().t0);
   join.before = leftNormal(incoming);
   join.after = leftNormal(outgoing);
-  Eigen::Vector2d in = incoming.head<2>().normalized();
-  Eigen::Vector2d out = outgoing.head<2>().normalized();
-  join.turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+  join.turn = geom::cornerTurn(before, after);
   // Offsets that meet (within geom's tangent join) are joined directly.
   if (std::fabs(distance) * (join.before - join.after).norm() <= 1e-7) {
     join.kind = PieceJoin::Direct;

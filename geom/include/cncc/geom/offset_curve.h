@@ -14,6 +14,10 @@ namespace cncc::geom {
 /// left (counter-clockwise); zero where the curve is singular (C' = 0).
 double signedCurvatureOf(const CurveDerivatives& d);
 
+/// The angle in XY a path turns where `before` ends and `after` starts, from the one's
+/// end tangent to the other's start tangent (counter-clockwise positive, within ±pi).
+double cornerTurn(const Curve& before, const Curve& after);
+
 /// The left unit normal in XY of a tangent direction: the tangent turned a quarter
 /// turn counter-clockwise, z = 0.
 Eigen::Vector3d leftNormalOf(const Eigen::Vector3d& tangent);
