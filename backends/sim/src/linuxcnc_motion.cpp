@@ -2,9 +2,10 @@
 // coolant, dwell, plane, units, compensation, tool length, coordinate
 // system, path mode, distance modes, motion, then the stops (M0, M1, M2,
 // M30). Cutter radius compensation runs through sim::RadiusCompensation
-// with LinuxCNC's tangent entry and arcs about outside corners. Arc tolerances are those LinuxCNC's
-// interpreter applies (measured against rs274: an end radius may differ from the start's by 0.0283
-// mm, 0.00283 inch, or by 0.1 % of the radius).
+// with LinuxCNC's tangent entry and arcs about outside corners. Arc
+// tolerances are those LinuxCNC's interpreter applies (measured against
+// rs274: an end radius may differ from the start's by 0.0283 mm, 0.00283
+// inch, or by 0.1 % of the radius).
 #include "linuxcnc_machine.h"
 
 #include <fmt/format.h>
