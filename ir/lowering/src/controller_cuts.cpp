@@ -245,6 +245,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   }
   if (runtimeOffset_) {
     planOffsetSteps(curve, *planned, budget, cut);
+  } else if (!stepsFitAtCompiledValues(*planned)) {
+    return false; // the tables, bounded, with what the curve reads fixed
   }
   if (ramp && planned->size() > 1) {
     // The shares of the descent are lengths at the defaults: with pieces

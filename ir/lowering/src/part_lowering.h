@@ -462,6 +462,9 @@ private:
   bool symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces, const CutCurve& curve);
   Scalar passDepth(Scalar pass, Scalar step, Scalar depth);
   Scalar stepsOf(const ControllerSegment& segment);
+  // compiled_values.cpp
+  std::optional<double> atCompiledValues(Scalar value);
+  bool stepsFitAtCompiledValues(const std::vector<ControllerSegment>& segments);
   std::optional<std::vector<std::optional<Lowered>>> symbolicList(const frontend::Expr& expression);
   std::optional<std::vector<std::optional<Lowered>>>
   symbolicList(const frontend::Expr& expression, const Bindings& bindings,
