@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace cncc::ir::lowering {
 
 using namespace frontend;
@@ -294,14 +296,24 @@ void PartLowering::lowerFor(const ForStmt& loop) {
   if (range.low != std::floor(range.low) || range.high != std::floor(range.high)) {
     fail(loop.range->span, "a loop's bounds must be whole numbers", DiagnosticKind::NotInteger);
   }
+  auto tooLarge = [&] {
+    fail(loop.span,
+         fmt::format("the part's loops run more than {} times in all; it is too large to "
+                     "compile",
+                     maximumUnrolledIterations),
+         DiagnosticKind::ProgramTooLarge);
+  };
+  // Refused before the first iteration when the count alone is too large:
+  // each iteration may lower a whole cut.
+  double count = std::max(0.0, range.high - range.low + 1);
+  if (!(count + static_cast<double>(unrolledIterations_) <=
+        static_cast<double>(maximumUnrolledIterations))) {
+    tooLarge();
+  }
   // Inclusive of both ends, step 1; none when high < low.
   for (double i = range.low; i <= range.high; ++i) {
     if (++unrolledIterations_ > maximumUnrolledIterations) {
-      fail(loop.span,
-           fmt::format("the part's loops run more than {} times in all; it is too large to "
-                       "compile",
-                       maximumUnrolledIterations),
-           DiagnosticKind::ProgramTooLarge);
+      tooLarge();
     }
     environment_[loop.declaration] = Value::ofNumber(i);
     lowerBlock(loop.body);
