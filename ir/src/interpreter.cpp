@@ -16,8 +16,10 @@ namespace {
 
 class Interpreter {
 public:
-  Interpreter(const Function& function, const InterpreterOptions& options)
-      : function_(function), options_(options), values_(function.valueTypes.size(), 0.0) {
+  Interpreter(const Function& function, const InterpreterOptions& options,
+              MachineEventSink* sink = nullptr)
+      : function_(function), options_(options), sink_(sink),
+        values_(function.valueTypes.size(), 0.0) {
     for (const Parameter& parameter : function.parameters) {
       auto given = options.parameters.find(parameter.name);
       parameters_.push_back(given == options.parameters.end() ? parameter.defaultValue
@@ -40,7 +42,22 @@ private:
             fmt::format("the program takes more than {} steps", options_.maximumSteps));
       }
       runInstruction(function_.instructions[id]);
+      if (sink_ != nullptr) {
+        passEventsToSink();
+      } else if (path_.events.size() > options_.maximumEvents) {
+        throw InterpreterError(
+            fmt::format("the program makes more than {} events", options_.maximumEvents));
+      }
     }
+  }
+
+  // An instruction's events (a NURBS block makes many) go to the sink once
+  // it has run: it reads back the last of them.
+  void passEventsToSink() {
+    for (const MachineEvent& event : path_.events) {
+      sink_->event(event);
+    }
+    path_.events.clear();
   }
 
   void runInstruction(const Instruction& instruction) {
@@ -227,6 +244,7 @@ private:
 
   const Function& function_;
   const InterpreterOptions& options_;
+  MachineEventSink* sink_;
   std::array<double, 3> position_{0, 0, 0};
   std::vector<double> values_;
   std::vector<double> parameters_;
@@ -291,6 +309,11 @@ MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index) {
 
 ToolPath interpret(const Function& function, const InterpreterOptions& options) {
   return Interpreter(function, options).run();
+}
+
+void interpret(const Function& function, MachineEventSink& sink,
+               const InterpreterOptions& options) {
+  Interpreter(function, options, &sink).run();
 }
 
 } // namespace cncc::ir

@@ -15,14 +15,24 @@ namespace cncc::driver {
 
 namespace {
 
+// The host run that finds the blank takes a second or so at most (its
+// events are not kept): a part whose loops (over parameters, run by the TNC)
+// take more steps at the values it is compiled with gets no BLK FORM rather
+// than a compile of minutes.
+constexpr std::size_t maximumBlankSteps = 20'000'000;
+
 // The blank of BLK FORM: the part run on the host with its defaults; a part
 // that cannot run there gets no BLK FORM (its compile reports why elsewhere).
 std::optional<backends::HeidenhainBlank> blankOf(const ir::Function& function) {
+  backends::HeidenhainBlankFinder finder;
+  ir::InterpreterOptions options;
+  options.maximumSteps = maximumBlankSteps;
   try {
-    return backends::heidenhainBlank(ir::interpret(function));
+    ir::interpret(function, finder, options);
   } catch (const ir::InterpreterError&) {
     return std::nullopt;
   }
+  return finder.blank();
 }
 
 } // namespace

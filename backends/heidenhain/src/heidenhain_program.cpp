@@ -577,30 +577,37 @@ void extendBlank(std::optional<HeidenhainBlank>& blank, const ir::MachineEvent& 
 
 } // namespace
 
-std::optional<HeidenhainBlank> heidenhainBlank(const ir::ToolPath& path) {
-  // Feed moves and arcs (as chords within 0.01 mm), one arc at a time: a
-  // helix of thousands of turns is thousands of arcs.
-  std::optional<HeidenhainBlank> blank;
-  ir::MachineEvent position;
-  std::vector<ir::MachineEvent> chords;
-  for (const ir::MachineEvent& event : path.events) {
-    if (event.kind == ir::MachineEvent::Kind::Feed) {
-      extendBlank(blank, event);
-    } else if (event.kind == ir::MachineEvent::Kind::Arc) {
-      chords.clear();
-      ir::appendArcChords(position.x, position.y, position.z, event, 0.01, chords);
-      for (const ir::MachineEvent& chord : chords) {
-        extendBlank(blank, chord);
-      }
-    }
-    if (ir::isMove(event)) {
-      position = event;
+// Feed moves and arcs (as chords within 0.01 mm), one arc at a time: a
+// helix of thousands of turns is thousands of arcs.
+void HeidenhainBlankFinder::event(const ir::MachineEvent& event) {
+  if (event.kind == ir::MachineEvent::Kind::Feed) {
+    extendBlank(blank_, event);
+  } else if (event.kind == ir::MachineEvent::Kind::Arc) {
+    chords_.clear();
+    ir::appendArcChords(position_[0], position_[1], position_[2], event, 0.01, chords_);
+    for (const ir::MachineEvent& chord : chords_) {
+      extendBlank(blank_, chord);
     }
   }
+  if (ir::isMove(event)) {
+    position_ = {event.x, event.y, event.z};
+  }
+}
+
+std::optional<HeidenhainBlank> HeidenhainBlankFinder::blank() const {
+  std::optional<HeidenhainBlank> blank = blank_;
   if (blank) {
     blank->maxZ = std::max(blank->maxZ, 0.0);
   }
   return blank;
+}
+
+std::optional<HeidenhainBlank> heidenhainBlank(const ir::ToolPath& path) {
+  HeidenhainBlankFinder finder;
+  for (const ir::MachineEvent& event : path.events) {
+    finder.event(event);
+  }
+  return finder.blank();
 }
 
 HeidenhainProgram writeHeidenhainProgram(const ir::Function& function,

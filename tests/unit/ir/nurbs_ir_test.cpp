@@ -110,5 +110,42 @@ TEST(NurbsIrTest, InterpreterStopsWhereAControllerAlarms) {
   }
 }
 
+// Keeps what it is handed: the events of a run, one at a time.
+class EventList : public MachineEventSink {
+public:
+  void event(const MachineEvent& event) override { events.push_back(event); }
+  std::vector<MachineEvent> events;
+};
+
+TEST(NurbsIrTest, ASinkIsHandedTheEventsTheToolPathHolds) {
+  Function function = nurbsPart();
+  ToolPath path = interpret(function);
+  EventList sink;
+  interpret(function, sink);
+  ASSERT_EQ(sink.events.size(), path.events.size());
+  ASSERT_GT(path.events.size(), 10u); // the block's points are many events
+  for (std::size_t k = 0; k < path.events.size(); ++k) {
+    EXPECT_EQ(sink.events[k].kind, path.events[k].kind) << k;
+    EXPECT_EQ(sink.events[k].x, path.events[k].x) << k;
+    EXPECT_EQ(sink.events[k].y, path.events[k].y) << k;
+    EXPECT_EQ(sink.events[k].z, path.events[k].z) << k;
+  }
+}
+
+TEST(NurbsIrTest, ARunKeepsAtMostItsLimitOfEvents) {
+  Function function = nurbsPart();
+  std::size_t events = interpret(function).events.size();
+  InterpreterOptions options;
+  options.maximumEvents = events - 1;
+  EXPECT_THROW(interpret(function, options), InterpreterError);
+  options.maximumEvents = events;
+  EXPECT_EQ(interpret(function, options).events.size(), events);
+  // A sink keeps none: the limit is not its.
+  EventList sink;
+  options.maximumEvents = 1;
+  interpret(function, sink, options);
+  EXPECT_EQ(sink.events.size(), events);
+}
+
 } // namespace
 } // namespace cncc::ir

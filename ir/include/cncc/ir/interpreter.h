@@ -2,9 +2,11 @@
 #pragma once
 
 #include "cncc/ir/ir.h"
+#include "cncc/ir/machine_event_sink.h"
 #include "cncc/ir/tool_path.h"
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -12,7 +14,8 @@
 namespace cncc::ir {
 
 // A run that cannot finish: a table index out of range, a loop bound that
-// is not finite, more work than `maximumSteps`, an arc without a radius, or
+// is not finite, more work than `maximumSteps` or more events than
+// `maximumEvents`, an arc without a radius, or
 // an `alarm` ("alarm: " and its text).
 class InterpreterError : public std::runtime_error {
 public:
@@ -24,9 +27,15 @@ struct InterpreterOptions {
   // defaults.
   std::map<std::string, double> parameters;
   std::size_t maximumSteps = 200'000'000;
+  // The tool path's events (moves, settings, comments) kept at most.
+  std::size_t maximumEvents = SIZE_MAX;
 };
 
 ToolPath interpret(const Function& function, const InterpreterOptions& options = {});
+// The same run, its events handed to `sink` one at a time and not kept
+// (maximumEvents does not apply).
+void interpret(const Function& function, MachineEventSink& sink,
+               const InterpreterOptions& options = {});
 
 // The event of a setting op (origin, coolant, contouring, compensation) or move.home from its
 // immediates: what the interpreter records and the JIT's code too.

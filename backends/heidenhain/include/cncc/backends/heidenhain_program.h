@@ -27,8 +27,10 @@
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/lowering_options.h"
+#include "cncc/ir/machine_event_sink.h"
 #include "cncc/ir/tool_path.h"
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,6 +70,18 @@ ir::LoweringOptions heidenhainLoweringOptions(const TncProfile& profile, bool in
 // The blank around the feed moves of a run of the part (arcs included),
 // its top at Z 0 or the highest feed move; nullopt without feed moves.
 std::optional<HeidenhainBlank> heidenhainBlank(const ir::ToolPath& path);
+
+// The same, from the run's events one at a time (ir::interpret with a sink).
+class HeidenhainBlankFinder : public ir::MachineEventSink {
+public:
+  void event(const ir::MachineEvent& event) override;
+  std::optional<HeidenhainBlank> blank() const;
+
+private:
+  std::optional<HeidenhainBlank> blank_;
+  std::array<double, 3> position_{0, 0, 0};
+  std::vector<ir::MachineEvent> chords_;
+};
 
 HeidenhainProgram writeHeidenhainProgram(const ir::Function& function,
                                          const HeidenhainProgramOptions& options);
