@@ -55,7 +55,8 @@ std::optional<CanonCall> callOf(std::string_view line) {
 
 class CanonReader {
 public:
-  explicit CanonReader(double arcChordError) : arcChordError_(arcChordError) {}
+  CanonReader(double arcChordError, double maximumMoves)
+      : arcChordError_(arcChordError), maximumMoves_(maximumMoves) {}
 
   void read(const CanonCall& call, std::size_t lineNumber) {
     auto need = [&](std::size_t count) {
@@ -97,6 +98,9 @@ private:
   }
 
   void moveTo(const Eigen::Vector3d& end, bool rapid) {
+    if (!(static_cast<double>(path_.moves.size()) < maximumMoves_)) {
+      throw PathTooLargeToMeasure(maximumMoves_, arcChordError_);
+    }
     path_.moves.push_back({rapid, end, rapid ? 0.0 : feed_, std::nullopt});
     position_ = end;
   }
@@ -122,7 +126,11 @@ private:
       sweep -= turn * (-turns - 1);
     }
     double step = radius > arcChordError_ ? 2 * std::acos(1 - arcChordError_ / radius) : turn;
-    int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / step)));
+    double chords = std::max(1.0, std::ceil(std::abs(sweep) / step));
+    if (!(static_cast<double>(path_.moves.size()) + chords <= maximumMoves_)) {
+      throw PathTooLargeToMeasure(maximumMoves_, arcChordError_);
+    }
+    int pieces = static_cast<int>(chords);
     double z0 = position_.z();
     for (int i = 1; i <= pieces; ++i) {
       double f = static_cast<double>(i) / pieces;
@@ -137,6 +145,7 @@ private:
   }
 
   double arcChordError_;
+  double maximumMoves_;
   ExecutedPath path_;
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   double feed_ = 0;
@@ -145,8 +154,8 @@ private:
 
 } // namespace
 
-ExecutedPath readLinuxcncCanon(std::string_view canon, double arcChordError) {
-  CanonReader reader(arcChordError);
+ExecutedPath readLinuxcncCanon(std::string_view canon, double arcChordError, double maximumMoves) {
+  CanonReader reader(arcChordError, maximumMoves);
   std::size_t lineNumber = 0;
   while (!canon.empty()) {
     std::size_t newline = canon.find('\n');

@@ -274,6 +274,17 @@ private:
 
 } // namespace
 
+PathTooLargeToMeasure::PathTooLargeToMeasure(double limit, double arcSagitta)
+    : std::runtime_error(fmt::format("the executed path has more than {:.0f} points to measure "
+                                     "(arcs as chords within {:g}): too large to verify",
+                                     limit, arcSagitta)) {}
+
+void checkMeasurablePath(const ir::ToolPath& toolPath, double arcSagitta) {
+  if (!(ir::flattenedEventCount(toolPath, arcSagitta) <= maximumMeasuredPoints)) {
+    throw PathTooLargeToMeasure(maximumMeasuredPoints, arcSagitta);
+  }
+}
+
 ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath, double arcSagitta) {
   ExecutedPath path;
   bool started = false;

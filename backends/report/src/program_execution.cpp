@@ -142,13 +142,10 @@ ProgramExecution runOnController(const ExecutionRequest& request,
   }
   double sagitta = result.path.inches ? kArcSagitta / 25.4 : kArcSagitta;
   ir::ToolPath moves = sim::executedToolPath(result.path);
-  if (!(ir::flattenedEventCount(moves, sagitta) <= maximumMeasuredPoints)) {
-    execution.failure = ControllerFailure{
-        0,
-        fmt::format("the executed path has more than {:.0f} points to measure (arcs as chords "
-                    "within {:g}): too large to verify",
-                    maximumMeasuredPoints, sagitta),
-        ""};
+  try {
+    checkMeasurablePath(moves, sagitta);
+  } catch (const PathTooLargeToMeasure& error) {
+    execution.failure = ControllerFailure{0, error.what(), ""};
     return execution;
   }
   execution.path = executedPathOfToolPath(ir::flattenArcs(moves, sagitta));
@@ -318,9 +315,11 @@ ProgramExecution runLinuxcnc(const ExecutionRequest& request) {
   execution.text = request.text;
   execution.increment = 1e-4;
   try {
-    execution.path = readLinuxcncCanon(run.canon, kArcSagitta);
+    execution.path = readLinuxcncCanon(run.canon, kArcSagitta, maximumMeasuredPoints);
   } catch (const ExecutionMismatch& error) {
     return failed(request.text, 0, std::string("rs274's output: ") + error.what());
+  } catch (const PathTooLargeToMeasure& error) {
+    return failed(request.text, 0, error.what());
   }
   return execution;
 }
@@ -358,6 +357,12 @@ ProgramExecution runHeidenhain(const ExecutionRequest& request) {
     return execution;
   }
   double sagitta = run.inches ? kArcSagitta / 25.4 : kArcSagitta;
+  try {
+    checkMeasurablePath(run.path, sagitta);
+  } catch (const PathTooLargeToMeasure& error) {
+    execution.failure = ControllerFailure{0, error.what(), ""};
+    return execution;
+  }
   execution.path = executedPathOfToolPath(run.path, sagitta);
   if (run.loopOperations.feedMoves > 0) {
     execution.operations = run.loopOperations;

@@ -55,5 +55,33 @@ TEST(LinuxcncCanon, RefusesNurbsAndMalformedMoves) {
   EXPECT_THROW(readLinuxcncCanon("STRAIGHT_FEED(1.0000, x, 2.0000)\n"), ExecutionMismatch);
 }
 
+TEST(LinuxcncCanon, StopsBeforeThePathPassesItsLimit) {
+  // A helix of 1000 turns (P1000) of radius 1: 1000 times the chords of one
+  // turn (about 222 within 1e-4), refused before they are made.
+  const char* helix = "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                      "ARC_FEED(1.0000, 0.0000, 0.0000, 0.0000, 1000, -9.0000, 0.0000, 0.0000, "
+                      "0.0000)\n";
+  std::size_t oneTurn =
+      readLinuxcncCanon("STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                        "ARC_FEED(1.0000, 0.0000, 0.0000, 0.0000, 1, 0.0000, 0.0000, 0.0000, "
+                        "0.0000)\n",
+                        1e-4)
+          .moves.size();
+  EXPECT_NEAR(static_cast<double>(readLinuxcncCanon(helix, 1e-4, 1001.0 * oneTurn).moves.size()),
+              1000.0 * static_cast<double>(oneTurn), 0.01 * 1000.0 * static_cast<double>(oneTurn));
+  try {
+    readLinuxcncCanon(helix, 1e-4, 100'000);
+    FAIL() << "expected the limit";
+  } catch (const PathTooLargeToMeasure& error) {
+    EXPECT_NE(std::string(error.what()).find("more than 100000 points"), std::string::npos)
+        << error.what();
+  }
+  // Straight moves count too.
+  EXPECT_THROW(readLinuxcncCanon("STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                                 "STRAIGHT_FEED(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n",
+                                 1e-4, 1),
+               PathTooLargeToMeasure);
+}
+
 } // namespace
 } // namespace cncc::backends

@@ -18,7 +18,9 @@
 namespace cncc::backends {
 
 // rs274's interpreter starts at the origin: `start` is (0, 0, 0). No move
-// has a cut (the canonical calls do not say).
-ExecutedPath readLinuxcncCanon(std::string_view canon, double arcChordError = 1e-5);
+// has a cut (the canonical calls do not say). Throws PathTooLargeToMeasure
+// before the path has more than `maximumMoves` moves.
+ExecutedPath readLinuxcncCanon(std::string_view canon, double arcChordError = 1e-5,
+                               double maximumMoves = maximumMeasuredPoints);
 
 } // namespace cncc::backends

@@ -59,6 +59,17 @@ inline constexpr double maximumMeasuredPoints = 4'000'000;
 ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath,
                                     double arcSagitta = executedArcSagitta);
 
+// An executed path past its limit of points (maximumMeasuredPoints), found
+// before its points are all made; what() says so, naming the limit and the
+// arcs' chord error.
+class PathTooLargeToMeasure : public std::runtime_error {
+public:
+  PathTooLargeToMeasure(double limit, double arcSagitta);
+};
+// Throws PathTooLargeToMeasure when the path's arcs, as chords within
+// `arcSagitta`, make more than maximumMeasuredPoints points.
+void checkMeasurablePath(const ir::ToolPath& toolPath, double arcSagitta);
+
 // Runs plain G-code as a controller would: G00/G01 blocks with modal X, Y, Z,
 // F and motion mode; other words and comments are ignored. Each feed move is
 // given the cut of the tool path event it was printed from (`toolPath` is what
