@@ -13,8 +13,9 @@
   to the cut statement whose blocks call it, and --annotate names that cut
   after each subprogram's header, which stays where its file begins;
 - `cncc where` refuses a line past the end, a block number the program does
-  not have, a map of another program, a missing map and a malformed one
-  (exit 1, a message naming the problem).
+  not have, a map of another program, a missing map, a malformed one and
+  one whose entry is not a position in its source (exit 1, a message
+  naming the problem).
 """
 
 import argparse
@@ -253,6 +254,18 @@ class Checks:
         malformed.write_text('{"version": 1, "lines": [')
         self.expect_refusal("a malformed map", [program, 3, "--source-map", malformed],
                             "is not valid JSON")
+        for what, change, message in [
+                ("a negative source line", {"line": -5}, "gives no valid line for line"),
+                ("a source line that is not a number", {"line": 1.5e300},
+                 "gives no valid line for line"),
+                ("a column that is not a number", {"column": "a"}, "gives no valid column"),
+                ("a source line past the source's end", {"line": 100000},
+                 "bolt_circle.cdl:100000, but that file has")]:
+            wrong = dict(source_map)
+            wrong["lines"] = [dict(entry, **change) for entry in source_map["lines"]]
+            wrong_map = self.work / "wrong-entry.json"
+            wrong_map.write_text(json.dumps(wrong))
+            self.expect_refusal(what, [program, loop_line, "--source-map", wrong_map], message)
 
     def expect_refusal(self, what, arguments, message):
         result = self.where(*arguments)
