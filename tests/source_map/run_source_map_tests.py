@@ -250,6 +250,9 @@ class Checks:
                             [edited, 3, "--source-map", str(program) + ".map.json"],
                             "is for another program")
         self.expect_refusal("a missing map", [edited, 3], "cannot read the source map")
+        self.expect_refusal("a folder for a program", [self.work, 3], "cannot read the program")
+        self.expect_refusal("a folder for a map", [program, 3, "--source-map", self.work],
+                            "cannot read the source map")
         malformed = self.work / "malformed.json"
         malformed.write_text('{"version": 1, "lines": [')
         self.expect_refusal("a malformed map", [program, 3, "--source-map", malformed],

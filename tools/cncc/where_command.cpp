@@ -11,6 +11,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -29,8 +30,9 @@ public:
 };
 
 std::string readFile(const std::string& path, std::string_view what) {
+  std::error_code error;
   std::ifstream file(path, std::ios::binary);
-  if (!file) {
+  if (!std::filesystem::is_regular_file(path, error) || !file) { // a folder opens, reads nothing
     throw WhereError(fmt::format("cannot read {} '{}'", what, path));
   }
   std::ostringstream text;
