@@ -9,9 +9,13 @@
 - on the macro targets a line inside a controller loop maps to the cut
   statement that made the loop, and `cncc where` says so; every parameter
   has the variable that holds it;
+- on Sinumerik with --subprograms, every line of a spline's subprogram maps
+  to the cut statement whose blocks call it, and --annotate names that cut
+  after each subprogram's header, which stays where its file begins;
 - `cncc where` refuses a line past the end, a block number the program does
-  not have, a map of another program, a missing map and a malformed one
-  (exit 1, a message naming the problem).
+  not have, a map of another program, a missing map, a malformed one and
+  one whose entry is not a position in its source (exit 1, a message
+  naming the problem).
 """
 
 import argparse
@@ -38,6 +42,32 @@ def example_parts():
         for line in path.read_text().splitlines():
             if line.startswith("part "):
                 yield path, line.split()[1].split("(")[0].rstrip("{").strip()
+
+
+def block_code(text):
+    """A block without its comment and block number."""
+    code = text.split(";")[0].strip()
+    if code.startswith("N") and code[1:].split(" ")[0].isdigit():
+        code = code.split(" ", 1)[1] if " " in code else ""
+    return code.strip()
+
+
+def subprogram_sections(lines):
+    """{name: (indexes of the main program's lines calling it, indexes of its
+    own lines)} for each `%_N_NAME_SPF` section of a Sinumerik program."""
+    sections = {}
+    current = None
+    for k, text in enumerate(lines):
+        if text.startswith("%_N_"):
+            current = text[4:-4] if text.endswith("_SPF") else None
+            if current is not None:
+                sections[current] = ([], [])
+        if current is not None:
+            sections[current][1].append(k)
+    for k, text in enumerate(lines):
+        if block_code(text) in sections and not text.startswith("%"):
+            sections[block_code(text)][0].append(k)
+    return sections
 
 
 class Checks:
@@ -138,6 +168,61 @@ class Checks:
             if program is not None:
                 self.check_cuts(name, program, source_map, True)
 
+    def run_subprograms(self):
+        """Sinumerik --subprograms: a subprogram's lines come from the cut
+        statement that calls it (the call's own line says which)."""
+        subprograms = 0
+        for source, part in example_parts():
+            name = f"{part}-sinumerik-subprograms"
+            program, source_map = self.compile(source, part, "sinumerik", name, "--subprograms")
+            if program is None:
+                continue
+            self.check_map(name, program, source_map)
+            self.check_cuts(name, program, source_map, False)
+            sections = subprogram_sections(program.read_text().splitlines())
+            entries = source_map["lines"]
+            where = lambda k: (entries[k]["source"], entries[k]["line"], entries[k]["column"],
+                               entries[k]["statement"])
+            for subprogram, (calls, lines) in sections.items():
+                subprograms += 1
+                called_from = {where(k) for k in calls}
+                if len(called_from) != 1 or next(iter(called_from))[3] != "cut":
+                    self.fail(f"{name}: the calls of {subprogram} map to {called_from}")
+                    continue
+                for k in lines:
+                    if where(k) not in called_from:
+                        self.fail(f"{name}:{k + 1}: in {subprogram}, maps to {where(k)}, "
+                                  f"its cut is {called_from}")
+                        break
+            self.check_annotated_subprograms(source, part, name, sections, source_map)
+        if subprograms < 2:
+            self.fail(f"only {subprograms} spline subprograms in the examples")
+
+    def check_annotated_subprograms(self, source, part, name, sections, source_map):
+        """--annotate puts `; file.cdl:LINE` of the calling cut after each
+        subprogram's two header lines, and nothing before a header."""
+        name += "-annotated"
+        program, annotated_map = self.compile(source, part, "sinumerik", name, "--subprograms",
+                                              "--annotate")
+        if program is None:
+            return
+        self.check_map(name, program, annotated_map)
+        lines = program.read_text().splitlines()
+        annotated = subprogram_sections(lines)
+        if annotated.keys() != sections.keys():
+            self.fail(f"{name}: subprograms {list(annotated)}, without --annotate {list(sections)}")
+            return
+        for subprogram, (calls, body) in annotated.items():
+            header = body[0]
+            if not sections[subprogram][0]:
+                continue  # no call: reported above
+            if header > 0 and block_code(lines[header - 1]) not in ("M17", "M30"):
+                self.fail(f"{name}:{header + 1}: {lines[header - 1]!r} before the header")
+            cut_line = source_map["lines"][sections[subprogram][0][0]]["line"]
+            expected = f"; {Path(source).name}:{cut_line}"
+            if lines[header + 2] != expected:
+                self.fail(f"{name}:{header + 3}: {lines[header + 2]!r}, expected {expected!r}")
+
     def where(self, *arguments):
         return subprocess.run([self.cncc, "where", *map(str, arguments)], cwd=ROOT,
                               capture_output=True, text=True)
@@ -165,10 +250,25 @@ class Checks:
                             [edited, 3, "--source-map", str(program) + ".map.json"],
                             "is for another program")
         self.expect_refusal("a missing map", [edited, 3], "cannot read the source map")
+        self.expect_refusal("a folder for a program", [self.work, 3], "cannot read the program")
+        self.expect_refusal("a folder for a map", [program, 3, "--source-map", self.work],
+                            "cannot read the source map")
         malformed = self.work / "malformed.json"
         malformed.write_text('{"version": 1, "lines": [')
         self.expect_refusal("a malformed map", [program, 3, "--source-map", malformed],
                             "is not valid JSON")
+        for what, change, message in [
+                ("a negative source line", {"line": -5}, "gives no valid line for line"),
+                ("a source line that is not a number", {"line": 1.5e300},
+                 "gives no valid line for line"),
+                ("a column that is not a number", {"column": "a"}, "gives no valid column"),
+                ("a source line past the source's end", {"line": 100000},
+                 "bolt_circle.cdl:100000, but that file has")]:
+            wrong = dict(source_map)
+            wrong["lines"] = [dict(entry, **change) for entry in source_map["lines"]]
+            wrong_map = self.work / "wrong-entry.json"
+            wrong_map.write_text(json.dumps(wrong))
+            self.expect_refusal(what, [program, loop_line, "--source-map", wrong_map], message)
 
     def expect_refusal(self, what, arguments, message):
         result = self.where(*arguments)
@@ -188,6 +288,7 @@ def main():
     checks.run_examples()
     checks.run_where()
     checks.run_measured()
+    checks.run_subprograms()
     for failure in checks.failures:
         print(f"FAIL {failure}")
     print(f"{checks.programs} programs mapped line by line; {len(checks.failures)} failures")

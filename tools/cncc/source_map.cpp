@@ -307,8 +307,14 @@ std::string annotatedProgram(std::string_view text, std::vector<frontend::Source
     SourceSpan span = i < lineSpans.size() ? lineSpans[i] : SourceSpan{};
     auto kind = kinds.find({span.file.index, span.begin});
     // Once per run of one cut statement's lines, even where the lines of
-    // the loop around it come between.
-    if (span.valid() && span != previous && kind != kinds.end() && kind->second == "cut") {
+    // the loop around it come between; in each Sinumerik subprogram again,
+    // after its header, which must open its file.
+    bool header = lines[i].starts_with('%') || lines[i].starts_with(";$PATH");
+    if (header) {
+      previous = {};
+    }
+    if (span.valid() && span != previous && kind != kinds.end() && kind->second == "cut" &&
+        !header) {
       previous = span;
       std::string path = sources.file(span.file).path();
       std::string where = fmt::format("{}:{}", path.substr(path.find_last_of('/') + 1),

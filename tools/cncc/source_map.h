@@ -71,7 +71,8 @@ std::string sourceMapJson(const SourceMapInput& input);
 
 // --annotate: a comment `(file.cdl:12)` (`; file.cdl:12` on Sinumerik and
 // LinuxCNC) before the first line a cut statement printed, and again where
-// another cut's lines came between; `lineSpans` gets the comments' spans too.
+// another cut's lines came between, and after the header of each Sinumerik
+// subprogram; `lineSpans` gets the comments' spans too.
 std::string annotatedProgram(std::string_view text, std::vector<frontend::SourceSpan>& lineSpans,
                              const frontend::CheckedProgram& program,
                              const frontend::SourceManager& sources,

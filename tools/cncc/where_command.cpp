@@ -11,6 +11,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -29,8 +30,9 @@ public:
 };
 
 std::string readFile(const std::string& path, std::string_view what) {
+  std::error_code error;
   std::ifstream file(path, std::ios::binary);
-  if (!file) {
+  if (!std::filesystem::is_regular_file(path, error) || !file) { // a folder opens, reads nothing
     throw WhereError(fmt::format("cannot read {} '{}'", what, path));
   }
   std::ostringstream text;
@@ -110,14 +112,29 @@ std::string describe(const nlohmann::json& entry, const nlohmann::json& map) {
   return text;
 }
 
-void printSourceLine(const std::string& path, std::size_t line, std::size_t column) {
+// A position the map's entry gives: a whole number from 1 on.
+std::size_t positionOf(const nlohmann::json& entry, const char* field, std::size_t programLine,
+                       const std::string& mapPath) {
+  auto found = entry.find(field);
+  if (found == entry.end() || !found->is_number_unsigned() || found->get<std::size_t>() == 0) {
+    throw WhereError(fmt::format("the source map '{}' gives no valid {} for line {}", mapPath,
+                                 field, programLine));
+  }
+  return found->get<std::size_t>();
+}
+
+// The source's lines, or nothing when it cannot be read (moved since).
+std::optional<std::vector<std::string>> sourceLines(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
-  std::string text;
-  for (std::size_t k = 0; k < line && std::getline(file, text); ++k) {
+  if (!file) {
+    return std::nullopt;
   }
-  if (!file && text.empty()) {
-    return;
-  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  return linesOf(text.str());
+}
+
+void printSourceLine(const std::string& text, std::size_t column) {
   std::string indent;
   for (std::size_t k = 0; k + 1 < column && k < text.size(); ++k) {
     indent += text[k] == '\t' ? '\t' : ' ';
@@ -158,11 +175,21 @@ int runWhere(const DriverOptions& options) {
           fmt::format("the source map '{}' names no source for line {}", options.sourceMap, line));
     }
     std::string sourcePath = map["sources"][source].get<std::string>();
-    std::size_t sourceLine = entry.value("line", std::size_t{0});
-    std::size_t column = entry.value("column", std::size_t{0});
+    std::size_t sourceLine = positionOf(entry, "line", line, options.sourceMap);
+    std::size_t column = positionOf(entry, "column", line, options.sourceMap);
+    std::optional<std::vector<std::string>> quoted =
+        sourceLines(lsp::resolvedSourcePath(map, sourcePath));
+    if (quoted && sourceLine > quoted->size()) {
+      throw WhereError(fmt::format("the source map '{}' maps line {} to {}:{}, but that file has "
+                                   "{} lines (it changed since the map was written)",
+                                   options.sourceMap, line, sourcePath, sourceLine,
+                                   quoted->size()));
+    }
     fmt::print("{}:{}: {}\n", programPath, line, lines[line - 1]);
     fmt::print("{}:{}:{}: note: {}\n", sourcePath, sourceLine, column, describe(entry, map));
-    printSourceLine(lsp::resolvedSourcePath(map, sourcePath), sourceLine, column);
+    if (quoted) {
+      printSourceLine((*quoted)[sourceLine - 1], column);
+    }
     printParameters(map["parameters"]);
     return 0;
   } catch (const WhereError& error) {

@@ -95,6 +95,8 @@ const char* endWord(geom::SplineEndCondition condition) {
 struct SplineSubprogram {
   std::uint32_t table = 0;
   std::string name;
+  std::optional<std::size_t> cut;
+  frontend::SourceSpan span; // of the cut statement that calls it first
 };
 
 class ProgramWriter {
@@ -393,10 +395,10 @@ private:
     }
     std::size_t cut = cut_.value_or(0);
     std::size_t index = subprogramsOfCut_[cut]++;
-    subprograms_.push_back({table, index == 0
-                                       ? fmt::format("{}_CUT{}", name_, cut + 1)
-                                       : fmt::format("{}_CUT{}_{}", name_, cut + 1, index + 1)});
-    subprogramCuts_.push_back(cut_);
+    subprograms_.push_back({table,
+                            index == 0 ? fmt::format("{}_CUT{}", name_, cut + 1)
+                                       : fmt::format("{}_CUT{}_{}", name_, cut + 1, index + 1),
+                            cut_, span_});
     return subprograms_.back().name;
   }
 
@@ -419,10 +421,11 @@ private:
     }
   }
 
+  // Each subprogram's lines, its header too, come from the cut that made it.
   void writeSubprograms() {
-    for (std::size_t k = 0; k < subprograms_.size(); ++k) {
-      const SplineSubprogram& subprogram = subprograms_[k];
-      cut_ = subprogramCuts_[k];
+    for (const SplineSubprogram& subprogram : subprograms_) {
+      cut_ = subprogram.cut;
+      span_ = subprogram.span;
       std::optional<ir::SplineBlockData> blocks =
           ir::readSplineMoveTable(tables_[subprogram.table]);
       line(fmt::format("%_N_{}_SPF", subprogram.name));
@@ -457,7 +460,6 @@ private:
   std::string beforePlane_;        // G41/G42/G40 for the next G1 in the plane
   std::string motion_, x_, y_, z_, feed_;
   std::vector<SplineSubprogram> subprograms_;
-  std::vector<std::optional<std::size_t>> subprogramCuts_;
   std::map<std::size_t, std::size_t> subprogramsOfCut_;
 };
 
