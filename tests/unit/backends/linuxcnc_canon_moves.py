@@ -4,7 +4,7 @@
 canonical calls at full double precision, one a line, in the form `rs274 -g`
 prints them:
 
-    12 N..... STRAIGHT_FEED(1.2345678901234567, 2, -0.5, 0, 0, 0)
+    12 N..... STRAIGHT_FEED(1.2345678901234567, 2.0, -0.5, 0.0, 0.0, 0.0)
 
 `rs274` prints four decimals; the module hands every value over as a double,
 so this is the interpreter's arithmetic to the last bit (17 significant
@@ -64,9 +64,13 @@ def share_tool_table(path, directory):
     running it shares in a file mapped into memory (`$HOME/.tool.mmap`,
     libtooldata); `rs274` creates and fills it, the module expects a running
     LinuxCNC to have. Created here in `directory`, a fresh one, so that no
-    other run reads it."""
+    other run reads it. Without libtooldata (LinuxCNC before 2.9) the
+    interpreter asks the canon's get_tool instead: nothing to create."""
     os.environ["HOME"] = directory
-    tooldata = ctypes.CDLL("libtooldata.so.0")
+    try:
+        tooldata = ctypes.CDLL("libtooldata.so.0")
+    except OSError:
+        return None, []
     # The C++ names of tool_mmap_creator(const EMC_TOOL_STAT*, int random),
     # tooldata_init(bool random) and tooldata_load(const char*, char* comments[]).
     if tooldata._Z17tool_mmap_creatorPK13EMC_TOOL_STATi(None, 0) != 0:
@@ -183,7 +187,8 @@ def main():
         try:
             return run(arguments)
         finally:
-            tooldata._Z15tool_mmap_closev()
+            if tooldata is not None:
+                tooldata._Z15tool_mmap_closev()
             del comments
 
 
