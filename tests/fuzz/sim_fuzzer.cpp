@@ -145,10 +145,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   static const char* const profileNames[] = {"fanuc", "m80", "fanuc-0i-small"};
-  const ControllerProfile* profile = findControllerProfile(profileNames[data[0] % 3]);
-  if (profile == nullptr) {
+  const ControllerProfile* builtin = findControllerProfile(profileNames[data[0] % 3]);
+  if (builtin == nullptr) {
     fail("a built-in profile is missing");
   }
+  ControllerProfile reading = *builtin;
+  const ControllerProfile* profile = &reading;
   sim::SimulationOptions options;
   options.stepLimit = 20000;
   if (data[0] & 0x10) {
@@ -161,6 +163,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.reading.strict = false;
     options.reading.family =
         data[0] & 0x40 ? sim::ControllerFamily::Mitsubishi : sim::ControllerFamily::Fanuc;
+    // A machine file that says the control reads WH, SI, ... (on Fanuc).
+    reading.macroWordAbbreviations = !(data[0] & 0x40);
     options.toolRadii = {{1, 2.5}, {2, -1}};
     options.peckRetract = 0.2;
     options.peckClearance = 0.5;

@@ -295,7 +295,8 @@ private:
     }
     checkKeys(*table,
               {"extends", "maximum_block_length", "coordinate_decimals", "least_input_increment",
-               "maximum_program_number", "maximum_sequence_number", "maximum_loop_nesting"},
+               "maximum_program_number", "maximum_sequence_number", "maximum_loop_nesting",
+               "macro_word_abbreviations"},
               "profile");
     std::string extends;
     if (table->get("extends") == nullptr) {
@@ -334,6 +335,10 @@ private:
         continue;
       }
       profile.*field.member = static_cast<int>(value->get());
+    }
+    if (const toml::value<bool>* on =
+            typed<toml::value<bool>>(table, "macro_word_abbreviations", "a boolean")) {
+      profile.macroWordAbbreviations = on->get();
     }
     double increment = 0;
     if (const toml::node* node = number(table, "least_input_increment", increment)) {

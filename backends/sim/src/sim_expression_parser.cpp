@@ -43,8 +43,9 @@ bool BlockCursor::consumeKeyword(std::string_view keyword) {
 
 namespace {
 
-// Fanuc's two-letter abbreviations of macro words (backends/sim/README.md):
-// the full word is always tried first, so SIN is never read as SI + N.
+// Two-letter abbreviations of macro words (backends/sim/README.md), read
+// only where the profile says the control reads them: the full word is
+// always tried first, so SIN is never read as SI + N.
 struct Abbreviation {
   std::string_view word;
   std::string_view abbreviation;
@@ -107,8 +108,8 @@ void BlockCursor::failOnAbbreviation() {
     return;
   }
   if (std::optional<std::string_view> word = abbreviationAhead()) {
-    fail(fmt::format("'{}' abbreviates {}: only Fanuc reads it, and not in strict reading; "
-                     "write {}",
+    fail(fmt::format("'{}' abbreviates {}, read only where the machine file's [profile] sets "
+                     "macro_word_abbreviations = true, and never in strict reading; write {}",
                      abbreviationOf(*word), *word, *word));
   }
 }

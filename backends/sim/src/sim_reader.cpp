@@ -252,7 +252,7 @@ Block readBlock(int line, std::string_view lineText, std::string_view text,
   block.text = std::string(lineText);
   std::string code = stripComments(line, lineText, text, block.comment);
   checkCodeCase(line, lineText, code);
-  BlockCursor cursor(code, line, lineText, profile, rules.allowsAbbreviations());
+  BlockCursor cursor(code, line, lineText, profile, rules.allowsAbbreviations(profile));
   if (cursor.peek() == 'O') {
     cursor.advance();
     block.kind = Block::Kind::ProgramName;

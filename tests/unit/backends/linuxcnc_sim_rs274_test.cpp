@@ -4,9 +4,13 @@
 // goldens (their expected output), and the shop-style programs of
 // tests/golden/sim (linuxcnc_*.ngc). Both run the same text; their moves
 // must be the same one by one: each traverse, feed and arc (its end, centre
-// and turns), and each feed rate. rs274 prints four decimals, so a
-// coordinate agrees when it is within half a unit of the fourth decimal of
-// what rs274 printed: that is the precision of this comparison.
+// and turns), and each feed rate. Twice:
+// - against the interpreter as a library (the `gcode` Python module,
+//   linuxcnc_canon_moves.py), which hands every value over as a double: a
+//   coordinate agrees within 1e-6 mm;
+// - against the `rs274` program, which `cncc verify -t linuxcnc` runs: it
+//   prints four decimals, so a coordinate agrees within half a unit of the
+//   fourth decimal of what it printed.
 #include "linuxcnc_rs274.h"
 
 #include "cncc/backends/linuxcnc_controller.h"
@@ -23,6 +27,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -30,8 +35,11 @@
 namespace cncc::backends::sim {
 namespace {
 
-// Half a unit of rs274's fourth decimal, and the double rounding of both.
+// Half a unit of rs274's fourth decimal, and the double rounding of both
+// (in the program's units).
 constexpr double printPrecision = 0.5e-4 + 1e-9;
+// The agreement with the interpreter's own doubles, in millimetres.
+constexpr double moduleAgreementMm = 1e-6;
 
 struct ProgramCase {
   std::string name;
@@ -157,10 +165,12 @@ struct Comparison {
   double largestDifference = 0; // program units
 };
 
-// Compares the moves one by one; rs274's traverse to the machine's Z0
+// Compares the moves one by one, each coordinate and feed within
+// `tolerance` (in the program's units); the interpreter's traverse to the machine's Z0
 // (G53 G0 Z0, rs274ReferenceHeight above the work) is not in the virtual
 // controller's path, which stays in work coordinates.
-Comparison compareMoves(const LinuxcncRun& run, const std::string& canon) {
+Comparison compareMoves(const LinuxcncRun& run, const std::string& canon, double tolerance,
+                        const char* reference) {
   std::vector<LinuxcncMove> moves;
   std::copy_if(
       run.moves.begin(), run.moves.end(), std::back_inserter(moves), [](const LinuxcncMove& move) {
@@ -174,9 +184,9 @@ Comparison compareMoves(const LinuxcncRun& run, const std::string& canon) {
   auto agree = [&](double ours, double theirs, const char* what) {
     double difference = std::abs(ours - theirs);
     comparison.largestDifference = std::max(comparison.largestDifference, difference);
-    EXPECT_LE(difference, printPrecision)
-        << what << " of move " << next << " (line " << moves[next].line << "): " << ours
-        << " here, " << theirs << " by rs274";
+    EXPECT_LE(difference, tolerance)
+        << what << " of move " << next << " (line " << moves[next].line
+        << "): " << std::setprecision(17) << ours << " here, " << theirs << " by " << reference;
   };
   for (const CanonCall& call : canonCalls(canon)) {
     if (call.name == "SET_FEED_RATE" && !call.numbers.empty()) {
@@ -190,7 +200,8 @@ Comparison compareMoves(const LinuxcncRun& run, const std::string& canon) {
       continue;
     }
     if (next >= moves.size()) {
-      ADD_FAILURE() << "rs274 moves on after the virtual controller's last move: " << call.name;
+      ADD_FAILURE() << reference
+                    << " moves on after the virtual controller's last move: " << call.name;
       return comparison;
     }
     const LinuxcncMove& move = moves[next];
@@ -215,7 +226,8 @@ Comparison compareMoves(const LinuxcncRun& run, const std::string& canon) {
     }
     ++next;
   }
-  EXPECT_EQ(next, moves.size()) << "the virtual controller moves on after rs274's last move";
+  EXPECT_EQ(next, moves.size()) << "the virtual controller moves on after the last move by "
+                                << reference;
   comparison.moves = next;
   return comparison;
 }
@@ -230,10 +242,74 @@ TEST_P(LinuxcncAgainstRs274, SameMovesToRs274sPrecision) {
   ASSERT_FALSE(run.error) << run.error->line() << ": " << run.error->what() << "\n" << *program;
   testing::Rs274Run reference = testing::runRs274(*rs274, *program, rs274ToolTable(*program));
   ASSERT_EQ(reference.exitCode, 0) << reference.errors;
-  Comparison comparison = compareMoves(run, reference.canon);
+  Comparison comparison = compareMoves(run, reference.canon, printPrecision, "rs274");
   EXPECT_GT(comparison.moves, 0u);
   std::cout << "[ moves    ] " << comparison.moves << " moves, largest difference "
             << comparison.largestDifference * (run.inches ? 25.4 : 1.0) << " mm\n";
+}
+
+class LinuxcncAgainstGcodeModule : public ::testing::TestWithParam<ProgramCase> {};
+
+TEST_P(LinuxcncAgainstGcodeModule, SameMovesWithin1e6Millimetre) {
+  std::optional<std::string> program = programOf(GetParam());
+  ASSERT_TRUE(program);
+  LinuxcncRun run = runLinuxcncProgram(*program);
+  ASSERT_FALSE(run.error) << run.error->line() << ": " << run.error->what() << "\n" << *program;
+  testing::GcodeModuleRun reference =
+      testing::runGcodeModule(*program, rs274ToolTable(*program), run.inches);
+  if (reference.missing) {
+    GTEST_SKIP() << "LinuxCNC's gcode Python module (Debian package linuxcnc-uspace) is not "
+                    "installed: "
+                 << reference.errors;
+  }
+  ASSERT_EQ(reference.exitCode, 0) << reference.errors;
+  double millimetre = run.inches ? 1 / 25.4 : 1.0;
+  Comparison comparison =
+      compareMoves(run, reference.canon, moduleAgreementMm * millimetre, "LinuxCNC's interpreter");
+  EXPECT_GT(comparison.moves, 0u);
+  std::cout << "[ moves    ] " << comparison.moves << " moves, largest difference "
+            << comparison.largestDifference / millimetre << " mm\n";
+}
+
+// The comparison above is only as fine as what the script prints: a value
+// with more digits than rs274's four decimals comes back whole, in either
+// unit, and a G20 program's lengths in inches.
+TEST(LinuxcncGcodeModule, PrintsTheInterpretersDoublesWhole) {
+  for (bool inches : {false, true}) {
+    std::string program = std::string(inches ? "G20" : "G21") +
+                          " G90\nG0 X1.2345678901234 Y-0.000123456789 Z5\nG1 X2 F123.456789\nM2\n";
+    testing::GcodeModuleRun run = testing::runGcodeModule(program, "", inches);
+    if (run.missing) {
+      GTEST_SKIP() << "LinuxCNC's gcode Python module is not installed: " << run.errors;
+    }
+    ASSERT_EQ(run.exitCode, 0) << run.errors;
+    std::vector<CanonCall> calls = canonCalls(run.canon);
+    auto traverse = std::find_if(calls.begin(), calls.end(), [](const CanonCall& call) {
+      return call.name == "STRAIGHT_TRAVERSE";
+    });
+    ASSERT_NE(traverse, calls.end()) << run.canon;
+    EXPECT_NEAR(traverse->numbers.at(0), 1.2345678901234, 1e-13) << run.canon;
+    EXPECT_NEAR(traverse->numbers.at(1), -0.000123456789, 1e-13) << run.canon;
+    EXPECT_NEAR(traverse->numbers.at(2), 5, 1e-13) << run.canon;
+    auto feed = std::find_if(calls.begin(), calls.end(), [](const CanonCall& call) {
+      return call.name == "SET_FEED_RATE" && call.numbers.at(0) > 0;
+    });
+    ASSERT_NE(feed, calls.end()) << run.canon;
+    EXPECT_NEAR(feed->numbers.at(0), 123.456789, 1e-10) << run.canon;
+  }
+}
+
+// An error of the interpreter's is a failed run with its line, not a short
+// list of moves.
+TEST(LinuxcncGcodeModule, ReportsTheInterpretersError) {
+  testing::GcodeModuleRun run =
+      testing::runGcodeModule("G21 G90\nG0 X0 Y0\nG2 X10 Y0 I3 J0 F100\nM2\n", "", false);
+  if (run.missing) {
+    GTEST_SKIP() << "LinuxCNC's gcode Python module is not installed: " << run.errors;
+  }
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.errors.find("line 3"), std::string::npos) << run.errors;
+  EXPECT_NE(run.errors.find("radius"), std::string::npos) << run.errors;
 }
 
 std::vector<ProgramCase> programCases() {
@@ -280,6 +356,8 @@ std::string caseName(const ::testing::TestParamInfo<ProgramCase>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Programs, LinuxcncAgainstRs274, ::testing::ValuesIn(programCases()),
+                         caseName);
+INSTANTIATE_TEST_SUITE_P(Programs, LinuxcncAgainstGcodeModule, ::testing::ValuesIn(programCases()),
                          caseName);
 
 // The list above is every example part: a new part in examples/ must join it.

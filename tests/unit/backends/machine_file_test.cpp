@@ -71,6 +71,7 @@ least_input_increment = 0.0001
 maximum_program_number = 8999
 maximum_sequence_number = 9999
 maximum_loop_nesting = 2
+macro_word_abbreviations = true
 [setup]
 length_offset = "G43 Z50. H{length}"
 tool_edge = ""
@@ -105,6 +106,7 @@ TEST(MachineFileTest, ReadsEveryFieldOfAFullFile) {
   EXPECT_EQ(machine.profile->maximumProgramNumber, 8999);
   EXPECT_EQ(machine.profile->maximumSequenceNumber, 9999);
   EXPECT_EQ(machine.profile->maximumLoopNesting, 2);
+  EXPECT_TRUE(machine.profile->macroWordAbbreviations);
   EXPECT_EQ(machine.profile->locals.first, findControllerProfile("fanuc")->locals.first);
   const MachineSetup& setup = machine.setup;
   EXPECT_EQ(setup.dialect, "fanuc");
@@ -191,6 +193,9 @@ TEST(MachineFileTest, ReportsWrongTypesAtTheValue) {
       "target = \"fanuc\"\n[profile]\nextends = \"fanuc\"\ncoordinate_decimals = 3.5\n", 4, 23,
       "machine-wrong-type");
   expectDiagnostic("target = \"gcode\"\nsetup = 1\n", 2, 9, "machine-wrong-type");
+  expectDiagnostic(
+      "target = \"fanuc\"\n[profile]\nextends = \"fanuc\"\nmacro_word_abbreviations = 1\n", 4, 28,
+      "machine-wrong-type");
 }
 
 TEST(MachineFileTest, ReportsNumbersOutOfRange) {

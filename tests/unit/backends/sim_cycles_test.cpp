@@ -132,6 +132,9 @@ TEST(SimCycles, DataIsModalUntilG80OrAMotionCode) {
 TEST(SimCycles, RefusedRatherThanGuessed) {
   EXPECT_THAT(errorOf(run("G81 X1. Z-1. R1.\n")), HasSubstr("G98 or G99"));
   EXPECT_THAT(errorOf(run("G99 G76 X1. Z-1. R1. Q1.\n")), HasSubstr("G76 is not simulated"));
+  // The back boring and manual-return cycles of G81-G89 are refused by name too.
+  EXPECT_THAT(errorOf(run("G99 G87 X1. Z-1. R1. Q1.\n")), HasSubstr("G87 is not simulated"));
+  EXPECT_THAT(errorOf(run("G99 G88 X1. Z-1. R1. P1.\n")), HasSubstr("G88 is not simulated"));
   EXPECT_THAT(errorOf(run("G99 G83 X1. Z-1. R1.\n")), HasSubstr("without Q"));
   EXPECT_THAT(errorOf(run("G99 G83 X1. Z-1. R1. Q5\n")), HasSubstr("Q without a decimal point"));
   EXPECT_THAT(errorOf(run("G99 G81 X1. Z2. R1.\n")), HasSubstr("not below its R point"));

@@ -16,6 +16,9 @@
 //   maximum_program_number = 9999        # 1 .. 99999999
 //   maximum_sequence_number = 99999      # 1 .. 99999999
 //   maximum_loop_nesting = 3             # 1 .. the profile's DO identifiers
+//   macro_word_abbreviations = false     # true: `cncc sim` reads WH for
+//                                        # WHILE, SI for SIN, ... (the
+//                                        # control must be known to)
 //   [setup]                              # blocks; {placeholders} as noted
 //   length_offset = "G43 H{length}"      # {length}; "" when the tool
 //                                        # change activates the offset

@@ -73,6 +73,13 @@ struct ControllerProfile {
   // `G39 I.. J..` towards the next move's start (I J from the corner);
   // Mitsubishi on that move's block, `G39 G01 X.. Y..`, the arc at its end.
   bool cornerArcOnMoveBlock = false;
+  // Whether the control reads two-letter abbreviations of macro words in a
+  // shop's programs (WH for WHILE, SI for SIN; backends/sim/README.md has
+  // the table). No manual statement of it was found for any built-in
+  // profile (?), so none reads them: a machine file's [profile] sets
+  // `macro_word_abbreviations = true` for a control known to. The compiler
+  // never prints them, and strict reading never accepts them.
+  bool macroWordAbbreviations = false;
 
   // The letter of the G65 argument that reaches local `variable`, if any.
   std::optional<char> letterForLocal(int variable) const;

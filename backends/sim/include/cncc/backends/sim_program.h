@@ -145,8 +145,9 @@ enum class ControllerFamily { Fanuc, Mitsubishi };
 // reading the compiler's own output must pass: `( )` comments in upper case,
 // one block a line, macro words written in full. Otherwise the program is
 // read as the family's controller reads shop programs: `;` ends a block,
-// comments may hold lower-case letters, and on Fanuc the two-letter
-// abbreviations of macro words (WH for WHILE) are accepted.
+// comments may hold lower-case letters, and where the profile says the
+// control reads them (ControllerProfile::macroWordAbbreviations) the
+// two-letter abbreviations of macro words (WH for WHILE) are accepted.
 struct ReadingRules {
   bool strict = true;
   ControllerFamily family = ControllerFamily::Fanuc;
@@ -154,7 +155,9 @@ struct ReadingRules {
   // machine that writes comments as the source has them.
   bool lowerCaseComments = false;
 
-  bool allowsAbbreviations() const { return !strict && family == ControllerFamily::Fanuc; }
+  bool allowsAbbreviations(const ControllerProfile& profile) const {
+    return !strict && profile.macroWordAbbreviations;
+  }
 };
 
 // The family of a target name ("m80": Mitsubishi, everything else Fanuc).
