@@ -18,6 +18,7 @@ ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem& part,
                                             const DriverOptions& options) {
   ir::LoweringOptions lowering;
   lowering.controllerLoops = true;
+  lowering.literalSignificantDigits = backends::linuxcncSignificantDigits;
   // The program's literals have 5 decimals (6 in inches).
   lowering.coordinateIncrement = ir::partUnits(part) == ir::PartUnits::Inches ? 1e-6 : 1e-5;
   lowering.arcBlocks = true;

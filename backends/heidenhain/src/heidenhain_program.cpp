@@ -555,6 +555,7 @@ std::vector<int> heidenhainParameterVariables(std::size_t parameterCount, const 
 ir::LoweringOptions heidenhainLoweringOptions(const TncProfile& profile, bool inches) {
   ir::LoweringOptions options;
   options.controllerLoops = true;
+  options.literalSignificantDigits = profile.significantDigits;
   options.arcBlocks = true;
   options.polynomialBlocks = true;
   options.coordinateIncrement = std::pow(10.0, -(profile.coordinateDecimals + (inches ? 1 : 0)));

@@ -68,7 +68,8 @@ MacroDialect linuxcncDialect(int coordinateDecimals) {
   dialect.keepsWordsThroughLoops = false;
   dialect.remembersComputedWords = false; // a parameter may have changed
   // `0.5`: it reads better and LinuxCNC accepts both.
-  dialect.numbers = {12, coordinateDecimals, std::numeric_limits<double>::infinity(), false, false};
+  dialect.numbers = {linuxcncSignificantDigits, coordinateDecimals,
+                     std::numeric_limits<double>::infinity(), false, false};
   dialect.bareForms = linuxcncBareForms();
   // FIX rounds down, FUP up.
   dialect.functionWords = {{Opcode::Floor, "FIX"}, {Opcode::Ceil, "FUP"}};

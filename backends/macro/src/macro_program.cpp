@@ -66,6 +66,7 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
 ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool inches) {
   ir::LoweringOptions options;
   options.controllerLoops = true;
+  options.literalSignificantDigits = profile.significantDigits;
   options.arcBlocks = true; // arcs=true, --arcs: host-fitted G02/G03 blocks
   options.coordinateIncrement =
       inches ? profile.leastInputIncrement / 10 : profile.leastInputIncrement;

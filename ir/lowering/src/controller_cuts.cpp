@@ -537,6 +537,9 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       }
     }
     geom::PolynomialSpan span = piece.spans[segment.span];
+    if (!spanLiteralsFit(cleanedSpan(span), cut)) {
+      return std::nullopt; // the tables, with the span's points computed on the host
+    }
     auto own =
         std::make_shared<geom::PiecewisePolynomialCurve>(std::vector<geom::PolynomialSpan>{span});
     TransformedCurve moved(own, piece.transform);

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cncc::ir::lowering {
@@ -290,6 +291,49 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
   default:
     unsupported(cut.curve->span, fmt::format("a '{}' curve", curve.constructor));
   }
+}
+
+namespace {
+
+// How far the controller's reading of a span's power-basis coefficients,
+// each rounded to `digits` significant digits (half a unit in the last:
+// relative 5 10^-digits), can move its points, sampled over the span: the
+// rounding of the numerator's terms plus the weight's, divided by the
+// weight. Coefficients far larger than the point (a weight of 1e9) cancel,
+// and their rounding does not.
+double literalRoundingError(const geom::PolynomialSpan& span, int digits) {
+  double relative = 5 * std::pow(10.0, -digits);
+  constexpr int samples = 64;
+  double largest = 0;
+  for (int k = 0; k <= samples; ++k) {
+    double u = static_cast<double>(k) / samples;
+    geom::HomogeneousPoint value = span.homogeneousAt(u);
+    geom::HomogeneousPoint magnitude = geom::HomogeneousPoint::Zero();
+    double power = 1;
+    for (const geom::HomogeneousPoint& coefficient : span.coefficients) {
+      magnitude += coefficient.cwiseAbs() * power;
+      power *= u;
+    }
+    double weight = std::abs(value.w());
+    double squared = 0;
+    for (int c = 0; c < 3; ++c) {
+      double coordinate = value[c] / value.w();
+      double error = relative * (magnitude[c] + std::abs(coordinate) * magnitude.w()) / weight;
+      squared += error * error;
+    }
+    largest = std::max(largest, std::sqrt(squared));
+  }
+  return largest;
+}
+
+} // namespace
+
+bool PartLowering::spanLiteralsFit(const geom::PolynomialSpan& span, const CutStmt& cut) {
+  if (options_.literalSignificantDigits <= 0) {
+    return true;
+  }
+  double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
+  return literalRoundingError(span, options_.literalSignificantDigits) <= tolerance / 4;
 }
 
 CurvePoint PartLowering::spanPointAt(const geom::PolynomialSpan& span, Scalar u) {

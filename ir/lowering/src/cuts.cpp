@@ -374,6 +374,37 @@ std::vector<SampleRun> PartLowering::sampleRuns(const CutCurve& curve,
   return runs;
 }
 
+// The x, y and z of a run's points computed on the host, as tables, for a
+// NURBS span whose coefficients the controller would read too coarsely
+// (spanLiteralsFit); null where the controller evaluates the span at the
+// run's locals. A run of one point is folded on the host anyway.
+const std::array<std::uint32_t, 3>*
+PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const CutStmt& cut) {
+  const CurvePiece& piece = curve.pieces[run.piece];
+  if (run.locals.size() < 2 || piece.value->kind != CurveKind::Nurbs ||
+      spanLiteralsFit(piece.spans[run.span], cut)) {
+    return nullptr;
+  }
+  auto known = hostPointTables_.find(run.localTable);
+  if (known != hostPointTables_.end()) {
+    return &known->second;
+  }
+  std::array<std::vector<double>, 3> coordinates;
+  for (double local : run.locals) {
+    CurvePoint point = pointAt(curve, run.piece, run.span, Scalar::of(local), cut);
+    if (!point.x.isConstant() || !point.y.isConstant() || !point.z.isConstant()) {
+      return nullptr; // a transform the parameters move: the controller evaluates
+    }
+    coordinates[0].push_back(point.x.constant);
+    coordinates[1].push_back(point.y.constant);
+    coordinates[2].push_back(point.z.constant);
+  }
+  std::array<std::uint32_t, 3> tables = {builder_.addTable(coordinates[0]),
+                                         builder_.addTable(coordinates[1]),
+                                         builder_.addTable(coordinates[2])};
+  return &hostPointTables_.emplace(run.localTable, tables).first->second;
+}
+
 // One lap along the runs, its z going from zFrom to zTo in proportion to the
 // chord length done, plus the curve's own z.
 void PartLowering::emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs,
@@ -381,8 +412,16 @@ void PartLowering::emitSampleRuns(const CutCurve& curve, const std::vector<Sampl
   for (const SampleRun& run : runs) {
     double last = static_cast<double>(run.locals.size()) - 1;
     ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
-    Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
-    CurvePoint point = pointAt(curve, run.piece, run.span, local, cut);
+    CurvePoint point;
+    if (const std::array<std::uint32_t, 3>* tables = hostPointTables(curve, run, cut)) {
+      auto load = [&](std::uint32_t table) {
+        return Scalar::of(builder_.tableLoad(table, i), ValueType::F64);
+      };
+      point = {load((*tables)[0]), load((*tables)[1]), load((*tables)[2])};
+    } else {
+      Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
+      point = pointAt(curve, run.piece, run.span, local, cut);
+    }
     Scalar z = Scalar::of(zTo);
     if (zFrom != zTo) {
       Scalar progress = Scalar::of(builder_.tableLoad(run.progressTable, i), ValueType::F64);

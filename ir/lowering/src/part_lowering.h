@@ -247,6 +247,9 @@ private:
   CurvePoint untransformedPointAt(const CurvePiece& piece, std::size_t span, Scalar local,
                                   const frontend::CutStmt& cut);
   CurvePoint spanPointAt(const geom::PolynomialSpan& span, Scalar u);
+  // Whether the controller, reading the span's power-basis coefficients to
+  // its significant digits, stays within a quarter of the cut's tolerance.
+  bool spanLiteralsFit(const geom::PolynomialSpan& span, const frontend::CutStmt& cut);
   CurvePoint transformed(const Affine& transform, const CurvePoint& point);
 
   // cuts.cpp
@@ -316,6 +319,8 @@ private:
   void emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs, double zFrom,
                       double zTo, ValueId feed, const frontend::CutStmt& cut);
   // The runs of the samples after the first (the start, which the plunge reaches).
+  const std::array<std::uint32_t, 3>* hostPointTables(const CutCurve& curve, const SampleRun& run,
+                                                      const frontend::CutStmt& cut);
   std::vector<SampleRun> lapRuns(const CutCurve& curve, const geom::CurveSamples& samples,
                                  const std::vector<RampSegment>* ramp);
   // The passes of a cut whose start and finish are constants: per depth its
@@ -557,6 +562,8 @@ private:
   // value (for the transforms of a named curve).
   std::map<const frontend::Declaration*, std::set<std::string>> parameterNames_;
   std::map<const frontend::Declaration*, const frontend::Expr*> letValues_;
+  // hostPointTables, by the run's table of locals.
+  std::map<std::uint32_t, std::array<std::uint32_t, 3>> hostPointTables_;
   std::vector<FixedParameter> fixedParameters_;
   // Set while the defaults are only checked, not built into the program.
   bool checkingDefaults_ = false;

@@ -46,6 +46,12 @@ struct LoweringOptions {
   // and no constant tables; what depends on part parameters (step counts
   // included) is computed on the controller. See controller_cuts.cpp.
   bool controllerLoops = false;
+  // The significant digits of the constants the controller reads (0: the
+  // target folds every number on the host). A NURBS span evaluated on the
+  // controller from power-basis coefficients whose rounding to these digits
+  // would move its points by more than a quarter of the tolerance (a weight
+  // of 1e9: coefficients of 1e10 that cancel) is an error at the cut.
+  int literalSignificantDigits = 0;
   // The controller's least input increment (mm or inch; 0: none). Its
   // rounding of every executed coordinate, half an increment per axis, is
   // taken from the tolerance before the chord error is chosen.

@@ -29,6 +29,8 @@
 namespace cncc::backends {
 
 inline constexpr int linuxcncMaximumLineLength = 255;
+// The significant digits of the program's constants (`0.959503912453`).
+inline constexpr int linuxcncSignificantDigits = 12;
 inline constexpr int linuxcncMaximumCallArguments = 30;
 inline constexpr int linuxcncFirstGlobal = 31;
 inline constexpr int linuxcncLastGlobal = 5000;
