@@ -33,6 +33,7 @@ InstructionId FunctionBuilder::append(Instruction instruction, ValueType resultT
   }
   currentRegion().instructions.push_back(id);
   instruction.span = span_;
+  instruction.pass = pass_;
   function_.instructions.push_back(std::move(instruction));
   return id;
 }
@@ -73,9 +74,10 @@ ValueId FunctionBuilder::operation(Opcode opcode, std::vector<ValueId> operands)
   return function_.instructions[append(std::move(instruction), opcodeInfo(opcode).result)].result;
 }
 
-ValueId FunctionBuilder::beginLoop(ValueId low, ValueId high) {
+ValueId FunctionBuilder::beginLoop(ValueId low, ValueId high, LoopRole role) {
   Instruction instruction;
   instruction.opcode = Opcode::Loop;
+  instruction.index = static_cast<std::uint32_t>(role);
   instruction.operands = {low, high};
   instruction.regions.resize(1);
   InstructionId id = append(std::move(instruction), ValueType::F64);

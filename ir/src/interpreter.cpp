@@ -189,6 +189,7 @@ private:
       break;
     }
     event.span = instruction.span;
+    event.pass = instruction.pass;
     path_.events.push_back(std::move(event));
   }
 
@@ -198,6 +199,7 @@ private:
                                  operand(1), operand(2), operand(3), operand(4), operand(5));
     position_ = {event.x, event.y, event.z};
     event.span = instruction.span;
+    event.pass = instruction.pass;
     path_.events.push_back(std::move(event));
   }
 
@@ -211,6 +213,7 @@ private:
               value(instruction.operands[1]), weights, path_.events);
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;
+      path_.events[k].pass = instruction.pass;
     }
     const MachineEvent& end = path_.events.back();
     position_ = {end.x, end.y, end.z};
@@ -222,6 +225,7 @@ private:
                value(instruction.operands[0]), value(instruction.operands[1]), path_.events);
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;
+      path_.events[k].pass = instruction.pass;
     }
     const MachineEvent& end = path_.events.back();
     position_ = {end.x, end.y, end.z};
@@ -237,6 +241,7 @@ private:
                    path_.events);
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;
+      path_.events[k].pass = instruction.pass;
     }
     const MachineEvent& end = path_.events.back();
     position_ = {end.x, end.y, end.z};

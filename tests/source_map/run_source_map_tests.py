@@ -133,6 +133,41 @@ class Checks:
         inside = [entry for entry in source_map["lines"] if entry["loopDepth"] > 0]
         if inside and not any(entry["statement"] == "cut" for entry in inside):
             self.fail(f"{name}: no line inside a controller loop maps to a cut")
+        # The loops the printer says hold each line are the loops its text
+        # opens around it, each made by a statement of the part.
+        loops = source_map.get("loops", [])
+        for number, entry in enumerate(source_map["lines"], 1):
+            held = entry.get("loops", [])
+            if len(held) != entry["loopDepth"] or any(k >= len(loops) for k in held):
+                self.fail(f"{name}:{number}: loops {held} of {len(loops)}, "
+                          f"loop depth {entry['loopDepth']}")
+                return
+        for loop in loops:
+            if loop["kind"] not in ("for", "passes", "curve") or \
+                    (loop["kind"] != "for") != (loop["statement"] == "cut"):
+                self.fail(f"{name}: a loop {loop}")
+
+    def check_passes(self, name, source_map):
+        """The written-out passes of each cut statement go 1 .. N in program
+        order, as often as the statement runs."""
+        runs = {}
+        for entry in source_map["lines"]:
+            pass_ = entry.get("pass")
+            if pass_ is None or pass_["number"] == 0:
+                continue
+            key = (entry["source"], entry["line"], entry["column"])
+            if entry["statement"] != "cut":
+                self.fail(f"{name}: a pass on a line of a {entry['statement']} statement")
+                return
+            passes = runs.setdefault(key, [])
+            if not passes or passes[-1] != (pass_["number"], pass_["count"]):
+                passes.append((pass_["number"], pass_["count"]))
+        for key, passes in runs.items():
+            count = passes[0][1]
+            expected = [(k % count + 1, count) for k in range(len(passes))]
+            if passes != expected or len(passes) % count != 0:
+                self.fail(f"{name}: the passes of the cut at {key} come as {passes}")
+        return runs
 
     def check_variables(self, name, source_map):
         meanings = [held["meaning"] for held in source_map.get("variables", {}).values()]
@@ -157,8 +192,54 @@ class Checks:
                     self.fail(f"{name}: no line maps to a cut statement")
                 if target in ("fanuc", "m80", "linuxcnc"):
                     self.check_controller_loops(name, source_map)
+                self.check_passes(name, source_map)
                 if target in ("fanuc", "m80"):
                     self.check_variables(name, source_map)
+
+    def run_passes(self):
+        """A swept cut on gcode writes passes 1, 2, 3 of each hole; on fanuc
+        the same lines are the cut's pass loop, in the loop of the `for`."""
+        source = ROOT / "examples/bolt_circle.cdl"
+        cut = ("cut", 16, 5)
+        program, source_map = self.compile(source, "bolt_circle", "gcode", "passes-gcode")
+        if program is None:
+            return
+        runs = self.check_passes("passes-gcode", source_map) or {}
+        passes = runs.get((0, 16, 5), [])
+        if passes[:3] != [(1, 3), (2, 3), (3, 3)] or len(passes) != 18:
+            self.fail(f"bolt_circle on gcode: the passes of its cut are {passes}")
+        program, source_map = self.compile(source, "bolt_circle", "fanuc", "passes-fanuc")
+        if program is None:
+            return
+        loops = source_map.get("loops", [])
+        described = [(loop["statement"], loop["line"], loop["column"], loop["kind"])
+                     for loop in loops]
+        if described != [("for", 13, 3, "for"), cut + ("passes",)]:
+            self.fail(f"bolt_circle on fanuc: the loops are {described}")
+            return
+        in_passes = [k for k, entry in enumerate(source_map["lines"], 1)
+                     if entry.get("loops") == [0, 1]]
+        if not in_passes or any(source_map["lines"][k - 1].get("pass", {}).get("number", 0)
+                                for k in in_passes):
+            self.fail(f"bolt_circle on fanuc: lines in the pass loop: {in_passes}")
+            return
+        result = subprocess.run([self.cncc, "where", str(program), str(in_passes[-1]),
+                                 "--source-map", str(self.work / "passes-fanuc.nc.map.json")],
+                                capture_output=True, text=True)
+        if result.returncode != 0 or \
+                "loop made by the passes of the cut at " not in result.stdout or \
+                "bolt_circle.cdl:16:5" not in result.stdout or \
+                "loop made by the for statement at " not in result.stdout:
+            self.fail(f"where on a line of the pass loop says {result.stdout}{result.stderr}")
+        gcode = self.work / "passes-gcode.nc"
+        gcode_map = json.loads((self.work / "passes-gcode.nc.map.json").read_text())
+        second = next((k for k, entry in enumerate(gcode_map["lines"], 1)
+                       if entry.get("pass", {}).get("number") == 2), None)
+        result = subprocess.run([self.cncc, "where", str(gcode), str(second),
+                                 "--source-map", str(self.work / "passes-gcode.nc.map.json")],
+                                capture_output=True, text=True)
+        if result.returncode != 0 or "pass 2 of 3" not in result.stdout:
+            self.fail(f"where on a line of pass 2 says {result.stdout}{result.stderr}")
 
     def run_measured(self):
         for target in ("fanuc", "gcode"):
@@ -288,6 +369,7 @@ def main():
     checks.run_examples()
     checks.run_where()
     checks.run_measured()
+    checks.run_passes()
     checks.run_subprograms()
     for failure in checks.failures:
         print(f"FAIL {failure}")

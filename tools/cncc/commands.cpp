@@ -93,7 +93,7 @@ bool writeSourceMap(DiagnosticOutput& output, const DriverOptions& options,
                        options.target,
                        &program,
                        &sources,
-                       std::move(origins.lineSpans),
+                       std::move(origins.lines),
                        std::move(origins.variables),
                        program.selectedPart != nullptr &&
                            ir::partUnits(*program.selectedPart) == ir::PartUnits::Inches,
@@ -146,11 +146,11 @@ int runCompile(const DriverOptions& options) {
     return 1;
   }
   DiagnosticEngine backendDiagnostics(options.errorLimit);
-  std::vector<frontend::SourceSpan> lineSpans;
+  backends::LineOrigins lineOrigins;
   std::map<int, backends::VariableMeaning> variables;
   bool mapped = !options.sourceMap.empty();
   target.backend({*program, sources, options, backendDiagnostics, *file,
-                  mapped ? &lineSpans : nullptr, mapped ? &variables : nullptr});
+                  mapped ? &lineOrigins : nullptr, mapped ? &variables : nullptr});
   output.print(backendDiagnostics, sources);
   if (backendDiagnostics.hasErrors()) {
     return 1; // the file discards what the backend wrote
@@ -173,7 +173,7 @@ int runCompile(const DriverOptions& options) {
   }
   if (mapped &&
       !writeSourceMap(output, options, *program, sources,
-                      {std::move(lineSpans), std::move(variables), std::move(deviations)})) {
+                      {std::move(lineOrigins), std::move(variables), std::move(deviations)})) {
     return 1;
   }
   return status;

@@ -74,7 +74,7 @@ void heidenhainBackend(const BackendRequest& request) {
   backends::HeidenhainProgram program =
       backends::writeHeidenhainProgram(lowered->function, options);
   writeProgramIfItFits(request, "the TNC", program.errors, program.text,
-                       std::move(program.lineSpans));
+                       std::move(program.lineOrigins));
 }
 
 } // namespace cncc::driver

@@ -44,7 +44,7 @@ void linuxcncBackend(const BackendRequest& request) {
   options.blendTolerance = backends::linuxcncBlendTolerance(lowered->cuts);
   backends::LinuxcncProgram program = backends::writeLinuxcncProgram(lowered->function, options);
   writeProgramIfItFits(request, "LinuxCNC", program.errors, program.text,
-                       std::move(program.lineSpans));
+                       std::move(program.lineOrigins));
 }
 
 } // namespace cncc::driver

@@ -52,7 +52,7 @@ void macroBackend(const BackendRequest& request, std::string_view defaultProfile
   options.setup = machineSetup(request.options);
   backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
   if (writeProgramIfItFits(request, fmt::format("the {} profile", profile->name), program.errors,
-                           program.text, std::move(program.lineSpans))) {
+                           program.text, std::move(program.lineOrigins))) {
     if (request.variables != nullptr) {
       *request.variables = std::move(program.variables);
     }

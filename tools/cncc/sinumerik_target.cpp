@@ -106,7 +106,7 @@ void sinumerikBackend(const BackendRequest& request) {
   std::optional<SinumerikCompilation> compiled = compileForSinumerik(request);
   if (compiled) {
     printSplineBlocks(request, compiled->cuts);
-    writeProgram(request, compiled->program.text, std::move(compiled->program.lineSpans));
+    writeProgram(request, compiled->program.text, std::move(compiled->program.lineOrigins));
   }
 }
 

@@ -190,6 +190,30 @@ std::string compactArray(std::string_view name, const nlohmann::json& elements) 
   return text + (elements.empty() ? "]" : "\n ]");
 }
 
+// What made a controller loop: "passes", "curve", else the kind of the
+// statement it prints ("for").
+std::string_view loopKindName(ir::LoopRole role, std::string_view statement) {
+  switch (role) {
+  case ir::LoopRole::Passes:
+    return "passes";
+  case ir::LoopRole::Curve:
+    return "curve";
+  case ir::LoopRole::Statement:
+    break;
+  }
+  return statement;
+}
+
+// {"number": 2, "count": 3}, with "ramp": true on a ramp lap (number 0 and
+// count 0 on a ramp lap in a pass loop).
+nlohmann::json passJson(const ir::SweepPass& pass) {
+  nlohmann::json json = {{"number", pass.number}, {"count", pass.count}};
+  if (pass.ramp) {
+    json["ramp"] = true;
+  }
+  return json;
+}
+
 // A number, or null for NaN (JSON has no NaN).
 nlohmann::json numberOrNull(double value) {
   return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
@@ -216,22 +240,60 @@ std::string sourceMapJson(const SourceMapInput& input) {
   };
   std::vector<std::string_view> lines = programLines(input.programText);
   std::vector<int> depths = loopDepths(lines);
+  auto located = [&](SourceSpan span) {
+    frontend::LineColumn at = input.sources->file(span.file).lineColumn(span.begin);
+    return nlohmann::json{
+        {"source", sourceOf(span.file)}, {"line", at.line}, {"column", at.column}};
+  };
+  // The loops some line names, numbered in the order lines first name them.
+  nlohmann::json loopEntries = nlohmann::json::array();
+  std::map<std::uint32_t, std::size_t> loopNumber; // printer's index -> entry
+  auto loopsHolding = [&](std::uint32_t innermost) {
+    std::vector<std::size_t> numbers;
+    for (std::uint32_t loop = innermost;
+         loop != backends::noControllerLoop && loop < input.lines.loops.size();
+         loop = input.lines.loops[loop].outer) {
+      auto [found, added] = loopNumber.try_emplace(loop, loopEntries.size());
+      if (added) {
+        const backends::ControllerLoop& printed = input.lines.loops[loop];
+        SourceSpan span = printed.span.valid() ? printed.span : part.nameSpan;
+        auto kind = kinds.find({span.file.index, span.begin});
+        std::string_view statement = kind == kinds.end() ? "part" : kind->second;
+        nlohmann::json entry = located(span);
+        entry["statement"] = statement;
+        entry["kind"] = loopKindName(printed.role, statement);
+        loopEntries.push_back(std::move(entry));
+      }
+      numbers.push_back(found->second);
+    }
+    std::reverse(numbers.begin(), numbers.end()); // outermost first
+    return numbers;
+  };
   nlohmann::json mapped = nlohmann::json::array();
   // Keyed by (source, line, column), in the order the statements are written.
   std::map<std::tuple<std::size_t, std::uint32_t, std::uint32_t>, CutSummary> cuts;
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    SourceSpan span = i < input.lineSpans.size() ? input.lineSpans[i] : SourceSpan{};
+    backends::LineOrigin origin =
+        i < input.lines.lines.size() ? input.lines.lines[i] : backends::LineOrigin{};
+    SourceSpan span = origin.span;
     if (!span.valid()) {
       span = part.nameSpan;
     }
     frontend::LineColumn at = input.sources->file(span.file).lineColumn(span.begin);
     auto kind = kinds.find({span.file.index, span.begin});
     std::string_view statement = kind == kinds.end() ? "part" : kind->second;
-    mapped.push_back({{"source", sourceOf(span.file)},
-                      {"line", at.line},
-                      {"column", at.column},
-                      {"statement", statement},
-                      {"loopDepth", depths[i]}});
+    nlohmann::json entry = {{"source", sourceOf(span.file)},
+                            {"line", at.line},
+                            {"column", at.column},
+                            {"statement", statement},
+                            {"loopDepth", depths[i]}};
+    if (origin.pass.any()) {
+      entry["pass"] = passJson(origin.pass);
+    }
+    if (std::vector<std::size_t> loops = loopsHolding(origin.loop); !loops.empty()) {
+      entry["loops"] = loops;
+    }
+    mapped.push_back(std::move(entry));
     if (statement == "cut") {
       CutSummary& cut = cuts[{sourceOf(span.file), at.line, at.column}];
       cut.blocks += codeWords(lines[i]).empty() ? 0 : 1;
@@ -284,7 +346,11 @@ std::string sourceMapJson(const SourceMapInput& input) {
   // program does.
   std::string text = header.dump(1);
   text.erase(text.find_last_not_of(" \n", text.rfind('}') - 1) + 1);
-  text += compactArray("cuts", cutEntries) + compactArray("lines", mapped);
+  text += compactArray("cuts", cutEntries);
+  if (!loopEntries.empty()) {
+    text += compactArray("loops", loopEntries);
+  }
+  text += compactArray("lines", mapped);
   return text + "\n}\n";
 }
 
@@ -292,7 +358,7 @@ std::string sourceMapJson(const SourceMapInput& input) {
 
 namespace cncc::driver {
 
-std::string annotatedProgram(std::string_view text, std::vector<frontend::SourceSpan>& lineSpans,
+std::string annotatedProgram(std::string_view text, std::vector<backends::LineOrigin>& lineOrigins,
                              const frontend::CheckedProgram& program,
                              const frontend::SourceManager& sources,
                              const backends::MachineSetup& setup) {
@@ -301,10 +367,11 @@ std::string annotatedProgram(std::string_view text, std::vector<frontend::Source
   bool semicolon = setup.dialect == "sinumerik" || setup.dialect == "linuxcnc";
   std::vector<std::string_view> lines = programLines(text);
   std::string annotated;
-  std::vector<frontend::SourceSpan> spans;
+  std::vector<backends::LineOrigin> origins;
   frontend::SourceSpan previous; // the last cut annotated
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    SourceSpan span = i < lineSpans.size() ? lineSpans[i] : SourceSpan{};
+    backends::LineOrigin origin = i < lineOrigins.size() ? lineOrigins[i] : backends::LineOrigin{};
+    SourceSpan span = origin.span;
     auto kind = kinds.find({span.file.index, span.begin});
     // Once per run of one cut statement's lines, even where the lines of
     // the loop around it come between; in each Sinumerik subprogram again,
@@ -324,13 +391,13 @@ std::string annotatedProgram(std::string_view text, std::vector<frontend::Source
                        [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
       }
       annotated += semicolon ? fmt::format("; {}\n", where) : fmt::format("({})\n", where);
-      spans.push_back(span);
+      origins.push_back(origin);
     }
     annotated += lines[i];
     annotated += '\n';
-    spans.push_back(span);
+    origins.push_back(origin);
   }
-  lineSpans = std::move(spans);
+  lineOrigins = std::move(origins);
   return annotated;
 }
 

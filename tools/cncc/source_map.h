@@ -8,8 +8,13 @@
 //    "parameters": {"radius": 20, ...},
 //    "sources": ["ring.cdl", "/.../std/curves.cdl"],
 //    "directory": "/home/shop/parts",  (what relative sources are relative to)
+//    "loops": [{"source": 0, "line": 10, "column": 3, "statement": "for", "kind": "for"},
+//              {"source": 0, "line": 12, "column": 3, "statement": "cut",
+//               "kind": "passes"}, ...],                     (when a line names one)
 //    "lines": [{"source": 0, "line": 12, "column": 3, "statement": "cut",
-//               "loopDepth": 1}, ...],
+//               "loopDepth": 2, "loops": [0, 1]},
+//              {..., "statement": "cut", "loopDepth": 0,
+//               "pass": {"number": 2, "count": 3}}, ...],
 //    "variables": {"6": {"meaning": "work values", "statements":
 //                  [{"source": 0, "line": 16, "column": 5}]}, ...},  (macro targets)
 //    "unit": "mm",
@@ -23,8 +28,20 @@
 // `lines[i]` is line i + 1 of the program; "statement" is the kind of CDL
 // statement (part, tool, cut, for, if, let, origin, coolant, feed, ...),
 // "loopDepth" how many controller loops (WHILE, o-word while) hold the line.
+// Optional fields of a line (added within version 1; absent in older maps):
+// "pass" where the line belongs to one written-out pass of a cut's sweep
+// (depth= step=): its "number" from 1 and the sweep's "count", and
+// "ramp": true on the entry=ramp lap descending to it; a ramp lap inside a
+// pass loop computed on the controller has number 0 and count 0 (the loop
+// says the pass). "loops": the controller loops the printer opened around
+// the line (WHILE .. END, o-word while, the TNC's LBL .. GOTO; the loop's
+// first and last lines count as inside it), outermost first, as indexes
+// into the top-level "loops": each the statement whose loop it prints and
+// its "kind": "for" (a for statement), "passes" (a cut's pass loop) or
+// "curve" (the steps along a cut's curve).
 #pragma once
 
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/machine_setup.h"
 #include "cncc/backends/macro_program.h"
 #include "cncc/frontend/sema.h"
@@ -51,8 +68,9 @@ struct SourceMapInput {
   std::string target;
   const frontend::CheckedProgram* program = nullptr; // its selected part
   const frontend::SourceManager* sources = nullptr;
-  // The span of each program line (invalid: the part's own).
-  std::vector<frontend::SourceSpan> lineSpans;
+  // Where each program line comes from (an invalid span: the part's own),
+  // and the controller loops they name.
+  backends::LineOrigins lines;
   // Macro targets: what each variable holds.
   std::map<int, backends::VariableMeaning> variables;
   bool inches = false;
@@ -62,7 +80,7 @@ struct SourceMapInput {
 
 // Where a program's lines and variables come from, as its backend said.
 struct ProgramOrigins {
-  std::vector<frontend::SourceSpan> lineSpans;
+  backends::LineOrigins lines;
   std::map<int, backends::VariableMeaning> variables;
   std::vector<MeasuredCutDeviation> deviations;
 };
@@ -72,8 +90,8 @@ std::string sourceMapJson(const SourceMapInput& input);
 // --annotate: a comment `(file.cdl:12)` (`; file.cdl:12` on Sinumerik and
 // LinuxCNC) before the first line a cut statement printed, and again where
 // another cut's lines came between, and after the header of each Sinumerik
-// subprogram; `lineSpans` gets the comments' spans too.
-std::string annotatedProgram(std::string_view text, std::vector<frontend::SourceSpan>& lineSpans,
+// subprogram; `lines` gets the comments' origins too.
+std::string annotatedProgram(std::string_view text, std::vector<backends::LineOrigin>& lines,
                              const frontend::CheckedProgram& program,
                              const frontend::SourceManager& sources,
                              const backends::MachineSetup& setup);

@@ -32,7 +32,7 @@ void gcodeBackend(const BackendRequest& request) {
     return;
   }
   backends::GcodeProgram program = backends::writeGcodeProgram(*path, gcodeOptionsFor(request));
-  writeProgram(request, program.text, std::move(program.lineSpans));
+  writeProgram(request, program.text, std::move(program.lineOrigins));
 }
 
 // The tool path as CSV, or an error at the part where it has too many rows.
@@ -171,7 +171,7 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
 
 bool writeProgramIfItFits(const BackendRequest& request, std::string_view controller,
                           const std::vector<std::string>& errors, std::string_view text,
-                          std::vector<frontend::SourceSpan> lineSpans) {
+                          backends::LineOrigins lineOrigins) {
   for (const std::string& error : errors) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge,
                                request.program.selectedPart->nameSpan,
@@ -180,21 +180,21 @@ bool writeProgramIfItFits(const BackendRequest& request, std::string_view contro
   if (!errors.empty()) {
     return false;
   }
-  writeProgram(request, text, std::move(lineSpans));
+  writeProgram(request, text, std::move(lineOrigins));
   return true;
 }
 
 void writeProgram(const BackendRequest& request, std::string_view text,
-                  std::vector<frontend::SourceSpan> lineSpans) {
+                  backends::LineOrigins lineOrigins) {
   if (request.options.annotate) {
-    std::string annotated = annotatedProgram(text, lineSpans, request.program, request.sources,
-                                             machineSetup(request.options));
+    std::string annotated = annotatedProgram(text, lineOrigins.lines, request.program,
+                                             request.sources, machineSetup(request.options));
     request.output.write(annotated);
   } else {
     request.output.write(text);
   }
-  if (request.lineSpans != nullptr) {
-    *request.lineSpans = std::move(lineSpans);
+  if (request.lineOrigins != nullptr) {
+    *request.lineOrigins = std::move(lineOrigins);
   }
 }
 

@@ -31,24 +31,24 @@ struct BackendRequest {
   const DriverOptions& options;
   frontend::DiagnosticEngine& diagnostics;
   AtomicOutputFile& output;
-  // When given, the backend puts here the CDL span of each line it wrote
+  // When given, the backend puts here where each line it wrote comes from
   // (for --source-map).
-  std::vector<frontend::SourceSpan>* lineSpans = nullptr;
+  backends::LineOrigins* lineOrigins = nullptr;
   // And, on the macro targets, what each variable holds.
   std::map<int, backends::VariableMeaning>* variables = nullptr;
 };
 
 // Writes a printed program to the request's output, with --annotate's
-// comments, and gives its line spans to the request (for --source-map).
+// comments, and gives its line origins to the request (for --source-map).
 void writeProgram(const BackendRequest& request, std::string_view text,
-                  std::vector<frontend::SourceSpan> lineSpans);
+                  backends::LineOrigins lineOrigins);
 
 // A printer's result: each of its `errors` reported at the part as not
 // fitting `controller` (the limit it names), else the program written.
 // Whether it was written.
 bool writeProgramIfItFits(const BackendRequest& request, std::string_view controller,
                           const std::vector<std::string>& errors, std::string_view text,
-                          std::vector<frontend::SourceSpan> lineSpans);
+                          backends::LineOrigins lineOrigins);
 
 // Writes the program; problems go to the request's diagnostics.
 using BackendFunction = void (*)(const BackendRequest& request);

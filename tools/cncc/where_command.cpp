@@ -99,17 +99,61 @@ std::size_t programLine(const std::string& location, const std::vector<std::stri
   throw WhereError(fmt::format("{} has no block {}", programPath, word));
 }
 
+// The entry's object `field`, or null.
+const nlohmann::json* optionalObject(const nlohmann::json& entry, const char* field) {
+  auto found = entry.find(field);
+  return found != entry.end() && found->is_object() ? &*found : nullptr;
+}
+
 std::string describe(const nlohmann::json& entry, const nlohmann::json& map) {
   std::string statement = entry.value("statement", "part");
   std::string text = statement == "part" ? fmt::format("printed for part {} itself (its set-up)",
                                                        map.value("part", ""))
                                          : fmt::format("printed from this {} statement of part {}",
                                                        statement, map.value("part", ""));
+  if (const nlohmann::json* pass = optionalObject(entry, "pass")) {
+    std::size_t number = pass->value("number", std::size_t{0});
+    if (number > 0) {
+      text += fmt::format(", pass {} of {}", number, pass->value("count", std::size_t{0}));
+    }
+    if (pass->value("ramp", false)) {
+      text += number > 0 ? " (its ramp lap)" : ", the ramp lap of each pass";
+    }
+  }
   int depth = entry.value("loopDepth", 0);
   if (depth > 0) {
     text += fmt::format(", inside {} controller loop{}", depth, depth == 1 ? "" : "s");
   }
   return text;
+}
+
+// "the passes of the cut at ring.cdl:12:3": one loop of the map's "loops".
+std::string describeLoop(const nlohmann::json& loop, const nlohmann::json& map) {
+  std::string kind = loop.value("kind", "");
+  std::string statement = loop.value("statement", "statement");
+  std::string what = kind == "passes"  ? fmt::format("the passes of the {}", statement)
+                     : kind == "curve" ? fmt::format("the steps along the {}", statement)
+                                       : fmt::format("the {} statement", statement);
+  std::size_t source = loop.value("source", std::size_t{0});
+  std::string path = source < map["sources"].size() && map["sources"][source].is_string()
+                         ? map["sources"][source].get<std::string>()
+                         : "?";
+  return fmt::format("{} at {}:{}:{}", what, path, loop.value("line", 0), loop.value("column", 0));
+}
+
+// The controller loops holding the line, outermost first, as notes.
+void printLoops(const nlohmann::json& entry, const nlohmann::json& map) {
+  auto loops = entry.find("loops");
+  auto table = map.find("loops");
+  if (loops == entry.end() || !loops->is_array() || table == map.end() || !table->is_array()) {
+    return;
+  }
+  for (const nlohmann::json& index : *loops) {
+    if (index.is_number_unsigned() && index.get<std::size_t>() < table->size()) {
+      fmt::print("  in a controller loop made by {}\n",
+                 describeLoop((*table)[index.get<std::size_t>()], map));
+    }
+  }
 }
 
 // A position the map's entry gives: a whole number from 1 on.
@@ -190,6 +234,7 @@ int runWhere(const DriverOptions& options) {
     if (quoted) {
       printSourceLine((*quoted)[sourceLine - 1], column);
     }
+    printLoops(entry, map);
     printParameters(map["parameters"]);
     return 0;
   } catch (const WhereError& error) {

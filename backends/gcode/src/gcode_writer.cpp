@@ -69,11 +69,13 @@ public:
 
   void line(std::string text) {
     lines_.push_back(std::move(text));
-    spans_.push_back(span_);
+    origins_.push_back(origin_);
   }
 
-  // The CDL span of the lines that follow.
-  void setSpan(frontend::SourceSpan span) { span_ = span; }
+  // Where the lines that follow come from (plain G-code has no loops).
+  void setOrigin(const ir::MachineEvent& event) {
+    origin_ = {event.span, event.pass, noControllerLoop};
+  }
 
   void move(bool rapid, double x, double y, double z, double feed) {
     if (rapid) {
@@ -118,7 +120,7 @@ public:
   }
 
   std::vector<std::string> takeLines() { return std::move(lines_); }
-  const std::vector<frontend::SourceSpan>& spans() const { return spans_; }
+  const std::vector<LineOrigin>& origins() const { return origins_; }
 
   // After a move the writer does not follow: every coordinate is printed
   // again.
@@ -184,8 +186,8 @@ private:
 
   int decimals_;
   std::vector<std::string> lines_;
-  std::vector<frontend::SourceSpan> spans_;
-  frontend::SourceSpan span_;
+  std::vector<LineOrigin> origins_;
+  LineOrigin origin_;
   std::string x_, y_, zText_, feed_, beforeZ_, beforePlane_;
   double z_ = 0;
   bool known_ = false;
@@ -204,7 +206,7 @@ GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& opt
   }
   bool spindleOn = false;
   for (const ir::MachineEvent& event : path.events) {
-    writer.setSpan(event.span);
+    writer.setOrigin(event);
     switch (event.kind) {
     case ir::MachineEvent::Kind::Rapid:
     case ir::MachineEvent::Kind::Feed:
@@ -266,7 +268,7 @@ GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& opt
   }
   writer.line("M30");
   writer.line("%");
-  std::vector<frontend::SourceSpan> spans = writer.spans();
+  std::vector<LineOrigin> origins = writer.origins();
   // Plain G-code has no jumps, so numbering it cannot fail.
   std::vector<std::string> errors;
   FormattedProgram formatted = formatProgram(writer.takeLines(), options.setup, errors);
@@ -275,7 +277,7 @@ GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& opt
     program.text += line;
     program.text += '\n';
   }
-  program.lineSpans = LineSpans::kept(spans, formatted.printedLine);
+  program.lineOrigins.lines = LineSpans::kept(origins, formatted.printedLine);
   return program;
 }
 

@@ -66,7 +66,7 @@ public:
     return numberedText();
   }
 
-  std::vector<frontend::SourceSpan> takeLineSpans() { return std::move(printedSpans_); }
+  LineOrigins takeLineOrigins() { return {std::move(printedOrigins_), std::move(loops_)}; }
 
 private:
   void line(std::string text) { lines_.push_back(std::move(text)); }
@@ -92,7 +92,7 @@ private:
       errors_.push_back(fmt::format("the program has {} blocks, the TNC numbers them up to {}",
                                     lines_.size(), options_.profile.maximumBlockNumber));
     }
-    printedSpans_ = lineSpans_.spans(lines_.size());
+    printedOrigins_ = lineSpans_.origins(lines_.size());
     return text;
   }
 
@@ -156,7 +156,7 @@ private:
   }
 
   void printInstruction(const ir::Instruction& instruction) {
-    InstructionLines marked(lineSpans_, lines_, instruction.span, currentSpan_);
+    InstructionLines marked(lineSpans_, lines_, instruction, currentOrigin_);
     blocks_.releaseScratch();
     const std::vector<ValueId>& operands = instruction.operands;
     switch (instruction.opcode) {
@@ -477,6 +477,7 @@ private:
     blocks_.assign(index, instruction.operands[0]);
     int top = blocks_.newLabel();
     int end = blocks_.newLabel();
+    enterLoop(lineSpans_, loops_, lines_.size(), instruction, currentOrigin_);
     blocks_.label(top);
     std::string high = blocks_.operand(instruction.operands[1]);
     line(fmt::format("FN 11: IF +{} GT {} GOTO LBL {}", index, high, end));
@@ -511,8 +512,9 @@ private:
   TncFormulaWriter formulas_;
   TncBlockWriter blocks_;
   LineSpans lineSpans_;
-  frontend::SourceSpan currentSpan_;
-  std::vector<frontend::SourceSpan> printedSpans_;
+  LineOrigin currentOrigin_;
+  std::vector<ControllerLoop> loops_; // every loop printed
+  std::vector<LineOrigin> printedOrigins_;
   std::optional<long long> pendingTool_;
   std::optional<long long> currentTool_;   // for the radius RL/RR take
   std::optional<long long> explainedTool_; // whose radius register the comment named
@@ -633,7 +635,7 @@ HeidenhainProgram writeHeidenhainProgram(const ir::Function& function,
   std::string text = printer.print();
   if (program.errors.empty()) {
     program.text = std::move(text);
-    program.lineSpans = printer.takeLineSpans();
+    program.lineOrigins = printer.takeLineOrigins();
   }
   return program;
 }

@@ -164,7 +164,7 @@ LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,
                                     .print();
   if (program.errors.empty()) {
     program.text = std::move(printed.text);
-    program.lineSpans = std::move(printed.lineSpans);
+    program.lineOrigins = std::move(printed.lineOrigins);
   }
   return program;
 }

@@ -68,9 +68,10 @@ PrintedMacroProgram MacroProgramPrinter::finish() {
   PrintedMacroProgram printed;
   std::size_t longest = 0;
   int tooLong = 0;
-  std::vector<frontend::SourceSpan> spans = lineSpans_.spans(lines_.size());
+  std::vector<LineOrigin> origins = lineSpans_.origins(lines_.size());
   FormattedProgram formatted = formatProgram(std::move(lines_), *options_.setup, errors_);
-  printed.lineSpans = LineSpans::kept(spans, formatted.printedLine);
+  printed.lineOrigins.lines = LineSpans::kept(origins, formatted.printedLine);
+  printed.lineOrigins.loops = std::move(loops_);
   printed.variables = std::move(variableMeanings_);
   for (const std::string& block : formatted.lines) {
     if (static_cast<int>(block.size()) > dialect_.maximumLineLength) {
@@ -167,7 +168,7 @@ void MacroProgramPrinter::printRegion(const ir::Region& region) {
 }
 
 void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
-  InstructionLines marked(lineSpans_, lines_, instruction.span, currentSpan_);
+  InstructionLines marked(lineSpans_, lines_, instruction, currentOrigin_);
   switch (instruction.opcode) {
   case Opcode::Loop:
     printLoop(instruction);
@@ -260,6 +261,7 @@ void MacroProgramPrinter::printLoop(const ir::Instruction& instruction) {
 void MacroProgramPrinter::openLoop(const ir::Instruction& instruction, const std::string& index,
                                    int label) {
   auto head = [&](const std::string& condition) {
+    enterLoop(lineSpans_, loops_, lines_.size(), instruction, currentOrigin_);
     line(dialect_.control == ControlWords::OWords
              ? fmt::format("o{} while {}", label, condition)
              : fmt::format("WHILE {} DO{}", condition, loopDepth_));
@@ -350,10 +352,10 @@ MacroProgramPrinter::Captured MacroProgramPrinter::captureLines(const ir::Region
   LineSpans savedSpans = std::move(lineSpans_);
   lines_.clear();
   lineSpans_ = LineSpans();
-  lineSpans_.start(0, currentSpan_);
+  lineSpans_.start(0, currentOrigin_);
   printRegion(region);
   Captured captured{std::move(lines_), {}};
-  captured.spans = lineSpans_.spans(captured.lines.size());
+  captured.origins = lineSpans_.origins(captured.lines.size());
   lines_ = std::move(savedLines);
   lineSpans_ = std::move(savedSpans);
   return captured;
@@ -362,10 +364,10 @@ MacroProgramPrinter::Captured MacroProgramPrinter::captureLines(const ir::Region
 // Appends captured lines; the lines after them are the current span's.
 void MacroProgramPrinter::append(const Captured& captured) {
   for (std::size_t k = 0; k < captured.lines.size(); ++k) {
-    lineSpans_.start(lines_.size(), captured.spans[k]);
+    lineSpans_.start(lines_.size(), captured.origins[k]);
     lines_.push_back(captured.lines[k]);
   }
-  lineSpans_.start(lines_.size(), currentSpan_);
+  lineSpans_.start(lines_.size(), currentOrigin_);
 }
 
 // IF THEN where one statement is the whole branch; jumps otherwise.

@@ -44,7 +44,7 @@ struct MacroPrintOptions {
 
 struct PrintedMacroProgram {
   std::string text;
-  std::vector<frontend::SourceSpan> lineSpans; // of each line of text
+  LineOrigins lineOrigins; // of each line of text
   std::map<int, VariableMeaning> variables;
   int longestLine = 0; // of the lines longer than the dialect takes
 };
@@ -67,7 +67,7 @@ private:
   // with the CDL span of each.
   struct Captured {
     std::vector<std::string> lines;
-    std::vector<frontend::SourceSpan> spans;
+    std::vector<LineOrigin> origins;
   };
 
   // ---- lines (macro_printer.cpp)
@@ -145,7 +145,8 @@ private:
   bool spindleOn_ = false;
   long long toolNumber_ = 0; // of the last tool change
   LineSpans lineSpans_;
-  frontend::SourceSpan currentSpan_;
+  LineOrigin currentOrigin_;
+  std::vector<ControllerLoop> loops_; // every loop printed
 };
 
 } // namespace cncc::backends

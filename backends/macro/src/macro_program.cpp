@@ -135,7 +135,7 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
     allocationOptions.maximumAssignmentOperations =
         std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
   }
-  program.lineSpans = std::move(printed.lineSpans);
+  program.lineOrigins = std::move(printed.lineOrigins);
   program.variables = std::move(printed.variables);
   if (!program.errors.empty()) {
     return program;

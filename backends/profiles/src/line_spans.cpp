@@ -2,24 +2,25 @@
 
 namespace cncc::backends {
 
-std::vector<frontend::SourceSpan> LineSpans::spans(std::size_t lineCount) const {
-  std::vector<frontend::SourceSpan> spans(lineCount);
+std::vector<LineOrigin> LineSpans::origins(std::size_t lineCount) const {
+  std::vector<LineOrigin> origins(lineCount);
   std::size_t next = 0;
-  frontend::SourceSpan span;
+  LineOrigin origin;
   for (std::size_t line = 0; line < lineCount; ++line) {
     while (next < starts_.size() && starts_[next].first <= line) {
-      span = starts_[next++].second;
+      origin = starts_[next++].second;
     }
-    spans[line] = span;
+    origins[line] = origin;
   }
-  return spans;
+  return origins;
 }
 
-std::vector<frontend::SourceSpan> LineSpans::kept(const std::vector<frontend::SourceSpan>& spans,
-                                                  const std::vector<std::size_t>& printedLine) {
-  std::vector<frontend::SourceSpan> result;
+std::vector<LineOrigin> LineSpans::kept(const std::vector<LineOrigin>& origins,
+                                        const std::vector<std::size_t>& printedLine) {
+  std::vector<LineOrigin> result;
+  result.reserve(printedLine.size());
   for (std::size_t index : printedLine) {
-    result.push_back(index < spans.size() ? spans[index] : frontend::SourceSpan{});
+    result.push_back(index < origins.size() ? origins[index] : LineOrigin{});
   }
   return result;
 }

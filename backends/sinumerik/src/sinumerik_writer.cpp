@@ -121,7 +121,7 @@ public:
       line("SPLINEPATH(1,X,Y)");
     }
     for (std::size_t i = 0; i < path_.events.size(); ++i) {
-      span_ = path_.events[i].span;
+      origin_ = {path_.events[i].span, path_.events[i].pass, noControllerLoop};
       i = event(i);
     }
     if (spindleOn_) {
@@ -145,7 +145,7 @@ private:
   void line(std::string text) {
     lines_.push_back(std::move(text));
     cutOfPrintedLine_.push_back(cut_);
-    spanOfPrintedLine_.push_back(span_);
+    originOfPrintedLine_.push_back(origin_);
   }
 
   // The program as the machine writes it (line numbers, comments).
@@ -156,7 +156,7 @@ private:
       program_.text += formatted.lines[i];
       program_.text += '\n';
       program_.cutOfLine.push_back(cutOfPrintedLine_[formatted.printedLine[i]]);
-      program_.lineSpans.push_back(spanOfPrintedLine_[formatted.printedLine[i]]);
+      program_.lineOrigins.lines.push_back(originOfPrintedLine_[formatted.printedLine[i]]);
     }
   }
 
@@ -398,7 +398,7 @@ private:
     subprograms_.push_back({table,
                             index == 0 ? fmt::format("{}_CUT{}", name_, cut + 1)
                                        : fmt::format("{}_CUT{}_{}", name_, cut + 1, index + 1),
-                            cut_, span_});
+                            cut_, origin_.span});
     return subprograms_.back().name;
   }
 
@@ -425,7 +425,8 @@ private:
   void writeSubprograms() {
     for (const SplineSubprogram& subprogram : subprograms_) {
       cut_ = subprogram.cut;
-      span_ = subprogram.span;
+      origin_ = LineOrigin{}; // called by every pass: none of its own
+      origin_.span = subprogram.span;
       std::optional<ir::SplineBlockData> blocks =
           ir::readSplineMoveTable(tables_[subprogram.table]);
       line(fmt::format("%_N_{}_SPF", subprogram.name));
@@ -449,8 +450,8 @@ private:
   SinumerikProgram program_;
   std::vector<std::string> lines_;
   std::vector<std::optional<std::size_t>> cutOfPrintedLine_;
-  std::vector<frontend::SourceSpan> spanOfPrintedLine_;
-  frontend::SourceSpan span_; // of the event being written
+  std::vector<LineOrigin> originOfPrintedLine_;
+  LineOrigin origin_; // of the event being written
   std::optional<std::size_t> cut_;
   std::optional<Eigen::Vector3d> position_;
   std::size_t feedsInPass_ = 0; // G1 blocks since the last rapid

@@ -121,13 +121,15 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   double planeZ = segments.front().start.z();
   std::vector<double> depths = passDepths(cut);
   double previous = 0;
-  for (double depth : depths) {
-    double passZ = beginPass(depth, depths.size());
+  for (std::size_t k = 0; k < depths.size(); ++k) {
+    PassScope pass(builder_, sweepPass(k, depths.size()));
+    double passZ = beginPass(depths[k], depths.size());
     double entryZ = begun.ramp ? previous : passZ;
     builder_.rapid(builder_.constant(start.x()), builder_.constant(start.y()), safeValue);
     builder_.feed(builder_.constant(start.x()), builder_.constant(start.y()),
                   builder_.constant(onPrintedGrid(planeZ + entryZ, increment)), feedValue);
     if (begun.ramp) {
+      PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
       builder_.comment("ramp");
       for (const std::vector<SampleRun>& runs : rampRuns) {
         emitSampleRuns(curve, runs, entryZ, passZ, feedValue, cut);

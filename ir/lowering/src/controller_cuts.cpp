@@ -326,7 +326,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     Scalar passes = arithmetic_.unary(
         Opcode::Round,
         arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step), Scalar::of(passCountOffset)));
-    ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(passes));
+    ValueId k =
+        builder_.beginLoop(builder_.constant(1), arithmetic_.value(passes), LoopRole::Passes);
     z = passDepth(Scalar::of(k, ValueType::F64), step, depth);
     if (ramp) {
       previousZ =
@@ -340,7 +341,9 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
                 feedValue);
   if (ramp) {
-    // One lap descending from the pass above (see RampSegment).
+    // One lap descending from the pass above (see RampSegment), in the
+    // pass loop: its lines have no pass number of their own.
+    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
     builder_.comment("ramp");
     std::vector<RampSegment> shares = rampSegments(curve, cut);
     for (const ControllerSegment& segment : *planned) {
@@ -586,7 +589,7 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
     return;
   }
   ValueId count = arithmetic_.value(stepsOf(segment));
-  ValueId i = builder_.beginLoop(builder_.constant(1), count);
+  ValueId i = builder_.beginLoop(builder_.constant(1), count, LoopRole::Curve);
   Scalar index = Scalar::of(i, ValueType::F64);
   if (runtimeOffset_) {
     // The tool centre beside each point, along the derivative in i.

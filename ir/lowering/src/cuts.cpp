@@ -253,6 +253,10 @@ geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const ge
   }
 }
 
+SweepPass PartLowering::sweepPass(std::size_t index, std::size_t passes, bool ramp) {
+  return {static_cast<std::uint32_t>(index + 1), static_cast<std::uint32_t>(passes), ramp};
+}
+
 double PartLowering::beginPass(double depth, std::size_t passes) {
   builder_.comment(passes > 1 ? fmt::format("pass at depth {}", depth) : "cut");
   return depth == 0 ? 0.0 : -depth;
@@ -411,7 +415,7 @@ void PartLowering::emitSampleRuns(const CutCurve& curve, const std::vector<Sampl
                                   double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
   for (const SampleRun& run : runs) {
     double last = static_cast<double>(run.locals.size()) - 1;
-    ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
+    ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last), LoopRole::Curve);
     CurvePoint point;
     if (const std::array<std::uint32_t, 3>* tables = hostPointTables(curve, run, cut)) {
       auto load = [&](std::uint32_t table) {
@@ -501,14 +505,16 @@ void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
     emitArcLap({arc}, builder_.constant(z), feed);
   };
   double previous = 0;
-  for (double depth : depths) {
-    double passZ = beginPass(depth, depths.size());
+  for (std::size_t k = 0; k < depths.size(); ++k) {
+    PassScope pass(builder_, sweepPass(k, depths.size()));
+    double passZ = beginPass(depths[k], depths.size());
     double entryZ = ramp ? previous : passZ;
     approachPassStart(start, entryZ, safe, feed);
     if (leads != nullptr) {
       leadArc(leads->leadIn, entryZ);
     }
     if (ramp) {
+      PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
       builder_.comment("ramp");
       lap(entryZ, passZ);
     }
@@ -573,8 +579,9 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   SampleLocation first = locate(curve, samples.parameters.front());
   SampleLocation end = locate(curve, samples.parameters.back());
   double previous = 0;
-  for (double depth : depths) {
-    double passZ = beginPass(depth, depths.size());
+  for (std::size_t k = 0; k < depths.size(); ++k) {
+    PassScope pass(builder_, sweepPass(k, depths.size()));
+    double passZ = beginPass(depths[k], depths.size());
     double entryZ = ramp ? previous : passZ;
     CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
     ValueId startX = arithmetic_.value(start.x);
@@ -583,6 +590,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(Scalar::of(entryZ), start.z)),
                   feedValue);
     if (ramp) {
+      PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
       builder_.comment("ramp");
       lap(entryZ, passZ);
     }

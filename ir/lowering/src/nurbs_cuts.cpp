@@ -144,8 +144,9 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
   const Eigen::Vector3d& first = blocks.controlPoints().front();
   const Eigen::Vector3d& last = blocks.controlPoints().back();
   std::vector<double> depths = passDepths(cut);
-  for (double depth : depths) {
-    double z = beginPass(depth, depths.size());
+  for (std::size_t k = 0; k < depths.size(); ++k) {
+    PassScope pass(builder_, sweepPass(k, depths.size()));
+    double z = beginPass(depths[k], depths.size());
     approachPassStart(first, z, safeValue, feedValue);
     builder_.nurbs(table, builder_.constant(z), feedValue, weights);
     builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);

@@ -430,7 +430,7 @@ void PartLowering::emitChordLap(const OffsetChords& chords, double zFrom, double
     return;
   }
   double last = static_cast<double>(chords.ends.size()) - 1;
-  ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last));
+  ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last), LoopRole::Curve);
   Scalar z = Scalar::of(zTo);
   if (zFrom != zTo) {
     Scalar progress = Scalar::of(builder_.tableLoad(chords.progressTable, i), ValueType::F64);

@@ -304,6 +304,8 @@ private:
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
   // cut at depth 0, else -depth).
   double beginPass(double depth, std::size_t passes);
+  // Pass index + 1 of `passes` (PassScope around each written-out pass).
+  static SweepPass sweepPass(std::size_t index, std::size_t passes, bool ramp = false);
   // Rapid over `start` at the safe height, then feed down to z + start.z().
   void approachPassStart(const Eigen::Vector3d& start, double z, ValueId safe, ValueId feed);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);

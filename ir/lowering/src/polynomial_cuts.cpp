@@ -129,8 +129,9 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
 
   Eigen::Vector3d first = spans.front().start();
   std::vector<double> depths = passDepths(cut);
-  for (double depth : depths) {
-    double z = beginPass(depth, depths.size());
+  for (std::size_t k = 0; k < depths.size(); ++k) {
+    PassScope pass(builder_, sweepPass(k, depths.size()));
+    double z = beginPass(depths[k], depths.size());
     approachPassStart(first, z, safeValue, feedValue);
     for (const PolynomialMove& span : spans) {
       std::vector<ValueId> operands{builder_.constant(span.end.x()),

@@ -67,9 +67,12 @@ void Rewriter::rewriteRegion(const Region& region) {
   for (InstructionId id : region.instructions) {
     // What a visit makes in place of an instruction comes from its statement.
     frontend::SourceSpan outer = visiting_;
+    SweepPass outerPass = visitingPass_;
     visiting_ = source_.instructions[id].span;
+    visitingPass_ = source_.instructions[id].pass;
     visit(source_.instructions[id]);
     visiting_ = outer;
+    visitingPass_ = outerPass;
   }
   leaveRegion();
 }
@@ -122,6 +125,7 @@ ValueId Rewriter::append(Instruction instruction) {
   currentRegion().instructions.push_back(id);
   if (!instruction.span.valid()) {
     instruction.span = visiting_;
+    instruction.pass = visitingPass_;
   }
   output_.instructions.push_back(std::move(instruction));
   return output_.instructions.back().result;
@@ -135,6 +139,7 @@ ValueId Rewriter::emit(const Instruction& instruction, std::vector<ValueId> oper
   copy.index = instruction.index;
   copy.text = instruction.text;
   copy.span = instruction.span;
+  copy.pass = instruction.pass;
   return append(std::move(copy));
 }
 
@@ -159,6 +164,7 @@ ValueId Rewriter::beginRegions(const Instruction& instruction, std::vector<Value
   copy.number = instruction.number;
   copy.index = instruction.index;
   copy.span = instruction.span;
+  copy.pass = instruction.pass;
   copy.regions.resize(instruction.regions.size());
   ValueId result = append(std::move(copy));
   insertion_.push_back({static_cast<InstructionId>(output_.instructions.size() - 1), 0});

@@ -84,6 +84,7 @@ private:
   std::vector<std::pair<InstructionId, std::size_t>> insertion_;
   bool changed_ = false;
   frontend::SourceSpan visiting_; // of the source instruction being visited
+  SweepPass visitingPass_;        // and its pass
 };
 
 } // namespace cncc::ir::passes

@@ -28,7 +28,7 @@ public:
 
   // `%i = loop %low, %high { ... }`: returns the induction variable; the
   // insertion point moves into the body until endLoop().
-  ValueId beginLoop(ValueId low, ValueId high);
+  ValueId beginLoop(ValueId low, ValueId high, LoopRole role = LoopRole::Statement);
   void endLoop();
   // `if %c { ... } else { ... }`: the insertion point moves into the then
   // region; beginElse() moves it to the else region; endIf() leaves.
@@ -69,6 +69,9 @@ public:
   // The CDL span every instruction appended from now on comes from.
   void setSpan(frontend::SourceSpan span) { span_ = span; }
   frontend::SourceSpan span() const { return span_; }
+  // The written-out sweep pass every instruction appended from now on is for.
+  void setPass(SweepPass pass) { pass_ = pass; }
+  SweepPass pass() const { return pass_; }
 
   Function finish();
   const Function& function() const { return function_; }
@@ -81,6 +84,7 @@ private:
   // The regions being filled: (instruction, region index); empty = body.
   std::vector<std::pair<InstructionId, std::size_t>> insertion_;
   frontend::SourceSpan span_;
+  SweepPass pass_;
 };
 
 // Sets the builder's span for the life of the scope (a statement being
@@ -98,6 +102,22 @@ public:
 private:
   FunctionBuilder& builder_;
   frontend::SourceSpan outer_;
+};
+
+// Sets the builder's sweep pass for the life of the scope (one pass of a
+// cut written out), then puts the one before it back.
+class PassScope {
+public:
+  PassScope(FunctionBuilder& builder, SweepPass pass) : builder_(builder), outer_(builder.pass()) {
+    builder_.setPass(pass);
+  }
+  ~PassScope() { builder_.setPass(outer_); }
+  PassScope(const PassScope&) = delete;
+  PassScope& operator=(const PassScope&) = delete;
+
+private:
+  FunctionBuilder& builder_;
+  SweepPass outer_;
 };
 
 } // namespace cncc::ir

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "cncc/frontend/source_span.h"
+#include "cncc/ir/sweep_pass.h"
 
 #include <cstdint>
 #include <limits>
@@ -52,6 +53,13 @@ inline bool mayFail(Opcode opcode) {
 
 // The immediate of `move.arc` (Instruction::index): its turning direction.
 enum class ArcTurn : std::uint32_t { Clockwise = 0, CounterClockwise = 1 };
+// The immediate of `loop` (Instruction::index): what made the loop, for
+// source maps (a loop the optimiser made keeps Statement).
+enum class LoopRole : std::uint32_t {
+  Statement = 0, // a `for` statement, or what its span's statement is
+  Passes = 1,    // the passes of a cut's sweep
+  Curve = 2      // the steps along a cut's curve
+};
 // The immediate of `coolant` (Instruction::index).
 enum class CoolantMode : std::uint32_t { Off = 0, Flood = 1, Mist = 2, Through = 3 };
 // "off", "flood", "mist", "through"; nullopt for another word.
@@ -83,7 +91,8 @@ struct Instruction {
                                // (54 .. 59, 54.1), Contouring tolerance (0: off),
                                // Compensation offset (left positive, 0: off)
   std::uint32_t index = 0;     // TableLoad, Nurbs, Spline: the table; Param: the parameter;
-                               // CutBegin: the cut; Arc: its ArcTurn; Tool: its length
+                               // CutBegin: the cut; Arc: its ArcTurn; Loop: its LoopRole;
+                               // Tool: its length
                                // offset register; Origin 54.1: P; Coolant: its CoolantMode;
                                // Compensation: the radius register
   std::string text;            // Comment, Alarm: the text
@@ -92,6 +101,8 @@ struct Instruction {
   // around the statements); not printed in the IR's text. What a source
   // map gives for the program lines printed from it.
   frontend::SourceSpan span;
+  // The written-out pass of a cut's sweep it was lowered for (sweep_pass.h).
+  SweepPass pass;
 };
 
 struct Parameter {

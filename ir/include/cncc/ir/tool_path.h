@@ -3,6 +3,7 @@
 #pragma once
 
 #include "cncc/frontend/source_span.h"
+#include "cncc/ir/sweep_pass.h"
 
 #include <cstdint>
 #include <string>
@@ -49,6 +50,7 @@ struct MachineEvent {
   std::uint32_t splineTable = 0;
   bool splineStart = false;
   frontend::SourceSpan span; // the instruction's (Instruction::span)
+  SweepPass pass;            // the instruction's (Instruction::pass)
 };
 
 struct ToolPath {

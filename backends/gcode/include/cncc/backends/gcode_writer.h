@@ -2,6 +2,7 @@
 // and G02/G03 blocks with modal coordinates.
 #pragma once
 
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/machine_setup.h"
 #include "cncc/ir/tool_path.h"
 
@@ -37,8 +38,8 @@ std::string writeGcode(const ir::ToolPath& path, const GcodeOptions& options);
 
 struct GcodeProgram {
   std::string text;
-  // The CDL span each line of `text` was printed from.
-  std::vector<frontend::SourceSpan> lineSpans;
+  // Where each line of `text` was printed from.
+  LineOrigins lineOrigins;
 };
 // The same program, with where each line comes from.
 GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& options);

@@ -23,6 +23,7 @@
 // its limits, a number beyond its format) is refused with the limit named.
 #pragma once
 
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/tnc_profile.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/ir.h"
@@ -54,8 +55,8 @@ struct HeidenhainProgramOptions {
 struct HeidenhainProgram {
   std::string text;                // empty when errors is not
   std::vector<std::string> errors; // each names the limit and the count
-  // The CDL span each line of `text` was printed from (invalid: the header).
-  std::vector<frontend::SourceSpan> lineSpans;
+  // Where each line of `text` was printed from (an invalid span: the header).
+  LineOrigins lineOrigins;
 };
 
 // The Q parameter of each part parameter: Q1, Q2, ... in order. More

@@ -18,6 +18,7 @@
 // refused with the limit and the count named.
 #pragma once
 
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/machine_setup.h"
 #include "cncc/ir/cut_geometry.h"
 #include "cncc/ir/ir.h"
@@ -49,9 +50,9 @@ struct LinuxcncProgramOptions {
 struct LinuxcncProgram {
   std::string text;                // empty when errors is not
   std::vector<std::string> errors; // each names the limit and the count
-  // The CDL span each line of `text` was printed from (invalid: before any
+  // Where each line of `text` was printed from (an invalid span: before any
   // statement).
-  std::vector<frontend::SourceSpan> lineSpans;
+  LineOrigins lineOrigins;
 };
 
 // The named parameter of each part parameter, without `#<>`: `_depth`;

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "cncc/backends/controller_profile.h"
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/machine_setup.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/lowering_options.h"
@@ -54,9 +55,9 @@ struct MacroProgram {
   std::string text;                // empty when errors is not
   std::vector<std::string> errors; // each names the limit and the count
   MacroProgramStatistics statistics;
-  // The CDL span each line of `text` was printed from (invalid: the part's
+  // Where each line of `text` was printed from (an invalid span: the part's
   // header, before any statement).
-  std::vector<frontend::SourceSpan> lineSpans;
+  LineOrigins lineOrigins;
   std::map<int, VariableMeaning> variables; // by variable number
 };
 

@@ -3,6 +3,7 @@
 // BSPLINE (PW/PL), CSPLINE or ASPLINE blocks its table holds.
 #pragma once
 
+#include "cncc/backends/line_spans.h"
 #include "cncc/backends/machine_setup.h"
 #include "cncc/ir/cut_geometry.h"
 #include "cncc/ir/lowering_options.h"
@@ -51,8 +52,8 @@ struct SinumerikProgram {
   // The cut each line of the main program belongs to (index 0 is line 1).
   std::vector<std::optional<std::size_t>> cutOfLine;
   std::vector<SinumerikCutSummary> cuts;
-  // The CDL span each line of `text` was printed from.
-  std::vector<frontend::SourceSpan> lineSpans;
+  // Where each line of `text` was printed from.
+  LineOrigins lineOrigins;
 };
 
 // `10`, `0.5`, `-1.25`: at most `decimals` decimals, no trailing zeros and
