@@ -142,13 +142,21 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
     }
     sagitta = std::isfinite(sagitta) ? std::max(sagitta, backends::executedArcSagitta)
                                      : backends::executedArcSagitta;
-    if (!(ir::flattenedEventCount(path, sagitta) <= backends::maximumMeasuredPoints)) {
-      output.driverError(
-          fmt::format("the part cannot be verified: its path has more than {:.0f} points to "
-                      "measure (arcs as chords within {:g}); verify a smaller part, or fewer "
-                      "turns",
-                      backends::maximumMeasuredPoints, sagitta));
-      return std::nullopt;
+    // The program's arcs are the part's own (every target prints them as
+    // arcs), measured as chords of controllerArcSagitta: refused here,
+    // before the program runs, when those alone pass the limit.
+    double executedSagitta = ir::partUnits(part) == ir::PartUnits::Inches
+                                 ? backends::controllerArcSagitta / 25.4
+                                 : backends::controllerArcSagitta;
+    for (double chordError : {sagitta, executedSagitta}) {
+      if (!(ir::flattenedEventCount(path, chordError) <= backends::maximumMeasuredPoints)) {
+        output.driverError(
+            fmt::format("the part cannot be verified: its path has more than {:.0f} points to "
+                        "measure (arcs as chords within {:g}); verify a smaller part, or fewer "
+                        "turns",
+                        backends::maximumMeasuredPoints, chordError));
+        return std::nullopt;
+      }
     }
     return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
                          compensationRadii(programmed, false), compensationRadii(programmed, true)};

@@ -18,11 +18,7 @@ namespace cncc::backends {
 
 namespace {
 
-// Arcs are flattened this finely (mm): below a tenth of the rounding room
-// the arc output leaves inside a tolerance, so the chords add little to the
-// deviation measured, and coarse enough that the many turns of a helix
-// stay quick to measure.
-constexpr double kArcSagitta = 2e-5;
+constexpr double kArcSagitta = controllerArcSagitta;
 
 ProgramExecution failed(std::string text, int line, std::string message) {
   ProgramExecution execution;

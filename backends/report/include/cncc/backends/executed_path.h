@@ -52,6 +52,11 @@ public:
 // The tool path itself, exactly: what a host run (the jit target) executes;
 // its arcs as chords within `arcSagitta` of them.
 inline constexpr double executedArcSagitta = 1e-5;
+// A program's executed arcs are flattened this finely (mm; a 25.4th in an
+// inch part): below a tenth of the rounding room the arc output leaves
+// inside a tolerance, so the chords add little to the deviation measured,
+// and coarse enough that the many turns of a helix stay quick to measure.
+inline constexpr double controllerArcSagitta = 2e-5;
 // The points of an executed path (arcs flattened) that verification measures
 // at most: measuring costs a few microseconds a point, and a 2.5D part
 // within a controller's range has far fewer.
