@@ -2,6 +2,8 @@
 // the written-out pass of a cut's sweep (Instruction::pass, carried to the
 // machine events and through the optimiser), and what made each loop
 // (LoopRole), which source maps give for every program line.
+#include "../lowering/lowered_text.h"
+
 #include "cncc/lowering/lowering.h"
 
 #include "cncc/backends/line_spans.h"
@@ -28,30 +30,13 @@ constexpr const char* sweptSquare = R"(part p(depth = 3) {
   curve polar(r = 10 + cos(3*t), t = 0 .. 2*pi) sweep depth=depth step=1 entry=ramp
 })";
 
-struct Lowered {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-  std::optional<LoweredPart> part;
-};
+using Lowered = test_support::LoweredText;
 
 std::unique_ptr<Lowered> lower(const std::string& text, bool controllerLoops) {
-  auto result = std::make_unique<Lowered>();
-  frontend::FileId id = result->sources.addFile("pass.cdl", text);
-  frontend::CheckOptions options;
-  options.importPaths = {CNCC_STDLIB_DIR};
-  options.requirePart = true;
-  result->program = frontend::checkProgram(result->sources, id, options, result->diagnostics);
-  EXPECT_FALSE(result->diagnostics.hasErrors());
   LoweringOptions lowering;
   lowering.controllerLoops = controllerLoops;
   lowering.coordinateIncrement = 0.001;
-  if (result->program && result->program->selectedPart != nullptr) {
-    result->part = lowerPartWithCuts(*result->program, *result->program->selectedPart,
-                                     result->diagnostics, lowering);
-  }
-  EXPECT_TRUE(result->part);
-  return result;
+  return test_support::lowerText(text, lowering, "pass.cdl");
 }
 
 // The (pass, ramp) of each feed move, with repeats dropped.

@@ -2,6 +2,8 @@
 // (LoweredPart::fixedParameters): a loop bound and a sampled polar curve's
 // radius fix theirs, a sweep depth computed on the controller does not; the
 // warning is given for controller-side targets only.
+#include "lowered_text.h"
+
 #include "cncc/lowering/lowering.h"
 
 #include "cncc/frontend/sema.h"
@@ -21,32 +23,15 @@
 namespace cncc::ir {
 namespace {
 
-struct Lowered {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-  std::optional<LoweredPart> part;
-};
+using Lowered = test_support::LoweredText;
 
 std::unique_ptr<Lowered> lower(const std::string& text, bool controllerLoops,
                                int maximumLoopNesting = 0) {
-  auto result = std::make_unique<Lowered>();
-  frontend::FileId id = result->sources.addFile("fixed.cdl", text);
-  frontend::CheckOptions options;
-  options.importPaths = {CNCC_STDLIB_DIR};
-  options.requirePart = true;
-  result->program = frontend::checkProgram(result->sources, id, options, result->diagnostics);
-  EXPECT_FALSE(result->diagnostics.hasErrors());
   LoweringOptions lowering;
   lowering.controllerLoops = controllerLoops;
   lowering.maximumLoopNesting = maximumLoopNesting;
   lowering.coordinateIncrement = 0.001;
-  if (result->program && result->program->selectedPart != nullptr) {
-    result->part = lowerPartWithCuts(*result->program, *result->program->selectedPart,
-                                     result->diagnostics, lowering);
-  }
-  EXPECT_TRUE(result->part);
-  return result;
+  return test_support::lowerText(text, lowering, "fixed.cdl");
 }
 
 std::vector<std::string> fixedNames(const LoweredPart& part) {
