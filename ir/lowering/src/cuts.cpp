@@ -7,6 +7,7 @@
 #include "printed_grid.h"
 
 #include "cncc/geom/arc_length.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 
 #include <fmt/format.h>
@@ -240,7 +241,15 @@ geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const ge
                                                     double budget) {
   try {
     checkChordCount(cut, curve, budget);
-    return geom::discretiseByChordTolerance(curve, budget, maximumChordsPerCut);
+    geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations);
+    return geom::discretiseByChordTolerance(budgeted, budget, maximumChordsPerCut);
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    fail(cut.span,
+         fmt::format("choosing this curve's points within its tolerance asks more than {} points "
+                     "of it; that is the limit of one cut (a curve that turns this fast needs "
+                     "more points than a program can hold)",
+                     error.limit),
+         DiagnosticKind::ProgramTooLarge);
   } catch (const geom::ChordLimitExceeded& error) {
     fail(cut.span,
          fmt::format("this curve needs more than {} chords within its tolerance; that is the "

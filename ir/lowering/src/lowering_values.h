@@ -88,6 +88,13 @@ struct SampleLocation {
 };
 
 // Consecutive samples on the same piece and span: one table, one loop.
+// The points a search over a cut's curve (the chord walk, a spline fit) may
+// ask of it: a few seconds of a curve the front end evaluates. A cut of the
+// chord limit on a smooth curve takes a few million; a curve that changes
+// faster than the chord estimate's samples see (a cosine of 1e6 t) would
+// take hours.
+inline constexpr std::size_t maximumCurveEvaluations = 20'000'000;
+
 struct SampleRun {
   std::size_t piece = 0;
   std::size_t span = 0;

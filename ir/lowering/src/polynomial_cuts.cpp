@@ -13,6 +13,7 @@
 #include "printed_grid.h"
 
 #include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/polynomial_move.h"
 
@@ -65,7 +66,9 @@ std::vector<PolynomialMove> PartLowering::polynomialSpans(const CutStmt& cut,
       geom::BSplineFitOptions fit;
       fit.degree = 3;
       fit.tolerance = budget.forPoints();
-      spans = polynomialMoves(geom::fitBSpline(*curve.geometry, fit).spline);
+      // A fit asks derivatives too, each some ten points' work.
+      geom::BudgetedCurve budgeted(*curve.geometry, maximumCurveEvaluations / 8);
+      spans = polynomialMoves(geom::fitBSpline(budgeted, fit).spline);
     }
   } catch (const geom::GeometryError& error) {
     fail(cut.span,

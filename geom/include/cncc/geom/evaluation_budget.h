@@ -1,0 +1,45 @@
+// A bound on the work of a search over a curve: the points, derivatives
+// asked of it. A curve that changes faster than any sampling resolves (a
+// cosine of 1e6 t) makes every chord of a walk cost thousands of points,
+// and a walk of the chord limit hours.
+#pragma once
+
+#include "cncc/geom/curve.h"
+#include "cncc/geom/geometry_error.h"
+
+#include <cstddef>
+
+namespace cncc::geom {
+
+// Thrown by BudgetedCurve past its limit.
+class EvaluationBudgetExceeded : public GeometryError {
+public:
+  explicit EvaluationBudgetExceeded(std::size_t limit);
+  std::size_t limit;
+};
+
+// `curve`, counting what is asked of it (points and derivatives) and
+// throwing EvaluationBudgetExceeded past `limit`. It refers to `curve`,
+// which must outlive it.
+class BudgetedCurve : public Curve {
+public:
+  BudgetedCurve(const Curve& curve, std::size_t limit) : curve_(curve), limit_(limit) {}
+
+  ParameterRange domain() const override { return curve_.domain(); }
+  Eigen::Vector3d point(double t) const override;
+  Eigen::Vector3d derivative(double t) const override;
+  Eigen::Vector3d secondDerivative(double t) const override;
+  CurveDerivatives derivatives(double t) const override;
+  std::vector<double> breakpoints() const override { return curve_.breakpoints(); }
+
+  std::size_t used() const { return used_; }
+
+private:
+  void count() const;
+
+  const Curve& curve_;
+  std::size_t limit_;
+  mutable std::size_t used_ = 0;
+};
+
+} // namespace cncc::geom
