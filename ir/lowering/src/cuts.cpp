@@ -393,14 +393,16 @@ std::vector<SampleRun> PartLowering::sampleRuns(const CutCurve& curve,
 // run's locals. A run of one point is folded on the host anyway.
 const std::array<std::uint32_t, 3>*
 PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const CutStmt& cut) {
+  // Decided once per run (each pass emits the run again), either way.
+  auto known = hostPointTables_.find(run.localTable);
+  if (known != hostPointTables_.end()) {
+    return known->second ? &*known->second : nullptr;
+  }
+  std::optional<std::array<std::uint32_t, 3>>& decided = hostPointTables_[run.localTable];
   const CurvePiece& piece = curve.pieces[run.piece];
   if (run.locals.size() < 2 || piece.value->kind != CurveKind::Nurbs ||
       spanLiteralsFit(piece.spans[run.span], cut)) {
     return nullptr;
-  }
-  auto known = hostPointTables_.find(run.localTable);
-  if (known != hostPointTables_.end()) {
-    return &known->second;
   }
   std::array<std::vector<double>, 3> coordinates;
   for (double local : run.locals) {
@@ -412,10 +414,9 @@ PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const
     coordinates[1].push_back(point.y.constant);
     coordinates[2].push_back(point.z.constant);
   }
-  std::array<std::uint32_t, 3> tables = {builder_.addTable(coordinates[0]),
-                                         builder_.addTable(coordinates[1]),
-                                         builder_.addTable(coordinates[2])};
-  return &hostPointTables_.emplace(run.localTable, tables).first->second;
+  decided = {builder_.addTable(coordinates[0]), builder_.addTable(coordinates[1]),
+             builder_.addTable(coordinates[2])};
+  return &*decided;
 }
 
 // One lap along the runs, its z going from zFrom to zTo in proportion to the

@@ -564,8 +564,9 @@ private:
   // value (for the transforms of a named curve).
   std::map<const frontend::Declaration*, std::set<std::string>> parameterNames_;
   std::map<const frontend::Declaration*, const frontend::Expr*> letValues_;
-  // hostPointTables, by the run's table of locals.
-  std::map<std::uint32_t, std::array<std::uint32_t, 3>> hostPointTables_;
+  // hostPointTables, by the run's table of locals (nullopt: the controller
+  // evaluates the run's span).
+  std::map<std::uint32_t, std::optional<std::array<std::uint32_t, 3>>> hostPointTables_;
   std::vector<FixedParameter> fixedParameters_;
   // Set while the defaults are only checked, not built into the program.
   bool checkingDefaults_ = false;
