@@ -89,6 +89,14 @@ void FunctionBuilder::endLoop() {
   insertion_.pop_back();
 }
 
+void FunctionBuilder::endLoopAdvancingTo(ValueId next) {
+  Instruction instruction;
+  instruction.opcode = Opcode::LoopNext;
+  instruction.operands = {next};
+  append(std::move(instruction), ValueType::None);
+  endLoop();
+}
+
 void FunctionBuilder::beginIf(ValueId condition) {
   Instruction instruction;
   instruction.opcode = Opcode::If;

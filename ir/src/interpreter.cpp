@@ -80,6 +80,8 @@ private:
     case Opcode::Loop:
       runLoop(instruction);
       return;
+    case Opcode::LoopNext:
+      return; // read by the loop when its body is done
     case Opcode::If:
       runRegion(instruction.regions[value(operands[0]) != 0 ? 0 : 1]);
       return;
@@ -137,9 +139,30 @@ private:
     if (!std::isfinite(low) || !std::isfinite(high)) {
       throw InterpreterError("a loop bound is not a finite number");
     }
+    ValueId advance = loopAdvance(function_, loop);
+    if (advance.valid()) {
+      runAdvancingLoop(loop, low, high, advance);
+      return;
+    }
     for (double i = low; i <= high; ++i) {
       values_[loop.result.index] = i;
       runRegion(loop.regions[0]);
+    }
+  }
+
+  // The variable runs from low while below high, taking the value of the
+  // body's loop.next after each pass; a next value that does not exceed it
+  // would never end the loop.
+  void runAdvancingLoop(const Instruction& loop, double low, double high, ValueId advance) {
+    for (double u = low; u < high;) {
+      values_[loop.result.index] = u;
+      runRegion(loop.regions[0]);
+      double next = value(advance);
+      if (!(next > u)) {
+        throw InterpreterError(
+            fmt::format("a loop's variable does not advance: {} after {}", next, u));
+      }
+      u = next;
     }
   }
 

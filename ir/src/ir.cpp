@@ -44,3 +44,15 @@ std::optional<CoolantMode> coolantModeNamed(std::string_view name) {
 }
 
 } // namespace cncc::ir
+
+namespace cncc::ir {
+
+ValueId loopAdvance(const Function& function, const Instruction& loop) {
+  if (loop.opcode != Opcode::Loop || loop.regions.empty() || loop.regions[0].instructions.empty()) {
+    return {};
+  }
+  const Instruction& last = function.instructions[loop.regions[0].instructions.back()];
+  return last.opcode == Opcode::LoopNext && !last.operands.empty() ? last.operands[0] : ValueId{};
+}
+
+} // namespace cncc::ir

@@ -7,6 +7,7 @@
 #include <map>
 #include <queue>
 #include <set>
+#include <tuple>
 
 namespace cncc::ir {
 
@@ -310,9 +311,13 @@ private:
       }
       return;
     }
-    const std::vector<InstructionId>& definedIn = layout_.loops[definitionId(value)];
-    if (loops.size() > definedIn.size()) {
-      position = std::max(position, layout_.loopEnd.at(loops[definedIn.size()]));
+    // A loop's variable is defined inside its own loop: a read in its body
+    // is not a read from an outer value, kept to the loop's end (the loop
+    // keeps a counting variable alive to its end itself).
+    std::size_t definedDepth =
+        layout_.loops[definitionId(value)].size() + (instruction.opcode == Opcode::Loop ? 1 : 0);
+    if (loops.size() > definedDepth) {
+      position = std::max(position, layout_.loopEnd.at(loops[definedDepth]));
     }
     lastUse_[value.index] = std::max(lastUse_[value.index], position);
   }
@@ -337,7 +342,10 @@ private:
         recordUse(instruction.operands[i], bound ? layout_.loopEnd.at(id) : position,
                   layout_.loops[id]);
       }
-      if (instruction.opcode == Opcode::Loop) {
+      // A counting loop reads its variable at its end (`#i=#i+1`); an
+      // advancing one only writes it there (`#u=#next`), so its value may
+      // take the variable once the body has read it for the last time.
+      if (instruction.opcode == Opcode::Loop && !loopAdvance(function_, instruction).valid()) {
         lastUse_[instruction.result.index] =
             std::max(lastUse_[instruction.result.index], layout_.loopEnd.at(id));
       }
@@ -454,21 +462,57 @@ private:
                      [](const Interval& a, const Interval& b) { return a.start < b.start; });
     std::set<std::size_t> freeSlots; // indices into `free`; beyond it: variables that do not exist
     std::size_t slotCount = 0;
-    using Active = std::pair<int, std::size_t>; // (end, slot)
+    // The value an advancing loop's variable takes next goes to the
+    // variable's own slot where it is free: no `#u=#next` at the loop's end.
+    std::map<std::uint32_t, std::uint32_t> advancesTo; // next value -> loop variable
+    for (InstructionId id : layout_.order) {
+      const Instruction& instruction = function_.instructions[id];
+      if (ValueId next = loopAdvance(function_, instruction); next.valid() && needed_[id]) {
+        advancesTo[next.index] = instruction.result.index;
+      }
+    }
+    std::map<std::uint32_t, std::uint32_t> nextOfVariable; // loop variable -> next value
+    for (auto [next, variable] : advancesTo) {
+      nextOfVariable[variable] = next;
+    }
+    std::map<std::uint32_t, std::size_t> slotOfValue;
+    std::map<std::uint32_t, std::size_t> reservedSlots; // next value -> its loop variable's slot
+    using Active = std::tuple<int, std::size_t, std::uint32_t>; // (end, slot, value)
     std::priority_queue<Active, std::vector<Active>, std::greater<>> active;
     for (const Interval& interval : intervals) {
-      while (!active.empty() && active.top().first <= interval.start) {
-        freeSlots.insert(active.top().second);
+      while (!active.empty() && std::get<0>(active.top()) <= interval.start) {
+        auto [end, freed, value] = active.top();
         active.pop();
+        // Kept for the value the loop variable advances to, if still to come.
+        if (auto next = nextOfVariable.find(value);
+            next != nextOfVariable.end() && !slotOfValue.contains(next->second)) {
+          reservedSlots[next->second] = freed;
+        } else {
+          freeSlots.insert(freed);
+        }
       }
       std::size_t slot;
-      if (freeSlots.empty()) {
+      std::optional<std::size_t> preferred;
+      if (auto loopVariable = advancesTo.find(interval.value.index);
+          loopVariable != advancesTo.end()) {
+        if (auto own = slotOfValue.find(loopVariable->second); own != slotOfValue.end()) {
+          preferred = own->second;
+        }
+      }
+      if (auto reserved = reservedSlots.find(interval.value.index);
+          reserved != reservedSlots.end()) {
+        slot = reserved->second;
+        reservedSlots.erase(reserved);
+      } else if (preferred && freeSlots.erase(*preferred) > 0) {
+        slot = *preferred;
+      } else if (freeSlots.empty()) {
         slot = slotCount++;
       } else {
         slot = *freeSlots.begin();
         freeSlots.erase(freeSlots.begin());
       }
-      active.push({interval.end, slot});
+      slotOfValue[interval.value.index] = slot;
+      active.push({interval.end, slot, interval.value.index});
       if (slot < free.size()) {
         allocation_.variableOfValue[interval.value.index] = free[slot];
         taken.insert(free[slot]);

@@ -60,9 +60,15 @@ private:
   void problem(std::string message) { problems_.push_back(std::move(message)); }
 
   // `visible` holds the values defined so far on the way to this point.
-  void verifyRegion(const Region& region, std::vector<bool>& visible) {
+  // `loopBody`: the region is a loop's body, which alone may end in loop.next.
+  void verifyRegion(const Region& region, std::vector<bool>& visible, bool loopBody = false) {
     std::vector<ValueId> definedHere;
     for (InstructionId id : region.instructions) {
+      if (id < function_.instructions.size() &&
+          function_.instructions[id].opcode == Opcode::LoopNext &&
+          !(loopBody && id == region.instructions.back())) {
+        problem(fmt::format("instruction {} (loop.next) is not the last of a loop's body", id));
+      }
       if (id >= function_.instructions.size() || !placed_.insert(id).second) {
         problem(fmt::format("instruction {} is missing or placed twice", id));
         continue;
@@ -218,7 +224,7 @@ private:
       visible[instruction.result.index] = true;
     }
     for (const Region& region : instruction.regions) {
-      verifyRegion(region, visible);
+      verifyRegion(region, visible, instruction.opcode == Opcode::Loop);
     }
     if (isLoop) {
       visible[instruction.result.index] = false;

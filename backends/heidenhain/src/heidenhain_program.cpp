@@ -216,6 +216,7 @@ private:
       return;
     case Opcode::CutBegin: // the cut's own comment says it
     case Opcode::Param:
+    case Opcode::LoopNext: // printed by its loop (printLoop)
       return;
     default:
       break;
@@ -481,9 +482,21 @@ private:
     blocks_.label(top);
     std::string high = blocks_.operand(instruction.operands[1]);
     line(fmt::format("FN 11: IF +{} GT {} GOTO LBL {}", index, high, end));
+    ir::ValueId advance = ir::loopAdvance(function_, instruction);
+    if (advance.valid()) { // runs while below high: no GE test, so GT and EQU
+      line(fmt::format("FN 9: IF +{} EQU {} GOTO LBL {}", index, high, end));
+    }
     printRegion(instruction.regions[0]);
     blocks_.releaseScratch();
-    line(fmt::format("{} = {} + 1", index, index));
+    if (advance.valid()) {
+      bool computedInPlace =
+          allocation_.inVariable(advance) && formulas_.variable(advance) == index;
+      if (!computedInPlace) {
+        blocks_.assign(index, advance);
+      }
+    } else {
+      line(fmt::format("{} = {} + 1", index, index));
+    }
     blocks_.jump(top);
     blocks_.label(end);
   }

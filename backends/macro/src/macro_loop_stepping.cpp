@@ -24,8 +24,9 @@ SteppedLoops stepLoopsByTheirScale(const ir::Function& function, ir::Allocation&
   };
   SteppedLoops stepped;
   for (const ir::Instruction& loop : function.instructions) {
-    if (loop.opcode != Opcode::Loop || !constant(loop.operands[0]) ||
-        users[loop.result.index].size() != 1 || !allocation.inVariable(loop.result)) {
+    if (loop.opcode != Opcode::Loop || ir::loopAdvance(function, loop).valid() ||
+        !constant(loop.operands[0]) || users[loop.result.index].size() != 1 ||
+        !allocation.inVariable(loop.result)) {
       continue;
     }
     const ir::Instruction& product = function.instructions[users[loop.result.index].front()];

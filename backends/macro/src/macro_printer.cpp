@@ -230,6 +230,7 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
     return;
   case Opcode::CutBegin: // the cut's own comment says it
   case Opcode::Param:
+  case Opcode::LoopNext: // printed by its loop (stepLoop)
     return;
   default:
     break;
@@ -283,13 +284,21 @@ void MacroProgramPrinter::openLoop(const ir::Instruction& instruction, const std
   } else {
     line(assignment(index, expressions_.at(expressions_.value(instruction.operands[0]),
                                            MacroPosition::AssignedValue)));
+    bool advancing = ir::loopAdvance(function_, instruction).valid();
     head(fmt::format(
-        "[{} LE {}]", index,
+        "[{} {} {}]", index, advancing ? "LT" : "LE",
         expressions_.at(expressions_.value(instruction.operands[1]), MacroPosition::Compared)));
   }
 }
 
 void MacroProgramPrinter::stepLoop(const ir::Instruction& instruction, const std::string& index) {
+  if (ir::ValueId advance = ir::loopAdvance(function_, instruction); advance.valid()) {
+    std::string next = expressions_.at(expressions_.value(advance), MacroPosition::AssignedValue);
+    if (next != index) { // the next value was computed into the variable itself
+      line(assignment(index, next));
+    }
+    return;
+  }
   auto stepped = steppedLoops_.find(instruction.result.index);
   std::string next;
   if (stepped != steppedLoops_.end() && std::isnan(stepped->second)) {

@@ -93,7 +93,7 @@ void MacroProgramPrinter::noteVariable(int variable, const std::string& upperMea
 void MacroProgramPrinter::printValueVariables() {
   std::set<std::uint32_t> bounds;
   for (const ir::Instruction& instruction : function_.instructions) {
-    if (instruction.opcode == Opcode::Loop) {
+    if (instruction.opcode == Opcode::Loop && !ir::loopAdvance(function_, instruction).valid()) {
       bounds.insert(instruction.operands[1].index);
     }
   }
@@ -109,8 +109,9 @@ void MacroProgramPrinter::printValueVariables() {
     }
     std::string meaning = "WORK VALUES";
     if (instruction.opcode == Opcode::Loop) {
-      meaning =
-          steppedLoops_.contains(instruction.result.index) ? "CURVE PARAMETERS" : "LOOP INDEXES";
+      bool parameter = steppedLoops_.contains(instruction.result.index) ||
+                       ir::loopAdvance(function_, instruction).valid();
+      meaning = parameter ? "CURVE PARAMETERS" : "LOOP INDEXES";
     } else if (bounds.contains(instruction.result.index)) {
       meaning = "STEP COUNTS";
     }

@@ -1,5 +1,8 @@
 #include "affine.h"
 
+#include <Eigen/SVD>
+
+#include <algorithm>
 #include <cmath>
 
 namespace cncc::ir::lowering {
@@ -29,6 +32,11 @@ Affine Affine::after(const Affine& inner) const {
   result.offset = linear * inner.offset + offset;
   result.zScale = zScale * inner.zScale;
   return result;
+}
+
+double Affine::stretch() const {
+  Eigen::JacobiSVD<Eigen::Matrix2d> decomposition(linear);
+  return std::max(decomposition.singularValues()(0), std::abs(zScale));
 }
 
 bool Affine::isIdentity() const {

@@ -24,6 +24,9 @@ struct Affine {
   // This map applied after `inner`.
   Affine after(const Affine& inner) const;
   bool isIdentity() const;
+  // The most it lengthens a vector: the largest singular value of the
+  // plane's map, or the z scale's magnitude.
+  double stretch() const;
   Eigen::Vector3d apply(const Eigen::Vector3d& point) const;
   // A direction (derivative) is mapped without the offset.
   Eigen::Vector3d applyToDirection(const Eigen::Vector3d& direction) const;

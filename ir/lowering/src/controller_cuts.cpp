@@ -540,7 +540,9 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       }
     }
     geom::PolynomialSpan span = piece.spans[segment.span];
-    if (!spanLiteralsFit(cleanedSpan(span), cut)) {
+    double stretch = segment.moved != nullptr ? std::abs(segment.moved->norm.constant)
+                                              : piece.transform.stretch();
+    if (!spanLiteralsFit(cleanedSpan(span), cut, stretch)) {
       return std::nullopt; // the tables, with the span's points computed on the host
     }
     auto own =
@@ -586,6 +588,13 @@ void PartLowering::emitControllerSegment(const CutCurve& curve, const Controller
                        : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
                                          : pointAt(curve, segment.piece, segment.span, end, cut);
     move(runtimeOffset_ ? offsetSegmentEnd(curve, segment, true, point) : point, Scalar::of(1));
+    return;
+  }
+  if (segment.stepPerPoint && !runtimeOffset_) {
+    emitRationalSpanWalk(segment, [&](const CurvePoint& point, Scalar share) {
+      builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
+                    arithmetic_.value(arithmetic_.add(heightAt(share), point.z)), feed);
+    });
     return;
   }
   ValueId count = arithmetic_.value(stepsOf(segment));

@@ -133,10 +133,14 @@ homogeneousBezierPoints(const SpanControlPoints& span, const std::vector<Polynom
   return homogeneous;
 }
 
-// The steps rationalSpanSteps asks for (before rounding up) over the
-// span's homogeneous Bezier control points.
-Scalar chordSteps(Arithmetic& math, const SpanControlPoints& span, const ControllerSegment& segment,
-                  double budget, Scalar norm) {
+struct SpanBounds {
+  Scalar steps;          // what rationalSpanSteps asks for, before rounding up
+  Scalar smallestWeight; // a positive lower bound of the weights
+};
+
+// The bounds over the span's homogeneous Bezier control points.
+SpanBounds chordSteps(Arithmetic& math, const SpanControlPoints& span,
+                      const ControllerSegment& segment, double budget, Scalar norm) {
   std::size_t count = span.q.size();
   std::size_t points = span.basis.front().size();
   // The Bezier control points: Bernstein coefficients of the basis functions.
@@ -183,8 +187,9 @@ Scalar chordSteps(Arithmetic& math, const SpanControlPoints& span, const Control
                          ? runtimeWeights[k]
                          : spanMath.smaller(smallestWeight, runtimeWeights[k]);
   }
-  return rationalSpanSteps(spanMath, points - 1, 1 / (8 * budget), norm, smallestWeight,
-                           radius.scalar(math));
+  return {rationalSpanSteps(spanMath, points - 1, 1 / (8 * budget), norm, smallestWeight,
+                            radius.scalar(math)),
+          smallestWeight};
 }
 
 } // namespace
@@ -303,8 +308,14 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
                                        math.binary(Opcode::Sub, w[d], Scalar::of(reference))});
   }
   SpanControlPoints span{value, q, w, qConstant, wConstant, active, dependent, basis};
-  Scalar steps = chordSteps(math, span, segment, budget, norm);
-  segment.stepCount = roundedUpSteps(steps);
+  SpanBounds bounds = chordSteps(math, span, segment, budget, norm);
+  segment.stepCount = roundedUpSteps(bounds.steps);
+  if (segment.rational && degree >= 3) {
+    segment.stepPerPoint = true;
+    segment.smallestWeight = bounds.smallestWeight;
+    segment.budget = budget;
+    segment.stretch = norm;
+  }
 }
 
 CurvePoint PartLowering::splitSpanPoint(const ControllerSegment& segment, Scalar u) {

@@ -100,6 +100,13 @@ struct ControllerSegment {
   std::array<Polynomial, 4> constantPart;
   std::vector<Polynomial> dependentBasis;
   std::vector<std::array<Scalar, 4>> dependentPoints;
+  // A rational split span walked with a step computed at each point
+  // (rational_span_walk.cpp), with a positive lower bound of its weights,
+  // the chord budget and the transform's stretch.
+  bool stepPerPoint = false;
+  Scalar smallestWeight = Scalar::of(1);
+  double budget = 0;
+  Scalar stretch = Scalar::of(1);
 };
 
 } // namespace cncc::ir::lowering

@@ -328,12 +328,13 @@ double literalRoundingError(const geom::PolynomialSpan& span, int digits) {
 
 } // namespace
 
-bool PartLowering::spanLiteralsFit(const geom::PolynomialSpan& span, const CutStmt& cut) {
+bool PartLowering::spanLiteralsFit(const geom::PolynomialSpan& span, const CutStmt& cut,
+                                   double stretch) {
   if (options_.literalSignificantDigits <= 0) {
     return true;
   }
   double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
-  return literalRoundingError(span, options_.literalSignificantDigits) <= tolerance / 4;
+  return stretch * literalRoundingError(span, options_.literalSignificantDigits) <= tolerance / 4;
 }
 
 CurvePoint PartLowering::spanPointAt(const geom::PolynomialSpan& span, Scalar u) {

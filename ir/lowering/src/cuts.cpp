@@ -401,7 +401,7 @@ PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const
   std::optional<std::array<std::uint32_t, 3>>& decided = hostPointTables_[run.localTable];
   const CurvePiece& piece = curve.pieces[run.piece];
   if (run.locals.size() < 2 || piece.value->kind != CurveKind::Nurbs ||
-      spanLiteralsFit(piece.spans[run.span], cut)) {
+      spanLiteralsFit(piece.spans[run.span], cut, piece.transform.stretch())) {
     return nullptr;
   }
   std::array<std::vector<double>, 3> coordinates;

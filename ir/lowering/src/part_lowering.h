@@ -249,7 +249,10 @@ private:
   CurvePoint spanPointAt(const geom::PolynomialSpan& span, Scalar u);
   // Whether the controller, reading the span's power-basis coefficients to
   // its significant digits, stays within a quarter of the cut's tolerance.
-  bool spanLiteralsFit(const geom::PolynomialSpan& span, const frontend::CutStmt& cut);
+  // `stretch`: how much the transform the controller applies after the
+  // span lengthens it (the rounding moves the points that much more).
+  bool spanLiteralsFit(const geom::PolynomialSpan& span, const frontend::CutStmt& cut,
+                       double stretch);
   CurvePoint transformed(const Affine& transform, const CurvePoint& point);
 
   // cuts.cpp
@@ -492,6 +495,16 @@ private:
   void guardWeights(const SymbolicList& weights);
   CurvePoint movedSplitSpanPoint(const ControllerSegment& segment, Scalar u);
   Scalar hornerOf(const std::vector<double>& polynomial, Scalar u);
+  // rational_span_walk.cpp
+  // The order-th derivative of a split span's homogeneous point (x, y, z, w) at u.
+  std::array<Scalar, 4> splitSpanDerivative(const ControllerSegment& segment, Scalar u, int order);
+  // The step from u whose chord keeps the budget; `point` is the homogeneous point at u.
+  Scalar rationalSpanStep(const ControllerSegment& segment, Scalar u,
+                          const std::array<Scalar, 4>& point);
+  // The span's loop, its parameter advanced by rationalSpanStep; moveTo
+  // gets each point and its parameter (the share of the span done).
+  void emitRationalSpanWalk(const ControllerSegment& segment,
+                            const std::function<void(const CurvePoint&, Scalar)>& moveTo);
 
   // symbolic_curves.cpp
   std::optional<std::vector<SymbolicPiece>> symbolicPieces(const frontend::Expr& curve);

@@ -88,7 +88,10 @@ private:
     std::optional<double> low = constantValue(output_, mapped(instruction.operands[0]));
     std::optional<double> high = constantValue(output_, mapped(instruction.operands[1]));
     if (low && high) {
-      std::optional<std::size_t> trips = passes::tripCount(*low, *high, 0);
+      bool advancing = loopAdvance(source_, instruction).valid();
+      std::optional<std::size_t> trips = advancing && *low >= *high
+                                             ? std::optional<std::size_t>(0)
+                                             : passes::tripCount(*low, *high, 0);
       if (trips && *trips == 0) {
         markChanged();
         return;

@@ -16,6 +16,9 @@ namespace {
 // The trip count of a loop that qualifies, read from the source function.
 std::optional<std::size_t> unrollableTrips(const Function& function, const Instruction& loop,
                                            const UnrollOptions& options) {
+  if (loopAdvance(function, loop).valid()) {
+    return std::nullopt; // its trip count is known only by running it
+  }
   std::optional<double> low = passes::constantValue(function, loop.operands[0]);
   std::optional<double> high = passes::constantValue(function, loop.operands[1]);
   if (!low || !high || passes::regionSize(function, loop.regions[0]) > options.maximumBodySize) {

@@ -187,6 +187,68 @@ TEST(IrTest, ParserReportsLineAndReason) {
   EXPECT_THAT(error.message, HasSubstr("not closed"));
 }
 
+// u = 0, then u + max(u, 0.25) capped at 1: moves at 0.25, 0.5, 1.
+constexpr const char* advancingLoopText = R"(func @advance() {
+  %0 = const 0
+  %1 = const 1
+  %2 = const 0.25
+  %3 = loop %0, %1 {
+    %4 = max %3, %2
+    %5 = add %3, %4
+    %6 = min %5, %1
+    move.feed %6, %3, %0, %1
+    loop.next %6
+  }
+}
+)";
+
+TEST(IrTest, AnAdvancingLoopRunsWhileBelowItsBound) {
+  ParseError error;
+  std::optional<Function> function = parseFunction(advancingLoopText, error);
+  ASSERT_TRUE(function) << error.message;
+  EXPECT_THAT(verifyFunction(*function), IsEmpty());
+  EXPECT_EQ(printFunction(*function), advancingLoopText);
+  std::vector<std::pair<double, double>> moves;
+  for (const MachineEvent& event : interpret(*function).events) {
+    moves.emplace_back(event.x, event.y);
+  }
+  EXPECT_THAT(moves, ElementsAre(std::pair{0.25, 0.0}, std::pair{0.5, 0.25}, std::pair{1.0, 0.5}));
+}
+
+TEST(IrTest, ALoopThatDoesNotAdvanceIsAnError) {
+  FunctionBuilder builder("stuck");
+  ValueId zero = builder.constant(0);
+  ValueId u = builder.beginLoop(zero, builder.constant(1));
+  builder.rapid(u, u, u);
+  builder.endLoopAdvancingTo(builder.binary(Opcode::Mul, u, zero));
+  try {
+    interpret(builder.finish());
+    ADD_FAILURE() << "ran";
+  } catch (const InterpreterError& failure) {
+    EXPECT_THAT(failure.what(), HasSubstr("does not advance: 0 after 0"));
+  }
+}
+
+TEST(IrTest, VerifierKeepsLoopNextAtTheEndOfALoopBody) {
+  ParseError error;
+  std::optional<Function> function = parseFunction(R"(func @misplaced() {
+  %0 = const 0
+  %1 = const 1
+  loop.next %1
+  %2 = loop %0, %1 {
+    loop.next %1
+    move.rapid %2, %0, %0
+  }
+}
+)",
+                                                   error);
+  ASSERT_TRUE(function) << error.message;
+  std::vector<std::string> problems = verifyFunction(*function);
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_THAT(problems[0], HasSubstr("(loop.next) is not the last of a loop's body"));
+  EXPECT_THAT(problems[1], HasSubstr("(loop.next) is not the last of a loop's body"));
+}
+
 TEST(IrTest, EveryOpcodeHasASpellingAndMeaning) {
   for (Opcode opcode : allOpcodes()) {
     EXPECT_FALSE(opcodeInfo(opcode).spelling.empty());

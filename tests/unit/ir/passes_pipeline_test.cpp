@@ -1,4 +1,5 @@
 // The pass registry, running passes by name, and the default pipeline.
+#include "cncc/ir/interpreter.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
@@ -77,6 +78,42 @@ TEST(PassesPipelineTest, DefaultPipelineReachesAFixedPoint) {
     EXPECT_FALSE(pass.run(function)) << pass.name << " still changes the result";
   }
   EXPECT_EQ(printFunction(function), once);
+}
+
+// A loop whose variable advances by a step it computes: no pass unrolls it
+// (its trip count is known only by running it) or moves its loop.next, and
+// the path is the same after every pass.
+TEST(PassesPipelineTest, AnAdvancingLoopKeepsItsPathThroughEveryPass) {
+  Function function = parsed(R"(func @advance(step = 0.25) {
+  %0 = const 0
+  %1 = const 1
+  %2 = param step
+  %3 = loop %0, %1 {
+    %4 = mul %2, %1
+    %5 = add %3, %4
+    %6 = min %5, %1
+    move.feed %6, %4, %0, %1
+    loop.next %6
+  }
+}
+)");
+  std::vector<MachineEvent> before = interpret(function).events;
+  ASSERT_EQ(before.size(), 4u);
+  std::vector<std::string> names;
+  for (const Pass& pass : allPasses()) {
+    names.emplace_back(pass.name);
+  }
+  ASSERT_TRUE(runPasses(function, names, [&](std::string_view name, const Function& after) {
+    EXPECT_TRUE(verifyFunction(after).empty()) << name;
+    std::vector<MachineEvent> events = interpret(after).events;
+    ASSERT_EQ(events.size(), before.size()) << name;
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      EXPECT_EQ(events[i].x, before[i].x) << name;
+    }
+  }));
+  std::string text = printFunction(function);
+  EXPECT_NE(text.find("loop.next"), std::string::npos) << text;
+  EXPECT_EQ(text.find("move.feed"), text.rfind("move.feed")) << "not unrolled: " << text;
 }
 
 } // namespace

@@ -159,6 +159,24 @@ OpcodeCase loopsCase() {
   return {"loops", builder.finish()};
 }
 
+// A loop whose variable advances by a step computed in its body (loop.next):
+// u = 0, 0.1, 0.3, 0.7 and then 1 (the step doubles, the last is cut short);
+// a second one that starts at its bound runs nothing.
+OpcodeCase advancingLoopCase() {
+  FunctionBuilder builder("advancing_loop");
+  ValueId start = builder.parameter(builder.addParameter("start", 0.1));
+  ValueId one = builder.constant(1);
+  ValueId u = builder.beginLoop(builder.constant(0), one, ir::LoopRole::Curve);
+  ValueId step = builder.binary(Opcode::Max, start, u);
+  ValueId next = builder.binary(Opcode::Min, builder.binary(Opcode::Add, u, step), one);
+  builder.feed(next, u, builder.constant(0), builder.constant(100));
+  builder.endLoopAdvancingTo(next);
+  ValueId never = builder.beginLoop(one, one);
+  builder.feed(never, never, never, builder.constant(100));
+  builder.endLoopAdvancingTo(builder.binary(Opcode::Add, never, one));
+  return {"advancing_loop", builder.finish()};
+}
+
 // Arcs from where the last move ended: a quarter counter-clockwise, a full
 // clockwise turn, a helical half turn; the radius a parameter, an alarm
 // when it is not positive.
@@ -257,6 +275,7 @@ std::vector<OpcodeCase> opcodeCases() {
   }
   cases.push_back(effectsCase());
   cases.push_back(loopsCase());
+  cases.push_back(advancingLoopCase());
   cases.push_back(arcsCase());
   cases.push_back(nurbsCase());
   cases.push_back(splineCase());

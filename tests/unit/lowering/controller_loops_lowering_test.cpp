@@ -132,18 +132,22 @@ TEST_P(SProfileWeights, ChordsStayWithinTheBudgetForTheWeightItRunsWith) {
 INSTANTIATE_TEST_SUITE_P(Values, SProfileWeights, ::testing::Values(3.0, 1.0, 8.0, 0.3));
 
 // The points of a pass on the two spans w6 moves (the two others take 108),
-// from the chord bound over their Bezier control points; with the earlier
-// bound of |C''| over the B-spline's hull they were 174, 658 and 1820. The
-// same spans with w6 a literal take 110, 94 and 79 (the fewest, measured).
+// each walked with a step computed at each point (rational_span_walk.cpp).
+// The same spans with w6 a literal take 110, 94 and 79 uniform steps (the
+// fewest, measured on the curve); a count per span from the chord bound
+// over their Bezier control points took 154, 279 and 500, the earlier
+// bound of |C''| over the B-spline's hull 174, 658 and 1820.
 TEST(ControllerLoopsLowering, SProfileSpansOfW6TakeFewPointsPerPass) {
   auto lowered = lowerExample("s_profile.cdl");
   ASSERT_TRUE(lowered->function);
-  for (auto [w6, points] : {std::pair{1.0, 154u}, std::pair{3.0, 279u}, std::pair{8.0, 500u}}) {
+  for (auto [w6, reference] : {std::pair{1.0, 110u}, std::pair{3.0, 94u}, std::pair{8.0, 79u}}) {
     InterpreterOptions options;
     options.parameters = {{"w6", w6}};
     ToolPath path = interpret(*lowered->function, options);
     // The pass's feed points less the plunge's end and the two constant spans.
-    EXPECT_EQ(feedPointsAt(path, -1).size() - 1 - 108, points) << "w6 = " << w6;
+    std::size_t points = feedPointsAt(path, -1).size() - 1 - 108;
+    EXPECT_LE(static_cast<double>(points), 1.5 * reference) << "w6 = " << w6;
+    EXPECT_GE(points, reference * 9 / 10) << "w6 = " << w6 << ": fewer than the curve needs";
   }
 }
 

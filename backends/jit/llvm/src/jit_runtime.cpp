@@ -295,6 +295,12 @@ static std::int32_t cncc_jit_loop_bound_error(RunContext* context) {
   return recordError(context, [] { return std::string("a loop bound is not a finite number"); });
 }
 
+static std::int32_t cncc_jit_loop_advance_error(RunContext* context, double next, double current) {
+  return recordError(context, [&] {
+    return fmt::format("a loop's variable does not advance: {} after {}", next, current);
+  });
+}
+
 static std::int32_t cncc_jit_step_limit_error(RunContext* context, std::uint64_t maximumSteps) {
   return recordError(
       context, [&] { return fmt::format("the program takes more than {} steps", maximumSteps); });
@@ -327,6 +333,7 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_cut_begin", reinterpret_cast<void*>(&cncc_jit_cut_begin)},
       {"cncc_jit_table_index_error", reinterpret_cast<void*>(&cncc_jit_table_index_error)},
       {"cncc_jit_loop_bound_error", reinterpret_cast<void*>(&cncc_jit_loop_bound_error)},
+      {"cncc_jit_loop_advance_error", reinterpret_cast<void*>(&cncc_jit_loop_advance_error)},
       {"cncc_jit_step_limit_error", reinterpret_cast<void*>(&cncc_jit_step_limit_error)},
       // The C library's functions, as the interpreter's std:: calls reach them.
       {"sin", reinterpret_cast<void*>(static_cast<Unary>(&::sin))},

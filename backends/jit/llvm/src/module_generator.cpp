@@ -191,6 +191,8 @@ private:
     case Opcode::Loop:
       emitLoop(instruction);
       return;
+    case Opcode::LoopNext: // read by its loop (emitLoop)
+      return;
     case Opcode::If:
       emitIf(instruction);
       return;
@@ -341,12 +343,23 @@ private:
     builder_.SetInsertPoint(header);
     llvm::PHINode* induction = builder_.CreatePHI(f64_, 2, "i");
     induction->addIncoming(low, before);
-    builder_.CreateCondBr(builder_.CreateFCmpOLE(induction, high), body, after);
+    ir::ValueId advance = ir::loopAdvance(function_, loop);
+    builder_.CreateCondBr(advance.valid() ? builder_.CreateFCmpOLT(induction, high)
+                                          : builder_.CreateFCmpOLE(induction, high),
+                          body, after);
 
     builder_.SetInsertPoint(body);
     values_[loop.result.index] = induction;
     emitRegion(loop.regions[0]);
-    llvm::Value* next = builder_.CreateFAdd(induction, llvm::ConstantFP::get(f64_, 1.0));
+    llvm::Value* next = nullptr;
+    if (advance.valid()) {
+      // loop.next: the body's value, which must exceed the variable.
+      next = value(advance);
+      failUnless(builder_.CreateFCmpOGT(next, induction), "cncc_jit_loop_advance_error",
+                 {f64_, f64_}, {next, induction});
+    } else {
+      next = builder_.CreateFAdd(induction, llvm::ConstantFP::get(f64_, 1.0));
+    }
     induction->addIncoming(next, builder_.GetInsertBlock());
     builder_.CreateBr(header);
 

@@ -30,6 +30,9 @@ public:
   // insertion point moves into the body until endLoop().
   ValueId beginLoop(ValueId low, ValueId high, LoopRole role = LoopRole::Statement);
   void endLoop();
+  // Ends the loop being built with `loop.next %next` (its variable advances
+  // to `next` while below high) and leaves it.
+  void endLoopAdvancingTo(ValueId next);
   // `if %c { ... } else { ... }`: the insertion point moves into the then
   // region; beginElse() moves it to the else region; endIf() leaves.
   void beginIf(ValueId condition);

@@ -129,4 +129,8 @@ struct Function {
   }
 };
 
+// The value a loop's variable advances to (the operand of the `loop.next`
+// that ends its body); invalid for a loop that counts up by one.
+ValueId loopAdvance(const Function& function, const Instruction& loop);
+
 } // namespace cncc::ir
