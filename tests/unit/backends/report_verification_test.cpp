@@ -241,6 +241,39 @@ TEST(CutAssignment, KeepsMovesWithTheCurrentCutWhereALaterCutOverlapsIt) {
   EXPECT_EQ(cuts, expected);
 }
 
+// A cut whose path passes its own end earlier (a plunge down a line that a
+// rising loop comes back to, as onto a rising helix), then a cut that plunges
+// down the same line to that end and starts with a move shorter than the
+// allowance. Nearest points alone put the second plunge and first move on the
+// first cut's plunge line, before its end; followed in order, the first cut is
+// finished when the second's plunge starts.
+TEST(CutAssignment, GivesTheNextCutAPlungeThroughTheFinishedCutsPath) {
+  auto moveTo = [](ExecutedPath& path, bool rapid, Eigen::Vector3d end,
+                   std::optional<std::size_t> cut) {
+    path.moves.push_back({rapid, end, rapid ? 0.0 : 100.0, cut});
+  };
+  std::vector<std::pair<Eigen::Vector3d, std::optional<std::size_t>>> feeds = {
+      {{2, 0, -3}, 0}, {{2, 2, -2.5}, 0}, {{0, 2, -2}, 0},     {{0, 0, -1.5}, 0}, {{2, 0, -1}, 0},
+      {{2, 0, 3}, {}}, {{2, 0, -1}, 1},   {{2.005, 0, -1}, 1}, {{6, 0, -1}, 1}};
+  ExecutedPath reference;
+  ExecutedPath executed;
+  reference.start = executed.start = Eigen::Vector3d(2, 0, 3);
+  std::vector<std::optional<std::size_t>> expected;
+  for (const auto& [end, cut] : feeds) {
+    bool rapid = !cut;
+    moveTo(reference, rapid, end, cut);
+    moveTo(executed, rapid, end, std::nullopt);
+    expected.push_back(cut);
+  }
+  StrayMoves stray = assignCuts(executed, reference, {0.01, 0.01}, 0.002);
+  EXPECT_EQ(stray.count, 0u);
+  std::vector<std::optional<std::size_t>> cuts;
+  for (const ExecutedMove& move : executed.moves) {
+    cuts.push_back(move.cut);
+  }
+  EXPECT_EQ(cuts, expected);
+}
+
 TEST(Verification, ReadsTheJitTargetsToolPathBack) {
   Reference part = reference(5, 0.025);
   ExecutionRequest execution;
