@@ -54,6 +54,7 @@ struct VerificationReport {
   std::vector<std::size_t> missedCuts; // the reference cuts them, the program does not
   StrayMoves stray;
   std::optional<ControllerFailure> failure;
+  std::vector<std::string> notes; // the execution's (ProgramExecution::notes)
 
   bool passed() const;
 };
