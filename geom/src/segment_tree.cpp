@@ -2,6 +2,7 @@
 
 #include "vector_math.h"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -81,6 +82,38 @@ SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
     stack[top++] = leftFirst ? node.left : node.right;
   }
   return best;
+}
+
+std::optional<SegmentTree::Nearest>
+SegmentTree::firstWithin(const Eigen::Vector3d& p, double radius, std::size_t from) const {
+  // Depth-first, the earlier half first, so the first segment found is the
+  // first in path order; a box wholly before `from` or farther than `radius`
+  // is skipped.
+  std::array<int, 2 * 64> stack;
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+    if (node.first + node.count <= from || node.box.exteriorDistance(p) > radius)
+      continue;
+    if (node.left < 0) {
+      std::size_t first = std::max(node.first, from);
+      segmentsMeasured_ += node.first + node.count - first;
+      for (std::size_t i = first; i < node.first + node.count; ++i) {
+        const Eigen::Vector3d& a = segments_[i].start;
+        const Eigen::Vector3d& b = segments_[i].end;
+        double f = detail::closestFractionOnSegment(p, a, b);
+        Eigen::Vector3d q = a + f * (b - a);
+        double d = (p - q).norm();
+        if (d <= radius)
+          return Nearest{d, i, f, q};
+      }
+      continue;
+    }
+    stack[top++] = node.right;
+    stack[top++] = node.left;
+  }
+  return std::nullopt;
 }
 
 } // namespace cncc::geom

@@ -147,7 +147,7 @@ LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,
   if (!program.errors.empty()) {
     return program;
   }
-  MacroDialect dialect = linuxcncDialect(options.inches ? 6 : 5);
+  MacroDialect dialect = linuxcncDialect(linuxcncCoordinateDecimals(options.inches));
   MacroPrintOptions printOptions;
   printOptions.sourceName = options.sourceName;
   printOptions.partName = options.partName;

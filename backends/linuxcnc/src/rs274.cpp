@@ -1,5 +1,7 @@
 #include "cncc/backends/rs274.h"
 
+#include "linuxcnc_canon_moves_script.h"
+
 #include <fmt/format.h>
 
 #include <sys/wait.h>
@@ -26,16 +28,50 @@ std::string readWhole(const std::filesystem::path& path) {
 
 // A fresh directory of its own for one run (mkdtemp: never shared with
 // another process, nor with what an earlier run left behind).
-std::filesystem::path uniqueDirectory() {
-  std::string pattern = (std::filesystem::temp_directory_path() / "cncc-rs274-XXXXXX").string();
+std::filesystem::path uniqueDirectory(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
   if (mkdtemp(pattern.data()) == nullptr) {
-    throw std::runtime_error("cannot create a directory for rs274 in " + pattern);
+    throw std::runtime_error("cannot create a directory in " + pattern);
   }
   return pattern;
 }
 
+// The program, the tool table and the work offsets in `directory`, where
+// the interpreter reads them.
+struct InterpreterInput {
+  std::filesystem::path program, toolTable, parameters;
+};
+InterpreterInput writeInput(const std::filesystem::path& directory, const std::string& program,
+                            const std::string& toolTable) {
+  InterpreterInput input{directory / "program.ngc", directory / "tools.tbl",
+                         directory / "offsets.var"};
+  std::ofstream(input.program) << program;
+  std::ofstream(input.toolTable) << toolTable;
+  std::ofstream(input.parameters) << rs274WorkOffsets();
+  return input;
+}
+
 std::string shellQuoted(const std::string& text) {
   return "'" + text + "'";
+}
+
+// The status of `timeout -s KILL` for a program it killed: 128 + 9.
+constexpr int kKilled = 137;
+
+// `timeout -s KILL`, stopping what follows after `seconds`.
+std::string timeLimit(int seconds) {
+  return "timeout -s KILL " + std::to_string(seconds) + " ";
+}
+
+// `command` run by the shell, its standard output and error in files; the
+// exit status, -1 when timeLimit killed it.
+int runCommand(const std::string& command, const std::filesystem::path& output,
+               const std::filesystem::path& errors) {
+  std::string line = command + " > " + shellQuoted(output.string()) + " 2> " +
+                     shellQuoted(errors.string()) + " < /dev/null";
+  int status = std::system(line.c_str());
+  int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return code == kKilled ? -1 : code;
 }
 
 } // namespace
@@ -92,26 +128,53 @@ std::string rs274WorkOffsets() {
 
 Rs274Run runRs274(const std::string& rs274, const std::string& program,
                   const std::string& toolTable, int seconds) {
-  std::filesystem::path directory = uniqueDirectory();
-  std::filesystem::path input = directory / "program.ngc";
-  std::ofstream(input) << program;
-  std::filesystem::path tools = directory / "tools.tbl";
-  std::ofstream(tools) << toolTable;
-  std::filesystem::path variables = directory / "offsets.var";
-  std::ofstream(variables) << rs274WorkOffsets();
+  std::filesystem::path directory = uniqueDirectory("cncc-rs274");
+  InterpreterInput input = writeInput(directory, program, toolTable);
   std::filesystem::path output = directory / "canon.txt";
   std::filesystem::path errors = directory / "errors.txt";
   std::string lock = (std::filesystem::temp_directory_path() / "cncc-rs274.lock").string();
-  std::string command =
-      "flock " + shellQuoted(lock) + " timeout -s KILL " + std::to_string(seconds) + " " +
-      shellQuoted(rs274) + " -t " + shellQuoted(tools.string()) + " -v " +
-      shellQuoted(variables.string()) + " -g " + shellQuoted(input.string()) + " > " +
-      shellQuoted(output.string()) + " 2> " + shellQuoted(errors.string()) + " < /dev/null";
-  int status = std::system(command.c_str());
+  std::string command = shellQuoted(rs274) + " -t " + shellQuoted(input.toolTable.string()) +
+                        " -v " + shellQuoted(input.parameters.string()) + " -g " +
+                        shellQuoted(input.program.string());
   Rs274Run run;
-  // timeout's status for a killed program is 128 + 9.
-  int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.exitCode = code == 137 ? -1 : code;
+  run.exitCode =
+      runCommand("flock " + shellQuoted(lock) + " " + timeLimit(seconds) + command, output, errors);
+  run.canon = readWhole(output);
+  run.errors = readWhole(errors);
+  std::filesystem::remove_all(directory);
+  return run;
+}
+
+std::string gcodeModulePython() {
+  const char* chosen = std::getenv("CNCC_LINUXCNC_PYTHON");
+  return chosen != nullptr && *chosen != '\0' ? chosen : "/usr/bin/python3";
+}
+
+GcodeModuleRun runGcodeModule(const std::string& program, const std::string& toolTable, bool inches,
+                              int seconds, std::size_t maximumCalls) {
+  GcodeModuleRun run;
+  std::string python = gcodeModulePython();
+  if (access(python.c_str(), X_OK) != 0) {
+    run.missing = true;
+    run.errors = python + " is not there";
+    return run;
+  }
+  std::filesystem::path directory = uniqueDirectory("cncc-gcode");
+  InterpreterInput input = writeInput(directory, program, toolTable);
+  std::filesystem::path script = directory / "linuxcnc_canon_moves.py";
+  std::ofstream(script) << linuxcncCanonMovesScript;
+  std::filesystem::path output = directory / "canon.txt";
+  std::filesystem::path errors = directory / "errors.txt";
+  std::string command =
+      shellQuoted(python) + " " + shellQuoted(script.string()) + (inches ? " --inches" : "") +
+      (maximumCalls > 0 ? " --maximum-calls " + std::to_string(maximumCalls) : "") + " " +
+      shellQuoted(input.program.string()) + " " + shellQuoted(input.toolTable.string()) + " " +
+      shellQuoted(input.parameters.string());
+  int code = runCommand(timeLimit(seconds) + command, output, errors);
+  // The script's status 3: the module cannot be imported; 4: too many calls.
+  run.missing = code == 3;
+  run.tooManyCalls = code == 4;
+  run.exitCode = code;
   run.canon = readWhole(output);
   run.errors = readWhole(errors);
   std::filesystem::remove_all(directory);

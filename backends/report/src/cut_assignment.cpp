@@ -51,6 +51,29 @@ public:
             lengthBefore_[found.segment] + found.fraction * segmentLength(found.segment)};
   }
 
+  // A place on the path: how far along it, and on which segment.
+  struct Place {
+    double along = 0;
+    std::size_t segment = 0;
+  };
+  // The first place at or after `from` within `radius` of the point.
+  std::optional<Place> firstWithin(const Eigen::Vector3d& point, double radius,
+                                   const Place& from) const {
+    if (isEmpty_) {
+      return std::nullopt;
+    }
+    std::optional<geom::SegmentTree::Nearest> found =
+        tree_.firstWithin(point, radius, from.segment);
+    if (!found) {
+      return std::nullopt;
+    }
+    double along = lengthBefore_[found->segment] + found->fraction * segmentLength(found->segment);
+    return Place{std::max(along, from.along), found->segment};
+  }
+
+  // Where the path ends (the origin for an empty path).
+  Eigen::Vector3d end() const { return tree_.segment(tree_.segmentCount() - 1).end; }
+
   // How far a move is from the path: the farthest of its start, middle and
   // end from it. A move where two cuts meet (a plunge onto the end of a
   // helix) is told apart by where it starts. Nullopt when the path's box
@@ -116,69 +139,152 @@ constexpr std::size_t kLookAhead = 4;
 // A move that ends this close to the end of its cut's path (mm, or inches in
 // an inch part) may already belong to the next cut, which starts there.
 constexpr double kEndOfCut = 1.0;
-
-// Whether a move keeps to the current cut, before the end of its path: it
-// stays with that cut, even where a later cut runs over the same place
-// (overlapping pockets). Cuts are executed in order, so only a move that
-// leaves the current cut, or reaches its end, may start the next.
-bool keepsToCut(const SegmentPath& cut, const LineSegment& move, double allowance) {
-  std::optional<double> distance = cut.distance(move, std::numeric_limits<double>::infinity());
-  return distance && *distance <= allowance &&
-         cut.nearest(move.end).along < cut.length() - kEndOfCut;
-}
-// Distances this close are ties, which the earlier cut wins.
+// Distances this close are ties, which the earlier cut wins (unless the
+// program has finished it).
 constexpr double kTie = 1e-9;
+// A move ends where its cut ends when the ends are this close, or within the
+// rounding of the program's coordinates.
+constexpr double kSameEnd = 1e-6;
+
+// Follows the program through the reference's cuts, in their order. Where
+// it has got to in the current cut is remembered: a program runs a cut's
+// moves in order, so a move's place on the cut's path is looked for at or
+// after the last one's. The nearest point alone is ambiguous where a cut's
+// path passes one place twice (the plunge onto a rising helix runs through
+// the helix's top end): it kept the next cut's plunge and first moves with
+// the finished helix, whose measurement then lacked the whole helix.
+class CutFollower {
+public:
+  CutFollower(const ExecutedPath& reference, const std::vector<double>& allowance,
+              double outsideAllowance)
+      : cuts_(reference), allowance_(allowance), outsideAllowance_(outsideAllowance) {}
+
+  // Gives the feed move its cut, or none; adds it to `stray` when it is
+  // farther than its allowance from the reference path.
+  void assign(ExecutedMove& move, const LineSegment& executed, StrayMoves& stray) {
+    if (keepsToCurrentCut(executed)) {
+      move.cut = cuts_.order[current_];
+      return;
+    }
+    Nearest nearest = nearestCut(executed);
+    double best = nearest.distance;
+    double limit = outsideAllowance_;
+    move.cut.reset();
+    if (nearest.cut) {
+      follow(*nearest.cut, executed.end);
+      move.cut = cuts_.order[current_];
+      limit = allowanceOf(*move.cut);
+    }
+    if (!(best <= limit)) {
+      ++stray.count;
+      if (!(best <= stray.largestDistance)) {
+        stray.largestDistance = best;
+        stray.where = executed.end;
+      }
+    }
+  }
+
+private:
+  double allowanceOf(std::size_t cut) const {
+    return cut < allowance_.size() ? allowance_[cut] : outsideAllowance_;
+  }
+
+  // Whether the move keeps to the current cut, before the end of its path:
+  // it stays with that cut, even where a later cut runs over the same place
+  // (overlapping pockets). Only a move that leaves the current cut, or
+  // reaches its end, may start the next.
+  bool keepsToCurrentCut(const LineSegment& executed) {
+    if (current_ >= cuts_.order.size()) {
+      return false;
+    }
+    const SegmentPath& path = cuts_.cut(current_);
+    double allowance = allowanceOf(cuts_.order[current_]);
+    std::optional<SegmentPath::Place> place = path.firstWithin(executed.end, allowance, progress_);
+    if (!place || !(place->along < path.length() - kEndOfCut)) {
+      return false;
+    }
+    std::optional<double> distance =
+        path.distance(executed, std::numeric_limits<double>::infinity());
+    if (!distance || !(*distance <= allowance)) {
+      return false;
+    }
+    progress_ = *place;
+    return true;
+  }
+
+  // The nearest to the move of the current cut and the next few (an index
+  // in their order), or none when a reference move outside every cut is
+  // nearer. A tie goes to the earlier cut, but not to a current cut the
+  // program has finished: a move that lies on both it and the next cut (a
+  // plunge onto the next cut's start) is the next cut's.
+  struct Nearest {
+    double distance = std::numeric_limits<double>::infinity();
+    std::optional<std::size_t> cut;
+  };
+  Nearest nearestCut(const LineSegment& executed) const {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t chosen = kNoCut;
+    std::size_t last = std::min(cuts_.order.size(), current_ + kLookAhead + 1);
+    for (std::size_t k = current_; k < last; ++k) {
+      bool finishedHolder = chosen == current_ && finishedCurrent_;
+      double better = finishedHolder ? best + kTie : best - kTie;
+      std::optional<double> distance = cuts_.cut(k).distance(executed, better);
+      if (distance && (finishedHolder ? *distance <= better : *distance < better)) {
+        best = *distance;
+        chosen = k;
+      }
+    }
+    std::optional<double> outside = cuts_.outsideCuts->distance(executed, best - kTie);
+    if (outside && *outside < best - kTie) {
+      return {*outside, std::nullopt};
+    }
+    if (chosen == kNoCut) {
+      return {best, std::nullopt};
+    }
+    return {best, chosen};
+  }
+
+  // Moves on to cut `k` (or stays in the current one) and records how far
+  // along it a move ending at `end` has got, and whether it ends where the
+  // cut ends.
+  void follow(std::size_t k, const Eigen::Vector3d& end) {
+    if (k != current_) {
+      current_ = k;
+      progress_ = {};
+      finishedCurrent_ = false;
+    }
+    const SegmentPath& path = cuts_.cut(current_);
+    std::optional<SegmentPath::Place> place =
+        path.firstWithin(end, allowanceOf(cuts_.order[current_]), progress_);
+    if (!place) {
+      return;
+    }
+    progress_ = *place;
+    finishedCurrent_ =
+        finishedCurrent_ || (place->along >= path.length() - kEndOfCut &&
+                             (path.end() - end).norm() <= std::max(kSameEnd, outsideAllowance_));
+  }
+
+  static constexpr std::size_t kNoCut = std::numeric_limits<std::size_t>::max();
+
+  ReferenceCuts cuts_;
+  const std::vector<double>& allowance_;
+  double outsideAllowance_;
+  std::size_t current_ = 0;      // in the order of the cuts
+  SegmentPath::Place progress_;  // in the current cut
+  bool finishedCurrent_ = false; // a move has ended where the current cut ends
+};
 
 } // namespace
 
 StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
                       const std::vector<double>& allowance, double outsideAllowance) {
-  ReferenceCuts cuts(reference);
+  CutFollower follower(reference, allowance, outsideAllowance);
   StrayMoves stray;
-  std::size_t current = 0;
   for (std::size_t i = 0; i < path.moves.size(); ++i) {
     ExecutedMove& move = path.moves[i];
-    if (move.rapid) {
-      continue;
-    }
-    LineSegment executed{path.startOf(i), move.end};
-    double best = std::numeric_limits<double>::infinity();
-    std::optional<std::size_t> chosen;
-    if (current < cuts.order.size()) {
-      std::size_t cut = cuts.order[current];
-      if (keepsToCut(cuts.cut(current), executed,
-                     cut < allowance.size() ? allowance[cut] : outsideAllowance)) {
-        move.cut = cut;
-        continue;
-      }
-    }
-    std::size_t last = std::min(cuts.order.size(), current + kLookAhead + 1);
-    for (std::size_t k = current; k < last; ++k) {
-      std::optional<double> distance = cuts.cut(k).distance(executed, best - kTie);
-      if (distance && *distance < best - kTie) {
-        best = *distance;
-        chosen = k;
-      }
-    }
-    std::optional<double> outside = cuts.outsideCuts->distance(executed, best - kTie);
-    if (outside && *outside < best - kTie) {
-      best = *outside;
-      chosen.reset();
-    }
-    double limit = outsideAllowance;
-    move.cut.reset();
-    if (chosen) {
-      current = *chosen;
-      move.cut = cuts.order[current];
-      limit = *move.cut < allowance.size() ? allowance[*move.cut] : outsideAllowance;
-    }
-    double distance = best;
-    if (!(distance <= limit)) {
-      ++stray.count;
-      if (!(distance <= stray.largestDistance)) {
-        stray.largestDistance = distance;
-        stray.where = move.end;
-      }
+    if (!move.rapid) {
+      follower.assign(move, {path.startOf(i), move.end}, stray);
     }
   }
   return stray;

@@ -191,6 +191,7 @@ VerificationReport verifyProgram(const VerificationInput& input, const Statistic
   report.variables = execution.variables;
   report.operations = execution.operations;
   report.failure = execution.failure;
+  report.notes = execution.notes;
   if (report.failure) {
     return report;
   }
@@ -226,6 +227,9 @@ std::string formatVerification(const VerificationReport& report, const Statistic
   }
   if (report.operations) {
     text += formatOperations(*report.operations);
+  }
+  for (const std::string& note : report.notes) {
+    text += fmt::format("note: {}\n", note);
   }
   if (report.failure && report.failure->line == 0) { // no block of the program
     return text + fmt::format("the program cannot be verified: {}\nverdict: FAILED\n",

@@ -23,19 +23,10 @@ using backends::runRs274;
     FAIL() << "rs274 (Debian package linuxcnc-uspace) is not installed";                           \
   }
 
-// LinuxCNC's interpreter as a library: the `gcode` Python module of the
-// same package, run by linuxcnc_canon_moves.py beside this file. It prints
-// the canonical calls as rs274 does but at full double precision (17
-// significant digits), lengths in the program's units (inches with
-// `inches`), with the tool table and the work offsets rs274 gets.
-struct GcodeModuleRun {
-  int exitCode = -1;    // 0 ran to the end, 1 an interpreter error, -1 killed
-  bool missing = false; // the module is not installed
-  std::string canon;    // standard output
-  std::string errors;   // standard error
-};
-GcodeModuleRun runGcodeModule(const std::string& program, const std::string& toolTable, bool inches,
-                              int seconds = 60);
+// LinuxCNC's interpreter as a library (the `gcode` Python module), as
+// `cncc verify -t linuxcnc` runs it.
+using backends::GcodeModuleRun;
+using backends::runGcodeModule;
 
 // A LinuxCNC tool table (`T5 P5 D6 ;`) with each tool change of the path
 // and its diameter.

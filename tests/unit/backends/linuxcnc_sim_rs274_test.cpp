@@ -6,7 +6,7 @@
 // must be the same one by one: each traverse, feed and arc (its end, centre
 // and turns), and each feed rate. Twice:
 // - against the interpreter as a library (the `gcode` Python module,
-//   linuxcnc_canon_moves.py), which hands every value over as a double: a
+//   backends/linuxcnc/src/linuxcnc_canon_moves.py), which hands every value over as a double: a
 //   coordinate agrees within 1e-6 mm;
 // - against the `rs274` program, which `cncc verify -t linuxcnc` runs: it
 //   prints four decimals, so a coordinate agrees within half a unit of the

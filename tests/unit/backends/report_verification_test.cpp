@@ -16,9 +16,19 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 namespace cncc::backends {
 namespace {
@@ -241,6 +251,39 @@ TEST(CutAssignment, KeepsMovesWithTheCurrentCutWhereALaterCutOverlapsIt) {
   EXPECT_EQ(cuts, expected);
 }
 
+// A cut whose path passes its own end earlier (a plunge down a line that a
+// rising loop comes back to, as onto a rising helix), then a cut that plunges
+// down the same line to that end and starts with a move shorter than the
+// allowance. Nearest points alone put the second plunge and first move on the
+// first cut's plunge line, before its end; followed in order, the first cut is
+// finished when the second's plunge starts.
+TEST(CutAssignment, GivesTheNextCutAPlungeThroughTheFinishedCutsPath) {
+  auto moveTo = [](ExecutedPath& path, bool rapid, Eigen::Vector3d end,
+                   std::optional<std::size_t> cut) {
+    path.moves.push_back({rapid, end, rapid ? 0.0 : 100.0, cut});
+  };
+  std::vector<std::pair<Eigen::Vector3d, std::optional<std::size_t>>> feeds = {
+      {{2, 0, -3}, 0}, {{2, 2, -2.5}, 0}, {{0, 2, -2}, 0},     {{0, 0, -1.5}, 0}, {{2, 0, -1}, 0},
+      {{2, 0, 3}, {}}, {{2, 0, -1}, 1},   {{2.005, 0, -1}, 1}, {{6, 0, -1}, 1}};
+  ExecutedPath reference;
+  ExecutedPath executed;
+  reference.start = executed.start = Eigen::Vector3d(2, 0, 3);
+  std::vector<std::optional<std::size_t>> expected;
+  for (const auto& [end, cut] : feeds) {
+    bool rapid = !cut;
+    moveTo(reference, rapid, end, cut);
+    moveTo(executed, rapid, end, std::nullopt);
+    expected.push_back(cut);
+  }
+  StrayMoves stray = assignCuts(executed, reference, {0.01, 0.01}, 0.002);
+  EXPECT_EQ(stray.count, 0u);
+  std::vector<std::optional<std::size_t>> cuts;
+  for (const ExecutedMove& move : executed.moves) {
+    cuts.push_back(move.cut);
+  }
+  EXPECT_EQ(cuts, expected);
+}
+
 TEST(Verification, ReadsTheJitTargetsToolPathBack) {
   Reference part = reference(5, 0.025);
   ExecutionRequest execution;
@@ -268,23 +311,134 @@ TEST(Verification, HasAnExecutorForEachTargetItRuns) {
   EXPECT_THROW(verifyProgram({"no-such-target", {}, {}, {}}, {}), std::invalid_argument);
 }
 
-// A LinuxCNC program runs in rs274: its feed moves are the path, and a
-// program rs274 refuses is a failure that quotes rs274.
-TEST(Verification, LinuxcncProgramsRunInRs274) {
+// Sets an environment variable while it lives, then restores it.
+class ScopedEnvironment {
+public:
+  ScopedEnvironment(const char* name, const std::string& value) : name_(name) {
+    const char* old = std::getenv(name);
+    if (old != nullptr) {
+      old_ = old;
+    }
+    setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnvironment() {
+    if (old_) {
+      setenv(name_, old_->c_str(), 1);
+    } else {
+      unsetenv(name_);
+    }
+  }
+  ScopedEnvironment(const ScopedEnvironment&) = delete;
+  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+// A Python that cannot import LinuxCNC's module: Debian's without its site
+// packages (a script in a fresh directory, removed with it).
+class PythonWithoutTheModule {
+public:
+  PythonWithoutTheModule() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "cncc-python-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw std::runtime_error("cannot create " + pattern);
+    }
+    directory_ = pattern;
+    std::ofstream(path()) << "#!/bin/sh\nexec /usr/bin/python3 -S \"$@\"\n";
+    std::filesystem::permissions(path(), std::filesystem::perms::owner_all);
+  }
+  ~PythonWithoutTheModule() { std::filesystem::remove_all(directory_); }
+  PythonWithoutTheModule(const PythonWithoutTheModule&) = delete;
+  PythonWithoutTheModule& operator=(const PythonWithoutTheModule&) = delete;
+
+  std::string path() const { return (directory_ / "python3").string(); }
+
+private:
+  std::filesystem::path directory_;
+};
+
+// A LinuxCNC program runs in LinuxCNC's interpreter, its Python module:
+// its feed moves are the path, read within the program's own 5 decimals,
+// and a program it refuses is a failure at its line.
+TEST(Verification, LinuxcncProgramsRunInLinuxcncsInterpreter) {
   const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
   request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
   ProgramExecution run = linuxcnc->execute(request);
   ASSERT_FALSE(run.failure) << run.failure->message;
+  EXPECT_TRUE(run.notes.empty());
   ASSERT_FALSE(run.path.moves.empty());
   EXPECT_NEAR(run.path.moves.back().end.x(), 10, 1e-9);
   EXPECT_NEAR(run.path.moves.back().end.y(), 5, 1e-9);
-  EXPECT_EQ(run.increment, 1e-4);
+  EXPECT_EQ(run.increment, 1e-5);
   request.text = "G21\nG1 X1 Y1\nM2\n"; // a feed move without a feed rate
   run = linuxcnc->execute(request);
   ASSERT_TRUE(run.failure);
+  EXPECT_EQ(run.failure->message.rfind("LinuxCNC's interpreter: ", 0), 0u) << run.failure->message;
+  EXPECT_EQ(run.failure->line, 2);
+  EXPECT_EQ(run.failure->lineText, "G1 X1 Y1");
+}
+
+// Where the Python cannot import the module, the program runs in rs274,
+// and the output says so; a program rs274 refuses is a failure that
+// quotes rs274.
+TEST(Verification, LinuxcncProgramsRunInRs274WithoutTheModule) {
+  PythonWithoutTheModule python;
+  ScopedEnvironment chosen("CNCC_LINUXCNC_PYTHON", python.path());
+  const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
+  ASSERT_NE(linuxcnc, nullptr);
+  ExecutionRequest request;
+  request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+  ProgramExecution run = linuxcnc->execute(request);
+  ASSERT_FALSE(run.failure) << run.failure->message;
+  ASSERT_EQ(run.notes.size(), 1u);
+  EXPECT_THAT(run.notes[0], HasSubstr("No module named 'gcode'"));
+  EXPECT_THAT(run.notes[0], HasSubstr("read from rs274, which prints 4 decimals"));
+  EXPECT_NEAR(run.path.moves.back().end.x(), 10, 1e-9);
+  EXPECT_EQ(run.increment, 1e-4);
+  request.text = "G21\nG1 X1 Y1\nM2\n";
+  run = linuxcnc->execute(request);
+  ASSERT_TRUE(run.failure);
   EXPECT_EQ(run.failure->message.rfind("rs274: ", 0), 0u) << run.failure->message;
+}
+
+// 36 chords of a circle whose sagitta, 0.00999 mm, is just within the
+// tolerance of 0.01 mm, every coordinate to 15 decimals: read at full
+// precision the deviation is the sagitta. The radius ends in 0.000049, so
+// that rs274's four decimals move the chords' ends on the axes 0.000049 mm
+// in, and read the deviation as past the tolerance.
+TEST(Verification, LinuxcncReadsTheInterpretersDoubles) {
+  double radius = 2.625349;
+  double sagitta = radius * (1 - std::cos(std::numbers::pi / 36));
+  ASSERT_NEAR(sagitta, 0.00999, 1e-6);
+  Reference part = reference(radius, 0.01);
+  ExecutionRequest execution;
+  execution.text =
+      fmt::format("G21 G90\nT1 M6\nS2000 M3\nG0 X{0:.15f} Y0 Z5\nG1 Z-1 F250\n", radius);
+  for (int k = 1; k <= 36; ++k) {
+    double angle = k * std::numbers::pi / 18;
+    execution.text +=
+        fmt::format("G1 X{:.15f} Y{:.15f}\n", radius * std::cos(angle), radius * std::sin(angle));
+  }
+  execution.text += fmt::format("G0 X{:.15f} Y0 Z5\nM2\n", radius);
+  VerificationReport module = verify("linuxcnc", execution, part);
+  ASSERT_FALSE(module.failure) << module.failure->message;
+  EXPECT_TRUE(module.notes.empty());
+  EXPECT_NEAR(module.statistics.cuts[0].maxDeviation, sagitta, 1e-9);
+  EXPECT_TRUE(module.passed()) << formatVerification(module, {});
+
+  PythonWithoutTheModule python;
+  ScopedEnvironment chosen("CNCC_LINUXCNC_PYTHON", python.path());
+  VerificationReport rs274 = verify("linuxcnc", execution, part);
+  ASSERT_FALSE(rs274.failure) << rs274.failure->message;
+  EXPECT_GT(rs274.statistics.cuts[0].maxDeviation, 0.01);
+  EXPECT_FALSE(rs274.passed());
+  EXPECT_THAT(
+      formatVerification(rs274, {}),
+      HasSubstr("note: " + python.path() + " cannot import LinuxCNC's Python module gcode"));
 }
 
 // rs274 runs G41/G42 and reports the tool centre's moves; the diameter of

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace cncc::geom {
@@ -33,6 +34,11 @@ public:
     Eigen::Vector3d point;
   };
   Nearest nearest(const Eigen::Vector3d& p) const;
+  /// The first segment in path order, at index `from` or later, that comes
+  /// within `radius` of p, with its point nearest p; nullopt when none does.
+  /// Where a path passes one place twice, this is the pass that comes first.
+  std::optional<Nearest> firstWithin(const Eigen::Vector3d& p, double radius,
+                                     std::size_t from) const;
 
   std::size_t segmentCount() const { return segments_.size(); }
   const LineSegment& segment(std::size_t i) const { return segments_[i]; }

@@ -32,6 +32,10 @@ namespace cncc::backends {
 inline constexpr int linuxcncMaximumLineLength = 255;
 // The significant digits of the program's constants (`0.959503912453`).
 inline constexpr int linuxcncSignificantDigits = 12;
+// The decimals of the program's coordinates, in millimetres and in inches.
+inline constexpr int linuxcncCoordinateDecimals(bool inches) {
+  return inches ? 6 : 5;
+}
 inline constexpr int linuxcncMaximumCallArguments = 30;
 inline constexpr int linuxcncFirstGlobal = 31;
 inline constexpr int linuxcncLastGlobal = 5000;

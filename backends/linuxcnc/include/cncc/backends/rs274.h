@@ -1,9 +1,12 @@
-// LinuxCNC's standalone interpreter, `rs274 -g FILE` (Debian package
-// linuxcnc-uspace): what `cncc verify -t linuxcnc` and the tests run a
-// LinuxCNC program through. Its canonical calls are read by
-// readLinuxcncCanon (linuxcnc_canon.h).
+// LinuxCNC's interpreter (Debian package linuxcnc-uspace), two ways: as a
+// library, its Python module `gcode`, which hands every value over as a
+// double, and as the standalone program `rs274 -g FILE`, which prints four
+// decimals. `cncc verify -t linuxcnc` and the tests run a LinuxCNC program
+// through them; both print canonical calls, read by readLinuxcncCanon
+// (linuxcnc_canon.h).
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -42,5 +45,27 @@ struct Rs274Run {
 // were seen to read each other's tool table.
 Rs274Run runRs274(const std::string& rs274, const std::string& program,
                   const std::string& toolTable, int seconds = 60);
+
+// The Python that runs LinuxCNC's module: $CNCC_LINUXCNC_PYTHON, else
+// Debian's /usr/bin/python3, for which the package builds it.
+std::string gcodeModulePython();
+
+struct GcodeModuleRun {
+  int exitCode = -1;         // 0 ran to the end, 1 an interpreter error, -1 killed
+  bool missing = false;      // no Python, or it cannot import the module
+  bool tooManyCalls = false; // stopped at the maximum number of calls
+  std::string canon;         // the canonical calls, one a line
+  std::string errors;        // standard error: the interpreter's message
+};
+
+// Runs `program` through LinuxCNC's interpreter as a library: the script
+// linuxcnc_canon_moves.py (embedded in cncc, written to a fresh temporary
+// directory with the tool table and the work offsets rs274 gets) run by
+// gcodeModulePython(). It prints the canonical calls as rs274 does but at
+// full double precision (17 significant digits), lengths in the program's
+// units (inches with `inches`). A run is stopped after `seconds`, and after
+// `maximumCalls` calls.
+GcodeModuleRun runGcodeModule(const std::string& program, const std::string& toolTable, bool inches,
+                              int seconds = 60, std::size_t maximumCalls = 0 /* no limit */);
 
 } // namespace cncc::backends

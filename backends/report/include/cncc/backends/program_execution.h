@@ -68,6 +68,7 @@ struct ProgramExecution {
   std::optional<ControllerFailure> failure;
   std::optional<sim::LoopOperationCounts> operations; // programs with loops
   std::optional<std::size_t> variables;               // distinct #n the program names
+  std::vector<std::string> notes; // how it ran, where the output should say (a fallback)
 };
 
 using ProgramExecutor = ProgramExecution (*)(const ExecutionRequest& request);

@@ -54,17 +54,21 @@ struct VerificationReport {
   std::vector<std::size_t> missedCuts; // the reference cuts them, the program does not
   StrayMoves stray;
   std::optional<ControllerFailure> failure;
+  std::vector<std::string> notes; // the execution's (ProgramExecution::notes)
 
   bool passed() const;
 };
 
 // Gives each feed move of `path` a cut of the reference path, following the
-// reference's order of cuts: the current cut while the move keeps within its
-// allowance of it short of the cut's end (a later cut over the same place
-// does not take it), else the nearest of the next few (a move nearest to a reference feed move
-// outside every cut gets none); moves farther than
-// `allowance[cut]` (`outsideAllowance` outside cuts) from that reference
-// path are counted in the result.
+// reference's order of cuts and how far along the current cut the program
+// has got: the current cut while the move keeps within its allowance of it,
+// at or after where the last move got to and short of the cut's end (a
+// later cut over the same place does not take it), else the nearest of the
+// current cut and the next few (a tie goes to the earlier, unless a move has
+// ended where the current cut ends; a move nearest to a reference feed move
+// outside every cut gets none); moves farther than `allowance[cut]`
+// (`outsideAllowance` outside cuts) from that reference path are counted in
+// the result.
 StrayMoves assignCuts(ExecutedPath& path, const ExecutedPath& reference,
                       const std::vector<double>& allowance, double outsideAllowance);
 

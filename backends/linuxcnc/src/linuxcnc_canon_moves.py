@@ -10,17 +10,23 @@ prints them:
 so this is the interpreter's arithmetic to the last bit (17 significant
 digits).
 
-    linuxcnc_canon_moves.py [--inches] PROGRAM TOOL_TABLE PARAMETERS
+    linuxcnc_canon_moves.py [--inches] [--maximum-calls N] PROGRAM TOOL_TABLE PARAMETERS
 
 TOOL_TABLE is rs274's (`T5 P5 D0.25 ;`, diameters in inches); PARAMETERS is
 its parameter file (work offsets). The module hands lengths over in inches
 whatever the program's units; they are printed in the program's units:
-millimetres, or inches with --inches. The interpreter starts in G21, as
-rs274 does.
+millimetres, or inches with --inches. The interpreter starts in G21 with a
+feed rate of 0, as rs274 does. With --maximum-calls it stops after printing N calls.
+
+cncc embeds this script (backends/linuxcnc, runGcodeModule) and runs it with
+Debian's /usr/bin/python3, for which the module is built; `cncc verify -t
+linuxcnc` reads the path from it, and the tests compare the virtual
+controller's LinuxCNC moves with it.
 
 Exit status: 0 when the program ran to its end, 1 when the interpreter
 stopped with an error (on standard error, with its line), 3 when the module
-is not installed (the caller skips).
+is not installed (cncc runs `rs274` instead), 4 when the program makes more
+than the maximum number of calls.
 """
 
 import argparse
@@ -29,17 +35,11 @@ import os
 import sys
 import tempfile
 
-MODULE_DIRECTORY = "/usr/lib/python3/dist-packages"  # Debian's, for a Python of its own
-
 try:
     import gcode
-except ImportError:
-    sys.path.append(MODULE_DIRECTORY)
-    try:
-        import gcode
-    except ImportError as error:
-        print(f"LinuxCNC's gcode module is not installed ({error})", file=sys.stderr)
-        sys.exit(3)
+except ImportError as error:
+    print(f"{error}", file=sys.stderr)
+    sys.exit(3)
 
 MM_PER_INCH = 25.4
 # A tool table entry: the tool number, nine axis offsets, the diameter, the
@@ -92,15 +92,20 @@ class Canon:
     """The calls the interpreter makes; the moves and the feed rate are
     printed, the rest answered as rs274's standalone canon answers them."""
 
-    def __init__(self, parameter_file, pockets, scale):
+    def __init__(self, parameter_file, pockets, scale, maximum_calls):
         self.parameter_file = parameter_file  # read by the module
         self.pockets = pockets
         self.spindle_pocket = 0
         self.scale = scale  # inches to the program's units
         self.line = 0
         self.calls = 0
+        self.maximum_calls = maximum_calls
 
     def emit(self, name, values):
+        if self.maximum_calls is not None and self.calls >= self.maximum_calls:
+            sys.stdout.flush()
+            print(f"more than {self.maximum_calls} canonical calls", file=sys.stderr)
+            os._exit(4)  # at once: the interpreter would go on calling
         self.calls += 1
         print(f"{self.calls:5d} N..... {name}({', '.join(values)})")
 
@@ -153,6 +158,10 @@ class Canon:
             + [number(a), number(b), number(c)],
         )
 
+    def set_g5x_offset(self, index, x, y, z, a, b, c, u=0.0, v=0.0, w=0.0):
+        # What tells the retract to the machine's Z0 (G53) from a move of the part.
+        self.emit("SET_G5X_OFFSET", [str(int(index))] + self.lengths((x, y, z)))
+
     def set_feed_rate(self, rate):
         self.emit("SET_FEED_RATE", self.lengths((rate,)))
 
@@ -171,13 +180,14 @@ class Canon:
     def ignore(self, *values):
         pass
 
-    set_g5x_offset = set_g92_offset = set_xy_rotation = set_plane = ignore
+    set_g92_offset = set_xy_rotation = set_plane = ignore
     set_traverse_rate = tool_offset = comment = message = user_defined_function = ignore
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--inches", action="store_true", help="print lengths in inches")
+    parser.add_argument("--maximum-calls", type=int, help="stop after this many calls")
     parser.add_argument("program")
     parser.add_argument("tool_table")
     parser.add_argument("parameters")
@@ -197,8 +207,9 @@ def run(arguments):
         arguments.parameters,
         read_tool_table(arguments.tool_table),
         1.0 if arguments.inches else MM_PER_INCH,
+        arguments.maximum_calls,
     )
-    result, line = gcode.parse(arguments.program, canon, ["G21"])
+    result, line = gcode.parse(arguments.program, canon, ["G21", "F0"])
     sys.stdout.flush()
     if result > gcode.MIN_ERROR:
         print(f"line {line}: {gcode.strerror(result)}", file=sys.stderr)
