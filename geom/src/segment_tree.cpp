@@ -94,8 +94,9 @@ SegmentTree::firstWithin(const Eigen::Vector3d& p, double radius, std::size_t fr
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (node.first + node.count <= from || node.box.exteriorDistance(p) > radius)
+    if (node.first + node.count <= from || node.box.exteriorDistance(p) > radius) {
       continue;
+    }
     if (node.left < 0) {
       std::size_t first = std::max(node.first, from);
       segmentsMeasured_ += node.first + node.count - first;
@@ -105,8 +106,9 @@ SegmentTree::firstWithin(const Eigen::Vector3d& p, double radius, std::size_t fr
         double f = detail::closestFractionOnSegment(p, a, b);
         Eigen::Vector3d q = a + f * (b - a);
         double d = (p - q).norm();
-        if (d <= radius)
+        if (d <= radius) {
           return Nearest{d, i, f, q};
+        }
       }
       continue;
     }
