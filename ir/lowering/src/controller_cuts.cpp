@@ -409,12 +409,12 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
   std::vector<ControllerSegment> segments;
   // The points the step searches ask of the curve, over the cut: each
   // search is bounded by maximumStepsPerPiece, their sum by
-  // maximumCurveEvaluations.
+  // maximumStepSearchEvaluations.
   std::size_t evaluated = 0;
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
     int steps = 0;
     try {
-      geom::BudgetedCurve counted(geometry, maximumCurveEvaluations - evaluated);
+      geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
       struct Count {
         std::size_t& total;
         const geom::BudgetedCurve& curve;
@@ -428,7 +428,7 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       fail(cut.span,
            fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
                        "{} points of it; that is the limit of one cut",
-                       maximumCurveEvaluations),
+                       maximumStepSearchEvaluations),
            DiagnosticKind::ProgramTooLarge);
     } catch (const geom::GeometryError& error) {
       fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
