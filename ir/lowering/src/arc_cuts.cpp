@@ -13,6 +13,7 @@
 #include "printed_grid.h"
 
 #include "cncc/geom/arc_fitting.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 
 #include <fmt/format.h>
@@ -88,7 +89,13 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
                        budget.tolerance, budget.increment);
   }
   try {
-    return geom::fitArcs(*curve.geometry, {budget.forArcs()});
+    // The biarc search asks a bounded number of points of the curve.
+    geom::BudgetedCurve budgeted(*curve.geometry, maximumArcFitEvaluations);
+    return geom::fitArcs(budgeted, {budget.forArcs()});
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    return fmt::format("fitting arcs within its tolerance asks more than {} points of the curve; "
+                       "that is the limit of one cut's arc fit",
+                       error.limit);
   } catch (const geom::GeometryError& error) {
     return std::string(error.what());
   }

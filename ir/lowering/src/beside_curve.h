@@ -8,6 +8,8 @@
 #include "lowering_values.h"
 
 #include "cncc/geom/arc_fitting.h"
+#include "cncc/geom/deviation.h"
+#include "cncc/geom/evaluation_budget.h"
 
 #include <Eigen/Core>
 
@@ -43,11 +45,14 @@ struct CompensatedLeads {
 // a concave bend or an arc tighter than its radius, offsets that do not
 // cross at a concave corner, an offset crossing itself, or a curve with no
 // offset at all.
+// A tool centre nearer than the tool's radius to the curve (TooNear: an
+// open end run into another piece), or a check past its limit (TooMuchWork).
 struct OffsetTrouble {
-  enum Kind { Bend, InsideArc, Corner, SelfCrossing, Degenerate } kind = Bend;
+  enum Kind { Bend, InsideArc, Corner, SelfCrossing, TooNear, Degenerate, TooMuchWork } kind = Bend;
   Eigen::Vector3d place = Eigen::Vector3d::Zero();
-  double radius = 0; // the radius found there (Bend, InsideArc)
+  double radius = 0; // the radius found there (Bend, InsideArc); the distance (TooNear)
   std::string message;
+  std::size_t limit = 0; // TooMuchWork
 };
 
 // How the offsets of two pieces of a path join where the pieces meet, as
@@ -83,10 +88,25 @@ struct RuntimeOffset {
 std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
 // A curve of lines and arcs as line and arc moves; nullopt for other curves.
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
+// The drawn curve a tool runs beside, sampled once for the clearance
+// checks of its offsets (offsetOrTrouble) within a quarter of `slack`, the
+// depth the tool may cut past it unreported (the cut's tolerance). Its
+// sampling asks at most maximumCurveEvaluations points (then throws
+// geom::EvaluationBudgetExceeded).
+struct DrawnClearance {
+  DrawnClearance(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double slack);
+  std::shared_ptr<const geom::Curve> drawn;
+  std::unique_ptr<geom::BudgetedCurve> budgeted;
+  std::unique_ptr<geom::CurveProximity> proximity;
+  double slack = 0;
+};
+
 // The offset of the pieces at `distance` (geom::offsetOfPieces), or why the
-// tool cannot run there (offset_cuts.cpp).
+// tool cannot run there (offset_cuts.cpp); with `drawn`, also where the
+// tool centre comes nearer than its radius to the curve.
 std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
-offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance);
+offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance,
+                const DrawnClearance* drawn = nullptr);
 // Tangent lead arcs of `radius` onto the start of `path` and off its end
 // (both on the printed grid), their centres on the side of `offset` (> 0:
 // left): the start-up and cancel lines run that radius further along the

@@ -34,6 +34,7 @@
 
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/discretisation.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/nurbs_curve.h"
 
@@ -406,13 +407,29 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
                                      const std::vector<SymbolicPiece>* symbolic,
                                      std::optional<int> uniformSteps) {
   std::vector<ControllerSegment> segments;
+  // The points the step searches ask of the curve, over the cut: each
+  // search is bounded by maximumStepsPerPiece, their sum by
+  // maximumStepSearchEvaluations.
+  std::size_t evaluated = 0;
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
     int steps = 0;
     try {
+      geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
+      struct Count {
+        std::size_t& total;
+        const geom::BudgetedCurve& curve;
+        ~Count() { total += curve.used(); }
+      } count{evaluated, counted};
       // Less a fiftieth of an increment for the literals' 8 significant
       // digits (coefficients, the step), a few micrometres at most.
-      steps = fewestUniformSteps(geometry, from, to,
+      steps = fewestUniformSteps(counted, from, to,
                                  budget - options_.coordinateIncrement * literalShare);
+    } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
+      fail(cut.span,
+           fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
+                       "{} points of it; that is the limit of one cut",
+                       maximumStepSearchEvaluations),
+           DiagnosticKind::ProgramTooLarge);
     } catch (const geom::GeometryError& error) {
       fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
            DiagnosticKind::DegenerateCurve);

@@ -24,6 +24,7 @@
 #include "controller_segment.h"
 #include "forward_derivative.h"
 
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_clearance.h"
 #include "cncc/geom/offset_curve.h"
@@ -98,11 +99,11 @@ double largestCurvatureGrowth(const geom::Curve& curve, double from, double to, 
 
 double
 PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
-                                   double compiledDistance) {
+                                   double compiledDistance, const DrawnClearance& drawn) {
   double side = compiledDistance > 0 ? 1 : -1;
   auto fits = [&](double radius) {
     return std::holds_alternative<std::shared_ptr<const geom::Curve>>(
-        offsetOrTrouble(pieces, side * radius));
+        offsetOrTrouble(pieces, side * radius, &drawn));
   };
   // The tightest bend the tool runs inside bounds the radius; without one
   // the search stops at a hundred times the curve's size.
@@ -146,7 +147,8 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   CutCurve curve = cutCurve(cut);
   RuntimeOffset offset;
   offset.compiledDistance = compiledDistance;
-  offset.compiled = checkedOffset(cut, curve, compiledDistance);
+  DrawnClearance drawn = drawnClearance(cut, movedPieces(curve));
+  offset.compiled = checkedOffset(cut, curve, compiledDistance, &drawn);
   checkCutBounds(cut, *offset.compiled);
   offset.pieces = movedPieces(curve);
   const auto& pieces = offset.pieces;
@@ -171,7 +173,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   offset.radius = arithmetic_.multiply(number(*toolDiameter_), Scalar::of(0.5));
   offset.distance =
       compiledDistance > 0 ? offset.radius : arithmetic_.unary(Opcode::Neg, offset.radius);
-  offset.largestRadius = largestFittingRadius(pieces, compiledDistance);
+  offset.largestRadius = largestFittingRadius(pieces, compiledDistance, drawn);
 
   alarmWhen(arithmetic_.binary(Opcode::Le, offset.radius, Scalar::of(0)),
             "the tool diameter is not positive");
@@ -197,7 +199,6 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
 void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                                    double budget, const CutStmt& cut) {
   const RuntimeOffset& offset = *runtimeOffset_;
-  double side = offset.compiledDistance > 0 ? 1 : -1;
   double compiledRadius = std::fabs(offset.compiledDistance);
   // Radii the step count is checked at against the exact offset.
   std::vector<double> radii{compiledRadius / 4, compiledRadius};
@@ -207,6 +208,26 @@ void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
     radii.push_back(wide);
   }
   double measured = budget - options_.coordinateIncrement * literalShare;
+  // The points asked of the exact offsets so far, over the cut.
+  std::size_t evaluated = 0;
+  try {
+    planOffsetStepCounts(curve, segments, radii, measured, cut, evaluated);
+  } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
+    fail(cut.span,
+         fmt::format("checking the steps of this curve's offset within its tolerance asks more "
+                     "than {} points of it; that is the limit of one cut",
+                     maximumOffsetStepEvaluations),
+         DiagnosticKind::ProgramTooLarge);
+  }
+}
+
+void PartLowering::planOffsetStepCounts(const CutCurve& curve,
+                                        std::vector<ControllerSegment>& segments,
+                                        const std::vector<double>& radii, double measured,
+                                        const CutStmt& cut, std::size_t& evaluated) {
+  const RuntimeOffset& offset = *runtimeOffset_;
+  double side = offset.compiledDistance > 0 ? 1 : -1;
+  double compiledRadius = std::fabs(offset.compiledDistance);
   for (ControllerSegment& segment : segments) {
     const CurvePiece& piece = curve.pieces[segment.piece];
     if (segment.isArc || piece.value->kind == CurveKind::Line) {
@@ -230,7 +251,13 @@ void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
       return std::ceil(std::sqrt(drawn * drawn + growth * radius));
     };
     for (double radius : radii) {
-      geom::OffsetCurve exact(moved, side * radius);
+      geom::OffsetCurve offsetCurve(moved, side * radius);
+      geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
+      struct Count {
+        std::size_t& total;
+        const geom::BudgetedCurve& curve;
+        ~Count() { total += curve.used(); }
+      } count{evaluated, exact};
       int tries = 0;
       while (stepsAt(radius) <= maximumStepsPerPiece &&
              !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured)) {

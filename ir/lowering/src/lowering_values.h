@@ -94,6 +94,17 @@ struct SampleLocation {
 // faster than the chord estimate's samples see (a cosine of 1e6 t) would
 // take hours.
 inline constexpr std::size_t maximumCurveEvaluations = 20'000'000;
+// The points one cut's arc fit (--arcs, arcs=true) may ask of its curve;
+// past it the cut is printed as chords.
+inline constexpr std::size_t maximumArcFitEvaluations = 5'000'000;
+// The points the searches for the fewest uniform steps of a controller
+// cut's pieces may ask of its curve, over the cut (a 20-turn spiral within
+// 1 um asks some 32 million, in 3 s: the steps are measured on the curve's
+// compiled form).
+inline constexpr std::size_t maximumStepSearchEvaluations = 50'000'000;
+// The points the search for a controller offset's step counts may ask of
+// the exact offsets it checks them on, over one cut.
+inline constexpr std::size_t maximumOffsetStepEvaluations = 10'000'000;
 
 struct SampleRun {
   std::size_t piece = 0;

@@ -22,6 +22,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -139,8 +140,15 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
   return wordOf(*side.value) == "left" ? radius : -radius;
 }
 
+DrawnClearance::DrawnClearance(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                               double slack)
+    : drawn(pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces)),
+      budgeted(std::make_unique<geom::BudgetedCurve>(*drawn, maximumCurveEvaluations)),
+      proximity(std::make_unique<geom::CurveProximity>(*budgeted, slack / 4)), slack(slack) {}
+
 std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
-offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance) {
+offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance,
+                const DrawnClearance* drawn) {
   double radius = std::fabs(distance);
   for (const auto& piece : pieces) {
     // A line never bends; an arc's offset radius is checked as it is built.
@@ -150,7 +158,7 @@ offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, d
     }
     geom::CurvatureExtreme concave = geom::offsetClearance(*piece, distance).concave;
     if (!(concave.radius > radius)) {
-      return OffsetTrouble{OffsetTrouble::Bend, concave.point, concave.radius, ""};
+      return OffsetTrouble{OffsetTrouble::Bend, concave.point, concave.radius, "", 0};
     }
   }
   std::shared_ptr<const geom::Curve> offset;
@@ -158,19 +166,109 @@ offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, d
     offset = geom::offsetOfPieces(pieces, distance);
   } catch (const geom::OffsetError& error) {
     return OffsetTrouble{error.radius > 0 ? OffsetTrouble::InsideArc : OffsetTrouble::Corner,
-                         error.place, error.radius, error.what()};
+                         error.place, error.radius, error.what(), 0};
   } catch (const geom::GeometryError& error) {
-    return OffsetTrouble{OffsetTrouble::Degenerate, {}, 0, error.what()};
+    return OffsetTrouble{OffsetTrouble::Degenerate, {}, 0, error.what(), 0};
   }
-  if (std::optional<Eigen::Vector3d> crossing = geom::offsetSelfCrossing(*offset)) {
-    return OffsetTrouble{OffsetTrouble::SelfCrossing, *crossing, 0, ""};
+  try {
+    if (std::optional<Eigen::Vector3d> crossing = geom::offsetSelfCrossing(*offset)) {
+      return OffsetTrouble{OffsetTrouble::SelfCrossing, *crossing, 0, "", 0};
+    }
+    if (drawn != nullptr) {
+      if (std::optional<geom::ClearanceViolation> near =
+              geom::offsetClearanceViolation(*offset, *drawn->proximity, radius, drawn->slack)) {
+        return OffsetTrouble{OffsetTrouble::TooNear, near->centre, near->distance, "", 0};
+      }
+    }
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    return OffsetTrouble{OffsetTrouble::TooMuchWork, {}, 0, "", error.limit};
   }
   return offset;
 }
 
-std::shared_ptr<const geom::Curve>
-PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double distance) {
-  auto result = offsetOrTrouble(movedPieces(curve), distance);
+namespace {
+
+// The distance from `point` to a drawn piece (exact to rounding).
+double distanceToPiece(const geom::Curve& piece, const Eigen::Vector3d& point) {
+  if (const auto* line = dynamic_cast<const geom::LineCurve*>(&piece)) {
+    geom::ParameterRange domain = line->domain();
+    Eigen::Vector3d a = line->point(domain.t0);
+    Eigen::Vector3d along = line->point(domain.t1) - a;
+    double share = along.squaredNorm() > 0
+                       ? std::clamp((point - a).dot(along) / along.squaredNorm(), 0.0, 1.0)
+                       : 0.0;
+    return (a + share * along - point).norm();
+  }
+  return geom::CurveProximity(piece, 1e-6).closestPoint(point).distance;
+}
+
+// "piece 3 (a line)" of a path, for the diagnostics.
+std::string pieceName(const geom::Curve& piece, std::size_t index) {
+  const char* kind = dynamic_cast<const geom::LineCurve*>(&piece) != nullptr  ? " (a line)"
+                     : dynamic_cast<const geom::ArcCurve*>(&piece) != nullptr ? " (an arc)"
+                                                                              : "";
+  return fmt::format("piece {}{}", index + 1, kind);
+}
+
+// Which pieces of a path the tool runs beside at `centre` (on a crossing of
+// the offset: the two whose offsets meet; too near: the one it is beside
+// and the one it comes near), empty for a curve of one piece.
+std::string besidePieces(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                         const Eigen::Vector3d& centre, double radius, bool tooNear) {
+  if (pieces.size() < 2) {
+    return "";
+  }
+  std::vector<double> distances;
+  for (const auto& piece : pieces) {
+    distances.push_back(distanceToPiece(*piece, centre));
+  }
+  // The piece the tool runs beside is at its radius; the one it cuts into nearer.
+  std::size_t beside = 0;
+  std::size_t into = 0;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (distances[i] < distances[into]) {
+      into = i;
+    }
+  }
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if ((!tooNear || i != into) && std::fabs(distances[i] - radius) < closest) {
+      closest = std::fabs(distances[i] - radius);
+      beside = i;
+    }
+  }
+  if (tooNear) {
+    return fmt::format("beside {} comes {:.4f} from {}", pieceName(*pieces[beside], beside),
+                       distances[into], pieceName(*pieces[into], into));
+  }
+  // A crossing is at the radius from both pieces whose offsets meet there.
+  std::size_t other = beside;
+  closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (i != beside && std::fabs(distances[i] - radius) < closest) {
+      closest = std::fabs(distances[i] - radius);
+      other = i;
+    }
+  }
+  std::size_t first = std::min(beside, other);
+  std::size_t second = std::max(beside, other);
+  return fmt::format("the tool beside {} meets itself beside {}", pieceName(*pieces[first], first),
+                     pieceName(*pieces[second], second));
+}
+
+} // namespace
+
+std::shared_ptr<const geom::Curve> PartLowering::checkedOffset(const CutStmt& cut,
+                                                               const CutCurve& curve,
+                                                               double distance,
+                                                               const DrawnClearance* drawn) {
+  std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
+  std::optional<DrawnClearance> own;
+  if (drawn == nullptr) {
+    own.emplace(drawnClearance(cut, pieces));
+    drawn = &*own;
+  }
+  auto result = offsetOrTrouble(pieces, distance, drawn);
   if (auto* offset = std::get_if<std::shared_ptr<const geom::Curve>>(&result)) {
     return *offset;
   }
@@ -195,15 +293,53 @@ PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve, double di
   case OffsetTrouble::Degenerate:
     fail(cut.curve->span, fmt::format("cannot offset this curve: {}", trouble.message),
          DiagnosticKind::DegenerateCurve);
+  case OffsetTrouble::TooMuchWork:
+    offsetCheckTooLarge(cut, trouble.limit);
+  case OffsetTrouble::TooNear: {
+    std::string which = besidePieces(pieces, trouble.place, radius, true);
+    fail(cut.span,
+         fmt::format("the tool's radius {:g} is too large for this {}: its centre {} at ({:.4f}, "
+                     "{:.4f}); it would cut {:.4f} into the part there",
+                     radius, pieces.size() > 1 ? "path" : "curve",
+                     which.empty() ? fmt::format("comes {:.4f} from another part of the curve",
+                                                 trouble.radius)
+                                   : which,
+                     trouble.place.x(), trouble.place.y(), radius - trouble.radius),
+         DiagnosticKind::ToolTooLarge);
+  }
   case OffsetTrouble::SelfCrossing:
     break;
   }
+  std::string where = besidePieces(pieces, trouble.place, radius, false);
   fail(cut.span,
-       fmt::format("the tool's radius {:g} is too large for this curve: the offset path "
-                   "crosses itself at ({:.4f}, {:.4f}), where the curve's sides are less than "
+       fmt::format("the tool's radius {:g} is too large for this {}: the offset path "
+                   "crosses itself at ({:.4f}, {:.4f}){}, where the curve's sides are less than "
                    "two tool radii apart",
-                   radius, trouble.place.x(), trouble.place.y()),
+                   radius, pieces.size() > 1 ? "path" : "curve", trouble.place.x(),
+                   trouble.place.y(), where.empty() ? "" : " (" + where + ")"),
        DiagnosticKind::ToolTooLarge);
+}
+
+DrawnClearance
+PartLowering::drawnClearance(const CutStmt& cut,
+                             const std::vector<std::shared_ptr<const geom::Curve>>& pieces) {
+  // The cut may leave its tolerance unreported past the curve (as verify
+  // does); a cut without one (samples=) the default.
+  double slack = chordTolerance(cut).value_or(options_.defaultTolerance);
+  try {
+    return DrawnClearance(pieces, slack);
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    offsetCheckTooLarge(cut, error.limit);
+  }
+}
+
+void PartLowering::offsetCheckTooLarge(const CutStmt& cut, std::size_t limit) {
+  fail(cut.span,
+       fmt::format("checking that the tool keeps its radius from this curve everywhere takes more "
+                   "than {} steps (points of the curve, or pairs of the offset's chords); that is "
+                   "the limit of one cut",
+                   limit),
+       DiagnosticKind::ProgramTooLarge);
 }
 
 bool PartLowering::lowerOffsetCut(const CutStmt& cut) {

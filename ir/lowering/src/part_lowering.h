@@ -385,8 +385,16 @@ private:
   double offsetDistance(const frontend::CutStmt& cut, const frontend::Modifier& side,
                         bool controller);
   // The exact offset of the cut's curve, or tool-too-large at the cut.
+  // With `drawn`, the drawn curve sampled for the clearance check (else
+  // sampled here).
   std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
-                                                   const CutCurve& curve, double distance);
+                                                   const CutCurve& curve, double distance,
+                                                   const DrawnClearance* drawn = nullptr);
+  // The cut's drawn pieces sampled for clearance checks within its
+  // tolerance; program-too-large at the cut past the sampling's limit.
+  DrawnClearance drawnClearance(const frontend::CutStmt& cut,
+                                const std::vector<std::shared_ptr<const geom::Curve>>& pieces);
+  [[noreturn]] void offsetCheckTooLarge(const frontend::CutStmt& cut, std::size_t limit);
   std::optional<CompensatedLeads> hostLeads(const frontend::CutStmt& cut, const CutCurve& curve,
                                             const geom::Curve& offset, double distance);
   bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
@@ -452,9 +460,14 @@ private:
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
   bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
-                              double compiledDistance);
+                              double compiledDistance, const DrawnClearance& drawn);
   void planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                        double budget, const frontend::CutStmt& cut);
+  // The step count of each segment at `radii`, raised until it fits (within
+  // maximumOffsetStepEvaluations in all, counted in `evaluated`).
+  void planOffsetStepCounts(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+                            const std::vector<double>& radii, double measured,
+                            const frontend::CutStmt& cut, std::size_t& evaluated);
   // base + value * factor, a constant factor's sign as a subtraction.
   Scalar plusScaled(Scalar base, Scalar value, Scalar factor);
   CurvePoint besideAt(const CurvePoint& point, const Eigen::Vector2d& normal);

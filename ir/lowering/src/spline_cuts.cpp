@@ -10,6 +10,8 @@
 #include "printed_grid.h"
 #include "spline_fitting.h"
 
+#include "cncc/geom/evaluation_budget.h"
+
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/spline_move.h"
 
@@ -102,6 +104,13 @@ FittedSplineBlocks PartLowering::splineBlocksFor(const CutStmt& cut, const CutCu
       transitionsFor(options_.splineEnds, ramp ? rampArrival(samples) : std::nullopt);
   try {
     return fitSplineBlocks(request);
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    fail(cut.span,
+         fmt::format("fitting {} blocks to this curve within its tolerance asks more than {} "
+                     "points of it; that is the limit of one cut's spline fit (a coarser "
+                     "tolerance, or a shorter curve, needs fewer)",
+                     methodOf(cut), error.limit),
+         DiagnosticKind::ProgramTooLarge);
   } catch (const geom::GeometryError& error) {
     fail(
         cut.span,

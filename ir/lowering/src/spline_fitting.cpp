@@ -6,6 +6,7 @@
 #include "cncc/geom/controller_bspline.h"
 #include "cncc/geom/curve_deviation.h"
 #include "cncc/geom/curve_stand_in.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/geom/nurbs_reparametrisation.h"
@@ -139,12 +140,14 @@ FittedSplineBlocks fittedBlocks(const SplineFitRequest& request) {
       request.budget.increment, request.budget.tolerance));
 }
 
-FittedSplineBlocks bsplineBlocks(const SplineFitRequest& request) {
+// `original`: the request's curve before it was budgeted or stood in for,
+// a NURBS written as it is where it can be.
+FittedSplineBlocks bsplineBlocks(const SplineFitRequest& request, const geom::Curve& original) {
   if (std::isnan(request.budget.tolerance)) {
     return samplesAsControlPoints(request);
   }
   std::string note;
-  if (const auto* nurbs = dynamic_cast<const geom::NurbsCurve*>(request.curve)) {
+  if (const auto* nurbs = dynamic_cast<const geom::NurbsCurve*>(&original)) {
     if (std::optional<FittedSplineBlocks> blocks = exactBlocks(*nurbs, request, note)) {
       return *blocks;
     }
@@ -210,22 +213,33 @@ FittedSplineBlocks interpolatingBlocks(const SplineFitRequest& request) {
 
 } // namespace
 
-FittedSplineBlocks fitSplineBlocks(const SplineFitRequest& request) {
+FittedSplineBlocks fitSplineBlocks(const SplineFitRequest& given) {
+  // The fit's searches (the knots placed, each retry, the measurements) ask
+  // at most maximumSplineFitEvaluations points of the curve: a long or fast
+  // curve at a fine tolerance ends in EvaluationBudgetExceeded.
+  geom::BudgetedCurve budgeted(*given.curve, maximumSplineFitEvaluations);
+  SplineFitRequest request = given;
+  request.curve = &budgeted;
   // An analytic curve, whose every evaluation runs the part's expressions:
   // the searches run on a stand-in within the budget's share for it.
   SplineFitRequest cheap = request;
   std::optional<geom::CurveStandIn> standIn;
-  bool analytic = dynamic_cast<const geom::NurbsCurve*>(request.curve) == nullptr &&
-                  dynamic_cast<const geom::PiecewisePolynomialCurve*>(request.curve) == nullptr;
+  std::optional<geom::BudgetedCurve> cheapCurve;
+  bool analytic = dynamic_cast<const geom::NurbsCurve*>(given.curve) == nullptr &&
+                  dynamic_cast<const geom::PiecewisePolynomialCurve*>(given.curve) == nullptr;
   if (analytic && !std::isnan(request.budget.tolerance)) {
     standIn = geom::standInFor(*request.curve, request.budget.standInError());
     if (standIn) {
-      cheap.curve = standIn->curve.get();
+      // The stand-in is cheap to ask, but the fit's measurements ask it for
+      // as many points as the curve is long over the tolerance: bounded too.
+      cheapCurve.emplace(*standIn->curve, maximumSplineFitEvaluations);
+      cheap.curve = &*cheapCurve;
       cheap.budget.tolerance = request.budget.tolerance - standIn->error;
     }
   }
-  FittedSplineBlocks blocks =
-      request.kind == SplineKind::BSpline ? bsplineBlocks(cheap) : interpolatingBlocks(cheap);
+  FittedSplineBlocks blocks = request.kind == SplineKind::BSpline
+                                  ? bsplineBlocks(cheap, *given.curve)
+                                  : interpolatingBlocks(cheap);
   if (standIn) {
     blocks.deviation += standIn->error;
   }

@@ -47,7 +47,11 @@ struct FittedSplineBlocks {
   std::string note; // why a NURBS was re-fitted, or its reparametrisation
 };
 
-// Throws geom::GeometryError when no spline keeps the tolerance.
+// The points (and derivatives) one cut's spline fit may ask of its curve.
+inline constexpr std::size_t maximumSplineFitEvaluations = 5'000'000;
+
+// Throws geom::GeometryError when no spline keeps the tolerance, and
+// geom::EvaluationBudgetExceeded past maximumSplineFitEvaluations.
 FittedSplineBlocks fitSplineBlocks(const SplineFitRequest& request);
 
 // "; 6 BSPLINE control points, deviation 1.2e-07 mm, ..." without the ";".

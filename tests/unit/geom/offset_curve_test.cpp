@@ -188,5 +188,55 @@ TEST(OffsetSelfCrossing, NarrowWaistIsFound) {
   EXPECT_TRUE(offsetSelfCrossing(OffsetCurve(peanut, -3.0)).has_value());
 }
 
+// Two windings of a peanut: its offset runs over itself, every chord of the
+// second lap near one of the first. The grid finds a crossing all the same,
+// and one on the first lap's waist (the first along the curve).
+TEST(OffsetSelfCrossing, FirstCrossingAlongTheCurve) {
+  auto peanut = std::make_shared<PolarCurve>(ParameterRange{0, kTwoPi},
+                                             [](double t) { return 10 + 6 * std::cos(2 * t); });
+  std::optional<Eigen::Vector3d> crossing = offsetSelfCrossing(OffsetCurve(peanut, 4.5), 4096);
+  ASSERT_TRUE(crossing.has_value());
+  // Along the curve (counter-clockwise from t = 0) the waist at +x comes first.
+  EXPECT_GT(crossing->x(), 0.0);
+  EXPECT_NEAR(crossing->y(), 0.0, 0.01);
+}
+
+// An open path whose last line ends on its first (a rectangle drawn from
+// (-5, 0), closed at (0, 0)): beside it on the outside no offset crosses
+// another, but the tool at the last line's end stands on the first line.
+TEST(OffsetClearanceViolation, OpenEndRunIntoTheStart) {
+  std::vector<std::shared_ptr<const Curve>> pieces{
+      std::make_shared<LineCurve>(Eigen::Vector3d(-5, 0, 0), Eigen::Vector3d(40, 0, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(40, 0, 0), Eigen::Vector3d(40, 20, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(40, 20, 0), Eigen::Vector3d(0, 20, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(0, 20, 0), Eigen::Vector3d(0, 0, 0))};
+  CompositeCurve drawn(pieces);
+  std::shared_ptr<const Curve> outside = offsetOfPieces(pieces, -2.0);
+  EXPECT_FALSE(offsetSelfCrossing(*outside).has_value());
+  std::optional<ClearanceViolation> violation =
+      offsetClearanceViolation(*outside, drawn, 2.0, 1e-3);
+  ASSERT_TRUE(violation.has_value());
+  EXPECT_NEAR((violation->centre - Eigen::Vector3d(-2, 0, 0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(violation->distance, 0.0, 1e-9);
+  // The same path ending at (-5, 20) and on to (-5, 0) is a closed rectangle:
+  // the tool runs round it at its radius everywhere.
+  std::vector<std::shared_ptr<const Curve>> closed{
+      std::make_shared<LineCurve>(Eigen::Vector3d(-5, 0, 0), Eigen::Vector3d(40, 0, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(40, 0, 0), Eigen::Vector3d(40, 20, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(40, 20, 0), Eigen::Vector3d(-5, 20, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(-5, 20, 0), Eigen::Vector3d(-5, 0, 0))};
+  EXPECT_FALSE(
+      offsetClearanceViolation(*offsetOfPieces(closed, -2.0), CompositeCurve(closed), 2.0, 1e-3)
+          .has_value());
+}
+
+// A polar curve with its tool outside: as many centres as the check takes,
+// each a tree query, none nearer than the radius.
+TEST(OffsetClearanceViolation, SmoothContourKeepsItsDistance) {
+  PolarCurve contour = testing::polarContour();
+  auto base = std::make_shared<PolarCurve>(contour);
+  EXPECT_FALSE(offsetClearanceViolation(OffsetCurve(base, -2.0), contour, 2.0, 1e-3).has_value());
+}
+
 } // namespace
 } // namespace cncc::geom
