@@ -415,11 +415,7 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     int steps = 0;
     try {
       geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
-      struct Count {
-        std::size_t& total;
-        const geom::BudgetedCurve& curve;
-        ~Count() { total += curve.used(); }
-      } count{evaluated, counted};
+      EvaluationsCharged charged{evaluated, counted};
       // Less a fiftieth of an increment for the literals' 8 significant
       // digits (coefficients, the step), a few micrometres at most.
       steps = fewestUniformSteps(counted, from, to,

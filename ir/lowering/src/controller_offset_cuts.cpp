@@ -253,11 +253,7 @@ void PartLowering::planOffsetStepCounts(const CutCurve& curve,
     for (double radius : radii) {
       geom::OffsetCurve offsetCurve(moved, side * radius);
       geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
-      struct Count {
-        std::size_t& total;
-        const geom::BudgetedCurve& curve;
-        ~Count() { total += curve.used(); }
-      } count{evaluated, exact};
+      EvaluationsCharged charged{evaluated, exact};
       int tries = 0;
       while (stepsAt(radius) <= maximumStepsPerPiece &&
              !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured)) {

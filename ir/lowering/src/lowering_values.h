@@ -8,6 +8,7 @@
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/value.h"
 #include "cncc/geom/curve.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
 
@@ -105,6 +106,15 @@ inline constexpr std::size_t maximumStepSearchEvaluations = 50'000'000;
 // The points the search for a controller offset's step counts may ask of
 // the exact offsets it checks them on, over one cut.
 inline constexpr std::size_t maximumOffsetStepEvaluations = 10'000'000;
+
+// Adds the points `curve` was asked for to `total` when it goes out of
+// scope, also when its budget ran out (the budget of a search over a cut is
+// shared by the curves it makes).
+struct EvaluationsCharged {
+  std::size_t& total;
+  const geom::BudgetedCurve& curve;
+  ~EvaluationsCharged() { total += curve.used(); }
+};
 
 struct SampleRun {
   std::size_t piece = 0;

@@ -359,6 +359,9 @@ private:
   std::filesystem::path directory_;
 };
 
+// A plunge and a line, for the LinuxCNC runs below.
+constexpr const char* plungeAndLine = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+
 // A LinuxCNC program runs in LinuxCNC's interpreter, its Python module:
 // its feed moves are the path, read within the program's own 5 decimals,
 // and a program it refuses is a failure at its line.
@@ -366,7 +369,7 @@ TEST(Verification, LinuxcncProgramsRunInLinuxcncsInterpreter) {
   const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
-  request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+  request.text = plungeAndLine;
   ProgramExecution run = linuxcnc->execute(request);
   ASSERT_FALSE(run.failure) << run.failure->message;
   EXPECT_TRUE(run.notes.empty());
@@ -391,7 +394,7 @@ TEST(Verification, LinuxcncProgramsRunInRs274WithoutTheModule) {
   const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
-  request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+  request.text = plungeAndLine;
   ProgramExecution run = linuxcnc->execute(request);
   ASSERT_FALSE(run.failure) << run.failure->message;
   ASSERT_EQ(run.notes.size(), 1u);
