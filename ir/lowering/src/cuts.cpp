@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string_view>
@@ -391,14 +392,14 @@ std::vector<SampleRun> PartLowering::sampleRuns(const CutCurve& curve,
 // NURBS span whose coefficients the controller would read too coarsely
 // (spanLiteralsFit); null where the controller evaluates the span at the
 // run's locals. A run of one point is folded on the host anyway.
-const std::array<std::uint32_t, 3>*
+const PartLowering::HostPoints*
 PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const CutStmt& cut) {
   // Decided once per run (each pass emits the run again), either way.
   auto known = hostPointTables_.find(run.localTable);
   if (known != hostPointTables_.end()) {
     return known->second ? &*known->second : nullptr;
   }
-  std::optional<std::array<std::uint32_t, 3>>& decided = hostPointTables_[run.localTable];
+  std::optional<HostPoints>& decided = hostPointTables_[run.localTable];
   const CurvePiece& piece = curve.pieces[run.piece];
   if (run.locals.size() < 2 || piece.value->kind != CurveKind::Nurbs ||
       spanLiteralsFit(piece.spans[run.span], cut, piece.transform.stretch())) {
@@ -414,8 +415,17 @@ PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const
     coordinates[1].push_back(point.y.constant);
     coordinates[2].push_back(point.z.constant);
   }
-  decided = {builder_.addTable(coordinates[0]), builder_.addTable(coordinates[1]),
-             builder_.addTable(coordinates[2])};
+  HostPoints points;
+  for (int c = 0; c < 3; ++c) {
+    const std::vector<double>& values = coordinates[c];
+    if (std::all_of(values.begin(), values.end(),
+                    [&](double value) { return value == values.front(); })) {
+      points.constant[c] = values.front(); // no table of one number
+    } else {
+      points.tables[c] = builder_.addTable(values);
+    }
+  }
+  decided = points;
   return &*decided;
 }
 
@@ -427,11 +437,12 @@ void PartLowering::emitSampleRuns(const CutCurve& curve, const std::vector<Sampl
     double last = static_cast<double>(run.locals.size()) - 1;
     ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last), LoopRole::Curve);
     CurvePoint point;
-    if (const std::array<std::uint32_t, 3>* tables = hostPointTables(curve, run, cut)) {
-      auto load = [&](std::uint32_t table) {
-        return Scalar::of(builder_.tableLoad(table, i), ValueType::F64);
+    if (const HostPoints* host = hostPointTables(curve, run, cut)) {
+      auto load = [&](int c) {
+        return host->tables[c] ? Scalar::of(builder_.tableLoad(*host->tables[c], i), ValueType::F64)
+                               : Scalar::of(host->constant[c]);
       };
-      point = {load((*tables)[0]), load((*tables)[1]), load((*tables)[2])};
+      point = {load(0), load(1), load(2)};
     } else {
       Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
       point = pointAt(curve, run.piece, run.span, local, cut);

@@ -324,8 +324,14 @@ private:
   void emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs, double zFrom,
                       double zTo, ValueId feed, const frontend::CutStmt& cut);
   // The runs of the samples after the first (the start, which the plunge reaches).
-  const std::array<std::uint32_t, 3>* hostPointTables(const CutCurve& curve, const SampleRun& run,
-                                                      const frontend::CutStmt& cut);
+  // A run's x, y and z computed on the host: per coordinate a table, or the
+  // one value every point has (a planar curve's z).
+  struct HostPoints {
+    std::array<std::optional<std::uint32_t>, 3> tables;
+    std::array<double, 3> constant = {0, 0, 0};
+  };
+  const HostPoints* hostPointTables(const CutCurve& curve, const SampleRun& run,
+                                    const frontend::CutStmt& cut);
   std::vector<SampleRun> lapRuns(const CutCurve& curve, const geom::CurveSamples& samples,
                                  const std::vector<RampSegment>* ramp);
   // The passes of a cut whose start and finish are constants: per depth its
@@ -592,7 +598,7 @@ private:
   std::map<const frontend::Declaration*, const frontend::Expr*> letValues_;
   // hostPointTables, by the run's table of locals (nullopt: the controller
   // evaluates the run's span).
-  std::map<std::uint32_t, std::optional<std::array<std::uint32_t, 3>>> hostPointTables_;
+  std::map<std::uint32_t, std::optional<HostPoints>> hostPointTables_;
   std::vector<FixedParameter> fixedParameters_;
   // Set while the defaults are only checked, not built into the program.
   bool checkingDefaults_ = false;
