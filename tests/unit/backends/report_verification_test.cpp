@@ -359,8 +359,14 @@ private:
   std::filesystem::path directory_;
 };
 
-// A plunge and a line, for the LinuxCNC runs below.
-constexpr const char* plungeAndLine = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+// A plunge and a line run by `executor`, for the LinuxCNC runs below; it
+// must run.
+ProgramExecution plungeAndLineOn(const TargetExecutor& executor, ExecutionRequest& request) {
+  request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
+  ProgramExecution run = executor.execute(request);
+  EXPECT_FALSE(run.failure) << run.failure->message;
+  return run;
+}
 
 // A LinuxCNC program runs in LinuxCNC's interpreter, its Python module:
 // its feed moves are the path, read within the program's own 5 decimals,
@@ -369,9 +375,7 @@ TEST(Verification, LinuxcncProgramsRunInLinuxcncsInterpreter) {
   const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
-  request.text = plungeAndLine;
-  ProgramExecution run = linuxcnc->execute(request);
-  ASSERT_FALSE(run.failure) << run.failure->message;
+  ProgramExecution run = plungeAndLineOn(*linuxcnc, request);
   EXPECT_TRUE(run.notes.empty());
   ASSERT_FALSE(run.path.moves.empty());
   EXPECT_NEAR(run.path.moves.back().end.x(), 10, 1e-9);
@@ -394,9 +398,7 @@ TEST(Verification, LinuxcncProgramsRunInRs274WithoutTheModule) {
   const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
-  request.text = plungeAndLine;
-  ProgramExecution run = linuxcnc->execute(request);
-  ASSERT_FALSE(run.failure) << run.failure->message;
+  ProgramExecution run = plungeAndLineOn(*linuxcnc, request);
   ASSERT_EQ(run.notes.size(), 1u);
   EXPECT_THAT(run.notes[0], HasSubstr("No module named 'gcode'"));
   EXPECT_THAT(run.notes[0], HasSubstr("read from rs274, which prints 4 decimals"));
