@@ -226,7 +226,7 @@ TEST(MacroControllerLoops, SProfileFigures) {
   // retract G91 G28 Z0. and G90; the alarm for a w6 that is not positive;
   // and since the two spans w6 moves take a step computed at each point
   // (rational_span_walk.cpp: 4.5 times fewer points at w6 = 8 than one
-  // count per span), 33 blocks in each of their loops. About the
+  // count per span), 36 blocks in each of their loops. About the
   // hand-written macro program's 135 blocks (REFERENCE-CASES.md).
   EXPECT_LE(compiled.program.statistics.blocks, 136);
   EXPECT_EQ(compiled.program.text.find("#["), std::string::npos) << "no tables";
