@@ -1,5 +1,8 @@
 #include "part_lowering.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace cncc::ir::lowering {
 
 ValueId Arithmetic::value(Scalar scalar) {
@@ -76,6 +79,17 @@ Scalar Arithmetic::binary(Opcode opcode, Scalar left, Scalar right) {
   }
   ValueId result = builder_.binary(opcode, value(left), value(right));
   return Scalar::of(result, opcodeInfo(opcode).result);
+}
+
+Scalar Arithmetic::extreme(Scalar a, Scalar b, Opcode gap) {
+  if (a.isConstant() && b.isConstant()) {
+    return Scalar::of(gap == Opcode::Add ? std::max(a.constant, b.constant)
+                                         : std::min(a.constant, b.constant));
+  }
+  Scalar difference = binary(Opcode::Sub, a, b);
+  difference = difference.isConstant() ? Scalar::of(std::abs(difference.constant))
+                                       : unary(Opcode::Abs, difference);
+  return multiply(Scalar::of(0.5), binary(gap, add(a, b), difference));
 }
 
 Scalar Arithmetic::select(Scalar condition, Scalar yes, Scalar no) {

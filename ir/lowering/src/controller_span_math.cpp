@@ -145,13 +145,4 @@ Scalar ControllerSpanMath::squareOf(const std::vector<LinearForm>& forms, bool c
   return add(magnitude(sum), Scalar::of(cushioned ? printedRoundingShare * constantPart : 0));
 }
 
-Scalar ControllerSpanMath::extreme(Scalar a, Scalar b, Opcode gap) {
-  if (a.isConstant() && b.isConstant()) {
-    return Scalar::of(gap == Opcode::Add ? std::max(a.constant, b.constant)
-                                         : std::min(a.constant, b.constant));
-  }
-  Scalar difference = magnitude(math_.binary(Opcode::Sub, a, b));
-  return math_.multiply(Scalar::of(0.5), math_.binary(gap, add(a, b), difference));
-}
-
 } // namespace cncc::ir::lowering

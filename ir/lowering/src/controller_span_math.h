@@ -30,9 +30,9 @@ public:
   Scalar divide(Scalar a, Scalar b) { return math_.binary(Opcode::Div, a, b); }
   Scalar magnitude(Scalar a);
   Scalar squareRoot(Scalar a);
-  // max(a, b) = (a + b + |a - b|) / 2, min likewise: one inline expression.
-  Scalar larger(Scalar a, Scalar b) { return extreme(a, b, Opcode::Add); }
-  Scalar smaller(Scalar a, Scalar b) { return extreme(a, b, Opcode::Sub); }
+  // As Arithmetic's: one inline expression.
+  Scalar larger(Scalar a, Scalar b) { return math_.larger(a, b); }
+  Scalar smaller(Scalar a, Scalar b) { return math_.smaller(a, b); }
 
   Point combination(const std::vector<double>& coefficients) const;
   Scalar length(const Point& point);
@@ -44,7 +44,6 @@ public:
 private:
   // sum_k form_k^2, expanded in the forms' values.
   Scalar squareOf(const std::vector<LinearForm>& forms, bool cushioned);
-  Scalar extreme(Scalar a, Scalar b, Opcode gap);
 
   Arithmetic& math_;
   std::vector<Point> points_;

@@ -82,8 +82,15 @@ public:
   Scalar add(Scalar left, Scalar right) { return binary(Opcode::Add, left, right); }
   Scalar multiply(Scalar left, Scalar right) { return binary(Opcode::Mul, left, right); }
   Scalar select(Scalar condition, Scalar yes, Scalar no);
+  // max(a, b) = (a + b + |a - b|) / 2, min likewise: one inline expression
+  // (the exact Min and Max are blocks of their own on the macro
+  // controllers); two constants give the exact result.
+  Scalar larger(Scalar a, Scalar b) { return extreme(a, b, Opcode::Add); }
+  Scalar smaller(Scalar a, Scalar b) { return extreme(a, b, Opcode::Sub); }
 
 private:
+  Scalar extreme(Scalar a, Scalar b, Opcode gap);
+
   FunctionBuilder& builder_;
 };
 

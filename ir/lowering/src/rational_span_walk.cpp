@@ -98,11 +98,6 @@ Scalar PartLowering::rationalSpanStep(const ControllerSegment& segment, Scalar u
   Arithmetic& math = arithmetic_;
   auto sub = [&](Scalar a, Scalar b) { return math.binary(Opcode::Sub, a, b); };
   auto div = [&](Scalar a, Scalar b) { return math.binary(Opcode::Div, a, b); };
-  // (a + b -+ |a - b|) / 2: one inline expression (the exact min is a block
-  // of its own on the macro controllers; a rounding here is harmless).
-  auto extreme = [&](Scalar a, Scalar b, Opcode gap) {
-    return math.multiply(Scalar::of(0.5), math.binary(gap, math.add(a, b), magnitude(sub(a, b))));
-  };
   Scalar weight = point[3];
   int dimensions = spanDimensions(segment);
   std::array<Scalar, 3> centre;
@@ -135,7 +130,7 @@ Scalar PartLowering::rationalSpanStep(const ControllerSegment& segment, Scalar u
                   : k == 2 ? math.unary(Opcode::Sqrt, ratio)
                            : math.binary(Opcode::Pow, math.add(ratio, Scalar::of(coefficientFloor)),
                                          Scalar::of(1.0 / k));
-    largest = largest ? extreme(*largest, root, Opcode::Add) : root;
+    largest = largest ? math.larger(*largest, root) : root;
   }
   auto f = [&](Scalar h) {
     Scalar sum = coefficients.back();
@@ -151,8 +146,8 @@ Scalar PartLowering::rationalSpanStep(const ControllerSegment& segment, Scalar u
     Scalar lowValue = f(low);
     low = sub(low, div(math.multiply(lowValue, sub(high, low)), sub(highValue, lowValue)));
   }
-  return extreme(extreme(low, high, Opcode::Sub), div(Scalar::of(1), stepsOf(segment)),
-                 Opcode::Add);
+  // Inline extremes: a rounding here is harmless.
+  return math.larger(math.smaller(low, high), div(Scalar::of(1), stepsOf(segment)));
 }
 
 void PartLowering::emitRationalSpanWalk(
