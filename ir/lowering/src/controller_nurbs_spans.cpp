@@ -320,24 +320,11 @@ void PartLowering::planSplitSpan(const CurvePiece& piece, const SymbolicList* we
 
 CurvePoint PartLowering::splitSpanPoint(const ControllerSegment& segment, Scalar u) {
   Arithmetic& math = arithmetic_;
-  std::array<Scalar, 4> sums;
-  for (int c = 0; c < 4; ++c) {
-    sums[c] = hornerOf(segment.constantPart[c], u);
-  }
-  for (std::size_t d = 0; d < segment.dependentBasis.size(); ++d) {
-    Scalar basis = hornerOf(segment.dependentBasis[d], u);
-    for (int c = 0; c < 4; ++c) {
-      const Scalar& factor = segment.dependentPoints[d][c];
-      if (!(factor.isConstant() && factor.constant == 0)) {
-        sums[c] = math.add(sums[c], math.multiply(factor, basis));
-      }
-    }
-  }
+  std::array<Scalar, 4> sums = splitSpanDerivative(segment, u, 0);
   if (segment.rational) {
-    Scalar weight = math.add(Scalar::of(segment.referenceWeight), sums[3]);
     for (int c = 0; c < 3; ++c) {
       if (!(sums[c].isConstant() && sums[c].constant == 0)) {
-        sums[c] = math.binary(Opcode::Div, sums[c], weight);
+        sums[c] = math.binary(Opcode::Div, sums[c], sums[3]);
       }
     }
   } else if (segment.referenceWeight != 1) {
