@@ -463,17 +463,18 @@ private:
     std::set<std::size_t> freeSlots; // indices into `free`; beyond it: variables that do not exist
     std::size_t slotCount = 0;
     // The value an advancing loop's variable takes next goes to the
-    // variable's own slot where it is free: no `#u=#next` at the loop's end.
-    std::map<std::uint32_t, std::uint32_t> advancesTo; // next value -> loop variable
+    // variable's own slot, kept for it once the variable's last read is
+    // past: no `#u=#next` at the loop's end.
+    std::map<std::uint32_t, std::uint32_t> nextOfVariable; // loop variable -> next value
     for (InstructionId id : layout_.order) {
       const Instruction& instruction = function_.instructions[id];
-      if (ValueId next = loopAdvance(function_, instruction); next.valid() && needed_[id]) {
-        advancesTo[next.index] = instruction.result.index;
+      // Only for a next value that gets a slot after the variable's: one
+      // the body computes into a variable (not inline, not from outside).
+      ValueId next = loopAdvance(function_, instruction);
+      if (next.valid() && needed_[id] && materialized_[next.index] &&
+          std::ranges::count(layout_.loops[definitionId(next)], id) > 0) {
+        nextOfVariable[instruction.result.index] = next.index;
       }
-    }
-    std::map<std::uint32_t, std::uint32_t> nextOfVariable; // loop variable -> next value
-    for (auto [next, variable] : advancesTo) {
-      nextOfVariable[variable] = next;
     }
     std::map<std::uint32_t, std::size_t> slotOfValue;
     std::map<std::uint32_t, std::size_t> reservedSlots; // next value -> its loop variable's slot
@@ -492,19 +493,10 @@ private:
         }
       }
       std::size_t slot;
-      std::optional<std::size_t> preferred;
-      if (auto loopVariable = advancesTo.find(interval.value.index);
-          loopVariable != advancesTo.end()) {
-        if (auto own = slotOfValue.find(loopVariable->second); own != slotOfValue.end()) {
-          preferred = own->second;
-        }
-      }
       if (auto reserved = reservedSlots.find(interval.value.index);
           reserved != reservedSlots.end()) {
         slot = reserved->second;
         reservedSlots.erase(reserved);
-      } else if (preferred && freeSlots.erase(*preferred) > 0) {
-        slot = *preferred;
       } else if (freeSlots.empty()) {
         slot = slotCount++;
       } else {
