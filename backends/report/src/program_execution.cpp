@@ -247,6 +247,15 @@ ProgramExecution runJit(const ExecutionRequest& request) {
 }
 
 // A Sinumerik program in the virtual Sinumerik; it prints 5 decimals.
+// The line `number` (1-based) of the text; empty past its end.
+std::string lineOf(std::string_view text, int number) {
+  for (int line = 1; line < number && !text.empty(); ++line) {
+    std::size_t newline = text.find('\n');
+    text = newline == std::string_view::npos ? std::string_view() : text.substr(newline + 1);
+  }
+  return std::string(text.substr(0, text.find('\n')));
+}
+
 ProgramExecution runSinumerik(const ExecutionRequest& request) {
   ProgramExecution execution;
   execution.text = request.text;
@@ -255,16 +264,8 @@ ProgramExecution runSinumerik(const ExecutionRequest& request) {
   options.toolRadii = request.radiiOfTools;
   sinumerik::SinumerikRun run = sinumerik::runSinumerikProgram(request.text, options);
   if (run.error) {
-    std::string_view text = request.text;
-    std::size_t begin = 0;
-    for (int line = 1; line < run.error->line() && begin != std::string_view::npos; ++line) {
-      begin = text.find('\n', begin);
-      begin = begin == std::string_view::npos ? begin : begin + 1;
-    }
-    std::string lineText(begin == std::string_view::npos
-                             ? std::string_view()
-                             : text.substr(begin, text.find('\n', begin) - begin));
-    execution.failure = ControllerFailure{run.error->line(), run.error->what(), lineText};
+    execution.failure = ControllerFailure{run.error->line(), run.error->what(),
+                                          lineOf(request.text, run.error->line())};
     return execution;
   }
   execution.path = sinumerik::executedPathOf(run, {});
@@ -288,15 +289,6 @@ ProgramExecution linuxcncPath(const ExecutionRequest& request, std::string_view 
     return failed(request.text, 0, error.what());
   }
   return execution;
-}
-
-// The line `number` (1-based) of the text; empty past its end.
-std::string lineOf(std::string_view text, int number) {
-  for (int line = 1; line < number && !text.empty(); ++line) {
-    std::size_t newline = text.find('\n');
-    text = newline == std::string_view::npos ? std::string_view() : text.substr(newline + 1);
-  }
-  return std::string(text.substr(0, text.find('\n')));
 }
 
 // A LinuxCNC program through LinuxCNC's interpreter as a library (the
