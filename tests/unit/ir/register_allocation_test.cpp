@@ -109,6 +109,54 @@ TEST(RegisterAllocation, KeepsAnOuterInductionVariableThroughAnInnerLoop) {
   EXPECT_EQ(distinct.size(), 3u);
 }
 
+// A loop advancing by a value its body computes into a variable: that
+// value takes the loop variable's own variable (no `#u=#next` to print),
+// and after the loop the variables are free again.
+TEST(RegisterAllocation, GivesTheNextValueOfAnAdvancingLoopItsVariable) {
+  FunctionBuilder builder("advance");
+  ValueId side = builder.parameter(builder.addParameter("side", 10));
+  ValueId zero = builder.constant(0);
+  ValueId one = builder.constant(1);
+  ValueId u = builder.beginLoop(zero, one);
+  ValueId step = builder.binary(Opcode::Mul, u, u);
+  ValueId wider = builder.binary(Opcode::Add, step, builder.constant(0.25));
+  ValueId next = builder.binary(Opcode::Min, builder.binary(Opcode::Add, u, wider), one);
+  builder.feed(next, next, zero, builder.constant(100)); // `next` used twice, and by loop.next
+  builder.endLoopAdvancingTo(next);
+  ValueId after = builder.binary(Opcode::Sub, side, one);
+  builder.rapid(after, after, zero);
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}}, {1}));
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  ASSERT_TRUE(allocation.inVariable(next));
+  EXPECT_EQ(allocation.variableOfValue[next.index], allocation.variableOfValue[u.index]);
+  EXPECT_EQ(allocation.variableOfValue[after.index], 2);
+}
+
+// A loop whose next value comes from outside it (a parameter): the loop
+// variable's variable is not kept for a value that never takes it.
+TEST(RegisterAllocation, KeepsNoVariableForANextValueFromOutsideTheLoop) {
+  FunctionBuilder builder("outside");
+  ValueId side = builder.parameter(builder.addParameter("side", 10));
+  ValueId zero = builder.constant(0);
+  ValueId u = builder.beginLoop(zero, builder.constant(1));
+  ValueId twice = builder.binary(Opcode::Add, u, u);
+  builder.feed(twice, twice, zero, builder.constant(100));
+  builder.endLoopAdvancingTo(side);
+  ValueId after = builder.binary(Opcode::Sub, side, builder.constant(1));
+  ValueId again = builder.binary(Opcode::Mul, after, after);
+  builder.rapid(again, again, after);
+  Function function = builder.finish();
+
+  AllocationResult result = allocateVariables(function, optionsWith({{1, 33}}, {1}));
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  // The loop's variables are free after it: `after` and `again` reuse them.
+  EXPECT_EQ(allocation.usedVariables, (std::vector<int>{1, 2, 3}));
+}
+
 // A table takes consecutive variables that nothing else shares.
 TEST(RegisterAllocation, PlacesATableInConsecutiveVariables) {
   FunctionBuilder builder("table");
