@@ -114,6 +114,33 @@ void FunctionBuilder::endIf() {
   insertion_.pop_back();
 }
 
+std::uint32_t FunctionBuilder::addCurve(CurveTableEntry entry) {
+  function_.curves.push_back(std::move(entry));
+  return static_cast<std::uint32_t>(function_.curves.size() - 1);
+}
+
+ValueId FunctionBuilder::beginCurveLap(std::uint32_t curve, ValueId zFrom, ValueId zTo,
+                                       ValueId feedRate) {
+  Instruction instruction;
+  instruction.opcode = Opcode::CurveLap;
+  instruction.index = curve;
+  instruction.operands = {zFrom, zTo, feedRate};
+  instruction.regions.resize(function_.curves[curve].regionCount());
+  InstructionId id = append(std::move(instruction), ValueType::F64);
+  insertion_.push_back({id, 0});
+  return function_.instructions[id].result;
+}
+
+void FunctionBuilder::curvePoint(ValueId x, ValueId y, ValueId z) {
+  operation(Opcode::CurvePoint, {x, y, z});
+  auto& [lap, region] = insertion_.back();
+  if (region + 1 < function_.instructions[lap].regions.size()) {
+    ++region;
+  } else {
+    insertion_.pop_back();
+  }
+}
+
 void FunctionBuilder::rapid(ValueId x, ValueId y, ValueId z) {
   operation(Opcode::Rapid, {x, y, z});
 }

@@ -38,6 +38,13 @@ public:
   void beginIf(ValueId condition);
   void beginElse();
   void endIf();
+  // `%t = curve.lap @curve, %zFrom, %zTo, %f { ... } piece { ... }`: returns
+  // the regions' parameter; the insertion point moves into the first region.
+  // Each region is ended by curvePoint(), which moves to the next region
+  // and, after the last, leaves the lap.
+  std::uint32_t addCurve(CurveTableEntry entry);
+  ValueId beginCurveLap(std::uint32_t curve, ValueId zFrom, ValueId zTo, ValueId feedRate);
+  void curvePoint(ValueId x, ValueId y, ValueId z);
 
   void rapid(ValueId x, ValueId y, ValueId z);
   void feed(ValueId x, ValueId y, ValueId z, ValueId feedRate);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "cncc/frontend/source_span.h"
+#include "cncc/ir/curve_table.h"
 #include "cncc/ir/sweep_pass.h"
 
 #include <cstdint>
@@ -91,12 +92,14 @@ struct Instruction {
                                // (54 .. 59, 54.1), Contouring tolerance (0: off),
                                // Compensation offset (left positive, 0: off)
   std::uint32_t index = 0;     // TableLoad, Nurbs, Spline: the table; Param: the parameter;
+                               // CurveLap: the curve table's entry;
                                // CutBegin: the cut; Arc: its ArcTurn; Loop: its LoopRole;
                                // Tool: its length
                                // offset register; Origin 54.1: P; Coolant: its CoolantMode;
                                // Compensation: the radius register
   std::string text;            // Comment, Alarm: the text
-  std::vector<Region> regions; // Loop: {body}; If: {then, else}
+  std::vector<Region> regions; // Loop: {body}; If: {then, else}; CurveLap: one per piece
+                               // or NURBS knot span
   // The CDL statement it was lowered from (the part's name for the set-up
   // around the statements); not printed in the IR's text. What a source
   // map gives for the program lines printed from it.
@@ -118,6 +121,8 @@ struct Function {
   std::vector<Parameter> parameters;
   // Constant tables, such as precomputed curve parameters.
   std::vector<std::vector<double>> tables;
+  // The curves that `curve.lap` ops go along (curve_table.h).
+  std::vector<CurveTableEntry> curves;
   std::vector<Instruction> instructions;
   // The type of each value, and the instruction that defines it.
   std::vector<ValueType> valueTypes;

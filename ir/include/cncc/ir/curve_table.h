@@ -1,0 +1,81 @@
+// The function's curve table: for each `curve.lap @c` the shape of the
+// cut's curve (its pieces, their parameter ranges and NURBS knot spans) and
+// how the lap's points are chosen on it. The points themselves are computed
+// by the regions of the `curve.lap` (one per piece, or per knot span of a
+// NURBS piece), so the IR holds the whole curve; the table holds what the
+// regions cannot say: where each region's parameter lies on the whole curve.
+#pragma once
+
+#include "cncc/frontend/source_span.h"
+
+#include <cstddef>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace cncc::geom {
+class Curve;
+}
+
+namespace cncc::ir {
+
+// One piece of a cut's curve (a line, an arc, a polar or param curve, a
+// NURBS): where it starts in the whole curve's parameter, and its own
+// parameter range. A NURBS piece lists its knot spans (ranges of its own
+// parameter); each is a region of its own whose parameter is the span's
+// u in [0, 1]. Any other piece is one region whose parameter is its own.
+struct CurvePieceLayout {
+  double start = 0;
+  double from = 0;
+  double to = 1;
+  std::vector<std::pair<double, double>> spans = {};
+
+  std::size_t regionCount() const { return spans.empty() ? 1 : spans.size(); }
+};
+
+// Where a parameter of the whole curve lies: the region (piece and span)
+// and the parameter that region computes its point at.
+struct CurveLocation {
+  std::size_t region = 0;
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  double local = 0;
+};
+
+// How a lap's points are chosen on the whole curve: within a chord
+// tolerance (the farthest reach of each chord), a number of points at equal
+// steps of the parameter, or points at equal arc length.
+enum class CurveSampling { ChordTolerance, Samples, Spacing };
+
+struct CurveTableEntry {
+  std::vector<CurvePieceLayout> pieces;
+  // The whole curve's parameter range (the first piece's start to the last
+  // piece's end; a single piece's own range).
+  double from = 0;
+  double to = 1;
+  CurveSampling sampling = CurveSampling::ChordTolerance;
+  // The chord tolerance (what the points must keep, the printed rounding
+  // already taken off), the number of points, or the spacing in mm.
+  double amount = 0;
+  // The `curve` expression and the `cut` statement: where a failure to
+  // choose the points is reported.
+  frontend::SourceSpan curveSpan;
+  frontend::SourceSpan cutSpan;
+  // Regions (by index over the whole lap) whose points the host computes
+  // into tables even on a target that evaluates the curve in the program:
+  // a NURBS span whose coefficients the controller would read too coarsely.
+  std::vector<std::size_t> hostPointRegions = {};
+  // The same curve evaluated from the source, transforms applied (what the
+  // regions compute, for choosing the points without interpreting them);
+  // null in a function read from text, where the regions are interpreted.
+  std::shared_ptr<const geom::Curve> geometry = nullptr;
+
+  std::size_t regionCount() const;
+  // The later piece at a join (as a composite curve evaluates it); a
+  // parameter outside a piece's range is clamped into it.
+  CurveLocation locate(double t) const;
+  // The region index of a piece's span.
+  std::size_t regionOf(std::size_t piece, std::size_t span) const;
+};
+
+} // namespace cncc::ir

@@ -1,0 +1,45 @@
+#include "cncc/ir/curve_table.h"
+
+#include <algorithm>
+
+namespace cncc::ir {
+
+std::size_t CurveTableEntry::regionCount() const {
+  std::size_t count = 0;
+  for (const CurvePieceLayout& piece : pieces) {
+    count += piece.regionCount();
+  }
+  return count;
+}
+
+std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const {
+  std::size_t region = 0;
+  for (std::size_t p = 0; p < piece; ++p) {
+    region += pieces[p].regionCount();
+  }
+  return region + span;
+}
+
+CurveLocation CurveTableEntry::locate(double t) const {
+  CurveLocation location;
+  std::size_t count = pieces.size();
+  while (location.piece + 1 < count && pieces[location.piece + 1].start <= t) {
+    ++location.piece;
+  }
+  const CurvePieceLayout& piece = pieces[location.piece];
+  // A single piece is the whole curve: its own parameter is the curve's.
+  double own = count == 1 ? t : piece.from + (t - piece.start);
+  location.local = std::clamp(own, piece.from, piece.to);
+  if (!piece.spans.empty()) {
+    while (location.span + 1 < piece.spans.size() &&
+           piece.spans[location.span + 1].first <= location.local) {
+      ++location.span;
+    }
+    auto [spanFrom, spanTo] = piece.spans[location.span];
+    location.local = std::clamp((location.local - spanFrom) / (spanTo - spanFrom), 0.0, 1.0);
+  }
+  location.region = regionOf(location.piece, location.span);
+  return location;
+}
+
+} // namespace cncc::ir
