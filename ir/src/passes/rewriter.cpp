@@ -55,6 +55,7 @@ Rewriter::Rewriter(const Function& source) : source_(source), map_(source.valueT
   output_.name = source.name;
   output_.parameters = source.parameters;
   output_.tables = source.tables;
+  output_.curves = source.curves;
 }
 
 Function Rewriter::run() {

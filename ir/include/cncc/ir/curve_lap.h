@@ -1,0 +1,62 @@
+// What a `curve.lap` does: the points it moves to, chosen on the curve of
+// its table entry (curve_table.h). The interpreter runs a lap with these,
+// and the legalisation that writes a lap out as tables and loops
+// (expandCurveLaps) uses the same, so both give the same path.
+#pragma once
+
+#include "cncc/frontend/source_span.h"
+#include "cncc/geom/curve.h"
+#include "cncc/ir/ir.h"
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cncc::ir {
+
+// Why a lap's points could not be chosen, at the source it names.
+class CurveLapError : public std::runtime_error {
+public:
+  enum class Kind { ProgramTooLarge, DegenerateCurve, NonFiniteValue, TooFewPoints };
+  CurveLapError(Kind kind, frontend::SourceSpan span, const std::string& message)
+      : std::runtime_error(message), kind(kind), span(span) {}
+  Kind kind;
+  frontend::SourceSpan span;
+};
+
+// The value of a value defined outside a lap (a parameter, a constant, an
+// enclosing loop's variable) that its regions read; nullopt when unknown.
+using OutsideValue = std::function<std::optional<double>(ValueId)>;
+
+// The whole curve of a lap's table entry as a geom curve in the whole
+// curve's parameter: the entry's geometry when it has one, otherwise its
+// regions interpreted (`lap` is the curve.lap instruction; `outside` gives
+// what they read from outside the lap, param included). Throws
+// CurveLapError (at the entry's curve) when a region reads a value
+// `outside` does not know.
+std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
+                                            const OutsideValue& outside);
+
+// The whole-curve parameters of the lap's points, the curve's start first
+// and its end last, as the entry's sampling says; bounded (a limit of
+// points and of curve evaluations). Throws CurveLapError.
+std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curve& curve);
+
+// For each of `parameters`, the share of the lap's length done there
+// (0 at the start, 1 at the end): each piece or knot span takes a share of
+// the descent in proportion to its length, spread over it in proportion to
+// its own parameter. Throws CurveLapError.
+std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve& curve,
+                                const std::vector<double>& parameters);
+
+// `expand-curve-laps`: every curve.lap written out as today's host form:
+// per run of points in one region a loop over a table of the region's
+// parameters (and of the ramp's progress), the region's arithmetic in its
+// body, a feed move to each point; points the entry marks are host tables.
+// The curve table is emptied once no lap refers to it. Throws CurveLapError.
+bool expandCurveLaps(Function& function);
+
+} // namespace cncc::ir
