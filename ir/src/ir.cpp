@@ -1,5 +1,7 @@
 #include "cncc/ir/ir.h"
 
+#include <fmt/format.h>
+
 #include <iterator>
 
 namespace cncc::ir {
@@ -53,6 +55,24 @@ ValueId loopAdvance(const Function& function, const Instruction& loop) {
   }
   const Instruction& last = function.instructions[loop.regions[0].instructions.back()];
   return last.opcode == Opcode::LoopNext && !last.operands.empty() ? last.operands[0] : ValueId{};
+}
+
+} // namespace cncc::ir
+
+namespace cncc::ir {
+
+bool isTooLarge(const Function& function) {
+  std::size_t entries = 0;
+  for (const std::vector<double>& table : function.tables) {
+    entries += table.size();
+  }
+  return function.instructions.size() > maximumInstructions || entries > maximumTableEntries;
+}
+
+std::string functionTooLargeMessage() {
+  return fmt::format("the part grows past {} IR instructions or {} table entries here; it is too "
+                     "large to compile",
+                     maximumInstructions, maximumTableEntries);
 }
 
 } // namespace cncc::ir

@@ -212,13 +212,17 @@ private:
                      std::vector<bool>& visible) {
     std::size_t expected = instruction.opcode == Opcode::Loop ? 1
                            : instruction.opcode == Opcode::If ? 2
-                                                              : 0;
+                           : instruction.opcode == Opcode::CurveLap &&
+                                   instruction.index < function_.curves.size()
+                               ? function_.curves[instruction.index].regionCount()
+                               : 0;
     if (instruction.regions.size() != expected) {
       problem(
           fmt::format("{} has {} regions, needs {}", where, instruction.regions.size(), expected));
       return;
     }
-    bool isLoop = instruction.opcode == Opcode::Loop && instruction.result.valid() &&
+    bool isLoop = (instruction.opcode == Opcode::Loop || instruction.opcode == Opcode::CurveLap) &&
+                  instruction.result.valid() &&
                   instruction.result.index < visible.size();
     if (isLoop) {
       visible[instruction.result.index] = true;

@@ -47,9 +47,10 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
   }
   const frontend::PartItem& part = *program->selectedPart;
   const Target* target = options.target.empty() ? nullptr : findTarget(options.target);
-  std::optional<ir::Function> function = ir::lowerPart(
-      *program, part, diagnostics,
-      target != nullptr ? target->loweringOptions(part, options) : ir::LoweringOptions{});
+  ir::LoweringOptions lowering =
+      target != nullptr ? target->loweringOptions(part, options) : ir::LoweringOptions{};
+  lowering.expandCurveLaps = false; // shown as the first of the target's passes
+  std::optional<ir::Function> function = ir::lowerPart(*program, part, diagnostics, lowering);
   if (!function) {
     return "";
   }
@@ -58,6 +59,15 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
     throw InternalError("the lowered IR does not verify: " + problems.front());
   }
   if (target != nullptr) {
+    try {
+      ir::expandCurveLaps(*function);
+    } catch (const ir::CurveLapError& error) {
+      ir::reportCurveLapError(error, diagnostics);
+      return "";
+    }
+    if (ir::AfterPassCallback afterPass = printAfterCallback(options)) {
+      afterPass("expand-curve-laps", *function);
+    }
     optimise(*function, options);
   }
   return ir::printFunction(*function);

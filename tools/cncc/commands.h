@@ -55,6 +55,9 @@ int runOptimize(const DriverOptions& options);
 // --passes), printing as --print-after asks; throws InternalError when the
 // result does not verify.
 void optimise(ir::Function& function, const DriverOptions& options);
+// What --print-after asks: prints the function after the named pass (or
+// every pass) on standard error; empty without it.
+ir::AfterPassCallback printAfterCallback(const DriverOptions& options);
 
 // cncc sim PROGRAM -t fanuc|m80 [-a A3.] [-o OUT] (sim_command.cpp)
 int runSimulate(const DriverOptions& options);

@@ -2,6 +2,8 @@
 // passes on textual IR, for testing the optimiser on hand-written input.
 #include "commands.h"
 
+#include "cncc/ir/curve_lap.h"
+
 #include "atomic_output_file.h"
 #include "diagnostic_output.h"
 
@@ -26,6 +28,8 @@ std::optional<std::string> readText(const std::string& path) {
   return text.str();
 }
 
+} // namespace
+
 ir::AfterPassCallback printAfterCallback(const DriverOptions& options) {
   if (options.printAfter.empty()) {
     return {};
@@ -37,8 +41,6 @@ ir::AfterPassCallback printAfterCallback(const DriverOptions& options) {
     }
   };
 }
-
-} // namespace
 
 void optimise(ir::Function& function, const DriverOptions& options) {
   if (!options.optimise) {
@@ -75,7 +77,12 @@ int runOptimize(const DriverOptions& options) {
     output.driverError(fmt::format("{}: the IR does not verify: {}", path, problems.front()));
     return 1;
   }
-  optimise(*function, options);
+  try {
+    optimise(*function, options);
+  } catch (const ir::CurveLapError& lapError) {
+    output.driverError(fmt::format("{}: {}", path, lapError.what()));
+    return 1;
+  }
   std::error_code writeError;
   if (!writeFileAtomically(options.output, ir::printFunction(*function), writeError)) {
     output.driverError(fmt::format("cannot write '{}': {}", options.output, writeError.message()));

@@ -24,10 +24,6 @@ using namespace frontend;
 namespace {
 
 constexpr double maximumPointsPerCut = 1'000'000;
-// The chords a cut's points may have when the tolerance chooses them: the
-// farthest-reach walk costs tens of microseconds a chord, and a program of
-// this many blocks a cut is beyond any real 2.5D part.
-constexpr std::size_t maximumChordsPerCut = 100'000;
 
 } // namespace
 
@@ -150,6 +146,16 @@ std::size_t PartLowering::sampleCount(const CutStmt& cut) {
   return static_cast<std::size_t>(samples);
 }
 
+void PartLowering::checkSpacing(const CutStmt& cut, const geom::Curve& curve, double spacing) {
+  double count = geom::arcLength(curve) / spacing;
+  if (!(count <= maximumPointsPerCut)) {
+    fail(cut.span,
+         fmt::format("spacing={:g} would put {:.0f} points on this curve; the limit is {:.0f}",
+                     spacing, count, maximumPointsPerCut),
+         DiagnosticKind::ProgramTooLarge);
+  }
+}
+
 geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curve& curve) {
   try {
     if (modifierValue(cut, "samples") != nullptr) {
@@ -157,13 +163,7 @@ geom::CurveSamples PartLowering::samplesFor(const CutStmt& cut, const geom::Curv
     }
     if (const Expr* expression = modifierValue(cut, "spacing")) {
       double spacing = constantNumber(*expression, "spacing=");
-      double count = geom::arcLength(curve) / spacing;
-      if (!(count <= maximumPointsPerCut)) {
-        fail(cut.span,
-             fmt::format("spacing={:g} would put {:.0f} points on this curve; the limit is {:.0f}",
-                         spacing, count, maximumPointsPerCut),
-             DiagnosticKind::ProgramTooLarge);
-      }
+      checkSpacing(cut, curve, spacing);
       return geom::sampleEqualArcLength(curve, spacing);
     }
     // A controller that rounds every coordinate to its increment takes up to
@@ -227,7 +227,13 @@ void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) 
 }
 
 void PartLowering::checkChordCount(const CutStmt& cut, const geom::Curve& curve, double tolerance) {
-  double chords = geom::estimateDiscretisation(curve, tolerance).chords;
+  double chords = 0;
+  try {
+    chords = geom::estimateDiscretisation(curve, tolerance).chords;
+  } catch (const geom::GeometryError& error) {
+    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
+         DiagnosticKind::DegenerateCurve);
+  }
   if (!(chords <= static_cast<double>(maximumChordsPerCut))) {
     std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
     fail(cut.span,
@@ -240,26 +246,12 @@ void PartLowering::checkChordCount(const CutStmt& cut, const geom::Curve& curve,
 
 geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const geom::Curve& curve,
                                                     double budget) {
+  checkChordCount(cut, curve, budget);
   try {
-    checkChordCount(cut, curve, budget);
-    geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations);
-    return geom::discretiseByChordTolerance(budgeted, budget, maximumChordsPerCut);
-  } catch (const geom::EvaluationBudgetExceeded& error) {
-    fail(cut.span,
-         fmt::format("choosing this curve's points within its tolerance asks more than {} points "
-                     "of it; that is the limit of one cut (a curve that turns this fast needs "
-                     "more points than a program can hold)",
-                     error.limit),
-         DiagnosticKind::ProgramTooLarge);
-  } catch (const geom::ChordLimitExceeded& error) {
-    fail(cut.span,
-         fmt::format("this curve needs more than {} chords within its tolerance; that is the "
-                     "limit of one cut",
-                     error.limit),
-         DiagnosticKind::ProgramTooLarge);
-  } catch (const geom::GeometryError& error) {
-    fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
-         DiagnosticKind::DegenerateCurve);
+    return chordsWithinTolerance(curve, budget, cut.span, cut.curve->span);
+  } catch (const CurveLapError& error) {
+    reportCurveLapError(error, *diagnostics_);
+    throw LoweringFailed{};
   }
 }
 
@@ -573,8 +565,14 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     lowerHostArcCut(cut, curve);
     return;
   }
+  lowerCurveLaps(cut, curve);
+}
+
+// The cut's passes, each lap along the curve a curve.lap whose points the
+// target's legalisation chooses (expand-curve-laps).
+void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   auto [feed, ramp] = beginHostCut(cut);
-  geom::CurveSamples samples = checkedSamplesFor(cut, *curve.geometry);
+  CurveTableEntry entry = curveTableEntry(cut, curve);
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
@@ -586,19 +584,15 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   beginCutMoves({curve.geometry,
                  chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
                  methodOf(cut)});
-
-  // The runs of samples after the first (the start, reached by the plunge).
-  std::vector<RampSegment> rampShares;
-  if (ramp) {
-    rampShares = rampSegments(curve, cut);
-  }
-  std::vector<SampleRun> runs = lapRuns(curve, samples, ramp ? &rampShares : nullptr);
+  std::uint32_t table = builder_.addCurve(std::move(entry));
   auto lap = [&](double zFrom, double zTo) {
-    emitSampleRuns(curve, runs, zFrom, zTo, feedValue, cut);
+    emitCurveLap(curve, table, zFrom, zTo, feedValue, cut);
   };
 
-  SampleLocation first = locate(curve, samples.parameters.front());
-  SampleLocation end = locate(curve, samples.parameters.back());
+  // The lap starts and ends where the curve does.
+  geom::ParameterRange domain = curve.geometry->domain();
+  SampleLocation first = locate(curve, domain.t0);
+  SampleLocation end = locate(curve, domain.t1);
   double previous = 0;
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
@@ -620,6 +614,66 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     CurvePoint finish = pointAt(curve, end.piece, end.span, Scalar::of(end.local), cut);
     builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
     previous = passZ;
+  }
+}
+
+// The cut's curve for the function's curve table: its pieces' parameter
+// ranges and knot spans, how its points are chosen (checked here, where the
+// cut's own errors are reported, as far as that takes no more than an
+// estimate), and the NURBS spans the host computes as points.
+CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve& curve) {
+  CurveTableEntry entry;
+  geom::ParameterRange domain = curve.geometry->domain();
+  entry.from = domain.t0;
+  entry.to = domain.t1;
+  entry.curveSpan = cut.curve->span;
+  entry.cutSpan = cut.span;
+  entry.geometry = curve.geometry;
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    const CurvePiece& piece = curve.pieces[p];
+    geom::ParameterRange own = piece.geometry->domain();
+    CurvePieceLayout layout{curve.pieceStarts[p], own.t0, own.t1};
+    for (std::size_t s = 0; s < piece.spans.size(); ++s) {
+      const geom::PolynomialSpan& span = piece.spans[s];
+      layout.spans.emplace_back(span.t0, span.t1);
+      if (piece.value->kind == CurveKind::Nurbs &&
+          !spanLiteralsFit(span, cut, piece.transform.stretch())) {
+        entry.hostPointRegions.push_back(entry.regionCount() + s);
+      }
+    }
+    entry.pieces.push_back(std::move(layout));
+  }
+  if (modifierValue(cut, "samples") != nullptr) {
+    entry.sampling = CurveSampling::Samples;
+    entry.amount = static_cast<double>(sampleCount(cut));
+  } else if (const Expr* expression = modifierValue(cut, "spacing")) {
+    entry.sampling = CurveSampling::Spacing;
+    entry.amount = constantNumber(*expression, "spacing=");
+    checkSpacing(cut, *curve.geometry, entry.amount);
+  } else {
+    // A controller that rounds every coordinate to its increment takes up to
+    // half an increment per axis of the tolerance (LoweringOptions).
+    entry.amount = toleranceBudget(cut).forPoints();
+    checkChordCount(cut, *curve.geometry, entry.amount);
+  }
+  return entry;
+}
+
+// One lap as a curve.lap: a region per piece (per knot span of a NURBS
+// piece) computing the point at its parameter, z going from zFrom to zTo.
+void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom,
+                                double zTo, ValueId feed, const CutStmt& cut) {
+  ValueId to = builder_.constant(zTo);
+  ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
+  Scalar local = Scalar::of(builder_.beginCurveLap(table, from, to, feed), ValueType::F64);
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    std::size_t spans = std::max<std::size_t>(curve.pieces[p].spans.size(), 1);
+    for (std::size_t s = 0; s < spans; ++s) {
+      CurvePoint point = pointAt(curve, p, s, local, cut);
+      ValueId x = arithmetic_.value(point.x);
+      ValueId y = arithmetic_.value(point.y);
+      builder_.curvePoint(x, y, arithmetic_.value(point.z));
+    }
   }
 }
 

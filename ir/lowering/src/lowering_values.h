@@ -11,6 +11,7 @@
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
+#include "cncc/ir/curve_lap.h"
 
 #include <cstdint>
 #include <functional>
@@ -90,11 +91,8 @@ struct SampleLocation {
 
 // Consecutive samples on the same piece and span: one table, one loop.
 // The points a search over a cut's curve (the chord walk, a spline fit) may
-// ask of it: a few seconds of a curve the front end evaluates. A cut of the
-// chord limit on a smooth curve takes a few million; a curve that changes
-// faster than the chord estimate's samples see (a cosine of 1e6 t) would
-// take hours.
-inline constexpr std::size_t maximumCurveEvaluations = 20'000'000;
+// ask of it (curve_lap.h): a few seconds of a curve the front end evaluates.
+using ir::maximumCurveEvaluations;
 // The points one cut's arc fit (--arcs, arcs=true) may ask of its curve;
 // past it the cut is printed as chords.
 inline constexpr std::size_t maximumArcFitEvaluations = 5'000'000;

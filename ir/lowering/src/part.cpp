@@ -14,7 +14,14 @@ std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, cons
                                              const LoweringOptions& options) {
   try {
     lowering::PartLowering lowering(program, part, diagnostics, options);
-    return lowering.run();
+    LoweredPart lowered = lowering.run();
+    if (options.expandCurveLaps) {
+      expandCurveLaps(lowered.function);
+    }
+    return lowered;
+  } catch (const CurveLapError& error) {
+    reportCurveLapError(error, diagnostics);
+    return std::nullopt;
   } catch (const lowering::LoweringFailed&) {
     return std::nullopt;
   } catch (const geom::GeometryError& error) {
@@ -31,6 +38,24 @@ std::optional<Function> lowerPart(const CheckedProgram& program, const PartItem&
     return std::nullopt;
   }
   return std::move(lowered->function);
+}
+
+void reportCurveLapError(const CurveLapError& error, DiagnosticEngine& diagnostics) {
+  DiagnosticKind kind = DiagnosticKind::DegenerateCurve;
+  switch (error.kind) {
+  case CurveLapError::Kind::ProgramTooLarge:
+    kind = DiagnosticKind::ProgramTooLarge;
+    break;
+  case CurveLapError::Kind::NonFiniteValue:
+    kind = DiagnosticKind::NonFiniteValue;
+    break;
+  case CurveLapError::Kind::TooFewPoints:
+    kind = DiagnosticKind::TooFewPoints;
+    break;
+  case CurveLapError::Kind::DegenerateCurve:
+    break;
+  }
+  diagnostics.report(kind, error.span, error.what());
 }
 
 PartUnits partUnits(const PartItem& part) {

@@ -297,6 +297,12 @@ private:
   ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // spacing= that would put more points on the curve than a cut may have.
+  void checkSpacing(const frontend::CutStmt& cut, const geom::Curve& curve, double spacing);
+  void lowerCurveLaps(const frontend::CutStmt& cut, const CutCurve& curve);
+  CurveTableEntry curveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
+  void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
+                    ValueId feed, const frontend::CutStmt& cut);
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before any point is computed: the curve and the depth within the

@@ -19,8 +19,6 @@ namespace {
 // Bounds on what unrolling may produce, so that a loop of a billion
 // iterations is a diagnostic rather than an exhausted machine.
 constexpr std::size_t maximumUnrolledIterations = 100'000;
-constexpr std::size_t maximumInstructions = 5'000'000;
-constexpr std::size_t maximumTableEntries = 20'000'000;
 
 } // namespace
 
@@ -58,17 +56,8 @@ void PartLowering::fail(SourceSpan span, std::string message, DiagnosticKind kin
 }
 
 void PartLowering::checkSize(SourceSpan span) {
-  const Function& function = builder_.function();
-  std::size_t entries = 0;
-  for (const std::vector<double>& table : function.tables) {
-    entries += table.size();
-  }
-  if (function.instructions.size() > maximumInstructions || entries > maximumTableEntries) {
-    fail(span,
-         fmt::format("the part grows past {} IR instructions or {} table entries here; "
-                     "it is too large to compile",
-                     maximumInstructions, maximumTableEntries),
-         DiagnosticKind::ProgramTooLarge);
+  if (isTooLarge(builder_.function())) {
+    fail(span, functionTooLargeMessage(), DiagnosticKind::ProgramTooLarge);
   }
 }
 

@@ -1,6 +1,8 @@
 // The pass registry and the default pipeline.
 #include "cncc/ir/passes.h"
 
+#include "cncc/ir/curve_lap.h"
+
 #include "rewriter.h"
 
 namespace cncc::ir {
@@ -18,6 +20,9 @@ bool unrollWhenNoLarger(Function& function) {
 }
 
 constexpr Pass passTable[] = {
+    {"expand-curve-laps",
+     "legalisation: each curve.lap as loops over tables of the points chosen on the host",
+     expandCurveLaps},
     {"fold", "constant folding and algebraic simplification", foldConstants},
     {"cse", "common subexpression elimination", eliminateCommonSubexpressions},
     {"licm", "loop-invariant code motion", hoistLoopInvariants},

@@ -2,6 +2,8 @@
 
 #include "jit_runtime.h"
 
+#include "cncc/backends/jit_compiler.h"
+
 #include "cncc/geom/math_functions.h"
 #include "cncc/ir/arithmetic.h"
 
@@ -196,6 +198,9 @@ private:
     case Opcode::If:
       emitIf(instruction);
       return;
+    case Opcode::CurveLap:
+    case Opcode::CurvePoint:
+      throw backends::JitError("a curve.lap must be expanded (expand-curve-laps) before the JIT compiles it");
     case Opcode::Rapid:
     case Opcode::Feed:
     case Opcode::Arc:

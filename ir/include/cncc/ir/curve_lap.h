@@ -6,6 +6,7 @@
 
 #include "cncc/frontend/source_span.h"
 #include "cncc/geom/curve.h"
+#include "cncc/geom/discretisation.h"
 #include "cncc/ir/ir.h"
 
 #include <functional>
@@ -31,6 +32,14 @@ public:
 // enclosing loop's variable) that its regions read; nullopt when unknown.
 using OutsideValue = std::function<std::optional<double>(ValueId)>;
 
+// The point region `region` of `lap` computes at parameter t (its pure
+// instructions evaluated with the interpreter's arithmetic); nullopt when
+// it reads a value `outside` does not know (a `param` inside the region is
+// asked of `outside` too).
+std::optional<Eigen::Vector3d> lapRegionPoint(const Function& function, const Instruction& lap,
+                                              std::size_t region, double t,
+                                              const OutsideValue& outside);
+
 // The whole curve of a lap's table entry as a geom curve in the whole
 // curve's parameter: the entry's geometry when it has one, otherwise its
 // regions interpreted (`lap` is the curve.lap instruction; `outside` gives
@@ -39,6 +48,21 @@ using OutsideValue = std::function<std::optional<double>(ValueId)>;
 // `outside` does not know.
 std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
                                             const OutsideValue& outside);
+
+// The bounds of one cut's points: the chords a tolerance may choose (the
+// farthest-reach walk costs tens of microseconds a chord, and a program of
+// this many blocks a cut is beyond any real 2.5D part), and the curve
+// points a choice may ask (a curve that turns faster than any sampling
+// resolves makes every chord cost thousands).
+inline constexpr std::size_t maximumChordsPerCut = 100'000;
+inline constexpr std::size_t maximumCurveEvaluations = 20'000'000;
+
+// The fewest chords within `tolerance` of the curve (geom's farthest-reach
+// walk), within the bounds above. Throws CurveLapError at the cut (a bound)
+// or at the curve (a curve that cannot be discretised).
+geom::CurveSamples chordsWithinTolerance(const geom::Curve& curve, double tolerance,
+                                         frontend::SourceSpan cutSpan,
+                                         frontend::SourceSpan curveSpan);
 
 // The whole-curve parameters of the lap's points, the curve's start first
 // and its end last, as the entry's sampling says; bounded (a limit of

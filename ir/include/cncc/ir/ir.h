@@ -116,6 +116,15 @@ struct Parameter {
   bool fixed = false;
 };
 
+// How large a function may grow (a part of many cuts in unrolled loops):
+// past either, compiling is refused.
+inline constexpr std::size_t maximumInstructions = 5'000'000;
+inline constexpr std::size_t maximumTableEntries = 20'000'000;
+// Whether the function is past them, and the message that says so.
+struct Function;
+bool isTooLarge(const Function& function);
+std::string functionTooLargeMessage();
+
 struct Function {
   std::string name;
   std::vector<Parameter> parameters;

@@ -13,6 +13,7 @@
 #include "cncc/frontend/diagnostics.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/geom/curve.h"
+#include "cncc/ir/curve_lap.h"
 #include "cncc/ir/cut_geometry.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/lowering_options.h"
@@ -49,6 +50,9 @@ std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
                                   const frontend::PartItem& part,
                                   frontend::DiagnosticEngine& diagnostics,
                                   const LoweringOptions& options = {});
+
+// A lap's points that could not be chosen, as a diagnostic at its source.
+void reportCurveLapError(const CurveLapError& error, frontend::DiagnosticEngine& diagnostics);
 
 enum class PartUnits { Millimetres, Inches };
 // The `units` statement at the top of the part's body (millimetres without one).

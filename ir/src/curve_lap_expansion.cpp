@@ -1,0 +1,331 @@
+// `expand-curve-laps`: each curve.lap written out for a target that runs
+// the host's choice of points. The lap's points are chosen once per curve
+// table entry (lapParameters); consecutive points in one region make a run:
+// a loop over a table of the region's parameters (and of the ramp's
+// progress) whose body is the region's arithmetic and a feed move. A region
+// the entry marks, whose points need no parameter, is tabled as points.
+#include "cncc/ir/curve_lap.h"
+
+#include "passes/evaluate.h"
+#include "passes/rewriter.h"
+
+#include <array>
+#include <map>
+
+namespace cncc::ir {
+
+namespace {
+
+// The x, y and z of a run's points as tables, or a number where every
+// point has the same.
+struct HostPoints {
+  std::array<std::optional<std::uint32_t>, 3> tables;
+  std::array<double, 3> constant = {0, 0, 0};
+};
+
+struct Run {
+  std::size_t region = 0;
+  std::vector<double> locals;
+  std::vector<double> progress;
+  std::uint32_t localTable = 0;
+  std::optional<std::uint32_t> progressTable;
+  bool hostDecided = false;
+  std::optional<HostPoints> host;
+};
+
+class CurveLapExpander : public passes::Rewriter {
+public:
+  explicit CurveLapExpander(const Function& source) : Rewriter(source) {
+    for (const std::vector<double>& table : source.tables) {
+      tableEntries_ += table.size();
+    }
+  }
+
+private:
+  void visit(const Instruction& instruction) override {
+    if (instruction.opcode == Opcode::CurveLap) {
+      expandLap(instruction);
+      markChanged();
+    } else if (instruction.opcode == Opcode::CurvePoint && lap_ != nullptr) {
+      feedToPoint(instruction);
+    } else {
+      copy(instruction);
+    }
+  }
+
+  // A value of the source the lap's curve reads from outside it: a constant
+  // or a parameter at its value.
+  std::optional<double> outsideValue(ValueId value) const {
+    const Instruction& definition = source_.definition(value);
+    if (definition.opcode == Opcode::Param) {
+      return source_.parameters[definition.index].defaultValue;
+    }
+    return passes::constantValue(source_, value);
+  }
+
+  std::vector<Run>& runsOf(const Instruction& lap, bool ramp) {
+    auto known = runs_.find(lap.index);
+    if (known != runs_.end()) {
+      addProgressTables(known->second, lap, ramp);
+      return known->second;
+    }
+    const CurveTableEntry& entry = source_.curves[lap.index];
+    curve_ = lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
+    parameters_ = lapParameters(entry, *curve_);
+    std::vector<Run>& runs = runs_[lap.index];
+    for (std::size_t i = 1; i < parameters_.size(); ++i) {
+      CurveLocation location = entry.locate(parameters_[i]);
+      if (runs.empty() || runs.back().region != location.region) {
+        runs.push_back({location.region, {}, {}, 0, std::nullopt, false, std::nullopt});
+      }
+      runs.back().locals.push_back(location.local);
+    }
+    if (ramp) {
+      fillProgress(runs, entry);
+    }
+    for (Run& run : runs) {
+      run.localTable = addTable(run.locals);
+      if (ramp) {
+        run.progressTable = addTable(run.progress);
+      }
+    }
+    return runs;
+  }
+
+  void fillProgress(std::vector<Run>& runs, const CurveTableEntry& entry) {
+    std::vector<double> progress = lapProgress(entry, *curve_, parameters_);
+    std::size_t next = 1;
+    for (Run& run : runs) {
+      run.progress.assign(progress.begin() + static_cast<std::ptrdiff_t>(next),
+                          progress.begin() + static_cast<std::ptrdiff_t>(next + run.locals.size()));
+      next += run.locals.size();
+    }
+  }
+
+  // A ramp lap of an entry first met in a level one (not what the lowering
+  // writes, but a valid function).
+  void addProgressTables(std::vector<Run>& runs, const Instruction& lap, bool ramp) {
+    if (!ramp || runs.empty() || runs.front().progressTable) {
+      return;
+    }
+    const CurveTableEntry& entry = source_.curves[lap.index];
+    curve_ = lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
+    parameters_ = lapParameters(entry, *curve_);
+    fillProgress(runs, entry);
+    for (Run& run : runs) {
+      run.progressTable = addTable(run.progress);
+    }
+  }
+
+  std::uint32_t addTable(std::vector<double> values) {
+    tableEntries_ += values.size();
+    output_.tables.push_back(std::move(values));
+    return static_cast<std::uint32_t>(output_.tables.size() - 1);
+  }
+
+  // Whether the lap climbs or descends: its two heights not one value.
+  bool isRamp(const Instruction& lap) const {
+    ValueId from = lap.operands[0];
+    ValueId to = lap.operands[1];
+    if (from == to) {
+      return false;
+    }
+    std::optional<double> a = passes::constantValue(source_, from);
+    std::optional<double> b = passes::constantValue(source_, to);
+    return !(a && b && *a == *b);
+  }
+
+  void expandLap(const Instruction& lap) {
+    bool ramp = isRamp(lap);
+    std::vector<Run>& runs = runsOf(lap, ramp);
+    for (Run& run : runs) {
+      emitRun(lap, run, ramp);
+    }
+    if (output_.instructions.size() > maximumInstructions ||
+        tableEntries_ > maximumTableEntries) {
+      throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, lap.span,
+                          functionTooLargeMessage());
+    }
+  }
+
+  // The run's points on the host when its region is marked and needs no
+  // parameter; decided once per run.
+  const HostPoints* hostPoints(const Instruction& lap, Run& run) {
+    if (run.hostDecided) {
+      return run.host ? &*run.host : nullptr;
+    }
+    run.hostDecided = true;
+    const std::vector<std::size_t>& marked = source_.curves[lap.index].hostPointRegions;
+    if (run.locals.size() < 2 ||
+        std::find(marked.begin(), marked.end(), run.region) == marked.end()) {
+      return nullptr;
+    }
+    std::array<std::vector<double>, 3> coordinates;
+    auto constantOnly = [&](ValueId value) { return passes::constantValue(source_, value); };
+    for (double local : run.locals) {
+      std::optional<Eigen::Vector3d> point =
+          lapRegionPoint(source_, lap, run.region, local, constantOnly);
+      if (!point) {
+        return nullptr; // a transform the parameters move: the program evaluates
+      }
+      for (int c = 0; c < 3; ++c) {
+        coordinates[c].push_back((*point)[c]);
+      }
+    }
+    HostPoints points;
+    for (int c = 0; c < 3; ++c) {
+      const std::vector<double>& values = coordinates[c];
+      if (std::all_of(values.begin(), values.end(),
+                      [&](double value) { return value == values.front(); })) {
+        points.constant[c] = values.front(); // no table of one number
+      } else {
+        points.tables[c] = addTable(values);
+      }
+    }
+    run.host = points;
+    return &*run.host;
+  }
+
+  void emitRun(const Instruction& lap, Run& run, bool ramp) {
+    Instruction loop;
+    loop.opcode = Opcode::Loop;
+    loop.index = static_cast<std::uint32_t>(LoopRole::Curve);
+    loop.span = lap.span;
+    loop.pass = lap.pass;
+    loop.regions.resize(1);
+    ValueId last = constant(static_cast<double>(run.locals.size()) - 1);
+    ValueId first = constant(0);
+    index_ = beginRegions(loop, {first, last});
+    enterOutputRegion(0);
+    lap_ = &lap;
+    run_ = &run;
+    ramp_ = ramp;
+    if (const HostPoints* host = hostPoints(lap, run)) {
+      std::array<Operand, 3> point;
+      for (int c = 0; c < 3; ++c) {
+        point[c] = host->tables[c] ? Operand{load(*host->tables[c]), 0}
+                                   : Operand{ValueId{}, host->constant[c]};
+      }
+      emitFeed(lap, point);
+    } else {
+      replace(lap.result, load(run.localTable));
+      rewriteRegion(lap.regions[run.region]);
+    }
+    lap_ = nullptr;
+    endRegions();
+  }
+
+  ValueId load(std::uint32_t table) {
+    Instruction instruction;
+    instruction.opcode = Opcode::TableLoad;
+    instruction.index = table;
+    return emit(instruction, {index_});
+  }
+
+  // An operand of the move being written: a value, or a number not yet
+  // written (as the lowering's arithmetic folds).
+  struct Operand {
+    ValueId value;
+    double number = 0;
+    bool isNumber() const { return !value.valid(); }
+  };
+
+  Operand operandOf(ValueId output) const {
+    std::optional<double> number = passes::constantValue(output_, output);
+    return number ? Operand{ValueId{}, *number} : Operand{output, 0};
+  }
+
+  ValueId valueOf(const Operand& operand) {
+    return operand.isNumber() ? constant(operand.number) : operand.value;
+  }
+
+  // a + b and a * b, folding numbers and the identities x + 0 and x * 1.
+  Operand add(const Operand& a, const Operand& b) {
+    if (a.isNumber() && b.isNumber()) {
+      return {ValueId{}, a.number + b.number};
+    }
+    if ((a.isNumber() && a.number == 0) || (b.isNumber() && b.number == 0)) {
+      return a.isNumber() ? b : a;
+    }
+    return {binary(Opcode::Add, a, b), 0};
+  }
+
+  Operand multiply(const Operand& a, const Operand& b) {
+    if (a.isNumber() && b.isNumber()) {
+      return {ValueId{}, a.number * b.number};
+    }
+    if ((a.isNumber() && a.number == 1) || (b.isNumber() && b.number == 1)) {
+      return a.isNumber() ? b : a;
+    }
+    return {binary(Opcode::Mul, a, b), 0};
+  }
+
+  ValueId binary(Opcode opcode, const Operand& a, const Operand& b) {
+    ValueId left = valueOf(a);
+    ValueId right = valueOf(b);
+    Instruction instruction;
+    instruction.opcode = opcode;
+    return emit(instruction, {left, right});
+  }
+
+  // The region's curve.point: a feed move there, raised by the lap's height.
+  void feedToPoint(const Instruction& point) {
+    std::vector<ValueId> operands = mappedOperands(point);
+    emitFeed(*lap_, {operandOf(operands[0]), operandOf(operands[1]), operandOf(operands[2])});
+  }
+
+  void emitFeed(const Instruction& lap, const std::array<Operand, 3>& point) {
+    Operand to = operandOf(mapped(lap.operands[1]));
+    Operand z = to;
+    if (ramp_) {
+      Operand from = operandOf(mapped(lap.operands[0]));
+      Operand progress{load(*run_->progressTable), 0};
+      Operand rise = from.isNumber() && to.isNumber()
+                         ? Operand{ValueId{}, to.number - from.number}
+                         : Operand{binary(Opcode::Sub, to, from), 0};
+      z = add(from, multiply(rise, progress));
+    }
+    ValueId x = valueOf(point[0]);
+    ValueId y = valueOf(point[1]);
+    ValueId height = valueOf(add(z, point[2]));
+    Instruction feed;
+    feed.opcode = Opcode::Feed;
+    feed.span = lap.span;
+    feed.pass = lap.pass;
+    emit(feed, {x, y, height, mapped(lap.operands[2])});
+  }
+
+  std::map<std::uint32_t, std::vector<Run>> runs_;
+  std::shared_ptr<const geom::Curve> curve_;
+  std::vector<double> parameters_;
+  const Instruction* lap_ = nullptr;
+  Run* run_ = nullptr;
+  bool ramp_ = false;
+  ValueId index_;
+  std::size_t tableEntries_ = 0;
+};
+
+bool hasCurveLap(const Function& function) {
+  for (const Instruction& instruction : function.instructions) {
+    if (instruction.opcode == Opcode::CurveLap) {
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace
+
+bool expandCurveLaps(Function& function) {
+  if (!hasCurveLap(function)) {
+    function.curves.clear();
+    return false;
+  }
+  CurveLapExpander expander(function);
+  Function expanded = expander.run();
+  expanded.curves.clear();
+  function = std::move(expanded);
+  return true;
+}
+
+} // namespace cncc::ir

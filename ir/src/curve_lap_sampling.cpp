@@ -1,0 +1,140 @@
+// The points of a curve.lap: chosen on the whole curve as its table entry
+// says, within bounds of points and curve evaluations; and the ramp's
+// progress at each.
+#include "cncc/ir/curve_lap.h"
+
+#include "cncc/geom/arc_length.h"
+#include "cncc/geom/discretisation.h"
+#include "cncc/geom/evaluation_budget.h"
+#include "cncc/geom/geometry_error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cncc::ir {
+
+namespace {
+
+CurveLapError degenerate(const CurveTableEntry& entry, const geom::GeometryError& error) {
+  return CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+                       fmt::format("cannot discretise this curve: {}", error.what()));
+}
+
+geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& curve) {
+  switch (entry.sampling) {
+  case CurveSampling::Samples:
+    return geom::sampleUniformParameter(curve, static_cast<std::size_t>(entry.amount));
+  case CurveSampling::Spacing:
+    return geom::sampleEqualArcLength(curve, entry.amount);
+  case CurveSampling::ChordTolerance:
+    break;
+  }
+  return chordsWithinTolerance(curve, entry.amount, entry.cutSpan, entry.curveSpan);
+}
+
+} // namespace
+
+geom::CurveSamples chordsWithinTolerance(const geom::Curve& curve, double tolerance,
+                                         frontend::SourceSpan cutSpan,
+                                         frontend::SourceSpan curveSpan) {
+  try {
+    geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations);
+    return geom::discretiseByChordTolerance(budgeted, tolerance, maximumChordsPerCut);
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    throw CurveLapError(
+        CurveLapError::Kind::ProgramTooLarge, cutSpan,
+        fmt::format("choosing this curve's points within its tolerance asks more than {} points "
+                    "of it; that is the limit of one cut (a curve that turns this fast needs "
+                    "more points than a program can hold)",
+                    error.limit));
+  } catch (const geom::ChordLimitExceeded& error) {
+    throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, cutSpan,
+                        fmt::format("this curve needs more than {} chords within its tolerance; "
+                                    "that is the limit of one cut",
+                                    error.limit));
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan,
+                        fmt::format("cannot discretise this curve: {}", error.what()));
+  }
+}
+
+std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curve& curve) {
+  geom::CurveSamples samples;
+  try {
+    samples = samplesOf(entry, curve);
+  } catch (const geom::GeometryError& error) {
+    throw degenerate(entry, error);
+  }
+  for (const Eigen::Vector3d& point : samples.points) {
+    if (!point.allFinite()) {
+      throw CurveLapError(CurveLapError::Kind::NonFiniteValue, entry.curveSpan,
+                          "this curve has a point that is not a finite number");
+    }
+  }
+  if (samples.parameters.size() < 2) {
+    throw CurveLapError(CurveLapError::Kind::TooFewPoints, entry.curveSpan,
+                        "this curve gave fewer than two points");
+  }
+  return std::move(samples.parameters);
+}
+
+namespace {
+
+// A piece, or a knot span of a NURBS piece: where it starts in the lap's
+// length and its share of it (fractions of the whole).
+struct RegionShare {
+  double before = 0;
+  double share = 0;
+};
+
+std::vector<RegionShare> regionShares(const CurveTableEntry& entry, const geom::Curve& curve) {
+  std::vector<RegionShare> shares;
+  std::vector<double> lengths;
+  double total = 0;
+  bool single = entry.pieces.size() == 1;
+  try {
+    for (const CurvePieceLayout& piece : entry.pieces) {
+      // The piece's own parameter, and where it lies in the whole curve's.
+      auto global = [&](double own) { return single ? own : piece.start + (own - piece.from); };
+      for (std::size_t s = 0; s < piece.regionCount(); ++s) {
+        double from = piece.spans.empty() ? piece.from : piece.spans[s].first;
+        double to = piece.spans.empty() ? piece.to : piece.spans[s].second;
+        shares.push_back({total, 0});
+        lengths.push_back(geom::arcLength(curve, global(from), global(to)));
+        total += lengths.back();
+      }
+    }
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+                        fmt::format("cannot measure this curve: {}", error.what()));
+  }
+  for (std::size_t i = 0; i < shares.size(); ++i) {
+    shares[i].before = total > 0 ? shares[i].before / total : 0;
+    shares[i].share = total > 0 ? lengths[i] / total : 1.0 / static_cast<double>(shares.size());
+  }
+  return shares;
+}
+
+} // namespace
+
+std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve& curve,
+                                const std::vector<double>& parameters) {
+  std::vector<RegionShare> shares = regionShares(entry, curve);
+  std::vector<double> progress;
+  progress.reserve(parameters.size());
+  for (double parameter : parameters) {
+    CurveLocation location = entry.locate(parameter);
+    const CurvePieceLayout& piece = entry.pieces[location.piece];
+    double fraction = location.local; // a NURBS span's u
+    if (piece.spans.empty()) {
+      fraction = (location.local - piece.from) / (piece.to - piece.from);
+    }
+    const RegionShare& share = shares[location.region];
+    progress.push_back(std::min(1.0, share.before + share.share * fraction));
+  }
+  return progress;
+}
+
+} // namespace cncc::ir
