@@ -141,8 +141,7 @@ private:
     for (Run& run : runs) {
       emitRun(lap, run, ramp);
     }
-    if (output_.instructions.size() > maximumInstructions ||
-        tableEntries_ > maximumTableEntries) {
+    if (output_.instructions.size() > maximumInstructions || tableEntries_ > maximumTableEntries) {
       throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, lap.span,
                           functionTooLargeMessage());
     }
@@ -280,9 +279,8 @@ private:
     if (ramp_) {
       Operand from = operandOf(mapped(lap.operands[0]));
       Operand progress{load(*run_->progressTable), 0};
-      Operand rise = from.isNumber() && to.isNumber()
-                         ? Operand{ValueId{}, to.number - from.number}
-                         : Operand{binary(Opcode::Sub, to, from), 0};
+      Operand rise = from.isNumber() && to.isNumber() ? Operand{ValueId{}, to.number - from.number}
+                                                      : Operand{binary(Opcode::Sub, to, from), 0};
       z = add(from, multiply(rise, progress));
     }
     ValueId x = valueOf(point[0]);

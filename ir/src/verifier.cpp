@@ -210,20 +210,19 @@ private:
 
   void verifyRegions(const std::string& where, const Instruction& instruction,
                      std::vector<bool>& visible) {
-    std::size_t expected = instruction.opcode == Opcode::Loop ? 1
-                           : instruction.opcode == Opcode::If ? 2
-                           : instruction.opcode == Opcode::CurveLap &&
-                                   instruction.index < function_.curves.size()
-                               ? function_.curves[instruction.index].regionCount()
-                               : 0;
+    std::size_t expected =
+        instruction.opcode == Opcode::Loop ? 1
+        : instruction.opcode == Opcode::If ? 2
+        : instruction.opcode == Opcode::CurveLap && instruction.index < function_.curves.size()
+            ? function_.curves[instruction.index].regionCount()
+            : 0;
     if (instruction.regions.size() != expected) {
       problem(
           fmt::format("{} has {} regions, needs {}", where, instruction.regions.size(), expected));
       return;
     }
     bool isLoop = (instruction.opcode == Opcode::Loop || instruction.opcode == Opcode::CurveLap) &&
-                  instruction.result.valid() &&
-                  instruction.result.index < visible.size();
+                  instruction.result.valid() && instruction.result.index < visible.size();
     if (isLoop) {
       visible[instruction.result.index] = true;
     }

@@ -200,7 +200,8 @@ private:
       return;
     case Opcode::CurveLap:
     case Opcode::CurvePoint:
-      throw backends::JitError("a curve.lap must be expanded (expand-curve-laps) before the JIT compiles it");
+      throw backends::JitError(
+          "a curve.lap must be expanded (expand-curve-laps) before the JIT compiles it");
     case Opcode::Rapid:
     case Opcode::Feed:
     case Opcode::Arc:
