@@ -2,6 +2,7 @@
 // path is the same before and after, and the function does not grow.
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
+#include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/verifier.h"
@@ -17,7 +18,8 @@
 namespace cncc::ir {
 namespace {
 
-std::optional<Function> lowerExample(const std::string& name, const std::string& part) {
+std::optional<Function> lowerExample(const std::string& name, const std::string& part,
+                                     const LoweringOptions& lowering = {}) {
   frontend::SourceManager sources;
   frontend::DiagnosticEngine diagnostics;
   std::optional<frontend::FileId> file =
@@ -34,7 +36,7 @@ std::optional<Function> lowerExample(const std::string& name, const std::string&
   if (diagnostics.hasErrors() || program.selectedPart == nullptr) {
     return std::nullopt;
   }
-  return lowerPart(program, *program.selectedPart, diagnostics);
+  return lowerPart(program, *program.selectedPart, diagnostics, lowering);
 }
 
 void expectSamePath(const ToolPath& before, const ToolPath& after, const std::string& name) {
@@ -95,6 +97,35 @@ TEST(PassesExamplesTest, DefaultPipelineKeepsToolPathAndDoesNotGrow) {
   }
   // archimedean_spiral, polar_contour and s_profile lower today.
   EXPECT_GE(lowered, 3);
+}
+
+std::size_t curveLapCount(const Function& function) {
+  std::size_t laps = 0;
+  for (const Instruction& instruction : function.instructions) {
+    laps += instruction.opcode == Opcode::CurveLap ? 1 : 0;
+  }
+  return laps;
+}
+
+// The target-neutral IR, its laps run by the interpreter, gives the path
+// of the IR after expand-curve-laps to the last bit: every stage runs.
+TEST(PassesExamplesTest, ExpandingCurveLapsKeepsToolPath) {
+  LoweringOptions neutral;
+  neutral.expandCurveLaps = false;
+  std::size_t laps = 0;
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::optional<Function> function = lowerExample(example.file, example.part, neutral);
+    ASSERT_TRUE(function) << name;
+    laps += curveLapCount(*function);
+    ToolPath before = interpret(*function);
+    expandCurveLaps(*function);
+    EXPECT_EQ(curveLapCount(*function), 0u) << name;
+    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
+    expectSamePath(before, interpret(*function), name);
+  }
+  // Every example but the ones cut on arcs alone has laps along its curves.
+  EXPECT_GE(laps, 10u);
 }
 
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {
