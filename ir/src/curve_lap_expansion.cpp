@@ -161,9 +161,9 @@ private:
     }
     std::array<std::vector<double>, 3> coordinates;
     auto constantOnly = [&](ValueId value) { return passes::constantValue(source_, value); };
+    LapRegionEvaluator region(source_, lap, run.region, constantOnly);
     for (double local : run.locals) {
-      std::optional<Eigen::Vector3d> point =
-          lapRegionPoint(source_, lap, run.region, local, constantOnly);
+      std::optional<Eigen::Vector3d> point = region(local);
       if (!point) {
         return nullptr; // a transform the parameters move: the program evaluates
       }

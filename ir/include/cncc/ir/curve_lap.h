@@ -32,13 +32,37 @@ public:
 // enclosing loop's variable) that its regions read; nullopt when unknown.
 using OutsideValue = std::function<std::optional<double>(ValueId)>;
 
-// The point region `region` of `lap` computes at parameter t (its pure
-// instructions evaluated with the interpreter's arithmetic); nullopt when
-// it reads a value `outside` does not know (a `param` inside the region is
-// asked of `outside` too).
-std::optional<Eigen::Vector3d> lapRegionPoint(const Function& function, const Instruction& lap,
-                                              std::size_t region, double t,
-                                              const OutsideValue& outside);
+// The point region `region` of `lap` computes at a parameter, its pure
+// instructions evaluated with the interpreter's arithmetic; what it reads
+// from outside the lap (a `param` inside it too) is asked of `outside` once,
+// when made. Invalid (every point nullopt) when `outside` does not know a
+// value it reads or the region is not pure arithmetic.
+class LapRegionEvaluator {
+public:
+  LapRegionEvaluator(const Function& function, const Instruction& lap, std::size_t region,
+                     const OutsideValue& outside);
+
+  bool valid() const { return valid_; }
+  std::optional<Eigen::Vector3d> operator()(double t) const;
+
+private:
+  // The region's parameter, the result of an earlier step, or a number.
+  struct Operand {
+    enum class Kind { Parameter, Slot, Number } kind = Kind::Number;
+    double number = 0; // Number: the value; Slot: the step's slot
+  };
+  struct Step {
+    const Instruction* instruction = nullptr;
+    std::vector<Operand> operands;
+    std::size_t slot = 0;
+  };
+
+  const Function& function_;
+  std::vector<Step> steps_;
+  std::vector<Operand> point_;
+  std::size_t slots_ = 0;
+  bool valid_ = false;
+};
 
 // The whole curve of a lap's table entry as a geom curve in the whole
 // curve's parameter: the entry's geometry when it has one, otherwise its
