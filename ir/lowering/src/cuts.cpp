@@ -494,13 +494,7 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
 // cut's own errors are reported, as far as that takes no more than an
 // estimate), and the NURBS spans the host computes as points.
 CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve& curve) {
-  CurveTableEntry entry;
-  geom::ParameterRange domain = curve.geometry->domain();
-  entry.from = domain.t0;
-  entry.to = domain.t1;
-  entry.curveSpan = cut.curve->span;
-  entry.cutSpan = cut.span;
-  entry.geometry = curve.geometry;
+  CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
     addPieceLayout(entry, curve.pieces[p], curve.pieceStarts[p], cut);
   }
@@ -520,6 +514,20 @@ CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve
   return entry;
 }
 
+// An entry for `geometry` (the cut's curve, or a piece of it), its
+// parameter range and where its errors are reported; no pieces yet.
+CurveTableEntry PartLowering::curveTableEntryOn(const CutStmt& cut,
+                                                std::shared_ptr<const geom::Curve> geometry) {
+  CurveTableEntry entry;
+  geom::ParameterRange domain = geometry->domain();
+  entry.from = domain.t0;
+  entry.to = domain.t1;
+  entry.curveSpan = cut.curve->span;
+  entry.cutSpan = cut.span;
+  entry.geometry = std::move(geometry);
+  return entry;
+}
+
 // One piece of the cut's curve alone, its points within the cut's chord
 // tolerance; a ramp lap along it descends by its share of the whole lap's
 // descent (`shares`, empty for none).
@@ -527,14 +535,9 @@ CurveTableEntry PartLowering::pieceCurveTableEntry(const CutStmt& cut, const Cut
                                                    std::size_t piece,
                                                    const std::vector<RampSegment>& shares) {
   const CurvePiece& own = curve.pieces[piece];
-  CurveTableEntry entry;
-  geom::ParameterRange domain = own.geometry->domain();
-  entry.from = domain.t0;
-  entry.to = domain.t1;
-  entry.curveSpan = cut.curve->span;
-  entry.cutSpan = cut.span;
-  entry.geometry = std::make_shared<TransformedCurve>(own.geometry, own.transform);
-  addPieceLayout(entry, own, domain.t0, cut);
+  CurveTableEntry entry =
+      curveTableEntryOn(cut, std::make_shared<TransformedCurve>(own.geometry, own.transform));
+  addPieceLayout(entry, own, entry.from, cut);
   entry.amount = toleranceBudget(cut).forPoints();
   checkChordCount(cut, *entry.geometry, entry.amount);
   if (!shares.empty()) {
