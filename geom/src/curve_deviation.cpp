@@ -59,8 +59,8 @@ CurveDistanceWitness directedDeviation(const Curve& from, const CurveProximity& 
   rule.maxTurn = kMaxTurnBetweenSamples;
   rule.maxSagitta = accuracy;
   std::vector<double> parameters;
-  for (const detail::CurveSample& s : detail::sampleCurve(from, rule))
-    parameters.push_back(s.t);
+  detail::visitSamples(from, rule,
+                       [&](const detail::CurveSample& s) { parameters.push_back(s.t); });
   return refineMaxima(from, parameters, target);
 }
 

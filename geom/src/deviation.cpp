@@ -74,11 +74,12 @@ CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(cur
   rule.maxTurn = kMaxTurnBetweenSamples;
   rule.maxSagitta = accuracy;
   double largestCurvature = 0.0;
-  for (const detail::CurveSample& s : detail::sampleCurve(curve, rule)) {
+  // Visited rather than kept: a fine accuracy makes millions of samples.
+  detail::visitSamples(curve, rule, [&](const detail::CurveSample& s) {
     parameters_.push_back(s.t);
     points_.push_back(s.d.point);
     largestCurvature = std::max(largestCurvature, curvatureOf(s.d));
-  }
+  });
   smallestRadius_ =
       largestCurvature > 0.0 ? 1.0 / largestCurvature : std::numeric_limits<double>::infinity();
   index_ = std::make_unique<Index>(Index{SegmentTree::throughVertices(points_)});

@@ -23,6 +23,7 @@ SegmentTree::SegmentTree(std::vector<LineSegment> segments) : segments_(std::mov
 
 SegmentTree SegmentTree::throughVertices(const std::vector<Eigen::Vector3d>& vertices) {
   std::vector<LineSegment> segments;
+  segments.reserve(std::max<std::size_t>(vertices.size(), 2) - 1);
   if (vertices.size() == 1)
     segments.push_back({vertices.front(), vertices.front()});
   for (std::size_t i = 0; i + 1 < vertices.size(); ++i)
@@ -35,21 +36,29 @@ int SegmentTree::build(std::size_t first, std::size_t count) {
   node.first = first;
   node.count = count;
   node.box.setEmpty();
-  for (std::size_t i = first; i < first + count; ++i) {
-    node.box.extend(segments_[i].start);
-    node.box.extend(segments_[i].end);
-  }
   int index = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
-  if (count > kLeafSize) {
-    std::size_t half = count / 2;
-    int left = build(first, half);
-    int right = build(first + half, count - half);
-    nodes_[static_cast<std::size_t>(index)].left = left;
-    nodes_[static_cast<std::size_t>(index)].right = right;
-    nodes_[static_cast<std::size_t>(left)].parent = index;
-    nodes_[static_cast<std::size_t>(right)].parent = index;
+  if (count <= kLeafSize) {
+    Eigen::AlignedBox3d& box = nodes_[static_cast<std::size_t>(index)].box;
+    for (std::size_t i = first; i < first + count; ++i) {
+      box.extend(segments_[i].start);
+      box.extend(segments_[i].end);
+    }
+    return index;
   }
+  // A box is its children's together (the same smallest and largest
+  // coordinates as of its segments', without reading them again at every
+  // level).
+  std::size_t half = count / 2;
+  int left = build(first, half);
+  int right = build(first + half, count - half);
+  Node& built = nodes_[static_cast<std::size_t>(index)];
+  built.left = left;
+  built.right = right;
+  built.box = nodes_[static_cast<std::size_t>(left)].box.merged(
+      nodes_[static_cast<std::size_t>(right)].box);
+  nodes_[static_cast<std::size_t>(left)].parent = index;
+  nodes_[static_cast<std::size_t>(right)].parent = index;
   return index;
 }
 
