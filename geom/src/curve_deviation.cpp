@@ -83,6 +83,12 @@ double CurveDeviationReport::maxDeviation() const {
 CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
                                            const DeviationOptions& options) {
   CurveProximity curveProximity(curve, options.accuracy);
+  return measureCurveDeviation(approximation, curve, curveProximity, options);
+}
+
+CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
+                                           const CurveProximity& curveProximity,
+                                           const DeviationOptions& options) {
   CurveProximity approximationProximity(approximation, options.accuracy);
   CurveDeviationReport report;
   report.approximationToCurve = directedDeviation(approximation, curveProximity, options.accuracy);

@@ -2,6 +2,9 @@
 // curve's point and derivative from one r(t), an offset's point from its
 // base's point and derivative at once, the chord walk's samples in reused
 // memory): the same values to the bit, and the same points counted.
+#include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/curve_deviation.h"
+#include "cncc/geom/deviation.h"
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/function_curve.h"
@@ -73,6 +76,25 @@ TEST(SharedEvaluation, TheWalksChordsKeepTheirToleranceAndRepeat) {
   for (std::size_t i = 0; i + 2 < first.parameters.size(); i += 17) {
     EXPECT_GT(chordDeviation(offset, first.parameters[i], first.parameters[i + 2]), 0.001) << i;
   }
+}
+
+TEST(SharedEvaluation, ADeviationMeasuredWithAGivenProximityIsTheSame) {
+  // A B-spline fit of the spiral (what the fit measures each candidate
+  // against), measured with the curve's proximity built here and built by
+  // the measurement: the same report to the bit.
+  auto curve = spiral();
+  BSplineFitOptions options;
+  options.tolerance = 0.01;
+  NurbsCurve fitted = fitBSpline(*curve, options).spline;
+  DeviationOptions measurement{1e-5};
+  CurveProximity proximity(*curve, measurement.accuracy);
+  CurveDeviationReport own = measureCurveDeviation(fitted, *curve, measurement);
+  CurveDeviationReport given = measureCurveDeviation(fitted, *curve, proximity, measurement);
+  EXPECT_GT(own.maxDeviation(), 0.0);
+  EXPECT_EQ(own.approximationToCurve.distance, given.approximationToCurve.distance);
+  EXPECT_EQ(own.approximationToCurve.parameter, given.approximationToCurve.parameter);
+  EXPECT_EQ(own.curveToApproximation.distance, given.curveToApproximation.distance);
+  EXPECT_EQ(own.curveToApproximation.targetParameter, given.curveToApproximation.targetParameter);
 }
 
 } // namespace
