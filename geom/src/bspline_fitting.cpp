@@ -136,7 +136,8 @@ private:
     if (*std::max_element(errors.begin(), errors.end()) > limit_)
       return false;
     double deviation =
-        measureCurveDeviation(spline, curve_, {options_.tolerance * 1e-3}).maxDeviation();
+        measureCurveDeviation(spline, curve_, proximity_, {options_.tolerance * 1e-3})
+            .maxDeviation();
     if (deviation > options_.tolerance)
       return false;
     if (!best || spline.controlPoints().size() < best->spline.controlPoints().size())

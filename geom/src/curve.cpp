@@ -8,6 +8,10 @@ CurveDerivatives Curve::derivatives(double t) const {
   return {point(t), derivative(t), secondDerivative(t)};
 }
 
+PointWithDerivative Curve::pointWithDerivative(double t) const {
+  return {point(t), derivative(t)};
+}
+
 std::vector<double> Curve::breakpoints() const {
   ParameterRange range = domain();
   return {range.t0, range.t1};

@@ -59,8 +59,8 @@ CurveDistanceWitness directedDeviation(const Curve& from, const CurveProximity& 
   rule.maxTurn = kMaxTurnBetweenSamples;
   rule.maxSagitta = accuracy;
   std::vector<double> parameters;
-  for (const detail::CurveSample& s : detail::sampleCurve(from, rule))
-    parameters.push_back(s.t);
+  detail::visitSamples(from, rule,
+                       [&](const detail::CurveSample& s) { parameters.push_back(s.t); });
   return refineMaxima(from, parameters, target);
 }
 
@@ -83,6 +83,12 @@ double CurveDeviationReport::maxDeviation() const {
 CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
                                            const DeviationOptions& options) {
   CurveProximity curveProximity(curve, options.accuracy);
+  return measureCurveDeviation(approximation, curve, curveProximity, options);
+}
+
+CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
+                                           const CurveProximity& curveProximity,
+                                           const DeviationOptions& options) {
   CurveProximity approximationProximity(approximation, options.accuracy);
   CurveDeviationReport report;
   report.approximationToCurve = directedDeviation(approximation, curveProximity, options.accuracy);

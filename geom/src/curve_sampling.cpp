@@ -3,6 +3,7 @@
 #include "vector_math.h"
 
 #include <algorithm>
+#include <functional>
 
 namespace cncc::geom::detail {
 
@@ -14,18 +15,18 @@ class AdaptiveSampler {
 public:
   AdaptiveSampler(const Curve& curve, const SamplingRule& rule) : curve_(curve), rule_(rule) {}
 
-  // Appends samples strictly after `a` up to and including `b`.
+  // Visits samples strictly after `a` up to and including `b`, in order.
   void refine(const CurveSample& a, const CurveSample& b, int depth,
-              std::vector<CurveSample>& out) const {
+              const SampleVisitor& visit) const {
     double middle = 0.5 * (a.t + b.t);
     CurveSample m{middle, curve_.derivatives(middle)};
     if (depth >= kMaxDepth || !(a.t < middle && middle < b.t) || acceptable(a, m, b)) {
-      out.push_back(m);
-      out.push_back(b);
+      visit(m);
+      visit(b);
       return;
     }
-    refine(a, m, depth + 1, out);
-    refine(m, b, depth + 1, out);
+    refine(a, m, depth + 1, visit);
+    refine(m, b, depth + 1, visit);
   }
 
 private:
@@ -45,33 +46,49 @@ private:
 
 } // namespace
 
-std::vector<std::vector<CurveSample>> samplePieces(const Curve& curve, const SamplingRule& rule) {
+void visitPieceSamples(const Curve& curve, const SamplingRule& rule,
+                       const std::function<void(std::size_t)>& startPiece,
+                       const SampleVisitor& visit) {
   AdaptiveSampler sampler(curve, rule);
   std::vector<double> cuts = curve.breakpoints();
-  std::vector<std::vector<CurveSample>> pieces;
   int n = std::max(1, rule.initialIntervalsPerPiece);
   for (std::size_t piece = 0; piece + 1 < cuts.size(); ++piece) {
     double a = cuts[piece], b = cuts[piece + 1];
-    std::vector<CurveSample> samples{{a, curve.derivatives(a)}};
+    CurveSample previous{a, curve.derivatives(a)};
+    startPiece(piece);
+    visit(previous);
     for (int i = 1; i <= n; ++i) {
       double t = i == n ? b : a + (b - a) * i / n;
       CurveSample next{t, curve.derivatives(t)};
-      CurveSample previous = samples.back();
-      sampler.refine(previous, next, 0, samples);
+      sampler.refine(previous, next, 0, visit);
+      previous = next;
     }
-    pieces.push_back(std::move(samples));
   }
+}
+
+std::vector<std::vector<CurveSample>> samplePieces(const Curve& curve, const SamplingRule& rule) {
+  std::vector<std::vector<CurveSample>> pieces;
+  visitPieceSamples(
+      curve, rule, [&](std::size_t) { pieces.emplace_back(); },
+      [&](const CurveSample& sample) { pieces.back().push_back(sample); });
   return pieces;
+}
+
+void visitSamples(const Curve& curve, const SamplingRule& rule, const SampleVisitor& visit) {
+  // A breakpoint once: as the end of the piece before it.
+  bool pieceStart = false;
+  visitPieceSamples(
+      curve, rule, [&](std::size_t piece) { pieceStart = piece > 0; },
+      [&](const CurveSample& sample) {
+        if (!pieceStart)
+          visit(sample);
+        pieceStart = false;
+      });
 }
 
 std::vector<CurveSample> sampleCurve(const Curve& curve, const SamplingRule& rule) {
   std::vector<CurveSample> all;
-  for (std::vector<CurveSample>& piece : samplePieces(curve, rule)) {
-    auto first = piece.begin();
-    if (!all.empty())
-      ++first; // the breakpoint is already there as the previous piece's end
-    all.insert(all.end(), first, piece.end());
-  }
+  visitSamples(curve, rule, [&](const CurveSample& sample) { all.push_back(sample); });
   return all;
 }
 

@@ -5,6 +5,7 @@
 
 #include "cncc/geom/curve.h"
 
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -24,6 +25,8 @@ struct SamplingRule {
   double maxSagitta = std::numeric_limits<double>::infinity();
 };
 
+using SampleVisitor = std::function<void(const CurveSample&)>;
+
 /// Samples of each smooth piece of the curve, piece by piece (a breakpoint ends one
 /// piece and starts the next). An interval is halved until the tangent turns at most
 /// maxTurn over each half and the arc's sagitta (from the mid point's distance to the
@@ -32,5 +35,7 @@ std::vector<std::vector<CurveSample>> samplePieces(const Curve& curve, const Sam
 
 /// The same samples as one increasing sequence (breakpoints once).
 std::vector<CurveSample> sampleCurve(const Curve& curve, const SamplingRule& rule);
+/// The same samples, each handed to `visit` in turn instead of kept.
+void visitSamples(const Curve& curve, const SamplingRule& rule, const SampleVisitor& visit);
 
 } // namespace cncc::geom::detail

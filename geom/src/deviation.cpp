@@ -74,11 +74,12 @@ CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(cur
   rule.maxTurn = kMaxTurnBetweenSamples;
   rule.maxSagitta = accuracy;
   double largestCurvature = 0.0;
-  for (const detail::CurveSample& s : detail::sampleCurve(curve, rule)) {
+  // Visited rather than kept: a fine accuracy makes millions of samples.
+  detail::visitSamples(curve, rule, [&](const detail::CurveSample& s) {
     parameters_.push_back(s.t);
     points_.push_back(s.d.point);
     largestCurvature = std::max(largestCurvature, curvatureOf(s.d));
-  }
+  });
   smallestRadius_ =
       largestCurvature > 0.0 ? 1.0 / largestCurvature : std::numeric_limits<double>::infinity();
   index_ = std::make_unique<Index>(Index{SegmentTree::throughVertices(points_)});
@@ -88,6 +89,10 @@ CurveProximity::~CurveProximity() = default;
 
 double CurveProximity::sampledDistance(const Eigen::Vector3d& p) const {
   return index_->tree.nearest(p).distance;
+}
+
+double CurveProximity::sampledDistance(const Eigen::Vector3d& p, std::size_t& hint) const {
+  return index_->tree.nearestDistance(p, hint);
 }
 
 CurveProximity::ClosestPoint CurveProximity::closestPoint(const Eigen::Vector3d& p) const {
@@ -171,8 +176,10 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
                                  const WorkBudget& budget) {
   const std::vector<double>& t = proximity.sampleParameters();
   std::vector<double> distance;
+  distance.reserve(t.size());
+  std::size_t hint = 0;
   for (const Eigen::Vector3d& c : proximity.samplePoints()) {
-    distance.push_back(path.nearest(c).distance);
+    distance.push_back(path.nearestDistance(c, hint));
     budget.check();
   }
   DeviationWitness worst;
@@ -208,33 +215,41 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     const Eigen::Vector3d& b = polyline[std::min(j + 1, polyline.size() - 1)];
     return Eigen::Vector3d(a + u * (b - a));
   };
-  std::vector<std::vector<double>> distance(segments);
+  // The distances in order along the whole polyline, a vertex once (a peak
+  // of the distance is refined once, not once per segment that ends at it):
+  // segment j's samples k = 1 .. intervals[j] (and k = 0 for the first) are
+  // along[firsts[j] + k - 1] (along[k] for the first).
+  std::vector<std::size_t> intervals(segments);
+  std::vector<std::size_t> firsts(segments);
+  std::size_t total = 1;
   for (std::size_t j = 0; j < segments; ++j) {
     double length = (pointOn(j, 1.0) - pointOn(j, 0.0)).norm();
     double wanted = std::ceil(length / step);
-    int n = static_cast<int>(std::clamp(wanted, 1.0, double(kMaxSamplesPerSegment)));
-    // The distance to the curve's sample polyline, within `accuracy` of the
-    // distance to the curve: the maxima worth it are refined on the curve.
-    for (int k = 0; k <= n; ++k) {
-      distance[j].push_back(proximity.sampledDistance(pointOn(j, double(k) / n)));
+    intervals[j] = static_cast<std::size_t>(std::clamp(wanted, 1.0, double(kMaxSamplesPerSegment)));
+    firsts[j] = total;
+    total += intervals[j];
+  }
+  // The distance to the curve's sample polyline, within `accuracy` of the
+  // distance to the curve: the maxima worth it are refined on the curve.
+  std::vector<double> along;
+  along.reserve(total);
+  std::size_t hint = 0;
+  for (std::size_t j = 0; j < segments; ++j) {
+    double n = double(intervals[j]);
+    for (std::size_t k = j == 0 ? 0 : 1; k <= intervals[j]; ++k) {
+      along.push_back(proximity.sampledDistance(pointOn(j, double(k) / n), hint));
     }
     budget.check();
   }
-
-  // The samples in order along the whole polyline (a vertex once): a peak of
-  // the distance is refined once, not once per segment that ends at it.
-  struct Sample {
-    std::size_t segment;
-    std::size_t k;
-  };
-  std::vector<Sample> order;
-  std::vector<double> along;
-  for (std::size_t j = 0; j < segments; ++j) {
-    for (std::size_t k = j == 0 ? 0 : 1; k < distance[j].size(); ++k) {
-      order.push_back({j, k});
-      along.push_back(distance[j][k]);
+  // Sample i of `along`: its segment and its k there.
+  auto sampleAt = [&](std::size_t i) {
+    if (i == 0) {
+      return std::pair<std::size_t, std::size_t>{0, 0};
     }
-  }
+    std::size_t j =
+        std::size_t(std::upper_bound(firsts.begin(), firsts.end(), i) - firsts.begin()) - 1;
+    return std::pair<std::size_t, std::size_t>{j, i - firsts[j] + 1};
+  };
 
   DeviationWitness worst;
   worst.distance = -1.0;
@@ -246,22 +261,21 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
   };
   // Refines about sample k of segment j, within the samples beside it on that segment.
   auto refine = [&](std::size_t j, std::size_t k) {
-    const std::vector<double>& g = distance[j];
-    double n = double(g.size() - 1);
+    double n = double(intervals[j]);
     auto distanceAt = [&](double u) { return proximity.closestPoint(pointOn(j, u)).distance; };
     double lo = double(k == 0 ? 0 : k - 1) / n;
-    double hi = double(std::min(k + 1, g.size() - 1)) / n;
+    double hi = double(std::min(k + 1, intervals[j])) / n;
     if (lo < hi)
       record(j, detail::maximiseBrent(distanceAt, lo, hi).t);
   };
   refineLargestFirst(peaksLargestFirst(along, 6.0 * accuracy), along, accuracy, worst,
                      [&](std::size_t i) {
                        budget.check();
-                       auto [j, k] = order[i];
-                       record(j, double(k) / double(distance[j].size() - 1));
+                       auto [j, k] = sampleAt(i);
+                       record(j, double(k) / double(intervals[j]));
                        refine(j, k);
                        // A vertex: the next segment's first samples too.
-                       if (k + 1 == distance[j].size() && j + 1 < segments)
+                       if (k == intervals[j] && j + 1 < segments)
                          refine(j + 1, 0);
                      });
   return worst;

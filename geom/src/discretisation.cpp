@@ -21,9 +21,12 @@ constexpr double kMaxTurnBetweenDeviationSamples = 0.2;
 // Bisection on the chord's end stops at this fraction of the domain's length.
 constexpr double kReachResolution = 1e-13;
 
+// Distances of an arc's samples from its chord, and the sampled points; kept
+// between the checks of a walk (their memory reused, not allocated again).
 struct ArcSamples {
   std::vector<double> t;
   std::vector<double> distance;
+  std::vector<Eigen::Vector3d> points;
 };
 
 double largestTurn(const std::vector<Eigen::Vector3d>& points) {
@@ -34,36 +37,39 @@ double largestTurn(const std::vector<Eigen::Vector3d>& points) {
   return turn;
 }
 
-// Distances of the arc's samples from the chord [a, b]. Stops early, with the samples
-// so far, once one is beyond `limit`: a chord that fails needs no finer look.
-ArcSamples sampleArcDistances(const Curve& curve, double ta, double tb, const Eigen::Vector3d& a,
-                              const Eigen::Vector3d& b, double limit) {
+// Distances of the arc's samples from the chord [a, b], into `samples`. Stops early,
+// with the samples so far, once one is beyond `limit`: a chord that fails needs no
+// finer look.
+void sampleArcDistances(const Curve& curve, double ta, double tb, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b, double limit, ArcSamples& samples) {
   for (int n = kInitialDeviationSamples;; n *= 4) {
-    ArcSamples samples;
-    std::vector<Eigen::Vector3d> points;
+    samples.t.clear();
+    samples.distance.clear();
+    samples.points.clear();
     for (int i = 0; i <= n; ++i) {
       double t = i == n ? tb : ta + (tb - ta) * i / n;
       Eigen::Vector3d p = i == 0 ? a : (i == n ? b : curve.point(t));
       samples.t.push_back(t);
       samples.distance.push_back(detail::distanceToSegment(p, a, b));
-      points.push_back(p);
+      samples.points.push_back(p);
       if (samples.distance.back() > limit)
-        return samples;
+        return;
     }
-    if (n >= kMaxDeviationSamples || largestTurn(points) <= kMaxTurnBetweenDeviationSamples)
-      return samples;
+    if (n >= kMaxDeviationSamples || largestTurn(samples.points) <= kMaxTurnBetweenDeviationSamples)
+      return;
   }
 }
 
 // chordDeviation, except that it may return early with any sampled distance beyond
 // `limit` (a lower bound of the deviation, enough to reject the chord).
-double chordDeviationBeyond(const Curve& curve, double ta, double tb, double limit) {
+double chordDeviationBeyond(const Curve& curve, double ta, double tb, double limit,
+                            ArcSamples& samples) {
   if (ta == tb)
     return 0.0;
   if (ta > tb)
     std::swap(ta, tb);
   Eigen::Vector3d a = curve.point(ta), b = curve.point(tb);
-  ArcSamples samples = sampleArcDistances(curve, ta, tb, a, b, limit);
+  sampleArcDistances(curve, ta, tb, a, b, limit, samples);
   double largest = *std::max_element(samples.distance.begin(), samples.distance.end());
   if (largest > limit)
     return largest;
@@ -96,12 +102,13 @@ public:
                                 curve_.point(to).lpNorm<Eigen::Infinity>());
     double margin = kRoundingMarginUlps * std::numeric_limits<double>::epsilon() * magnitude;
     double allowed = tolerance_ - margin;
-    return chordDeviationBeyond(curve_, from, to, allowed) <= allowed;
+    return chordDeviationBeyond(curve_, from, to, allowed, samples_) <= allowed;
   }
 
 private:
   const Curve& curve_;
   double tolerance_;
+  mutable ArcSamples samples_;
 };
 
 // A first guess of how far a chord reaches: the sagitta of a circle of the local
@@ -165,7 +172,8 @@ CurveSamples samplesAt(const Curve& curve, std::vector<double> parameters) {
 } // namespace
 
 double chordDeviation(const Curve& curve, double ta, double tb) {
-  return chordDeviationBeyond(curve, ta, tb, std::numeric_limits<double>::infinity());
+  ArcSamples samples;
+  return chordDeviationBeyond(curve, ta, tb, std::numeric_limits<double>::infinity(), samples);
 }
 
 ChordLimitExceeded::ChordLimitExceeded(std::size_t limit)

@@ -34,4 +34,10 @@ CurveDerivatives BudgetedCurve::derivatives(double t) const {
   return curve_.derivatives(t);
 }
 
+PointWithDerivative BudgetedCurve::pointWithDerivative(double t) const {
+  count();
+  count();
+  return curve_.pointWithDerivative(t);
+}
+
 } // namespace cncc::geom

@@ -79,8 +79,19 @@ Eigen::Vector3d PolarCurve::point(double t) const {
   return {r * std::cos(t), r * std::sin(t), 0.0};
 }
 
+// As derivatives(t).first (the same arithmetic), without the second
+// derivative: an offset's point asks only the first, and by differences
+// the second costs five more points of r.
 Eigen::Vector3d PolarCurve::derivative(double t) const {
-  return derivatives(t).first;
+  return pointWithDerivative(t).first;
+}
+
+// point(t) and derivative(t) with r, its cosine and sine computed once.
+PointWithDerivative PolarCurve::pointWithDerivative(double t) const {
+  t = range_.clamp(t);
+  double r = radius_(t), dr = radiusDerivative(t);
+  double c = std::cos(t), s = std::sin(t);
+  return {{r * c, r * s, 0.0}, {dr * c - r * s, dr * s + r * c, 0.0}};
 }
 
 Eigen::Vector3d PolarCurve::secondDerivative(double t) const {

@@ -211,7 +211,8 @@ ParameterRange OffsetCurve::smoothPieceAt(double t) const {
 }
 
 Eigen::Vector3d OffsetCurve::point(double t) const {
-  return base_->point(t) + distance_ * leftNormalOf(base_->derivative(t));
+  PointWithDerivative base = base_->pointWithDerivative(t);
+  return base.point + distance_ * leftNormalOf(base.first);
 }
 
 Eigen::Vector3d OffsetCurve::derivative(double t) const {

@@ -4,6 +4,7 @@
 // arithmetic at a parameter the IR loads from a table.
 #include "part_lowering.h"
 
+#include "cncc/frontend/compiled_number.h"
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/function_curve.h"
 #include "cncc/geom/line_arc_curves.h"
@@ -129,8 +130,37 @@ std::shared_ptr<const geom::Curve>
 PartLowering::analyticCurve(const std::shared_ptr<const CurveValue>& curve) {
   auto context = std::make_shared<AnalyticContext>(program_, curve->environment);
   const Declaration* parameter = curve->parameter;
-  auto scalar = [context, parameter](const Expr* expression) {
-    return [context, parameter, expression](double t) {
+  std::vector<const Expr*> expressions =
+      curve->kind == CurveKind::Polar ? std::vector<const Expr*>{curve->radius}
+                                      : std::vector<const Expr*>{curve->x, curve->y, curve->z};
+  // Compiled, the expressions give the evaluator's values to the bit, and
+  // the evaluator's own where the compiled form gives up. All are compiled
+  // or none: the evaluator is renewed after so many evaluations, and one
+  // expression left to it alone would spend its steps faster than before.
+  std::vector<std::shared_ptr<const CompiledNumber>> compiled;
+  for (const Expr* expression : expressions) {
+    if (expression == nullptr) {
+      compiled.push_back(nullptr);
+      continue;
+    }
+    std::optional<CompiledNumber> number =
+        CompiledNumber::compile(*expression, context->environment, parameter);
+    if (!number) {
+      compiled.assign(expressions.size(), nullptr);
+      break;
+    }
+    compiled.push_back(std::make_shared<const CompiledNumber>(std::move(*number)));
+  }
+  auto scalar = [&](std::size_t index) -> geom::ScalarFunction {
+    const Expr* expression = expressions[index];
+    if (expression == nullptr) {
+      return {};
+    }
+    return [context, parameter, expression, compiled = compiled[index]](double t) {
+      double number = 0;
+      if (compiled && compiled->evaluate(t, number)) {
+        return number;
+      }
       context->diagnostics.clear();
       context->environment[parameter] = Value::ofNumber(t);
       Value value = context->evaluator.evaluate(*expression, context->environment);
@@ -140,14 +170,10 @@ PartLowering::analyticCurve(const std::shared_ptr<const CurveValue>& curve) {
   };
   geom::ParameterRange range{curve->low, curve->high};
   if (curve->kind == CurveKind::Polar) {
-    return std::make_shared<geom::PolarCurve>(range, scalar(curve->radius));
-  }
-  geom::ScalarFunction z;
-  if (curve->z != nullptr) {
-    z = scalar(curve->z);
+    return std::make_shared<geom::PolarCurve>(range, scalar(0));
   }
   return std::make_shared<geom::FunctionCurve>(
-      geom::FunctionCurve::fromCoordinates(range, scalar(curve->x), scalar(curve->y), z));
+      geom::FunctionCurve::fromCoordinates(range, scalar(0), scalar(1), scalar(2)));
 }
 
 void PartLowering::joinPieces(CutCurve& curve, const CutStmt& cut) {

@@ -36,6 +36,29 @@ TEST(FunctionCurve, FiniteDifferencesMatchExactDerivatives) {
   }
 }
 
+TEST(FunctionCurve, APolarCurvesDerivativeIsItsDerivativesFirstWithoutTheSecond) {
+  // r by differences: derivative(t) asks r at 5 parameters (6 near an end,
+  // where the stencil is one-sided), derivatives(t) at 5 more.
+  int calls = 0;
+  PolarCurve spiral({0.0, 40 * M_PI}, [&](double t) {
+    ++calls;
+    return 1.0 + 2.0 * t;
+  });
+  for (double t : {0.0, 1e-4, 3.3, 40 * M_PI - 1e-4, 40 * M_PI}) {
+    calls = 0;
+    Eigen::Vector3d first = spiral.derivative(t);
+    int firstCalls = calls;
+    EXPECT_LE(firstCalls, 6);
+    calls = 0;
+    Eigen::Vector3d expected = spiral.derivatives(t).first;
+    EXPECT_EQ(calls, firstCalls + 5);
+    // The same arithmetic: equal to the bit.
+    EXPECT_EQ(first.x(), expected.x()) << t;
+    EXPECT_EQ(first.y(), expected.y()) << t;
+    EXPECT_EQ(first.z(), 0.0);
+  }
+}
+
 TEST(FunctionCurve, NeverCallsThePositionOutsideTheDomain) {
   double lowest = INFINITY, highest = -INFINITY;
   FunctionCurve curve({0.0, 1.0}, [&](double t) {

@@ -37,6 +37,32 @@ std::optional<std::size_t> firstByEveryone(const SegmentTree& tree, const Eigen:
   return std::nullopt;
 }
 
+TEST(SegmentTree, NearestDistanceFromAHintIsNearestsToTheBit) {
+  SegmentTree tree = SegmentTree::throughVertices(twoTurns());
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-7.0, 7.0);
+  std::uniform_int_distribution<std::size_t> segment(0, tree.segmentCount() + 5);
+  // Random points from random hints (some past the end), and points along a
+  // line, each from the last one's segment as a walk along a path asks.
+  for (int i = 0; i < 2000; ++i) {
+    Eigen::Vector3d p(coordinate(random), coordinate(random), coordinate(random) / 7.0);
+    std::size_t hint = segment(random);
+    double distance = tree.nearestDistance(p, hint);
+    SegmentTree::Nearest expected = tree.nearest(p);
+    EXPECT_EQ(distance, expected.distance) << i;
+    // The hint left is a nearest segment.
+    ASSERT_LT(hint, tree.segmentCount());
+    std::size_t again = hint;
+    EXPECT_EQ(tree.nearestDistance(p, again), expected.distance) << i;
+    EXPECT_EQ(again, hint);
+  }
+  std::size_t hint = 0;
+  for (int i = 0; i <= 1000; ++i) {
+    Eigen::Vector3d p(-6.0 + 0.012 * i, 0.3 * std::sin(0.05 * i), 0.5);
+    EXPECT_EQ(tree.nearestDistance(p, hint), tree.nearest(p).distance) << i;
+  }
+}
+
 TEST(SegmentTree, FirstWithinFindsTheFirstPassAtOrAfterAnIndex) {
   SegmentTree tree = SegmentTree::throughVertices(twoTurns());
   // (5, 0, 0.5) is 0.5 from both passes by (5, 0); the chords next to them

@@ -23,6 +23,12 @@ struct CurveDerivatives {
   Eigen::Vector3d second;
 };
 
+/// Position and first derivative.
+struct PointWithDerivative {
+  Eigen::Vector3d point;
+  Eigen::Vector3d first;
+};
+
 /// A parametric curve C(t), t in domain(), in 3D (planar curves have z = 0).
 ///
 /// Every later stage (discretisation, arc length, the IR's derivative pass, the
@@ -42,6 +48,9 @@ public:
 
   /// All three at once; implementations override it when that is cheaper.
   virtual CurveDerivatives derivatives(double t) const;
+  /// point(t) and derivative(t) at once (the same values); implementations override
+  /// it when that is cheaper.
+  virtual PointWithDerivative pointWithDerivative(double t) const;
 
   /// Increasing parameters, first t0 and last t1, between which the curve is smooth
   /// (infinitely differentiable). The default is {t0, t1}.

@@ -41,5 +41,10 @@ struct CurveDeviationReport {
 /// options.accuracy.
 CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
                                            const DeviationOptions& options = {});
+/// The same with `curveProximity`, of `curve` at options.accuracy, built by the caller
+/// (a fit that measures many approximations of one curve builds it once).
+CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
+                                           const CurveProximity& curveProximity,
+                                           const DeviationOptions& options);
 
 } // namespace cncc::geom

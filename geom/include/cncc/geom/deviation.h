@@ -82,6 +82,9 @@ public:
   /// The distance from p to the polyline through the samples, within `accuracy` of
   /// its distance to the curve, without evaluating the curve.
   double sampledDistance(const Eigen::Vector3d& p) const;
+  /// The same, searched from sample segment `hint` first (SegmentTree::nearestDistance),
+  /// for queries along a path.
+  double sampledDistance(const Eigen::Vector3d& p, std::size_t& hint) const;
 
   const std::vector<double>& sampleParameters() const { return parameters_; }
   /// Segments of the curve's samples the queries have measured so far.

@@ -30,6 +30,8 @@ public:
   Eigen::Vector3d derivative(double t) const override;
   Eigen::Vector3d secondDerivative(double t) const override;
   CurveDerivatives derivatives(double t) const override;
+  // Counted as the point and the derivative it is.
+  PointWithDerivative pointWithDerivative(double t) const override;
   std::vector<double> breakpoints() const override { return curve_.breakpoints(); }
 
   std::size_t used() const { return used_; }

@@ -59,6 +59,7 @@ public:
   Eigen::Vector3d derivative(double t) const override;
   Eigen::Vector3d secondDerivative(double t) const override;
   CurveDerivatives derivatives(double t) const override;
+  PointWithDerivative pointWithDerivative(double t) const override;
 
   double radius(double t) const { return radius_(range_.clamp(t)); }
 

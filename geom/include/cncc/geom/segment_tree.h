@@ -34,6 +34,11 @@ public:
     Eigen::Vector3d point;
   };
   Nearest nearest(const Eigen::Vector3d& p) const;
+  /// nearest(p).distance, searched from segment `hint` (any index) first, and
+  /// the segment found left in `hint`: for queries along a path, whose
+  /// nearest segment moves little from one to the next, the search starts
+  /// from a close bound and skips most boxes.
+  double nearestDistance(const Eigen::Vector3d& p, std::size_t& hint) const;
   /// The first segment in path order, at index `from` or later, that comes
   /// within `radius` of p, with its point nearest p; nullopt when none does.
   /// Where a path passes one place twice, this is the pass that comes first.
@@ -54,8 +59,15 @@ private:
     std::size_t count; // number of segments
     int left = -1;     // child nodes, -1 for a leaf
     int right = -1;
+    int parent = -1; // -1 for the root
   };
   int build(std::size_t first, std::size_t count);
+  // The nearest segment, or `best` where none is nearer: of all, and of those
+  // under node `root`, whose box is `rootDistance` from p.
+  Nearest search(const Eigen::Vector3d& p, Nearest best) const;
+  Nearest searchBelow(const Eigen::Vector3d& p, int root, double rootDistance, Nearest best) const;
+  // Segment i's point nearest p.
+  Nearest measure(const Eigen::Vector3d& p, std::size_t i) const;
 
   std::vector<LineSegment> segments_;
   std::vector<Node> nodes_;
