@@ -61,6 +61,9 @@ geom::CurveSamples chordsWithinTolerance(const geom::Curve& curve, double tolera
 }
 
 std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curve& curve) {
+  if (entry.chosenParameters) {
+    return *entry.chosenParameters;
+  }
   geom::CurveSamples samples;
   try {
     samples = samplesOf(entry, curve);
@@ -132,7 +135,10 @@ std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve&
       fraction = (location.local - piece.from) / (piece.to - piece.from);
     }
     const RegionShare& share = shares[location.region];
-    progress.push_back(std::min(1.0, share.before + share.share * fraction));
+    double own = std::min(1.0, share.before + share.share * fraction);
+    progress.push_back(entry.progressFrom == 0 && entry.progressShare == 1
+                           ? own
+                           : std::min(1.0, entry.progressFrom + entry.progressShare * own));
   }
   return progress;
 }

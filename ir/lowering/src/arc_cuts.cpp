@@ -112,11 +112,11 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
     return false;
   }
   HostCut begun = beginHostCut(cut);
-  std::vector<std::vector<SampleRun>> rampRuns;
+  // The ramp lap as chords: each piece a curve.lap of its own.
+  std::vector<std::optional<std::uint32_t>> rampTables;
   if (begun.ramp) {
     checkRampCloses(curve, cut);
-    std::vector<RampSegment> shares = rampSegments(curve, cut);
-    rampRuns = piecesSampleRuns(cut, curve, &shares, false);
+    rampTables = pieceCurveTables(cut, curve, rampSegments(curve, cut), false);
   }
   ValueId feedValue = arithmetic_.value(begun.feed);
   ValueId safeValue = arithmetic_.value(*safe_);
@@ -138,8 +138,8 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
     if (begun.ramp) {
       PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
       builder_.comment("ramp");
-      for (const std::vector<SampleRun>& runs : rampRuns) {
-        emitSampleRuns(curve, runs, entryZ, passZ, feedValue, cut);
+      for (std::size_t p = 0; p < rampTables.size(); ++p) {
+        emitCurveLap(curve, *rampTables[p], entryZ, passZ, feedValue, cut, p, p + 1);
       }
     }
     Eigen::Vector2d end = emitArcLap(

@@ -341,129 +341,11 @@ RampSegment PartLowering::rampSegmentOf(const std::vector<RampSegment>& segments
   return {piece, span, 1.0, 0.0}; // not reached: every segment is listed
 }
 
-double PartLowering::rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,
-                                  const SampleLocation& location) {
-  const CurvePiece& piece = curve.pieces[location.piece];
-  double fraction = location.local; // a NURBS span's u
-  if (piece.spans.empty()) {
-    geom::ParameterRange domain = piece.geometry->domain();
-    fraction = (location.local - domain.t0) / domain.length();
-  }
-  RampSegment segment = rampSegmentOf(segments, location.piece, location.span);
-  return std::min(1.0, segment.before + segment.share * fraction);
-}
-
 void PartLowering::checkRampCloses(const CutCurve& curve, const CutStmt& cut) {
   geom::ParameterRange domain = curve.geometry->domain();
   if (!((curve.geometry->point(domain.t0) - curve.geometry->point(domain.t1)).norm() <= 1e-6)) {
     unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
   }
-}
-
-std::vector<SampleRun> PartLowering::sampleRuns(const CutCurve& curve,
-                                                const std::vector<SampleLocation>& locations,
-                                                const std::vector<RampSegment>* ramp) {
-  std::vector<SampleRun> runs;
-  for (const SampleLocation& location : locations) {
-    if (runs.empty() || runs.back().piece != location.piece || runs.back().span != location.span) {
-      runs.push_back({location.piece, location.span, {}, {}, 0, 0});
-    }
-    runs.back().locals.push_back(location.local);
-    runs.back().progress.push_back(ramp ? rampProgress(*ramp, curve, location) : 1.0);
-  }
-  for (SampleRun& run : runs) {
-    run.localTable = builder_.addTable(run.locals);
-    if (ramp) {
-      run.progressTable = builder_.addTable(run.progress);
-    }
-  }
-  return runs;
-}
-
-// The x, y and z of a run's points computed on the host, as tables, for a
-// NURBS span whose coefficients the controller would read too coarsely
-// (spanLiteralsFit); null where the controller evaluates the span at the
-// run's locals. A run of one point is folded on the host anyway.
-const PartLowering::HostPoints*
-PartLowering::hostPointTables(const CutCurve& curve, const SampleRun& run, const CutStmt& cut) {
-  // Decided once per run (each pass emits the run again), either way.
-  auto known = hostPointTables_.find(run.localTable);
-  if (known != hostPointTables_.end()) {
-    return known->second ? &*known->second : nullptr;
-  }
-  std::optional<HostPoints>& decided = hostPointTables_[run.localTable];
-  const CurvePiece& piece = curve.pieces[run.piece];
-  if (run.locals.size() < 2 || piece.value->kind != CurveKind::Nurbs ||
-      spanLiteralsFit(piece.spans[run.span], cut, piece.transform.stretch())) {
-    return nullptr;
-  }
-  std::array<std::vector<double>, 3> coordinates;
-  for (double local : run.locals) {
-    CurvePoint point = pointAt(curve, run.piece, run.span, Scalar::of(local), cut);
-    if (!point.x.isConstant() || !point.y.isConstant() || !point.z.isConstant()) {
-      return nullptr; // a transform the parameters move: the controller evaluates
-    }
-    coordinates[0].push_back(point.x.constant);
-    coordinates[1].push_back(point.y.constant);
-    coordinates[2].push_back(point.z.constant);
-  }
-  HostPoints points;
-  for (int c = 0; c < 3; ++c) {
-    const std::vector<double>& values = coordinates[c];
-    if (std::all_of(values.begin(), values.end(),
-                    [&](double value) { return value == values.front(); })) {
-      points.constant[c] = values.front(); // no table of one number
-    } else {
-      points.tables[c] = builder_.addTable(values);
-    }
-  }
-  decided = points;
-  return &*decided;
-}
-
-// One lap along the runs, its z going from zFrom to zTo in proportion to the
-// chord length done, plus the curve's own z.
-void PartLowering::emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs,
-                                  double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
-  for (const SampleRun& run : runs) {
-    double last = static_cast<double>(run.locals.size()) - 1;
-    ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last), LoopRole::Curve);
-    CurvePoint point;
-    if (const HostPoints* host = hostPointTables(curve, run, cut)) {
-      auto load = [&](int c) {
-        return host->tables[c] ? Scalar::of(builder_.tableLoad(*host->tables[c], i), ValueType::F64)
-                               : Scalar::of(host->constant[c]);
-      };
-      point = {load(0), load(1), load(2)};
-    } else {
-      Scalar local = Scalar::of(builder_.tableLoad(run.localTable, i), ValueType::F64);
-      point = pointAt(curve, run.piece, run.span, local, cut);
-    }
-    Scalar z = Scalar::of(zTo);
-    if (zFrom != zTo) {
-      Scalar progress = Scalar::of(builder_.tableLoad(run.progressTable, i), ValueType::F64);
-      z = arithmetic_.add(Scalar::of(zFrom),
-                          arithmetic_.multiply(Scalar::of(zTo - zFrom), progress));
-    }
-    builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
-                  arithmetic_.value(arithmetic_.add(z, point.z)), feed);
-    builder_.endLoop();
-  }
-}
-
-// The points of one piece alone, within `budget` of it, after its start.
-std::vector<SampleRun> PartLowering::pieceSampleRuns(const CutCurve& curve, std::size_t piece,
-                                                     double budget,
-                                                     const std::vector<RampSegment>* ramp,
-                                                     const CutStmt& cut) {
-  const CurvePiece& own = curve.pieces[piece];
-  auto moved = std::make_shared<TransformedCurve>(own.geometry, own.transform);
-  geom::CurveSamples samples = chordsWithinBudget(cut, *moved, budget);
-  std::vector<SampleLocation> locations;
-  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
-    locations.push_back(locateInPiece(curve, piece, samples.parameters[i]));
-  }
-  return sampleRuns(curve, locations, ramp);
 }
 
 HostCut PartLowering::beginHostCut(const CutStmt& cut) {
@@ -496,16 +378,6 @@ void PartLowering::beginCutMoves(CutGeometry geometry) {
 void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius) {
   cuts_.back().drawnCurve = std::move(drawn);
   cuts_.back().toolRadius = toolRadius;
-}
-
-std::vector<SampleRun> PartLowering::lapRuns(const CutCurve& curve,
-                                             const geom::CurveSamples& samples,
-                                             const std::vector<RampSegment>* ramp) {
-  std::vector<SampleLocation> locations;
-  for (std::size_t i = 1; i < samples.parameters.size(); ++i) {
-    locations.push_back(locate(curve, samples.parameters[i]));
-  }
-  return sampleRuns(curve, locations, ramp);
 }
 
 void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
@@ -630,18 +502,7 @@ CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve
   entry.cutSpan = cut.span;
   entry.geometry = curve.geometry;
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
-    const CurvePiece& piece = curve.pieces[p];
-    geom::ParameterRange own = piece.geometry->domain();
-    CurvePieceLayout layout{curve.pieceStarts[p], own.t0, own.t1};
-    for (std::size_t s = 0; s < piece.spans.size(); ++s) {
-      const geom::PolynomialSpan& span = piece.spans[s];
-      layout.spans.emplace_back(span.t0, span.t1);
-      if (piece.value->kind == CurveKind::Nurbs &&
-          !spanLiteralsFit(span, cut, piece.transform.stretch())) {
-        entry.hostPointRegions.push_back(entry.regionCount() + s);
-      }
-    }
-    entry.pieces.push_back(std::move(layout));
+    addPieceLayout(entry, curve.pieces[p], curve.pieceStarts[p], cut);
   }
   if (modifierValue(cut, "samples") != nullptr) {
     entry.sampling = CurveSampling::Samples;
@@ -659,14 +520,60 @@ CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve
   return entry;
 }
 
-// One lap as a curve.lap: a region per piece (per knot span of a NURBS
-// piece) computing the point at its parameter, z going from zFrom to zTo.
+// One piece of the cut's curve alone, its points within the cut's chord
+// tolerance; a ramp lap along it descends by its share of the whole lap's
+// descent (`shares`, empty for none).
+CurveTableEntry PartLowering::pieceCurveTableEntry(const CutStmt& cut, const CutCurve& curve,
+                                                   std::size_t piece,
+                                                   const std::vector<RampSegment>& shares) {
+  const CurvePiece& own = curve.pieces[piece];
+  CurveTableEntry entry;
+  geom::ParameterRange domain = own.geometry->domain();
+  entry.from = domain.t0;
+  entry.to = domain.t1;
+  entry.curveSpan = cut.curve->span;
+  entry.cutSpan = cut.span;
+  entry.geometry = std::make_shared<TransformedCurve>(own.geometry, own.transform);
+  addPieceLayout(entry, own, domain.t0, cut);
+  entry.amount = toleranceBudget(cut).forPoints();
+  checkChordCount(cut, *entry.geometry, entry.amount);
+  if (!shares.empty()) {
+    entry.progressFrom = rampSegmentOf(shares, piece, 0).before;
+    entry.progressShare = 0;
+    for (const RampSegment& segment : shares) {
+      entry.progressShare += segment.piece == piece ? segment.share : 0;
+    }
+  }
+  return entry;
+}
+
+void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
+                                  const CutStmt& cut) {
+  geom::ParameterRange own = piece.geometry->domain();
+  CurvePieceLayout layout{start, own.t0, own.t1};
+  std::size_t firstRegion = entry.regionCount();
+  for (std::size_t s = 0; s < piece.spans.size(); ++s) {
+    const geom::PolynomialSpan& span = piece.spans[s];
+    layout.spans.emplace_back(span.t0, span.t1);
+    if (piece.value->kind == CurveKind::Nurbs &&
+        !spanLiteralsFit(span, cut, piece.transform.stretch())) {
+      entry.hostPointRegions.push_back(firstRegion + s);
+    }
+  }
+  entry.pieces.push_back(std::move(layout));
+}
+
+// One lap as a curve.lap: a region per piece in [firstPiece, endPiece) (per
+// knot span of a NURBS piece) computing the point at its parameter, z going
+// from zFrom to zTo.
 void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom,
-                                double zTo, ValueId feed, const CutStmt& cut) {
+                                double zTo, ValueId feed, const CutStmt& cut,
+                                std::size_t firstPiece, std::size_t endPiece) {
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
   Scalar local = Scalar::of(builder_.beginCurveLap(table, from, to, feed), ValueType::F64);
-  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+  endPiece = std::min(endPiece, curve.pieces.size());
+  for (std::size_t p = firstPiece; p < endPiece; ++p) {
     std::size_t spans = std::max<std::size_t>(curve.pieces[p].spans.size(), 1);
     for (std::size_t s = 0; s < spans; ++s) {
       CurvePoint point = pointAt(curve, p, s, local, cut);

@@ -89,7 +89,6 @@ struct SampleLocation {
   double local = 0;
 };
 
-// Consecutive samples on the same piece and span: one table, one loop.
 // The points a search over a cut's curve (the chord walk, a spline fit) may
 // ask of it (curve_lap.h): a few seconds of a curve the front end evaluates.
 using ir::maximumCurveEvaluations;
@@ -112,16 +111,6 @@ struct EvaluationsCharged {
   std::size_t& total;
   const geom::BudgetedCurve& curve;
   ~EvaluationsCharged() { total += curve.used(); }
-};
-
-struct SampleRun {
-  std::size_t piece = 0;
-  std::size_t span = 0;
-  std::vector<double> locals;
-  // The share of the descent done at each sample (entry=ramp).
-  std::vector<double> progress;
-  std::uint32_t localTable = 0;
-  std::uint32_t progressTable = 0;
 };
 
 // An arc piece as native_arcs.cpp moves on it: its point at a fraction (0

@@ -208,23 +208,22 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
                 count, false, height, feed);
 }
 
-std::vector<std::vector<SampleRun>>
-PartLowering::piecesSampleRuns(const CutStmt& cut, const CutCurve& curve,
-                               const std::vector<RampSegment>* ramp, bool skipArcPieces) {
-  double budget = toleranceBudget(cut).forPoints();
-  std::vector<std::vector<SampleRun>> runs(curve.pieces.size());
+std::vector<std::optional<std::uint32_t>>
+PartLowering::pieceCurveTables(const CutStmt& cut, const CutCurve& curve,
+                               const std::vector<RampSegment>& shares, bool skipArcPieces) {
+  std::vector<std::optional<std::uint32_t>> tables(curve.pieces.size());
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
     if (!skipArcPieces || !isArcPiece(curve.pieces[p])) {
-      runs[p] = pieceSampleRuns(curve, p, budget, ramp, cut);
+      tables[p] = builder_.addCurve(pieceCurveTableEntry(cut, curve, p, shares));
     }
   }
-  return runs;
+  return tables;
 }
 
 // A cut with arc pieces (and neither samples= nor spacing=) on a target
 // that computes on the host: each arc piece as move.arc, each other
-// piece's points chosen on the piece alone (chord tolerance), in a table
-// and a loop as cuts.cpp does for a whole curve.
+// piece a curve.lap of its own, its points chosen on the piece alone
+// (chord tolerance).
 void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   // Named, not structured bindings: the lambdas below capture them.
   HostCut begun = beginHostCut(cut);
@@ -237,9 +236,8 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   ToleranceBudget budget = toleranceBudget(cut);
   std::vector<RampSegment> shares = ramp ? rampSegments(curve, cut) : std::vector<RampSegment>{};
 
-  // The other pieces' points: one run of samples per piece and span.
-  std::vector<std::vector<SampleRun>> runs =
-      piecesSampleRuns(cut, curve, ramp ? &shares : nullptr, true);
+  // The other pieces' curves.
+  std::vector<std::optional<std::uint32_t>> tables = pieceCurveTables(cut, curve, shares, true);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   beginCutMoves({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
@@ -248,7 +246,7 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   auto lap = [&](double zFrom, double zTo) {
     for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
       if (!isArcPiece(curve.pieces[p])) {
-        emitSampleRuns(curve, runs[p], zFrom, zTo, feedValue, cut);
+        emitCurveLap(curve, *tables[p], zFrom, zTo, feedValue, cut, p, p + 1);
         continue;
       }
       RampSegment segment = ramp ? rampSegmentOf(shares, p, 0) : RampSegment{p, 0, 1.0, 0.0};

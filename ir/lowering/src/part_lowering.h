@@ -301,8 +301,13 @@ private:
   void checkSpacing(const frontend::CutStmt& cut, const geom::Curve& curve, double spacing);
   void lowerCurveLaps(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
+  CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
+                                       std::size_t piece, const std::vector<RampSegment>& shares);
+  void addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
+                      const frontend::CutStmt& cut);
   void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
-                    ValueId feed, const frontend::CutStmt& cut);
+                    ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
+                    std::size_t endPiece = SIZE_MAX);
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before any point is computed: the curve and the depth within the
@@ -325,28 +330,9 @@ private:
   // Rapid over `start` at the safe height, then feed down to z + start.z().
   void approachPassStart(const Eigen::Vector3d& start, double z, ValueId safe, ValueId feed);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
-  // The share of the descent done at a sample (SampleLocation.local).
-  static double rampProgress(const std::vector<RampSegment>& segments, const CutCurve& curve,
-                             const SampleLocation& location);
   static RampSegment rampSegmentOf(const std::vector<RampSegment>& segments, std::size_t piece,
                                    std::size_t span);
   void checkRampCloses(const CutCurve& curve, const frontend::CutStmt& cut);
-  std::vector<SampleRun> sampleRuns(const CutCurve& curve,
-                                    const std::vector<SampleLocation>& locations,
-                                    const std::vector<RampSegment>* ramp);
-  void emitSampleRuns(const CutCurve& curve, const std::vector<SampleRun>& runs, double zFrom,
-                      double zTo, ValueId feed, const frontend::CutStmt& cut);
-  // The runs of the samples after the first (the start, which the plunge reaches).
-  // A run's x, y and z computed on the host: per coordinate a table, or the
-  // one value every point has (a planar curve's z).
-  struct HostPoints {
-    std::array<std::optional<std::uint32_t>, 3> tables;
-    std::array<double, 3> constant = {0, 0, 0};
-  };
-  const HostPoints* hostPointTables(const CutCurve& curve, const SampleRun& run,
-                                    const frontend::CutStmt& cut);
-  std::vector<SampleRun> lapRuns(const CutCurve& curve, const geom::CurveSamples& samples,
-                                 const std::vector<RampSegment>* ramp);
   // The passes of a cut whose start and finish are constants: per depth its
   // comment, a rapid over `start` at the safe height, the plunge (to the
   // previous pass's height and a ramp lap down with `ramp`), the lap at the
@@ -358,9 +344,6 @@ private:
   void emitHostPasses(const std::vector<double>& depths, bool ramp, const Eigen::Vector3d& start,
                       const Eigen::Vector3d& finish, ValueId feed, ValueId safe,
                       const LapEmitter& lap, const CompensatedLeads* leads = nullptr);
-  std::vector<SampleRun> pieceSampleRuns(const CutCurve& curve, std::size_t piece, double budget,
-                                         const std::vector<RampSegment>* ramp,
-                                         const frontend::CutStmt& cut);
 
   // native_arcs.cpp
   static bool wantsNativeArcs(const frontend::CutStmt& cut);
@@ -465,13 +448,13 @@ private:
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
   std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
                                                      const CutCurve& curve);
-  // Each piece's runs of samples within the cut's chord budget (descending
-  // with `ramp`'s shares when given); an arc piece has none when
-  // `skipArcPieces` (it is cut as move.arc).
-  std::vector<std::vector<SampleRun>> piecesSampleRuns(const frontend::CutStmt& cut,
-                                                       const CutCurve& curve,
-                                                       const std::vector<RampSegment>* ramp,
-                                                       bool skipArcPieces);
+  // Each piece's curve table entry, its points within the cut's chord
+  // budget (descending by `shares` when not empty); an arc piece has none
+  // when `skipArcPieces` (it is cut as move.arc).
+  std::vector<std::optional<std::uint32_t>> pieceCurveTables(const frontend::CutStmt& cut,
+                                                             const CutCurve& curve,
+                                                             const std::vector<RampSegment>& shares,
+                                                             bool skipArcPieces);
   Eigen::Vector2d emitArcLap(const std::vector<geom::ArcSegment>& segments, ValueId z,
                              ValueId feed);
 
@@ -609,9 +592,6 @@ private:
   // value (for the transforms of a named curve).
   std::map<const frontend::Declaration*, std::set<std::string>> parameterNames_;
   std::map<const frontend::Declaration*, const frontend::Expr*> letValues_;
-  // hostPointTables, by the run's table of locals (nullopt: the controller
-  // evaluates the run's span).
-  std::map<std::uint32_t, std::optional<HostPoints>> hostPointTables_;
   std::vector<FixedParameter> fixedParameters_;
   // Set while the defaults are only checked, not built into the program.
   bool checkingDefaults_ = false;

@@ -141,16 +141,17 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
                        cut.span, methodOf(cut)};
   geometry.splineBlocks = comment;
   beginCutMoves(std::move(geometry));
-  std::vector<RampSegment> rampShares;
-  std::vector<SampleRun> runs;
+  // The ramp's lap as chords through the points the blocks were fitted to.
+  std::optional<std::uint32_t> rampTable;
   if (ramp) {
-    rampShares = rampSegments(curve, cut);
-    runs = lapRuns(curve, samples, &rampShares);
+    CurveTableEntry entry = curveTableEntry(cut, curve);
+    entry.chosenParameters = std::make_shared<const std::vector<double>>(samples.parameters);
+    rampTable = builder_.addCurve(std::move(entry));
   }
   // The ramp's lap as chords, the lap at the pass height as the blocks.
   auto lap = [&](double zFrom, double zTo) {
     if (zFrom != zTo) {
-      emitSampleRuns(curve, runs, zFrom, zTo, feedValue, cut);
+      emitCurveLap(curve, *rampTable, zFrom, zTo, feedValue, cut);
       return;
     }
     builder_.comment(comment);

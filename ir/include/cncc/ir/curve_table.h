@@ -61,6 +61,11 @@ struct CurveTableEntry {
   // choose the points is reported.
   frontend::SourceSpan curveSpan;
   frontend::SourceSpan cutSpan;
+  // A lap over a part of a longer lap (one piece of a path whose arcs are
+  // cut as arcs) descends by its share of the longer lap's descent: its
+  // progress is progressFrom + progressShare * its own.
+  double progressFrom = 0;
+  double progressShare = 1;
   // Regions (by index over the whole lap) whose points the host computes
   // into tables even on a target that evaluates the curve in the program:
   // a NURBS span whose coefficients the controller would read too coarsely.
@@ -69,6 +74,9 @@ struct CurveTableEntry {
   // regions compute, for choosing the points without interpreting them);
   // null in a function read from text, where the regions are interpreted.
   std::shared_ptr<const geom::Curve> geometry = nullptr;
+  // The parameters lapParameters gives, when the lowering chose them for
+  // something else too (the points a spline is fitted to); null otherwise.
+  std::shared_ptr<const std::vector<double>> chosenParameters = nullptr;
 
   std::size_t regionCount() const;
   // The later piece at a join (as a composite curve evaluates it); a
