@@ -5,6 +5,7 @@
 #include <charconv>
 #include <fmt/format.h>
 #include <map>
+#include <memory>
 
 namespace cncc::ir {
 
@@ -522,8 +523,26 @@ private:
       }
       return;
     }
+    if (startsWith(line, "chosen ")) {
+      std::vector<double> parameters;
+      for (std::string_view parameter : splitList(line.substr(7))) {
+        parameters.push_back(parseNumber(parameter));
+      }
+      curve_->chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
+      return;
+    }
+    if (startsWith(line, "progress ")) {
+      std::vector<std::string_view> words = splitWords(line);
+      if (words.size() != 4 || words[2] != "share") {
+        throw Failure{"expected 'progress from share share'"};
+      }
+      curve_->progressFrom = parseNumber(words[1]);
+      curve_->progressShare = parseNumber(words[3]);
+      return;
+    }
     if (!startsWith(line, "piece ")) {
-      throw Failure{"expected 'piece at start over from .. to', 'host regions' or '}'"};
+      throw Failure{"expected 'piece at start over from .. to', 'progress', 'host', 'chosen' or "
+                    "'}'"};
     }
     std::size_t spansAt = line.find(" spans ");
     std::vector<std::string_view> words = splitWords(line.substr(0, spansAt));

@@ -62,8 +62,9 @@ public:
   }
 
 private:
-  // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece and
-  // the host regions; the entry's geometry and spans are not text.
+  // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
+  // the share of a longer lap's descent, the host regions and the chosen
+  // parameters; the entry's geometry and source spans are not text.
   void printCurve(std::size_t index, const CurveTableEntry& entry) {
     out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
                         curveSamplingName(entry.sampling), entry.amount, entry.from, entry.to);
@@ -75,8 +76,14 @@ private:
       }
       out_ += "\n";
     }
+    if (entry.progressFrom != 0 || entry.progressShare != 1) {
+      out_ += fmt::format("    progress {} share {}\n", entry.progressFrom, entry.progressShare);
+    }
     if (!entry.hostPointRegions.empty()) {
       out_ += fmt::format("    host {}\n", fmt::join(entry.hostPointRegions, ", "));
+    }
+    if (entry.chosenParameters) {
+      out_ += fmt::format("    chosen {}\n", fmt::join(*entry.chosenParameters, ", "));
     }
     out_ += "  }\n";
   }

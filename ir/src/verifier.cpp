@@ -294,12 +294,34 @@ private:
         problem(fmt::format("{} piece {} starts before the piece ahead of it", where, piece));
       }
     }
+    if (!(entry.progressFrom >= 0 && entry.progressShare >= 0 &&
+          entry.progressFrom + entry.progressShare <= 1 + 1e-12)) {
+      problem(fmt::format("{} descends from {} by a share of {}, not within the longer lap's",
+                          where, entry.progressFrom, entry.progressShare));
+    }
+    if (entry.chosenParameters) {
+      verifyChosenParameters(where, entry, *entry.chosenParameters);
+    }
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {
       if (region >= regions) {
         problem(fmt::format("{} has its points of region {} on the host, but {} regions", where,
                             region, regions));
       }
+    }
+  }
+
+  // What lapParameters gives: at least two points along the curve.
+  void verifyChosenParameters(const std::string& where, const CurveTableEntry& entry,
+                              const std::vector<double>& parameters) {
+    bool inOrder = parameters.size() >= 2;
+    for (std::size_t k = 0; inOrder && k < parameters.size(); ++k) {
+      inOrder = parameters[k] >= entry.from && parameters[k] <= entry.to &&
+                (k == 0 || parameters[k - 1] <= parameters[k]);
+    }
+    if (!inOrder) {
+      problem(fmt::format("{} has {} chosen parameters, not two or more in order within {} .. {}",
+                          where, parameters.size(), entry.from, entry.to));
     }
   }
 
