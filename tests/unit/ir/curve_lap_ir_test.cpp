@@ -700,6 +700,26 @@ TEST(IrCurveLapInterpreter, WithAndWithoutGeometryTheSamePoints) {
   }
 }
 
+// The interpreter and expand-curve-laps choose the same points and raise
+// them alike: the path before and after expansion is the same to the bit,
+// with the entry's geometry or the regions' curve (read from text).
+TEST(IrCurveLapInterpreter, ThePathOfTheExpandedLaps) {
+  std::vector<Function> functions;
+  functions.push_back(lineThenHalfCircle(lineThenHalfCircleGeometry(5)));
+  functions.push_back(lineThenHalfCircle());
+  functions.push_back(parsed(circleText));
+  functions.push_back(parsed(pathText));
+  functions.push_back(passesAroundTwoPieces());
+  for (Function& function : functions) {
+    ToolPath before = interpret(function);
+    ASSERT_GT(feedMoves(before).size(), 5u) << function.name;
+    ASSERT_TRUE(expandCurveLaps(function));
+    EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+    EXPECT_THAT(verifyFunction(function), IsEmpty()) << function.name;
+    expectSamePath(before, interpret(function));
+  }
+}
+
 TEST(IrCurveLapInterpreter, ACurveWithoutFinitePointsIsTheRunsError) {
   Function function = parsed(replaced(circleText, "%6 = mul %0, %5", "%6 = sqrt %2"));
   EXPECT_THAT(verifyFunction(function), IsEmpty());
