@@ -1,14 +1,18 @@
 #include "cncc/ir/interpreter.h"
 
 #include "cncc/ir/arithmetic.h"
+#include "cncc/ir/curve_lap.h"
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/spline_move.h"
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
+#include <memory>
 
 namespace cncc::ir {
 
@@ -84,6 +88,12 @@ private:
       return; // read by the loop when its body is done
     case Opcode::If:
       runRegion(instruction.regions[value(operands[0]) != 0 ? 0 : 1]);
+      return;
+    case Opcode::CurveLap:
+      runCurveLap(instruction);
+      return;
+    case Opcode::CurvePoint: // read by its lap when the region is done
+      lapPoint_ = {value(operands[0]), value(operands[1]), value(operands[2])};
       return;
     case Opcode::Arc:
       recordArc(instruction);
@@ -163,6 +173,87 @@ private:
             fmt::format("a loop's variable does not advance: {} after {}", next, u));
       }
       u = next;
+    }
+  }
+
+  // The points of a lap chosen on its curve, and the ramp's progress at
+  // each once a ramp lap asks; for the values the curve read from outside.
+  struct LapPoints {
+    std::vector<double> outside;
+    std::shared_ptr<const geom::Curve> curve;
+    std::vector<double> parameters;
+    std::vector<double> progress;
+  };
+
+  // A feed move to each point after the first, the region that holds it
+  // run at its own parameter, raised by the lap's height there.
+  void runCurveLap(const Instruction& lap) {
+    const CurveTableEntry& entry = function_.curves[lap.index];
+    double zFrom = value(lap.operands[0]);
+    double zTo = value(lap.operands[1]);
+    double feed = value(lap.operands[2]);
+    bool ramp = zFrom != zTo;
+    const LapPoints& points = lapPoints(lap, entry, ramp);
+    for (std::size_t k = 1; k < points.parameters.size(); ++k) {
+      if (++steps_ > options_.maximumSteps) {
+        throw InterpreterError(
+            fmt::format("the program takes more than {} steps", options_.maximumSteps));
+      }
+      CurveLocation location = entry.locate(points.parameters[k]);
+      values_[lap.result.index] = location.local;
+      runRegion(lap.regions[location.region]);
+      double height = ramp ? zFrom + (zTo - zFrom) * points.progress[k] : zTo;
+      MachineEvent event;
+      event.kind = MachineEvent::Kind::Feed;
+      event.x = lapPoint_[0];
+      event.y = lapPoint_[1];
+      event.z = height + lapPoint_[2];
+      event.feed = feed;
+      event.span = lap.span;
+      event.pass = lap.pass;
+      position_ = {event.x, event.y, event.z};
+      path_.events.push_back(std::move(event));
+      if (sink_ == nullptr && path_.events.size() > options_.maximumEvents) {
+        throw InterpreterError(
+            fmt::format("the program makes more than {} events", options_.maximumEvents));
+      }
+    }
+  }
+
+  // Chosen once per lap and values read from outside it (a lap in a loop
+  // over passes goes along the same curve each time).
+  const LapPoints& lapPoints(const Instruction& lap, const CurveTableEntry& entry, bool ramp) {
+    LapPoints fresh;
+    try {
+      fresh.curve = lapCurve(function_, lap, [&](ValueId outside) -> std::optional<double> {
+        const Instruction& definition = function_.definition(outside);
+        double number =
+            definition.opcode == Opcode::Param ? parameters_[definition.index] : value(outside);
+        fresh.outside.push_back(number);
+        return number;
+      });
+      std::vector<LapPoints>& known = lapPoints_[&lap];
+      auto same = std::find_if(known.begin(), known.end(), [&](const LapPoints& points) {
+        return std::equal(points.outside.begin(), points.outside.end(), fresh.outside.begin(),
+                          fresh.outside.end(), [](double a, double b) {
+                            return std::bit_cast<std::uint64_t>(a) ==
+                                   std::bit_cast<std::uint64_t>(b);
+                          });
+      });
+      if (same == known.end()) {
+        if (known.size() >= maximumCurvesPerLap) {
+          known.erase(known.begin());
+        }
+        fresh.parameters = lapParameters(entry, *fresh.curve);
+        known.push_back(std::move(fresh));
+        same = known.end() - 1;
+      }
+      if (ramp && same->progress.empty()) {
+        same->progress = lapProgress(entry, *same->curve, same->parameters);
+      }
+      return *same;
+    } catch (const CurveLapError& error) {
+      throw InterpreterError(error.what());
     }
   }
 
@@ -278,6 +369,11 @@ private:
   std::vector<double> parameters_;
   ToolPath path_;
   std::size_t steps_ = 0;
+  // The point the last curve.point gave.
+  std::array<double, 3> lapPoint_{0, 0, 0};
+  // The curves a lap kept, the latest last.
+  static constexpr std::size_t maximumCurvesPerLap = 8;
+  std::map<const Instruction*, std::vector<LapPoints>> lapPoints_;
 };
 
 // How far an arc's end may lie off its circle, in the part's units: what a

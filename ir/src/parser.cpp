@@ -5,6 +5,7 @@
 #include <charconv>
 #include <fmt/format.h>
 #include <map>
+#include <memory>
 
 namespace cncc::ir {
 
@@ -85,6 +86,14 @@ public:
   int line() const { return line_; }
 
 private:
+  // The loops, ifs and curve.laps being read, innermost last.
+  struct OpenRegions {
+    Opcode opcode = Opcode::Loop;
+    std::size_t regions = 0; // curve.lap: how many its curve needs
+    std::size_t region = 0;  // curve.lap: the one being read
+    bool pointEnded = false; // curve.lap: its curve.point was read
+  };
+
   void parseLine(std::string_view line) {
     if (!builder_) {
       parseHeader(line);
@@ -93,19 +102,34 @@ private:
     if (finished_) {
       throw Failure{"text after the end of the function"};
     }
+    if (curve_) {
+      parseCurveLine(line);
+      return;
+    }
+    if (!open_.empty() && open_.back().pointEnded && line != "}" && line != "} piece {") {
+      throw Failure{"'curve.point' ends a curve.lap region: expected '} piece {' or '}'"};
+    }
     if (line == "}") {
       close();
       return;
     }
     if (line == "} else {") {
-      if (open_.empty() || open_.back() != Opcode::If) {
+      if (open_.empty() || open_.back().opcode != Opcode::If) {
         throw Failure{"'else' without 'if'"};
       }
       builder_->beginElse();
       return;
     }
+    if (line == "} piece {") {
+      nextLapRegion();
+      return;
+    }
     if (startsWith(line, "table @")) {
       parseTable(line);
+      return;
+    }
+    if (startsWith(line, "curve @")) {
+      parseCurveHeader(line);
       return;
     }
     std::string_view result;
@@ -279,7 +303,7 @@ private:
         throw Failure{"a loop has two bounds"};
       }
       define(result, builder_->beginLoop(bounds[0], bounds[1]));
-      open_.push_back(Opcode::Loop);
+      open_.push_back({Opcode::Loop});
       return;
     }
     case Opcode::If: {
@@ -287,9 +311,23 @@ private:
         throw Failure{"expected '{' after the condition"};
       }
       builder_->beginIf(value(rest.substr(0, rest.size() - 1)));
-      open_.push_back(Opcode::If);
+      open_.push_back({Opcode::If});
       return;
     }
+    case Opcode::CurveLap:
+      define(result, parseCurveLap(rest));
+      return;
+    case Opcode::CurvePoint:
+      if (!open_.empty() && open_.back().opcode == Opcode::CurveLap) {
+        std::vector<ValueId> point = operandList(rest);
+        if (point.size() != 3) {
+          throw Failure{"expected 'curve.point %x, %y, %z'"};
+        }
+        builder_->curvePoint(point[0], point[1], point[2]);
+        open_.back().pointEnded = true;
+        return;
+      }
+      break; // out of place: the verifier says so
     default:
       break;
     }
@@ -392,12 +430,140 @@ private:
       finished_ = true;
       return;
     }
-    if (open_.back() == Opcode::Loop) {
+    const OpenRegions& open = open_.back();
+    if (open.opcode == Opcode::Loop) {
       builder_->endLoop();
-    } else {
+    } else if (open.opcode == Opcode::If) {
       builder_->endIf();
+    } else {
+      // The builder left the lap at its last region's curve.point.
+      endLapRegion(open);
+      if (open.region + 1 < open.regions) {
+        throw Failure{fmt::format("this curve.lap has {} regions, its curve needs {}",
+                                  open.region + 1, open.regions)};
+      }
     }
     open_.pop_back();
+  }
+
+  // `%t = curve.lap @c, %zFrom, %zTo, %f {`
+  ValueId parseCurveLap(std::string_view rest) {
+    if (rest.empty() || rest.back() != '{') {
+      throw Failure{"expected '{' after the curve.lap's operands"};
+    }
+    std::vector<std::string_view> parts = splitList(rest.substr(0, rest.size() - 1));
+    if (parts.size() != 4 || !startsWith(parts[0], "@")) {
+      throw Failure{"expected 'curve.lap @c, %zFrom, %zTo, %f {'"};
+    }
+    std::uint32_t curve = parseWholeNumber(parts[0].substr(1));
+    const std::vector<CurveTableEntry>& curves = builder_->function().curves;
+    if (curve >= curves.size()) {
+      throw Failure{fmt::format("curve @{} is not in the curve table", curve)};
+    }
+    std::size_t regions = curves[curve].regionCount();
+    if (regions == 0) {
+      throw Failure{fmt::format("curve @{} has no pieces", curve)};
+    }
+    ValueId lap = builder_->beginCurveLap(curve, value(parts[1]), value(parts[2]), value(parts[3]));
+    open_.push_back({Opcode::CurveLap, regions});
+    return lap;
+  }
+
+  void endLapRegion(const OpenRegions& open) {
+    if (!open.pointEnded) {
+      throw Failure{"a curve.lap region must end with 'curve.point'"};
+    }
+  }
+
+  // `} piece {`: the builder moved to the next region at the curve.point.
+  void nextLapRegion() {
+    if (open_.empty() || open_.back().opcode != Opcode::CurveLap) {
+      throw Failure{"'} piece {' outside a curve.lap"};
+    }
+    OpenRegions& open = open_.back();
+    endLapRegion(open);
+    if (open.region + 1 >= open.regions) {
+      throw Failure{
+          fmt::format("this curve.lap has more regions than the {} its curve needs", open.regions)};
+    }
+    ++open.region;
+    open.pointEnded = false;
+  }
+
+  // `curve @c chords 0.005 over from .. to {`: the lines up to `}` describe it.
+  void parseCurveHeader(std::string_view line) {
+    std::vector<std::string_view> words = splitWords(line);
+    std::size_t index = builder_->function().curves.size();
+    if (words.size() != 9 || words[4] != "over" || words[6] != ".." || words[8] != "{") {
+      throw Failure{"expected 'curve @c chords|samples|spacing amount over from .. to {'"};
+    }
+    if (parseWholeNumber(words[1].substr(1)) != index) {
+      throw Failure{fmt::format("expected curve @{} next", index)};
+    }
+    std::optional<CurveSampling> sampling = curveSamplingNamed(words[2]);
+    if (!sampling) {
+      throw Failure{"a curve's points are chosen by 'chords', 'samples' or 'spacing'"};
+    }
+    curve_.emplace();
+    curve_->sampling = *sampling;
+    curve_->amount = parseNumber(words[3]);
+    curve_->from = parseNumber(words[5]);
+    curve_->to = parseNumber(words[7]);
+  }
+
+  void parseCurveLine(std::string_view line) {
+    if (line == "}") {
+      builder_->addCurve(std::move(*curve_));
+      curve_.reset();
+      return;
+    }
+    if (startsWith(line, "host ")) {
+      for (std::string_view region : splitList(line.substr(5))) {
+        curve_->hostPointRegions.push_back(parseWholeNumber(region));
+      }
+      return;
+    }
+    if (startsWith(line, "chosen ")) {
+      std::vector<double> parameters;
+      for (std::string_view parameter : splitList(line.substr(7))) {
+        parameters.push_back(parseNumber(parameter));
+      }
+      curve_->chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
+      return;
+    }
+    if (startsWith(line, "progress ")) {
+      std::vector<std::string_view> words = splitWords(line);
+      if (words.size() != 4 || words[2] != "share") {
+        throw Failure{"expected 'progress from share share'"};
+      }
+      curve_->progressFrom = parseNumber(words[1]);
+      curve_->progressShare = parseNumber(words[3]);
+      return;
+    }
+    if (!startsWith(line, "piece ")) {
+      throw Failure{"expected 'piece at start over from .. to', 'progress', 'host', 'chosen' or "
+                    "'}'"};
+    }
+    std::size_t spansAt = line.find(" spans ");
+    std::vector<std::string_view> words = splitWords(line.substr(0, spansAt));
+    if (words.size() != 7 || words[1] != "at" || words[3] != "over" || words[5] != "..") {
+      throw Failure{"expected 'piece at start over from .. to [spans a .. b, ...]'"};
+    }
+    CurvePieceLayout piece;
+    piece.start = parseNumber(words[2]);
+    piece.from = parseNumber(words[4]);
+    piece.to = parseNumber(words[6]);
+    if (spansAt != std::string_view::npos) {
+      for (std::string_view span : splitList(line.substr(spansAt + 7))) {
+        std::size_t dots = span.find(" .. ");
+        if (dots == std::string_view::npos) {
+          throw Failure{"expected a knot span 'from .. to'"};
+        }
+        piece.spans.emplace_back(parseNumber(span.substr(0, dots)),
+                                 parseNumber(span.substr(dots + 4)));
+      }
+    }
+    curve_->pieces.push_back(std::move(piece));
   }
 
   static const std::map<std::string, Opcode>& opcodes() {
@@ -414,7 +580,9 @@ private:
   std::optional<FunctionBuilder> builder_;
   std::map<std::string, std::uint32_t> parameters_;
   std::map<std::string, ValueId> values_;
-  std::vector<Opcode> open_;
+  std::vector<OpenRegions> open_; // innermost last
+  // A `curve @c ... {` block being read.
+  std::optional<CurveTableEntry> curve_;
   bool finished_ = false;
   int line_ = 0;
 };

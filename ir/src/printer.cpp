@@ -2,9 +2,29 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <iterator>
 #include <map>
 
 namespace cncc::ir {
+
+namespace {
+
+constexpr std::string_view curveSamplingNames[] = {"chords", "samples", "spacing"};
+
+} // namespace
+
+std::string_view curveSamplingName(CurveSampling sampling) {
+  return curveSamplingNames[static_cast<std::size_t>(sampling)];
+}
+
+std::optional<CurveSampling> curveSamplingNamed(std::string_view name) {
+  for (std::size_t i = 0; i < std::size(curveSamplingNames); ++i) {
+    if (curveSamplingNames[i] == name) {
+      return static_cast<CurveSampling>(i);
+    }
+  }
+  return std::nullopt;
+}
 
 namespace {
 
@@ -33,12 +53,41 @@ public:
     for (std::size_t i = 0; i < function_.tables.size(); ++i) {
       out_ += fmt::format("  table @{} = [{}]\n", i, fmt::join(function_.tables[i], ", "));
     }
+    for (std::size_t i = 0; i < function_.curves.size(); ++i) {
+      printCurve(i, function_.curves[i]);
+    }
     printRegion(function_.body, 1);
     out_ += "}\n";
     return out_;
   }
 
 private:
+  // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
+  // the share of a longer lap's descent, the host regions and the chosen
+  // parameters; the entry's geometry and source spans are not text.
+  void printCurve(std::size_t index, const CurveTableEntry& entry) {
+    out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
+                        curveSamplingName(entry.sampling), entry.amount, entry.from, entry.to);
+    for (const CurvePieceLayout& piece : entry.pieces) {
+      out_ += fmt::format("    piece at {} over {} .. {}", piece.start, piece.from, piece.to);
+      for (std::size_t k = 0; k < piece.spans.size(); ++k) {
+        out_ += fmt::format("{}{} .. {}", k == 0 ? " spans " : ", ", piece.spans[k].first,
+                            piece.spans[k].second);
+      }
+      out_ += "\n";
+    }
+    if (entry.progressFrom != 0 || entry.progressShare != 1) {
+      out_ += fmt::format("    progress {} share {}\n", entry.progressFrom, entry.progressShare);
+    }
+    if (!entry.hostPointRegions.empty()) {
+      out_ += fmt::format("    host {}\n", fmt::join(entry.hostPointRegions, ", "));
+    }
+    if (entry.chosenParameters) {
+      out_ += fmt::format("    chosen {}\n", fmt::join(*entry.chosenParameters, ", "));
+    }
+    out_ += "  }\n";
+  }
+
   std::string name(ValueId value) {
     auto [entry, inserted] = names_.try_emplace(value.index, names_.size());
     return fmt::format("%{}", entry->second);
@@ -125,6 +174,17 @@ private:
     case Opcode::Loop:
       out_ += fmt::format("{}{}loop {} {{\n", indent, result, operandText);
       printRegion(instruction.regions[0], depth + 1);
+      out_ += indent + "}\n";
+      return;
+    case Opcode::CurveLap:
+      out_ +=
+          fmt::format("{}{}curve.lap @{}, {} {{\n", indent, result, instruction.index, operandText);
+      for (std::size_t region = 0; region < instruction.regions.size(); ++region) {
+        if (region > 0) {
+          out_ += indent + "} piece {\n";
+        }
+        printRegion(instruction.regions[region], depth + 1);
+      }
       out_ += indent + "}\n";
       return;
     case Opcode::If:

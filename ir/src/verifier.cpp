@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 #include <set>
 
 namespace cncc::ir {
@@ -47,6 +48,9 @@ public:
       problem("value types and definitions disagree in size");
       return problems_;
     }
+    for (std::size_t curve = 0; curve < function_.curves.size(); ++curve) {
+      verifyCurve(fmt::format("curve @{}", curve), function_.curves[curve]);
+    }
     std::vector<bool> visible(function_.valueTypes.size(), false);
     verifyRegion(function_.body, visible);
     if (placed_.size() != function_.instructions.size()) {
@@ -60,14 +64,30 @@ private:
   void problem(std::string message) { problems_.push_back(std::move(message)); }
 
   // `visible` holds the values defined so far on the way to this point.
-  // `loopBody`: the region is a loop's body, which alone may end in loop.next.
-  void verifyRegion(const Region& region, std::vector<bool>& visible, bool loopBody = false) {
+  // `owner`: the operation whose region it is (the body: none); a loop's
+  // body alone may end in loop.next, and a curve.lap's regions end in
+  // curve.point, which appears nowhere else.
+  void verifyRegion(const Region& region, std::vector<bool>& visible,
+                    std::optional<Opcode> owner = std::nullopt) {
     std::vector<ValueId> definedHere;
+    bool lapRegion = owner == Opcode::CurveLap;
+    if (lapRegion &&
+        (region.instructions.empty() ||
+         region.instructions.back() >= function_.instructions.size() ||
+         function_.instructions[region.instructions.back()].opcode != Opcode::CurvePoint)) {
+      problem("a curve.lap region does not end with curve.point");
+    }
     for (InstructionId id : region.instructions) {
+      bool last = id == region.instructions.back();
       if (id < function_.instructions.size() &&
           function_.instructions[id].opcode == Opcode::LoopNext &&
-          !(loopBody && id == region.instructions.back())) {
+          !(owner == Opcode::Loop && last)) {
         problem(fmt::format("instruction {} (loop.next) is not the last of a loop's body", id));
+      }
+      if (id < function_.instructions.size() &&
+          function_.instructions[id].opcode == Opcode::CurvePoint && !(lapRegion && last)) {
+        problem(
+            fmt::format("instruction {} (curve.point) is not the last of a curve.lap region", id));
       }
       if (id >= function_.instructions.size() || !placed_.insert(id).second) {
         problem(fmt::format("instruction {} is missing or placed twice", id));
@@ -76,7 +96,7 @@ private:
       const Instruction& instruction = function_.instructions[id];
       verifyInstruction(id, instruction, visible);
       if (instruction.result.valid() && instruction.result.index < visible.size()) {
-        if (instruction.opcode != Opcode::Loop) {
+        if (!hasRegionVariable(instruction.opcode)) {
           visible[instruction.result.index] = true;
           definedHere.push_back(instruction.result);
         }
@@ -151,6 +171,10 @@ private:
     if (instruction.opcode == Opcode::Spline) {
       checkSpline(instruction, where);
     }
+    if (instruction.opcode == Opcode::CurveLap && instruction.index >= function_.curves.size()) {
+      problem(fmt::format("{} names curve {}, which is not in the curve table", where,
+                          instruction.index));
+    }
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
     }
@@ -210,27 +234,112 @@ private:
 
   void verifyRegions(const std::string& where, const Instruction& instruction,
                      std::vector<bool>& visible) {
-    std::size_t expected =
-        instruction.opcode == Opcode::Loop ? 1
-        : instruction.opcode == Opcode::If ? 2
-        : instruction.opcode == Opcode::CurveLap && instruction.index < function_.curves.size()
-            ? function_.curves[instruction.index].regionCount()
-            : 0;
-    if (instruction.regions.size() != expected) {
+    std::optional<std::size_t> expected = regionsNeeded(instruction);
+    if (expected && instruction.regions.size() != *expected) {
       problem(
-          fmt::format("{} has {} regions, needs {}", where, instruction.regions.size(), expected));
+          fmt::format("{} has {} regions, needs {}", where, instruction.regions.size(), *expected));
       return;
     }
-    bool isLoop = (instruction.opcode == Opcode::Loop || instruction.opcode == Opcode::CurveLap) &&
-                  instruction.result.valid() && instruction.result.index < visible.size();
-    if (isLoop) {
+    bool hasVariable = hasRegionVariable(instruction.opcode) && instruction.result.valid() &&
+                       instruction.result.index < visible.size();
+    if (hasVariable) {
       visible[instruction.result.index] = true;
     }
     for (const Region& region : instruction.regions) {
-      verifyRegion(region, visible, instruction.opcode == Opcode::Loop);
+      verifyRegion(region, visible, instruction.opcode);
     }
-    if (isLoop) {
+    if (hasVariable) {
       visible[instruction.result.index] = false;
+    }
+  }
+
+  // A loop's variable and a curve.lap's parameter: visible in its regions only.
+  static bool hasRegionVariable(Opcode opcode) {
+    return opcode == Opcode::Loop || opcode == Opcode::CurveLap;
+  }
+
+  // nullopt: a curve.lap whose curve is missing (reported already).
+  std::optional<std::size_t> regionsNeeded(const Instruction& instruction) const {
+    switch (instruction.opcode) {
+    case Opcode::Loop:
+      return 1;
+    case Opcode::If:
+      return 2;
+    case Opcode::CurveLap:
+      if (instruction.index >= function_.curves.size()) {
+        return std::nullopt;
+      }
+      return function_.curves[instruction.index].regionCount();
+    default:
+      return 0;
+    }
+  }
+
+  // The entry's layout is what locate() and the lap's points rely on.
+  void verifyCurve(const std::string& where, const CurveTableEntry& entry) {
+    if (entry.pieces.empty()) {
+      problem(fmt::format("{} has no pieces", where));
+    }
+    if (!std::isfinite(entry.from) || !std::isfinite(entry.to) || !(entry.from <= entry.to)) {
+      problem(
+          fmt::format("{} runs over {} .. {}, not a finite range", where, entry.from, entry.to));
+    }
+    if (!std::isfinite(entry.amount) || !(entry.amount > 0)) {
+      problem(fmt::format("{} chooses its points by {}, which is not a positive number", where,
+                          entry.amount));
+    }
+    for (std::size_t piece = 0; piece < entry.pieces.size(); ++piece) {
+      verifyPiece(fmt::format("{} piece {}", where, piece), entry.pieces[piece]);
+      if (piece > 0 && !(entry.pieces[piece - 1].start <= entry.pieces[piece].start)) {
+        problem(fmt::format("{} piece {} starts before the piece ahead of it", where, piece));
+      }
+    }
+    if (!(entry.progressFrom >= 0 && entry.progressShare >= 0 &&
+          entry.progressFrom + entry.progressShare <= 1 + 1e-12)) {
+      problem(fmt::format("{} descends from {} by a share of {}, not within the longer lap's",
+                          where, entry.progressFrom, entry.progressShare));
+    }
+    if (entry.chosenParameters) {
+      verifyChosenParameters(where, entry, *entry.chosenParameters);
+    }
+    std::size_t regions = entry.regionCount();
+    for (std::size_t region : entry.hostPointRegions) {
+      if (region >= regions) {
+        problem(fmt::format("{} has its points of region {} on the host, but {} regions", where,
+                            region, regions));
+      }
+    }
+  }
+
+  // What lapParameters gives: at least two points along the curve.
+  void verifyChosenParameters(const std::string& where, const CurveTableEntry& entry,
+                              const std::vector<double>& parameters) {
+    bool inOrder = parameters.size() >= 2;
+    for (std::size_t k = 0; inOrder && k < parameters.size(); ++k) {
+      inOrder = parameters[k] >= entry.from && parameters[k] <= entry.to &&
+                (k == 0 || parameters[k - 1] <= parameters[k]);
+    }
+    if (!inOrder) {
+      problem(fmt::format("{} has {} chosen parameters, not two or more in order within {} .. {}",
+                          where, parameters.size(), entry.from, entry.to));
+    }
+  }
+
+  void verifyPiece(const std::string& where, const CurvePieceLayout& piece) {
+    if (!std::isfinite(piece.start) || !std::isfinite(piece.from) || !std::isfinite(piece.to) ||
+        !(piece.from <= piece.to)) {
+      problem(fmt::format("{} at {} runs over {} .. {}, not a finite range", where, piece.start,
+                          piece.from, piece.to));
+      return;
+    }
+    double reached = piece.from;
+    for (auto [spanFrom, spanTo] : piece.spans) {
+      if (!(spanFrom >= reached && spanFrom < spanTo && spanTo <= piece.to)) {
+        problem(fmt::format("{} has knot span {} .. {}, not increasing within {} .. {}", where,
+                            spanFrom, spanTo, piece.from, piece.to));
+        return;
+      }
+      reached = spanTo;
     }
   }
 

@@ -1,6 +1,7 @@
 // Dead code elimination. What must stay: every effect, every if or loop
-// that holds one, a loop whose bounds may not be finite (the interpreter
-// stops the run there), and, recursively, whatever computes their operands.
+// that holds one, every curve.lap (its moves), a loop whose bounds may not
+// be finite (the interpreter stops the run there), and, recursively,
+// whatever computes their operands.
 // Everything else is pure and unused, and goes: a dead table.load with it,
 // though it might have stopped the run with an index out of range.
 #include "cncc/ir/passes.h"
@@ -60,9 +61,12 @@ private:
     }
   }
 
-  // An if or loop that holds an effect or a loop that must stay, or a loop
-  // that may stop the run.
+  // An if or loop that holds an effect or a loop that must stay, a loop
+  // that may stop the run, or a curve.lap (its moves).
   bool mustStay(const Instruction& instruction) const {
+    if (instruction.opcode == Opcode::CurveLap) {
+      return true;
+    }
     for (const Region& region : instruction.regions) {
       for (InstructionId id : region.instructions) {
         const Instruction& nested = source_.instructions[id];

@@ -1,6 +1,7 @@
 // The JIT stops where the interpreter stops, with the same message: a table
 // index out of range, a loop bound that is not finite, one step more than
-// the limit. A Function that does not verify is not compiled.
+// the limit. A Function that does not verify is not compiled, nor one with
+// a curve.lap.
 #include "jit_test_support.h"
 
 #include "cncc/ir/builder.h"
@@ -144,6 +145,27 @@ TEST(JitErrors, FunctionThatDoesNotVerifyIsNotCompiled) {
   ir::Function function = builder.finish();
   function.instructions.back().operands.pop_back();
   EXPECT_THROW(backends::CompiledFunction{function}, backends::JitError);
+}
+
+// The target pipeline expands laps first; one left over is refused, not run.
+TEST(JitErrors, CurveLapIsRefusedUntilExpanded) {
+  FunctionBuilder builder("lap");
+  ir::CurveTableEntry entry;
+  entry.pieces = {{0, 0, 1}};
+  entry.sampling = ir::CurveSampling::Samples;
+  entry.amount = 4;
+  std::uint32_t curve = builder.addCurve(entry);
+  ValueId zero = builder.constant(0);
+  ValueId t = builder.beginCurveLap(curve, zero, zero, builder.constant(100));
+  builder.curvePoint(t, zero, zero);
+  ir::Function function = builder.finish();
+  ASSERT_EQ(ir::interpret(function).events.size(), 3u); // it is a valid function
+  try {
+    backends::CompiledFunction compiled(function);
+    FAIL() << "compiled";
+  } catch (const backends::JitError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("curve.lap must be expanded"));
+  }
 }
 
 TEST(JitErrors, JitIsAvailableOnThisHost) {

@@ -67,9 +67,13 @@ private:
 // The whole curve of a lap's table entry as a geom curve in the whole
 // curve's parameter: the entry's geometry when it has one, otherwise its
 // regions interpreted (`lap` is the curve.lap instruction; `outside` gives
-// what they read from outside the lap, param included). Throws
-// CurveLapError (at the entry's curve) when a region reads a value
-// `outside` does not know.
+// what they read from outside the lap, param included; a constant is read
+// from the IR). Per piece a curve in its own parameter (a NURBS piece's
+// knot spans its breakpoints), joined as a geom::CompositeCurve when there
+// are several; the curve keeps what it evaluates and may outlive the
+// function. Throws CurveLapError (at the entry's curve) when a region reads
+// a value `outside` does not know, holds an operation that is not pure
+// arithmetic, or the pieces do not join as the entry lays them out.
 std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
                                             const OutsideValue& outside);
 

@@ -15,8 +15,9 @@ namespace cncc::ir {
 
 // A run that cannot finish: a table index out of range, a loop bound that
 // is not finite, more work than `maximumSteps` or more events than
-// `maximumEvents`, an arc without a radius, or
-// an `alarm` ("alarm: " and its text).
+// `maximumEvents`, an arc without a radius, a curve.lap whose points cannot
+// be chosen (CurveLapError's message), or an `alarm` ("alarm: " and its
+// text). A curve.lap's points count as steps.
 class InterpreterError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;

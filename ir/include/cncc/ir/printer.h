@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace cncc::ir {
 
@@ -16,6 +17,11 @@ struct ParseError {
   int line = 0;
   std::string message;
 };
+
+// The word of a curve table entry's sampling in the text ("chords",
+// "samples", "spacing"), and back; nullopt for another word.
+std::string_view curveSamplingName(CurveSampling sampling);
+std::optional<CurveSampling> curveSamplingNamed(std::string_view name);
 
 // Parses the text printFunction writes; nullopt and `error` on bad input.
 std::optional<Function> parseFunction(std::string_view text, ParseError& error);
