@@ -18,7 +18,7 @@
 
 namespace cncc::ir {
 
-namespace {
+namespace detail {
 
 // Where a step's operand comes from.
 struct StepOperand {
@@ -41,6 +41,14 @@ struct RegionProgram {
   std::shared_ptr<const Function> tables;
   frontend::SourceSpan curveSpan;
 };
+
+} // namespace detail
+
+namespace {
+
+using detail::RegionProgram;
+using detail::Step;
+using detail::StepOperand;
 
 [[noreturn]] void degenerate(const CurveTableEntry& entry, const std::string& message) {
   throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan, message);
@@ -270,6 +278,17 @@ void checkComposedLayout(const CurveTableEntry& entry) {
 constexpr double joinTolerance = 1e-6;
 
 } // namespace
+
+LapRegionEvaluator::LapRegionEvaluator(const Function& function, const Instruction& lap,
+                                       std::size_t region, const OutsideValue& outside) {
+  RegionCompiler compiler(function, lap, function.curves[lap.index], outside,
+                          tablesRead(function, lap));
+  program_ = compiler.compile(lap.regions[region]);
+}
+
+Eigen::Vector3d LapRegionEvaluator::operator()(double t) const {
+  return evaluateRegion(*program_, t);
+}
 
 std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
                                             const OutsideValue& outside) {

@@ -161,15 +161,16 @@ private:
     }
     std::array<std::vector<double>, 3> coordinates;
     auto constantOnly = [&](ValueId value) { return passes::constantValue(source_, value); };
-    LapRegionEvaluator region(source_, lap, run.region, constantOnly);
-    for (double local : run.locals) {
-      std::optional<Eigen::Vector3d> point = region(local);
-      if (!point) {
-        return nullptr; // a transform the parameters move: the program evaluates
+    try {
+      LapRegionEvaluator region(source_, lap, run.region, constantOnly);
+      for (double local : run.locals) {
+        Eigen::Vector3d point = region(local);
+        for (int c = 0; c < 3; ++c) {
+          coordinates[c].push_back(point[c]);
+        }
       }
-      for (int c = 0; c < 3; ++c) {
-        coordinates[c].push_back((*point)[c]);
-      }
+    } catch (const CurveLapError&) {
+      return nullptr; // a parameter moves the points: the program evaluates them
     }
     HostPoints points;
     for (int c = 0; c < 3; ++c) {

@@ -12,31 +12,45 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 
 namespace cncc::ir {
 namespace {
 
-std::optional<Function> lowerExample(const std::string& name, const std::string& part,
-                                     const LoweringOptions& lowering = {}) {
+// An example checked and lowered; the checked program is kept, since the
+// curve table's geometry of target-neutral IR evaluates its expressions.
+struct LoweredExample {
   frontend::SourceManager sources;
   frontend::DiagnosticEngine diagnostics;
+  frontend::CheckedProgram program;
+  std::optional<Function> function;
+};
+
+std::unique_ptr<LoweredExample> lowerExampleKept(const std::string& name, const std::string& part,
+                                                 const LoweringOptions& lowering) {
+  auto lowered = std::make_unique<LoweredExample>();
   std::optional<frontend::FileId> file =
-      sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + name);
+      lowered->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + name);
   if (!file) {
     ADD_FAILURE() << "cannot read " << name;
-    return std::nullopt;
+    return lowered;
   }
   frontend::CheckOptions options;
   options.importPaths = {CNCC_STDLIB_DIR};
   options.requirePart = true;
   options.partName = part;
-  frontend::CheckedProgram program = frontend::checkProgram(sources, *file, options, diagnostics);
-  if (diagnostics.hasErrors() || program.selectedPart == nullptr) {
-    return std::nullopt;
+  lowered->program = frontend::checkProgram(lowered->sources, *file, options, lowered->diagnostics);
+  if (!lowered->diagnostics.hasErrors() && lowered->program.selectedPart != nullptr) {
+    lowered->function =
+        lowerPart(lowered->program, *lowered->program.selectedPart, lowered->diagnostics, lowering);
   }
-  return lowerPart(program, *program.selectedPart, diagnostics, lowering);
+  return lowered;
+}
+
+std::optional<Function> lowerExample(const std::string& name, const std::string& part) {
+  return lowerExampleKept(name, part, {})->function;
 }
 
 void expectSamePath(const ToolPath& before, const ToolPath& after, const std::string& name) {
@@ -115,7 +129,8 @@ TEST(PassesExamplesTest, ExpandingCurveLapsKeepsToolPath) {
   std::size_t laps = 0;
   for (const Example& example : examples) {
     std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
-    std::optional<Function> function = lowerExample(example.file, example.part, neutral);
+    std::unique_ptr<LoweredExample> lowered = lowerExampleKept(example.file, example.part, neutral);
+    std::optional<Function>& function = lowered->function;
     ASSERT_TRUE(function) << name;
     laps += curveLapCount(*function);
     ToolPath before = interpret(*function);

@@ -32,36 +32,24 @@ public:
 // enclosing loop's variable) that its regions read; nullopt when unknown.
 using OutsideValue = std::function<std::optional<double>(ValueId)>;
 
-// The point region `region` of `lap` computes at a parameter, its pure
-// instructions evaluated with the interpreter's arithmetic; what it reads
-// from outside the lap (a `param` inside it too) is asked of `outside` once,
-// when made. Invalid (every point nullopt) when `outside` does not know a
-// value it reads or the region is not pure arithmetic.
+namespace detail {
+struct RegionProgram; // curve_lap_curve.cpp
+}
+
+// The point region `region` of `lap` computes at a parameter, compiled once
+// (its pure instructions evaluated with the interpreter's arithmetic; what
+// it reads from outside the lap is a constant, or asked of `outside` once).
+// The constructor throws CurveLapError (at the entry's curve) for a value
+// neither a constant nor known to `outside`, or an instruction that is not
+// arithmetic; a point, for a table read outside the table.
 class LapRegionEvaluator {
 public:
   LapRegionEvaluator(const Function& function, const Instruction& lap, std::size_t region,
                      const OutsideValue& outside);
-
-  bool valid() const { return valid_; }
-  std::optional<Eigen::Vector3d> operator()(double t) const;
+  Eigen::Vector3d operator()(double t) const;
 
 private:
-  // The region's parameter, the result of an earlier step, or a number.
-  struct Operand {
-    enum class Kind { Parameter, Slot, Number } kind = Kind::Number;
-    double number = 0; // Number: the value; Slot: the step's slot
-  };
-  struct Step {
-    const Instruction* instruction = nullptr;
-    std::vector<Operand> operands;
-    std::size_t slot = 0;
-  };
-
-  const Function& function_;
-  std::vector<Step> steps_;
-  std::vector<Operand> point_;
-  std::size_t slots_ = 0;
-  bool valid_ = false;
+  std::shared_ptr<const detail::RegionProgram> program_;
 };
 
 // The whole curve of a lap's table entry as a geom curve in the whole

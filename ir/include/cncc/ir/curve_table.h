@@ -73,6 +73,8 @@ struct CurveTableEntry {
   // The same curve evaluated from the source, transforms applied (what the
   // regions compute, for choosing the points without interpreting them);
   // null in a function read from text, where the regions are interpreted.
+  // It evaluates the checked program's expressions: valid while that lives
+  // (the lowering's own expansion runs with it).
   std::shared_ptr<const geom::Curve> geometry = nullptr;
   // The parameters lapParameters gives, when the lowering chose them for
   // something else too (the points a spline is fitted to); null otherwise.
