@@ -47,10 +47,8 @@ struct FittedSplineBlocks {
   std::string note; // why a NURBS was re-fitted, or its reparametrisation
 };
 
-// The points (and derivatives) one cut's spline fit may ask of its curve:
-// the fit's searches over them take about a second a million (a 20-turn
-// spiral at 1 um reaches the limit in about 4 s).
-inline constexpr std::size_t maximumSplineFitEvaluations = 3'000'000;
+// The points (and derivatives) one cut's spline fit may ask of its curve.
+inline constexpr std::size_t maximumSplineFitEvaluations = 5'000'000;
 
 // Throws geom::GeometryError when no spline keeps the tolerance, and
 // geom::EvaluationBudgetExceeded past maximumSplineFitEvaluations.
