@@ -9,6 +9,7 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/verifier.h"
+#include "line_then_half_circle.h"
 
 #include <gtest/gtest.h>
 
@@ -26,14 +27,7 @@ struct LineThenHalfCircle {
   bool radiusIsParameter = true; // or a number in the regions
 
   std::shared_ptr<const geom::Curve> geometry() const {
-    double r = radius;
-    auto line =
-        std::make_shared<geom::LineCurve>(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 0, 0));
-    auto half = std::make_shared<geom::FunctionCurve>(geom::FunctionCurve::fromCoordinates(
-        {0, pi}, [r](double s) { return 10 + r * std::sin(s); },
-        [r](double s) { return r - r * std::cos(s); }));
-    return std::make_shared<geom::CompositeCurve>(
-        std::vector<std::shared_ptr<const geom::Curve>>{line, half}, 1e-9);
+    return test_support::lineThenHalfCircleGeometry(radius);
   }
 
   CurveTableEntry entry(double tolerance) const {

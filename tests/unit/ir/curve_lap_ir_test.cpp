@@ -10,6 +10,7 @@
 #include "cncc/ir/passes.h"
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
+#include "line_then_half_circle.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -550,21 +551,11 @@ Function lineThenHalfCircle(std::shared_ptr<const geom::Curve> geometry = nullpt
   return builder.finish();
 }
 
-std::shared_ptr<const geom::Curve> lineThenHalfCircleGeometry(double r) {
-  auto line =
-      std::make_shared<geom::LineCurve>(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 0, 0));
-  auto half = std::make_shared<geom::FunctionCurve>(geom::FunctionCurve::fromCoordinates(
-      {0, pi}, [r](double s) { return 10 + r * std::sin(s); },
-      [r](double s) { return r - r * std::cos(s); }));
-  return std::make_shared<geom::CompositeCurve>(
-      std::vector<std::shared_ptr<const geom::Curve>>{line, half});
-}
-
 TEST(IrCurveLapCurve, TwoPiecePathFromItsRegions) {
   Function function = lineThenHalfCircle();
   std::shared_ptr<const geom::Curve> curve =
       lapCurve(function, onlyLap(function), [](ValueId) { return 5.0; });
-  std::shared_ptr<const geom::Curve> expected = lineThenHalfCircleGeometry(5);
+  std::shared_ptr<const geom::Curve> expected = test_support::lineThenHalfCircleGeometry(5);
   EXPECT_EQ(curve->domain().t0, 0);
   EXPECT_EQ(curve->domain().t1, 10 + pi);
   EXPECT_EQ(geom::piecesOf(*curve).size(), 2u);
@@ -686,7 +677,7 @@ TEST(IrCurveLapInterpreter, WithAndWithoutGeometryTheSamePoints) {
   // either, the moves go to the regions' points.
   std::vector<MachineEvent> fromRegions = feedMoves(interpret(lineThenHalfCircle()));
   std::vector<MachineEvent> fromGeometry =
-      feedMoves(interpret(lineThenHalfCircle(lineThenHalfCircleGeometry(5))));
+      feedMoves(interpret(lineThenHalfCircle(test_support::lineThenHalfCircleGeometry(5))));
   ASSERT_GT(fromGeometry.size(), 20u);
   ASSERT_NEAR(static_cast<double>(fromRegions.size()), static_cast<double>(fromGeometry.size()), 2);
   for (const std::vector<MachineEvent>& moves : {fromRegions, fromGeometry}) {
@@ -705,7 +696,7 @@ TEST(IrCurveLapInterpreter, WithAndWithoutGeometryTheSamePoints) {
 // with the entry's geometry or the regions' curve (read from text).
 TEST(IrCurveLapInterpreter, ThePathOfTheExpandedLaps) {
   std::vector<Function> functions;
-  functions.push_back(lineThenHalfCircle(lineThenHalfCircleGeometry(5)));
+  functions.push_back(lineThenHalfCircle(test_support::lineThenHalfCircleGeometry(5)));
   functions.push_back(lineThenHalfCircle());
   functions.push_back(parsed(circleText));
   functions.push_back(parsed(pathText));
