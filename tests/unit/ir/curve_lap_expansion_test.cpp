@@ -9,6 +9,7 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/verifier.h"
+#include "curve_lap_fixtures.h"
 #include "line_then_half_circle.h"
 
 #include <gtest/gtest.h>
@@ -75,13 +76,7 @@ Function lapFunction(const LineThenHalfCircle& shape, double tolerance, bool ram
 }
 
 std::vector<MachineEvent> feeds(const Function& function) {
-  std::vector<MachineEvent> moves;
-  for (const MachineEvent& event : interpret(function).events) {
-    if (event.kind == MachineEvent::Kind::Feed) {
-      moves.push_back(event);
-    }
-  }
-  return moves;
+  return curve_lap_test::feedMoves(interpret(function));
 }
 
 TEST(CurveLapExpansion, MovesToThePointsTheChordWalkChoosesInLoopsOverTables) {
@@ -113,12 +108,7 @@ TEST(CurveLapExpansion, TheRegionsStillReadTheParameter) {
   ASSERT_TRUE(expandCurveLaps(function));
   InterpreterOptions options;
   options.parameters["r"] = 6;
-  std::vector<MachineEvent> moves;
-  for (const MachineEvent& event : interpret(function, options).events) {
-    if (event.kind == MachineEvent::Kind::Feed) {
-      moves.push_back(event);
-    }
-  }
+  std::vector<MachineEvent> moves = curve_lap_test::feedMoves(interpret(function, options));
   EXPECT_NEAR(moves.back().x, 10, 1e-9);
   EXPECT_NEAR(moves.back().y, 12, 1e-9);
 }
