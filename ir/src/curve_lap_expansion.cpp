@@ -63,26 +63,35 @@ private:
     return passes::constantValue(source_, value);
   }
 
+  // An entry's points, chosen once, and their runs.
+  struct EntryPoints {
+    std::shared_ptr<const geom::Curve> curve;
+    std::vector<double> parameters;
+    std::vector<Run> runs;
+  };
+
   std::vector<Run>& runsOf(const Instruction& lap, bool ramp) {
-    auto known = runs_.find(lap.index);
-    if (known != runs_.end()) {
+    auto known = entries_.find(lap.index);
+    if (known != entries_.end()) {
       addProgressTables(known->second, lap, ramp);
-      return known->second;
+      return known->second.runs;
     }
     const CurveTableEntry& entry = source_.curves[lap.index];
-    curve_ = lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
-    parameters_ = lapParameters(entry, *curve_);
-    std::vector<Run>& runs = runs_[lap.index];
-    for (std::size_t i = 1; i < parameters_.size(); ++i) {
-      CurveLocation location = entry.locate(parameters_[i]);
+    EntryPoints& points = entries_[lap.index];
+    points.curve = lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
+    points.parameters = lapParameters(entry, *points.curve);
+    std::vector<Run>& runs = points.runs;
+    for (std::size_t i = 1; i < points.parameters.size(); ++i) {
+      CurveLocation location = entry.locate(points.parameters[i]);
       if (runs.empty() || runs.back().region != location.region) {
         runs.push_back({location.region, {}, {}, 0, std::nullopt, false, std::nullopt});
       }
       runs.back().locals.push_back(location.local);
     }
     if (ramp) {
-      fillProgress(runs, entry);
+      fillProgress(points, entry);
     }
+    // Each run's progress table follows its parameters' table.
     for (Run& run : runs) {
       run.localTable = addTable(run.locals);
       if (ramp) {
@@ -92,10 +101,10 @@ private:
     return runs;
   }
 
-  void fillProgress(std::vector<Run>& runs, const CurveTableEntry& entry) {
-    std::vector<double> progress = lapProgress(entry, *curve_, parameters_);
+  void fillProgress(EntryPoints& points, const CurveTableEntry& entry) {
+    std::vector<double> progress = lapProgress(entry, *points.curve, points.parameters);
     std::size_t next = 1;
-    for (Run& run : runs) {
+    for (Run& run : points.runs) {
       run.progress.assign(progress.begin() + static_cast<std::ptrdiff_t>(next),
                           progress.begin() + static_cast<std::ptrdiff_t>(next + run.locals.size()));
       next += run.locals.size();
@@ -103,16 +112,14 @@ private:
   }
 
   // A ramp lap of an entry first met in a level one (not what the lowering
-  // writes, but a valid function).
-  void addProgressTables(std::vector<Run>& runs, const Instruction& lap, bool ramp) {
-    if (!ramp || runs.empty() || runs.front().progressTable) {
+  // writes, but a valid function): the progress tables then, from the
+  // points already chosen.
+  void addProgressTables(EntryPoints& points, const Instruction& lap, bool ramp) {
+    if (!ramp || points.runs.empty() || points.runs.front().progressTable) {
       return;
     }
-    const CurveTableEntry& entry = source_.curves[lap.index];
-    curve_ = lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
-    parameters_ = lapParameters(entry, *curve_);
-    fillProgress(runs, entry);
-    for (Run& run : runs) {
+    fillProgress(points, source_.curves[lap.index]);
+    for (Run& run : points.runs) {
       run.progressTable = addTable(run.progress);
     }
   }
@@ -294,9 +301,7 @@ private:
     emit(feed, {x, y, height, mapped(lap.operands[2])});
   }
 
-  std::map<std::uint32_t, std::vector<Run>> runs_;
-  std::shared_ptr<const geom::Curve> curve_;
-  std::vector<double> parameters_;
+  std::map<std::uint32_t, EntryPoints> entries_;
   const Instruction* lap_ = nullptr;
   Run* run_ = nullptr;
   bool ramp_ = false;
