@@ -321,9 +321,10 @@ bool hasCurveLap(const Function& function) {
 } // namespace
 
 bool expandCurveLaps(Function& function) {
+  bool fitted = fitLapArcs(function);
   if (!hasCurveLap(function)) {
     function.curves.clear();
-    return false;
+    return fitted;
   }
   CurveLapExpander expander(function);
   Function expanded = expander.run();

@@ -29,6 +29,7 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
   case CurveSampling::Spacing:
     return geom::sampleEqualArcLength(curve, entry.amount);
   case CurveSampling::ChordTolerance:
+  case CurveSampling::Arcs: // points within the arcs' tolerance, where points are asked
     break;
   }
   return chordsWithinTolerance(curve, entry.amount, entry.cutSpan, entry.curveSpan);

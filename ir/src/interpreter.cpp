@@ -41,10 +41,7 @@ private:
 
   void runRegion(const Region& region) {
     for (InstructionId id : region.instructions) {
-      if (++steps_ > options_.maximumSteps) {
-        throw InterpreterError(
-            fmt::format("the program takes more than {} steps", options_.maximumSteps));
-      }
+      countStep();
       runInstruction(function_.instructions[id]);
       if (sink_ != nullptr) {
         passEventsToSink();
@@ -183,6 +180,7 @@ private:
     std::shared_ptr<const geom::Curve> curve;
     std::vector<double> parameters;
     std::vector<double> progress;
+    std::optional<LapArcs> arcs; // a lap cut as arcs: its moves, no parameters
   };
 
   // A feed move to each point after the first, the region that holds it
@@ -193,12 +191,16 @@ private:
     double zTo = value(lap.operands[1]);
     double feed = value(lap.operands[2]);
     bool ramp = zFrom != zTo;
+    if (ramp && entry.sampling == CurveSampling::Arcs) {
+      throw InterpreterError("a lap cut as arcs is level: its two heights must be one value");
+    }
     const LapPoints& points = lapPoints(lap, entry, ramp);
+    if (points.arcs) {
+      runArcLap(lap, *points.arcs, zTo + points.arcs->planeZ, feed);
+      return;
+    }
     for (std::size_t k = 1; k < points.parameters.size(); ++k) {
-      if (++steps_ > options_.maximumSteps) {
-        throw InterpreterError(
-            fmt::format("the program takes more than {} steps", options_.maximumSteps));
-      }
+      countStep();
       CurveLocation location = entry.locate(points.parameters[k]);
       values_[lap.result.index] = location.local;
       runRegion(lap.regions[location.region]);
@@ -211,12 +213,44 @@ private:
       event.feed = feed;
       event.span = lap.span;
       event.pass = lap.pass;
-      position_ = {event.x, event.y, event.z};
-      path_.events.push_back(std::move(event));
-      if (sink_ == nullptr && path_.events.size() > options_.maximumEvents) {
-        throw InterpreterError(
-            fmt::format("the program makes more than {} events", options_.maximumEvents));
+      recordLapMove(std::move(event));
+    }
+  }
+
+  // The lap's arcs and lines at height z.
+  void runArcLap(const Instruction& lap, const LapArcs& arcs, double z, double feed) {
+    for (const LapArcMove& move : arcs.moves) {
+      countStep();
+      MachineEvent event;
+      if (move.turn) {
+        event = arcMove(position_, *move.turn, move.end.x(), move.end.y(), z, move.centreOffset.x(),
+                        move.centreOffset.y(), feed);
+      } else {
+        event.kind = MachineEvent::Kind::Feed;
+        event.x = move.end.x();
+        event.y = move.end.y();
+        event.z = z;
+        event.feed = feed;
       }
+      event.span = lap.span;
+      event.pass = lap.pass;
+      recordLapMove(std::move(event));
+    }
+  }
+
+  void countStep() {
+    if (++steps_ > options_.maximumSteps) {
+      throw InterpreterError(
+          fmt::format("the program takes more than {} steps", options_.maximumSteps));
+    }
+  }
+
+  void recordLapMove(MachineEvent event) {
+    position_ = {event.x, event.y, event.z};
+    path_.events.push_back(std::move(event));
+    if (sink_ == nullptr && path_.events.size() > options_.maximumEvents) {
+      throw InterpreterError(
+          fmt::format("the program makes more than {} events", options_.maximumEvents));
     }
   }
 
@@ -244,11 +278,15 @@ private:
         if (known.size() >= maximumCurvesPerLap) {
           known.erase(known.begin());
         }
-        fresh.parameters = lapParameters(entry, *fresh.curve);
+        if (entry.sampling == CurveSampling::Arcs) {
+          fresh.arcs = lapArcs(entry, *fresh.curve);
+        } else {
+          fresh.parameters = lapParameters(entry, *fresh.curve);
+        }
         known.push_back(std::move(fresh));
         same = known.end() - 1;
       }
-      if (ramp && same->progress.empty()) {
+      if (ramp && !same->arcs && same->progress.empty()) {
         same->progress = lapProgress(entry, *same->curve, same->parameters);
       }
       return *same;

@@ -502,7 +502,7 @@ private:
     }
     std::optional<CurveSampling> sampling = curveSamplingNamed(words[2]);
     if (!sampling) {
-      throw Failure{"a curve's points are chosen by 'chords', 'samples' or 'spacing'"};
+      throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing' or 'arcs'"};
     }
     curve_.emplace();
     curve_->sampling = *sampling;
@@ -531,6 +531,10 @@ private:
       curve_->chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
       return;
     }
+    if (startsWith(line, "grid ")) {
+      curve_->grid = parseNumber(line.substr(5));
+      return;
+    }
     if (startsWith(line, "progress ")) {
       std::vector<std::string_view> words = splitWords(line);
       if (words.size() != 4 || words[2] != "share") {
@@ -541,8 +545,8 @@ private:
       return;
     }
     if (!startsWith(line, "piece ")) {
-      throw Failure{"expected 'piece at start over from .. to', 'progress', 'host', 'chosen' or "
-                    "'}'"};
+      throw Failure{"expected 'piece at start over from .. to', 'grid', 'progress', 'host', "
+                    "'chosen' or '}'"};
     }
     std::size_t spansAt = line.find(" spans ");
     std::vector<std::string_view> words = splitWords(line.substr(0, spansAt));

@@ -9,7 +9,7 @@ namespace cncc::ir {
 
 namespace {
 
-constexpr std::string_view curveSamplingNames[] = {"chords", "samples", "spacing"};
+constexpr std::string_view curveSamplingNames[] = {"chords", "samples", "spacing", "arcs"};
 
 } // namespace
 
@@ -63,8 +63,9 @@ public:
 
 private:
   // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
-  // the share of a longer lap's descent, the host regions and the chosen
-  // parameters; the entry's geometry and source spans are not text.
+  // the printed grid of arcs, the share of a longer lap's descent, the host
+  // regions and the chosen parameters; the entry's geometry, fitted arcs
+  // and source spans are not text.
   void printCurve(std::size_t index, const CurveTableEntry& entry) {
     out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
                         curveSamplingName(entry.sampling), entry.amount, entry.from, entry.to);
@@ -75,6 +76,9 @@ private:
                             piece.spans[k].second);
       }
       out_ += "\n";
+    }
+    if (entry.grid != 0) {
+      out_ += fmt::format("    grid {}\n", entry.grid);
     }
     if (entry.progressFrom != 0 || entry.progressShare != 1) {
       out_ += fmt::format("    progress {} share {}\n", entry.progressFrom, entry.progressShare);

@@ -302,12 +302,26 @@ private:
     if (entry.chosenParameters) {
       verifyChosenParameters(where, entry, *entry.chosenParameters);
     }
+    verifyArcs(where, entry);
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {
       if (region >= regions) {
         problem(fmt::format("{} has its points of region {} on the host, but {} regions", where,
                             region, regions));
       }
+    }
+  }
+
+  // A grid belongs to arcs, which are level laps with no points chosen.
+  void verifyArcs(const std::string& where, const CurveTableEntry& entry) {
+    bool arcs = entry.sampling == CurveSampling::Arcs;
+    if (!std::isfinite(entry.grid) || entry.grid < 0 || (!arcs && entry.grid != 0)) {
+      problem(fmt::format("{} has the grid {}, which is not arcs' grid of zero or more", where,
+                          entry.grid));
+    }
+    if (arcs && (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1)) {
+      problem(
+          fmt::format("{} is cut as arcs but has chosen points or a share of a descent", where));
     }
   }
 

@@ -60,13 +60,10 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
   }
   if (target != nullptr) {
     try {
-      ir::expandCurveLaps(*function);
+      ir::runCurveLegalisation(*function, printAfterCallback(options));
     } catch (const ir::CurveLapError& error) {
       ir::reportCurveLapError(error, diagnostics);
       return "";
-    }
-    if (ir::AfterPassCallback afterPass = printAfterCallback(options)) {
-      afterPass("expand-curve-laps", *function);
     }
     optimise(*function, options);
   }

@@ -3,18 +3,18 @@
 // --arcs without arcs=false) has its curve fitted once with tangent-
 // continuous arcs (geom/arc_fitting.h) within its tolerance less the
 // rounding of the printed numbers; each pass is a rapid over the start, a
-// plunge (on the host, a ramp lap of chords) and the fit as move.arc and
-// move.feed ops. Every coordinate and centre offset is on the printed grid
-// already (coordinateIncrement), so the IR is the path the printed program
-// makes. The arcs are the host's, so on a controller-side target a cut
+// plunge (on the host, a ramp lap of chords) and a curve.lap whose entry
+// asks for arcs and holds the fit, which the fit-arcs legalisation writes
+// out as move.arc and move.feed ops. Every coordinate and centre offset is
+// on the printed grid (coordinateIncrement), so the IR is the path the
+// printed program makes. The arcs are the host's, so on a controller-side target a cut
 // whose geometry depends on a part parameter keeps its controller loops,
 // with an arcs-as-chords warning saying why.
 #include "part_lowering.h"
-#include "printed_grid.h"
 
 #include "cncc/geom/arc_fitting.h"
-#include "cncc/geom/evaluation_budget.h"
-#include "cncc/geom/geometry_error.h"
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 
@@ -33,22 +33,6 @@ std::optional<bool> arcsModifier(const CutStmt& cut) {
     return as<BoolExpr>(*arcs).value;
   }
   return std::nullopt;
-}
-
-Eigen::Vector2d onGrid(const Eigen::Vector3d& point, double increment) {
-  return {onPrintedGrid(point.x(), increment), onPrintedGrid(point.y(), increment)};
-}
-
-// An arc too flat or too short to print as one: its sagitta is below half
-// an increment, or its chord is under two increments (I J would be mostly
-// rounding).
-bool printsAsLine(const geom::ArcSegment& segment, double increment) {
-  if (segment.kind == geom::ArcSegmentKind::Line) {
-    return true;
-  }
-  double sagitta = segment.radius * (1.0 - std::cos(0.5 * std::fabs(segment.sweep)));
-  double chord = (segment.end - segment.start).head<2>().norm();
-  return sagitta < 0.5 * increment || chord < 2.0 * increment;
 }
 
 } // namespace
@@ -79,9 +63,6 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
   if (std::optional<std::string> problem = arcCutProblem(cut)) {
     return *problem;
   }
-  if (std::optional<std::string> problem = geom::findArcFittingProblem(*curve.geometry)) {
-    return *problem;
-  }
   ToleranceBudget budget = toleranceBudget(cut);
   if (!(budget.tolerance > 2.0 * budget.arcRounding())) {
     return fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to the "
@@ -89,14 +70,8 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
                        budget.tolerance, budget.increment);
   }
   try {
-    // The biarc search asks a bounded number of points of the curve.
-    geom::BudgetedCurve budgeted(*curve.geometry, maximumArcFitEvaluations);
-    return geom::fitArcs(budgeted, {budget.forArcs()});
-  } catch (const geom::EvaluationBudgetExceeded& error) {
-    return fmt::format("fitting arcs within its tolerance asks more than {} points of the curve; "
-                       "that is the limit of one cut's arc fit",
-                       error.limit);
-  } catch (const geom::GeometryError& error) {
+    return fitArcsWithinBudget(*curve.geometry, budget.forArcs(), cut.span, cut.curve->span);
+  } catch (const CurveLapError& error) {
     return std::string(error.what());
   }
 }
@@ -122,19 +97,28 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
   ValueId safeValue = arithmetic_.value(*safe_);
   beginCutMoves({curve.geometry, *chordTolerance(cut), cut.span, methodOf(cut), CutArcs::Fitted});
 
-  const std::vector<geom::ArcSegment>& segments = std::get<geom::ArcFit>(fitted).segments;
+  // The level laps: curve.laps the fit-arcs legalisation writes out as the
+  // fit made here (which decided the cut is printed as arcs).
+  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  entry.sampling = CurveSampling::Arcs;
+  entry.amount = toleranceBudget(cut).forArcs();
+  entry.grid = options_.coordinateIncrement;
+  entry.fittedArcs =
+      std::make_shared<const geom::ArcFit>(std::get<geom::ArcFit>(std::move(fitted)));
+  LapArcs arcs = lapArcs(entry, *curve.geometry);
+  std::uint32_t arcsTable = builder_.addCurve(std::move(entry));
+  Eigen::Vector2d end = arcs.moves.empty() ? arcs.start : arcs.moves.back().end;
+
   double increment = options_.coordinateIncrement;
-  Eigen::Vector2d start = onGrid(segments.front().start, increment);
-  double planeZ = segments.front().start.z();
   std::vector<double> depths = passDepths(cut);
   double previous = 0;
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
     double passZ = beginPass(depths[k], depths.size());
     double entryZ = begun.ramp ? previous : passZ;
-    builder_.rapid(builder_.constant(start.x()), builder_.constant(start.y()), safeValue);
-    builder_.feed(builder_.constant(start.x()), builder_.constant(start.y()),
-                  builder_.constant(onPrintedGrid(planeZ + entryZ, increment)), feedValue);
+    builder_.rapid(builder_.constant(arcs.start.x()), builder_.constant(arcs.start.y()), safeValue);
+    builder_.feed(builder_.constant(arcs.start.x()), builder_.constant(arcs.start.y()),
+                  builder_.constant(onPrintedGrid(arcs.planeZ + entryZ, increment)), feedValue);
     if (begun.ramp) {
       PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
       builder_.comment("ramp");
@@ -142,38 +126,29 @@ bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
         emitCurveLap(curve, *rampTables[p], entryZ, passZ, feedValue, cut, p, p + 1);
       }
     }
-    Eigen::Vector2d end = emitArcLap(
-        segments, builder_.constant(onPrintedGrid(planeZ + passZ, increment)), feedValue);
+    emitCurveLap(curve, arcsTable, passZ, passZ, feedValue, cut);
     builder_.rapid(builder_.constant(end.x()), builder_.constant(end.y()), safeValue);
     previous = passZ;
   }
   return true;
 }
 
-// One lap of the fitted arcs at height z from the fit's start on the grid;
-// returns where it ends.
+// One lap of arcs at height z from their start on the grid; returns where
+// it ends.
 Eigen::Vector2d PartLowering::emitArcLap(const std::vector<geom::ArcSegment>& segments, ValueId z,
                                          ValueId feed) {
-  double increment = options_.coordinateIncrement;
-  Eigen::Vector2d at = onGrid(segments.front().start, increment);
-  for (const geom::ArcSegment& segment : segments) {
-    Eigen::Vector2d end = onGrid(segment.end, increment);
-    if (end == at) {
-      continue; // rounds to no movement
-    }
-    ValueId endX = builder_.constant(end.x());
-    ValueId endY = builder_.constant(end.y());
-    if (printsAsLine(segment, increment)) {
-      builder_.feed(endX, endY, z, feed);
+  LapArcs arcs = arcMovesOnGrid(segments, options_.coordinateIncrement);
+  for (const LapArcMove& move : arcs.moves) {
+    ValueId endX = builder_.constant(move.end.x());
+    ValueId endY = builder_.constant(move.end.y());
+    if (move.turn) {
+      builder_.arc(*move.turn, endX, endY, z, builder_.constant(move.centreOffset.x()),
+                   builder_.constant(move.centreOffset.y()), feed);
     } else {
-      bool clockwise = segment.direction == geom::ArcDirection::Clockwise;
-      builder_.arc(clockwise ? ArcTurn::Clockwise : ArcTurn::CounterClockwise, endX, endY, z,
-                   builder_.constant(onPrintedGrid(segment.centre.x() - at.x(), increment)),
-                   builder_.constant(onPrintedGrid(segment.centre.y() - at.y(), increment)), feed);
+      builder_.feed(endX, endY, z, feed);
     }
-    at = end;
   }
-  return at;
+  return arcs.moves.empty() ? arcs.start : arcs.moves.back().end;
 }
 
 } // namespace cncc::ir::lowering

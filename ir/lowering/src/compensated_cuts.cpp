@@ -14,12 +14,12 @@
 // lead-out arc and cancel line, which verify measures the executed path
 // against (ir/tool_centre_path.h runs the compensation on the host).
 #include "part_lowering.h"
-#include "printed_grid.h"
 
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_curve.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 

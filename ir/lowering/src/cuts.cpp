@@ -4,11 +4,11 @@
 // start, a plunge (or a ramp lap), loops that evaluate the curve at the
 // tabled parameters, and a rapid retract.
 #include "part_lowering.h"
-#include "printed_grid.h"
 
 #include "cncc/geom/arc_length.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 
@@ -494,10 +494,7 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
 // cut's own errors are reported, as far as that takes no more than an
 // estimate), and the NURBS spans the host computes as points.
 CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve& curve) {
-  CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
-  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
-    addPieceLayout(entry, curve.pieces[p], curve.pieceStarts[p], cut);
-  }
+  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
   if (modifierValue(cut, "samples") != nullptr) {
     entry.sampling = CurveSampling::Samples;
     entry.amount = static_cast<double>(sampleCount(cut));
@@ -510,6 +507,16 @@ CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve
     // half an increment per axis of the tolerance (LoweringOptions).
     entry.amount = toleranceBudget(cut).forPoints();
     checkChordCount(cut, *curve.geometry, entry.amount);
+  }
+  return entry;
+}
+
+// An entry for the cut's whole curve, its pieces laid out; its points not
+// yet chosen.
+CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const CutCurve& curve) {
+  CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    addPieceLayout(entry, curve.pieces[p], curve.pieceStarts[p], cut);
   }
   return entry;
 }

@@ -92,9 +92,6 @@ struct SampleLocation {
 // The points a search over a cut's curve (the chord walk, a spline fit) may
 // ask of it (curve_lap.h): a few seconds of a curve the front end evaluates.
 using ir::maximumCurveEvaluations;
-// The points one cut's arc fit (--arcs, arcs=true) may ask of its curve;
-// past it the cut is printed as chords.
-inline constexpr std::size_t maximumArcFitEvaluations = 5'000'000;
 // The points the searches for the fewest uniform steps of a controller
 // cut's pieces may ask of its curve, over the cut (a 20-turn spiral within
 // 1 um asks some 32 million, in 3 s: the steps are measured on the curve's

@@ -8,11 +8,11 @@
 // it as that parameter's variable (`R#3`) and the operator's edit reaches
 // the curve. Every other number of the curve is fixed at its default.
 #include "part_lowering.h"
-#include "printed_grid.h"
 
 #include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 

@@ -12,13 +12,13 @@
 // leaves on one off its end, on the tool's side; the arcs are part of the
 // cut's curve in the cut table (as comp=controller's leads are).
 #include "part_lowering.h"
-#include "printed_grid.h"
 
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_clearance.h"
 #include "cncc/geom/offset_curve.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 

@@ -2,6 +2,7 @@
 #include "part_lowering.h"
 
 #include "cncc/geom/geometry_error.h"
+#include "cncc/ir/passes.h"
 
 #include <fmt/format.h>
 
@@ -16,7 +17,7 @@ std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, cons
     lowering::PartLowering lowering(program, part, diagnostics, options);
     LoweredPart lowered = lowering.run();
     if (options.expandCurveLaps) {
-      expandCurveLaps(lowered.function);
+      runCurveLegalisation(lowered.function);
     }
     return lowered;
   } catch (const CurveLapError& error) {

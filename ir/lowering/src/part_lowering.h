@@ -301,6 +301,7 @@ private:
   void checkSpacing(const frontend::CutStmt& cut, const geom::Curve& curve, double spacing);
   void lowerCurveLaps(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
+  CurveTableEntry wholeCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntryOn(const frontend::CutStmt& cut,
                                     std::shared_ptr<const geom::Curve> geometry);
   CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,

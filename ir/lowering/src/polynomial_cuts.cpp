@@ -10,12 +10,12 @@
 // naming how many there are. Each pass is a rapid over the start, a plunge,
 // and one move.polynomial per span at the pass height.
 #include "part_lowering.h"
-#include "printed_grid.h"
 
 #include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/polynomial_move.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 

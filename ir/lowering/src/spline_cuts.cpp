@@ -7,10 +7,10 @@
 // not lie in one plane z = constant (the spline axes are X and Y) is cut as
 // chords.
 #include "part_lowering.h"
-#include "printed_grid.h"
 #include "spline_fitting.h"
 
 #include "cncc/geom/evaluation_budget.h"
+#include "cncc/ir/printed_grid.h"
 
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/spline_move.h"

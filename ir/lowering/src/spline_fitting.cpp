@@ -1,7 +1,5 @@
 #include "spline_fitting.h"
 
-#include "printed_grid.h"
-
 #include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/controller_bspline.h"
 #include "cncc/geom/curve_deviation.h"
@@ -11,6 +9,7 @@
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/geom/nurbs_reparametrisation.h"
 #include "cncc/geom/spline_knot_placement.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 

@@ -20,6 +20,8 @@ bool unrollWhenNoLarger(Function& function) {
 }
 
 constexpr Pass passTable[] = {
+    {"fit-arcs", "legalisation: each curve.lap cut as arcs as the fit's move.arc and move.feed ops",
+     fitLapArcs},
     {"expand-curve-laps",
      "legalisation: each curve.lap as loops over tables of the points chosen on the host",
      expandCurveLaps},
@@ -90,6 +92,16 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
     }
     if (!changed) {
       break;
+    }
+  }
+}
+
+void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
+  for (std::string_view name : {"fit-arcs", "expand-curve-laps"}) {
+    const Pass* pass = findPass(name);
+    pass->run(function);
+    if (afterPass) {
+      afterPass(pass->name, function);
     }
   }
 }

@@ -36,7 +36,7 @@ TEST(PassesPipelineTest, EveryPassHasAStableNameAndIsFound) {
     EXPECT_EQ(findPass(pass.name), &pass);
     EXPECT_FALSE(pass.description.empty());
   }
-  EXPECT_THAT(names, ElementsAre("expand-curve-laps", "fold", "cse", "licm", "unroll",
+  EXPECT_THAT(names, ElementsAre("fit-arcs", "expand-curve-laps", "fold", "cse", "licm", "unroll",
                                  "unroll-no-larger", "dce"));
   EXPECT_EQ(findPass("inline"), nullptr);
   for (std::string_view name : defaultPipeline()) {

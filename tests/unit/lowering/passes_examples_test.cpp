@@ -5,6 +5,7 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/passes.h"
+#include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
 #include "cncc/lowering/lowering.h"
 
@@ -141,6 +142,76 @@ TEST(PassesExamplesTest, ExpandingCurveLapsKeepsToolPath) {
   }
   // Every example but the ones cut on arcs alone has laps along its curves.
   EXPECT_GE(laps, 10u);
+}
+
+std::size_t arcsLapCount(const Function& function) {
+  std::size_t laps = 0;
+  for (const Instruction& instruction : function.instructions) {
+    laps += instruction.opcode == Opcode::CurveLap &&
+                    function.curves[instruction.index].sampling == CurveSampling::Arcs
+                ? 1
+                : 0;
+  }
+  return laps;
+}
+
+// The same with --arcs on a target that prints G02/G03 (as gcode's grid):
+// the laps of every planar cut ask for arcs, which fit-arcs writes out as
+// the interpreter ran them.
+TEST(PassesExamplesTest, FittingArcsKeepsToolPath) {
+  LoweringOptions arcs;
+  arcs.expandCurveLaps = false;
+  arcs.arcBlocks = true;
+  arcs.arcsOnEveryCut = true;
+  arcs.coordinateIncrement = 0.0001;
+  std::size_t arcsLaps = 0;
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::unique_ptr<LoweredExample> lowered = lowerExampleKept(example.file, example.part, arcs);
+    std::optional<Function>& function = lowered->function;
+    ASSERT_TRUE(function) << name;
+    arcsLaps += arcsLapCount(*function);
+    ToolPath before = interpret(*function);
+    runCurveLegalisation(*function);
+    EXPECT_EQ(curveLapCount(*function), 0u) << name;
+    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
+    expectSamePath(before, interpret(*function), name);
+  }
+  EXPECT_GE(arcsLaps, 10u);
+}
+
+// Read back from its text, a lap cut as arcs has neither the source's curve
+// nor the lowering's fit: the interpreter fits the curve its regions
+// compute (which may differ from the source's in the last bits), and the
+// arcs, on a grid of 0.001, are the same.
+TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
+  LoweringOptions arcs;
+  arcs.expandCurveLaps = false;
+  arcs.arcBlocks = true;
+  arcs.arcsOnEveryCut = true;
+  arcs.coordinateIncrement = 0.001;
+  std::unique_ptr<LoweredExample> lowered = lowerExampleKept("polar_contour.cdl", "", arcs);
+  ASSERT_TRUE(lowered->function);
+  ASSERT_GE(arcsLapCount(*lowered->function), 1u);
+  ParseError error;
+  std::optional<Function> parsed = parseFunction(printFunction(*lowered->function), error);
+  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
+  EXPECT_FALSE(parsed->curves.front().fittedArcs);
+  ToolPath before = interpret(*lowered->function);
+  ToolPath after = interpret(*parsed);
+  ASSERT_EQ(before.events.size(), after.events.size());
+  std::size_t arcMoves = 0;
+  for (std::size_t i = 0; i < before.events.size(); ++i) {
+    const MachineEvent& a = before.events[i];
+    const MachineEvent& b = after.events[i];
+    ASSERT_EQ(a.kind, b.kind) << i;
+    arcMoves += a.kind == MachineEvent::Kind::Arc ? 1 : 0;
+    for (auto [x, y] : {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z},
+                        std::pair{a.centreX, b.centreX}, std::pair{a.centreY, b.centreY}}) {
+      EXPECT_NEAR(x, y, 1e-9) << i;
+    }
+  }
+  EXPECT_GE(arcMoves, 10u);
 }
 
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {

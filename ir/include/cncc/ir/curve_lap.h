@@ -5,6 +5,7 @@
 #pragma once
 
 #include "cncc/frontend/source_span.h"
+#include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/curve.h"
 #include "cncc/geom/discretisation.h"
 #include "cncc/ir/ir.h"
@@ -72,6 +73,8 @@ std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Inst
 // resolves makes every chord cost thousands).
 inline constexpr std::size_t maximumChordsPerCut = 100'000;
 inline constexpr std::size_t maximumCurveEvaluations = 20'000'000;
+// The points one cut's arc fit may ask of its curve.
+inline constexpr std::size_t maximumArcFitEvaluations = 5'000'000;
 
 // The fewest chords within `tolerance` of the curve (geom's farthest-reach
 // walk), within the bounds above. Throws CurveLapError at the cut (a bound)
@@ -92,11 +95,51 @@ std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curv
 std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve& curve,
                                 const std::vector<double>& parameters);
 
+// One move of a lap cut as arcs: a line to `end`, or an arc turning
+// `turn` about the centre `centreOffset` from where it starts.
+struct LapArcMove {
+  Eigen::Vector2d end = Eigen::Vector2d::Zero();
+  std::optional<ArcTurn> turn;
+  Eigen::Vector2d centreOffset = Eigen::Vector2d::Zero();
+};
+
+// The moves of a lap cut as arcs (CurveSampling::Arcs) from `start`, every
+// number on the entry's grid, in the plane z = planeZ (raised by the lap's
+// height); moves that round to no movement are left out.
+struct LapArcs {
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  double planeZ = 0;
+  std::vector<LapArcMove> moves;
+};
+
+// Arcs and lines as moves on the grid: an arc too flat or too short to
+// print as one (sagitta under half a grid step, chord under two) is a line.
+LapArcs arcMovesOnGrid(const std::vector<geom::ArcSegment>& segments, double grid);
+
+// Tangent-continuous arcs and lines within `tolerance` of a curve in a
+// plane z = const (geom::fitArcs), asking at most maximumArcFitEvaluations
+// points of it. Throws CurveLapError: a curve that leaves its plane or
+// cannot be fitted (at `curveSpan`), a fit past the bound (at `cutSpan`).
+geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, double tolerance,
+                                 frontend::SourceSpan cutSpan, frontend::SourceSpan curveSpan);
+
+// The entry's arcs: its fittedArcs, or `curve` fitted within the entry's
+// tolerance (at most maximumArcFitEvaluations points of it). Throws
+// CurveLapError: a curve that leaves its plane or cannot be fitted (at the
+// curve), or a fit past the bound (at the cut).
+LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve);
+
+// `fit-arcs`: every curve.lap whose entry asks for arcs written out as its
+// move.arc and move.feed ops (lapArcs), each lap at its height; the other
+// laps stay. Throws CurveLapError.
+bool fitLapArcs(Function& function);
+
 // `expand-curve-laps`: every curve.lap written out as today's host form:
 // per run of points in one region a loop over a table of the region's
 // parameters (and of the ramp's progress), the region's arithmetic in its
 // body, a feed move to each point; points the entry marks are host tables.
-// The curve table is emptied once no lap refers to it. Throws CurveLapError.
+// Laps cut as arcs are fitted first (fitLapArcs). The curve table is
+// emptied once no lap refers to it. Throws CurveLapError.
 bool expandCurveLaps(Function& function);
 
 } // namespace cncc::ir

@@ -15,7 +15,8 @@
 
 namespace cncc::geom {
 class Curve;
-}
+struct ArcFit;
+} // namespace cncc::geom
 
 namespace cncc::ir {
 
@@ -44,8 +45,11 @@ struct CurveLocation {
 
 // How a lap's points are chosen on the whole curve: within a chord
 // tolerance (the farthest reach of each chord), a number of points at equal
-// steps of the parameter, or points at equal arc length.
-enum class CurveSampling { ChordTolerance, Samples, Spacing };
+// steps of the parameter, or points at equal arc length. Or the lap is not
+// points but tangent-continuous arcs and lines within a tolerance, every
+// end and centre on the printed grid (a level lap in a plane z = const, on
+// a target that prints G02/G03).
+enum class CurveSampling { ChordTolerance, Samples, Spacing, Arcs };
 
 struct CurveTableEntry {
   std::vector<CurvePieceLayout> pieces;
@@ -55,8 +59,11 @@ struct CurveTableEntry {
   double to = 1;
   CurveSampling sampling = CurveSampling::ChordTolerance;
   // The chord tolerance (what the points must keep, the printed rounding
-  // already taken off), the number of points, or the spacing in mm.
+  // already taken off), the number of points, the spacing in mm, or the
+  // arcs' tolerance (the rounding of their ends and centres taken off).
   double amount = 0;
+  // Arcs: the printed grid their ends and centres are put on (0: none).
+  double grid = 0;
   // The `curve` expression and the `cut` statement: where a failure to
   // choose the points is reported.
   frontend::SourceSpan curveSpan;
@@ -79,6 +86,9 @@ struct CurveTableEntry {
   // The parameters lapParameters gives, when the lowering chose them for
   // something else too (the points a spline is fitted to); null otherwise.
   std::shared_ptr<const std::vector<double>> chosenParameters = nullptr;
+  // Arcs: the fit the lowering made to decide the cut is printed as arcs;
+  // null in a function read from text, where the curve is fitted again.
+  std::shared_ptr<const geom::ArcFit> fittedArcs = nullptr;
 
   std::size_t regionCount() const;
   // The later piece at a join (as a composite curve evaluates it); a

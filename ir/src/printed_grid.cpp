@@ -1,11 +1,11 @@
-#include "printed_grid.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <string>
 
-namespace cncc::ir::lowering {
+namespace cncc::ir {
 
 double onPrintedGrid(double value, double increment) {
   if (!(increment > 0) || !std::isfinite(value)) {
@@ -26,4 +26,4 @@ Eigen::Vector3d onPrintedGrid(const Eigen::Vector3d& point, double increment) {
           onPrintedGrid(point.z(), increment)};
 }
 
-} // namespace cncc::ir::lowering
+} // namespace cncc::ir

@@ -1,0 +1,183 @@
+// `fit-arcs`: each curve.lap whose table entry asks for arcs
+// (CurveSampling::Arcs) written out as the fit's move.arc and move.feed
+// ops. The curve is fitted once per entry with tangent-continuous arcs and
+// lines (geom/arc_fitting.h) within the entry's tolerance, which already
+// leaves room for the rounding of every end and centre to the printed grid;
+// the interpreter runs an arcs lap with the same moves (lapArcs).
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/printed_grid.h"
+
+#include "cncc/geom/arc_fitting.h"
+#include "cncc/geom/evaluation_budget.h"
+#include "cncc/geom/geometry_error.h"
+
+#include "passes/evaluate.h"
+#include "passes/rewriter.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+
+namespace cncc::ir {
+
+namespace {
+
+Eigen::Vector2d onGrid(const Eigen::Vector3d& point, double grid) {
+  return {onPrintedGrid(point.x(), grid), onPrintedGrid(point.y(), grid)};
+}
+
+// An arc too flat or too short to print as one: its sagitta is below half
+// a grid step, or its chord is under two (I J would be mostly rounding).
+bool printsAsLine(const geom::ArcSegment& segment, double grid) {
+  if (segment.kind == geom::ArcSegmentKind::Line) {
+    return true;
+  }
+  double sagitta = segment.radius * (1.0 - std::cos(0.5 * std::fabs(segment.sweep)));
+  double chord = (segment.end - segment.start).head<2>().norm();
+  return sagitta < 0.5 * grid || chord < 2.0 * grid;
+}
+
+class ArcLapFitter : public passes::Rewriter {
+public:
+  using Rewriter::Rewriter;
+
+private:
+  void visit(const Instruction& instruction) override {
+    if (instruction.opcode == Opcode::CurveLap &&
+        source_.curves[instruction.index].sampling == CurveSampling::Arcs) {
+      writeArcs(instruction);
+      markChanged();
+    } else {
+      copy(instruction);
+    }
+  }
+
+  // The lap's height plus the plane's: a number where the height is one.
+  ValueId heightOf(const Instruction& lap, double planeZ) {
+    ValueId from = lap.operands[0];
+    ValueId to = lap.operands[1];
+    std::optional<double> height = passes::constantValue(source_, to);
+    if (from != to && !(height && passes::constantValue(source_, from) == height)) {
+      throw CurveLapError(CurveLapError::Kind::DegenerateCurve, lap.span,
+                          "a lap cut as arcs is level: its two heights must be one value");
+    }
+    if (height) {
+      return constant(*height + planeZ);
+    }
+    if (planeZ == 0) {
+      return mapped(to);
+    }
+    Instruction add;
+    add.opcode = Opcode::Add;
+    return emit(add, {mapped(to), constant(planeZ)});
+  }
+
+  void writeArcs(const Instruction& lap) {
+    auto known = arcs_.find(lap.index);
+    if (known == arcs_.end()) {
+      std::shared_ptr<const geom::Curve> curve =
+          lapCurve(source_, lap, [&](ValueId value) -> std::optional<double> {
+            const Instruction& definition = source_.definition(value);
+            if (definition.opcode == Opcode::Param) {
+              return source_.parameters[definition.index].defaultValue;
+            }
+            return passes::constantValue(source_, value);
+          });
+      known = arcs_.emplace(lap.index, lapArcs(source_.curves[lap.index], *curve)).first;
+    }
+    const LapArcs& arcs = known->second;
+    ValueId z = heightOf(lap, arcs.planeZ);
+    ValueId feed = mapped(lap.operands[2]);
+    for (const LapArcMove& move : arcs.moves) {
+      Instruction instruction;
+      instruction.opcode = move.turn ? Opcode::Arc : Opcode::Feed;
+      std::vector<ValueId> operands = {constant(move.end.x()), constant(move.end.y()), z};
+      if (move.turn) {
+        instruction.index = static_cast<std::uint32_t>(*move.turn);
+        operands.push_back(constant(move.centreOffset.x()));
+        operands.push_back(constant(move.centreOffset.y()));
+      }
+      operands.push_back(feed);
+      emit(instruction, std::move(operands));
+    }
+  }
+
+  std::map<std::uint32_t, LapArcs> arcs_;
+};
+
+} // namespace
+
+LapArcs arcMovesOnGrid(const std::vector<geom::ArcSegment>& segments, double grid) {
+  LapArcs arcs;
+  if (segments.empty()) {
+    return arcs;
+  }
+  arcs.start = onGrid(segments.front().start, grid);
+  arcs.planeZ = segments.front().start.z();
+  Eigen::Vector2d at = arcs.start;
+  for (const geom::ArcSegment& segment : segments) {
+    LapArcMove move;
+    move.end = onGrid(segment.end, grid);
+    if (move.end == at) {
+      continue; // rounds to no movement
+    }
+    if (!printsAsLine(segment, grid)) {
+      move.turn = segment.direction == geom::ArcDirection::Clockwise ? ArcTurn::Clockwise
+                                                                     : ArcTurn::CounterClockwise;
+      move.centreOffset = {onPrintedGrid(segment.centre.x() - at.x(), grid),
+                           onPrintedGrid(segment.centre.y() - at.y(), grid)};
+    }
+    arcs.moves.push_back(move);
+    at = move.end;
+  }
+  return arcs;
+}
+
+geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, double tolerance,
+                                 frontend::SourceSpan cutSpan, frontend::SourceSpan curveSpan) {
+  if (std::optional<std::string> problem = geom::findArcFittingProblem(curve)) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan, *problem);
+  }
+  try {
+    geom::BudgetedCurve budgeted(curve, maximumArcFitEvaluations);
+    return geom::fitArcs(budgeted, {tolerance});
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, cutSpan,
+                        fmt::format("fitting arcs within its tolerance asks more than {} points "
+                                    "of the curve; that is the limit of one cut's arc fit",
+                                    error.limit));
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan, error.what());
+  }
+}
+
+LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve) {
+  geom::ArcFit fitted;
+  const geom::ArcFit* fit = entry.fittedArcs.get();
+  if (fit == nullptr) {
+    fitted = fitArcsWithinBudget(curve, entry.amount, entry.cutSpan, entry.curveSpan);
+    fit = &fitted;
+  }
+  if (fit->segments.empty()) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+                        "the arcs fitted to this curve are none");
+  }
+  return arcMovesOnGrid(fit->segments, entry.grid);
+}
+
+bool fitLapArcs(Function& function) {
+  bool any = false;
+  for (const Instruction& instruction : function.instructions) {
+    any = any || (instruction.opcode == Opcode::CurveLap &&
+                  function.curves[instruction.index].sampling == CurveSampling::Arcs);
+  }
+  if (!any) {
+    return false;
+  }
+  ArcLapFitter fitter(function);
+  function = fitter.run();
+  return true;
+}
+
+} // namespace cncc::ir
