@@ -11,8 +11,7 @@
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 
-#include "passes/evaluate.h"
-#include "passes/rewriter.h"
+#include "curve_lap_rewriter.h"
 
 #include <fmt/format.h>
 
@@ -38,9 +37,9 @@ bool printsAsLine(const geom::ArcSegment& segment, double grid) {
   return sagitta < 0.5 * grid || chord < 2.0 * grid;
 }
 
-class ArcLapFitter : public passes::Rewriter {
+class ArcLapFitter : public LapRewriter {
 public:
-  using Rewriter::Rewriter;
+  using LapRewriter::LapRewriter;
 
 private:
   void visit(const Instruction& instruction) override {
@@ -76,15 +75,7 @@ private:
   void writeArcs(const Instruction& lap) {
     auto known = arcs_.find(lap.index);
     if (known == arcs_.end()) {
-      std::shared_ptr<const geom::Curve> curve =
-          lapCurve(source_, lap, [&](ValueId value) -> std::optional<double> {
-            const Instruction& definition = source_.definition(value);
-            if (definition.opcode == Opcode::Param) {
-              return source_.parameters[definition.index].defaultValue;
-            }
-            return passes::constantValue(source_, value);
-          });
-      known = arcs_.emplace(lap.index, lapArcs(source_.curves[lap.index], *curve)).first;
+      known = arcs_.emplace(lap.index, lapArcs(source_.curves[lap.index], *curveOf(lap))).first;
     }
     const LapArcs& arcs = known->second;
     ValueId z = heightOf(lap, arcs.planeZ);

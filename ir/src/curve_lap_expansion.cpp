@@ -4,10 +4,7 @@
 // a loop over a table of the region's parameters (and of the ramp's
 // progress) whose body is the region's arithmetic and a feed move. A region
 // the entry marks, whose points need no parameter, is tabled as points.
-#include "cncc/ir/curve_lap.h"
-
-#include "passes/evaluate.h"
-#include "passes/rewriter.h"
+#include "curve_lap_rewriter.h"
 
 #include <array>
 #include <map>
@@ -33,9 +30,9 @@ struct Run {
   std::optional<HostPoints> host;
 };
 
-class CurveLapExpander : public passes::Rewriter {
+class CurveLapExpander : public LapRewriter {
 public:
-  explicit CurveLapExpander(const Function& source) : Rewriter(source) {
+  explicit CurveLapExpander(const Function& source) : LapRewriter(source) {
     for (const std::vector<double>& table : source.tables) {
       tableEntries_ += table.size();
     }
@@ -53,16 +50,6 @@ private:
     }
   }
 
-  // A value of the source the lap's curve reads from outside it: a constant
-  // or a parameter at its value.
-  std::optional<double> outsideValue(ValueId value) const {
-    const Instruction& definition = source_.definition(value);
-    if (definition.opcode == Opcode::Param) {
-      return source_.parameters[definition.index].defaultValue;
-    }
-    return passes::constantValue(source_, value);
-  }
-
   // An entry's points, chosen once, and their runs.
   struct EntryPoints {
     std::shared_ptr<const geom::Curve> curve;
@@ -78,7 +65,7 @@ private:
     }
     const CurveTableEntry& entry = source_.curves[lap.index];
     EntryPoints& points = entries_[lap.index];
-    points.curve = lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
+    points.curve = curveOf(lap);
     points.parameters = lapParameters(entry, *points.curve);
     std::vector<Run>& runs = points.runs;
     for (std::size_t i = 1; i < points.parameters.size(); ++i) {
@@ -229,52 +216,6 @@ private:
     return emit(instruction, {index_});
   }
 
-  // An operand of the move being written: a value, or a number not yet
-  // written (as the lowering's arithmetic folds).
-  struct Operand {
-    ValueId value;
-    double number = 0;
-    bool isNumber() const { return !value.valid(); }
-  };
-
-  Operand operandOf(ValueId output) const {
-    std::optional<double> number = passes::constantValue(output_, output);
-    return number ? Operand{ValueId{}, *number} : Operand{output, 0};
-  }
-
-  ValueId valueOf(const Operand& operand) {
-    return operand.isNumber() ? constant(operand.number) : operand.value;
-  }
-
-  // a + b and a * b, folding numbers and the identities x + 0 and x * 1.
-  Operand add(const Operand& a, const Operand& b) {
-    if (a.isNumber() && b.isNumber()) {
-      return {ValueId{}, a.number + b.number};
-    }
-    if ((a.isNumber() && a.number == 0) || (b.isNumber() && b.number == 0)) {
-      return a.isNumber() ? b : a;
-    }
-    return {binary(Opcode::Add, a, b), 0};
-  }
-
-  Operand multiply(const Operand& a, const Operand& b) {
-    if (a.isNumber() && b.isNumber()) {
-      return {ValueId{}, a.number * b.number};
-    }
-    if ((a.isNumber() && a.number == 1) || (b.isNumber() && b.number == 1)) {
-      return a.isNumber() ? b : a;
-    }
-    return {binary(Opcode::Mul, a, b), 0};
-  }
-
-  ValueId binary(Opcode opcode, const Operand& a, const Operand& b) {
-    ValueId left = valueOf(a);
-    ValueId right = valueOf(b);
-    Instruction instruction;
-    instruction.opcode = opcode;
-    return emit(instruction, {left, right});
-  }
-
   // The region's curve.point: a feed move there, raised by the lap's height.
   void feedToPoint(const Instruction& point) {
     std::vector<ValueId> operands = mappedOperands(point);
@@ -294,11 +235,7 @@ private:
     ValueId x = valueOf(point[0]);
     ValueId y = valueOf(point[1]);
     ValueId height = valueOf(add(z, point[2]));
-    Instruction feed;
-    feed.opcode = Opcode::Feed;
-    feed.span = lap.span;
-    feed.pass = lap.pass;
-    emit(feed, {x, y, height, mapped(lap.operands[2])});
+    emitFeedMove(lap, x, y, height);
   }
 
   std::map<std::uint32_t, EntryPoints> entries_;
@@ -322,9 +259,10 @@ bool hasCurveLap(const Function& function) {
 
 bool expandCurveLaps(Function& function) {
   bool fitted = fitLapArcs(function);
+  bool stepped = expandControllerLoops(function);
   if (!hasCurveLap(function)) {
     function.curves.clear();
-    return fitted;
+    return fitted || stepped;
   }
   CurveLapExpander expander(function);
   Function expanded = expander.run();

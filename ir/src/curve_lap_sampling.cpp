@@ -29,10 +29,23 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
   case CurveSampling::Spacing:
     return geom::sampleEqualArcLength(curve, entry.amount);
   case CurveSampling::ChordTolerance:
-  case CurveSampling::Arcs: // points within the arcs' tolerance, where points are asked
+  case CurveSampling::Arcs:  // points within the arcs' tolerance, where points are asked
+  case CurveSampling::Steps: // lapParameters gives the steps' own
     break;
   }
   return chordsWithinTolerance(curve, entry.amount, entry.cutSpan, entry.curveSpan);
+}
+
+// The whole-curve parameters of a lap cut in steps: its start, then each
+// step's point.
+std::vector<double> stepParameters(const CurveTableEntry& entry) {
+  std::vector<double> parameters = {entry.from};
+  bool single = entry.pieces.size() == 1;
+  for (const LapStep& step : lapSteps(entry)) {
+    const CurvePieceLayout& piece = entry.pieces[step.region];
+    parameters.push_back(single ? step.local : piece.start + (step.local - piece.from));
+  }
+  return parameters;
 }
 
 } // namespace
@@ -65,6 +78,9 @@ std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curv
   if (entry.chosenParameters) {
     return *entry.chosenParameters;
   }
+  if (entry.sampling == CurveSampling::Steps) {
+    return stepParameters(entry);
+  }
   geom::CurveSamples samples;
   try {
     samples = samplesOf(entry, curve);
@@ -84,17 +100,9 @@ std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curv
   return std::move(samples.parameters);
 }
 
-namespace {
-
-// A piece, or a knot span of a NURBS piece: where it starts in the lap's
-// length and its share of it (fractions of the whole).
-struct RegionShare {
-  double before = 0;
-  double share = 0;
-};
-
-std::vector<RegionShare> regionShares(const CurveTableEntry& entry, const geom::Curve& curve) {
-  std::vector<RegionShare> shares;
+std::vector<LapRegionShare> lapRegionShares(const CurveTableEntry& entry,
+                                            const geom::Curve& curve) {
+  std::vector<LapRegionShare> shares;
   std::vector<double> lengths;
   double total = 0;
   bool single = entry.pieces.size() == 1;
@@ -121,11 +129,9 @@ std::vector<RegionShare> regionShares(const CurveTableEntry& entry, const geom::
   return shares;
 }
 
-} // namespace
-
 std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve& curve,
                                 const std::vector<double>& parameters) {
-  std::vector<RegionShare> shares = regionShares(entry, curve);
+  std::vector<LapRegionShare> shares = lapRegionShares(entry, curve);
   std::vector<double> progress;
   progress.reserve(parameters.size());
   for (double parameter : parameters) {
@@ -135,7 +141,7 @@ std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve&
     if (piece.spans.empty()) {
       fraction = (location.local - piece.from) / (piece.to - piece.from);
     }
-    const RegionShare& share = shares[location.region];
+    const LapRegionShare& share = shares[location.region];
     double own = std::min(1.0, share.before + share.share * fraction);
     progress.push_back(entry.progressFrom == 0 && entry.progressShare == 1
                            ? own

@@ -180,7 +180,8 @@ private:
     std::shared_ptr<const geom::Curve> curve;
     std::vector<double> parameters;
     std::vector<double> progress;
-    std::optional<LapArcs> arcs; // a lap cut as arcs: its moves, no parameters
+    std::optional<LapArcs> arcs;        // a lap cut as arcs: its moves, no parameters
+    std::vector<LapRegionShare> shares; // a ramp lap cut in steps: its regions'
   };
 
   // A feed move to each point after the first, the region that holds it
@@ -194,6 +195,10 @@ private:
     if (ramp && entry.sampling == CurveSampling::Arcs) {
       throw InterpreterError("a lap cut as arcs is level: its two heights must be one value");
     }
+    if (entry.sampling == CurveSampling::Steps) {
+      runSteppedLap(lap, entry, zFrom, zTo, feed);
+      return;
+    }
     const LapPoints& points = lapPoints(lap, entry, ramp);
     if (points.arcs) {
       runArcLap(lap, *points.arcs, zTo + points.arcs->planeZ, feed);
@@ -204,17 +209,40 @@ private:
       CurveLocation location = entry.locate(points.parameters[k]);
       values_[lap.result.index] = location.local;
       runRegion(lap.regions[location.region]);
-      double height = ramp ? zFrom + (zTo - zFrom) * points.progress[k] : zTo;
-      MachineEvent event;
-      event.kind = MachineEvent::Kind::Feed;
-      event.x = lapPoint_[0];
-      event.y = lapPoint_[1];
-      event.z = height + lapPoint_[2];
-      event.feed = feed;
-      event.span = lap.span;
-      event.pass = lap.pass;
-      recordLapMove(std::move(event));
+      feedToLapPoint(lap, ramp ? zFrom + (zTo - zFrom) * points.progress[k] : zTo, feed);
     }
+  }
+
+  // The lap's regions at their steps' parameters, as the controller's loops
+  // compute them; a ramp descends by each region's share of the lap's length.
+  void runSteppedLap(const Instruction& lap, const CurveTableEntry& entry, double zFrom, double zTo,
+                     double feed) {
+    const std::vector<LapRegionShare>* shares =
+        zFrom != zTo ? &lapPoints(lap, entry, true).shares : nullptr;
+    for (const LapStep& step : lapSteps(entry)) {
+      countStep();
+      values_[lap.result.index] = step.local;
+      runRegion(lap.regions[step.region]);
+      double height = zTo;
+      if (shares != nullptr) {
+        const LapRegionShare& share = (*shares)[step.region];
+        height = zFrom + (zTo - zFrom) * (share.before + share.share * step.fraction);
+      }
+      feedToLapPoint(lap, height, feed);
+    }
+  }
+
+  // A feed move to the point the region just run computed, raised by height.
+  void feedToLapPoint(const Instruction& lap, double height, double feed) {
+    MachineEvent event;
+    event.kind = MachineEvent::Kind::Feed;
+    event.x = lapPoint_[0];
+    event.y = lapPoint_[1];
+    event.z = height + lapPoint_[2];
+    event.feed = feed;
+    event.span = lap.span;
+    event.pass = lap.pass;
+    recordLapMove(std::move(event));
   }
 
   // The lap's arcs and lines at height z.
@@ -280,13 +308,17 @@ private:
         }
         if (entry.sampling == CurveSampling::Arcs) {
           fresh.arcs = lapArcs(entry, *fresh.curve);
-        } else {
+        } else if (entry.sampling != CurveSampling::Steps) {
           fresh.parameters = lapParameters(entry, *fresh.curve);
         }
         known.push_back(std::move(fresh));
         same = known.end() - 1;
       }
-      if (ramp && !same->arcs && same->progress.empty()) {
+      if (ramp && entry.sampling == CurveSampling::Steps) {
+        if (same->shares.empty()) {
+          same->shares = lapRegionShares(entry, *same->curve);
+        }
+      } else if (ramp && !same->arcs && same->progress.empty()) {
         same->progress = lapProgress(entry, *same->curve, same->parameters);
       }
       return *same;

@@ -502,7 +502,7 @@ private:
     }
     std::optional<CurveSampling> sampling = curveSamplingNamed(words[2]);
     if (!sampling) {
-      throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing' or 'arcs'"};
+      throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs' or 'steps'"};
     }
     curve_.emplace();
     curve_->sampling = *sampling;
@@ -531,6 +531,12 @@ private:
       curve_->chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
       return;
     }
+    if (startsWith(line, "counts ")) {
+      for (std::string_view count : splitList(line.substr(7))) {
+        curve_->regionSteps.push_back(static_cast<int>(parseWholeNumber(count)));
+      }
+      return;
+    }
     if (startsWith(line, "grid ")) {
       curve_->grid = parseNumber(line.substr(5));
       return;
@@ -545,8 +551,8 @@ private:
       return;
     }
     if (!startsWith(line, "piece ")) {
-      throw Failure{"expected 'piece at start over from .. to', 'grid', 'progress', 'host', "
-                    "'chosen' or '}'"};
+      throw Failure{"expected 'piece at start over from .. to', 'grid', 'counts', 'progress', "
+                    "'host', 'chosen' or '}'"};
     }
     std::size_t spansAt = line.find(" spans ");
     std::vector<std::string_view> words = splitWords(line.substr(0, spansAt));

@@ -3,6 +3,7 @@
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/spline_move.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <optional>
@@ -284,7 +285,8 @@ private:
       problem(
           fmt::format("{} runs over {} .. {}, not a finite range", where, entry.from, entry.to));
     }
-    if (!std::isfinite(entry.amount) || !(entry.amount > 0)) {
+    bool countsGiven = entry.sampling == CurveSampling::Steps && entry.amount == 0;
+    if (!std::isfinite(entry.amount) || !(entry.amount > 0 || countsGiven)) {
       problem(fmt::format("{} chooses its points by {}, which is not a positive number", where,
                           entry.amount));
     }
@@ -303,6 +305,7 @@ private:
       verifyChosenParameters(where, entry, *entry.chosenParameters);
     }
     verifyArcs(where, entry);
+    verifySteps(where, entry);
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {
       if (region >= regions) {
@@ -322,6 +325,32 @@ private:
     if (arcs && (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1)) {
       problem(
           fmt::format("{} is cut as arcs but has chosen points or a share of a descent", where));
+    }
+  }
+
+  // Steps: a count of one or more for each region, of pieces without knot
+  // spans; a level lap with no points chosen.
+  void verifySteps(const std::string& where, const CurveTableEntry& entry) {
+    if (entry.sampling != CurveSampling::Steps) {
+      if (!entry.regionSteps.empty()) {
+        problem(fmt::format("{} has step counts but is not cut in steps", where));
+      }
+      return;
+    }
+    bool counted = entry.regionSteps.size() == entry.regionCount();
+    for (int steps : entry.regionSteps) {
+      counted = counted && steps >= 1 && steps <= maximumStepsPerRegion;
+    }
+    if (!counted) {
+      problem(fmt::format("{} has {} step counts for {} regions, not each 1 .. {}", where,
+                          entry.regionSteps.size(), entry.regionCount(), maximumStepsPerRegion));
+    }
+    bool spans = std::any_of(entry.pieces.begin(), entry.pieces.end(),
+                             [](const CurvePieceLayout& piece) { return !piece.spans.empty(); });
+    if (spans || entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1) {
+      problem(fmt::format("{} is cut in steps but has knot spans, chosen points or a share of a "
+                          "descent",
+                          where));
     }
   }
 

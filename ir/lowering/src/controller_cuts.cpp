@@ -341,7 +341,17 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   builder_.rapid(startX, startY, safeValue);
   builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
                 feedValue);
-  if (ramp) {
+  // Laps of constant pieces are curve.laps the legalisation expand-
+  // controller-loops writes out as the loops below would be.
+  std::optional<std::uint32_t> lapTable =
+      runtimeOffset_ ? std::nullopt
+                     : steppedCurveTable(cut, curve, *planned, uniformSteps ? 0.0 : budget);
+  if (ramp && lapTable) {
+    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
+    builder_.comment("ramp");
+    emitCurveLapAt(curve, *lapTable, arithmetic_.value(previousZ), arithmetic_.value(z), feedValue,
+                   cut);
+  } else if (ramp) {
     // One lap descending from the pass above (see RampSegment), in the
     // pass loop: its lines have no pass number of their own.
     PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
@@ -352,7 +362,14 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
       emitControllerSegment(curve, segment, z, feedValue, cut, &lap);
     }
   }
+  if (lapTable) {
+    ValueId height = arithmetic_.value(z);
+    emitCurveLapAt(curve, *lapTable, height, height, feedValue, cut);
+  }
   for (const ControllerSegment& segment : *planned) {
+    if (lapTable) {
+      break;
+    }
     emitControllerSegment(curve, segment, z, feedValue, cut, nullptr);
     if (runtimeOffset_) {
       emitOffsetJoin(curve, segment, z, feedValue, cut);
@@ -368,6 +385,34 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     builder_.endLoop();
   }
   return true;
+}
+
+// A curve table entry cutting each piece in the steps planned for it, when
+// every piece is one the controller evaluates from the curve's own
+// arithmetic at uniform steps of a count chosen here (no NURBS span, arc,
+// piece that depends on parameters or count computed on the controller);
+// `budget` is the chord tolerance the counts keep (0: samples= gave them).
+std::optional<std::uint32_t>
+PartLowering::steppedCurveTable(const CutStmt& cut, const CutCurve& curve,
+                                const std::vector<ControllerSegment>& segments, double budget) {
+  if (segments.size() != curve.pieces.size()) {
+    return std::nullopt;
+  }
+  for (const ControllerSegment& segment : segments) {
+    bool plain = !segment.isNurbs && !segment.isArc && segment.symbolic == nullptr &&
+                 !segment.split && !segment.stepPerPoint && segment.moved == nullptr &&
+                 !segment.stepCount && segment.steps >= 1;
+    if (!plain) {
+      return std::nullopt;
+    }
+  }
+  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  entry.sampling = CurveSampling::Steps;
+  entry.amount = budget;
+  for (const ControllerSegment& segment : segments) {
+    entry.regionSteps.push_back(segment.steps);
+  }
+  return builder_.addCurve(std::move(entry));
 }
 
 // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one

@@ -14,7 +14,7 @@ namespace cncc::ir::lowering {
 
 using Polynomial = std::vector<double>; // ascending powers of u
 
-inline constexpr int maximumStepsPerPiece = 100'000;
+inline constexpr int maximumStepsPerPiece = maximumStepsPerRegion;
 // The share of the increment kept for the rounding of printed literals.
 inline constexpr double literalShare = 0.02;
 

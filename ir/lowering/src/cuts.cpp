@@ -581,6 +581,13 @@ void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, doub
                                 std::size_t firstPiece, std::size_t endPiece) {
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
+  emitCurveLapAt(curve, table, from, to, feed, cut, firstPiece, endPiece);
+}
+
+// The same, z going from the value zFrom to the value zTo.
+void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table, ValueId from,
+                                  ValueId to, ValueId feed, const CutStmt& cut,
+                                  std::size_t firstPiece, std::size_t endPiece) {
   Scalar local = Scalar::of(builder_.beginCurveLap(table, from, to, feed), ValueType::F64);
   endPiece = std::min(endPiece, curve.pieces.size());
   for (std::size_t p = firstPiece; p < endPiece; ++p) {

@@ -311,6 +311,9 @@ private:
   void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
                     ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
                     std::size_t endPiece = SIZE_MAX);
+  void emitCurveLapAt(const CutCurve& curve, std::uint32_t table, ValueId zFrom, ValueId zTo,
+                      ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
+                      std::size_t endPiece = SIZE_MAX);
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before any point is computed: the curve and the depth within the
@@ -463,6 +466,10 @@ private:
 
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
+  std::optional<std::uint32_t> steppedCurveTable(const frontend::CutStmt& cut,
+                                                 const CutCurve& curve,
+                                                 const std::vector<ControllerSegment>& segments,
+                                                 double budget);
   bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);

@@ -22,6 +22,9 @@ bool unrollWhenNoLarger(Function& function) {
 constexpr Pass passTable[] = {
     {"fit-arcs", "legalisation: each curve.lap cut as arcs as the fit's move.arc and move.feed ops",
      fitLapArcs},
+    {"expand-controller-loops",
+     "legalisation: each curve.lap cut in steps as a loop per region the controller runs",
+     expandControllerLoops},
     {"expand-curve-laps",
      "legalisation: each curve.lap as loops over tables of the points chosen on the host",
      expandCurveLaps},
@@ -97,7 +100,7 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 }
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
-  for (std::string_view name : {"fit-arcs", "expand-curve-laps"}) {
+  for (std::string_view name : {"fit-arcs", "expand-controller-loops", "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

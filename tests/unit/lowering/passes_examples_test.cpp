@@ -8,6 +8,7 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
 #include "cncc/lowering/lowering.h"
+#include "lowered_text.h"
 
 #include <gtest/gtest.h>
 
@@ -212,6 +213,66 @@ TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
     }
   }
   EXPECT_GE(arcMoves, 10u);
+}
+
+// On a target that runs loops, a cut of constant pieces is a curve.lap
+// whose entry gives each piece's steps; expand-controller-loops writes the
+// loops, which run the points the interpreter ran the lap with.
+TEST(PassesExamplesTest, ControllerLoopsKeepToolPath) {
+  LoweringOptions controller;
+  controller.expandCurveLaps = false;
+  controller.controllerLoops = true;
+  controller.coordinateIncrement = 0.001;
+  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
+part ring(depth = 4) {
+  tool 1 diameter=4 feed=200
+  safe z=3
+  curve path(line(from = (22, 0), to = (30, 0)), line(from = (30, 0), to = (22, 0)),
+             polar(r = 18 + 4*cos(2*t)*cos(6*t), t = 0 .. 2*pi)) sweep depth=depth step=2
+             entry=ramp
+})",
+                                                                               controller);
+  ASSERT_TRUE(lowered->part);
+  Function& function = lowered->part->function;
+  ASSERT_EQ(function.curves.size(), 1u);
+  const CurveTableEntry& entry = function.curves.front();
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  ASSERT_EQ(entry.regionSteps.size(), 3u);
+  EXPECT_EQ(entry.regionSteps[0], 1); // the lines
+  EXPECT_EQ(entry.regionSteps[1], 1);
+  EXPECT_GT(entry.regionSteps[2], 50); // the polar curve within 0.01 less the rounding
+  ToolPath before = interpret(function);
+  runCurveLegalisation(function);
+  EXPECT_EQ(curveLapCount(function), 0u);
+  EXPECT_TRUE(function.tables.empty());
+  EXPECT_TRUE(verifyFunction(function).empty());
+  expectSamePath(before, interpret(function), "ring");
+}
+
+// Every example lowered for a target that runs loops: the IR before the
+// legalisations and after them gives the same path to the last bit.
+TEST(PassesExamplesTest, ControllerLegalisationKeepsEveryExamplesToolPath) {
+  LoweringOptions controller;
+  controller.expandCurveLaps = false;
+  controller.controllerLoops = true;
+  controller.coordinateIncrement = 0.0001; // fine enough for the parts in inches
+  std::size_t steppedLaps = 0;
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::unique_ptr<LoweredExample> lowered =
+        lowerExampleKept(example.file, example.part, controller);
+    std::optional<Function>& function = lowered->function;
+    ASSERT_TRUE(function) << name;
+    for (const CurveTableEntry& entry : function->curves) {
+      steppedLaps += entry.sampling == CurveSampling::Steps ? 1 : 0;
+    }
+    ToolPath before = interpret(*function);
+    runCurveLegalisation(*function);
+    EXPECT_EQ(curveLapCount(*function), 0u) << name;
+    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
+    expectSamePath(before, interpret(*function), name);
+  }
+  EXPECT_GE(steppedLaps, 1u); // polar_contour's ramp and passes
 }
 
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {

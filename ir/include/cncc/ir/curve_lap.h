@@ -88,6 +88,17 @@ geom::CurveSamples chordsWithinTolerance(const geom::Curve& curve, double tolera
 // points and of curve evaluations). Throws CurveLapError.
 std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curve& curve);
 
+// A region of a lap (a piece, or a knot span of a NURBS piece): where it
+// starts in the lap's length and its share of it (fractions of the whole).
+struct LapRegionShare {
+  double before = 0;
+  double share = 0;
+};
+
+// Each region's share, from the lengths of the regions on `curve`. Throws
+// CurveLapError (a curve that cannot be measured).
+std::vector<LapRegionShare> lapRegionShares(const CurveTableEntry& entry, const geom::Curve& curve);
+
 // For each of `parameters`, the share of the lap's length done there
 // (0 at the start, 1 at the end): each piece or knot span takes a share of
 // the descent in proportion to its length, spread over it in proportion to
@@ -134,11 +145,33 @@ LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve);
 // laps stay. Throws CurveLapError.
 bool fitLapArcs(Function& function);
 
+// One point of a lap cut in steps: the region that computes it and its
+// parameter there.
+struct LapStep {
+  std::size_t region = 0;
+  double local = 0;
+  double fraction = 1; // of the region's steps done: i / N
+};
+
+// The points of a lap cut in steps (CurveSampling::Steps), in order: per
+// region of N steps over its own range [from, to], from + i (to - from) / N
+// for i = 1 .. N, as the loop the controller runs computes them; a region
+// of one step, its end.
+std::vector<LapStep> lapSteps(const CurveTableEntry& entry);
+
+// `expand-controller-loops`: every curve.lap cut in steps written out as a
+// loop per region (its arithmetic at the loop's parameter, a feed move to
+// the point), each lap at its height, or descending through its regions by
+// their shares of its length (lapRegionShares) and in each in proportion
+// to the steps done; the other laps stay. Throws CurveLapError.
+bool expandControllerLoops(Function& function);
+
 // `expand-curve-laps`: every curve.lap written out as today's host form:
 // per run of points in one region a loop over a table of the region's
 // parameters (and of the ramp's progress), the region's arithmetic in its
 // body, a feed move to each point; points the entry marks are host tables.
-// Laps cut as arcs are fitted first (fitLapArcs). The curve table is
+// Laps cut as arcs or in steps are written out first (fitLapArcs,
+// expandControllerLoops). The curve table is
 // emptied once no lap refers to it. Throws CurveLapError.
 bool expandCurveLaps(Function& function);
 

@@ -48,8 +48,13 @@ struct CurveLocation {
 // steps of the parameter, or points at equal arc length. Or the lap is not
 // points but tangent-continuous arcs and lines within a tolerance, every
 // end and centre on the printed grid (a level lap in a plane z = const, on
-// a target that prints G02/G03).
-enum class CurveSampling { ChordTolerance, Samples, Spacing, Arcs };
+// a target that prints G02/G03). Or each region is cut in its own number of
+// uniform steps of its parameter by a loop the controller runs (a level lap
+// of pieces without knot spans, on a target that runs loops).
+enum class CurveSampling { ChordTolerance, Samples, Spacing, Arcs, Steps };
+
+// The most uniform steps one region of a lap cut in steps may take.
+inline constexpr int maximumStepsPerRegion = 100'000;
 
 struct CurveTableEntry {
   std::vector<CurvePieceLayout> pieces;
@@ -59,11 +64,15 @@ struct CurveTableEntry {
   double to = 1;
   CurveSampling sampling = CurveSampling::ChordTolerance;
   // The chord tolerance (what the points must keep, the printed rounding
-  // already taken off), the number of points, the spacing in mm, or the
-  // arcs' tolerance (the rounding of their ends and centres taken off).
+  // already taken off), the number of points, the spacing in mm, the arcs'
+  // tolerance (the rounding of their ends and centres taken off), or the
+  // chord tolerance the steps keep (0: counts the cut gave, samples=).
   double amount = 0;
   // Arcs: the printed grid their ends and centres are put on (0: none).
   double grid = 0;
+  // Steps: each region's number of uniform steps (the first point is where
+  // the region starts: the end of the one before, or the lap's start).
+  std::vector<int> regionSteps = {};
   // The `curve` expression and the `cut` statement: where a failure to
   // choose the points is reported.
   frontend::SourceSpan curveSpan;

@@ -1,0 +1,89 @@
+// What the legalisations of curve.lap share: a Rewriter that writes a lap's
+// moves with the lowering's folding of numbers (a + 0 and a * 1 are a, two
+// numbers are their result), and reads the values a lap's curve takes from
+// outside it at the values compiled with.
+#pragma once
+
+#include "cncc/ir/curve_lap.h"
+
+#include "passes/evaluate.h"
+#include "passes/rewriter.h"
+
+namespace cncc::ir {
+
+class LapRewriter : public passes::Rewriter {
+public:
+  using Rewriter::Rewriter;
+
+protected:
+  // A value of the source the lap's curve reads from outside it: a constant
+  // or a parameter at its value.
+  std::optional<double> outsideValue(ValueId value) const {
+    const Instruction& definition = source_.definition(value);
+    if (definition.opcode == Opcode::Param) {
+      return source_.parameters[definition.index].defaultValue;
+    }
+    return passes::constantValue(source_, value);
+  }
+
+  std::shared_ptr<const geom::Curve> curveOf(const Instruction& lap) const {
+    return lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });
+  }
+
+  // An operand of the move being written: a value, or a number not yet
+  // written (as the lowering's arithmetic folds).
+  struct Operand {
+    ValueId value;
+    double number = 0;
+    bool isNumber() const { return !value.valid(); }
+  };
+
+  Operand operandOf(ValueId output) const {
+    std::optional<double> number = passes::constantValue(output_, output);
+    return number ? Operand{ValueId{}, *number} : Operand{output, 0};
+  }
+
+  ValueId valueOf(const Operand& operand) {
+    return operand.isNumber() ? constant(operand.number) : operand.value;
+  }
+
+  // a + b and a * b, folding numbers and the identities x + 0 and x * 1.
+  Operand add(const Operand& a, const Operand& b) {
+    if (a.isNumber() && b.isNumber()) {
+      return {ValueId{}, a.number + b.number};
+    }
+    if ((a.isNumber() && a.number == 0) || (b.isNumber() && b.number == 0)) {
+      return a.isNumber() ? b : a;
+    }
+    return {binary(Opcode::Add, a, b), 0};
+  }
+
+  Operand multiply(const Operand& a, const Operand& b) {
+    if (a.isNumber() && b.isNumber()) {
+      return {ValueId{}, a.number * b.number};
+    }
+    if ((a.isNumber() && a.number == 1) || (b.isNumber() && b.number == 1)) {
+      return a.isNumber() ? b : a;
+    }
+    return {binary(Opcode::Mul, a, b), 0};
+  }
+
+  ValueId binary(Opcode opcode, const Operand& a, const Operand& b) {
+    ValueId left = valueOf(a);
+    ValueId right = valueOf(b);
+    Instruction instruction;
+    instruction.opcode = opcode;
+    return emit(instruction, {left, right});
+  }
+
+  // A feed move to (x, y, z) at the lap's feed, on the lap's line.
+  void emitFeedMove(const Instruction& lap, ValueId x, ValueId y, ValueId z) {
+    Instruction feed;
+    feed.opcode = Opcode::Feed;
+    feed.span = lap.span;
+    feed.pass = lap.pass;
+    emit(feed, {x, y, z, mapped(lap.operands[2])});
+  }
+};
+
+} // namespace cncc::ir
