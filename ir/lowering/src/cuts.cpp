@@ -298,35 +298,25 @@ std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
   }
 }
 
+// Each piece's (each knot span's) share of the lap's length, as the
+// legalisations of a ramp lap measure it (lapRegionShares).
 std::vector<RampSegment> PartLowering::rampSegments(const CutCurve& curve, const CutStmt& cut) {
-  std::vector<RampSegment> segments;
-  std::vector<double> lengths;
-  double total = 0;
-  bool single = curve.pieces.size() == 1;
-  try {
-    for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
-      const CurvePiece& piece = curve.pieces[p];
-      geom::ParameterRange domain = piece.geometry->domain();
-      // The piece's own parameter, and where it lies in the whole curve's.
-      auto global = [&](double own) {
-        return single ? own : curve.pieceStarts[p] + (own - domain.t0);
-      };
-      std::size_t spans = std::max<std::size_t>(piece.spans.size(), 1);
-      for (std::size_t s = 0; s < spans; ++s) {
-        double from = piece.spans.empty() ? domain.t0 : piece.spans[s].t0;
-        double to = piece.spans.empty() ? domain.t1 : piece.spans[s].t1;
-        segments.push_back({p, s, total, 0});
-        lengths.push_back(geom::arcLength(*curve.geometry, global(from), global(to)));
-        total += lengths.back();
-      }
-    }
-  } catch (const geom::GeometryError& error) {
-    fail(cut.curve->span, fmt::format("cannot measure this curve: {}", error.what()),
-         DiagnosticKind::DegenerateCurve);
+  CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    entry.pieces.push_back(pieceLayout(curve.pieces[p], curve.pieceStarts[p]));
   }
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    segments[i].before = total > 0 ? segments[i].before / total : 0;
-    segments[i].share = total > 0 ? lengths[i] / total : 1.0 / segments.size();
+  std::vector<LapRegionShare> shares;
+  try {
+    shares = lapRegionShares(entry, *curve.geometry);
+  } catch (const CurveLapError& error) {
+    fail(error.span, error.what(), DiagnosticKind::DegenerateCurve);
+  }
+  std::vector<RampSegment> segments;
+  for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
+    for (std::size_t s = 0; s < entry.pieces[p].regionCount(); ++s) {
+      const LapRegionShare& share = shares[entry.regionOf(p, s)];
+      segments.push_back({p, s, share.before, share.share});
+    }
   }
   return segments;
 }
@@ -557,20 +547,27 @@ CurveTableEntry PartLowering::pieceCurveTableEntry(const CutStmt& cut, const Cut
   return entry;
 }
 
-void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
-                                  const CutStmt& cut) {
+// Where a piece starts in the whole curve's parameter, its own range and
+// its knot spans.
+CurvePieceLayout PartLowering::pieceLayout(const CurvePiece& piece, double start) {
   geom::ParameterRange own = piece.geometry->domain();
   CurvePieceLayout layout{start, own.t0, own.t1};
+  for (const geom::PolynomialSpan& span : piece.spans) {
+    layout.spans.emplace_back(span.t0, span.t1);
+  }
+  return layout;
+}
+
+void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
+                                  const CutStmt& cut) {
   std::size_t firstRegion = entry.regionCount();
   for (std::size_t s = 0; s < piece.spans.size(); ++s) {
-    const geom::PolynomialSpan& span = piece.spans[s];
-    layout.spans.emplace_back(span.t0, span.t1);
     if (piece.value->kind == CurveKind::Nurbs &&
-        !spanLiteralsFit(span, cut, piece.transform.stretch())) {
+        !spanLiteralsFit(piece.spans[s], cut, piece.transform.stretch())) {
       entry.hostPointRegions.push_back(firstRegion + s);
     }
   }
-  entry.pieces.push_back(std::move(layout));
+  entry.pieces.push_back(pieceLayout(piece, start));
 }
 
 // One lap as a curve.lap: a region per piece in [firstPiece, endPiece) (per

@@ -306,6 +306,7 @@ private:
                                     std::shared_ptr<const geom::Curve> geometry);
   CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
                                        std::size_t piece, const std::vector<RampSegment>& shares);
+  CurvePieceLayout pieceLayout(const CurvePiece& piece, double start);
   void addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
                       const frontend::CutStmt& cut);
   void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
