@@ -54,13 +54,12 @@ private:
 
   // The lap's height plus the plane's: a number where the height is one.
   ValueId heightOf(const Instruction& lap, double planeZ) {
-    ValueId from = lap.operands[0];
-    ValueId to = lap.operands[1];
-    std::optional<double> height = passes::constantValue(source_, to);
-    if (from != to && !(height && passes::constantValue(source_, from) == height)) {
+    if (isRamp(lap)) {
       throw CurveLapError(CurveLapError::Kind::DegenerateCurve, lap.span,
                           "a lap cut as arcs is level: its two heights must be one value");
     }
+    ValueId to = lap.operands[1];
+    std::optional<double> height = passes::constantValue(source_, to);
     if (height) {
       return constant(*height + planeZ);
     }
@@ -158,12 +157,7 @@ LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve) {
 }
 
 bool fitLapArcs(Function& function) {
-  bool any = false;
-  for (const Instruction& instruction : function.instructions) {
-    any = any || (instruction.opcode == Opcode::CurveLap &&
-                  function.curves[instruction.index].sampling == CurveSampling::Arcs);
-  }
-  if (!any) {
+  if (!hasCurveLap(function, CurveSampling::Arcs)) {
     return false;
   }
   ArcLapFitter fitter(function);

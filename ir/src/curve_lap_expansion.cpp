@@ -117,18 +117,6 @@ private:
     return static_cast<std::uint32_t>(output_.tables.size() - 1);
   }
 
-  // Whether the lap climbs or descends: its two heights not one value.
-  bool isRamp(const Instruction& lap) const {
-    ValueId from = lap.operands[0];
-    ValueId to = lap.operands[1];
-    if (from == to) {
-      return false;
-    }
-    std::optional<double> a = passes::constantValue(source_, from);
-    std::optional<double> b = passes::constantValue(source_, to);
-    return !(a && b && *a == *b);
-  }
-
   void expandLap(const Instruction& lap) {
     bool ramp = isRamp(lap);
     std::vector<Run>& runs = runsOf(lap, ramp);
@@ -245,15 +233,6 @@ private:
   ValueId index_;
   std::size_t tableEntries_ = 0;
 };
-
-bool hasCurveLap(const Function& function) {
-  for (const Instruction& instruction : function.instructions) {
-    if (instruction.opcode == Opcode::CurveLap) {
-      return true;
-    }
-  }
-  return false;
-}
 
 } // namespace
 

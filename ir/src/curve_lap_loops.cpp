@@ -4,8 +4,9 @@
 // range [from, to], a loop i = 1 .. N whose body is the region's arithmetic
 // at from + i (to - from) / N and a feed move there (a region of one step:
 // its arithmetic at `to`, no loop). A ramp lap descends through each region
-// by its share of the lap's length, in proportion to i / N. Nothing is tabled: the program computes
-// every point, so the part's parameters stay editable at the machine.
+// by its share of the lap's length, in proportion to i / N. Nothing is
+// tabled: the program computes every point, so the part's parameters stay
+// editable at the machine.
 #include "curve_lap_rewriter.h"
 
 #include <map>
@@ -49,14 +50,6 @@ private:
       ++region;
     }
     lap_ = nullptr;
-  }
-
-  // Whether the lap descends: its two heights not one value.
-  bool isRamp(const Instruction& lap) const {
-    ValueId from = lap.operands[0];
-    ValueId to = lap.operands[1];
-    std::optional<double> height = passes::constantValue(source_, to);
-    return from != to && !(height && passes::constantValue(source_, from) == height);
   }
 
   const std::vector<LapRegionShare>& sharesOf(const Instruction& lap) {
@@ -144,12 +137,7 @@ std::vector<LapStep> lapSteps(const CurveTableEntry& entry) {
 }
 
 bool expandControllerLoops(Function& function) {
-  bool any = false;
-  for (const Instruction& instruction : function.instructions) {
-    any = any || (instruction.opcode == Opcode::CurveLap &&
-                  function.curves[instruction.index].sampling == CurveSampling::Steps);
-  }
-  if (!any) {
+  if (!hasCurveLap(function, CurveSampling::Steps)) {
     return false;
   }
   ControllerLoopExpander expander(function);

@@ -11,6 +11,19 @@
 
 namespace cncc::ir {
 
+// Whether a curve.lap of the function is cut as `sampling` says (any lap:
+// nullopt).
+inline bool hasCurveLap(const Function& function,
+                        std::optional<CurveSampling> sampling = std::nullopt) {
+  for (const Instruction& instruction : function.instructions) {
+    if (instruction.opcode == Opcode::CurveLap &&
+        (!sampling || function.curves[instruction.index].sampling == *sampling)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 class LapRewriter : public passes::Rewriter {
 public:
   using Rewriter::Rewriter;
@@ -24,6 +37,18 @@ protected:
       return source_.parameters[definition.index].defaultValue;
     }
     return passes::constantValue(source_, value);
+  }
+
+  // Whether the lap climbs or descends: its two heights not one value.
+  bool isRamp(const Instruction& lap) const {
+    ValueId from = lap.operands[0];
+    ValueId to = lap.operands[1];
+    if (from == to) {
+      return false;
+    }
+    std::optional<double> a = passes::constantValue(source_, from);
+    std::optional<double> b = passes::constantValue(source_, to);
+    return !(a && b && *a == *b);
   }
 
   std::shared_ptr<const geom::Curve> curveOf(const Instruction& lap) const {

@@ -7,9 +7,9 @@
 // asks for arcs and holds the fit, which the fit-arcs legalisation writes
 // out as move.arc and move.feed ops. Every coordinate and centre offset is
 // on the printed grid (coordinateIncrement), so the IR is the path the
-// printed program makes. The arcs are the host's, so on a controller-side target a cut
-// whose geometry depends on a part parameter keeps its controller loops,
-// with an arcs-as-chords warning saying why.
+// printed program makes. The arcs are the host's, so on a controller-side
+// target a cut whose geometry depends on a part parameter keeps its
+// controller loops, with an arcs-as-chords warning saying why.
 #include "part_lowering.h"
 
 #include "cncc/geom/arc_fitting.h"
