@@ -25,24 +25,33 @@ bool isLocalMaximum(const std::vector<double>& values, std::size_t i) {
 // neighbouring samples and returns the largest distance found.
 CurveDistanceWitness refineMaxima(const Curve& from, const std::vector<double>& parameters,
                                   const CurveProximity& target) {
+  // Each closest point searched from the target's sample segment nearest
+  // the sample before (or, refining, nearest the sample refined about):
+  // the same points, found sooner.
   std::vector<double> distance;
+  std::vector<std::size_t> nearestSegment;
   distance.reserve(parameters.size());
-  for (double s : parameters)
-    distance.push_back(target.closestPoint(from.point(s)).distance);
+  nearestSegment.reserve(parameters.size());
+  std::size_t hint = 0;
+  for (double s : parameters) {
+    distance.push_back(target.closestPoint(from.point(s), hint).distance);
+    nearestSegment.push_back(hint);
+  }
   double largest = *std::max_element(distance.begin(), distance.end());
 
   CurveDistanceWitness worst;
   worst.distance = -1.0;
   auto record = [&](double s) {
-    CurveProximity::ClosestPoint c = target.closestPoint(from.point(s));
+    CurveProximity::ClosestPoint c = target.closestPoint(from.point(s), hint);
     if (c.distance > worst.distance)
       worst = {c.distance, s, c.parameter};
   };
-  auto distanceAt = [&](double s) { return target.closestPoint(from.point(s)).distance; };
+  auto distanceAt = [&](double s) { return target.closestPoint(from.point(s), hint).distance; };
   std::size_t last = parameters.size() - 1;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     if (!isLocalMaximum(distance, i) || distance[i] < 0.5 * largest)
       continue;
+    hint = nearestSegment[i];
     record(parameters[i]);
     double lo = parameters[i == 0 ? 0 : i - 1];
     double hi = parameters[std::min(i + 1, last)];
