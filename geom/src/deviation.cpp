@@ -74,15 +74,17 @@ CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(cur
   rule.maxTurn = kMaxTurnBetweenSamples;
   rule.maxSagitta = accuracy;
   double largestCurvature = 0.0;
+  std::vector<Eigen::Vector3d> points;
   // Visited rather than kept: a fine accuracy makes millions of samples.
   detail::visitSamples(curve, rule, [&](const detail::CurveSample& s) {
     parameters_.push_back(s.t);
-    points_.push_back(s.d.point);
+    points.push_back(s.d.point);
     largestCurvature = std::max(largestCurvature, curvatureOf(s.d));
   });
   smallestRadius_ =
       largestCurvature > 0.0 ? 1.0 / largestCurvature : std::numeric_limits<double>::infinity();
-  index_ = std::make_unique<Index>(Index{SegmentTree::throughVertices(points_)});
+  // The tree keeps the points (a curve gives at least two samples), no copy.
+  index_ = std::make_unique<Index>(Index{SegmentTree::throughVertices(std::move(points))});
 }
 
 CurveProximity::~CurveProximity() = default;
@@ -95,12 +97,27 @@ double CurveProximity::sampledDistance(const Eigen::Vector3d& p, std::size_t& hi
   return index_->tree.nearestDistance(p, hint);
 }
 
+const std::vector<Eigen::Vector3d>& CurveProximity::samplePoints() const {
+  return index_->tree.points();
+}
+
 CurveProximity::ClosestPoint CurveProximity::closestPoint(const Eigen::Vector3d& p) const {
+  return closestPointNear(p, index_->tree.nearest(p));
+}
+
+CurveProximity::ClosestPoint CurveProximity::closestPoint(const Eigen::Vector3d& p,
+                                                          std::size_t& hint) const {
+  SegmentTree::Nearest near = index_->tree.nearest(p, hint);
+  hint = near.segment;
+  return closestPointNear(p, near);
+}
+
+CurveProximity::ClosestPoint
+CurveProximity::closestPointNear(const Eigen::Vector3d& p, const SegmentTree::Nearest& near) const {
   // The nearest segment of the sample polyline locates the closest curve point to
   // within the sampling accuracy; the parameter is then refined between the samples
   // around it by Newton's method on C'(t).(C(t) - p) = 0, or by Brent's method on the
   // squared distance if Newton leaves the bracket without converging.
-  SegmentTree::Nearest near = index_->tree.nearest(p);
   std::size_t k = near.segment;
   std::size_t last = parameters_.size() - 1;
   double lo = parameters_[k == 0 ? 0 : k - 1];

@@ -1,48 +1,71 @@
 #include "cncc/geom/segment_tree.h"
 
+#include "cncc/geom/geometry_error.h"
 #include "vector_math.h"
 
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <utility>
 
 namespace cncc::geom {
 
 namespace {
 
 constexpr std::size_t kLeafSize = 4;
+// nearest(p, hint)'s bound above the hint's distance, relative to that
+// distance and p's largest coordinate.
+constexpr double kBoundMargin = 1e-9;
 
 } // namespace
 
-SegmentTree::SegmentTree(std::vector<LineSegment> segments) : segments_(std::move(segments)) {
-  if (segments_.empty())
-    segments_.push_back({Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()});
-  nodes_.reserve(2 * segments_.size() / kLeafSize + 2);
-  build(0, segments_.size());
+SegmentTree::SegmentTree(const std::vector<LineSegment>& segments) : SegmentTree({}, 2) {
+  points_.reserve(2 * std::max<std::size_t>(segments.size(), 1));
+  for (const LineSegment& segment : segments) {
+    points_.push_back(segment.start);
+    points_.push_back(segment.end);
+  }
+  if (points_.empty()) {
+    points_.assign(2, Eigen::Vector3d::Zero());
+  }
+  segmentCount_ = points_.size() / 2;
+  build(0, segmentCount_);
 }
 
-SegmentTree SegmentTree::throughVertices(const std::vector<Eigen::Vector3d>& vertices) {
-  std::vector<LineSegment> segments;
-  segments.reserve(std::max<std::size_t>(vertices.size(), 2) - 1);
-  if (vertices.size() == 1)
-    segments.push_back({vertices.front(), vertices.front()});
-  for (std::size_t i = 0; i + 1 < vertices.size(); ++i)
-    segments.push_back({vertices[i], vertices[i + 1]});
-  return SegmentTree(std::move(segments));
+SegmentTree::SegmentTree(std::vector<Eigen::Vector3d> points, std::size_t stride)
+    : points_(std::move(points)), stride_(stride) {}
+
+SegmentTree SegmentTree::throughVertices(std::vector<Eigen::Vector3d> vertices) {
+  if (vertices.empty()) {
+    vertices.push_back(Eigen::Vector3d::Zero());
+  }
+  if (vertices.size() == 1) {
+    vertices.push_back(vertices.front());
+  }
+  SegmentTree tree(std::move(vertices), 1);
+  tree.segmentCount_ = tree.points_.size() - 1;
+  tree.build(0, tree.segmentCount_);
+  return tree;
 }
 
 int SegmentTree::build(std::size_t first, std::size_t count) {
+  if (nodes_.empty()) {
+    if (count > std::numeric_limits<std::uint32_t>::max()) {
+      throw GeometryError("a segment tree holds fewer than 2^32 segments");
+    }
+    nodes_.reserve(2 * count / kLeafSize + 2);
+  }
   Node node;
-  node.first = first;
-  node.count = count;
+  node.first = static_cast<std::uint32_t>(first);
+  node.count = static_cast<std::uint32_t>(count);
   node.box.setEmpty();
   int index = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
   if (count <= kLeafSize) {
     Eigen::AlignedBox3d& box = nodes_[static_cast<std::size_t>(index)].box;
     for (std::size_t i = first; i < first + count; ++i) {
-      box.extend(segments_[i].start);
-      box.extend(segments_[i].end);
+      box.extend(start(i));
+      box.extend(end(i));
     }
     return index;
   }
@@ -53,56 +76,71 @@ int SegmentTree::build(std::size_t first, std::size_t count) {
   int left = build(first, half);
   int right = build(first + half, count - half);
   Node& built = nodes_[static_cast<std::size_t>(index)];
-  built.left = left;
   built.right = right;
   built.box = nodes_[static_cast<std::size_t>(left)].box.merged(
       nodes_[static_cast<std::size_t>(right)].box);
-  nodes_[static_cast<std::size_t>(left)].parent = index;
-  nodes_[static_cast<std::size_t>(right)].parent = index;
   return index;
 }
 
 SegmentTree::Nearest SegmentTree::measure(const Eigen::Vector3d& p, std::size_t i) const {
-  const Eigen::Vector3d& a = segments_[i].start;
-  const Eigen::Vector3d& b = segments_[i].end;
+  const Eigen::Vector3d& a = start(i);
+  const Eigen::Vector3d& b = end(i);
   double f = detail::closestFractionOnSegment(p, a, b);
   Eigen::Vector3d q = a + f * (b - a);
   return {(p - q).norm(), i, f, q};
 }
 
 SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p) const {
-  return search(p, {std::numeric_limits<double>::infinity(), 0, 0.0, segments_.front().start});
+  return searchBelow(p, 0, nodes_.front().box.exteriorDistance(p),
+                     {std::numeric_limits<double>::infinity(), 0, 0.0, start(0)});
+}
+
+SegmentTree::Nearest SegmentTree::nearest(const Eigen::Vector3d& p, std::size_t hint) const {
+  // nearest(p)'s search from the root, its best distance at the start not
+  // infinity but a bound: the hint's distance and a margin far above
+  // rounding (a box's distance may exceed that of a segment inside it by a
+  // few units in the last place). The boxes nearer than the bound are
+  // opened in the order nearest(p) opens them, and the segment it finds is
+  // under them, so it wins here too; the boxes beyond, which nearest(p)
+  // opens while its best is still far, are skipped. Nothing found under the
+  // bound (rounding beyond the margin): nearest(p).
+  double bound = measure(p, std::min(hint, segmentCount_ - 1)).distance;
+  bound += kBoundMargin * (bound + p.cwiseAbs().maxCoeff());
+  if (!(bound < std::numeric_limits<double>::infinity())) {
+    return nearest(p);
+  }
+  Nearest none{bound, segmentCount_, 0.0, p};
+  Nearest found = searchBelow(p, 0, nodes_.front().box.exteriorDistance(p), none);
+  return found.segment < segmentCount_ ? found : nearest(p);
 }
 
 double SegmentTree::nearestDistance(const Eigen::Vector3d& p, std::size_t& hint) const {
-  hint = std::min(hint, segments_.size() - 1);
+  hint = std::min(hint, segmentCount_ - 1);
   // The leaf holding the hint, then, up from it, the other child of each
   // node on the way to the root: every segment is in one of them, and a
   // subtree whose box is no nearer than the best so far is skipped whole.
+  std::array<int, 64> path;
+  std::size_t depth = 0;
   int leaf = 0;
-  while (nodes_[static_cast<std::size_t>(leaf)].left >= 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(leaf)];
-    const Node& left = nodes_[static_cast<std::size_t>(node.left)];
-    leaf = hint < left.first + left.count ? node.left : node.right;
+  while (nodes_[static_cast<std::size_t>(leaf)].right >= 0) {
+    path[depth++] = leaf;
+    const Node& left = nodes_[static_cast<std::size_t>(leaf + 1)];
+    leaf = hint < std::size_t{left.first} + left.count
+               ? leaf + 1
+               : nodes_[static_cast<std::size_t>(leaf)].right;
   }
   Nearest best = searchBelow(p, leaf, 0.0, measure(p, hint));
-  for (int node = leaf; node != 0;) {
-    int parent = nodes_[static_cast<std::size_t>(node)].parent;
-    const Node& above = nodes_[static_cast<std::size_t>(parent)];
-    int other = above.left == node ? above.right : above.left;
+  for (int node = leaf; depth > 0; node = path[--depth]) {
+    int above = path[depth - 1];
+    int other = node == above + 1 ? nodes_[static_cast<std::size_t>(above)].right : above + 1;
     best = searchBelow(p, other, nodes_[static_cast<std::size_t>(other)].box.exteriorDistance(p),
                        best);
-    node = parent;
   }
   // Every segment's distance is computed the same way whatever the order of
   // the search, so the smallest is nearest(p)'s (a tie may leave another
   // segment in `hint`).
   hint = best.segment;
   return best.distance;
-}
-
-SegmentTree::Nearest SegmentTree::search(const Eigen::Vector3d& p, Nearest best) const {
-  return searchBelow(p, 0, nodes_.front().box.exteriorDistance(p), best);
 }
 
 SegmentTree::Nearest SegmentTree::searchBelow(const Eigen::Vector3d& p, int root,
@@ -122,16 +160,17 @@ SegmentTree::Nearest SegmentTree::searchBelow(const Eigen::Vector3d& p, int root
     if (entry.distance >= best.distance)
       continue;
     const Node& node = nodes_[static_cast<std::size_t>(entry.node)];
-    if (node.left < 0) {
+    if (node.right < 0) {
       segmentsMeasured_ += node.count;
-      for (std::size_t i = node.first; i < node.first + node.count; ++i) {
+      for (std::size_t i = node.first; i < std::size_t{node.first} + node.count; ++i) {
         Nearest candidate = measure(p, i);
         if (candidate.distance < best.distance)
           best = candidate;
       }
       continue;
     }
-    Entry left{node.left, nodes_[static_cast<std::size_t>(node.left)].box.exteriorDistance(p)};
+    Entry left{entry.node + 1,
+               nodes_[static_cast<std::size_t>(entry.node + 1)].box.exteriorDistance(p)};
     Entry right{node.right, nodes_[static_cast<std::size_t>(node.right)].box.exteriorDistance(p)};
     bool leftFirst = left.distance <= right.distance;
     stack[top++] = leftFirst ? right : left;
@@ -149,16 +188,18 @@ SegmentTree::firstWithin(const Eigen::Vector3d& p, double radius, std::size_t fr
   std::size_t top = 0;
   stack[top++] = 0;
   while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (node.first + node.count <= from || node.box.exteriorDistance(p) > radius) {
+    int index = stack[--top];
+    const Node& node = nodes_[static_cast<std::size_t>(index)];
+    std::size_t last = std::size_t{node.first} + node.count;
+    if (last <= from || node.box.exteriorDistance(p) > radius) {
       continue;
     }
-    if (node.left < 0) {
-      std::size_t first = std::max(node.first, from);
-      segmentsMeasured_ += node.first + node.count - first;
-      for (std::size_t i = first; i < node.first + node.count; ++i) {
-        const Eigen::Vector3d& a = segments_[i].start;
-        const Eigen::Vector3d& b = segments_[i].end;
+    if (node.right < 0) {
+      std::size_t first = std::max<std::size_t>(node.first, from);
+      segmentsMeasured_ += last - first;
+      for (std::size_t i = first; i < last; ++i) {
+        const Eigen::Vector3d& a = start(i);
+        const Eigen::Vector3d& b = end(i);
         double f = detail::closestFractionOnSegment(p, a, b);
         Eigen::Vector3d q = a + f * (b - a);
         double d = (p - q).norm();
@@ -169,7 +210,7 @@ SegmentTree::firstWithin(const Eigen::Vector3d& p, double radius, std::size_t fr
       continue;
     }
     stack[top++] = node.right;
-    stack[top++] = node.left;
+    stack[top++] = index + 1;
   }
   return std::nullopt;
 }

@@ -1,6 +1,7 @@
 // Deviation between two curves.
 
 #include "cncc/geom/curve_deviation.h"
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "test_curves.h"
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace cncc::geom {
@@ -42,6 +44,35 @@ TEST(CurveDeviation, FindsANarrowBumpBetweenSamples) {
   CurveDeviationReport report = measureCurveDeviation(line, bumpy, {1e-6});
   EXPECT_NEAR(report.maxDeviation(), 0.002, 1e-6);
   EXPECT_NEAR(report.curveToApproximation.parameter, 3.3, 1e-3);
+}
+
+TEST(CurveDeviation, ABudgetedCurveIsAskedItsPointsBeforeTheApproximation) {
+  ArcCurve arc({0, 0}, 10.0, 0.0, kPi);
+  ArcCurve approximation({0, 0.001}, 10.0, 0.0, kPi);
+  constexpr double kAccuracy = 1e-7;
+  auto measured = [&](std::size_t limit) {
+    BudgetedCurve curve(arc, limit);
+    CurveProximity proximity(curve, kAccuracy);
+    return measureCurveDeviation(approximation, curve, proximity, {kAccuracy}).maxDeviation();
+  };
+  // Every point the measurement asks of the curve, the proximity's first.
+  BudgetedCurve counted(arc, std::numeric_limits<std::size_t>::max());
+  CurveProximity proximity(counted, kAccuracy);
+  std::size_t forProximity = counted.used();
+  double deviation =
+      measureCurveDeviation(approximation, counted, proximity, {kAccuracy}).maxDeviation();
+  std::size_t all = counted.used();
+  EXPECT_NEAR(deviation, 0.001, 1e-9);
+  // Refused exactly past them all.
+  EXPECT_EQ(measured(all), deviation);
+  EXPECT_THROW(measured(all - 1), EvaluationBudgetExceeded);
+  // Refused within the curve's own samples: the approximation is asked nothing.
+  BudgetedCurve curve(arc, forProximity + 100);
+  BudgetedCurve approximationAsked(approximation, std::numeric_limits<std::size_t>::max());
+  CurveProximity curveProximity(curve, kAccuracy);
+  EXPECT_THROW(measureCurveDeviation(approximationAsked, curve, curveProximity, {kAccuracy}),
+               EvaluationBudgetExceeded);
+  EXPECT_EQ(approximationAsked.used(), 0u);
 }
 
 TEST(CurveDeviation, LargestDistanceOverAnInterval) {

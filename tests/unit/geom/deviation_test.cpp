@@ -1,6 +1,7 @@
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/discretisation.h"
+#include "cncc/geom/function_curve.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "test_curves.h"
@@ -90,6 +91,31 @@ TEST(CurveProximity, ClosestPointOnACircle) {
   EXPECT_NEAR(c.parameter, 0.125, 1e-8);
   EXPECT_NEAR(proximity.smallestSampledRadius(), 1.0, 1e-12);
   EXPECT_THROW(CurveProximity(circle, 0.0), GeometryError);
+}
+
+TEST(CurveProximity, ClosestPointFromAHintIsClosestPointsToTheBit) {
+  // Three turns of a spiral: points beside a turn lie in the boxes of the
+  // turns outside it.
+  FunctionCurve spiral({0.0, 6 * std::numbers::pi}, [](double t) {
+    return Eigen::Vector3d((1 + t) * std::cos(t), (1 + t) * std::sin(t), 0.0);
+  });
+  CurveProximity proximity(spiral, 1e-6);
+  std::size_t hint = 0;
+  for (int i = 0; i <= 2000; ++i) {
+    double t = 6 * std::numbers::pi * i / 2000;
+    // Inside, outside and on the curve, the hint the last point's segment.
+    Eigen::Vector3d p = spiral.point(t) * (1 + 0.05 * std::sin(7.0 * i));
+    CurveProximity::ClosestPoint expected = proximity.closestPoint(p);
+    CurveProximity::ClosestPoint found = proximity.closestPoint(p, hint);
+    EXPECT_EQ(found.distance, expected.distance) << i;
+    EXPECT_EQ(found.parameter, expected.parameter) << i;
+    EXPECT_EQ(found.point, expected.point) << i;
+    ASSERT_LT(hint + 1, proximity.samplePoints().size());
+  }
+  // A hint past the end is the last segment.
+  hint = 1u << 30;
+  EXPECT_EQ(proximity.closestPoint({3, 4, 0}, hint).parameter,
+            proximity.closestPoint({3, 4, 0}).parameter);
 }
 
 } // namespace

@@ -42,7 +42,10 @@ struct CurveDeviationReport {
 CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
                                            const DeviationOptions& options = {});
 /// The same with `curveProximity`, of `curve` at options.accuracy, built by the caller
-/// (a fit that measures many approximations of one curve builds it once).
+/// (a fit that measures many approximations of one curve builds it once). The curve's
+/// own samples and points are asked first, before the approximation is sampled: a
+/// BudgetedCurve is asked the same points in all, and one past its budget throws
+/// before the work on the approximation is done.
 CurveDeviationReport measureCurveDeviation(const Curve& approximation, const Curve& curve,
                                            const CurveProximity& curveProximity,
                                            const DeviationOptions& options);

@@ -2,6 +2,7 @@
 
 #include "cncc/geom/curve.h"
 #include "cncc/geom/geometry_error.h"
+#include "cncc/geom/segment_tree.h"
 
 #include <Eigen/Core>
 
@@ -79,6 +80,10 @@ public:
     Eigen::Vector3d point;
   };
   ClosestPoint closestPoint(const Eigen::Vector3d& p) const;
+  /// closestPoint(p), the same to the bit, its search of the samples bounded
+  /// from the start by sample segment `hint` (SegmentTree::nearest(p, hint)),
+  /// and the segment found left in `hint`: for points along a curve.
+  ClosestPoint closestPoint(const Eigen::Vector3d& p, std::size_t& hint) const;
   /// The distance from p to the polyline through the samples, within `accuracy` of
   /// its distance to the curve, without evaluating the curve.
   double sampledDistance(const Eigen::Vector3d& p) const;
@@ -89,15 +94,17 @@ public:
   const std::vector<double>& sampleParameters() const { return parameters_; }
   /// Segments of the curve's samples the queries have measured so far.
   std::size_t segmentsMeasured() const;
-  const std::vector<Eigen::Vector3d>& samplePoints() const { return points_; }
+  const std::vector<Eigen::Vector3d>& samplePoints() const;
   /// Smallest radius of curvature seen at the samples (for choosing step sizes).
   double smallestSampledRadius() const { return smallestRadius_; }
 
 private:
   struct Index;
+  // The curve's point nearest p, from the samples' segment nearest it.
+  ClosestPoint closestPointNear(const Eigen::Vector3d& p, const SegmentTree::Nearest& near) const;
+
   const Curve& curve_;
   std::vector<double> parameters_;
-  std::vector<Eigen::Vector3d> points_;
   double smallestRadius_;
   std::unique_ptr<Index> index_;
 };
