@@ -54,9 +54,13 @@ std::vector<std::size_t> peaksLargestFirst(const std::vector<double>& values, do
 template <class Refine>
 void refineLargestFirst(const std::vector<std::size_t>& peaks, const std::vector<double>& values,
                         double accuracy, const DeviationWitness& worst, Refine refine) {
+  // The largest is always refined: an accuracy larger than the distances
+  // (a tolerance as large as the part) would otherwise leave no witness.
+  bool first = true;
   for (std::size_t i : peaks) {
-    if (values[i] <= worst.distance + accuracy)
+    if (!first && values[i] <= worst.distance + accuracy)
       return;
+    first = false;
     refine(i);
   }
 }

@@ -139,6 +139,9 @@ constexpr std::size_t kLookAhead = 4;
 // A move that ends this close to the end of its cut's path (mm, or inches in
 // an inch part) may already belong to the next cut, which starts there.
 constexpr double kEndOfCut = 1.0;
+// A move keeps to the current cut without a look at the next ones when it
+// is within the cut's allowance and at most this far from its path.
+constexpr double kKeepAtMost = 1.0;
 // Distances this close are ties, which the earlier cut wins (unless the
 // program has finished it).
 constexpr double kTie = 1e-9;
@@ -198,7 +201,9 @@ private:
       return false;
     }
     const SegmentPath& path = cuts_.cut(current_);
-    double allowance = allowanceOf(cuts_.order[current_]);
+    // Within a millimetre at most: a tolerance as large as the part (1e9)
+    // would keep every later cut's moves with this one.
+    double allowance = std::min(allowanceOf(cuts_.order[current_]), kKeepAtMost);
     std::optional<SegmentPath::Place> place = path.firstWithin(executed.end, allowance, progress_);
     if (!place || !(place->along < path.length() - kEndOfCut)) {
       return false;

@@ -7,7 +7,9 @@
 #include "cncc/lsp/uri.h"
 
 #include <filesystem>
+
 #include <fstream>
+#include <unistd.h>
 
 namespace cncc::lsp {
 namespace {
@@ -15,9 +17,10 @@ namespace {
 class CutLenses : public ::testing::Test {
 protected:
   void SetUp() override {
-    folder_ =
-        std::filesystem::temp_directory_path() /
-        ("cncc-cut-lenses-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    folder_ = std::filesystem::temp_directory_path() /
+              // Each test's own folder: ctest runs the tests of a fixture in parallel.
+              ("cncc-cut-lenses-" + std::to_string(::getpid()) + "-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(folder_ / "programs");
     source_ = "part ring {\n  units mm\n  curve circle(0, 0, 5)\n  curve circle(0, 0, 8)\n}\n";
     write(folder_ / "ring.cdl", source_);

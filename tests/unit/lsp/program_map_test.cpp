@@ -7,15 +7,18 @@
 
 #include <filesystem>
 
+#include <unistd.h>
+
 namespace cncc::lsp {
 namespace {
 
 class ProgramWithMap : public ::testing::Test {
 protected:
   void SetUp() override {
-    folder_ =
-        std::filesystem::temp_directory_path() /
-        ("cncc-program-map-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    folder_ = std::filesystem::temp_directory_path() /
+              // Each test's own folder: ctest runs the tests of a fixture in parallel.
+              ("cncc-program-map-" + std::to_string(::getpid()) + "-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(folder_);
     write(folder_ / "ring.cdl", "part ring {\n  units mm\n  curve circle(0, 0, 5)\n}\n");
     program_ = "%\nO1000\n#6=5.\nG3 X#6 Y0. I-#6 J0.\nM30\n%\n";
