@@ -42,15 +42,12 @@ public:
   using LapRewriter::LapRewriter;
 
 private:
-  void visit(const Instruction& instruction) override {
-    if (instruction.opcode == Opcode::CurveLap &&
-        source_.curves[instruction.index].sampling == CurveSampling::Arcs) {
-      writeArcs(instruction);
-      markChanged();
-    } else {
-      copy(instruction);
-    }
+  bool writes(const CurveTableEntry& entry) const override {
+    return entry.sampling == CurveSampling::Arcs;
   }
+  void writeLap(const Instruction& lap) override { writeArcs(lap); }
+  // The lap's regions are not rewritten: its moves are the fit's.
+  void writePoint(const Instruction&, const Instruction& point) override { copy(point); }
 
   // The lap's height plus the plane's: a number where the height is one.
   ValueId heightOf(const Instruction& lap, double planeZ) {

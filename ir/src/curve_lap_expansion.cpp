@@ -39,15 +39,10 @@ public:
   }
 
 private:
-  void visit(const Instruction& instruction) override {
-    if (instruction.opcode == Opcode::CurveLap) {
-      expandLap(instruction);
-      markChanged();
-    } else if (instruction.opcode == Opcode::CurvePoint && lap_ != nullptr) {
-      feedToPoint(instruction);
-    } else {
-      copy(instruction);
-    }
+  bool writes(const CurveTableEntry&) const override { return true; }
+  void writeLap(const Instruction& lap) override { expandLap(lap); }
+  void writePoint(const Instruction& lap, const Instruction& point) override {
+    feedToPoint(lap, point);
   }
 
   // An entry's points, chosen once, and their runs.
@@ -169,17 +164,9 @@ private:
   }
 
   void emitRun(const Instruction& lap, Run& run, bool ramp) {
-    Instruction loop;
-    loop.opcode = Opcode::Loop;
-    loop.index = static_cast<std::uint32_t>(LoopRole::Curve);
-    loop.span = lap.span;
-    loop.pass = lap.pass;
-    loop.regions.resize(1);
     ValueId last = constant(static_cast<double>(run.locals.size()) - 1);
     ValueId first = constant(0);
-    index_ = beginRegions(loop, {first, last});
-    enterOutputRegion(0);
-    lap_ = &lap;
+    index_ = beginLapLoop(lap, first, last);
     run_ = &run;
     ramp_ = ramp;
     if (const HostPoints* host = hostPoints(lap, run)) {
@@ -193,7 +180,6 @@ private:
       replace(lap.result, load(run.localTable));
       rewriteRegion(lap.regions[run.region]);
     }
-    lap_ = nullptr;
     endRegions();
   }
 
@@ -205,9 +191,9 @@ private:
   }
 
   // The region's curve.point: a feed move there, raised by the lap's height.
-  void feedToPoint(const Instruction& point) {
+  void feedToPoint(const Instruction& lap, const Instruction& point) {
     std::vector<ValueId> operands = mappedOperands(point);
-    emitFeed(*lap_, {operandOf(operands[0]), operandOf(operands[1]), operandOf(operands[2])});
+    emitFeed(lap, {operandOf(operands[0]), operandOf(operands[1]), operandOf(operands[2])});
   }
 
   void emitFeed(const Instruction& lap, const std::array<Operand, 3>& point) {
@@ -227,7 +213,6 @@ private:
   }
 
   std::map<std::uint32_t, EntryPoints> entries_;
-  const Instruction* lap_ = nullptr;
   Run* run_ = nullptr;
   bool ramp_ = false;
   ValueId index_;

@@ -20,21 +20,16 @@ public:
   using LapRewriter::LapRewriter;
 
 private:
-  void visit(const Instruction& instruction) override {
-    if (instruction.opcode == Opcode::CurveLap &&
-        source_.curves[instruction.index].sampling == CurveSampling::Steps) {
-      expandLap(instruction);
-      markChanged();
-    } else if (instruction.opcode == Opcode::CurvePoint && lap_ != nullptr) {
-      feedToPoint(instruction);
-    } else {
-      copy(instruction);
-    }
+  bool writes(const CurveTableEntry& entry) const override {
+    return entry.sampling == CurveSampling::Steps;
+  }
+  void writeLap(const Instruction& lap) override { expandLap(lap); }
+  void writePoint(const Instruction& lap, const Instruction& point) override {
+    feedToPoint(lap, point);
   }
 
   void expandLap(const Instruction& lap) {
     const CurveTableEntry& entry = source_.curves[lap.index];
-    lap_ = &lap;
     shares_ = isRamp(lap) ? &sharesOf(lap) : nullptr;
     std::size_t region = 0;
     for (const CurvePieceLayout& piece : entry.pieces) {
@@ -49,7 +44,6 @@ private:
       }
       ++region;
     }
-    lap_ = nullptr;
   }
 
   const std::vector<LapRegionShare>& sharesOf(const Instruction& lap) {
@@ -65,16 +59,9 @@ private:
   // i = 1 .. steps, the region at from + i * step.
   void emitLoop(const Instruction& lap, std::size_t region, const CurvePieceLayout& piece,
                 int steps) {
-    Instruction loop;
-    loop.opcode = Opcode::Loop;
-    loop.index = static_cast<std::uint32_t>(LoopRole::Curve);
-    loop.span = lap.span;
-    loop.pass = lap.pass;
-    loop.regions.resize(1);
     ValueId first = constant(1);
     ValueId last = constant(steps);
-    ValueId index = beginRegions(loop, {first, last});
-    enterOutputRegion(0);
+    ValueId index = beginLapLoop(lap, first, last);
     double step = (piece.to - piece.from) / steps;
     Operand t = add({ValueId{}, piece.from}, multiply({index, 0}, {ValueId{}, step}));
     index_ = index;
@@ -85,9 +72,9 @@ private:
 
   // The region's curve.point: a feed move there, raised by the lap's height
   // (on a ramp, from + (to - from) (before + share fraction)).
-  void feedToPoint(const Instruction& point) {
+  void feedToPoint(const Instruction& lap, const Instruction& point) {
     std::vector<ValueId> operands = mappedOperands(point);
-    Operand height = operandOf(mapped(lap_->operands[1]));
+    Operand height = operandOf(mapped(lap.operands[1]));
     if (shares_ != nullptr) {
       Operand fraction =
           steps_ == 1
@@ -95,17 +82,16 @@ private:
               : Operand{binary(Opcode::Div, {index_, 0}, {ValueId{}, static_cast<double>(steps_)}),
                         0};
       Operand done = add({ValueId{}, share_.before}, multiply({ValueId{}, share_.share}, fraction));
-      Operand from = operandOf(mapped(lap_->operands[0]));
+      Operand from = operandOf(mapped(lap.operands[0]));
       Operand rise = from.isNumber() && height.isNumber()
                          ? Operand{ValueId{}, height.number - from.number}
                          : Operand{binary(Opcode::Sub, height, from), 0};
       height = add(from, multiply(rise, done));
     }
     ValueId z = valueOf(add(height, operandOf(operands[2])));
-    emitFeedMove(*lap_, operands[0], operands[1], z);
+    emitFeedMove(lap, operands[0], operands[1], z);
   }
 
-  const Instruction* lap_ = nullptr;
   // A ramp lap's regions' shares (null on a level lap), and the region's;
   // the region's steps and its loop's index (the fraction done: i / steps).
   const std::vector<LapRegionShare>* shares_ = nullptr;

@@ -29,6 +29,42 @@ public:
   using Rewriter::Rewriter;
 
 protected:
+  // Whether this legalisation writes out the laps of `entry` (writeLap);
+  // the others are copied as they are.
+  virtual bool writes(const CurveTableEntry& entry) const = 0;
+  virtual void writeLap(const Instruction& lap) = 0;
+  // A curve.point of the lap being written, met where writeLap rewrites
+  // one of its regions.
+  virtual void writePoint(const Instruction& lap, const Instruction& point) = 0;
+
+  void visit(const Instruction& instruction) final {
+    if (instruction.opcode == Opcode::CurveLap && writes(source_.curves[instruction.index])) {
+      const Instruction* outer = lap_;
+      lap_ = &instruction;
+      writeLap(instruction);
+      lap_ = outer;
+      markChanged();
+    } else if (instruction.opcode == Opcode::CurvePoint && lap_ != nullptr) {
+      writePoint(*lap_, instruction);
+    } else {
+      copy(instruction);
+    }
+  }
+
+  // A loop over a lap's points, from `low` to `high`, its body the output
+  // region from now on (until endRegions()); returns its variable.
+  ValueId beginLapLoop(const Instruction& lap, ValueId low, ValueId high) {
+    Instruction loop;
+    loop.opcode = Opcode::Loop;
+    loop.index = static_cast<std::uint32_t>(LoopRole::Curve);
+    loop.span = lap.span;
+    loop.pass = lap.pass;
+    loop.regions.resize(1);
+    ValueId variable = beginRegions(loop, {low, high});
+    enterOutputRegion(0);
+    return variable;
+  }
+
   // A value of the source the lap's curve reads from outside it: a constant
   // or a parameter at its value.
   std::optional<double> outsideValue(ValueId value) const {
@@ -109,6 +145,9 @@ protected:
     feed.pass = lap.pass;
     emit(feed, {x, y, z, mapped(lap.operands[2])});
   }
+
+private:
+  const Instruction* lap_ = nullptr; // being written
 };
 
 } // namespace cncc::ir

@@ -115,10 +115,42 @@ TEST(PassesExamplesTest, DefaultPipelineKeepsToolPathAndDoesNotGrow) {
   EXPECT_GE(lowered, 3);
 }
 
-std::size_t curveLapCount(const Function& function) {
+// The function's curve.laps cut as `sampling` says (all: nullopt).
+std::size_t curveLapCount(const Function& function,
+                          std::optional<CurveSampling> sampling = std::nullopt) {
   std::size_t laps = 0;
   for (const Instruction& instruction : function.instructions) {
-    laps += instruction.opcode == Opcode::CurveLap ? 1 : 0;
+    laps += instruction.opcode == Opcode::CurveLap &&
+                    (!sampling || function.curves[instruction.index].sampling == *sampling)
+                ? 1
+                : 0;
+  }
+  return laps;
+}
+
+// Every example lowered with `lowering`, its laps left (expandCurveLaps
+// off): interpreting the IR before the legalisations and after them gives
+// the same path to the last bit. The laps cut as `sampling` says (all:
+// nullopt) that the lowering left.
+std::size_t legaliseEveryExample(LoweringOptions lowering,
+                                 std::optional<CurveSampling> sampling = std::nullopt) {
+  lowering.expandCurveLaps = false;
+  std::size_t laps = 0;
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::unique_ptr<LoweredExample> lowered =
+        lowerExampleKept(example.file, example.part, lowering);
+    std::optional<Function>& function = lowered->function;
+    if (!function) {
+      ADD_FAILURE() << name << " does not lower";
+      continue;
+    }
+    laps += curveLapCount(*function, sampling);
+    ToolPath before = interpret(*function);
+    runCurveLegalisation(*function);
+    EXPECT_EQ(curveLapCount(*function), 0u) << name;
+    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
+    expectSamePath(before, interpret(*function), name);
   }
   return laps;
 }
@@ -126,34 +158,8 @@ std::size_t curveLapCount(const Function& function) {
 // The target-neutral IR, its laps run by the interpreter, gives the path
 // of the IR after expand-curve-laps to the last bit: every stage runs.
 TEST(PassesExamplesTest, ExpandingCurveLapsKeepsToolPath) {
-  LoweringOptions neutral;
-  neutral.expandCurveLaps = false;
-  std::size_t laps = 0;
-  for (const Example& example : examples) {
-    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
-    std::unique_ptr<LoweredExample> lowered = lowerExampleKept(example.file, example.part, neutral);
-    std::optional<Function>& function = lowered->function;
-    ASSERT_TRUE(function) << name;
-    laps += curveLapCount(*function);
-    ToolPath before = interpret(*function);
-    expandCurveLaps(*function);
-    EXPECT_EQ(curveLapCount(*function), 0u) << name;
-    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
-    expectSamePath(before, interpret(*function), name);
-  }
   // Every example but the ones cut on arcs alone has laps along its curves.
-  EXPECT_GE(laps, 10u);
-}
-
-std::size_t arcsLapCount(const Function& function) {
-  std::size_t laps = 0;
-  for (const Instruction& instruction : function.instructions) {
-    laps += instruction.opcode == Opcode::CurveLap &&
-                    function.curves[instruction.index].sampling == CurveSampling::Arcs
-                ? 1
-                : 0;
-  }
-  return laps;
+  EXPECT_GE(legaliseEveryExample({}), 10u);
 }
 
 // The same with --arcs on a target that prints G02/G03 (as gcode's grid):
@@ -161,24 +167,10 @@ std::size_t arcsLapCount(const Function& function) {
 // the interpreter ran them.
 TEST(PassesExamplesTest, FittingArcsKeepsToolPath) {
   LoweringOptions arcs;
-  arcs.expandCurveLaps = false;
   arcs.arcBlocks = true;
   arcs.arcsOnEveryCut = true;
   arcs.coordinateIncrement = 0.0001;
-  std::size_t arcsLaps = 0;
-  for (const Example& example : examples) {
-    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
-    std::unique_ptr<LoweredExample> lowered = lowerExampleKept(example.file, example.part, arcs);
-    std::optional<Function>& function = lowered->function;
-    ASSERT_TRUE(function) << name;
-    arcsLaps += arcsLapCount(*function);
-    ToolPath before = interpret(*function);
-    runCurveLegalisation(*function);
-    EXPECT_EQ(curveLapCount(*function), 0u) << name;
-    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
-    expectSamePath(before, interpret(*function), name);
-  }
-  EXPECT_GE(arcsLaps, 10u);
+  EXPECT_GE(legaliseEveryExample(arcs, CurveSampling::Arcs), 10u);
 }
 
 // Read back from its text, a lap cut as arcs has neither the source's curve
@@ -193,7 +185,7 @@ TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
   arcs.coordinateIncrement = 0.001;
   std::unique_ptr<LoweredExample> lowered = lowerExampleKept("polar_contour.cdl", "", arcs);
   ASSERT_TRUE(lowered->function);
-  ASSERT_GE(arcsLapCount(*lowered->function), 1u);
+  ASSERT_GE(curveLapCount(*lowered->function, CurveSampling::Arcs), 1u);
   ParseError error;
   std::optional<Function> parsed = parseFunction(printFunction(*lowered->function), error);
   ASSERT_TRUE(parsed) << error.line << ": " << error.message;
@@ -253,26 +245,10 @@ part ring(depth = 4) {
 // legalisations and after them gives the same path to the last bit.
 TEST(PassesExamplesTest, ControllerLegalisationKeepsEveryExamplesToolPath) {
   LoweringOptions controller;
-  controller.expandCurveLaps = false;
   controller.controllerLoops = true;
   controller.coordinateIncrement = 0.0001; // fine enough for the parts in inches
-  std::size_t steppedLaps = 0;
-  for (const Example& example : examples) {
-    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
-    std::unique_ptr<LoweredExample> lowered =
-        lowerExampleKept(example.file, example.part, controller);
-    std::optional<Function>& function = lowered->function;
-    ASSERT_TRUE(function) << name;
-    for (const CurveTableEntry& entry : function->curves) {
-      steppedLaps += entry.sampling == CurveSampling::Steps ? 1 : 0;
-    }
-    ToolPath before = interpret(*function);
-    runCurveLegalisation(*function);
-    EXPECT_EQ(curveLapCount(*function), 0u) << name;
-    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
-    expectSamePath(before, interpret(*function), name);
-  }
-  EXPECT_GE(steppedLaps, 1u); // polar_contour's ramp and passes
+  // polar_contour's ramp and level laps.
+  EXPECT_GE(legaliseEveryExample(controller, CurveSampling::Steps), 1u);
 }
 
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {
