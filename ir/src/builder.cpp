@@ -120,11 +120,14 @@ std::uint32_t FunctionBuilder::addCurve(CurveTableEntry entry) {
 }
 
 ValueId FunctionBuilder::beginCurveLap(std::uint32_t curve, ValueId zFrom, ValueId zTo,
-                                       ValueId feedRate) {
+                                       ValueId feedRate,
+                                       const std::vector<ValueId>& computedSteps) {
   Instruction instruction;
   instruction.opcode = Opcode::CurveLap;
   instruction.index = curve;
   instruction.operands = {zFrom, zTo, feedRate};
+  instruction.operands.insert(instruction.operands.end(), computedSteps.begin(),
+                              computedSteps.end());
   instruction.regions.resize(function_.curves[curve].regionCount());
   InstructionId id = append(std::move(instruction), ValueType::F64);
   insertion_.push_back({id, 0});

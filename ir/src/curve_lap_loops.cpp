@@ -9,6 +9,7 @@
 // editable at the machine.
 #include "curve_lap_rewriter.h"
 
+#include <functional>
 #include <map>
 
 namespace cncc::ir {
@@ -31,19 +32,43 @@ private:
   void expandLap(const Instruction& lap) {
     const CurveTableEntry& entry = source_.curves[lap.index];
     shares_ = isRamp(lap) ? &sharesOf(lap) : nullptr;
-    std::size_t region = 0;
-    for (const CurvePieceLayout& piece : entry.pieces) {
-      int steps = entry.regionSteps[region];
+    std::size_t computed = 0;
+    for (std::size_t region = 0; region < entry.pieces.size(); ++region) {
       share_ = shares_ != nullptr ? (*shares_)[region] : LapRegionShare{};
-      steps_ = steps;
-      if (steps == 1) {
-        replace(lap.result, constant(piece.to));
+      RegionSteps steps = stepsOf(lap, entry, region, computed);
+      count_ = steps.count;
+      single_ = steps.single;
+      if (steps.single) {
+        replace(lap.result, valueOf(steps.to));
         rewriteRegion(lap.regions[region]);
       } else {
-        emitLoop(lap, region, piece, steps);
+        emitLoop(lap, region, steps);
       }
-      ++region;
     }
+  }
+
+  // A region's range and count: numbers from the entry, or the lap's
+  // operands (the k-th region whose steps the program computes).
+  struct RegionSteps {
+    Operand from, to, count;
+    bool single = false;
+  };
+  RegionSteps stepsOf(const Instruction& lap, const CurveTableEntry& entry, std::size_t region,
+                      std::size_t& computed) {
+    int count = entry.regionSteps[region];
+    if (count > 0) {
+      const CurvePieceLayout& piece = entry.pieces[region];
+      return {{ValueId{}, piece.from},
+              {ValueId{}, piece.to},
+              {ValueId{}, static_cast<double>(count)},
+              count == 1};
+    }
+    std::size_t first = 3 + 3 * computed++;
+    RegionSteps steps{operandOf(mapped(lap.operands[first])),
+                      operandOf(mapped(lap.operands[first + 1])),
+                      operandOf(mapped(lap.operands[first + 2]))};
+    steps.single = passes::constantValue(source_, lap.operands[first + 2]) == 1.0;
+    return steps;
   }
 
   const std::vector<LapRegionShare>& sharesOf(const Instruction& lap) {
@@ -56,14 +81,18 @@ private:
     return known->second;
   }
 
-  // i = 1 .. steps, the region at from + i * step.
-  void emitLoop(const Instruction& lap, std::size_t region, const CurvePieceLayout& piece,
-                int steps) {
+  // i = 1 .. count, the region at from + i * step: a number where the range
+  // and count are, else computed in the loop.
+  void emitLoop(const Instruction& lap, std::size_t region, const RegionSteps& steps) {
+    bool numbers = steps.from.isNumber() && steps.to.isNumber() && steps.count.isNumber();
     ValueId first = constant(1);
-    ValueId last = constant(steps);
+    ValueId last = valueOf(steps.count);
     ValueId index = beginLapLoop(lap, first, last);
-    double step = (piece.to - piece.from) / steps;
-    Operand t = add({ValueId{}, piece.from}, multiply({index, 0}, {ValueId{}, step}));
+    Operand step =
+        numbers
+            ? Operand{ValueId{}, (steps.to.number - steps.from.number) / steps.count.number}
+            : arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
+    Operand t = add(steps.from, multiply({index, 0}, step));
     index_ = index;
     replace(lap.result, valueOf(t));
     rewriteRegion(lap.regions[region]);
@@ -77,15 +106,10 @@ private:
     Operand height = operandOf(mapped(lap.operands[1]));
     if (shares_ != nullptr) {
       Operand fraction =
-          steps_ == 1
-              ? Operand{ValueId{}, 1}
-              : Operand{binary(Opcode::Div, {index_, 0}, {ValueId{}, static_cast<double>(steps_)}),
-                        0};
+          single_ ? Operand{ValueId{}, 1} : arithmetic(Opcode::Div, {index_, 0}, count_);
       Operand done = add({ValueId{}, share_.before}, multiply({ValueId{}, share_.share}, fraction));
       Operand from = operandOf(mapped(lap.operands[0]));
-      Operand rise = from.isNumber() && height.isNumber()
-                         ? Operand{ValueId{}, height.number - from.number}
-                         : Operand{binary(Opcode::Sub, height, from), 0};
+      Operand rise = arithmetic(Opcode::Sub, height, from);
       height = add(from, multiply(rise, done));
     }
     ValueId z = valueOf(add(height, operandOf(operands[2])));
@@ -93,31 +117,46 @@ private:
   }
 
   // A ramp lap's regions' shares (null on a level lap), and the region's;
-  // the region's steps and its loop's index (the fraction done: i / steps).
+  // the region's count of steps and its loop's index (the fraction done:
+  // i / count; 1 for a single step).
   const std::vector<LapRegionShare>* shares_ = nullptr;
   LapRegionShare share_;
-  int steps_ = 1;
+  Operand count_;
+  bool single_ = true;
   ValueId index_;
   std::map<std::uint32_t, std::vector<LapRegionShare>> entryShares_;
 };
 
 } // namespace
 
-std::vector<LapStep> lapSteps(const CurveTableEntry& entry) {
-  std::vector<LapStep> steps;
-  std::size_t region = 0;
-  for (const CurvePieceLayout& piece : entry.pieces) {
+std::vector<StepRange> lapStepRanges(const CurveTableEntry& entry,
+                                     const std::function<StepRange(std::size_t)>& computed) {
+  std::vector<StepRange> ranges;
+  std::size_t computedSoFar = 0;
+  for (std::size_t region = 0; region < entry.pieces.size(); ++region) {
     int count = region < entry.regionSteps.size() ? entry.regionSteps[region] : 0;
-    if (count == 1) {
-      steps.push_back({region, piece.to, 1});
+    if (count == 0) {
+      ranges.push_back(computed(computedSoFar++));
     } else {
-      double step = (piece.to - piece.from) / count;
-      for (int i = 1; i <= count; ++i) {
-        steps.push_back({region, piece.from == 0 ? i * step : piece.from + i * step,
-                         static_cast<double>(i) / count});
-      }
+      const CurvePieceLayout& piece = entry.pieces[region];
+      ranges.push_back({piece.from, piece.to, static_cast<double>(count), count == 1});
     }
-    ++region;
+  }
+  return ranges;
+}
+
+std::vector<LapStep> lapSteps(const std::vector<StepRange>& ranges) {
+  std::vector<LapStep> steps;
+  for (std::size_t region = 0; region < ranges.size(); ++region) {
+    const StepRange& range = ranges[region];
+    if (range.single) {
+      steps.push_back({region, range.to, 1});
+      continue;
+    }
+    double step = (range.to - range.from) / range.count;
+    for (double i = 1; i <= range.count; ++i) {
+      steps.push_back({region, range.from + i * step, i / range.count});
+    }
   }
   return steps;
 }

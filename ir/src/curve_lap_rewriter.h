@@ -108,26 +108,50 @@ protected:
     return operand.isNumber() ? constant(operand.number) : operand.value;
   }
 
-  // a + b and a * b, folding numbers and the identities x + 0 and x * 1.
-  Operand add(const Operand& a, const Operand& b) {
-    if (a.isNumber() && b.isNumber()) {
-      return {ValueId{}, a.number + b.number};
+  // a + b, a - b, a * b and a / b, folding numbers and the identities
+  // x + 0, x - 0, x * 1 and x / 1 (as the lowering's arithmetic does).
+  Operand arithmetic(Opcode opcode, const Operand& a, const Operand& b) {
+    bool numbers = a.isNumber() && b.isNumber();
+    switch (opcode) {
+    case Opcode::Add:
+      if (numbers) {
+        return {ValueId{}, a.number + b.number};
+      }
+      if ((a.isNumber() && a.number == 0) || (b.isNumber() && b.number == 0)) {
+        return a.isNumber() ? b : a;
+      }
+      break;
+    case Opcode::Sub:
+      if (numbers) {
+        return {ValueId{}, a.number - b.number};
+      }
+      if (b.isNumber() && b.number == 0) {
+        return a;
+      }
+      break;
+    case Opcode::Mul:
+      if (numbers) {
+        return {ValueId{}, a.number * b.number};
+      }
+      if ((a.isNumber() && a.number == 1) || (b.isNumber() && b.number == 1)) {
+        return a.isNumber() ? b : a;
+      }
+      break;
+    case Opcode::Div:
+      if (numbers && b.number != 0) {
+        return {ValueId{}, a.number / b.number};
+      }
+      if (b.isNumber() && b.number == 1) {
+        return a;
+      }
+      break;
+    default:
+      break;
     }
-    if ((a.isNumber() && a.number == 0) || (b.isNumber() && b.number == 0)) {
-      return a.isNumber() ? b : a;
-    }
-    return {binary(Opcode::Add, a, b), 0};
+    return {binary(opcode, a, b), 0};
   }
-
-  Operand multiply(const Operand& a, const Operand& b) {
-    if (a.isNumber() && b.isNumber()) {
-      return {ValueId{}, a.number * b.number};
-    }
-    if ((a.isNumber() && a.number == 1) || (b.isNumber() && b.number == 1)) {
-      return a.isNumber() ? b : a;
-    }
-    return {binary(Opcode::Mul, a, b), 0};
-  }
+  Operand add(const Operand& a, const Operand& b) { return arithmetic(Opcode::Add, a, b); }
+  Operand multiply(const Operand& a, const Operand& b) { return arithmetic(Opcode::Mul, a, b); }
 
   ValueId binary(Opcode opcode, const Operand& a, const Operand& b) {
     ValueId left = valueOf(a);

@@ -41,7 +41,11 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
 std::vector<double> stepParameters(const CurveTableEntry& entry) {
   std::vector<double> parameters = {entry.from};
   bool single = entry.pieces.size() == 1;
-  for (const LapStep& step : lapSteps(entry)) {
+  std::vector<StepRange> ranges = lapStepRanges(entry, [&](std::size_t) -> StepRange {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+                        "the steps of this lap are computed by the program");
+  });
+  for (const LapStep& step : lapSteps(ranges)) {
     const CurvePieceLayout& piece = entry.pieces[step.region];
     parameters.push_back(single ? step.local : piece.start + (step.local - piece.from));
   }

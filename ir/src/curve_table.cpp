@@ -12,6 +12,10 @@ std::size_t CurveTableEntry::regionCount() const {
   return count;
 }
 
+std::size_t CurveTableEntry::computedRegionCount() const {
+  return static_cast<std::size_t>(std::count(regionSteps.begin(), regionSteps.end(), 0));
+}
+
 std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const {
   std::size_t region = 0;
   for (std::size_t p = 0; p < piece; ++p) {

@@ -6,6 +6,8 @@
 #include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/spline_move.h"
 
+#include "passes/rewriter.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -219,7 +221,13 @@ private:
                      double feed) {
     const std::vector<LapRegionShare>* shares =
         zFrom != zTo ? &lapPoints(lap, entry, true).shares : nullptr;
-    for (const LapStep& step : lapSteps(entry)) {
+    std::vector<StepRange> ranges = lapStepRanges(entry, [&](std::size_t computed) {
+      std::size_t first = 3 + 3 * computed;
+      ValueId count = lap.operands[first + 2];
+      return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
+                       passes::constantValue(function_, count) == 1.0};
+    });
+    for (const LapStep& step : lapSteps(ranges)) {
       countStep();
       values_[lap.result.index] = step.local;
       runRegion(lap.regions[step.region]);

@@ -452,7 +452,7 @@ private:
       throw Failure{"expected '{' after the curve.lap's operands"};
     }
     std::vector<std::string_view> parts = splitList(rest.substr(0, rest.size() - 1));
-    if (parts.size() != 4 || !startsWith(parts[0], "@")) {
+    if (parts.size() < 4 || !startsWith(parts[0], "@")) {
       throw Failure{"expected 'curve.lap @c, %zFrom, %zTo, %f {'"};
     }
     std::uint32_t curve = parseWholeNumber(parts[0].substr(1));
@@ -464,7 +464,18 @@ private:
     if (regions == 0) {
       throw Failure{fmt::format("curve @{} has no pieces", curve)};
     }
-    ValueId lap = builder_->beginCurveLap(curve, value(parts[1]), value(parts[2]), value(parts[3]));
+    std::size_t computed = 3 * curves[curve].computedRegionCount();
+    if (parts.size() != 4 + computed) {
+      throw Failure{fmt::format("curve @{} wants {} operands after the lap's three (a range and a "
+                                "count for each region whose steps the program computes)",
+                                curve, computed)};
+    }
+    std::vector<ValueId> computedSteps;
+    for (std::size_t k = 4; k < parts.size(); ++k) {
+      computedSteps.push_back(value(parts[k]));
+    }
+    ValueId lap = builder_->beginCurveLap(curve, value(parts[1]), value(parts[2]), value(parts[3]),
+                                          computedSteps);
     open_.push_back({Opcode::CurveLap, regions});
     return lap;
   }

@@ -172,14 +172,27 @@ private:
     if (instruction.opcode == Opcode::Spline) {
       checkSpline(instruction, where);
     }
-    if (instruction.opcode == Opcode::CurveLap && instruction.index >= function_.curves.size()) {
-      problem(fmt::format("{} names curve {}, which is not in the curve table", where,
-                          instruction.index));
+    if (instruction.opcode == Opcode::CurveLap) {
+      checkCurveLap(instruction, where);
     }
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
     }
     checkSetting(instruction, where);
+  }
+
+  // Its curve in the table, and three operands and a range and count for
+  // each region whose steps the program computes.
+  void checkCurveLap(const Instruction& lap, const std::string& where) {
+    if (lap.index >= function_.curves.size()) {
+      problem(fmt::format("{} names curve {}, which is not in the curve table", where, lap.index));
+      return;
+    }
+    std::size_t wanted = 3 + 3 * function_.curves[lap.index].computedRegionCount();
+    if (lap.operands.size() != wanted) {
+      problem(fmt::format("{} has {} operands, its curve wants {}", where, lap.operands.size(),
+                          wanted));
+    }
   }
 
   void checkSetting(const Instruction& instruction, const std::string& where) {
@@ -339,10 +352,10 @@ private:
     }
     bool counted = entry.regionSteps.size() == entry.regionCount();
     for (int steps : entry.regionSteps) {
-      counted = counted && steps >= 1 && steps <= maximumStepsPerRegion;
+      counted = counted && steps >= 0 && steps <= maximumStepsPerRegion;
     }
     if (!counted) {
-      problem(fmt::format("{} has {} step counts for {} regions, not each 1 .. {}", where,
+      problem(fmt::format("{} has {} step counts for {} regions, not each 0 .. {}", where,
                           entry.regionSteps.size(), entry.regionCount(), maximumStepsPerRegion));
     }
     bool spans = std::any_of(entry.pieces.begin(), entry.pieces.end(),

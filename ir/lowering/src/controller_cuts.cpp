@@ -343,14 +343,13 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
                 feedValue);
   // Laps of constant pieces are curve.laps the legalisation expand-
   // controller-loops writes out as the loops below would be.
-  std::optional<std::uint32_t> lapTable =
-      runtimeOffset_ ? std::nullopt
-                     : steppedCurveTable(cut, curve, *planned, uniformSteps ? 0.0 : budget);
-  if (ramp && lapTable) {
+  std::optional<SteppedLap> lap =
+      runtimeOffset_ ? std::nullopt : steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
+  if (ramp && lap) {
     PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
     builder_.comment("ramp");
-    emitCurveLapAt(curve, *lapTable, arithmetic_.value(previousZ), arithmetic_.value(z), feedValue,
-                   cut);
+    emitSteppedLap(curve, *lap, *planned, arithmetic_.value(previousZ), arithmetic_.value(z),
+                   feedValue, cut);
   } else if (ramp) {
     // One lap descending from the pass above (see RampSegment), in the
     // pass loop: its lines have no pass number of their own.
@@ -362,12 +361,12 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
       emitControllerSegment(curve, segment, z, feedValue, cut, &lap);
     }
   }
-  if (lapTable) {
+  if (lap) {
     ValueId height = arithmetic_.value(z);
-    emitCurveLapAt(curve, *lapTable, height, height, feedValue, cut);
+    emitSteppedLap(curve, *lap, *planned, height, height, feedValue, cut);
   }
   for (const ControllerSegment& segment : *planned) {
-    if (lapTable) {
+    if (lap) {
       break;
     }
     emitControllerSegment(curve, segment, z, feedValue, cut, nullptr);
@@ -389,30 +388,58 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
 
 // A curve table entry cutting each piece in the steps planned for it, when
 // every piece is one the controller evaluates from the curve's own
-// arithmetic at uniform steps of a count chosen here (no NURBS span, arc,
-// piece that depends on parameters or count computed on the controller);
+// arithmetic at uniform steps (no NURBS span, arc or span moved or split by
+// parameters): a count chosen here, or the range and count the program
+// computes of a piece that depends on parameters (its symbolic form);
 // `budget` is the chord tolerance the counts keep (0: samples= gave them).
-std::optional<std::uint32_t>
-PartLowering::steppedCurveTable(const CutStmt& cut, const CutCurve& curve,
-                                const std::vector<ControllerSegment>& segments, double budget) {
+std::optional<PartLowering::SteppedLap>
+PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
+                         const std::vector<ControllerSegment>& segments, double budget) {
   if (segments.size() != curve.pieces.size()) {
     return std::nullopt;
   }
   for (const ControllerSegment& segment : segments) {
-    bool plain = !segment.isNurbs && !segment.isArc && segment.symbolic == nullptr &&
-                 !segment.split && !segment.stepPerPoint && segment.moved == nullptr &&
-                 !segment.stepCount && segment.steps >= 1;
-    if (!plain) {
+    bool uniform = !segment.isNurbs && !segment.isArc && !segment.split && !segment.stepPerPoint &&
+                   segment.moved == nullptr;
+    // A symbolic piece of one step (a line) folds its end point as the
+    // region, at an opaque parameter, would not: it keeps its own form.
+    bool counted = segment.symbolic != nullptr ? segment.steps != 1
+                                               : !segment.stepCount && segment.steps >= 1;
+    if (!uniform || !counted) {
       return std::nullopt;
     }
   }
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
   entry.sampling = CurveSampling::Steps;
   entry.amount = budget;
+  SteppedLap lap;
   for (const ControllerSegment& segment : segments) {
-    entry.regionSteps.push_back(segment.steps);
+    entry.regionSteps.push_back(segment.symbolic != nullptr ? 0 : segment.steps);
+    if (segment.symbolic != nullptr) {
+      lap.computedSteps.push_back(arithmetic_.value(segment.start));
+      lap.computedSteps.push_back(arithmetic_.value(segment.end));
+      lap.computedSteps.push_back(arithmetic_.value(stepsOf(segment)));
+    }
   }
-  return builder_.addCurve(std::move(entry));
+  lap.table = builder_.addCurve(std::move(entry));
+  return lap;
+}
+
+// The lap as a curve.lap: a symbolic piece's region computes its symbolic
+// form, another its point as the host knows it.
+void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
+                                  const std::vector<ControllerSegment>& segments, ValueId zFrom,
+                                  ValueId zTo, ValueId feed, const CutStmt& cut) {
+  std::vector<ValueId> operands = {zFrom, zTo, feed};
+  operands.insert(operands.end(), lap.computedSteps.begin(), lap.computedSteps.end());
+  emitCurveLapAt(curve, lap.table, std::move(operands),
+                 [&](std::size_t piece, std::size_t span, Scalar local) {
+                   const ControllerSegment& segment = segments[piece];
+                   return segment.symbolic != nullptr
+                              ? symbolicPointAt(*segment.symbolic, *curve.pieces[piece].value,
+                                                local)
+                              : pointAt(curve, piece, span, local, cut);
+                 });
 }
 
 // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one

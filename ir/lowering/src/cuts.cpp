@@ -578,19 +578,26 @@ void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, doub
                                 std::size_t firstPiece, std::size_t endPiece) {
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
-  emitCurveLapAt(curve, table, from, to, feed, cut, firstPiece, endPiece);
+  emitCurveLapAt(
+      curve, table, {from, to, feed},
+      [&](std::size_t piece, std::size_t span, Scalar local) {
+        return pointAt(curve, piece, span, local, cut);
+      },
+      firstPiece, endPiece);
 }
 
-// The same, z going from the value zFrom to the value zTo.
-void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table, ValueId from,
-                                  ValueId to, ValueId feed, const CutStmt& cut,
+void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table,
+                                  std::vector<ValueId> operands, const LapPointOf& pointOf,
                                   std::size_t firstPiece, std::size_t endPiece) {
-  Scalar local = Scalar::of(builder_.beginCurveLap(table, from, to, feed), ValueType::F64);
+  std::vector<ValueId> computedSteps(operands.begin() + 3, operands.end());
+  Scalar local = Scalar::of(
+      builder_.beginCurveLap(table, operands[0], operands[1], operands[2], computedSteps),
+      ValueType::F64);
   endPiece = std::min(endPiece, curve.pieces.size());
   for (std::size_t p = firstPiece; p < endPiece; ++p) {
     std::size_t spans = std::max<std::size_t>(curve.pieces[p].spans.size(), 1);
     for (std::size_t s = 0; s < spans; ++s) {
-      CurvePoint point = pointAt(curve, p, s, local, cut);
+      CurvePoint point = pointOf(p, s, local);
       ValueId x = arithmetic_.value(point.x);
       ValueId y = arithmetic_.value(point.y);
       builder_.curvePoint(x, y, arithmetic_.value(point.z));

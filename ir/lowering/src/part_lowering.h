@@ -312,8 +312,12 @@ private:
   void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
                     ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
                     std::size_t endPiece = SIZE_MAX);
-  void emitCurveLapAt(const CutCurve& curve, std::uint32_t table, ValueId zFrom, ValueId zTo,
-                      ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
+  // The lap's regions compute `pointOf(piece, span, local)`; the lap takes
+  // `operands` (z from, z to, feed, then the ranges and counts of the regions
+  // whose steps the program computes).
+  using LapPointOf = std::function<CurvePoint(std::size_t piece, std::size_t span, Scalar local)>;
+  void emitCurveLapAt(const CutCurve& curve, std::uint32_t table, std::vector<ValueId> operands,
+                      const LapPointOf& pointOf, std::size_t firstPiece = 0,
                       std::size_t endPiece = SIZE_MAX);
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
@@ -467,10 +471,18 @@ private:
 
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
-  std::optional<std::uint32_t> steppedCurveTable(const frontend::CutStmt& cut,
-                                                 const CutCurve& curve,
-                                                 const std::vector<ControllerSegment>& segments,
-                                                 double budget);
+  // A lap cut in steps: its curve table entry and the ranges and counts of
+  // its regions whose steps the program computes.
+  struct SteppedLap {
+    std::uint32_t table = 0;
+    std::vector<ValueId> computedSteps;
+  };
+  std::optional<SteppedLap> steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
+                                       const std::vector<ControllerSegment>& segments,
+                                       double budget);
+  void emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
+                      const std::vector<ControllerSegment>& segments, ValueId zFrom, ValueId zTo,
+                      ValueId feed, const frontend::CutStmt& cut);
   bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);

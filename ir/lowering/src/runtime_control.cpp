@@ -13,6 +13,8 @@
 // compile time. Diagnostics of an attempt are held until it succeeds.
 #include "part_lowering.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -41,12 +43,25 @@ namespace {
 
 constexpr std::string_view markerPrefix = "for-variable ";
 
+// Whether the instruction is a loop in the printed program: a loop, or a
+// curve.lap, which its legalisation writes out as loops (one deep), unless
+// it is cut in single steps.
+bool printsAsLoop(const Function& function, const Instruction& instruction) {
+  if (instruction.opcode != Opcode::CurveLap) {
+    return instruction.opcode == Opcode::Loop;
+  }
+  const CurveTableEntry& entry = function.curves[instruction.index];
+  return entry.sampling != CurveSampling::Steps ||
+         std::any_of(entry.regionSteps.begin(), entry.regionSteps.end(),
+                     [](int steps) { return steps != 1; });
+}
+
 int loopNesting(const Function& function, const Region& region) {
   int deepest = 0;
   for (InstructionId id : region.instructions) {
     const Instruction& instruction = function.instructions[id];
     for (const Region& inner : instruction.regions) {
-      int own = loopNesting(function, inner) + (instruction.opcode == Opcode::Loop ? 1 : 0);
+      int own = loopNesting(function, inner) + (printsAsLoop(function, instruction) ? 1 : 0);
       deepest = std::max(deepest, own);
     }
   }

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -239,6 +240,43 @@ part ring(depth = 4) {
   EXPECT_TRUE(function.tables.empty());
   EXPECT_TRUE(verifyFunction(function).empty());
   expectSamePath(before, interpret(function), "ring");
+}
+
+// A piece that depends on parameters is a region whose range and count the
+// program computes: the lap and its loops take the same points for values
+// edited at the machine too.
+TEST(PassesExamplesTest, ComputedStepsFollowEditedParameters) {
+  LoweringOptions controller;
+  controller.expandCurveLaps = false;
+  controller.controllerLoops = true;
+  controller.coordinateIncrement = 0.001;
+  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
+part rosette(a = 10, b = 2, turns = 2) {
+  tool 1 diameter=1 feed=100
+  safe z=2
+  curve polar(r = a + b*cos(3*t), t = 0 .. turns*2*pi) tolerance=0.01 entry=ramp sweep depth=2
+        step=1
+})",
+                                                                               controller);
+  ASSERT_TRUE(lowered->part);
+  Function& function = lowered->part->function;
+  ASSERT_EQ(function.curves.size(), 1u);
+  EXPECT_EQ(function.curves.front().regionSteps, std::vector<int>{0});
+  Function expanded = function;
+  runCurveLegalisation(expanded);
+  EXPECT_EQ(curveLapCount(expanded), 0u);
+  EXPECT_TRUE(verifyFunction(expanded).empty());
+  std::size_t moves = 0;
+  for (const std::map<std::string, double>& edited : {std::map<std::string, double>{},
+                                                      {{"a", 3}, {"b", 0.5}, {"turns", 3}},
+                                                      {{"b", 5}, {"turns", 1.25}}}) {
+    InterpreterOptions options;
+    options.parameters = edited;
+    ToolPath before = interpret(function, options);
+    expectSamePath(before, interpret(expanded, options), "rosette");
+    EXPECT_NE(before.events.size(), moves); // the count follows the values
+    moves = before.events.size();
+  }
 }
 
 // Every example lowered for a target that runs loops: the IR before the

@@ -43,7 +43,8 @@ public:
   // Each region is ended by curvePoint(), which moves to the next region
   // and, after the last, leaves the lap.
   std::uint32_t addCurve(CurveTableEntry entry);
-  ValueId beginCurveLap(std::uint32_t curve, ValueId zFrom, ValueId zTo, ValueId feedRate);
+  ValueId beginCurveLap(std::uint32_t curve, ValueId zFrom, ValueId zTo, ValueId feedRate,
+                        const std::vector<ValueId>& computedSteps = {});
   void curvePoint(ValueId x, ValueId y, ValueId z);
 
   void rapid(ValueId x, ValueId y, ValueId z);

@@ -153,11 +153,27 @@ struct LapStep {
   double fraction = 1; // of the region's steps done: i / N
 };
 
+// How one region of a lap cut in steps is cut: N steps over its parameter
+// range [from, to], or one step to its end (`single`: a count of one known
+// when the program is written). A region of the entry's own count runs over
+// its piece's range; one whose steps the program computes, over the values
+// of the lap's operands.
+struct StepRange {
+  double from = 0;
+  double to = 1;
+  double count = 1;
+  bool single = true;
+};
+
+// The entry's ranges; the k-th region whose steps the program computes
+// takes `computed(k)`.
+std::vector<StepRange> lapStepRanges(const CurveTableEntry& entry,
+                                     const std::function<StepRange(std::size_t)>& computed);
+
 // The points of a lap cut in steps (CurveSampling::Steps), in order: per
-// region of N steps over its own range [from, to], from + i (to - from) / N
-// for i = 1 .. N, as the loop the controller runs computes them; a region
-// of one step, its end.
-std::vector<LapStep> lapSteps(const CurveTableEntry& entry);
+// region of N steps, from + i (to - from) / N for i = 1, 2, .. while i <= N
+// (as the loop the controller runs computes them); a single step, its end.
+std::vector<LapStep> lapSteps(const std::vector<StepRange>& ranges);
 
 // `expand-controller-loops`: every curve.lap cut in steps written out as a
 // loop per region (its arithmetic at the loop's parameter, a feed move to

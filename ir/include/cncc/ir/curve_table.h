@@ -71,7 +71,9 @@ struct CurveTableEntry {
   // Arcs: the printed grid their ends and centres are put on (0: none).
   double grid = 0;
   // Steps: each region's number of uniform steps (the first point is where
-  // the region starts: the end of the one before, or the lap's start).
+  // the region starts: the end of the one before, or the lap's start); 0
+  // where the program computes them: the region's range and count are then
+  // operands of the lap (start, end, count after the lap's three).
   std::vector<int> regionSteps = {};
   // The `curve` expression and the `cut` statement: where a failure to
   // choose the points is reported.
@@ -100,6 +102,8 @@ struct CurveTableEntry {
   std::shared_ptr<const geom::ArcFit> fittedArcs = nullptr;
 
   std::size_t regionCount() const;
+  // Steps: the regions whose range and count the program computes.
+  std::size_t computedRegionCount() const;
   // The later piece at a join (as a composite curve evaluates it); a
   // parameter outside a piece's range is clamped into it.
   CurveLocation locate(double t) const;
