@@ -230,17 +230,22 @@ private:
     double best = std::numeric_limits<double>::infinity();
     std::size_t chosen = kNoCut;
     std::size_t last = std::min(cuts_.order.size(), current_ + kLookAhead + 1);
+    // Distances the rounding of the printed coordinates could swap are ties
+    // too: a helix that starts a hair (1e-6 rad) past where the next cut
+    // plunges is the earlier cut, though the rounded plunge lies on the
+    // later one exactly.
+    double tie = std::max(kTie, outsideAllowance_ / 2);
     for (std::size_t k = current_; k < last; ++k) {
       bool finishedHolder = chosen == current_ && finishedCurrent_;
-      double better = finishedHolder ? best + kTie : best - kTie;
+      double better = finishedHolder ? best + tie : best - tie;
       std::optional<double> distance = cuts_.cut(k).distance(executed, better);
       if (distance && (finishedHolder ? *distance <= better : *distance < better)) {
         best = *distance;
         chosen = k;
       }
     }
-    std::optional<double> outside = cuts_.outsideCuts->distance(executed, best - kTie);
-    if (outside && *outside < best - kTie) {
+    std::optional<double> outside = cuts_.outsideCuts->distance(executed, best - tie);
+    if (outside && *outside < best - tie) {
       return {*outside, std::nullopt};
     }
     if (chosen == kNoCut) {
