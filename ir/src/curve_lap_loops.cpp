@@ -33,7 +33,7 @@ private:
     const CurveTableEntry& entry = source_.curves[lap.index];
     shares_ = isRamp(lap) ? &sharesOf(lap) : nullptr;
     std::size_t computed = 0;
-    for (std::size_t region = 0; region < entry.pieces.size(); ++region) {
+    for (std::size_t region = 0; region < entry.regionCount(); ++region) {
       share_ = shares_ != nullptr ? (*shares_)[region] : LapRegionShare{};
       RegionSteps steps = stepsOf(lap, entry, region, computed);
       count_ = steps.count;
@@ -57,11 +57,9 @@ private:
                       std::size_t& computed) {
     int count = entry.regionSteps[region];
     if (count > 0) {
-      const CurvePieceLayout& piece = entry.pieces[region];
-      return {{ValueId{}, piece.from},
-              {ValueId{}, piece.to},
-              {ValueId{}, static_cast<double>(count)},
-              count == 1};
+      auto [from, to] = entry.regionRange(region);
+      return {
+          {ValueId{}, from}, {ValueId{}, to}, {ValueId{}, static_cast<double>(count)}, count == 1};
     }
     std::size_t first = 3 + 3 * computed++;
     RegionSteps steps{operandOf(mapped(lap.operands[first])),
@@ -133,13 +131,13 @@ std::vector<StepRange> lapStepRanges(const CurveTableEntry& entry,
                                      const std::function<StepRange(std::size_t)>& computed) {
   std::vector<StepRange> ranges;
   std::size_t computedSoFar = 0;
-  for (std::size_t region = 0; region < entry.pieces.size(); ++region) {
+  for (std::size_t region = 0; region < entry.regionCount(); ++region) {
     int count = region < entry.regionSteps.size() ? entry.regionSteps[region] : 0;
     if (count == 0) {
       ranges.push_back(computed(computedSoFar++));
     } else {
-      const CurvePieceLayout& piece = entry.pieces[region];
-      ranges.push_back({piece.from, piece.to, static_cast<double>(count), count == 1});
+      auto [from, to] = entry.regionRange(region);
+      ranges.push_back({from, to, static_cast<double>(count), count == 1});
     }
   }
   return ranges;

@@ -40,14 +40,12 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
 // step's point.
 std::vector<double> stepParameters(const CurveTableEntry& entry) {
   std::vector<double> parameters = {entry.from};
-  bool single = entry.pieces.size() == 1;
   std::vector<StepRange> ranges = lapStepRanges(entry, [&](std::size_t) -> StepRange {
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
                         "the steps of this lap are computed by the program");
   });
   for (const LapStep& step : lapSteps(ranges)) {
-    const CurvePieceLayout& piece = entry.pieces[step.region];
-    parameters.push_back(single ? step.local : piece.start + (step.local - piece.from));
+    parameters.push_back(entry.wholeParameter(step.region, step.local));
   }
   return parameters;
 }

@@ -24,6 +24,32 @@ std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const
   return region + span;
 }
 
+std::pair<double, double> CurveTableEntry::regionRange(std::size_t region) const {
+  for (const CurvePieceLayout& piece : pieces) {
+    if (region < piece.regionCount()) {
+      return piece.spans.empty() ? std::pair{piece.from, piece.to} : std::pair{0.0, 1.0};
+    }
+    region -= piece.regionCount();
+  }
+  return {0.0, 1.0};
+}
+
+double CurveTableEntry::wholeParameter(std::size_t region, double local) const {
+  for (const CurvePieceLayout& piece : pieces) {
+    if (region >= piece.regionCount()) {
+      region -= piece.regionCount();
+      continue;
+    }
+    double own = local;
+    if (!piece.spans.empty()) {
+      auto [spanFrom, spanTo] = piece.spans[region];
+      own = spanFrom + local * (spanTo - spanFrom);
+    }
+    return pieces.size() == 1 ? own : piece.start + (own - piece.from);
+  }
+  return to;
+}
+
 CurveLocation CurveTableEntry::locate(double t) const {
   CurveLocation location;
   std::size_t count = pieces.size();

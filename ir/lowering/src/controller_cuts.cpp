@@ -387,29 +387,29 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
 }
 
 // A curve table entry cutting each piece in the steps planned for it, when
-// every piece is one the controller evaluates from the curve's own
-// arithmetic at uniform steps (no NURBS span, arc or span moved or split by
+// every piece (or knot span) is one the controller evaluates from the
+// curve's own arithmetic at uniform steps (no arc, or span moved or split by
 // parameters): a count chosen here, or the range and count the program
 // computes of a piece that depends on parameters (its symbolic form);
 // `budget` is the chord tolerance the counts keep (0: samples= gave them).
 std::optional<PartLowering::SteppedLap>
 PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
                          const std::vector<ControllerSegment>& segments, double budget) {
-  if (segments.size() != curve.pieces.size()) {
-    return std::nullopt;
-  }
   for (const ControllerSegment& segment : segments) {
-    bool uniform = !segment.isNurbs && !segment.isArc && !segment.split && !segment.stepPerPoint &&
-                   segment.moved == nullptr;
+    bool uniform = !segment.isArc && !segment.split && !segment.stepPerPoint &&
+                   segment.moved == nullptr && !(segment.isNurbs && segment.symbolic != nullptr);
     // A symbolic piece of one step (a line) folds its end point as the
     // region, at an opaque parameter, would not: it keeps its own form.
-    bool counted = segment.symbolic != nullptr ? segment.steps != 1
-                                               : !segment.stepCount && segment.steps >= 1;
+    bool counted =
+        segment.symbolic != nullptr ? segment.steps != 1 : !segment.stepCount && segment.steps >= 1;
     if (!uniform || !counted) {
       return std::nullopt;
     }
   }
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  if (segments.size() != entry.regionCount()) {
+    return std::nullopt;
+  }
   entry.sampling = CurveSampling::Steps;
   entry.amount = budget;
   SteppedLap lap;
@@ -426,19 +426,26 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
 }
 
 // The lap as a curve.lap: a symbolic piece's region computes its symbolic
-// form, another its point as the host knows it.
+// form, a knot span of more than one step its span cleaned of a constant
+// weight (as the loop over it did), another its point as the host knows it.
 void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
                                   const std::vector<ControllerSegment>& segments, ValueId zFrom,
                                   ValueId zTo, ValueId feed, const CutStmt& cut) {
   std::vector<ValueId> operands = {zFrom, zTo, feed};
   operands.insert(operands.end(), lap.computedSteps.begin(), lap.computedSteps.end());
+  std::size_t region = 0; // the regions are made in order, one per segment
   emitCurveLapAt(curve, lap.table, std::move(operands),
                  [&](std::size_t piece, std::size_t span, Scalar local) {
-                   const ControllerSegment& segment = segments[piece];
-                   return segment.symbolic != nullptr
-                              ? symbolicPointAt(*segment.symbolic, *curve.pieces[piece].value,
-                                                local)
-                              : pointAt(curve, piece, span, local, cut);
+                   const ControllerSegment& segment = segments[region++];
+                   const CurvePiece& own = curve.pieces[piece];
+                   if (segment.symbolic != nullptr) {
+                     return symbolicPointAt(*segment.symbolic, *own.value, local);
+                   }
+                   if (segment.isNurbs && segment.steps > 1) {
+                     return transformed(own.transform,
+                                        spanPointAt(cleanedSpan(own.spans[span]), local));
+                   }
+                   return pointAt(curve, piece, span, local, cut);
                  });
 }
 

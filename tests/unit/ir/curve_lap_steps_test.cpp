@@ -147,6 +147,19 @@ TEST(CurveLapSteps, TheStepsAreUniformInEachRegion) {
   }
 }
 
+TEST(CurveLapSteps, TheStepsAreParametersOfTheWholeCurve) {
+  Function function = parsed(lineThenArcText);
+  std::shared_ptr<const geom::Curve> curve =
+      lapCurve(function, curve_lap_test::onlyLap(function), [](ValueId) { return 0.0; });
+  std::vector<double> parameters = lapParameters(function.curves[0], *curve);
+  ASSERT_EQ(parameters.size(), 6u);
+  EXPECT_EQ(parameters[0], 0);
+  EXPECT_EQ(parameters[1], 10); // the line's end
+  for (std::size_t k = 2; k < parameters.size(); ++k) {
+    EXPECT_DOUBLE_EQ(parameters[k], 10 + static_cast<double>(k - 1) * pi / 8);
+  }
+}
+
 TEST(CurveLapSteps, ExpandingWritesALoopPerRegionOfMoreThanOneStep) {
   Function function = parsed(lineThenArcText);
   ToolPath before = interpret(function);

@@ -242,6 +242,42 @@ part ring(depth = 4) {
   expectSamePath(before, interpret(function), "ring");
 }
 
+// A B-spline's knot spans are regions of u in 0 .. 1, each in its own
+// count of steps, the program computing each point from the span's
+// polynomial: the loops run the points the lap ran, on the ramp too.
+TEST(PassesExamplesTest, KnotSpansAreRegionsOfTheirOwnSteps) {
+  LoweringOptions controller;
+  controller.expandCurveLaps = false;
+  controller.controllerLoops = true;
+  controller.coordinateIncrement = 0.001;
+  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
+part hook() {
+  tool 1 diameter=4 feed=200
+  safe z=3
+  curve bspline(degree=2, points=[(0,0), (10,10), (20,0), (30,10), (15,-10), (0,0)])
+        tolerance=0.01 entry=ramp sweep depth=2 step=1
+})",
+                                                                               controller);
+  ASSERT_TRUE(lowered->part);
+  Function& function = lowered->part->function;
+  ASSERT_EQ(function.curves.size(), 1u);
+  const CurveTableEntry& entry = function.curves.front();
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  ASSERT_EQ(entry.pieces.size(), 1u);
+  EXPECT_EQ(entry.pieces.front().spans.size(), 4u);
+  ASSERT_EQ(entry.regionSteps.size(), 4u);
+  for (std::size_t region = 0; region < 4; ++region) {
+    EXPECT_EQ(entry.regionRange(region), (std::pair<double, double>{0.0, 1.0}));
+    EXPECT_GT(entry.regionSteps[region], 1);
+  }
+  ToolPath before = interpret(function);
+  runCurveLegalisation(function);
+  EXPECT_EQ(curveLapCount(function), 0u);
+  EXPECT_TRUE(function.tables.empty());
+  EXPECT_TRUE(verifyFunction(function).empty());
+  expectSamePath(before, interpret(function), "hook");
+}
+
 // A piece that depends on parameters is a region whose range and count the
 // program computes: the lap and its loops take the same points for values
 // edited at the machine too.

@@ -109,6 +109,11 @@ struct CurveTableEntry {
   CurveLocation locate(double t) const;
   // The region index of a piece's span.
   std::size_t regionOf(std::size_t piece, std::size_t span) const;
+  // The range of the parameter a region computes its point at: its piece's
+  // own, or 0 .. 1 for a knot span (the span's u).
+  std::pair<double, double> regionRange(std::size_t region) const;
+  // The whole curve's parameter where a region's parameter is `local`.
+  double wholeParameter(std::size_t region, double local) const;
 };
 
 } // namespace cncc::ir
