@@ -26,6 +26,10 @@ bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps
 // returned has been measured); 0 past maximumStepsPerPiece.
 int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget);
 
+// The span without the rounding noise of the conversion: a weight that is
+// constant makes the span polynomial (its coordinates divided by it).
+geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span);
+
 Polynomial derivativeOf(const Polynomial& polynomial);
 // The coefficients of p in the Bernstein basis of its degree on [0, 1].
 Polynomial bernsteinCoefficients(const Polynomial& polynomial);
