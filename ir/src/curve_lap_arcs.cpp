@@ -154,12 +154,7 @@ LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve) {
 }
 
 bool fitLapArcs(Function& function) {
-  if (!hasCurveLap(function, CurveSampling::Arcs)) {
-    return false;
-  }
-  ArcLapFitter fitter(function);
-  function = fitter.run();
-  return true;
+  return rewriteLaps<ArcLapFitter>(function, CurveSampling::Arcs);
 }
 
 } // namespace cncc::ir

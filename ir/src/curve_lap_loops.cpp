@@ -160,12 +160,7 @@ std::vector<LapStep> lapSteps(const std::vector<StepRange>& ranges) {
 }
 
 bool expandControllerLoops(Function& function) {
-  if (!hasCurveLap(function, CurveSampling::Steps)) {
-    return false;
-  }
-  ControllerLoopExpander expander(function);
-  function = expander.run();
-  return true;
+  return rewriteLaps<ControllerLoopExpander>(function, CurveSampling::Steps);
 }
 
 } // namespace cncc::ir

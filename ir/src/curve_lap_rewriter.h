@@ -24,6 +24,19 @@ inline bool hasCurveLap(const Function& function,
   return false;
 }
 
+class LapRewriter;
+
+// Runs the legalisation `Rewrite` (a LapRewriter) over the function when it
+// has a lap cut as `sampling` says; whether it did.
+template <class Rewrite> bool rewriteLaps(Function& function, CurveSampling sampling) {
+  if (!hasCurveLap(function, sampling)) {
+    return false;
+  }
+  Rewrite rewrite(function);
+  function = rewrite.run();
+  return true;
+}
+
 class LapRewriter : public passes::Rewriter {
 public:
   using Rewriter::Rewriter;

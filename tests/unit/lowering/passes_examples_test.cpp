@@ -208,14 +208,32 @@ TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
   EXPECT_GE(arcMoves, 10u);
 }
 
-// On a target that runs loops, a cut of constant pieces is a curve.lap
-// whose entry gives each piece's steps; expand-controller-loops writes the
-// loops, which run the points the interpreter ran the lap with.
-TEST(PassesExamplesTest, ControllerLoopsKeepToolPath) {
+// On a target that runs loops: its laps left (expandCurveLaps off), at
+// the printed grid of a millimetre part.
+LoweringOptions controllerLoopOptions() {
   LoweringOptions controller;
   controller.expandCurveLaps = false;
   controller.controllerLoops = true;
   controller.coordinateIncrement = 0.001;
+  return controller;
+}
+
+// The legalisations write the laps out as loops over no tables, and the
+// path is the one the laps ran, to the last bit.
+void expectLoopsKeepPath(Function& function, const std::string& name) {
+  ToolPath before = interpret(function);
+  runCurveLegalisation(function);
+  EXPECT_EQ(curveLapCount(function), 0u) << name;
+  EXPECT_TRUE(function.tables.empty()) << name;
+  EXPECT_TRUE(verifyFunction(function).empty()) << name;
+  expectSamePath(before, interpret(function), name);
+}
+
+// On a target that runs loops, a cut of constant pieces is a curve.lap
+// whose entry gives each piece's steps; expand-controller-loops writes the
+// loops, which run the points the interpreter ran the lap with.
+TEST(PassesExamplesTest, ControllerLoopsKeepToolPath) {
+  LoweringOptions controller = controllerLoopOptions();
   std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
 part ring(depth = 4) {
   tool 1 diameter=4 feed=200
@@ -234,22 +252,14 @@ part ring(depth = 4) {
   EXPECT_EQ(entry.regionSteps[0], 1); // the lines
   EXPECT_EQ(entry.regionSteps[1], 1);
   EXPECT_GT(entry.regionSteps[2], 50); // the polar curve within 0.01 less the rounding
-  ToolPath before = interpret(function);
-  runCurveLegalisation(function);
-  EXPECT_EQ(curveLapCount(function), 0u);
-  EXPECT_TRUE(function.tables.empty());
-  EXPECT_TRUE(verifyFunction(function).empty());
-  expectSamePath(before, interpret(function), "ring");
+  expectLoopsKeepPath(function, "ring");
 }
 
 // A B-spline's knot spans are regions of u in 0 .. 1, each in its own
 // count of steps, the program computing each point from the span's
 // polynomial: the loops run the points the lap ran, on the ramp too.
 TEST(PassesExamplesTest, KnotSpansAreRegionsOfTheirOwnSteps) {
-  LoweringOptions controller;
-  controller.expandCurveLaps = false;
-  controller.controllerLoops = true;
-  controller.coordinateIncrement = 0.001;
+  LoweringOptions controller = controllerLoopOptions();
   std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
 part hook() {
   tool 1 diameter=4 feed=200
@@ -270,22 +280,14 @@ part hook() {
     EXPECT_EQ(entry.regionRange(region), (std::pair<double, double>{0.0, 1.0}));
     EXPECT_GT(entry.regionSteps[region], 1);
   }
-  ToolPath before = interpret(function);
-  runCurveLegalisation(function);
-  EXPECT_EQ(curveLapCount(function), 0u);
-  EXPECT_TRUE(function.tables.empty());
-  EXPECT_TRUE(verifyFunction(function).empty());
-  expectSamePath(before, interpret(function), "hook");
+  expectLoopsKeepPath(function, "hook");
 }
 
 // A piece that depends on parameters is a region whose range and count the
 // program computes: the lap and its loops take the same points for values
 // edited at the machine too.
 TEST(PassesExamplesTest, ComputedStepsFollowEditedParameters) {
-  LoweringOptions controller;
-  controller.expandCurveLaps = false;
-  controller.controllerLoops = true;
-  controller.coordinateIncrement = 0.001;
+  LoweringOptions controller = controllerLoopOptions();
   std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
 part rosette(a = 10, b = 2, turns = 2) {
   tool 1 diameter=1 feed=100
