@@ -1,7 +1,8 @@
-// What the legalisations of curve.lap share: a Rewriter that writes a lap's
-// moves with the lowering's folding of numbers (a + 0 and a * 1 are a, two
-// numbers are their result), and reads the values a lap's curve takes from
-// outside it at the values compiled with.
+// What the legalisations of curve.lap share: a Rewriter that visits the laps
+// a legalisation writes out, writes their moves with the lowering's folding
+// of numbers (x + 0, x - 0, x * 1 and x / 1 are x, two numbers their
+// result), and reads the values a lap's curve takes from outside it at the
+// values compiled with.
 #pragma once
 
 #include "cncc/ir/curve_lap.h"
@@ -23,8 +24,6 @@ inline bool hasCurveLap(const Function& function,
   }
   return false;
 }
-
-class LapRewriter;
 
 // Runs the legalisation `Rewrite` (a LapRewriter) over the function when it
 // has a lap cut as `sampling` says; whether it did.

@@ -183,7 +183,7 @@ private:
     std::vector<double> parameters;
     std::vector<double> progress;
     std::optional<LapArcs> arcs;        // a lap cut as arcs: its moves, no parameters
-    std::vector<LapRegionShare> shares; // a ramp lap cut in steps: its regions'
+    std::vector<LapRegionShare> shares; // a ramp lap cut in steps: each region's
   };
 
   // A feed move to each point after the first, the region that holds it
