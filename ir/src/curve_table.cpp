@@ -24,30 +24,36 @@ std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const
   return region + span;
 }
 
-std::pair<double, double> CurveTableEntry::regionRange(std::size_t region) const {
+std::pair<const CurvePieceLayout*, std::size_t>
+CurveTableEntry::pieceOfRegion(std::size_t region) const {
   for (const CurvePieceLayout& piece : pieces) {
     if (region < piece.regionCount()) {
-      return piece.spans.empty() ? std::pair{piece.from, piece.to} : std::pair{0.0, 1.0};
+      return {&piece, region};
     }
     region -= piece.regionCount();
   }
-  return {0.0, 1.0};
+  return {nullptr, 0};
+}
+
+std::pair<double, double> CurveTableEntry::regionRange(std::size_t region) const {
+  auto [piece, span] = pieceOfRegion(region);
+  if (piece == nullptr || !piece->spans.empty()) {
+    return {0.0, 1.0};
+  }
+  return {piece->from, piece->to};
 }
 
 double CurveTableEntry::wholeParameter(std::size_t region, double local) const {
-  for (const CurvePieceLayout& piece : pieces) {
-    if (region >= piece.regionCount()) {
-      region -= piece.regionCount();
-      continue;
-    }
-    double own = local;
-    if (!piece.spans.empty()) {
-      auto [spanFrom, spanTo] = piece.spans[region];
-      own = spanFrom + local * (spanTo - spanFrom);
-    }
-    return pieces.size() == 1 ? own : piece.start + (own - piece.from);
+  auto [piece, span] = pieceOfRegion(region);
+  if (piece == nullptr) {
+    return to;
   }
-  return to;
+  double own = local;
+  if (!piece->spans.empty()) {
+    auto [spanFrom, spanTo] = piece->spans[span];
+    own = spanFrom + local * (spanTo - spanFrom);
+  }
+  return pieces.size() == 1 ? own : piece->start + (own - piece->from);
 }
 
 CurveLocation CurveTableEntry::locate(double t) const {

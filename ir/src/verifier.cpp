@@ -3,7 +3,6 @@
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/spline_move.h"
 
-#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <optional>
@@ -319,6 +318,13 @@ private:
     }
     verifyArcs(where, entry);
     verifySteps(where, entry);
+    bool notPoints =
+        entry.sampling == CurveSampling::Arcs || entry.sampling == CurveSampling::Steps;
+    if (notPoints &&
+        (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1)) {
+      problem(fmt::format("{} is cut {} but has chosen points or a share of a descent", where,
+                          entry.sampling == CurveSampling::Arcs ? "as arcs" : "in steps"));
+    }
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {
       if (region >= regions) {
@@ -328,21 +334,16 @@ private:
     }
   }
 
-  // A grid belongs to arcs, which are level laps with no points chosen.
+  // A grid belongs to arcs.
   void verifyArcs(const std::string& where, const CurveTableEntry& entry) {
     bool arcs = entry.sampling == CurveSampling::Arcs;
     if (!std::isfinite(entry.grid) || entry.grid < 0 || (!arcs && entry.grid != 0)) {
       problem(fmt::format("{} has the grid {}, which is not arcs' grid of zero or more", where,
                           entry.grid));
     }
-    if (arcs && (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1)) {
-      problem(
-          fmt::format("{} is cut as arcs but has chosen points or a share of a descent", where));
-    }
   }
 
-  // Steps: a count for each region (0: computed by the program), and no
-  // points chosen or share of a longer lap's descent.
+  // Steps: a count for each region (0: computed by the program).
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
       if (!entry.regionSteps.empty()) {
@@ -357,10 +358,6 @@ private:
     if (!counted) {
       problem(fmt::format("{} has {} step counts for {} regions, not each 0 .. {}", where,
                           entry.regionSteps.size(), entry.regionCount(), maximumStepsPerRegion));
-    }
-    if (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1) {
-      problem(
-          fmt::format("{} is cut in steps but has chosen points or a share of a descent", where));
     }
   }
 

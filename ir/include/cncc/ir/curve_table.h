@@ -114,6 +114,11 @@ struct CurveTableEntry {
   std::pair<double, double> regionRange(std::size_t region) const;
   // The whole curve's parameter where a region's parameter is `local`.
   double wholeParameter(std::size_t region, double local) const;
+
+private:
+  // The piece a region belongs to and the region's span in it (0 for a
+  // piece without spans); null past the last region.
+  std::pair<const CurvePieceLayout*, std::size_t> pieceOfRegion(std::size_t region) const;
 };
 
 } // namespace cncc::ir
