@@ -222,11 +222,12 @@ private:
 } // namespace
 
 bool expandCurveLaps(Function& function) {
+  bool blocks = writeCurveBlocks(function);
   bool fitted = fitLapArcs(function);
   bool stepped = expandControllerLoops(function);
   if (!hasCurveLap(function)) {
     function.curves.clear();
-    return fitted || stepped;
+    return blocks || fitted || stepped;
   }
   CurveLapExpander expander(function);
   Function expanded = expander.run();

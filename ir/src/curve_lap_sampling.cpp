@@ -32,6 +32,11 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
   case CurveSampling::Arcs:  // points within the arcs' tolerance, where points are asked
   case CurveSampling::Steps: // lapParameters gives the steps' own
     break;
+  case CurveSampling::NurbsBlocks:
+  case CurveSampling::SplineBlocks:
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+                        "a lap cut as curve blocks has no points of its own: its moves are the "
+                        "blocks'");
   }
   return chordsWithinTolerance(curve, entry.amount, entry.cutSpan, entry.curveSpan);
 }

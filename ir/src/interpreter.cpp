@@ -4,6 +4,7 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/polynomial_move.h"
+#include "cncc/ir/printer.h"
 #include "cncc/ir/spline_move.h"
 
 #include "passes/rewriter.h"
@@ -194,8 +195,18 @@ private:
     double zTo = value(lap.operands[1]);
     double feed = value(lap.operands[2]);
     bool ramp = zFrom != zTo;
-    if (ramp && entry.sampling == CurveSampling::Arcs) {
-      throw InterpreterError("a lap cut as arcs is level: its two heights must be one value");
+    if (ramp && (entry.sampling == CurveSampling::Arcs || entry.isBlocks())) {
+      throw InterpreterError(
+          fmt::format("a lap cut by {} is level: its two heights must be one value",
+                      curveSamplingName(entry.sampling)));
+    }
+    if (entry.isBlocks()) {
+      Opcode kind = entry.sampling == CurveSampling::NurbsBlocks ? Opcode::Nurbs : Opcode::Spline;
+      if (!entry.blockTable) {
+        throw InterpreterError("a lap cut as curve blocks names no table of them");
+      }
+      recordBlocks(lap, kind, *entry.blockTable, zTo, feed, 3);
+      return;
     }
     if (entry.sampling == CurveSampling::Steps) {
       runSteppedLap(lap, entry, zFrom, zTo, feed);
@@ -396,25 +407,30 @@ private:
   }
 
   void recordNurbs(const Instruction& instruction) {
-    std::vector<double> weights;
-    for (std::size_t k = 2; k < instruction.operands.size(); ++k) {
-      weights.push_back(value(instruction.operands[k]));
-    }
-    std::size_t first = path_.events.size();
-    nurbsMove(position_, function_.tables[instruction.index], value(instruction.operands[0]),
-              value(instruction.operands[1]), weights, path_.events);
-    for (std::size_t k = first; k < path_.events.size(); ++k) {
-      path_.events[k].span = instruction.span;
-      path_.events[k].pass = instruction.pass;
-    }
-    const MachineEvent& end = path_.events.back();
-    position_ = {end.x, end.y, end.z};
+    recordBlocks(instruction, Opcode::Nurbs, instruction.index, value(instruction.operands[0]),
+                 value(instruction.operands[1]), 2);
   }
 
   void recordSpline(const Instruction& instruction) {
+    recordBlocks(instruction, Opcode::Spline, instruction.index, value(instruction.operands[0]),
+                 value(instruction.operands[1]), 2);
+  }
+
+  // The moves of a NURBS block or of spline blocks (move.nurbs, move.spline,
+  // or a curve.lap cut as them) from table `table` at height z; a NURBS
+  // block's weights are the operands from `firstWeight` on.
+  void recordBlocks(const Instruction& instruction, Opcode kind, std::uint32_t table, double z,
+                    double feed, std::size_t firstWeight) {
     std::size_t first = path_.events.size();
-    splineMove(instruction.index, function_.tables[instruction.index],
-               value(instruction.operands[0]), value(instruction.operands[1]), path_.events);
+    if (kind == Opcode::Nurbs) {
+      std::vector<double> weights;
+      for (std::size_t k = firstWeight; k < instruction.operands.size(); ++k) {
+        weights.push_back(value(instruction.operands[k]));
+      }
+      nurbsMove(position_, function_.tables[table], z, feed, weights, path_.events);
+    } else {
+      splineMove(table, function_.tables[table], z, feed, path_.events);
+    }
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;
       path_.events[k].pass = instruction.pass;

@@ -464,8 +464,10 @@ private:
     if (regions == 0) {
       throw Failure{fmt::format("curve @{} has no pieces", curve)};
     }
+    // A NURBS block's weights, one per control point, are the verifier's to count.
     std::size_t computed = 3 * curves[curve].computedRegionCount();
-    if (parts.size() != 4 + computed) {
+    bool weights = curves[curve].sampling == CurveSampling::NurbsBlocks;
+    if (!weights && parts.size() != 4 + computed) {
       throw Failure{fmt::format("curve @{} wants {} operands after the lap's three (a range and a "
                                 "count for each region whose steps the program computes)",
                                 curve, computed)};
@@ -513,7 +515,8 @@ private:
     }
     std::optional<CurveSampling> sampling = curveSamplingNamed(words[2]);
     if (!sampling) {
-      throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs' or 'steps'"};
+      throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs', 'steps', "
+                    "'nurbs-blocks' or 'spline-blocks'"};
     }
     curve_.emplace();
     curve_->sampling = *sampling;
@@ -552,6 +555,10 @@ private:
       curve_->grid = parseNumber(line.substr(5));
       return;
     }
+    if (startsWith(line, "blocks @")) {
+      curve_->blockTable = static_cast<std::uint32_t>(parseWholeNumber(line.substr(8)));
+      return;
+    }
     if (startsWith(line, "progress ")) {
       std::vector<std::string_view> words = splitWords(line);
       if (words.size() != 4 || words[2] != "share") {
@@ -562,7 +569,8 @@ private:
       return;
     }
     if (!startsWith(line, "piece ")) {
-      throw Failure{"expected 'piece at start over from .. to', 'grid', 'counts', 'progress', "
+      throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', "
+                    "'progress', "
                     "'host', 'chosen' or '}'"};
     }
     std::size_t spansAt = line.find(" spans ");

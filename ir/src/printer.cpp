@@ -9,7 +9,8 @@ namespace cncc::ir {
 
 namespace {
 
-constexpr std::string_view curveSamplingNames[] = {"chords", "samples", "spacing", "arcs", "steps"};
+constexpr std::string_view curveSamplingNames[] = {"chords", "samples",      "spacing",      "arcs",
+                                                   "steps",  "nurbs-blocks", "spline-blocks"};
 
 } // namespace
 
@@ -63,9 +64,9 @@ public:
 
 private:
   // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
-  // the printed grid of arcs, the regions' step counts, the share of a longer lap's descent, the
-  // host regions and the chosen parameters; the entry's geometry, fitted arcs and source spans are
-  // not text.
+  // the printed grid of arcs, the table of blocks, the regions' step counts, the share of a longer
+  // lap's descent, the host regions and the chosen parameters; the entry's geometry, fitted arcs
+  // and source spans are not text.
   void printCurve(std::size_t index, const CurveTableEntry& entry) {
     out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
                         curveSamplingName(entry.sampling), entry.amount, entry.from, entry.to);
@@ -79,6 +80,9 @@ private:
     }
     if (entry.grid != 0) {
       out_ += fmt::format("    grid {}\n", entry.grid);
+    }
+    if (entry.blockTable) {
+      out_ += fmt::format("    blocks @{}\n", *entry.blockTable);
     }
     if (!entry.regionSteps.empty()) {
       out_ += fmt::format("    counts {}\n", fmt::join(entry.regionSteps, ", "));

@@ -1,8 +1,10 @@
 #include "cncc/ir/verifier.h"
 
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/printer.h"
 #include "cncc/ir/spline_move.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <optional>
@@ -165,11 +167,11 @@ private:
         instruction.index > static_cast<std::uint32_t>(ArcTurn::CounterClockwise)) {
       problem(fmt::format("{} turns neither clockwise nor counter-clockwise", where));
     }
-    if (instruction.opcode == Opcode::Nurbs) {
-      checkNurbs(instruction, where);
+    if (instruction.opcode == Opcode::Nurbs && instruction.operands.size() >= 2) {
+      checkNurbs(instruction.index, instruction.operands.size() - 2, where);
     }
     if (instruction.opcode == Opcode::Spline) {
-      checkSpline(instruction, where);
+      checkSpline(instruction.index, where);
     }
     if (instruction.opcode == Opcode::CurveLap) {
       checkCurveLap(instruction, where);
@@ -181,13 +183,26 @@ private:
   }
 
   // Its curve in the table, and three operands and a range and count for
-  // each region whose steps the program computes.
+  // each region whose steps the program computes, or a weight for each
+  // control point of its NURBS block; blocks in a table that holds them.
   void checkCurveLap(const Instruction& lap, const std::string& where) {
     if (lap.index >= function_.curves.size()) {
       problem(fmt::format("{} names curve {}, which is not in the curve table", where, lap.index));
       return;
     }
-    std::size_t wanted = 3 + 3 * function_.curves[lap.index].computedRegionCount();
+    const CurveTableEntry& entry = function_.curves[lap.index];
+    if (entry.isBlocks() && !entry.blockTable) {
+      return; // the entry's own problem
+    }
+    if (entry.sampling == CurveSampling::NurbsBlocks) {
+      checkNurbs(*entry.blockTable,
+                 lap.operands.size() - std::min<std::size_t>(3, lap.operands.size()), where);
+      return;
+    }
+    if (entry.sampling == CurveSampling::SplineBlocks) {
+      checkSpline(*entry.blockTable, where);
+    }
+    std::size_t wanted = 3 + 3 * entry.computedRegionCount();
     if (lap.operands.size() != wanted) {
       problem(fmt::format("{} has {} operands, its curve wants {}", where, lap.operands.size(),
                           wanted));
@@ -223,24 +238,23 @@ private:
 
   // Its table holds the block data of as many control points as it has
   // weights (nurbs_move.h).
-  void checkNurbs(const Instruction& instruction, const std::string& where) {
-    if (instruction.index >= function_.tables.size() || instruction.operands.size() < 2) {
-      problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
+  void checkNurbs(std::uint32_t table, std::size_t weights, const std::string& where) {
+    if (table >= function_.tables.size()) {
+      problem(fmt::format("{} names table {}, which does not exist", where, table));
       return;
     }
     std::string why;
-    if (!readNurbsMoveTable(function_.tables[instruction.index], instruction.operands.size() - 2,
-                            &why)) {
-      problem(fmt::format("{} with {} weights: {}", where, instruction.operands.size() - 2, why));
+    if (!readNurbsMoveTable(function_.tables[table], weights, &why)) {
+      problem(fmt::format("{} with {} weights: {}", where, weights, why));
     }
   }
 
   // Its table holds spline blocks (spline_move.h).
-  void checkSpline(const Instruction& instruction, const std::string& where) {
+  void checkSpline(std::uint32_t table, const std::string& where) {
     std::string why;
-    if (instruction.index >= function_.tables.size()) {
-      problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
-    } else if (!readSplineMoveTable(function_.tables[instruction.index], &why)) {
+    if (table >= function_.tables.size()) {
+      problem(fmt::format("{} names table {}, which does not exist", where, table));
+    } else if (!readSplineMoveTable(function_.tables[table], &why)) {
       problem(fmt::format("{}: {}", where, why));
     }
   }
@@ -297,7 +311,9 @@ private:
       problem(
           fmt::format("{} runs over {} .. {}, not a finite range", where, entry.from, entry.to));
     }
-    bool countsGiven = entry.sampling == CurveSampling::Steps && entry.amount == 0;
+    // Counts the cut gave, or blocks through the points samples= chose.
+    bool countsGiven =
+        (entry.sampling == CurveSampling::Steps || entry.isBlocks()) && entry.amount == 0;
     if (!std::isfinite(entry.amount) || !(entry.amount > 0 || countsGiven)) {
       problem(fmt::format("{} chooses its points by {}, which is not a positive number", where,
                           entry.amount));
@@ -318,12 +334,16 @@ private:
     }
     verifyArcs(where, entry);
     verifySteps(where, entry);
-    bool notPoints =
-        entry.sampling == CurveSampling::Arcs || entry.sampling == CurveSampling::Steps;
+    bool notPoints = entry.sampling == CurveSampling::Arcs ||
+                     entry.sampling == CurveSampling::Steps || entry.isBlocks();
     if (notPoints &&
         (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1)) {
-      problem(fmt::format("{} is cut {} but has chosen points or a share of a descent", where,
-                          entry.sampling == CurveSampling::Arcs ? "as arcs" : "in steps"));
+      problem(fmt::format("{} is cut by {} but has chosen points or a share of a descent", where,
+                          curveSamplingName(entry.sampling)));
+    }
+    if (entry.isBlocks() != entry.blockTable.has_value()) {
+      problem(fmt::format("{} is cut by {} and names {} table of blocks", where,
+                          curveSamplingName(entry.sampling), entry.blockTable ? "a" : "no"));
     }
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {

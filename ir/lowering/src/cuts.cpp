@@ -511,6 +511,17 @@ CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const Cut
   return entry;
 }
 
+CurveTableEntry PartLowering::blocksTableEntry(const CutStmt& cut, const CutCurve& curve,
+                                               CurveSampling sampling, std::uint32_t blockTable,
+                                               double tolerance) {
+  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  entry.sampling = sampling;
+  entry.amount = std::isfinite(tolerance) ? tolerance : 0;
+  entry.blockTable = blockTable;
+  entry.hostPointRegions.clear(); // the regions are the curve, not points to print
+  return entry;
+}
+
 // An entry for `geometry` (the cut's curve, or a piece of it), its
 // parameter range and where its errors are reported; no pieces yet.
 CurveTableEntry PartLowering::curveTableEntryOn(const CutStmt& cut,
@@ -578,12 +589,13 @@ void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, doub
                                 std::size_t firstPiece, std::size_t endPiece) {
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
-  emitCurveLapAt(
-      curve, table, {from, to, feed},
-      [&](std::size_t piece, std::size_t span, Scalar local) {
-        return pointAt(curve, piece, span, local, cut);
-      },
-      firstPiece, endPiece);
+  emitCurveLapAt(curve, table, {from, to, feed}, curvePointOf(curve, cut), firstPiece, endPiece);
+}
+
+PartLowering::LapPointOf PartLowering::curvePointOf(const CutCurve& curve, const CutStmt& cut) {
+  return [this, &curve, &cut](std::size_t piece, std::size_t span, Scalar local) {
+    return pointAt(curve, piece, span, local, cut);
+  };
 }
 
 void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table,

@@ -3,10 +3,12 @@
 // data, in a table: the curve itself when it is a NURBS, else a cubic
 // B-spline fitted within the tolerance less the rounding of the control
 // points, which are put on the printed grid. Each pass is a rapid over the
-// first control point, a plunge and one move.nurbs at the pass height; a
-// weight that is a part parameter is its SSA value, so the printer writes
-// it as that parameter's variable (`R#3`) and the operator's edit reaches
-// the curve. Every other number of the curve is fixed at its default.
+// first control point, a plunge and a curve.lap at the pass height whose
+// entry gives the table (CurveSampling::NurbsBlocks), which the legalisation
+// write-curve-blocks writes out as one move.nurbs; a weight that is a part
+// parameter is an SSA operand of the lap and of the move, so the printer
+// writes it as that parameter's variable (`R#3`) and the operator's edit
+// reaches the curve. Every other number of the curve is fixed at its default.
 #include "part_lowering.h"
 
 #include "cncc/geom/bspline_fitting.h"
@@ -45,12 +47,19 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
   return weights;
 }
 
-// The NURBS the blocks carry, control points on the printed grid.
-geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve& curve) {
+// The budget of the NURBS blocks: samples= or spacing= choose no points of
+// them, so they keep the default tolerance.
+ToleranceBudget PartLowering::nurbsBlockBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
-  if (std::isnan(budget.tolerance)) { // samples= or spacing=: the default tolerance
+  if (std::isnan(budget.tolerance)) {
     budget.tolerance = options_.defaultTolerance;
   }
+  return budget;
+}
+
+// The NURBS the blocks carry, control points on the printed grid.
+geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve& curve) {
+  ToleranceBudget budget = nurbsBlockBudget(cut);
   double tolerance = budget.tolerance;
   double rounding = budget.pointRounding();
   if (!(tolerance > 2 * rounding)) {
@@ -133,6 +142,8 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
                   : builder_.constant(blocks.weights().empty() ? 1.0 : blocks.weights()[i]));
   }
   std::uint32_t table = builder_.addTable(nurbsMoveTable(blocks));
+  std::uint32_t lapTable = builder_.addCurve(blocksTableEntry(
+      cut, curve, CurveSampling::NurbsBlocks, table, nurbsBlockBudget(cut).forPoints()));
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   CutGeometry geometry;
@@ -148,7 +159,12 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
     double z = beginPass(depths[k], depths.size());
     approachPassStart(first, z, safeValue, feedValue);
-    builder_.nurbs(table, builder_.constant(z), feedValue, weights);
+    // The lap at the pass height, which write-curve-blocks writes out as the
+    // block (move.nurbs) with its weights.
+    ValueId height = builder_.constant(z);
+    std::vector<ValueId> operands = {height, height, feedValue};
+    operands.insert(operands.end(), weights.begin(), weights.end());
+    emitCurveLapAt(curve, lapTable, std::move(operands), curvePointOf(curve, cut));
     builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
   }
   return true;

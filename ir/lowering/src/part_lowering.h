@@ -304,6 +304,12 @@ private:
   CurveTableEntry wholeCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntryOn(const frontend::CutStmt& cut,
                                     std::shared_ptr<const geom::Curve> geometry);
+  // The whole curve cut as the target's blocks (NurbsBlocks or SplineBlocks)
+  // whose data is table `blockTable`, fitted within `tolerance` (0: through
+  // the points samples= or spacing= chose).
+  CurveTableEntry blocksTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
+                                   CurveSampling sampling, std::uint32_t blockTable,
+                                   double tolerance);
   CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
                                        std::size_t piece, const std::vector<RampSegment>& shares);
   CurvePieceLayout pieceLayout(const CurvePiece& piece, double start);
@@ -316,6 +322,8 @@ private:
   // `operands` (z from, z to, feed, then the ranges and counts of the regions
   // whose steps the program computes).
   using LapPointOf = std::function<CurvePoint(std::size_t piece, std::size_t span, Scalar local)>;
+  // The curve's own point (pointAt), as a host cut's lap computes it.
+  LapPointOf curvePointOf(const CutCurve& curve, const frontend::CutStmt& cut);
   void emitCurveLapAt(const CutCurve& curve, std::uint32_t table, std::vector<ValueId> operands,
                       const LapPointOf& pointOf, std::size_t firstPiece = 0,
                       std::size_t endPiece = SIZE_MAX);
@@ -377,6 +385,7 @@ private:
   bool lowerNurbsCut(const frontend::CutStmt& cut);
   std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
                                                        const CutCurve& curve);
+  ToleranceBudget nurbsBlockBudget(const frontend::CutStmt& cut);
   geom::NurbsCurve nurbsForBlocks(const frontend::CutStmt& cut, const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
 

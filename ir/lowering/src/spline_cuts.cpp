@@ -3,7 +3,9 @@
 // are fitted once (spline_fitting.cpp), every number on the printed grid,
 // and put in a table; each pass is a rapid over the spline's start, a
 // plunge (and the ramp lap's chords with entry=ramp), the blocks' comment
-// and one move.spline at the pass height, and a retract. A curve that does
+// and a curve.lap at the pass height whose entry gives the table
+// (CurveSampling::SplineBlocks), which the legalisation write-curve-blocks
+// writes out as one move.spline, and a retract. A curve that does
 // not lie in one plane z = constant (the spline axes are X and Y) is cut as
 // chords.
 #include "part_lowering.h"
@@ -132,6 +134,13 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   }
   FittedSplineBlocks blocks = splineBlocksFor(cut, curve, *kind, samples, ramp);
   std::uint32_t table = builder_.addTable(splineMoveTable(blocks.data));
+  // A curve beside the cut's (an offset) has no pieces whose regions would
+  // compute it: its blocks are the move itself.
+  std::optional<std::uint32_t> blocksTable;
+  if (!curve.pieces.empty()) {
+    blocksTable = builder_.addCurve(blocksTableEntry(cut, curve, CurveSampling::SplineBlocks, table,
+                                                     toleranceBudget(cut).tolerance));
+  }
   std::string comment = splineBlocksComment(blocks);
 
   ValueId feedValue = arithmetic_.value(feed);
@@ -148,14 +157,19 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
     entry.chosenParameters = std::make_shared<const std::vector<double>>(samples.parameters);
     rampTable = builder_.addCurve(std::move(entry));
   }
-  // The ramp's lap as chords, the lap at the pass height as the blocks.
+  // The ramp's lap as chords, the lap at the pass height as the blocks
+  // (a curve.lap that write-curve-blocks writes out as the move.spline).
   auto lap = [&](double zFrom, double zTo) {
     if (zFrom != zTo) {
       emitCurveLap(curve, *rampTable, zFrom, zTo, feedValue, cut);
       return;
     }
     builder_.comment(comment);
-    builder_.spline(table, builder_.constant(zTo), feedValue);
+    if (blocksTable) {
+      emitCurveLap(curve, *blocksTable, zTo, zTo, feedValue, cut);
+    } else {
+      builder_.spline(table, builder_.constant(zTo), feedValue);
+    }
   };
   emitHostPasses(depths, ramp, blocks.start, blocks.data.points.back(), feedValue, safeValue, lap);
   return true;

@@ -20,6 +20,10 @@ bool unrollWhenNoLarger(Function& function) {
 }
 
 constexpr Pass passTable[] = {
+    {"write-curve-blocks",
+     "legalisation: each curve.lap cut as NURBS or spline blocks as the move.nurbs or move.spline "
+     "of its table",
+     writeCurveBlocks},
     {"fit-arcs", "legalisation: each curve.lap cut as arcs as the fit's move.arc and move.feed ops",
      fitLapArcs},
     {"expand-controller-loops",
@@ -100,7 +104,8 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 }
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
-  for (std::string_view name : {"fit-arcs", "expand-controller-loops", "expand-curve-laps"}) {
+  for (std::string_view name :
+       {"write-curve-blocks", "fit-arcs", "expand-controller-loops", "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

@@ -54,7 +54,7 @@ TEST(CurveLapArcs, TheVerifierKeepsAGridToArcs) {
   Function chosen = parsed(replaced(arcsCircleText(), "grid 0.001", "grid 0.001\n    chosen 0, 1"));
   problems = verifyFunction(chosen);
   ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].find("cut as arcs"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("cut by arcs"), std::string::npos) << problems[0];
 }
 
 TEST(CurveLapArcs, FitArcsWritesTheMovesTheInterpreterRuns) {

@@ -85,14 +85,15 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
                                       "");
   EXPECT_EQ(parseComplaint(threeRegions), "26: this curve.lap has 3 regions, its curve needs 4");
   EXPECT_EQ(parseComplaint(replaced(circleText, "chords", "strides")),
-            "2: a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs' or 'steps'");
+            "2: a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs', 'steps', "
+            "'nurbs-blocks' or 'spline-blocks'");
   EXPECT_EQ(parseComplaint(replaced(pathText, "    host 1, 3\n", "    host 1, x\n")),
             "6: expected a whole number, found 'x'");
   EXPECT_EQ(parseComplaint(replaced(pathText, "spans 0 .. 1,", "spans 0 1,")),
             "5: expected a knot span 'from .. to'");
-  EXPECT_EQ(
-      parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
-      "4: expected 'piece at start over from .. to', 'grid', 'counts', 'progress', 'host', 'chosen' or '}'");
+  EXPECT_EQ(parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
+            "4: expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', "
+            "'progress', 'host', 'chosen' or '}'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "  %4 = curve.lap", "  curve.lap")),
             "10: this operation has a result; write '%name = ...'");
 }

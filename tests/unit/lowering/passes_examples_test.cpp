@@ -327,6 +327,24 @@ TEST(PassesExamplesTest, ControllerLegalisationKeepsEveryExamplesToolPath) {
   EXPECT_GE(legaliseEveryExample(controller, CurveSampling::Steps), 1u);
 }
 
+// Every example lowered for a target that prints NURBS blocks (Fanuc, M80)
+// and for one that prints spline blocks (Sinumerik): a lap cut as the blocks
+// runs as the block's move, before write-curve-blocks and after it.
+TEST(PassesExamplesTest, CurveBlocksKeepEveryExamplesToolPath) {
+  LoweringOptions nurbs;
+  nurbs.controllerLoops = true;
+  nurbs.nurbsBlocks = true;
+  nurbs.coordinateIncrement = 0.0001;
+  // cam_profile's engraved mark, method=nurbs.
+  EXPECT_GE(legaliseEveryExample(nurbs, CurveSampling::NurbsBlocks), 1u);
+  LoweringOptions splines;
+  splines.splineInterpolation = true;
+  splines.splineBlocks = true;
+  splines.coordinateIncrement = 0.001;
+  // rosette_plate's petals (method=cspline) and the other spline cuts: 19 laps.
+  EXPECT_GE(legaliseEveryExample(splines, CurveSampling::SplineBlocks), 19u);
+}
+
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {
   std::optional<Function> lowered = lowerExample("s_profile.cdl", "");
   ASSERT_TRUE(lowered);

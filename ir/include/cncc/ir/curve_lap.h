@@ -182,12 +182,18 @@ std::vector<LapStep> lapSteps(const std::vector<StepRange>& ranges);
 // to the steps done; the other laps stay. Throws CurveLapError.
 bool expandControllerLoops(Function& function);
 
+// `write-curve-blocks`: every curve.lap cut as the target's NURBS or spline
+// blocks written out as the move.nurbs or move.spline of its entry's table,
+// at its height and feed (a NURBS block's weights the lap's operands after
+// its three); the other laps stay. Throws CurveLapError for a ramp lap.
+bool writeCurveBlocks(Function& function);
+
 // `expand-curve-laps`: every curve.lap written out as today's host form:
 // per run of points in one region a loop over a table of the region's
 // parameters (and of the ramp's progress), the region's arithmetic in its
 // body, a feed move to each point; points the entry marks are host tables.
-// Laps cut as arcs or in steps are written out first (fitLapArcs,
-// expandControllerLoops). The curve table is
+// Laps cut as blocks, as arcs or in steps are written out first
+// (writeCurveBlocks, fitLapArcs, expandControllerLoops). The curve table is
 // emptied once no lap refers to it. Throws CurveLapError.
 bool expandCurveLaps(Function& function);
 

@@ -9,7 +9,9 @@
 #include "cncc/frontend/source_span.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -50,8 +52,20 @@ struct CurveLocation {
 // end and centre on the printed grid (a level lap in a plane z = const, on
 // a target that prints G02/G03). Or each region is cut in its own number of
 // uniform steps of its parameter by a loop the controller runs (a level lap
-// of pieces without knot spans, on a target that runs loops).
-enum class CurveSampling { ChordTolerance, Samples, Spacing, Arcs, Steps };
+// of pieces without knot spans, on a target that runs loops). Or the lap
+// is the target's own curve blocks, whose data the lowering fitted within
+// the cut's tolerance and put in a table of the function: a NURBS block
+// (G06.2, move.nurbs, the lap's operands after its three the weights) or
+// Sinumerik spline blocks (move.spline).
+enum class CurveSampling {
+  ChordTolerance,
+  Samples,
+  Spacing,
+  Arcs,
+  Steps,
+  NurbsBlocks,
+  SplineBlocks
+};
 
 // The most uniform steps one region of a lap cut in steps may take.
 inline constexpr int maximumStepsPerRegion = 100'000;
@@ -66,10 +80,14 @@ struct CurveTableEntry {
   // The chord tolerance (what the points must keep, the printed rounding
   // already taken off), the number of points, the spacing in mm, the arcs'
   // tolerance (the rounding of their ends and centres taken off), or the
-  // chord tolerance the steps keep (0: counts the cut gave, samples=).
+  // chord tolerance the steps keep (0: counts the cut gave, samples=), or
+  // the tolerance the blocks were fitted within.
   double amount = 0;
   // Arcs: the printed grid their ends and centres are put on (0: none).
   double grid = 0;
+  // NURBS or spline blocks: the function's table that holds their data (as
+  // move.nurbs or move.spline reads it).
+  std::optional<std::uint32_t> blockTable = std::nullopt;
   // Steps: each region's number of uniform steps (the first point is where
   // the region starts: the end of the one before, or the lap's start); 0
   // where the program computes them: the region's range and count are then
@@ -101,6 +119,10 @@ struct CurveTableEntry {
   // null in a function read from text, where the curve is fitted again.
   std::shared_ptr<const geom::ArcFit> fittedArcs = nullptr;
 
+  // A lap cut as the target's NURBS or spline blocks.
+  bool isBlocks() const {
+    return sampling == CurveSampling::NurbsBlocks || sampling == CurveSampling::SplineBlocks;
+  }
   std::size_t regionCount() const;
   // Steps: the regions whose range and count the program computes.
   std::size_t computedRegionCount() const;

@@ -75,8 +75,9 @@ bool runPasses(Function& function, std::span<const std::string> names,
 void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass = {},
                         int maximumRounds = 4);
 
-// The legalisation of curve.laps for a target: fit-arcs, expand-controller-
-// loops, then expand-curve-laps (curve_lap.h). Throws CurveLapError.
+// The legalisation of curve.laps for a target: write-curve-blocks, fit-arcs,
+// expand-controller-loops, then expand-curve-laps (curve_lap.h). Throws
+// CurveLapError.
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass = {});
 
 // The number of instructions placed in the function's regions.

@@ -1,0 +1,49 @@
+// `write-curve-blocks`: each curve.lap cut as the target's own curve blocks
+// (CurveSampling::NurbsBlocks or SplineBlocks) written out as the one move
+// that prints them: move.nurbs or move.spline on the entry's table of block
+// data, at the lap's height and feed (a NURBS block's weights, the lap's
+// operands after its three, carried over, so a weight that is a part
+// parameter stays one). The lap's regions, the curve the blocks were fitted
+// to, go: the blocks are what the controller cuts.
+#include "curve_lap_rewriter.h"
+
+namespace cncc::ir {
+
+namespace {
+
+class CurveBlockWriter : public LapRewriter {
+public:
+  using LapRewriter::LapRewriter;
+
+private:
+  bool writes(const CurveTableEntry& entry) const override { return entry.isBlocks(); }
+  // The lap's regions are not rewritten: its move is the blocks'.
+  void writePoint(const Instruction&, const Instruction& point) override { copy(point); }
+
+  void writeLap(const Instruction& lap) override {
+    const CurveTableEntry& entry = source_.curves[lap.index];
+    if (isRamp(lap)) {
+      throw CurveLapError(CurveLapError::Kind::DegenerateCurve, lap.span,
+                          "a lap cut as curve blocks is level: its two heights must be one value");
+    }
+    Instruction move;
+    move.opcode = entry.sampling == CurveSampling::NurbsBlocks ? Opcode::Nurbs : Opcode::Spline;
+    move.index = entry.blockTable.value_or(0); // verified to be there
+    move.span = lap.span;
+    move.pass = lap.pass;
+    std::vector<ValueId> operands;
+    for (std::size_t k = 1; k < lap.operands.size(); ++k) {
+      operands.push_back(mapped(lap.operands[k])); // height, feed, weights
+    }
+    emit(move, std::move(operands));
+  }
+};
+
+} // namespace
+
+bool writeCurveBlocks(Function& function) {
+  return rewriteLaps<CurveBlockWriter>(function, CurveSampling::NurbsBlocks) |
+         rewriteLaps<CurveBlockWriter>(function, CurveSampling::SplineBlocks);
+}
+
+} // namespace cncc::ir

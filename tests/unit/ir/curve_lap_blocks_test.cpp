@@ -1,0 +1,173 @@
+// Laps cut as the target's curve blocks: an entry naming its table of NURBS
+// or spline blocks prints and parses, the verifier checks the table and a
+// NURBS block's weights, the interpreter runs the lap as the block, and
+// write-curve-blocks writes each such lap out as that one move (a weight
+// that is a parameter still one).
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/verifier.h"
+#include "curve_lap_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cncc::ir {
+namespace {
+
+using curve_lap_test::countOf;
+using curve_lap_test::parsed;
+using curve_lap_test::replaced;
+
+// An arch from (0, 0) to (10, 0) through the control point (5, 5) of
+// weight w, a quadratic NURBS block at z = -1. The lap's region computes
+// the curve's meaning (here only its chord: the block is what is cut).
+constexpr std::string_view nurbsArchText = R"(func @arch(w = 2) {
+  table @0 = [3, 0, 0, 0, 1, 1, 1, 0, 0, 0, 5, 5, 0, 10, 0, 0]
+  curve @0 nurbs-blocks 0.01 over 0 .. 1 {
+    piece at 0 over 0 .. 1
+    blocks @0
+  }
+  %0 = param w
+  %1 = const 0
+  %2 = const -1
+  %3 = const 300
+  %4 = const 1
+  %5 = const 10
+  move.rapid %1, %1, %2
+  %6 = curve.lap @0, %2, %2, %3, %4, %0, %4 {
+    %7 = mul %5, %6
+    curve.point %7, %1, %1
+  }
+}
+)";
+
+// A natural CSPLINE from (0, 0) through (5, 5) and (10, 0) to (15, 5) at
+// z = -1.
+constexpr std::string_view splineWaveText = R"(func @wave() {
+  table @0 = [1, 3, 1, 1, 3, 5, 5, 0, 10, 0, 0, 15, 5, 0]
+  curve @0 spline-blocks 0.01 over 0 .. 1 {
+    piece at 0 over 0 .. 1
+    blocks @0
+  }
+  %0 = const 0
+  %1 = const -1
+  %2 = const 300
+  %3 = const 15
+  %4 = const 5
+  move.rapid %0, %0, %1
+  %5 = curve.lap @0, %1, %1, %2 {
+    %6 = mul %3, %5
+    %7 = mul %4, %5
+    curve.point %6, %7, %0
+  }
+}
+)";
+
+TEST(CurveLapBlocks, ABlocksEntryPrintsAndParsesWithItsTable) {
+  for (std::string_view text : {nurbsArchText, splineWaveText}) {
+    Function function = parsed(text);
+    ASSERT_EQ(function.curves.size(), 1u);
+    EXPECT_TRUE(function.curves[0].isBlocks());
+    EXPECT_EQ(function.curves[0].blockTable, 0u);
+    EXPECT_EQ(printFunction(function), text);
+    EXPECT_TRUE(verifyFunction(function).empty());
+  }
+  EXPECT_EQ(parsed(nurbsArchText).curves[0].sampling, CurveSampling::NurbsBlocks);
+  EXPECT_EQ(parsed(splineWaveText).curves[0].sampling, CurveSampling::SplineBlocks);
+}
+
+TEST(CurveLapBlocks, TheVerifierChecksTheTableAndTheWeights) {
+  std::vector<std::string> problems =
+      verifyFunction(parsed(replaced(nurbsArchText, "blocks @0", "blocks @1")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("table 1, which does not exist"), std::string::npos) << problems[0];
+
+  // Two weights for three control points.
+  problems = verifyFunction(parsed(replaced(nurbsArchText, "%3, %4, %0, %4 {", "%3, %4, %0 {")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("2 weights"), std::string::npos) << problems[0];
+
+  // A table that holds no spline blocks (kind 7).
+  problems = verifyFunction(parsed(replaced(splineWaveText, "[1, 3, 1, 1, 3,", "[7, 3, 1, 1, 3,")));
+  ASSERT_EQ(problems.size(), 1u);
+
+  // A table of blocks belongs to blocks.
+  problems = verifyFunction(parsed(replaced(splineWaveText, "spline-blocks", "chords")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("chords and names a table of blocks"), std::string::npos)
+      << problems[0];
+  problems = verifyFunction(parsed(replaced(splineWaveText, "    blocks @0\n", "")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("names no table"), std::string::npos) << problems[0];
+}
+
+// The lap runs as the block does, before and after write-curve-blocks, and
+// the weight stays the parameter: an edit moves the arch's top.
+TEST(CurveLapBlocks, WriteCurveBlocksWritesTheMoveTheInterpreterRuns) {
+  Function function = parsed(nurbsArchText);
+  InterpreterOptions heavier;
+  heavier.parameters["w"] = 5.0;
+  ToolPath before = interpret(function);
+  ToolPath edited = interpret(function, heavier);
+  ASSERT_TRUE(writeCurveBlocks(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  ASSERT_EQ(countOf(function, Opcode::Nurbs), 1u);
+  curve_lap_test::expectSamePath(before, interpret(function));
+  curve_lap_test::expectSamePath(edited, interpret(function, heavier));
+
+  // A heavier middle weight pulls the arch's top (at x = 5) towards (5, 5).
+  auto topOf = [](const ToolPath& path) {
+    double top = 0;
+    for (const MachineEvent& event : path.events) {
+      top = std::max(top, event.y);
+    }
+    return top;
+  };
+  EXPECT_NEAR(topOf(before), 5.0 * 2 / 3, 1e-4); // (w / (1 + w)) * 5 at u = 1/2
+  EXPECT_NEAR(topOf(edited), 5.0 * 5 / 6, 1e-4);
+  EXPECT_NEAR(before.events.back().x, 10, 1e-12);
+  EXPECT_EQ(before.events.back().z, -1);
+}
+
+TEST(CurveLapBlocks, SplineBlocksAreOneMoveThrough) {
+  Function function = parsed(splineWaveText);
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(writeCurveBlocks(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  EXPECT_EQ(countOf(function, Opcode::Spline), 1u);
+  curve_lap_test::expectSamePath(before, interpret(function));
+  // The spline passes through its knots, the last where it ends.
+  bool throughMiddleKnot = false;
+  for (const MachineEvent& event : before.events) {
+    throughMiddleKnot |= std::abs(event.x - 10) < 1e-9 && std::abs(event.y) < 1e-9;
+  }
+  EXPECT_TRUE(throughMiddleKnot);
+  EXPECT_NEAR(before.events.back().x, 15, 1e-9);
+  EXPECT_NEAR(before.events.back().y, 5, 1e-9);
+}
+
+// Blocks are cut at one height: a ramp lap is refused by the pass and by
+// the interpreter.
+TEST(CurveLapBlocks, ARampLapOfBlocksIsRefused) {
+  std::string ramp =
+      replaced(splineWaveText, "curve.lap @0, %1, %1, %2", "curve.lap @0, %0, %1, %2");
+  Function function = parsed(ramp);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_THROW(interpret(function), InterpreterError);
+  EXPECT_THROW(writeCurveBlocks(function), CurveLapError);
+}
+
+// The other laps stay for the later legalisations; a function without
+// blocks is not changed.
+TEST(CurveLapBlocks, OtherLapsStay) {
+  Function function = parsed(curve_lap_test::circleText);
+  EXPECT_FALSE(writeCurveBlocks(function));
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 1u);
+}
+
+} // namespace
+} // namespace cncc::ir
