@@ -219,21 +219,56 @@ private:
   std::size_t tableEntries_ = 0;
 };
 
+bool readsTable(const Instruction& instruction) {
+  return instruction.opcode == Opcode::TableLoad || instruction.opcode == Opcode::Nurbs ||
+         instruction.opcode == Opcode::Spline;
+}
+
+// Once no curve.lap is left, the tables of blocks no move reads (the cubic
+// spans, written out as numbers) go, and the others are numbered again.
+void dropUnreadBlockTables(Function& function) {
+  std::vector<bool> keep(function.tables.size(), true);
+  for (const CurveTableEntry& entry : function.curves) {
+    if (entry.blockTable && *entry.blockTable < keep.size()) {
+      keep[*entry.blockTable] = false;
+    }
+  }
+  for (const Instruction& instruction : function.instructions) {
+    if (readsTable(instruction) && instruction.index < keep.size()) {
+      keep[instruction.index] = true;
+    }
+  }
+  std::vector<std::uint32_t> renumbered(function.tables.size(), 0);
+  std::vector<std::vector<double>> kept;
+  for (std::size_t table = 0; table < function.tables.size(); ++table) {
+    renumbered[table] = static_cast<std::uint32_t>(kept.size());
+    if (keep[table]) {
+      kept.push_back(std::move(function.tables[table]));
+    }
+  }
+  function.tables = std::move(kept);
+  for (Instruction& instruction : function.instructions) {
+    if (readsTable(instruction) && instruction.index < renumbered.size()) {
+      instruction.index = renumbered[instruction.index];
+    }
+  }
+}
+
 } // namespace
 
 bool expandCurveLaps(Function& function) {
   bool blocks = writeCurveBlocks(function);
   bool fitted = fitLapArcs(function);
   bool stepped = expandControllerLoops(function);
-  if (!hasCurveLap(function)) {
-    function.curves.clear();
-    return blocks || fitted || stepped;
+  bool expanded = hasCurveLap(function);
+  if (expanded) {
+    CurveLapExpander expander(function);
+    function = expander.run();
   }
-  CurveLapExpander expander(function);
-  Function expanded = expander.run();
-  expanded.curves.clear();
-  function = std::move(expanded);
-  return true;
+  std::size_t tables = function.tables.size();
+  dropUnreadBlockTables(function);
+  function.curves.clear();
+  return blocks || fitted || stepped || expanded || function.tables.size() != tables;
 }
 
 } // namespace cncc::ir

@@ -34,6 +34,7 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
     break;
   case CurveSampling::NurbsBlocks:
   case CurveSampling::SplineBlocks:
+  case CurveSampling::PolynomialBlocks:
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
                         "a lap cut as curve blocks has no points of its own: its moves are the "
                         "blocks'");

@@ -201,7 +201,9 @@ private:
                       curveSamplingName(entry.sampling)));
     }
     if (entry.isBlocks()) {
-      Opcode kind = entry.sampling == CurveSampling::NurbsBlocks ? Opcode::Nurbs : Opcode::Spline;
+      Opcode kind = entry.sampling == CurveSampling::NurbsBlocks    ? Opcode::Nurbs
+                    : entry.sampling == CurveSampling::SplineBlocks ? Opcode::Spline
+                                                                    : Opcode::Polynomial;
       if (!entry.blockTable) {
         throw InterpreterError("a lap cut as curve blocks names no table of them");
       }
@@ -416,9 +418,10 @@ private:
                  value(instruction.operands[1]), 2);
   }
 
-  // The moves of a NURBS block or of spline blocks (move.nurbs, move.spline,
-  // or a curve.lap cut as them) from table `table` at height z; a NURBS
-  // block's weights are the operands from `firstWeight` on.
+  // The moves of a NURBS block, of spline blocks or of cubic spans
+  // (move.nurbs, move.spline, or a curve.lap cut as them, or as
+  // move.polynomials) from table `table` at height z; a NURBS block's
+  // weights are the operands from `firstWeight` on.
   void recordBlocks(const Instruction& instruction, Opcode kind, std::uint32_t table, double z,
                     double feed, std::size_t firstWeight) {
     std::size_t first = path_.events.size();
@@ -428,8 +431,20 @@ private:
         weights.push_back(value(instruction.operands[k]));
       }
       nurbsMove(position_, function_.tables[table], z, feed, weights, path_.events);
-    } else {
+    } else if (kind == Opcode::Spline) {
       splineMove(table, function_.tables[table], z, feed, path_.events);
+    } else {
+      std::string problem;
+      std::optional<std::vector<PolynomialMove>> spans =
+          readPolynomialMoveTable(function_.tables[table], &problem);
+      if (!spans) {
+        throw InterpreterError(problem);
+      }
+      for (PolynomialMove span : *spans) {
+        span.end.z() += z;
+        polynomialMove(position_, span, feed, path_.events);
+        position_ = {span.end.x(), span.end.y(), span.end.z()};
+      }
     }
     for (std::size_t k = first; k < path_.events.size(); ++k) {
       path_.events[k].span = instruction.span;

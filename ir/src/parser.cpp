@@ -516,7 +516,7 @@ private:
     std::optional<CurveSampling> sampling = curveSamplingNamed(words[2]);
     if (!sampling) {
       throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs', 'steps', "
-                    "'nurbs-blocks' or 'spline-blocks'"};
+                    "'nurbs-blocks', 'spline-blocks' or 'polynomial-blocks'"};
     }
     curve_.emplace();
     curve_->sampling = *sampling;

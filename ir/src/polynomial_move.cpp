@@ -92,6 +92,35 @@ PolynomialMove polynomialMoveOf(std::span<const double, 12> values) {
   return move;
 }
 
+std::vector<double> polynomialMoveTable(const std::vector<PolynomialMove>& spans) {
+  std::vector<double> table;
+  for (const PolynomialMove& span : spans) {
+    table.insert(table.end(), {span.end.x(), span.end.y(), span.end.z()});
+    for (int axis = 0; axis < 3; ++axis) {
+      for (const Eigen::Vector3d& coefficient : span.coefficients) {
+        table.push_back(coefficient[axis]);
+      }
+    }
+  }
+  return table;
+}
+
+std::optional<std::vector<PolynomialMove>> readPolynomialMoveTable(std::span<const double> table,
+                                                                   std::string* problem) {
+  if (table.empty() || table.size() % 12 != 0) {
+    if (problem != nullptr) {
+      *problem = fmt::format("a table of {} numbers holds no cubic spans of 12 numbers each",
+                             table.size());
+    }
+    return std::nullopt;
+  }
+  std::vector<PolynomialMove> spans;
+  for (std::size_t at = 0; at < table.size(); at += 12) {
+    spans.push_back(polynomialMoveOf(table.subspan(at).first<12>()));
+  }
+  return spans;
+}
+
 void polynomialMove(const std::array<double, 3>& start, const PolynomialMove& move, double feed,
                     std::vector<MachineEvent>& events) {
   for (const Eigen::Vector3d& vector :

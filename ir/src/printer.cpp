@@ -9,8 +9,9 @@ namespace cncc::ir {
 
 namespace {
 
-constexpr std::string_view curveSamplingNames[] = {"chords", "samples",      "spacing",      "arcs",
-                                                   "steps",  "nurbs-blocks", "spline-blocks"};
+constexpr std::string_view curveSamplingNames[] = {
+    "chords", "samples",      "spacing",       "arcs",
+    "steps",  "nurbs-blocks", "spline-blocks", "polynomial-blocks"};
 
 } // namespace
 

@@ -1,6 +1,7 @@
 #include "cncc/ir/verifier.h"
 
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/printer.h"
 #include "cncc/ir/spline_move.h"
 
@@ -202,6 +203,9 @@ private:
     if (entry.sampling == CurveSampling::SplineBlocks) {
       checkSpline(*entry.blockTable, where);
     }
+    if (entry.sampling == CurveSampling::PolynomialBlocks) {
+      checkPolynomialSpans(*entry.blockTable, where);
+    }
     std::size_t wanted = 3 + 3 * entry.computedRegionCount();
     if (lap.operands.size() != wanted) {
       problem(fmt::format("{} has {} operands, its curve wants {}", where, lap.operands.size(),
@@ -255,6 +259,16 @@ private:
     if (table >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, table));
     } else if (!readSplineMoveTable(function_.tables[table], &why)) {
+      problem(fmt::format("{}: {}", where, why));
+    }
+  }
+
+  // Its table holds cubic spans (polynomial_move.h).
+  void checkPolynomialSpans(std::uint32_t table, const std::string& where) {
+    std::string why;
+    if (table >= function_.tables.size()) {
+      problem(fmt::format("{} names table {}, which does not exist", where, table));
+    } else if (!readPolynomialMoveTable(function_.tables[table], &why)) {
       problem(fmt::format("{}: {}", where, why));
     }
   }

@@ -396,6 +396,7 @@ private:
                                      SplineKind kind, const geom::CurveSamples& samples, bool ramp);
   // polynomial_cuts.cpp
   // `given`: the curve to cut instead of the statement's (an offset's stand-in).
+  void emitPolynomialMoves(const std::vector<PolynomialMove>& spans, double z, ValueId feed);
   bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
   void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);

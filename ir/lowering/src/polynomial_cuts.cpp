@@ -7,8 +7,11 @@
 // is put on the printed grid and each span made to start exactly where the
 // one before ends (polynomial_move.h). A transition that turns by more than
 // the TNC's 0.1 degree, where the control stops exactly, is a warning
-// naming how many there are. Each pass is a rapid over the start, a plunge,
-// and one move.polynomial per span at the pass height.
+// naming how many there are. The spans are a table of the function; each
+// pass is a rapid over the start, a plunge, and a curve.lap at the pass
+// height whose entry names the table (CurveSampling::PolynomialBlocks),
+// which the legalisation write-curve-blocks writes out as one
+// move.polynomial per span.
 #include "part_lowering.h"
 
 #include "cncc/geom/bspline_fitting.h"
@@ -105,6 +108,22 @@ void PartLowering::reportSplineCorners(const CutStmt& cut,
   }
 }
 
+// A move.polynomial per span at height z.
+void PartLowering::emitPolynomialMoves(const std::vector<PolynomialMove>& spans, double z,
+                                       ValueId feed) {
+  for (const PolynomialMove& span : spans) {
+    std::vector<ValueId> operands{builder_.constant(span.end.x()), builder_.constant(span.end.y()),
+                                  builder_.constant(z + span.end.z())};
+    for (int axis = 0; axis < 3; ++axis) {
+      for (const Eigen::Vector3d& coefficient : span.coefficients) {
+        operands.push_back(builder_.constant(coefficient[axis]));
+      }
+    }
+    operands.push_back(feed);
+    builder_.operation(Opcode::Polynomial, std::move(operands));
+  }
+}
+
 bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
@@ -130,23 +149,26 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   geometry.method = word;
   beginCutMoves(geometry);
 
+  // A curve beside the cut's (an offset) has no pieces whose regions would
+  // compute it: its spans are the moves themselves.
+  std::optional<std::uint32_t> spansTable;
+  if (!curve.pieces.empty()) {
+    std::uint32_t table = builder_.addTable(polynomialMoveTable(spans));
+    spansTable = builder_.addCurve(blocksTableEntry(cut, curve, CurveSampling::PolynomialBlocks,
+                                                    table, toleranceBudget(cut).forPoints()));
+  }
   Eigen::Vector3d first = spans.front().start();
   std::vector<double> depths = passDepths(cut);
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
     double z = beginPass(depths[k], depths.size());
     approachPassStart(first, z, safeValue, feedValue);
-    for (const PolynomialMove& span : spans) {
-      std::vector<ValueId> operands{builder_.constant(span.end.x()),
-                                    builder_.constant(span.end.y()),
-                                    builder_.constant(z + span.end.z())};
-      for (int axis = 0; axis < 3; ++axis) {
-        for (const Eigen::Vector3d& coefficient : span.coefficients) {
-          operands.push_back(builder_.constant(coefficient[axis]));
-        }
-      }
-      operands.push_back(feedValue);
-      builder_.operation(Opcode::Polynomial, std::move(operands));
+    if (spansTable) {
+      // The lap at the pass height, which write-curve-blocks writes out as
+      // a move.polynomial per span.
+      emitCurveLap(curve, *spansTable, z, z, feedValue, cut);
+    } else {
+      emitPolynomialMoves(spans, z, feedValue);
     }
     const Eigen::Vector3d& last = spans.back().end;
     builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);

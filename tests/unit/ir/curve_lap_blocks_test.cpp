@@ -65,8 +65,27 @@ constexpr std::string_view splineWaveText = R"(func @wave() {
 }
 )";
 
+// Two cubic spans (Heidenhain SPL) from (0, 0) to (10, 0), then on to
+// (20, 0): each ends at E and starts at K3 + K2 + K1 + E, here bowing up
+// by K2 = (0, -4, 0) (a parabola 1 mm high) with K1 = (-10, 4, 0).
+constexpr std::string_view spansText = R"(func @bows() {
+  table @0 = [10, 0, 0, 0, -10, 0, 0, -4, 4, 0, 0, 0, 20, 0, 0, 0, -10, 0, 0, -4, 4, 0, 0, 0]
+  curve @0 polynomial-blocks 0.01 over 0 .. 20 {
+    piece at 0 over 0 .. 20
+    blocks @0
+  }
+  %0 = const 0
+  %1 = const -1
+  %2 = const 300
+  move.rapid %0, %0, %1
+  %3 = curve.lap @0, %1, %1, %2 {
+    curve.point %3, %0, %0
+  }
+}
+)";
+
 TEST(CurveLapBlocks, ABlocksEntryPrintsAndParsesWithItsTable) {
-  for (std::string_view text : {nurbsArchText, splineWaveText}) {
+  for (std::string_view text : {nurbsArchText, splineWaveText, spansText}) {
     Function function = parsed(text);
     ASSERT_EQ(function.curves.size(), 1u);
     EXPECT_TRUE(function.curves[0].isBlocks());
@@ -76,6 +95,7 @@ TEST(CurveLapBlocks, ABlocksEntryPrintsAndParsesWithItsTable) {
   }
   EXPECT_EQ(parsed(nurbsArchText).curves[0].sampling, CurveSampling::NurbsBlocks);
   EXPECT_EQ(parsed(splineWaveText).curves[0].sampling, CurveSampling::SplineBlocks);
+  EXPECT_EQ(parsed(spansText).curves[0].sampling, CurveSampling::PolynomialBlocks);
 }
 
 TEST(CurveLapBlocks, TheVerifierChecksTheTableAndTheWeights) {
@@ -92,6 +112,11 @@ TEST(CurveLapBlocks, TheVerifierChecksTheTableAndTheWeights) {
   // A table that holds no spline blocks (kind 7).
   problems = verifyFunction(parsed(replaced(splineWaveText, "[1, 3, 1, 1, 3,", "[7, 3, 1, 1, 3,")));
   ASSERT_EQ(problems.size(), 1u);
+
+  // Cubic spans are 12 numbers each.
+  problems = verifyFunction(parsed(replaced(spansText, "0, 0, 0, 20,", "0, 0, 20,")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("23 numbers"), std::string::npos) << problems[0];
 
   // A table of blocks belongs to blocks.
   problems = verifyFunction(parsed(replaced(splineWaveText, "spline-blocks", "chords")));
@@ -148,6 +173,30 @@ TEST(CurveLapBlocks, SplineBlocksAreOneMoveThrough) {
   EXPECT_TRUE(throughMiddleKnot);
   EXPECT_NEAR(before.events.back().x, 15, 1e-9);
   EXPECT_NEAR(before.events.back().y, 5, 1e-9);
+}
+
+// Cubic spans are a move.polynomial each, their ends raised by the lap's
+// height; once the laps are expanded, the table nothing reads goes.
+TEST(CurveLapBlocks, CubicSpansAreAMoveEach) {
+  Function function = parsed(spansText);
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(writeCurveBlocks(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(countOf(function, Opcode::Polynomial), 2u);
+  curve_lap_test::expectSamePath(before, interpret(function));
+  double top = 0;
+  for (const MachineEvent& event : before.events) {
+    top = std::max(top, event.y);
+    EXPECT_EQ(event.z, -1);
+  }
+  EXPECT_NEAR(top, 1, 1e-4);
+  EXPECT_EQ(before.events.back().x, 20);
+
+  Function expanded = parsed(spansText);
+  ASSERT_TRUE(expandCurveLaps(expanded));
+  EXPECT_TRUE(expanded.tables.empty());
+  EXPECT_TRUE(expanded.curves.empty());
+  curve_lap_test::expectSamePath(before, interpret(expanded));
 }
 
 // Blocks are cut at one height: a ramp lap is refused by the pass and by

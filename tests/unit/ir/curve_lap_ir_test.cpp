@@ -86,7 +86,8 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
   EXPECT_EQ(parseComplaint(threeRegions), "26: this curve.lap has 3 regions, its curve needs 4");
   EXPECT_EQ(parseComplaint(replaced(circleText, "chords", "strides")),
             "2: a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs', 'steps', "
-            "'nurbs-blocks' or 'spline-blocks'");
+            "'nurbs-blocks', 'spline-blocks' or "
+            "'polynomial-blocks'");
   EXPECT_EQ(parseComplaint(replaced(pathText, "    host 1, 3\n", "    host 1, x\n")),
             "6: expected a whole number, found 'x'");
   EXPECT_EQ(parseComplaint(replaced(pathText, "spans 0 .. 1,", "spans 0 1,")),

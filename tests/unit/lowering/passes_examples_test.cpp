@@ -327,9 +327,10 @@ TEST(PassesExamplesTest, ControllerLegalisationKeepsEveryExamplesToolPath) {
   EXPECT_GE(legaliseEveryExample(controller, CurveSampling::Steps), 1u);
 }
 
-// Every example lowered for a target that prints NURBS blocks (Fanuc, M80)
-// and for one that prints spline blocks (Sinumerik): a lap cut as the blocks
-// runs as the block's move, before write-curve-blocks and after it.
+// Every example lowered for a target that prints NURBS blocks (Fanuc, M80),
+// for one that prints spline blocks (Sinumerik) and for one that prints
+// cubic spans (Heidenhain SPL): a lap cut as the blocks runs as their
+// moves, before write-curve-blocks and after it.
 TEST(PassesExamplesTest, CurveBlocksKeepEveryExamplesToolPath) {
   LoweringOptions nurbs;
   nurbs.controllerLoops = true;
@@ -343,6 +344,12 @@ TEST(PassesExamplesTest, CurveBlocksKeepEveryExamplesToolPath) {
   splines.coordinateIncrement = 0.001;
   // rosette_plate's petals (method=cspline) and the other spline cuts: 19 laps.
   EXPECT_GE(legaliseEveryExample(splines, CurveSampling::SplineBlocks), 19u);
+  LoweringOptions spans;
+  spans.controllerLoops = true;
+  spans.arcBlocks = true;
+  spans.polynomialBlocks = true;
+  spans.coordinateIncrement = 0.0001;
+  EXPECT_GE(legaliseEveryExample(spans, CurveSampling::PolynomialBlocks), 19u);
 }
 
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {

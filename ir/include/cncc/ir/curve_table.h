@@ -55,8 +55,9 @@ struct CurveLocation {
 // of pieces without knot spans, on a target that runs loops). Or the lap
 // is the target's own curve blocks, whose data the lowering fitted within
 // the cut's tolerance and put in a table of the function: a NURBS block
-// (G06.2, move.nurbs, the lap's operands after its three the weights) or
-// Sinumerik spline blocks (move.spline).
+// (G06.2, move.nurbs, the lap's operands after its three the weights),
+// Sinumerik spline blocks (move.spline) or the cubic spans of Heidenhain
+// SPL blocks (a move.polynomial each).
 enum class CurveSampling {
   ChordTolerance,
   Samples,
@@ -64,7 +65,8 @@ enum class CurveSampling {
   Arcs,
   Steps,
   NurbsBlocks,
-  SplineBlocks
+  SplineBlocks,
+  PolynomialBlocks,
 };
 
 // The most uniform steps one region of a lap cut in steps may take.
@@ -85,8 +87,8 @@ struct CurveTableEntry {
   double amount = 0;
   // Arcs: the printed grid their ends and centres are put on (0: none).
   double grid = 0;
-  // NURBS or spline blocks: the function's table that holds their data (as
-  // move.nurbs or move.spline reads it).
+  // Blocks: the function's table that holds their data (as move.nurbs or
+  // move.spline reads it, or polynomialMoveTable's spans).
   std::optional<std::uint32_t> blockTable = std::nullopt;
   // Steps: each region's number of uniform steps (the first point is where
   // the region starts: the end of the one before, or the lap's start); 0
@@ -121,7 +123,8 @@ struct CurveTableEntry {
 
   // A lap cut as the target's NURBS or spline blocks.
   bool isBlocks() const {
-    return sampling == CurveSampling::NurbsBlocks || sampling == CurveSampling::SplineBlocks;
+    return sampling == CurveSampling::NurbsBlocks || sampling == CurveSampling::SplineBlocks ||
+           sampling == CurveSampling::PolynomialBlocks;
   }
   std::size_t regionCount() const;
   // Steps: the regions whose range and count the program computes.

@@ -16,7 +16,9 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace cncc::ir {
@@ -52,6 +54,15 @@ double polynomialTransitionDegrees(const PolynomialMove& before, const Polynomia
 
 // The span of move.polynomial's first 12 operand values.
 PolynomialMove polynomialMoveOf(std::span<const double, 12> values);
+
+// The table of a cut's spans (a lap cut as polynomial blocks): each span's
+// first 12 operand values of move.polynomial, its end at the pass height 0.
+std::vector<double> polynomialMoveTable(const std::vector<PolynomialMove>& spans);
+
+// The spans of a table, or why the table does not hold any (the verifier's
+// message).
+std::optional<std::vector<PolynomialMove>> readPolynomialMoveTable(std::span<const double> table,
+                                                                   std::string* problem = nullptr);
 
 // The feed moves the control makes along `move` from `start`: chords within
 // 1e-5 of the cubic, the last at its end, appended to `events`. Throws
