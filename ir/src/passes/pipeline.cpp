@@ -21,21 +21,25 @@ bool unrollWhenNoLarger(Function& function) {
 
 constexpr Pass passTable[] = {
     {"fit-arcs", "legalisation: each curve.lap cut as arcs as the fit's move.arc and move.feed ops",
-     fitLapArcs},
+     fitLapArcs, true},
     {"expand-controller-loops",
      "legalisation: each curve.lap cut in steps as a loop per region the controller runs",
-     expandControllerLoops},
+     expandControllerLoops, true},
     {"expand-curve-laps",
      "legalisation: each curve.lap as loops over tables of the points chosen on the host",
-     expandCurveLaps},
-    {"fold", "constant folding and algebraic simplification", foldConstants},
-    {"cse", "common subexpression elimination", eliminateCommonSubexpressions},
-    {"licm", "loop-invariant code motion", hoistLoopInvariants},
+     expandCurveLaps, true},
+    {"fold", "constant folding and algebraic simplification", foldConstants, true},
+    {"cse", "common subexpression elimination", eliminateCommonSubexpressions, true},
+    {"licm", "loop-invariant code motion", hoistLoopInvariants, true},
     {"unroll", "full unrolling of loops of at most 8 trips and 64 body instructions",
-     unrollWithDefaults},
+     unrollWithDefaults, true},
     {"unroll-no-larger", "unroll, keeping only unrollings that leave the function no larger",
-     unrollWhenNoLarger},
-    {"dce", "dead code elimination", eliminateDeadCode},
+     unrollWhenNoLarger, true},
+    {"dce", "dead code elimination", eliminateDeadCode, true},
+    {"fold-finite",
+     "for a controller that alarms on a non-finite value: constant folding and x+0, x-0, x*1, "
+     "x/1, x*0 as on finite numbers",
+     foldAssumingFinite, false},
 };
 
 constexpr std::string_view defaultPassNames[] = {

@@ -90,9 +90,9 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
             "6: expected a whole number, found 'x'");
   EXPECT_EQ(parseComplaint(replaced(pathText, "spans 0 .. 1,", "spans 0 1,")),
             "5: expected a knot span 'from .. to'");
-  EXPECT_EQ(
-      parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
-      "4: expected 'piece at start over from .. to', 'grid', 'counts', 'progress', 'host', 'chosen' or '}'");
+  EXPECT_EQ(parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
+            "4: expected 'piece at start over from .. to', 'grid', 'counts', 'progress', 'host', "
+            "'chosen' or '}'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "  %4 = curve.lap", "  curve.lap")),
             "10: this operation has a result; write '%name = ...'");
 }
@@ -331,7 +331,7 @@ TEST(IrCurveLapPasses, DefaultPipelineKeepsThePath) {
   ToolPath before = interpret(function);
   for (int round = 0; round < 3; ++round) {
     for (const Pass& pass : allPasses()) {
-      if (pass.name != "expand-curve-laps") {
+      if (pass.name != "expand-curve-laps" && pass.exact) {
         pass.run(function);
         ASSERT_THAT(verifyFunction(function), IsEmpty()) << pass.name;
       }

@@ -36,8 +36,9 @@ TEST(PassesPipelineTest, EveryPassHasAStableNameAndIsFound) {
     EXPECT_EQ(findPass(pass.name), &pass);
     EXPECT_FALSE(pass.description.empty());
   }
-  EXPECT_THAT(names, ElementsAre("fit-arcs", "expand-controller-loops", "expand-curve-laps", "fold",
-                                 "cse", "licm", "unroll", "unroll-no-larger", "dce"));
+  EXPECT_THAT(names,
+              ElementsAre("fit-arcs", "expand-controller-loops", "expand-curve-laps", "fold", "cse",
+                          "licm", "unroll", "unroll-no-larger", "dce", "fold-finite"));
   EXPECT_EQ(findPass("inline"), nullptr);
   for (std::string_view name : defaultPipeline()) {
     EXPECT_NE(findPass(name), nullptr) << name;
