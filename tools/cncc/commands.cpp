@@ -36,8 +36,8 @@ void reportWriteFailure(const DiagnosticOutput& output, const std::string& path,
 }
 
 // `--emit=ir`: the selected part as lowered for no target; with -t, as
-// that target's backend lowers and optimises it (--print-after shows each
-// pass on standard error, -O0 none).
+// that target's backend lowers, optimises and prepares it for printing
+// (--print-after shows each pass on standard error; -O0 runs no optimiser).
 std::string emittedIr(const DriverOptions& options, SourceManager& sources,
                       DiagnosticEngine& diagnostics) {
   std::optional<frontend::CheckedProgram> program =
@@ -66,6 +66,7 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
       return "";
     }
     optimise(*function, options);
+    runPassesBeforePrinting(*function, lowering, options);
   }
   return ir::printFunction(*function);
 }

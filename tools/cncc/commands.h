@@ -55,6 +55,11 @@ int runOptimize(const DriverOptions& options);
 // --passes), printing as --print-after asks; throws InternalError when the
 // result does not verify.
 void optimise(ir::Function& function, const DriverOptions& options);
+// Then the target's passes before printing (LoweringOptions::
+// passesBeforePrinting), at -O0 too, printing as --print-after asks; throws
+// InternalError for an unknown name or a result that does not verify.
+void runPassesBeforePrinting(ir::Function& function, const ir::LoweringOptions& lowering,
+                             const DriverOptions& options);
 // What --print-after asks: prints the function after the named pass (or
 // every pass) on standard error; empty without it.
 ir::AfterPassCallback printAfterCallback(const DriverOptions& options);

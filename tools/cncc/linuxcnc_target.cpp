@@ -5,6 +5,7 @@
 #include "targets.h"
 
 #include "cncc/backends/linuxcnc_program.h"
+#include "cncc/backends/macro_program.h"
 #include "cncc/ir/verifier.h"
 #include "cncc/lowering/lowering.h"
 
@@ -26,6 +27,7 @@ ir::LoweringOptions linuxcncLoweringOptions(const frontend::PartItem& part,
   // LinuxCNC's TOLERANCE_CONCAVE_CORNER: cutter compensation takes corners
   // below it as tangent (seen in rs274's compensated moves).
   lowering.compensationTangentAngle = 0.05;
+  lowering.passesBeforePrinting = backends::macroPassesBeforePrinting();
   return lowering;
 }
 

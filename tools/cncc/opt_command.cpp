@@ -58,6 +58,22 @@ void optimise(ir::Function& function, const DriverOptions& options) {
   }
 }
 
+void runPassesBeforePrinting(ir::Function& function, const ir::LoweringOptions& lowering,
+                             const DriverOptions& options) {
+  if (lowering.passesBeforePrinting.empty()) {
+    return;
+  }
+  std::string unknown;
+  if (!ir::runPasses(function, lowering.passesBeforePrinting, printAfterCallback(options),
+                     &unknown)) {
+    throw InternalError(fmt::format("the target names an unknown IR pass '{}'", unknown));
+  }
+  std::vector<std::string> problems = ir::verifyFunction(function);
+  if (!problems.empty()) {
+    throw InternalError("the IR after the target's passes does not verify: " + problems.front());
+  }
+}
+
 int runOptimize(const DriverOptions& options) {
   DiagnosticOutput output(options.diagnosticsFormat, options.colour);
   const std::string& path = options.inputs.front();

@@ -129,9 +129,10 @@ std::optional<ir::LoweredPart> lowerForTarget(const BackendRequest& request) {
   if (part == nullptr) {
     return std::nullopt;
   }
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      request.program, *part, request.diagnostics,
-      findTarget(request.options.target)->loweringOptions(*part, request.options));
+  ir::LoweringOptions lowering =
+      findTarget(request.options.target)->loweringOptions(*part, request.options);
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(request.program, *part, request.diagnostics, lowering);
   if (!lowered) {
     return std::nullopt;
   }
@@ -140,6 +141,7 @@ std::optional<ir::LoweredPart> lowerForTarget(const BackendRequest& request) {
     throw InternalError("the lowered IR does not verify: " + problems.front());
   }
   optimise(lowered->function, request.options); // the IR optimiser, unless -O0
+  runPassesBeforePrinting(lowered->function, lowering, request.options);
   return lowered;
 }
 

@@ -107,8 +107,9 @@ ir::LoweringOptions jitLoweringOptions(const frontend::PartItem& part,
 // table. Nullopt after a diagnostic; IR that does not verify is an internal
 // error. What the gcode and jit targets print, and what --stats measures.
 // The selected part lowered with the request's target's options, its IR
-// verified, then optimised as the options ask; nullopt when no part is
-// selected or after a diagnostic.
+// verified, then optimised as the options ask, then given the target's
+// passes before printing; nullopt when no part is selected or after a
+// diagnostic.
 std::optional<ir::LoweredPart> lowerForTarget(const BackendRequest& request);
 
 std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native = false,

@@ -1,9 +1,9 @@
 #include "cncc/backends/heidenhain_program.h"
 
 #include "cncc/backends/line_spans.h"
+#include "cncc/backends/macro_program.h"
 #include "heidenhain_blocks.h"
 #include "heidenhain_formulas.h"
-#include "macro_simplify.h"
 
 #include <fmt/format.h>
 
@@ -574,6 +574,7 @@ ir::LoweringOptions heidenhainLoweringOptions(const TncProfile& profile, bool in
   options.arcBlocks = true;
   options.polynomialBlocks = true;
   options.coordinateIncrement = std::pow(10.0, -(profile.coordinateDecimals + (inches ? 1 : 0)));
+  options.passesBeforePrinting = macroPassesBeforePrinting();
   return options;
 }
 
@@ -629,14 +630,13 @@ std::optional<HeidenhainBlank> heidenhainBlank(const ir::ToolPath& path) {
 HeidenhainProgram writeHeidenhainProgram(const ir::Function& function,
                                          const HeidenhainProgramOptions& options) {
   HeidenhainProgram program;
-  ir::Function simplified = simplifyForMacroProgram(function);
   std::vector<int> parameters =
-      heidenhainParameterVariables(simplified.parameters.size(), options.profile, program.errors);
+      heidenhainParameterVariables(function.parameters.size(), options.profile, program.errors);
   if (!program.errors.empty()) {
     return program;
   }
   ir::AllocationResult allocated =
-      ir::allocateVariables(simplified, allocationOptions(options.profile, parameters));
+      ir::allocateVariables(function, allocationOptions(options.profile, parameters));
   for (const ir::AllocationFailure& failure : allocated.failures) {
     program.errors.push_back(
         fmt::format("{} (the {} profile's Q ranges)", failure.message, options.profile.name));
@@ -644,7 +644,7 @@ HeidenhainProgram writeHeidenhainProgram(const ir::Function& function,
   if (!program.errors.empty()) {
     return program;
   }
-  ProgramPrinter printer(simplified, allocated.allocation, options, program.errors);
+  ProgramPrinter printer(function, allocated.allocation, options, program.errors);
   std::string text = printer.print();
   if (program.errors.empty()) {
     program.text = std::move(text);

@@ -3,7 +3,6 @@
 #include "linuxcnc_dialect.h"
 #include "macro_loop_stepping.h"
 #include "macro_printer.h"
-#include "macro_simplify.h"
 
 #include <algorithm>
 #include <array>
@@ -138,9 +137,8 @@ double linuxcncBlendTolerance(const std::vector<ir::CutGeometry>& cuts) {
 LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,
                                      const LinuxcncProgramOptions& options) {
   LinuxcncProgram program;
-  ir::Function simplified = simplifyForMacroProgram(function);
   ir::AllocationResult allocated =
-      ir::allocateVariables(simplified, allocationOptions(simplified.parameters.size()));
+      ir::allocateVariables(function, allocationOptions(function.parameters.size()));
   for (const ir::AllocationFailure& failure : allocated.failures) {
     program.errors.push_back(failure.message);
   }
@@ -155,11 +153,11 @@ LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,
   printOptions.inches = options.inches;
   printOptions.callable = options.callable;
   printOptions.setup = &options.setup;
-  printOptions.parameterNames = linuxcncParameterNames(simplified.parameters);
-  MacroExpressionWriter numbers(simplified, allocated.allocation, dialect, {}, program.errors);
+  printOptions.parameterNames = linuxcncParameterNames(function.parameters);
+  MacroExpressionWriter numbers(function, allocated.allocation, dialect, {}, program.errors);
   printOptions.blend = numbers.constant(options.blendTolerance);
   SteppedLoops none; // LinuxCNC loops count their index
-  PrintedMacroProgram printed = MacroProgramPrinter(simplified, allocated.allocation, none, dialect,
+  PrintedMacroProgram printed = MacroProgramPrinter(function, allocated.allocation, none, dialect,
                                                     printOptions, program.errors)
                                     .print();
   if (program.errors.empty()) {

@@ -4,7 +4,6 @@
 #include "macro_inline_shape.h"
 #include "macro_loop_stepping.h"
 #include "macro_printer.h"
-#include "macro_simplify.h"
 
 #include <fmt/format.h>
 
@@ -73,7 +72,12 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
   options.maximumLoopNesting = std::min(profile.maximumLoopNesting, profile.maximumLoopIdentifier);
   options.compensationCornerArcs = true; // G39
   options.cornerArcsAfterLinesOnly = profile.cornerArcOnMoveBlock;
+  options.passesBeforePrinting = macroPassesBeforePrinting();
   return options;
+}
+
+std::vector<std::string> macroPassesBeforePrinting() {
+  return {"fold-finite"};
 }
 
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
@@ -90,9 +94,8 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
                                          function.tables.size()));
     return program;
   }
-  ir::Function simplified = simplifyForMacroProgram(function);
   std::vector<int> parameterVariables = macroParameterVariables(
-      simplified.parameters.size(), profile, options.parametersInCommon, program.errors);
+      function.parameters.size(), profile, options.parametersInCommon, program.errors);
   if (!program.errors.empty()) {
     return program;
   }
@@ -113,15 +116,15 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   PrintedMacroProgram printed;
   for (int attempt = 0;; ++attempt) {
     program.errors.clear();
-    allocated = ir::allocateVariables(simplified, allocationOptions);
+    allocated = ir::allocateVariables(function, allocationOptions);
     for (const ir::AllocationFailure& failure : allocated.failures) {
       program.errors.push_back(failure.message);
     }
     if (!program.errors.empty()) {
       return program;
     }
-    SteppedLoops stepped = stepLoopsByTheirScale(simplified, allocated.allocation);
-    printed = MacroProgramPrinter(simplified, allocated.allocation, stepped, dialect, printOptions,
+    SteppedLoops stepped = stepLoopsByTheirScale(function, allocated.allocation);
+    printed = MacroProgramPrinter(function, allocated.allocation, stepped, dialect, printOptions,
                                   program.errors)
                   .print();
     int longest = printed.longestLine;

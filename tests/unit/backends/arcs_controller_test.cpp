@@ -68,6 +68,7 @@ std::optional<ir::LoweredPart> lower(const Checked& checked, ir::LoweringOptions
     return std::nullopt;
   }
   ir::runDefaultPipeline(lowered->function);
+  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
   std::vector<std::string> problems = ir::verifyFunction(lowered->function);
   EXPECT_TRUE(problems.empty()) << problems.front();
   return lowered;
@@ -230,6 +231,7 @@ TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
   ir::LoweringOptions lowering;
   lowering.controllerLoops = true; // as the linuxcnc target lowers
   lowering.arcBlocks = true;
+  lowering.passesBeforePrinting = macroPassesBeforePrinting();
   std::optional<ir::LoweredPart> lowered = lower(*checked, lowering);
   ASSERT_TRUE(lowered);
   LinuxcncProgramOptions printing;

@@ -80,7 +80,8 @@ std::unique_ptr<CheckedExample> checkExample(const MacroCase& test, const Parame
 // The program the macro backend prints for the part's defaults, as
 // tools/cncc/macro_targets.cpp prints it: lowered into controller loops
 // within the budget the profile's increment leaves (method=nurbs as G06.2
-// blocks), optimised by the default pipeline, printed for the profile.
+// blocks), optimised by the default pipeline, given the passes before
+// printing, printed for the profile.
 std::optional<std::string> macroProgram(const CheckedExample& example, const MacroCase& test) {
   const ControllerProfile& profile = *findControllerProfile(test.target);
   const frontend::PartItem& part = *example.program->selectedPart;
@@ -95,6 +96,7 @@ std::optional<std::string> macroProgram(const CheckedExample& example, const Mac
     return std::nullopt;
   }
   ir::runDefaultPipeline(lowered->function);
+  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
   std::vector<std::string> problems = ir::verifyFunction(lowered->function);
   EXPECT_TRUE(problems.empty()) << problems.front();
   MacroProgramOptions options;

@@ -9,6 +9,7 @@
 
 #include "cncc/backends/linuxcnc_canon.h"
 #include "cncc/backends/linuxcnc_program.h"
+#include "cncc/backends/macro_program.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/geom/deviation.h"
@@ -75,6 +76,7 @@ std::unique_ptr<Compiled> compile(const std::string& file, const std::string& pa
   const frontend::PartItem& selected = *result->program->selectedPart;
   ir::LoweringOptions lowering;
   lowering.controllerLoops = true; // as the linuxcnc target lowers
+  lowering.passesBeforePrinting = backends::macroPassesBeforePrinting();
   result->lowered =
       ir::lowerPartWithCuts(*result->program, selected, result->diagnostics, lowering);
   if (!result->lowered) {
@@ -82,6 +84,7 @@ std::unique_ptr<Compiled> compile(const std::string& file, const std::string& pa
     return nullptr;
   }
   ir::runDefaultPipeline(result->lowered->function);
+  EXPECT_TRUE(ir::runPasses(result->lowered->function, lowering.passesBeforePrinting, {}));
   result->truth = ir::lowerPartWithCuts(*result->program, selected, result->diagnostics);
   if (!result->truth) {
     ADD_FAILURE() << file << " does not lower for the host";

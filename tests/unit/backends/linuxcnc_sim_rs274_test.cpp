@@ -15,6 +15,7 @@
 
 #include "cncc/backends/linuxcnc_controller.h"
 #include "cncc/backends/linuxcnc_program.h"
+#include "cncc/backends/macro_program.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/passes.h"
@@ -83,6 +84,7 @@ std::optional<std::string> compileExample(const ProgramCase& test) {
   lowering.controllerLoops = true;
   lowering.coordinateIncrement = inches ? 1e-6 : 1e-5;
   lowering.arcBlocks = true;
+  lowering.passesBeforePrinting = macroPassesBeforePrinting();
   std::optional<ir::LoweredPart> lowered =
       ir::lowerPartWithCuts(*program, part, diagnostics, lowering);
   if (!lowered) {
@@ -90,6 +92,7 @@ std::optional<std::string> compileExample(const ProgramCase& test) {
     return std::nullopt;
   }
   ir::runDefaultPipeline(lowered->function);
+  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
   EXPECT_TRUE(ir::verifyFunction(lowered->function).empty());
   LinuxcncProgramOptions printing;
   printing.sourceName = std::filesystem::path(test.file).filename().string();

@@ -71,14 +71,15 @@ Compiled compile(const std::string& text, const std::string& target, bool callab
   const frontend::PartItem& part = *compiled.part->program->selectedPart;
   const ControllerProfile& profile = *findControllerProfile(target);
   bool inches = ir::partUnits(part) == ir::PartUnits::Inches;
+  ir::LoweringOptions lowering = macroLoweringOptions(profile, inches);
   std::optional<ir::Function> function =
-      ir::lowerPart(*compiled.part->program, part, compiled.part->diagnostics,
-                    macroLoweringOptions(profile, inches));
+      ir::lowerPart(*compiled.part->program, part, compiled.part->diagnostics, lowering);
   if (!function) {
     ADD_FAILURE() << "the part does not lower";
     return compiled;
   }
   ir::runDefaultPipeline(*function);
+  EXPECT_TRUE(ir::runPasses(*function, lowering.passesBeforePrinting, {}));
   std::vector<std::string> problems = ir::verifyFunction(*function);
   EXPECT_TRUE(problems.empty()) << problems.front();
   MacroProgramOptions options;

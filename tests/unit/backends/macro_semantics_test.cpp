@@ -9,6 +9,7 @@
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
 #include "cncc/ir/interpreter.h"
+#include "cncc/ir/passes.h"
 #include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
@@ -38,6 +39,16 @@ std::optional<ir::Function> lowerExample(const std::string& name) {
     return std::nullopt;
   }
   return ir::lowerPart(program, *program.selectedPart, diagnostics);
+}
+
+// The program printed from the function as the macro targets give it to
+// the printer (after their passes before printing); the function itself
+// stays the reference.
+backends::MacroProgram printedProgram(ir::Function function,
+                                      const backends::ControllerProfile& profile,
+                                      const backends::MacroProgramOptions& options) {
+  EXPECT_TRUE(ir::runPasses(function, backends::macroPassesBeforePrinting(), {}));
+  return backends::writeMacroProgram(function, profile, options);
 }
 
 std::vector<ir::MachineEvent> feedMoves(const ir::ToolPath& path) {
@@ -84,7 +95,7 @@ TEST_P(MacroSemantics, MainProgramRunsTheSamePathAsTheIr) {
   ASSERT_TRUE(function);
   const backends::ControllerProfile* profile = backends::findControllerProfile(GetParam().profile);
   ASSERT_NE(profile, nullptr);
-  backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, {});
+  backends::MacroProgram program = printedProgram(*function, *profile, {});
   ASSERT_TRUE(program.errors.empty()) << program.errors.front();
   expectSameFeedMoves(ir::interpret(*function), testing::evaluateMacroProgram(program.text),
                       GetParam().example);
@@ -98,7 +109,7 @@ TEST_P(MacroSemantics, CallableMacroUsesItsArguments) {
   const backends::ControllerProfile* profile = backends::findControllerProfile(GetParam().profile);
   backends::MacroProgramOptions options;
   options.callable = true;
-  backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
+  backends::MacroProgram program = printedProgram(*function, *profile, options);
   ASSERT_TRUE(program.errors.empty()) << program.errors.front();
   std::vector<std::string> problems;
   std::vector<int> locals =
@@ -120,7 +131,7 @@ TEST_P(MacroSemantics, ParametersInCommonTakeTheirDefaultsWhenVacant) {
   const backends::ControllerProfile* profile = backends::findControllerProfile(GetParam().profile);
   backends::MacroProgramOptions options;
   options.parametersInCommon = true;
-  backends::MacroProgram program = backends::writeMacroProgram(*function, *profile, options);
+  backends::MacroProgram program = printedProgram(*function, *profile, options);
   ASSERT_TRUE(program.errors.empty()) << program.errors.front();
   expectSameFeedMoves(ir::interpret(*function), testing::evaluateMacroProgram(program.text),
                       GetParam().example);

@@ -15,6 +15,7 @@
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/passes.h"
 #include "cncc/lowering/lowering.h"
 
 #include <gtest/gtest.h>
@@ -70,6 +71,7 @@ std::unique_ptr<CompiledNurbsPart> compile(const std::string& source, const std:
     ADD_FAILURE() << "does not lower";
     return nullptr;
   }
+  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
   part->cuts = lowered->cuts;
   part->function = lowered->function;
   MacroProgramOptions options;

@@ -333,7 +333,7 @@ TEST(IrCurveLapPasses, DefaultPipelineKeepsThePath) {
   ToolPath before = interpret(function);
   for (int round = 0; round < 3; ++round) {
     for (const Pass& pass : allPasses()) {
-      if (pass.name != "expand-curve-laps") {
+      if (pass.name != "expand-curve-laps" && pass.exact) {
         pass.run(function);
         ASSERT_THAT(verifyFunction(function), IsEmpty()) << pass.name;
       }

@@ -352,11 +352,50 @@ TEST(PassesExamplesTest, CurveBlocksKeepEveryExamplesToolPath) {
   EXPECT_GE(legaliseEveryExample(spans, CurveSampling::PolynomialBlocks), 19u);
 }
 
+// Every example as the macro targets give it to their printer (controller
+// loops, the default pipeline, then fold-finite): fold-finite moves no
+// number by more than what it takes as 0 or 1, and finds something to fold.
+TEST(PassesExamplesTest, FoldFiniteKeepsEveryExamplesPathToRounding) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  controller.coordinateIncrement = 0.0001;
+  std::size_t changed = 0;
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::unique_ptr<LoweredExample> lowered =
+        lowerExampleKept(example.file, example.part, controller);
+    if (!lowered->function) {
+      ADD_FAILURE() << name << " does not lower";
+      continue;
+    }
+    Function& function = *lowered->function;
+    runDefaultPipeline(function);
+    ToolPath before = interpret(function);
+    changed += foldAssumingFinite(function) ? 1 : 0;
+    EXPECT_TRUE(verifyFunction(function).empty()) << name;
+    ToolPath after = interpret(function);
+    ASSERT_EQ(before.events.size(), after.events.size()) << name;
+    for (std::size_t i = 0; i < before.events.size(); ++i) {
+      const MachineEvent& a = before.events[i];
+      const MachineEvent& b = after.events[i];
+      ASSERT_EQ(a.kind, b.kind) << name << " event " << i;
+      for (auto [x, y] : {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z},
+                          std::pair{a.feed, b.feed}, std::pair{a.number, b.number}}) {
+        ASSERT_NEAR(x, y, 1e-9) << name << " event " << i;
+      }
+    }
+  }
+  EXPECT_GE(changed, 1u);
+}
+
 TEST(PassesExamplesTest, EveryPassAloneKeepsToolPath) {
   std::optional<Function> lowered = lowerExample("s_profile.cdl", "");
   ASSERT_TRUE(lowered);
   ToolPath before = interpret(*lowered);
   for (const Pass& pass : allPasses()) {
+    if (!pass.exact) {
+      continue; // fold-finite: FoldFiniteKeepsEveryExamplesPathToRounding
+    }
     Function function = *lowered;
     pass.run(function);
     EXPECT_TRUE(verifyFunction(function).empty()) << pass.name;

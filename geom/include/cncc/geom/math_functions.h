@@ -1,8 +1,8 @@
 // The math functions of CDL and of the IR in one table: name, arity, the
 // function that computes it and the C library function the JIT calls for
 // it. Every place that computes one reads it here (the front end's
-// evaluator, IR folding and the interpreter through ir/arithmetic.h, the
-// macro printers' simplifier, the JIT), so a value computed at compile time
+// evaluator, IR folding (fold and fold-finite) and the interpreter through
+// ir/arithmetic.h, the JIT), so a value computed at compile time
 // is the value computed at run time, bit for bit.
 //
 // The domain rule, the same for every function: where the operands are

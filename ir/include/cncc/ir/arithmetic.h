@@ -1,6 +1,7 @@
-// The IR's arithmetic on doubles, shared by the interpreter, constant
-// folding and the macro printers' simplifier, so that a folded constant is
-// the value the interpreter would have computed at run time, bit for bit.
+// The IR's arithmetic on doubles, shared by the interpreter and constant
+// folding (fold, and fold-finite for the macro targets), so that a folded
+// constant is the value the interpreter would have computed at run time,
+// bit for bit.
 // The math functions are the one table's (cncc/geom/math_functions.h) that
 // the front end evaluates CDL by and the JIT calls the C library functions
 // of. Bools are 0 and 1.

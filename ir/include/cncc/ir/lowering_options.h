@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace cncc::ir {
 
@@ -95,6 +96,11 @@ struct LoweringOptions {
   // feed at the values compiled with goes beyond it is a coordinate-range
   // error.
   double largestNumber = std::numeric_limits<double>::infinity();
+  // The passes (passes.h, by name) that make the optimised IR what the
+  // target's printer takes, run in order after the optimiser (at -O0 too):
+  // fold-finite for the macro programs. The lowering does not run them;
+  // whoever optimises does (the driver after its optimiser).
+  std::vector<std::string> passesBeforePrinting;
 };
 
 } // namespace cncc::ir

@@ -7,6 +7,10 @@
 // their loop or reordered. Parameters stay parameters: nothing is folded
 // through `param`, so a controller program keeps them editable.
 //
+// The one exception is `fold-finite`, a target's pass rather than the
+// optimiser's: it takes every value to be finite, as a controller that
+// alarms on a non-finite value has them (Pass::exact is false for it).
+//
 // Each pass returns whether it changed the function; its output verifies.
 #pragma once
 
@@ -48,14 +52,25 @@ bool unrollLoops(Function& function, const UnrollOptions& options = {});
 // without effects (a loop only when its bounds are known finite, since the
 // interpreter rejects others).
 bool eliminateDeadCode(Function& function);
+// `fold-finite`: constant folding and x + 0, x - 0, x * 1, x / 1 -> x,
+// x * 0 -> 0, as they are on finite numbers (numbers within 1e-12 of 0 or
+// 1 taken as them). Only for the targets whose controller alarms where a
+// value is not finite, so has no NaN, infinity or -0 for these to change:
+// the macro programs (fold_finite.cpp). A non-finite result stays an
+// operation, for the controller to alarm on.
+bool foldAssumingFinite(Function& function);
 
 struct Pass {
   std::string_view name;
   std::string_view description;
   bool (*run)(Function& function);
+  // Keeps the interpreter's tool path bit for bit for every input (above);
+  // false for fold-finite.
+  bool exact = true;
 };
 
-// Every pass by its stable name, in the order above.
+// Every pass by its stable name: the legalisations (curve_lap.h), the
+// optimiser's passes in the order above, then fold-finite.
 std::span<const Pass> allPasses();
 const Pass* findPass(std::string_view name);
 

@@ -77,6 +77,13 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
 // (IS-B: 0.001 mm, 0.0001 inch) counted in each cut's tolerance budget.
 ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool inches);
 
+// The passes the macro printers (this one, LinuxCNC's and Heidenhain's) take
+// their IR after, as LoweringOptions::passesBeforePrinting: fold-finite,
+// since their controllers alarm where a value is not finite.
+std::vector<std::string> macroPassesBeforePrinting();
+
+// Prints the function as it is: whatever is folded was folded by the passes
+// before printing (macroPassesBeforePrinting).
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
                                const MacroProgramOptions& options);
 
