@@ -43,7 +43,10 @@ Scalar Arithmetic::unary(Opcode opcode, Scalar operand) {
     return Scalar::ofBool(operand.constant == 0);
   }
   ValueId argument = value(operand);
-  if (reduceAngles_ && isPeriodic(opcode)) {
+  // A constant angle is left to the optimiser, which folds the function of
+  // it on the host.
+  bool constantAngle = builder_.function().definition(argument).opcode == Opcode::Const;
+  if (reduceAngles_ && isPeriodic(opcode) && !constantAngle) {
     argument = angleModuloTurns(argument, 0);
   }
   ValueId result = builder_.unary(opcode, argument);
