@@ -260,7 +260,9 @@ private:
   }
 
   // A feed move's point (an arc's end and centre, a curve point) moves by
-  // the errors of its coordinates that went through a periodic function.
+  // the largest of its coordinates' errors that went through a periodic
+  // function: an angle turned by d moves x = r cos a and y = r sin a
+  // together by r d, where each is off by up to r d.
   void measureMove(const Instruction& instruction) {
     if (!cut_) {
       return;
@@ -278,14 +280,11 @@ private:
     default:
       return;
     }
-    double squares = 0;
     Share largest;
     for (std::size_t c = 0; c < coordinates; ++c) {
-      const Share& error = of(instruction.operands[c]).throughAngle;
-      squares += error.size * error.size;
-      largest = largest.larger(error);
+      largest = largest.larger(of(instruction.operands[c]).throughAngle);
     }
-    double movement = std::sqrt(squares);
+    double movement = largest.size;
     if (!(movement > 0) || largest.source == noSource) {
       return;
     }
