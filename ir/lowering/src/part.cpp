@@ -3,12 +3,92 @@
 
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/passes.h"
+#include "cncc/lowering/literal_rounding.h"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace cncc::ir {
 
 using namespace frontend;
+
+namespace {
+
+// What rounds: a number in the program, a parameter's default, or the
+// factor that turns an angle into the controller's degrees.
+std::string roundedNumber(const Function& function, const Instruction& source, int digits) {
+  auto reading = [&](double value) {
+    return fmt::format("{} to {:.{}g}", value, lowering::controllerReading(value, digits),
+                       digits + 1);
+  };
+  switch (source.opcode) {
+  case Opcode::Const:
+    return fmt::format("round {}", reading(source.number));
+  case Opcode::Param: {
+    const Parameter& parameter = function.parameters[source.index];
+    return fmt::format("round parameter '{}' = {}", parameter.name,
+                       reading(parameter.defaultValue));
+  }
+  case Opcode::TableLoad:
+    return "round the numbers of a table";
+  default:
+    return "round the factor that turns this angle into degrees";
+  }
+}
+
+// The cut's tolerance, the default where samples= or spacing= chose its points.
+double cutTolerance(const LoweredPart& lowered, std::uint32_t cut, const LoweringOptions& options) {
+  double tolerance = cut < lowered.cuts.size() ? lowered.cuts[cut].tolerance : std::nan("");
+  return std::isnan(tolerance) ? options.defaultTolerance : tolerance;
+}
+
+// Refuses a program whose rounded numbers move a cut's points, through sin,
+// cos or tan, by more than a quarter of the cut's tolerance (the share
+// PartLowering::spanLiteralsFit allows a NURBS span's coefficients), once
+// for each statement whose number does, at its worst: true when none does.
+bool trigonometricLiteralsFit(const LoweredPart& lowered, DiagnosticEngine& diagnostics,
+                              const LoweringOptions& options) {
+  const Function& function = lowered.function;
+  int digits = options.literalSignificantDigits;
+  std::vector<lowering::LiteralRoundingMove> refused;
+  for (const lowering::LiteralRoundingMove& move :
+       lowering::trigonometricRoundingMoves(function, digits)) {
+    double tolerance = cutTolerance(lowered, move.cut, options);
+    if (move.movement <= tolerance / 4) {
+      continue;
+    }
+    auto same = std::find_if(refused.begin(), refused.end(), [&](const auto& other) {
+      return function.instructions[other.source].span == function.instructions[move.source].span;
+    });
+    if (same == refused.end()) {
+      refused.push_back(move);
+    } else if (move.movement / tolerance >
+               same->movement / cutTolerance(lowered, same->cut, options)) {
+      *same = move;
+    }
+  }
+  std::string controller = options.targetName.empty()
+                               ? std::string("the controller's")
+                               : fmt::format("the {} controller's", options.targetName);
+  for (const lowering::LiteralRoundingMove& move : refused) {
+    const Instruction& source = function.instructions[move.source];
+    Diagnostic* diagnostic = diagnostics.report(
+        DiagnosticKind::LiteralRounding, source.span,
+        fmt::format("{} {} significant digits {}, which through sin, cos or tan moves the "
+                    "points of a cut by up to {:.3g} mm, more than a quarter of its tolerance "
+                    "{:g} mm",
+                    controller, digits, roundedNumber(function, source, digits), move.movement,
+                    cutTolerance(lowered, move.cut, options)));
+    if (move.cut < lowered.cuts.size() && !(lowered.cuts[move.cut].span == source.span)) {
+      diagnostics.addNote(diagnostic, lowered.cuts[move.cut].span, "the cut");
+    }
+  }
+  return refused.empty();
+}
+
+} // namespace
 
 std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, const PartItem& part,
                                              DiagnosticEngine& diagnostics,
@@ -18,6 +98,10 @@ std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, cons
     LoweredPart lowered = lowering.run();
     if (options.expandCurveLaps) {
       runCurveLegalisation(lowered.function);
+    }
+    if (options.literalSignificantDigits > 0 &&
+        !trigonometricLiteralsFit(lowered, diagnostics, options)) {
+      return std::nullopt;
     }
     return lowered;
   } catch (const CurveLapError& error) {

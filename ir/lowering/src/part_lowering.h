@@ -73,7 +73,10 @@ struct HostCut {
 // the identities x + 0, x - 0, x * 1, x / 1.
 class Arithmetic {
 public:
-  explicit Arithmetic(FunctionBuilder& builder) : builder_(builder) {}
+  // `reduceAngles`: the constants the controller reads are rounded, so the
+  // constant terms of sin, cos and tan's angles are taken modulo a turn.
+  Arithmetic(FunctionBuilder& builder, bool reduceAngles)
+      : builder_(builder), reduceAngles_(reduceAngles) {}
 
   // The scalar as an IR value (a constant is written here).
   ValueId value(Scalar scalar);
@@ -90,8 +93,10 @@ public:
 
 private:
   Scalar extreme(Scalar a, Scalar b, Opcode gap);
+  ValueId angleModuloTurns(ValueId angle, int depth);
 
   FunctionBuilder& builder_;
+  bool reduceAngles_ = false;
 };
 
 // The frontend's evaluator, renewed every so many evaluations: each
@@ -609,7 +614,7 @@ private:
   frontend::DiagnosticEngine scratch_{0};
   RenewingEvaluator evaluator_;
   FunctionBuilder builder_;
-  Arithmetic arithmetic_{builder_};
+  Arithmetic arithmetic_{builder_, options_.literalSignificantDigits > 0};
   Bindings bindings_;
   frontend::Environment environment_;
   std::optional<Scalar> feed_;

@@ -56,7 +56,11 @@ struct LoweringOptions {
   // target folds every number on the host). A NURBS span evaluated on the
   // controller from power-basis coefficients whose rounding to these digits
   // would move its points by more than a quarter of the tolerance (a weight
-  // of 1e9: coefficients of 1e10 that cancel) is an error at the cut.
+  // of 1e9: coefficients of 1e10 that cancel) is an error at the cut. The
+  // constant terms of sin, cos and tan's angles are taken modulo a turn,
+  // and a number whose rounding still moves a cut's points through one of
+  // them by more than a quarter of its tolerance (1e9 deg shared between
+  // bolt holes) is an error at its statement (cncc/lowering/literal_rounding.h).
   int literalSignificantDigits = 0;
   // The controller's least input increment (mm or inch; 0: none). Its
   // rounding of every executed coordinate, half an increment per axis, is
