@@ -82,6 +82,54 @@ std::vector<std::string> macroPassesBeforePrinting() {
   return {"fold-finite"};
 }
 
+namespace {
+
+// The variables of a program and the program printed with them.
+struct AllocatedProgram {
+  ir::Allocation allocation;
+  PrintedMacroProgram printed;
+};
+
+// Allocates the variables and prints the program. The allocator estimates
+// a block's length from its expressions alone; the printed block adds the
+// addresses, the modal words and the numbers as formatted, so only the
+// printed text says whether a block is longer than the controller takes.
+// Where one is (and nothing else is wrong), the inline limits shrink by the
+// excess and the allocation runs again, five times at most. Nothing is
+// printed when the allocation fails.
+AllocatedProgram allocateAndPrint(const ir::Function& function, const ControllerProfile& profile,
+                                  ir::AllocationOptions allocationOptions,
+                                  const MacroPrintOptions& printOptions,
+                                  std::vector<std::string>& errors) {
+  MacroDialect dialect = customMacroDialect(profile);
+  AllocatedProgram program;
+  for (int attempt = 0;; ++attempt) {
+    errors.clear();
+    ir::AllocationResult allocated = ir::allocateVariables(function, allocationOptions);
+    for (const ir::AllocationFailure& failure : allocated.failures) {
+      errors.push_back(failure.message);
+    }
+    if (!errors.empty()) {
+      return {};
+    }
+    program.allocation = std::move(allocated.allocation);
+    program.printed =
+        MacroProgramPrinter(function, program.allocation, dialect, printOptions, errors).print();
+    int longest = program.printed.longestLine;
+    bool onlyTooLong = errors.size() == 1 && longest > profile.maximumBlockLength;
+    if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {
+      return program;
+    }
+    int excess = longest - profile.maximumBlockLength;
+    allocationOptions.maximumInlineOperations =
+        std::max(16, allocationOptions.maximumInlineOperations - excess - 2);
+    allocationOptions.maximumAssignmentOperations =
+        std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
+  }
+}
+
+} // namespace
+
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
                                const MacroProgramOptions& options) {
   MacroProgram program;
@@ -101,11 +149,6 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   if (!program.errors.empty()) {
     return program;
   }
-  // The allocator estimates the length of a block; where a printed block is
-  // longer than the controller takes, the limits shrink and it runs again.
-  ir::AllocationOptions allocationOptions = macroAllocationOptions(profile, parameterVariables);
-  ir::AllocationResult allocated;
-  MacroDialect dialect = customMacroDialect(profile);
   MacroPrintOptions printOptions;
   printOptions.sourceName = options.sourceName;
   printOptions.partName = options.partName;
@@ -115,30 +158,10 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   printOptions.parametersInCommon = options.parametersInCommon;
   printOptions.setup = &options.setup;
   printOptions.profile = &profile;
-  PrintedMacroProgram printed;
-  for (int attempt = 0;; ++attempt) {
-    program.errors.clear();
-    allocated = ir::allocateVariables(function, allocationOptions);
-    for (const ir::AllocationFailure& failure : allocated.failures) {
-      program.errors.push_back(failure.message);
-    }
-    if (!program.errors.empty()) {
-      return program;
-    }
-    printed =
-        MacroProgramPrinter(function, allocated.allocation, dialect, printOptions, program.errors)
-            .print();
-    int longest = printed.longestLine;
-    bool onlyTooLong = program.errors.size() == 1 && longest > profile.maximumBlockLength;
-    if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {
-      break;
-    }
-    int excess = longest - profile.maximumBlockLength;
-    allocationOptions.maximumInlineOperations =
-        std::max(16, allocationOptions.maximumInlineOperations - excess - 2);
-    allocationOptions.maximumAssignmentOperations =
-        std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
-  }
+  AllocatedProgram allocated =
+      allocateAndPrint(function, profile, macroAllocationOptions(profile, parameterVariables),
+                       printOptions, program.errors);
+  PrintedMacroProgram& printed = allocated.printed;
   program.lineOrigins = std::move(printed.lineOrigins);
   program.variables = std::move(printed.variables);
   if (!program.errors.empty()) {
