@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
+#include <optional>
 #include <queue>
 #include <set>
 #include <tuple>
@@ -80,6 +83,9 @@ public:
     countUses();
     chooseMaterialized();
     fitExpressions();
+    if (result_.failures.empty() && options_.stepScaledLoops) {
+      stepScaledLoops();
+    }
     if (result_.failures.empty()) {
       assignVariables();
     }
@@ -287,6 +293,59 @@ private:
     }
   }
 
+  std::optional<double> constantValue(ValueId value) const {
+    const Instruction& instruction = definition(value);
+    return instruction.opcode == Opcode::Const ? std::optional<double>(instruction.number)
+                                               : std::nullopt;
+  }
+
+  // A counting loop from a constant whose index has one reader, a product
+  // i * c (c constant, the bounds constant) or i / high (the loop from 1 to
+  // high, high in a variable): the product takes the index's variable,
+  // which then steps by c (or 1 / high).
+  void stepScaledLoops() {
+    std::vector<int> readCount(function_.valueTypes.size(), 0);
+    std::vector<InstructionId> reader(function_.valueTypes.size(), 0);
+    for (InstructionId id = 0; id < function_.instructions.size(); ++id) {
+      for (ValueId operand : function_.instructions[id].operands) {
+        ++readCount[operand.index];
+        reader[operand.index] = id;
+      }
+    }
+    for (const Instruction& loop : function_.instructions) {
+      if (loop.opcode != Opcode::Loop || loopAdvance(function_, loop).valid() ||
+          !constantValue(loop.operands[0]) || readCount[loop.result.index] != 1 ||
+          !materialized_[loop.result.index]) {
+        continue;
+      }
+      const Instruction& product = function_.instructions[reader[loop.result.index]];
+      if (std::optional<double> step = scaledStep(loop, product)) {
+        loopOfProduct_[product.result.index] = loop.result.index;
+        allocation_.stepOfLoop[loop.result.index] = *step;
+        allocation_.steppedProducts.insert(product.result.index);
+      }
+    }
+  }
+
+  // What the loop's variable steps by when it holds `product`; NaN for
+  // i / high; nothing when `product` is not a scaled index.
+  std::optional<double> scaledStep(const Instruction& loop, const Instruction& product) const {
+    std::optional<double> step;
+    if (product.opcode == Opcode::Mul && constantValue(loop.operands[1])) {
+      ValueId scale =
+          product.operands[0] == loop.result ? product.operands[1] : product.operands[0];
+      step = constantValue(scale);
+    } else if (product.opcode == Opcode::Div && product.operands[0] == loop.result &&
+               product.operands[1] == loop.operands[1] && *constantValue(loop.operands[0]) == 1 &&
+               materialized_[loop.operands[1].index]) {
+      step = std::numeric_limits<double>::quiet_NaN();
+    }
+    if (!step || *step == 0 || std::isinf(*step)) {
+      return std::nullopt;
+    }
+    return step;
+  }
+
   void fail(std::string limit, int needed, int available, std::string what) {
     for (const AllocationFailure& failure : result_.failures) {
       if (failure.limit == limit) {
@@ -448,6 +507,7 @@ private:
     computeLiveness();
     std::set<int> taken;
     std::vector<int> free = assignTables(taken);
+    int reserved = static_cast<int>(taken.size()); // parameters and tables
     std::vector<Interval> intervals;
     for (InstructionId id : layout_.order) {
       const Instruction& instruction = function_.instructions[id];
@@ -505,10 +565,16 @@ private:
       }
       slotOfValue[interval.value.index] = slot;
       active.push({interval.end, slot, interval.value.index});
-      if (slot < free.size()) {
+      // A stepped product keeps a slot of its own through its life, unused:
+      // giving it to the values made meanwhile would save a variable but
+      // renumber theirs.
+      if (slot < free.size() && !loopOfProduct_.contains(interval.value.index)) {
         allocation_.variableOfValue[interval.value.index] = free[slot];
         taken.insert(free[slot]);
       }
+    }
+    for (auto [product, loop] : loopOfProduct_) {
+      allocation_.variableOfValue[product] = allocation_.variableOfValue[loop];
     }
     for (std::size_t i = 0; i < options_.parameterVariables.size(); ++i) {
       for (InstructionId id : layout_.order) {
@@ -519,7 +585,6 @@ private:
       }
     }
     if (slotCount > free.size()) {
-      int reserved = static_cast<int>(taken.size() - std::min(slotCount, free.size()));
       fail("variables", reserved + static_cast<int>(slotCount),
            reserved + static_cast<int>(free.size()), "the program");
     }
@@ -533,6 +598,7 @@ private:
   std::vector<bool> materialized_;
   std::vector<int> useCount_;
   std::vector<int> lastUse_;
+  std::map<std::uint32_t, std::uint32_t> loopOfProduct_; // stepped product -> its loop index
   Allocation allocation_;
   AllocationResult result_;
 };

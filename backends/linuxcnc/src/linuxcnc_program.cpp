@@ -1,7 +1,6 @@
 #include "cncc/backends/linuxcnc_program.h"
 
 #include "linuxcnc_dialect.h"
-#include "macro_loop_stepping.h"
 #include "macro_printer.h"
 
 #include <algorithm>
@@ -156,10 +155,9 @@ LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,
   printOptions.parameterNames = linuxcncParameterNames(function.parameters);
   MacroExpressionWriter numbers(function, allocated.allocation, dialect, {}, program.errors);
   printOptions.blend = numbers.constant(options.blendTolerance);
-  SteppedLoops none; // LinuxCNC loops count their index
-  PrintedMacroProgram printed = MacroProgramPrinter(function, allocated.allocation, none, dialect,
-                                                    printOptions, program.errors)
-                                    .print();
+  PrintedMacroProgram printed =
+      MacroProgramPrinter(function, allocated.allocation, dialect, printOptions, program.errors)
+          .print();
   if (program.errors.empty()) {
     program.text = std::move(printed.text);
     program.lineOrigins = std::move(printed.lineOrigins);

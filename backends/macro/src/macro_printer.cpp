@@ -236,7 +236,7 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
     break;
   }
   if (instruction.result.valid() && allocation_.inVariable(instruction.result) &&
-      !scaledValues_.contains(instruction.result.index)) {
+      !allocation_.isSteppedProduct(instruction.result)) {
     printAssignment(instruction);
   }
 }
@@ -267,13 +267,13 @@ void MacroProgramPrinter::openLoop(const ir::Instruction& instruction, const std
              ? fmt::format("o{} while {}", label, condition)
              : fmt::format("WHILE {} DO{}", condition, loopDepth_));
   };
-  auto stepped = steppedLoops_.find(instruction.result.index);
-  if (stepped != steppedLoops_.end() && std::isnan(stepped->second)) {
+  auto stepped = allocation_.stepOfLoop.find(instruction.result.index);
+  if (stepped != allocation_.stepOfLoop.end() && std::isnan(stepped->second)) {
     // The index variable holds i / high, stepped by 1 / high.
     std::string high = expressions_.operand(instruction.operands[1]);
     line(assignment(index, fmt::format("{}/{}", dialect_.one, high)));
     head(fmt::format("[{} LE {}+.5/{}]", index, dialect_.one, high));
-  } else if (stepped != steppedLoops_.end()) {
+  } else if (stepped != allocation_.stepOfLoop.end()) {
     // The index variable holds i * scale, stepped by the scale.
     double scale = stepped->second;
     double low = *expressions_.constantOf(instruction.operands[0]);
@@ -299,12 +299,12 @@ void MacroProgramPrinter::stepLoop(const ir::Instruction& instruction, const std
     }
     return;
   }
-  auto stepped = steppedLoops_.find(instruction.result.index);
+  auto stepped = allocation_.stepOfLoop.find(instruction.result.index);
   std::string next;
-  if (stepped != steppedLoops_.end() && std::isnan(stepped->second)) {
+  if (stepped != allocation_.stepOfLoop.end() && std::isnan(stepped->second)) {
     next =
         fmt::format("{}+{}/{}", index, dialect_.one, expressions_.operand(instruction.operands[1]));
-  } else if (stepped != steppedLoops_.end()) {
+  } else if (stepped != allocation_.stepOfLoop.end()) {
     next = fmt::format("{}+{}", index, expressions_.constant(stepped->second));
   } else {
     next = fmt::format("{}+{}", index, dialect_.one);

@@ -9,7 +9,6 @@
 
 #include "macro_dialect.h"
 #include "macro_expressions.h"
-#include "macro_loop_stepping.h"
 #include "modal_moves.h"
 
 #include "cncc/backends/line_spans.h"
@@ -52,13 +51,12 @@ struct PrintedMacroProgram {
 class MacroProgramPrinter {
 public:
   MacroProgramPrinter(const ir::Function& function, const ir::Allocation& allocation,
-                      const SteppedLoops& stepped, const MacroDialect& dialect,
-                      const MacroPrintOptions& options, std::vector<std::string>& errors)
+                      const MacroDialect& dialect, const MacroPrintOptions& options,
+                      std::vector<std::string>& errors)
       : function_(function), allocation_(allocation), dialect_(dialect), options_(options),
         errors_(errors),
         expressions_(function, allocation, dialect, options.parameterNames, errors),
-        moves_(expressions_, dialect, lines_), steppedLoops_(stepped.scaleOfIndex),
-        scaledValues_(stepped.scaledValues), nextLabel_(dialect.firstLabel) {}
+        moves_(expressions_, dialect, lines_), nextLabel_(dialect.firstLabel) {}
 
   PrintedMacroProgram print();
 
@@ -136,8 +134,6 @@ private:
   MacroExpressionWriter expressions_;
   std::vector<std::string> lines_;
   ModalMoveWriter moves_;
-  const std::map<std::uint32_t, double>& steppedLoops_;
-  const std::set<std::uint32_t>& scaledValues_;
   std::map<int, VariableMeaning> variableMeanings_;
   int loopDepth_ = 0;
   bool reportedLoopDepth_ = false;

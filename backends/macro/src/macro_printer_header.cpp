@@ -100,7 +100,7 @@ void MacroProgramPrinter::printValueVariables() {
   std::map<std::string, std::set<int>> variables;
   for (const ir::Instruction& instruction : function_.instructions) {
     if (!instruction.result.valid() || instruction.opcode == Opcode::Param ||
-        scaledValues_.contains(instruction.result.index)) {
+        allocation_.isSteppedProduct(instruction.result)) {
       continue;
     }
     int variable = allocation_.variableOfValue[instruction.result.index];
@@ -109,7 +109,7 @@ void MacroProgramPrinter::printValueVariables() {
     }
     std::string meaning = "WORK VALUES";
     if (instruction.opcode == Opcode::Loop) {
-      bool parameter = steppedLoops_.contains(instruction.result.index) ||
+      bool parameter = allocation_.stepOfLoop.contains(instruction.result.index) ||
                        ir::loopAdvance(function_, instruction).valid();
       meaning = parameter ? "CURVE PARAMETERS" : "LOOP INDEXES";
     } else if (bounds.contains(instruction.result.index)) {

@@ -2,7 +2,6 @@
 
 #include "macro_dialect.h"
 #include "macro_inline_shape.h"
-#include "macro_loop_stepping.h"
 #include "macro_printer.h"
 
 #include <fmt/format.h>
@@ -59,6 +58,9 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
     return macroInlineShape(profile, function, instruction, operands);
   };
   options.statementOpcodes = macroStatementOpcodes();
+  // A curve's parameter u = i * c in the loop's variable, stepped by c:
+  // one multiplication and one assignment fewer per point.
+  options.stepScaledLoops = true;
   return options;
 }
 
@@ -80,6 +82,54 @@ std::vector<std::string> macroPassesBeforePrinting() {
   return {"fold-finite"};
 }
 
+namespace {
+
+// The variables of a program and the program printed with them.
+struct AllocatedProgram {
+  ir::Allocation allocation;
+  PrintedMacroProgram printed;
+};
+
+// Allocates the variables and prints the program. The allocator estimates
+// a block's length from its expressions alone; the printed block adds the
+// addresses, the modal words and the numbers as formatted, so only the
+// printed text says whether a block is longer than the controller takes.
+// Where one is (and nothing else is wrong), the inline limits shrink by the
+// excess and the allocation runs again, five times at most. Nothing is
+// printed when the allocation fails.
+AllocatedProgram allocateAndPrint(const ir::Function& function, const ControllerProfile& profile,
+                                  ir::AllocationOptions allocationOptions,
+                                  const MacroPrintOptions& printOptions,
+                                  std::vector<std::string>& errors) {
+  MacroDialect dialect = customMacroDialect(profile);
+  AllocatedProgram program;
+  for (int attempt = 0;; ++attempt) {
+    errors.clear();
+    ir::AllocationResult allocated = ir::allocateVariables(function, allocationOptions);
+    for (const ir::AllocationFailure& failure : allocated.failures) {
+      errors.push_back(failure.message);
+    }
+    if (!errors.empty()) {
+      return {};
+    }
+    program.allocation = std::move(allocated.allocation);
+    program.printed =
+        MacroProgramPrinter(function, program.allocation, dialect, printOptions, errors).print();
+    int longest = program.printed.longestLine;
+    bool onlyTooLong = errors.size() == 1 && longest > profile.maximumBlockLength;
+    if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {
+      return program;
+    }
+    int excess = longest - profile.maximumBlockLength;
+    allocationOptions.maximumInlineOperations =
+        std::max(16, allocationOptions.maximumInlineOperations - excess - 2);
+    allocationOptions.maximumAssignmentOperations =
+        std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
+  }
+}
+
+} // namespace
+
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
                                const MacroProgramOptions& options) {
   MacroProgram program;
@@ -99,11 +149,6 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   if (!program.errors.empty()) {
     return program;
   }
-  // The allocator estimates the length of a block; where a printed block is
-  // longer than the controller takes, the limits shrink and it runs again.
-  ir::AllocationOptions allocationOptions = macroAllocationOptions(profile, parameterVariables);
-  ir::AllocationResult allocated;
-  MacroDialect dialect = customMacroDialect(profile);
   MacroPrintOptions printOptions;
   printOptions.sourceName = options.sourceName;
   printOptions.partName = options.partName;
@@ -113,31 +158,10 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   printOptions.parametersInCommon = options.parametersInCommon;
   printOptions.setup = &options.setup;
   printOptions.profile = &profile;
-  PrintedMacroProgram printed;
-  for (int attempt = 0;; ++attempt) {
-    program.errors.clear();
-    allocated = ir::allocateVariables(function, allocationOptions);
-    for (const ir::AllocationFailure& failure : allocated.failures) {
-      program.errors.push_back(failure.message);
-    }
-    if (!program.errors.empty()) {
-      return program;
-    }
-    SteppedLoops stepped = stepLoopsByTheirScale(function, allocated.allocation);
-    printed = MacroProgramPrinter(function, allocated.allocation, stepped, dialect, printOptions,
-                                  program.errors)
-                  .print();
-    int longest = printed.longestLine;
-    bool onlyTooLong = program.errors.size() == 1 && longest > profile.maximumBlockLength;
-    if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {
-      break;
-    }
-    int excess = longest - profile.maximumBlockLength;
-    allocationOptions.maximumInlineOperations =
-        std::max(16, allocationOptions.maximumInlineOperations - excess - 2);
-    allocationOptions.maximumAssignmentOperations =
-        std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
-  }
+  AllocatedProgram allocated =
+      allocateAndPrint(function, profile, macroAllocationOptions(profile, parameterVariables),
+                       printOptions, program.errors);
+  PrintedMacroProgram& printed = allocated.printed;
   program.lineOrigins = std::move(printed.lineOrigins);
   program.variables = std::move(printed.variables);
   if (!program.errors.empty()) {

@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <set>
 
 namespace cncc::ir {
@@ -155,6 +157,91 @@ TEST(RegisterAllocation, KeepsNoVariableForANextValueFromOutsideTheLoop) {
   const Allocation& allocation = result.allocation;
   // The loop's variables are free after it: `after` and `again` reuse them.
   EXPECT_EQ(allocation.usedVariables, (std::vector<int>{1, 2, 3}));
+}
+
+// A counting loop whose index is only read scaled, u = i * 0.25: with
+// stepScaledLoops, u takes the index's variable, which steps by 0.25, and
+// u has no variable of its own.
+TEST(RegisterAllocation, StepsALoopWhoseIndexIsOnlyReadScaled) {
+  FunctionBuilder builder("scaled");
+  ValueId zero = builder.constant(0);
+  ValueId index = builder.beginLoop(zero, builder.constant(8));
+  ValueId u = builder.binary(Opcode::Mul, index, builder.constant(0.25));
+  ValueId square = builder.binary(Opcode::Mul, u, u); // `u` read twice: a variable
+  builder.feed(square, u, zero, builder.constant(100));
+  builder.endLoop();
+  Function function = builder.finish();
+
+  AllocationOptions options = optionsWith({{1, 33}});
+  AllocationResult counted = allocateVariables(function, options);
+  ASSERT_TRUE(counted.ok());
+  EXPECT_NE(counted.allocation.variableOfValue[u.index],
+            counted.allocation.variableOfValue[index.index]);
+  EXPECT_TRUE(counted.allocation.stepOfLoop.empty());
+  EXPECT_EQ(counted.allocation.usedVariables, (std::vector<int>{1, 2}));
+
+  options.stepScaledLoops = true;
+  AllocationResult stepped = allocateVariables(function, options);
+  ASSERT_TRUE(stepped.ok());
+  const Allocation& allocation = stepped.allocation;
+  ASSERT_TRUE(allocation.inVariable(index));
+  EXPECT_EQ(allocation.variableOfValue[u.index], allocation.variableOfValue[index.index]);
+  EXPECT_EQ(allocation.stepOfLoop, (std::map<std::uint32_t, double>{{index.index, 0.25}}));
+  EXPECT_TRUE(allocation.isSteppedProduct(u));
+  EXPECT_FALSE(allocation.isSteppedProduct(square));
+  EXPECT_EQ(allocation.usedVariables, (std::vector<int>{1}));
+}
+
+// A loop from 1 to a bound in a variable whose index is only read as
+// u = i / high: u takes the index's variable, recorded as a NaN step
+// (the variable steps by 1 / high).
+TEST(RegisterAllocation, StepsALoopFromOneByOneOverItsBound) {
+  FunctionBuilder builder("fraction");
+  ValueId points = builder.parameter(builder.addParameter("points", 10));
+  ValueId zero = builder.constant(0);
+  ValueId index = builder.beginLoop(builder.constant(1), points);
+  ValueId u = builder.binary(Opcode::Div, index, points);
+  ValueId square = builder.binary(Opcode::Mul, u, u);
+  builder.feed(square, u, zero, builder.constant(100));
+  builder.endLoop();
+  Function function = builder.finish();
+
+  AllocationOptions options = optionsWith({{1, 33}}, {1});
+  options.stepScaledLoops = true;
+  AllocationResult result = allocateVariables(function, options);
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  EXPECT_EQ(allocation.variableOfValue[u.index], allocation.variableOfValue[index.index]);
+  ASSERT_TRUE(allocation.stepOfLoop.contains(index.index));
+  EXPECT_TRUE(std::isnan(allocation.stepOfLoop.at(index.index)));
+  EXPECT_EQ(allocation.usedVariables, (std::vector<int>{1, 2}));
+}
+
+// A loop whose index is also read unscaled, or scaled by a value that is
+// not a constant, keeps counting its index.
+TEST(RegisterAllocation, DoesNotStepALoopWhoseIndexIsNotOnlyReadScaled) {
+  FunctionBuilder builder("unscaled");
+  ValueId side = builder.parameter(builder.addParameter("side", 10));
+  ValueId zero = builder.constant(0);
+  ValueId counted = builder.beginLoop(zero, builder.constant(8));
+  ValueId u = builder.binary(Opcode::Mul, counted, builder.constant(0.25));
+  builder.feed(u, counted, zero, builder.constant(100)); // the index itself is read
+  builder.endLoop();
+  ValueId byParameter = builder.beginLoop(zero, builder.constant(8));
+  ValueId v = builder.binary(Opcode::Mul, byParameter, side); // scaled by a parameter
+  builder.feed(v, v, zero, builder.constant(100));
+  builder.endLoop();
+  Function function = builder.finish();
+
+  AllocationOptions options = optionsWith({{1, 33}}, {1});
+  options.stepScaledLoops = true;
+  AllocationResult result = allocateVariables(function, options);
+  ASSERT_TRUE(result.ok());
+  const Allocation& allocation = result.allocation;
+  EXPECT_TRUE(allocation.stepOfLoop.empty());
+  EXPECT_TRUE(allocation.steppedProducts.empty());
+  EXPECT_NE(allocation.variableOfValue[u.index], allocation.variableOfValue[counted.index]);
+  EXPECT_NE(allocation.variableOfValue[v.index], allocation.variableOfValue[byParameter.index]);
 }
 
 // A table takes consecutive variables that nothing else shares.

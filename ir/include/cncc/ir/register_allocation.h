@@ -17,14 +17,21 @@
 // its value is dead (a statement may read a variable and write its result
 // to the same one).
 //
+// With stepScaledLoops, a counting loop whose index is only read scaled
+// (u = i * c, or u = i / high for a loop from 1 to high) has u itself in
+// its variable, stepped by c (or 1 / high): the product shares the index's
+// variable and is computed by no statement.
+//
 // The IR knows nothing about controllers: the caller describes the
 // variables, the limits and its expression syntax (InlineShapeFunction).
 #pragma once
 
 #include "cncc/ir/ir.h"
 
+#include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -72,6 +79,8 @@ struct AllocationOptions {
   // Operations printed as several statements (min, max, select, ..): their
   // result always gets a variable, and their operands are written twice.
   std::vector<Opcode> statementOpcodes;
+  // Loops whose index is only read scaled hold the scaled value (see above).
+  bool stepScaledLoops = false;
 };
 
 struct Allocation {
@@ -82,8 +91,15 @@ struct Allocation {
   std::vector<int> parameterVariables;
   // Every variable the program uses, ascending, tables included.
   std::vector<int> usedVariables;
+  // The loops stepped by their scale: loop index value -> what its variable
+  // advances by each pass, c for u = i * c; NaN for u = i / high, which
+  // advances by 1 / high.
+  std::map<std::uint32_t, double> stepOfLoop;
+  // The products those variables hold (each shares its loop's variable).
+  std::set<std::uint32_t> steppedProducts;
 
   bool inVariable(ValueId value) const { return variableOfValue[value.index] >= 0; }
+  bool isSteppedProduct(ValueId value) const { return steppedProducts.contains(value.index); }
 };
 
 // The tables by the first variable of their block: equal tables (one per
