@@ -177,7 +177,9 @@ bool sameBits(double a, double b) {
          (std::isnan(a) && std::isnan(b));
 }
 
-::testing::AssertionResult samePath(const ToolPath& expected, const ToolPath& actual) {
+// Whether the two paths have the same events, each number as `same` says.
+::testing::AssertionResult comparePaths(const ToolPath& expected, const ToolPath& actual,
+                                        bool (*same)(double, double)) {
   if (expected.events.size() != actual.events.size()) {
     return ::testing::AssertionFailure()
            << expected.events.size() << " events became " << actual.events.size();
@@ -185,13 +187,22 @@ bool sameBits(double a, double b) {
   for (std::size_t i = 0; i < expected.events.size(); ++i) {
     const MachineEvent& a = expected.events[i];
     const MachineEvent& b = actual.events[i];
-    if (a.kind != b.kind || a.text != b.text || !sameBits(a.x, b.x) || !sameBits(a.y, b.y) ||
-        !sameBits(a.z, b.z) || !sameBits(a.feed, b.feed) || !sameBits(a.number, b.number) ||
-        !sameBits(a.diameter, b.diameter)) {
+    if (a.kind != b.kind || a.text != b.text) {
       return ::testing::AssertionFailure() << "event " << i << " differs";
+    }
+    for (auto [x, y] :
+         {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z}, std::pair{a.feed, b.feed},
+          std::pair{a.number, b.number}, std::pair{a.diameter, b.diameter}}) {
+      if (!same(x, y)) {
+        return ::testing::AssertionFailure() << "event " << i << ": " << x << " became " << y;
+      }
     }
   }
   return ::testing::AssertionSuccess();
+}
+
+::testing::AssertionResult samePath(const ToolPath& expected, const ToolPath& actual) {
+  return comparePaths(expected, actual, sameBits);
 }
 
 TEST(PassesRandomTest, PassesKeepToolPathsOfRandomFunctions) {
@@ -229,24 +240,9 @@ TEST(PassesRandomTest, PassesKeepToolPathsOfRandomFunctions) {
 // size where that is above 1): fold-finite moves a number by what it takes
 // as 0 or 1 (1e-12) at most, and a signed zero's sign.
 ::testing::AssertionResult closePath(const ToolPath& expected, const ToolPath& actual) {
-  if (expected.events.size() != actual.events.size()) {
-    return ::testing::AssertionFailure()
-           << expected.events.size() << " events became " << actual.events.size();
-  }
-  for (std::size_t i = 0; i < expected.events.size(); ++i) {
-    const MachineEvent& a = expected.events[i];
-    const MachineEvent& b = actual.events[i];
-    if (a.kind != b.kind || a.text != b.text) {
-      return ::testing::AssertionFailure() << "event " << i << " differs";
-    }
-    for (auto [x, y] : {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z},
-                        std::pair{a.feed, b.feed}, std::pair{a.number, b.number}}) {
-      if (!(std::abs(x - y) <= 1e-9 * std::max(1.0, std::abs(x)))) {
-        return ::testing::AssertionFailure() << "event " << i << ": " << x << " became " << y;
-      }
-    }
-  }
-  return ::testing::AssertionSuccess();
+  return comparePaths(expected, actual, [](double x, double y) {
+    return std::abs(x - y) <= 1e-9 * std::max(1.0, std::abs(x));
+  });
 }
 
 bool finitePath(const ToolPath& path) {
