@@ -68,9 +68,10 @@ private:
 
 } // namespace
 
+// One rewrite writes out the laps of every kind of blocks.
 bool writeCurveBlocks(Function& function) {
-  return rewriteLaps<CurveBlockWriter>(function, CurveSampling::NurbsBlocks) |
-         rewriteLaps<CurveBlockWriter>(function, CurveSampling::SplineBlocks) |
+  return rewriteLaps<CurveBlockWriter>(function, CurveSampling::NurbsBlocks) ||
+         rewriteLaps<CurveBlockWriter>(function, CurveSampling::SplineBlocks) ||
          rewriteLaps<CurveBlockWriter>(function, CurveSampling::PolynomialBlocks);
 }
 
