@@ -4,9 +4,59 @@
 // the loops (ir/src/curve_lap_loops.cpp).
 #include "controller_segment.h"
 
+#include "cncc/geom/curve.h"
+#include "cncc/lowering/literal_rounding.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
 namespace cncc::ir::lowering {
 
 using namespace frontend;
+
+// A region of N uniform steps is cut by a loop whose parameter grows by the
+// step c = (to - from) / N as the controller reads it, c': where c' > c,
+// its last point lies N (c' - c) past the region's end, about that times
+// the curve's speed off its end (a region that ends short leaves its last
+// chord along the curve; the last region of a closed curve runs on along
+// its start). Refused past a quarter of the cut's tolerance (the share a
+// rounded literal may take, as in literal_rounding.h).
+void PartLowering::checkStepDrift(const CutStmt& cut, const CurveTableEntry& entry) {
+  int digits = options_.literalSignificantDigits;
+  if (digits <= 0 || entry.geometry == nullptr) {
+    return;
+  }
+  double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
+  bool closed = (entry.geometry->point(entry.from) - entry.geometry->point(entry.to)).norm() < 1e-9;
+  for (std::size_t region = 0; region < entry.regionSteps.size(); ++region) {
+    int steps = entry.regionSteps[region];
+    bool runsOntoItsStart = closed && region + 1 == entry.regionSteps.size();
+    if (steps < 2 || runsOntoItsStart) {
+      continue;
+    }
+    auto [from, to] = entry.regionRange(region);
+    double step = (to - from) / steps;
+    double drift = steps * (controllerReading(step, digits) - step);
+    if (!(drift > 0)) {
+      continue;
+    }
+    double probe = (to - from) * 1e-6;
+    Eigen::Vector3d end = entry.geometry->point(entry.wholeParameter(region, to));
+    Eigen::Vector3d before = entry.geometry->point(entry.wholeParameter(region, to - probe));
+    double movement = drift * (end - before).norm() / probe;
+    if (movement > tolerance / 4) {
+      fail(cut.span,
+           fmt::format("the {}controller's {} significant digits round this curve's parameter "
+                       "step {} to {}: after its {} steps the last point lies {:.3g} mm past "
+                       "the curve's end, more than a quarter of the tolerance {:g} mm (a "
+                       "coarser tolerance takes fewer steps)",
+                       options_.targetName.empty() ? "" : options_.targetName + " ", digits, step,
+                       controllerReading(step, digits), steps, movement, tolerance),
+           DiagnosticKind::LiteralRounding);
+    }
+  }
+}
 
 // A curve table entry cutting each piece in the steps planned for it, when
 // every piece (or knot span) is one the controller evaluates from the
@@ -43,6 +93,7 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
       lap.computedSteps.push_back(arithmetic_.value(stepsOf(segment)));
     }
   }
+  checkStepDrift(cut, entry);
   lap.table = builder_.addCurve(std::move(entry));
   return lap;
 }

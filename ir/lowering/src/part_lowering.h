@@ -492,6 +492,7 @@ private:
     std::uint32_t table = 0;
     std::vector<ValueId> computedSteps;
   };
+  void checkStepDrift(const frontend::CutStmt& cut, const CurveTableEntry& entry);
   std::optional<SteppedLap> steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
                                        const std::vector<ControllerSegment>& segments,
                                        double budget);
