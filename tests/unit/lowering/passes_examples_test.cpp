@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -129,6 +130,22 @@ std::size_t curveLapCount(const Function& function,
   return laps;
 }
 
+// Calls `check` with each example lowered with `lowering` (its source kept
+// alive meanwhile); an example that does not lower is a failure.
+void forEveryLoweredExample(const LoweringOptions& lowering,
+                            const std::function<void(const std::string&, Function&)>& check) {
+  for (const Example& example : examples) {
+    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
+    std::unique_ptr<LoweredExample> lowered =
+        lowerExampleKept(example.file, example.part, lowering);
+    if (!lowered->function) {
+      ADD_FAILURE() << name << " does not lower";
+      continue;
+    }
+    check(name, *lowered->function);
+  }
+}
+
 // Every example lowered with `lowering`, its laps left (expandCurveLaps
 // off): interpreting the IR before the legalisations and after them gives
 // the same path to the last bit. The laps cut as `sampling` says (all:
@@ -137,22 +154,14 @@ std::size_t legaliseEveryExample(LoweringOptions lowering,
                                  std::optional<CurveSampling> sampling = std::nullopt) {
   lowering.expandCurveLaps = false;
   std::size_t laps = 0;
-  for (const Example& example : examples) {
-    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
-    std::unique_ptr<LoweredExample> lowered =
-        lowerExampleKept(example.file, example.part, lowering);
-    std::optional<Function>& function = lowered->function;
-    if (!function) {
-      ADD_FAILURE() << name << " does not lower";
-      continue;
-    }
-    laps += curveLapCount(*function, sampling);
-    ToolPath before = interpret(*function);
-    runCurveLegalisation(*function);
-    EXPECT_EQ(curveLapCount(*function), 0u) << name;
-    EXPECT_TRUE(verifyFunction(*function).empty()) << name;
-    expectSamePath(before, interpret(*function), name);
-  }
+  forEveryLoweredExample(lowering, [&](const std::string& name, Function& function) {
+    laps += curveLapCount(function, sampling);
+    ToolPath before = interpret(function);
+    runCurveLegalisation(function);
+    EXPECT_EQ(curveLapCount(function), 0u) << name;
+    EXPECT_TRUE(verifyFunction(function).empty()) << name;
+    expectSamePath(before, interpret(function), name);
+  });
   return laps;
 }
 
@@ -360,15 +369,7 @@ TEST(PassesExamplesTest, FoldFiniteKeepsEveryExamplesPathToRounding) {
   controller.controllerLoops = true;
   controller.coordinateIncrement = 0.0001;
   std::size_t changed = 0;
-  for (const Example& example : examples) {
-    std::string name = std::string(example.file) + (*example.part ? ":" : "") + example.part;
-    std::unique_ptr<LoweredExample> lowered =
-        lowerExampleKept(example.file, example.part, controller);
-    if (!lowered->function) {
-      ADD_FAILURE() << name << " does not lower";
-      continue;
-    }
-    Function& function = *lowered->function;
+  forEveryLoweredExample(controller, [&](const std::string& name, Function& function) {
     runDefaultPipeline(function);
     ToolPath before = interpret(function);
     changed += foldAssumingFinite(function) ? 1 : 0;
@@ -384,7 +385,7 @@ TEST(PassesExamplesTest, FoldFiniteKeepsEveryExamplesPathToRounding) {
         ASSERT_NEAR(x, y, 1e-9) << name << " event " << i;
       }
     }
-  }
+  });
   EXPECT_GE(changed, 1u);
 }
 
