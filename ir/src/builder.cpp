@@ -136,6 +136,17 @@ ValueId FunctionBuilder::beginCurveLap(std::uint32_t curve, ValueId zFrom, Value
 
 void FunctionBuilder::curvePoint(ValueId x, ValueId y, ValueId z) {
   operation(Opcode::CurvePoint, {x, y, z});
+  endLapRegion();
+}
+
+void FunctionBuilder::curveArc(ValueId x, ValueId y, ValueId z, ValueId toCentreX,
+                               ValueId toCentreY) {
+  operation(Opcode::CurveArc, {x, y, z, toCentreX, toCentreY});
+  endLapRegion();
+}
+
+// After a region's last instruction: the lap's next region, or after the lap.
+void FunctionBuilder::endLapRegion() {
   auto& [lap, region] = insertion_.back();
   if (region + 1 < function_.instructions[lap].regions.size()) {
     ++region;

@@ -74,6 +74,7 @@ public:
       }
       switch (instruction.opcode) {
       case Opcode::CurvePoint:
+      case Opcode::CurveArc: // its point; the centre follows from the points
         for (std::size_t k = 0; k < 3; ++k) {
           program->point[k] = operand(instruction.operands[k], known);
         }

@@ -11,10 +11,14 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 
 namespace cncc::ir {
 
 namespace {
+
+// Blocks of an arc region written out one after the other; more go in a loop.
+constexpr double largestUnrolledArc = 4;
 
 class ControllerLoopExpander : public LapRewriter {
 public:
@@ -26,6 +30,10 @@ private:
   }
   void writeLap(const Instruction& lap) override { expandLap(lap); }
   void writePoint(const Instruction& lap, const Instruction& point) override {
+    if (point.opcode == Opcode::CurveArc) {
+      arcPoint_ = mappedOperands(point); // read by emitArcBlock
+      return;
+    }
     feedToPoint(lap, point);
   }
 
@@ -38,7 +46,9 @@ private:
       RegionSteps steps = stepsOf(lap, entry, region, computed);
       count_ = steps.count;
       single_ = steps.single;
-      if (steps.single) {
+      if (const ArcRegion* arc = entry.arcRegion(region)) {
+        emitArcRegion(lap, *arc, steps);
+      } else if (steps.single) {
         replace(lap.result, valueOf(steps.to));
         rewriteRegion(lap.regions[region]);
       } else {
@@ -97,21 +107,89 @@ private:
     endRegions();
   }
 
-  // The region's curve.point: a feed move there, raised by the lap's height
-  // (on a ramp, from + (to - from) (before + share fraction)).
+  // The region's curve.point: a feed move there, raised by the lap's height.
   void feedToPoint(const Instruction& lap, const Instruction& point) {
     std::vector<ValueId> operands = mappedOperands(point);
-    Operand height = operandOf(mapped(lap.operands[1]));
-    if (shares_ != nullptr) {
-      Operand fraction =
-          single_ ? Operand{ValueId{}, 1} : arithmetic(Opcode::Div, {index_, 0}, count_);
-      Operand done = add({ValueId{}, share_.before}, multiply({ValueId{}, share_.share}, fraction));
-      Operand from = operandOf(mapped(lap.operands[0]));
-      Operand rise = arithmetic(Opcode::Sub, height, from);
-      height = add(from, multiply(rise, done));
-    }
-    ValueId z = valueOf(add(height, operandOf(operands[2])));
+    ValueId z = valueOf(add(heightDone(lap, std::nullopt), operandOf(operands[2])));
     emitFeedMove(lap, operands[0], operands[1], z);
+  }
+
+  // The lap's height where `fraction` of the region is done (nullopt: the
+  // step's i / count): on a ramp, from + (to - from) (before + share fraction).
+  Operand heightDone(const Instruction& lap, std::optional<Operand> fraction) {
+    Operand height = operandOf(mapped(lap.operands[1]));
+    if (shares_ == nullptr) {
+      return height;
+    }
+    if (!fraction) {
+      fraction = single_ ? Operand{ValueId{}, 1} : arithmetic(Opcode::Div, {index_, 0}, count_);
+    }
+    Operand done = add({ValueId{}, share_.before}, multiply({ValueId{}, share_.share}, *fraction));
+    Operand from = operandOf(mapped(lap.operands[0]));
+    Operand rise = arithmetic(Opcode::Sub, height, from);
+    return add(from, multiply(rise, done));
+  }
+
+  // An arc region in `count` blocks of equal turn, block j from
+  // from + (j - 1) step to from + j step: written out one after the other
+  // up to largestUnrolledArc, in a loop beyond (or when the program computes
+  // the count).
+  void emitArcRegion(const Instruction& lap, const ArcRegion& arc, const RegionSteps& steps) {
+    if (steps.single) {
+      emitArcBlock(lap, arc, steps.from, steps.to, Operand{ValueId{}, 1});
+      return;
+    }
+    if (steps.count.isNumber() && steps.count.number <= largestUnrolledArc) {
+      Operand step = arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from),
+                                steps.count);
+      for (double j = 1; j <= steps.count.number; ++j) {
+        emitArcBlock(lap, arc,
+                     arc.wholeTurns ? steps.from
+                                    : add(steps.from, multiply({ValueId{}, j - 1}, step)),
+                     add(steps.from, multiply({ValueId{}, j}, step)),
+                     Operand{ValueId{}, j / steps.count.number});
+      }
+      return;
+    }
+    index_ = beginLapLoop(lap, constant(1), valueOf(steps.count));
+    Operand index{index_, 0};
+    Operand step =
+        arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
+    Operand start =
+        arc.wholeTurns ? steps.from
+                       : add(steps.from, multiply(arithmetic(Opcode::Sub, index, {ValueId{}, 1}), step));
+    emitArcBlock(lap, arc, start, add(steps.from, multiply(index, step)), std::nullopt);
+    endRegions();
+  }
+
+  // One move.arc: to the region's point at `to` about the centre seen from
+  // its point at `from`; whole turns (`from` the region's start) end where
+  // the region starts (its values, with no rounding between).
+  // `fraction`: of the region done at its end (nullopt: the loop's i / count).
+  void emitArcBlock(const Instruction& lap, const ArcRegion& arc, const Operand& from,
+                    const Operand& to, std::optional<Operand> fraction) {
+    std::size_t region = arc.region;
+    if (arc.wholeTurns) {
+      rewriteRegionFor(lap, region, valueOf(to), {2});
+    } else {
+      rewriteRegionFor(lap, region, valueOf(to), {0, 1, 2});
+    }
+    std::vector<ValueId> end = arcPoint_;
+    if (arc.wholeTurns) {
+      rewriteRegionFor(lap, region, valueOf(from), {0, 1, 3, 4});
+      end[0] = arcPoint_[0];
+      end[1] = arcPoint_[1];
+    } else {
+      rewriteRegionFor(lap, region, valueOf(from), {3, 4});
+    }
+    Instruction move;
+    move.opcode = Opcode::Arc;
+    move.index = static_cast<std::uint32_t>(arc.counterClockwise ? ArcTurn::CounterClockwise
+                                                                 : ArcTurn::Clockwise);
+    move.span = lap.span;
+    move.pass = lap.pass;
+    ValueId z = valueOf(add(heightDone(lap, fraction), operandOf(end[2])));
+    emit(move, {end[0], end[1], z, arcPoint_[3], arcPoint_[4], mapped(lap.operands[2])});
   }
 
   // A ramp lap's regions' shares (null on a level lap), and the region's;
@@ -123,6 +201,7 @@ private:
   bool single_ = true;
   ValueId index_;
   std::map<std::uint32_t, std::vector<LapRegionShare>> entryShares_;
+  std::vector<ValueId> arcPoint_; // of an arc region just written
 };
 
 } // namespace

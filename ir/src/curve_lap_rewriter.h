@@ -10,6 +10,9 @@
 #include "passes/evaluate.h"
 #include "passes/rewriter.h"
 
+#include <initializer_list>
+#include <vector>
+
 namespace cncc::ir {
 
 // Whether a curve.lap of the function is cut as `sampling` says (any lap:
@@ -50,17 +53,47 @@ protected:
   virtual void writePoint(const Instruction& lap, const Instruction& point) = 0;
 
   void visit(const Instruction& instruction) final {
+    bool ends = instruction.opcode == Opcode::CurvePoint || instruction.opcode == Opcode::CurveArc;
+    if (!kept_.empty() && !ends && !kept_[instructionIdOf(instruction)]) {
+      return; // not needed by the operands of the region's end being written
+    }
     if (instruction.opcode == Opcode::CurveLap && writes(source_.curves[instruction.index])) {
       const Instruction* outer = lap_;
       lap_ = &instruction;
       writeLap(instruction);
       lap_ = outer;
       markChanged();
-    } else if (instruction.opcode == Opcode::CurvePoint && lap_ != nullptr) {
+    } else if (ends && lap_ != nullptr) {
       writePoint(*lap_, instruction);
     } else {
       copy(instruction);
     }
+  }
+
+  // Writes the lap's region at the parameter t, only what the operands
+  // `wanted` of its curve.point or curve.arc need (a point is written where
+  // its region ends: writePoint, whose other operands are not to be read).
+  void rewriteRegionFor(const Instruction& lap, std::size_t region, ValueId t,
+                        std::initializer_list<std::size_t> wanted) {
+    const Region& body = lap.regions[region];
+    kept_.assign(source_.instructions.size(), false);
+    std::vector<bool> needed(source_.valueTypes.size(), false);
+    const Instruction& end = source_.instructions[body.instructions.back()];
+    for (std::size_t k : wanted) {
+      needed[end.operands[k].index] = true;
+    }
+    for (auto id = body.instructions.rbegin(); id != body.instructions.rend(); ++id) {
+      const Instruction& instruction = source_.instructions[*id];
+      if (instruction.result.valid() && needed[instruction.result.index]) {
+        kept_[*id] = true;
+        for (ValueId operand : instruction.operands) {
+          needed[operand.index] = true;
+        }
+      }
+    }
+    replace(lap.result, t);
+    rewriteRegion(body);
+    kept_.clear();
   }
 
   // A loop over a lap's points, from `low` to `high`, its body the output
@@ -183,7 +216,14 @@ protected:
   }
 
 private:
+  std::size_t instructionIdOf(const Instruction& instruction) const {
+    return static_cast<std::size_t>(&instruction - source_.instructions.data());
+  }
+
   const Instruction* lap_ = nullptr; // being written
+  // While a region is written for some of its end's operands: the
+  // instructions they need (empty: all).
+  std::vector<bool> kept_;
 };
 
 } // namespace cncc::ir

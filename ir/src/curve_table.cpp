@@ -16,6 +16,15 @@ std::size_t CurveTableEntry::computedRegionCount() const {
   return static_cast<std::size_t>(std::count(regionSteps.begin(), regionSteps.end(), 0));
 }
 
+const ArcRegion* CurveTableEntry::arcRegion(std::size_t region) const {
+  for (const ArcRegion& arc : arcRegions) {
+    if (arc.region == region) {
+      return &arc;
+    }
+  }
+  return nullptr;
+}
+
 std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const {
   std::size_t region = 0;
   for (std::size_t p = 0; p < piece; ++p) {

@@ -95,6 +95,10 @@ private:
     case Opcode::CurvePoint: // read by its lap when the region is done
       lapPoint_ = {value(operands[0]), value(operands[1]), value(operands[2])};
       return;
+    case Opcode::CurveArc:
+      lapPoint_ = {value(operands[0]), value(operands[1]), value(operands[2])};
+      lapToCentre_ = {value(operands[3]), value(operands[4])};
+      return;
     case Opcode::Arc:
       recordArc(instruction);
       return;
@@ -240,17 +244,53 @@ private:
       return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
                        passes::constantValue(function_, count) == 1.0};
     });
+    std::optional<LapStep> previous;
     for (const LapStep& step : lapSteps(ranges)) {
       countStep();
-      values_[lap.result.index] = step.local;
-      runRegion(lap.regions[step.region]);
       double height = zTo;
       if (shares != nullptr) {
         const LapRegionShare& share = (*shares)[step.region];
         height = zFrom + (zTo - zFrom) * (share.before + share.share * step.fraction);
       }
-      feedToLapPoint(lap, height, feed);
+      if (const ArcRegion* arc = entry.arcRegion(step.region)) {
+        // A block from the step before in the region (or its start).
+        double regionStart = ranges[step.region].from;
+        bool first = !previous || previous->region != step.region;
+        runArcBlock(lap, *arc, arc->wholeTurns || first ? regionStart : previous->local, step.local,
+                    height, feed);
+      } else {
+        regionPoint(lap, step.region, step.local);
+        feedToLapPoint(lap, height, feed);
+      }
+      previous = step;
     }
+  }
+
+  // The point (and offset to the centre) a region computes at t.
+  void regionPoint(const Instruction& lap, std::size_t region, double t) {
+    values_[lap.result.index] = t;
+    runRegion(lap.regions[region]);
+  }
+
+  // A move.arc block of an arc region from its parameter `from` to `to`,
+  // its end raised by height; whole turns end where they start.
+  void runArcBlock(const Instruction& lap, const ArcRegion& arc, double from, double to,
+                   double height, double feed) {
+    regionPoint(lap, arc.region, from);
+    std::array<double, 3> start = lapPoint_;
+    std::array<double, 2> toCentre = lapToCentre_;
+    regionPoint(lap, arc.region, to);
+    std::array<double, 3> end = lapPoint_;
+    if (arc.wholeTurns) {
+      end[0] = start[0];
+      end[1] = start[1];
+    }
+    MachineEvent event =
+        arcMove(position_, arc.counterClockwise ? ArcTurn::CounterClockwise : ArcTurn::Clockwise,
+                end[0], end[1], height + end[2], toCentre[0], toCentre[1], feed);
+    event.span = lap.span;
+    event.pass = lap.pass;
+    recordLapMove(std::move(event));
   }
 
   // A feed move to the point the region just run computed, raised by height.
@@ -480,6 +520,7 @@ private:
   std::size_t steps_ = 0;
   // The point the last curve.point gave.
   std::array<double, 3> lapPoint_{0, 0, 0};
+  std::array<double, 2> lapToCentre_{0, 0}; // of an arc region's point
   // The curves a lap kept, the latest last.
   static constexpr std::size_t maximumCurvesPerLap = 8;
   std::map<const Instruction*, std::vector<LapPoints>> lapPoints_;

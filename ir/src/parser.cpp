@@ -318,12 +318,19 @@ private:
       define(result, parseCurveLap(rest));
       return;
     case Opcode::CurvePoint:
+    case Opcode::CurveArc:
       if (!open_.empty() && open_.back().opcode == Opcode::CurveLap) {
         std::vector<ValueId> point = operandList(rest);
-        if (point.size() != 3) {
-          throw Failure{"expected 'curve.point %x, %y, %z'"};
+        bool arc = opcode->second == Opcode::CurveArc;
+        if (point.size() != (arc ? 5U : 3U)) {
+          throw Failure{arc ? "expected 'curve.arc %x, %y, %z, %i, %j'"
+                            : "expected 'curve.point %x, %y, %z'"};
         }
-        builder_->curvePoint(point[0], point[1], point[2]);
+        if (arc) {
+          builder_->curveArc(point[0], point[1], point[2], point[3], point[4]);
+        } else {
+          builder_->curvePoint(point[0], point[1], point[2]);
+        }
         open_.back().pointEnded = true;
         return;
       }
@@ -525,6 +532,16 @@ private:
     curve_->to = parseNumber(words[7]);
   }
 
+  // `2 ccw`, `0 cw turns`: a region cut as an arc, its turn, whole turns.
+  ArcRegion parseArcRegion(std::string_view text) {
+    std::vector<std::string_view> words = splitWords(text);
+    bool turns = words.size() == 3 && words[2] == "turns";
+    if ((words.size() != 2 && !turns) || (words[1] != "ccw" && words[1] != "cw")) {
+      throw Failure{"expected 'arcs REGION ccw|cw [turns], ...'"};
+    }
+    return {parseWholeNumber(words[0]), words[1] == "ccw", turns};
+  }
+
   void parseCurveLine(std::string_view line) {
     if (line == "}") {
       builder_->addCurve(std::move(*curve_));
@@ -551,6 +568,12 @@ private:
       }
       return;
     }
+    if (startsWith(line, "arcs ")) {
+      for (std::string_view arc : splitList(line.substr(5))) {
+        curve_->arcRegions.push_back(parseArcRegion(arc));
+      }
+      return;
+    }
     if (startsWith(line, "grid ")) {
       curve_->grid = parseNumber(line.substr(5));
       return;
@@ -570,7 +593,7 @@ private:
     }
     if (!startsWith(line, "piece ")) {
       throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', "
-                    "'progress', "
+                    "'arcs', 'progress', "
                     "'host', 'chosen' or '}'"};
     }
     std::size_t spansAt = line.find(" spans ");

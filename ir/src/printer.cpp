@@ -65,7 +65,7 @@ public:
 
 private:
   // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
-  // the printed grid of arcs, the table of blocks, the regions' step counts, the share of a longer
+  // the printed grid of arcs, the table of blocks, the regions' step counts and arcs, the share of a longer
   // lap's descent, the host regions and the chosen parameters; the entry's geometry, fitted arcs
   // and source spans are not text.
   void printCurve(std::size_t index, const CurveTableEntry& entry) {
@@ -87,6 +87,14 @@ private:
     }
     if (!entry.regionSteps.empty()) {
       out_ += fmt::format("    counts {}\n", fmt::join(entry.regionSteps, ", "));
+    }
+    if (!entry.arcRegions.empty()) {
+      std::vector<std::string> arcs;
+      for (const ArcRegion& arc : entry.arcRegions) {
+        arcs.push_back(fmt::format("{} {}{}", arc.region, arc.counterClockwise ? "ccw" : "cw",
+                                   arc.wholeTurns ? " turns" : ""));
+      }
+      out_ += fmt::format("    arcs {}\n", fmt::join(arcs, ", "));
     }
     if (entry.progressFrom != 0 || entry.progressShare != 1) {
       out_ += fmt::format("    progress {} share {}\n", entry.progressFrom, entry.progressShare);

@@ -69,16 +69,15 @@ private:
   // `visible` holds the values defined so far on the way to this point.
   // `owner`: the operation whose region it is (the body: none); a loop's
   // body alone may end in loop.next, and a curve.lap's regions end in
-  // curve.point, which appears nowhere else.
+  // curve.point or curve.arc, which appear nowhere else.
   void verifyRegion(const Region& region, std::vector<bool>& visible,
                     std::optional<Opcode> owner = std::nullopt) {
     std::vector<ValueId> definedHere;
     bool lapRegion = owner == Opcode::CurveLap;
-    if (lapRegion &&
-        (region.instructions.empty() ||
-         region.instructions.back() >= function_.instructions.size() ||
-         function_.instructions[region.instructions.back()].opcode != Opcode::CurvePoint)) {
-      problem("a curve.lap region does not end with curve.point");
+    if (lapRegion && (region.instructions.empty() ||
+                      region.instructions.back() >= function_.instructions.size() ||
+                      !endsLapRegion(function_.instructions[region.instructions.back()].opcode))) {
+      problem("a curve.lap region does not end with curve.point or curve.arc");
     }
     for (InstructionId id : region.instructions) {
       bool last = id == region.instructions.back();
@@ -88,9 +87,9 @@ private:
         problem(fmt::format("instruction {} (loop.next) is not the last of a loop's body", id));
       }
       if (id < function_.instructions.size() &&
-          function_.instructions[id].opcode == Opcode::CurvePoint && !(lapRegion && last)) {
-        problem(
-            fmt::format("instruction {} (curve.point) is not the last of a curve.lap region", id));
+          endsLapRegion(function_.instructions[id].opcode) && !(lapRegion && last)) {
+        problem(fmt::format("instruction {} ({}) is not the last of a curve.lap region", id,
+                            opcodeInfo(function_.instructions[id].opcode).spelling));
       }
       if (id >= function_.instructions.size() || !placed_.insert(id).second) {
         problem(fmt::format("instruction {} is missing or placed twice", id));
@@ -206,6 +205,16 @@ private:
     if (entry.sampling == CurveSampling::PolynomialBlocks) {
       checkPolynomialSpans(*entry.blockTable, where);
     }
+    for (std::size_t region = 0; region < lap.regions.size(); ++region) {
+      const std::vector<InstructionId>& body = lap.regions[region].instructions;
+      bool arc = !body.empty() && body.back() < function_.instructions.size() &&
+                 function_.instructions[body.back()].opcode == Opcode::CurveArc;
+      if (arc != (entry.arcRegion(region) != nullptr)) {
+        problem(fmt::format("{}: its region {} ends in {} but its curve cuts it as {}", where,
+                            region, arc ? "curve.arc" : "curve.point",
+                            arc ? "points" : "an arc"));
+      }
+    }
     std::size_t wanted = 3 + 3 * entry.computedRegionCount();
     if (lap.operands.size() != wanted) {
       problem(fmt::format("{} has {} operands, its curve wants {}", where, lap.operands.size(),
@@ -294,6 +303,10 @@ private:
     }
   }
 
+  static bool endsLapRegion(Opcode opcode) {
+    return opcode == Opcode::CurvePoint || opcode == Opcode::CurveArc;
+  }
+
   // A loop's variable and a curve.lap's parameter: visible in its regions only.
   static bool hasRegionVariable(Opcode opcode) {
     return opcode == Opcode::Loop || opcode == Opcode::CurveLap;
@@ -380,10 +393,17 @@ private:
   // Steps: a count for each region (0: computed by the program).
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
-      if (!entry.regionSteps.empty()) {
-        problem(fmt::format("{} has step counts but is not cut in steps", where));
+      if (!entry.regionSteps.empty() || !entry.arcRegions.empty()) {
+        problem(fmt::format("{} has step counts or arcs but is not cut in steps", where));
       }
       return;
+    }
+    for (std::size_t k = 0; k < entry.arcRegions.size(); ++k) {
+      std::size_t region = entry.arcRegions[k].region;
+      if (region >= entry.regionCount() || (k > 0 && region <= entry.arcRegions[k - 1].region)) {
+        problem(fmt::format("{} has an arc region {} that is not a later region of it", where,
+                            region));
+      }
     }
     bool counted = entry.regionSteps.size() == entry.regionCount();
     for (int steps : entry.regionSteps) {

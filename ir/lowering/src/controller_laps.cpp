@@ -5,6 +5,7 @@
 #include "controller_segment.h"
 
 #include "cncc/geom/curve.h"
+#include "cncc/geom/line_arc_curves.h"
 #include "cncc/lowering/literal_rounding.h"
 
 #include <fmt/format.h>
@@ -32,7 +33,8 @@ void PartLowering::checkStepDrift(const CutStmt& cut, const CurveTableEntry& ent
   for (std::size_t region = 0; region < entry.regionSteps.size(); ++region) {
     int steps = entry.regionSteps[region];
     bool runsOntoItsStart = closed && region + 1 == entry.regionSteps.size();
-    if (steps < 2 || runsOntoItsStart) {
+    // An arc's blocks end on points the host computes (whole turns: its start).
+    if (steps < 2 || runsOntoItsStart || entry.arcRegion(region) != nullptr) {
       continue;
     }
     auto [from, to] = entry.regionRange(region);
@@ -60,20 +62,22 @@ void PartLowering::checkStepDrift(const CutStmt& cut, const CurveTableEntry& ent
 
 // A curve table entry cutting each piece in the steps planned for it, when
 // every piece (or knot span) is one the controller evaluates from the
-// curve's own arithmetic at uniform steps (no arc, or span moved or split by
-// parameters): a count chosen here, or the range and count the program
-// computes of a piece that depends on parameters (its symbolic form);
+// curve's own arithmetic at uniform steps (no span moved or split by
+// parameters), or an arc (move.arc blocks): a count chosen here, or the
+// range and count the program computes of a piece that depends on
+// parameters (its symbolic form);
 // `budget` is the chord tolerance the counts keep (0: samples= gave them).
 std::optional<PartLowering::SteppedLap>
 PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
                          const std::vector<ControllerSegment>& segments, double budget) {
   for (const ControllerSegment& segment : segments) {
-    bool uniform = !segment.isArc && !segment.split && !segment.stepPerPoint &&
-                   segment.moved == nullptr && !(segment.isNurbs && segment.symbolic != nullptr);
+    bool uniform = !segment.split && !segment.stepPerPoint && segment.moved == nullptr &&
+                   !(segment.isNurbs && segment.symbolic != nullptr);
     // A symbolic piece of one step (a line) folds its end point as the
     // region, at an opaque parameter, would not: it keeps its own form.
     bool counted =
-        segment.symbolic != nullptr ? segment.steps != 1 : !segment.stepCount && segment.steps >= 1;
+        segment.isArc || (segment.symbolic != nullptr ? segment.steps != 1
+                                                      : !segment.stepCount && segment.steps >= 1);
     if (!uniform || !counted) {
       return std::nullopt;
     }
@@ -86,6 +90,10 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
   entry.amount = budget;
   SteppedLap lap;
   for (const ControllerSegment& segment : segments) {
+    if (segment.isArc) {
+      addArcRegion(entry, lap, segment, curve, cut);
+      continue;
+    }
     entry.regionSteps.push_back(segment.symbolic != nullptr ? 0 : segment.steps);
     if (segment.symbolic != nullptr) {
       lap.computedSteps.push_back(arithmetic_.value(segment.start));
@@ -98,6 +106,48 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
   return lap;
 }
 
+// An arc's region is cut in its move.arc blocks: a constant arc's count in
+// the entry (its parameter, the arc's length, runs over the piece's range),
+// a symbolic arc's as an operand with its range 0 .. 1 (the fraction its
+// symbolic form takes).
+void PartLowering::addArcRegion(CurveTableEntry& entry, SteppedLap& lap,
+                                const ControllerSegment& segment, const CutCurve& curve,
+                                const CutStmt& cut) {
+  const CurvePiece& piece = curve.pieces[segment.piece];
+  ArcPath path = segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
+                                             : constantArcPath(curve, segment.piece, cut);
+  ArcBlocks blocks = arcBlocks(path, cut);
+  entry.arcRegions.push_back(
+      {entry.regionSteps.size(), blocks.counterClockwise, blocks.wholeTurns});
+  if (segment.symbolic == nullptr) {
+    entry.regionSteps.push_back(static_cast<int>(blocks.count.constant));
+    return;
+  }
+  entry.regionSteps.push_back(0);
+  for (Scalar operand : {Scalar::of(0), Scalar::of(1), blocks.count}) {
+    lap.computedSteps.push_back(arithmetic_.value(operand));
+  }
+}
+
+// The point of an arc's region and the offset from it to the centre.
+LapRegionPoint PartLowering::arcRegionPoint(const CutCurve& curve,
+                                            const ControllerSegment& segment, Scalar local,
+                                            const CutStmt& cut) {
+  const CurvePiece& own = curve.pieces[segment.piece];
+  if (segment.symbolic != nullptr) {
+    ArcPath path = symbolicArcPath(*segment.symbolic, *own.value);
+    return {symbolicPointAt(*segment.symbolic, *own.value, local), path.toCentre(local)};
+  }
+  // At the angle the point is at (curves.cpp), so that the two share it.
+  const auto& arc = static_cast<const geom::ArcCurve&>(*own.geometry);
+  Affine direction = own.transform;
+  direction.offset = Eigen::Vector2d::Zero();
+  CurvePoint toCentre =
+      radiusTowardsCentre(Scalar::of(own.value->arcRadius), Scalar::of(own.value->startAngle),
+                          Scalar::of(arc.sweep() / arc.length()), local);
+  return {pointAt(curve, segment.piece, 0, local, cut), transformed(direction, toCentre)};
+}
+
 // The lap as a curve.lap: a symbolic piece's region computes its symbolic
 // form, a knot span of more than one step its span cleaned of a constant
 // weight (as the loop over it did), another its point as the host knows it.
@@ -108,9 +158,12 @@ void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
   operands.insert(operands.end(), lap.computedSteps.begin(), lap.computedSteps.end());
   std::size_t region = 0; // the regions are made in order, one per segment
   emitCurveLapAt(curve, lap.table, std::move(operands),
-                 [&](std::size_t piece, std::size_t span, Scalar local) {
+                 [&](std::size_t piece, std::size_t span, Scalar local) -> LapRegionPoint {
                    const ControllerSegment& segment = segments[region++];
                    const CurvePiece& own = curve.pieces[piece];
+                   if (segment.isArc) {
+                     return arcRegionPoint(curve, segment, local, cut);
+                   }
                    if (segment.symbolic != nullptr) {
                      return symbolicPointAt(*segment.symbolic, *own.value, local);
                    }

@@ -609,10 +609,17 @@ void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table,
   for (std::size_t p = firstPiece; p < endPiece; ++p) {
     std::size_t spans = std::max<std::size_t>(curve.pieces[p].spans.size(), 1);
     for (std::size_t s = 0; s < spans; ++s) {
-      CurvePoint point = pointOf(p, s, local);
+      LapRegionPoint region = pointOf(p, s, local);
+      const CurvePoint& point = region.point;
       ValueId x = arithmetic_.value(point.x);
       ValueId y = arithmetic_.value(point.y);
-      builder_.curvePoint(x, y, arithmetic_.value(point.z));
+      ValueId z = arithmetic_.value(point.z);
+      if (region.toCentre) {
+        ValueId i = arithmetic_.value(region.toCentre->x);
+        builder_.curveArc(x, y, z, i, arithmetic_.value(region.toCentre->y));
+      } else {
+        builder_.curvePoint(x, y, z);
+      }
     }
   }
 }

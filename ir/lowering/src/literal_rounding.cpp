@@ -275,6 +275,7 @@ private:
       coordinates = 3;
       break;
     case Opcode::Arc:
+    case Opcode::CurveArc:
       coordinates = 5;
       break;
     default:

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -57,6 +58,15 @@ struct NeedsUnrolling {};
 // A point of a curve.
 struct CurvePoint {
   Scalar x, y, z;
+};
+
+// What a region of a curve.lap computes: its point, and for a region cut as
+// an arc of a circle the offset from the point to the centre (z: 0).
+struct LapRegionPoint {
+  LapRegionPoint(CurvePoint at) : point(at) {} // NOLINT: a point is a region's point
+  LapRegionPoint(CurvePoint at, CurvePoint centre) : point(at), toCentre(centre) {}
+  CurvePoint point;
+  std::optional<CurvePoint> toCentre;
 };
 
 // One smooth piece of a cut's curve: a line, an arc, a polar or param
@@ -123,6 +133,13 @@ struct ArcPath {
   Scalar radius;
   // The direction it turns with the part's defaults (the sweep's sign).
   bool turnsCounterClockwise = true;
+};
+// An arc's move.arc blocks: how many (a number, or what the program
+// computes), which way they turn, whether each is a whole turn.
+struct ArcBlocks {
+  Scalar count;
+  bool counterClockwise = true;
+  bool wholeTurns = false;
 };
 // The height added to an arc's own z at a fraction of it (the pass, a ramp).
 using ArcHeight = std::function<Scalar(Scalar fraction)>;

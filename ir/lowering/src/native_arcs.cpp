@@ -181,8 +181,8 @@ void PartLowering::guardArc(const ArcPath& arc) {
   }
 }
 
-void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
-                           const CutStmt& cut) {
+// The blocks of an arc: how many, which way, whether whole turns.
+ArcBlocks PartLowering::arcBlocks(const ArcPath& arc, const CutStmt& cut) {
   if (arc.sweep.isConstant()) {
     double sweep = arc.sweep.constant;
     double turns = std::abs(sweep) / fullTurn;
@@ -195,17 +195,21 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
                        maximumArcBlocks),
            DiagnosticKind::ProgramTooLarge);
     }
-    ArcTurn turn = sweep > 0 ? ArcTurn::CounterClockwise : ArcTurn::Clockwise;
-    emitArcBlocks(arc, turn, Scalar::of(blocks), fullTurns, height, feed);
-    return;
+    return {Scalar::of(blocks), sweep > 0, fullTurns};
   }
   // Half turns at most, as many as the turn the program runs with needs.
   Scalar count = arithmetic_.unary(
       Opcode::Round, arithmetic_.add(arithmetic_.binary(Opcode::Div, magnitude(arc.sweep),
                                                         Scalar::of(std::numbers::pi)),
                                      Scalar::of(wholeBlocksOffset)));
-  emitArcBlocks(arc, arc.turnsCounterClockwise ? ArcTurn::CounterClockwise : ArcTurn::Clockwise,
-                count, false, height, feed);
+  return {count, arc.turnsCounterClockwise, false};
+}
+
+void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
+                           const CutStmt& cut) {
+  ArcBlocks blocks = arcBlocks(arc, cut);
+  emitArcBlocks(arc, blocks.counterClockwise ? ArcTurn::CounterClockwise : ArcTurn::Clockwise,
+                blocks.count, blocks.wholeTurns, height, feed);
 }
 
 std::vector<std::optional<std::uint32_t>>

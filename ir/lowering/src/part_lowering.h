@@ -326,7 +326,8 @@ private:
   // The lap's regions compute `pointOf(piece, span, local)`; the lap takes
   // `operands` (z from, z to, feed, then the ranges and counts of the regions
   // whose steps the program computes).
-  using LapPointOf = std::function<CurvePoint(std::size_t piece, std::size_t span, Scalar local)>;
+  using LapPointOf =
+      std::function<LapRegionPoint(std::size_t piece, std::size_t span, Scalar local)>;
   // The curve's own point (pointAt), as a host cut's lap computes it.
   LapPointOf curvePointOf(const CutCurve& curve, const frontend::CutStmt& cut);
   void emitCurveLapAt(const CutCurve& curve, std::uint32_t table, std::vector<ValueId> operands,
@@ -378,6 +379,7 @@ private:
   // The program stops with `message` where `condition` holds.
   void alarmWhen(Scalar condition, std::string message);
   void guardArc(const ArcPath& arc);
+  ArcBlocks arcBlocks(const ArcPath& arc, const frontend::CutStmt& cut);
   void emitArc(const ArcPath& arc, const ArcHeight& height, ValueId feed,
                const frontend::CutStmt& cut);
   void emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count, bool fullTurns,
@@ -492,6 +494,12 @@ private:
     std::uint32_t table = 0;
     std::vector<ValueId> computedSteps;
   };
+  // An arc segment's region: its blocks in the entry, their count an
+  // operand where the program computes it or the arc is symbolic.
+  void addArcRegion(CurveTableEntry& entry, SteppedLap& lap, const ControllerSegment& segment,
+                    const CutCurve& curve, const frontend::CutStmt& cut);
+  LapRegionPoint arcRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
+                                Scalar local, const frontend::CutStmt& cut);
   void checkStepDrift(const frontend::CutStmt& cut, const CurveTableEntry& entry);
   std::optional<SteppedLap> steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
                                        const std::vector<ControllerSegment>& segments,

@@ -200,6 +200,7 @@ private:
       return;
     case Opcode::CurveLap:
     case Opcode::CurvePoint:
+    case Opcode::CurveArc:
       throw backends::JitError(
           "a curve.lap must be expanded (expand-curve-laps) before the JIT compiles it");
     case Opcode::Rapid:

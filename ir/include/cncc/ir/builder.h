@@ -46,6 +46,8 @@ public:
   ValueId beginCurveLap(std::uint32_t curve, ValueId zFrom, ValueId zTo, ValueId feedRate,
                         const std::vector<ValueId>& computedSteps = {});
   void curvePoint(ValueId x, ValueId y, ValueId z);
+  // The point of a region cut as an arc, and the offset from it to the centre.
+  void curveArc(ValueId x, ValueId y, ValueId z, ValueId toCentreX, ValueId toCentreY);
 
   void rapid(ValueId x, ValueId y, ValueId z);
   void feed(ValueId x, ValueId y, ValueId z, ValueId feedRate);
@@ -90,6 +92,7 @@ public:
 private:
   InstructionId append(Instruction instruction, ValueType resultType);
   Region& currentRegion();
+  void endLapRegion();
 
   Function function_;
   // The regions being filled: (instruction, region index); empty = body.

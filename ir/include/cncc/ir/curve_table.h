@@ -52,7 +52,8 @@ struct CurveLocation {
 // end and centre on the printed grid (a level lap in a plane z = const, on
 // a target that prints G02/G03). Or each region is cut in its own number of
 // uniform steps of its parameter by a loop the controller runs (a level lap
-// of pieces without knot spans, on a target that runs loops). Or the lap
+// of pieces without knot spans, on a target that runs loops), an arc region
+// in blocks of the controller's circular interpolation. Or the lap
 // is the target's own curve blocks, whose data the lowering fitted within
 // the cut's tolerance and put in a table of the function: a NURBS block
 // (G06.2, move.nurbs, the lap's operands after its three the weights),
@@ -71,6 +72,18 @@ enum class CurveSampling {
 
 // The most uniform steps one region of a lap cut in steps may take.
 inline constexpr int maximumStepsPerRegion = 100'000;
+
+// A region of a lap cut in steps that is an arc of a circle: its count is
+// a number of move.arc blocks (the controller's circular interpolation),
+// each turning by an equal share of the region, counter-clockwise or not;
+// blocks of whole turns each end exactly where the region starts (with its
+// values, so no rounding leaves a sliver). The region ends in curve.arc,
+// which gives the offset from each point to the centre too.
+struct ArcRegion {
+  std::size_t region = 0;
+  bool counterClockwise = true;
+  bool wholeTurns = false;
+};
 
 struct CurveTableEntry {
   std::vector<CurvePieceLayout> pieces;
@@ -95,6 +108,8 @@ struct CurveTableEntry {
   // where the program computes them: the region's range and count are then
   // operands of the lap (start, end, count after the lap's three).
   std::vector<int> regionSteps = {};
+  // Steps: the regions cut as arcs of a circle, in order of region.
+  std::vector<ArcRegion> arcRegions = {};
   // The `curve` expression and the `cut` statement: where a failure to
   // choose the points is reported.
   frontend::SourceSpan curveSpan;
@@ -129,6 +144,8 @@ struct CurveTableEntry {
   std::size_t regionCount() const;
   // Steps: the regions whose range and count the program computes.
   std::size_t computedRegionCount() const;
+  // Steps: the region's arc, or null when its steps are chords.
+  const ArcRegion* arcRegion(std::size_t region) const;
   // The later piece at a join (as a composite curve evaluates it); a
   // parameter outside a piece's range is clamped into it.
   CurveLocation locate(double t) const;
