@@ -213,7 +213,8 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
 // controller's for the others.
 void checkProfileFitsTarget(const RawOptions& raw) {
   bool tnc = backends::findTncProfile(raw.profile) != nullptr;
-  if (!raw.profile.empty() && tnc != (raw.target == "heidenhain")) {
+  const Target* target = findTarget(raw.target);
+  if (!raw.profile.empty() && tnc != (target != nullptr && target->tncProfiles)) {
     throw UsageError(fmt::format("--profile {} is {}", raw.profile,
                                  tnc ? "a TNC profile, for -t heidenhain"
                                      : "no TNC profile: -t heidenhain takes tnc640 or itnc530"));
@@ -412,25 +413,21 @@ std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
 DriverOptions simulateOptions(const RawOptions& raw) {
   const Target* target = findTarget(raw.target);
   // Sinumerik, LinuxCNC and Heidenhain programs run in readers of their own;
-  // only the Heidenhain one takes a --profile (tnc640, itnc530).
-  bool ownReader =
-      raw.target == "sinumerik" || raw.target == "linuxcnc" || raw.target == "heidenhain";
+  // only the Heidenhain one takes a --profile (tnc640, itnc530). On those,
+  // --tool-radius N gives the tool whose radius is R (its cutting edges,
+  // its row of the tool table).
+  bool ownReader = target != nullptr && target->ownProgramReader;
   if (!ownReader && (target == nullptr || target->controllerProfile.empty())) {
-    throw UsageError("'sim' needs -t fanuc, -t m80, -t linuxcnc, -t sinumerik or -t heidenhain");
+    throw UsageError(
+        fmt::format("'sim' needs -t with one of: {}", targetNameList([](const Target& candidate) {
+                      return candidate.ownProgramReader || !candidate.controllerProfile.empty();
+                    })));
   }
   if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || raw.peckRetract ||
-                    raw.peckClearance || (!raw.profile.empty() && raw.target != "heidenhain"))) {
+                    raw.peckClearance || (!raw.profile.empty() && !target->tncProfiles))) {
     throw UsageError(fmt::format("-a, --strict, --peck-retract, --peck-clearance and --profile "
                                  "apply to 'sim -t fanuc' and '-t m80' (--profile also to "
                                  "-t heidenhain), not to {}",
-                                 raw.target));
-  }
-  // On sinumerik, heidenhain and linuxcnc N is the tool whose radius is R
-  // (its cutting edges, its row of the tool table).
-  if (ownReader && !raw.toolRadii.empty() && raw.target != "sinumerik" &&
-      raw.target != "heidenhain" && raw.target != "linuxcnc") {
-    throw UsageError(fmt::format("--tool-radius applies to 'sim -t fanuc', '-t m80', "
-                                 "'-t sinumerik', '-t heidenhain' and '-t linuxcnc', not to {}",
                                  raw.target));
   }
   checkProfileFitsTarget(raw);

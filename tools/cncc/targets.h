@@ -87,6 +87,12 @@ struct Target {
   // Prints `comp=controller` cuts with the controller's cutter radius
   // compensation (G41/G42 D.., G40).
   bool cutterCompensation = false;
+  // `sim` runs its program in a reader of its own (not the macro
+  // controller's, so none of -a, --strict, --peck-retract, --peck-clearance).
+  bool ownProgramReader = false;
+  // --profile names a TNC profile (tnc640, itnc530) for it, not a macro
+  // controller's.
+  bool tncProfiles = false;
 
   bool available() const { return backend != nullptr; }
   // How it lowers the part: `lowering`, with what the target's machine

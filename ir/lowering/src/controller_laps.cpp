@@ -73,11 +73,12 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
   for (const ControllerSegment& segment : segments) {
     bool uniform = !segment.split && !segment.stepPerPoint && segment.moved == nullptr &&
                    !(segment.isNurbs && segment.symbolic != nullptr);
-    // A symbolic piece of one step (a line) folds its end point as the
-    // region, at an opaque parameter, would not: it keeps its own form.
-    bool counted =
-        segment.isArc || (segment.symbolic != nullptr ? segment.steps != 1
-                                                      : !segment.stepCount && segment.steps >= 1);
+    // A symbolic piece's count is an operand; a line's region of one step
+    // folds to its end (symbolicLineRegionPoint).
+    bool line = curve.pieces[segment.piece].value->kind == CurveKind::Line;
+    bool counted = segment.isArc ||
+                   (segment.symbolic != nullptr ? segment.steps != 1 || line
+                                                : !segment.stepCount && segment.steps >= 1);
     if (!uniform || !counted) {
       return std::nullopt;
     }
@@ -163,6 +164,9 @@ void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
                    const CurvePiece& own = curve.pieces[piece];
                    if (segment.isArc) {
                      return arcRegionPoint(curve, segment, local, cut);
+                   }
+                   if (segment.symbolic != nullptr && own.value->kind == CurveKind::Line) {
+                     return symbolicLineRegionPoint(*segment.symbolic, local);
                    }
                    if (segment.symbolic != nullptr) {
                      return symbolicPointAt(*segment.symbolic, *own.value, local);

@@ -583,6 +583,8 @@ private:
                                        const frontend::Environment& environment);
   // The point of a line or arc piece at s in [0, 1], of a polar or param
   // piece at its own t; transformed.
+  std::vector<Scalar> symbolicPoint(const SymbolicPiece& piece, std::string_view name);
+  CurvePoint symbolicLineRegionPoint(const SymbolicPiece& piece, Scalar local);
   CurvePoint symbolicPointAt(const SymbolicPiece& piece, const frontend::CurveValue& value,
                              Scalar local);
   // The parameter range the piece's loop runs over: t0 .. t1 of an analytic

@@ -249,6 +249,35 @@ std::pair<Scalar, Scalar> PartLowering::symbolicHeights(const SymbolicPiece& pie
   return symbolicBounds(*heights, piece, "this helix's heights");
 }
 
+// A point argument of the piece's call (x, y, z).
+std::vector<Scalar> PartLowering::symbolicPoint(const SymbolicPiece& piece, std::string_view name) {
+  const Expr* expression = builtinArgument(*piece.call, name);
+  std::optional<Lowered> lowered =
+      expression ? tryLower(*expression, piece.bindings, piece.environment) : std::nullopt;
+  if (!lowered || lowered->kind != TypeKind::Point) {
+    unsupported(piece.call->span, "this curve's points");
+  }
+  std::vector<Scalar> coordinates = lowered->values;
+  coordinates.resize(3, Scalar::of(0));
+  return coordinates;
+}
+
+// A symbolic line at t as from (1 - t) + to t: cut in one step (at t = 1)
+// this is `to` once a controller's finite numbers fold x * 0 and 0 + x
+// (fold-finite), as the line's own end is; from + (to - from) t would not
+// fold.
+CurvePoint PartLowering::symbolicLineRegionPoint(const SymbolicPiece& piece, Scalar local) {
+  std::vector<Scalar> from = symbolicPoint(piece, "from");
+  std::vector<Scalar> to = symbolicPoint(piece, "to");
+  Scalar rest = arithmetic_.binary(Opcode::Sub, Scalar::of(1), local);
+  Scalar coordinates[3];
+  for (int c = 0; c < 3; ++c) {
+    coordinates[c] = from[c].sameAs(to[c]) ? from[c]
+                                           : arithmetic_.add(times(from[c], rest), times(to[c], local));
+  }
+  return applied(piece.transform, {coordinates[0], coordinates[1], coordinates[2]});
+}
+
 CurvePoint PartLowering::symbolicPointAt(const SymbolicPiece& piece, const CurveValue& value,
                                          Scalar local) {
   Arithmetic& math = arithmetic_;
@@ -260,17 +289,7 @@ CurvePoint PartLowering::symbolicPointAt(const SymbolicPiece& piece, const Curve
     }
     return *result;
   };
-  auto point = [&](std::string_view name) {
-    const Expr* expression = builtinArgument(*piece.call, name);
-    std::optional<Lowered> lowered =
-        expression ? tryLower(*expression, piece.bindings, piece.environment) : std::nullopt;
-    if (!lowered || lowered->kind != TypeKind::Point) {
-      unsupported(piece.call->span, "this curve's points");
-    }
-    std::vector<Scalar> coordinates = lowered->values;
-    coordinates.resize(3, Scalar::of(0));
-    return coordinates;
-  };
+  auto point = [&](std::string_view name) { return symbolicPoint(piece, name); };
   CurvePoint result;
   if (value.kind == CurveKind::Polar || value.kind == CurveKind::Param) {
     Bindings bindings = piece.bindings;
