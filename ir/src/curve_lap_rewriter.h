@@ -1,7 +1,7 @@
 // What the legalisations of curve.lap share: a Rewriter that visits the laps
 // a legalisation writes out, writes their moves with the lowering's folding
-// of numbers (x + 0, x - 0, x * 1 and x / 1 are x, two numbers their
-// result), and reads the values a lap's curve takes from outside it at the
+// of numbers (x + 0, x - 0, x * 1 and x / 1 are x, x / x is 1, two numbers
+// their result), and reads the values a lap's curve takes from outside it at the
 // values compiled with.
 #pragma once
 
@@ -185,6 +185,9 @@ protected:
     case Opcode::Div:
       if (numbers && b.number != 0) {
         return {ValueId{}, a.number / b.number};
+      }
+      if (!a.isNumber() && a.value == b.value) {
+        return {ValueId{}, 1}; // a count over itself (a loop of none never reads it)
       }
       if (b.isNumber() && b.number == 1) {
         return a;

@@ -63,9 +63,13 @@ void runPassesBeforePrinting(ir::Function& function, const ir::LoweringOptions& 
   if (lowering.passesBeforePrinting.empty()) {
     return;
   }
+  std::vector<std::string> passes = lowering.passesBeforePrinting;
+  if (options.optimise && options.passes.empty()) {
+    // What they fold may leave values that are the same, or no longer read.
+    passes.insert(passes.end(), {"cse", "dce"});
+  }
   std::string unknown;
-  if (!ir::runPasses(function, lowering.passesBeforePrinting, printAfterCallback(options),
-                     &unknown)) {
+  if (!ir::runPasses(function, passes, printAfterCallback(options), &unknown)) {
     throw InternalError(fmt::format("the target names an unknown IR pass '{}'", unknown));
   }
   std::vector<std::string> problems = ir::verifyFunction(function);

@@ -71,12 +71,12 @@ std::optional<PartLowering::SteppedLap>
 PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
                          const std::vector<ControllerSegment>& segments, double budget) {
   for (const ControllerSegment& segment : segments) {
-    bool uniform = !segment.split && !segment.stepPerPoint && segment.moved == nullptr &&
-                   !(segment.isNurbs && segment.symbolic != nullptr);
+    bool uniform = !segment.stepPerPoint && !(segment.isNurbs && segment.symbolic != nullptr);
     // A symbolic piece's count is an operand; a line's region of one step
-    // folds to its end (symbolicLineRegionPoint).
+    // folds to its end (symbolicLineRegionPoint); a knot span's count the
+    // program computes counts its region's parameter (countsItsSteps).
     bool line = curve.pieces[segment.piece].value->kind == CurveKind::Line;
-    bool counted = segment.isArc ||
+    bool counted = segment.isArc || countsItsSteps(segment) ||
                    (segment.symbolic != nullptr ? segment.steps != 1 || line
                                                 : !segment.stepCount && segment.steps >= 1);
     if (!uniform || !counted) {
@@ -95,11 +95,17 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
       addArcRegion(entry, lap, segment, curve, cut);
       continue;
     }
-    entry.regionSteps.push_back(segment.symbolic != nullptr ? 0 : segment.steps);
+    bool computed = segment.symbolic != nullptr || countsItsSteps(segment);
+    entry.regionSteps.push_back(computed ? 0 : segment.steps);
     if (segment.symbolic != nullptr) {
       lap.computedSteps.push_back(arithmetic_.value(segment.start));
       lap.computedSteps.push_back(arithmetic_.value(segment.end));
       lap.computedSteps.push_back(arithmetic_.value(stepsOf(segment)));
+    } else if (computed) {
+      Scalar count = stepsOf(segment);
+      for (Scalar operand : {Scalar::of(0), count, count}) {
+        lap.computedSteps.push_back(arithmetic_.value(operand));
+      }
     }
   }
   checkStepDrift(cut, entry);
@@ -149,9 +155,53 @@ LapRegionPoint PartLowering::arcRegionPoint(const CutCurve& curve,
   return {pointAt(curve, segment.piece, 0, local, cut), transformed(direction, toCentre)};
 }
 
-// The lap as a curve.lap: a symbolic piece's region computes its symbolic
-// form, a knot span of more than one step its span cleaned of a constant
-// weight (as the loop over it did), another its point as the host knows it.
+// A knot span split by parameters (its control points computed by the
+// program), or moved by a scale the program computes, is cut at u = i / N
+// (a quotient: no step rounded to the controller's digits adds up over the
+// span): its region's parameter runs over 0 .. N (the range and count the
+// lap's operands) and the region divides it by N.
+bool PartLowering::countsItsSteps(const ControllerSegment& segment) {
+  return segment.isNurbs && (segment.split || (segment.moved != nullptr && segment.stepCount));
+}
+
+// A region's point at its parameter: an arc's with the offset to its centre,
+// a symbolic piece's its symbolic form, a knot span of more than one step
+// its span cleaned of a constant weight (as the loop over it did), moved as
+// the program computes or at u = t / N (countsItsSteps), another its point
+// as the host knows it.
+LapRegionPoint PartLowering::steppedRegionPoint(const CutCurve& curve,
+                                                const ControllerSegment& segment, Scalar local,
+                                                const CutStmt& cut) {
+  const CurvePiece& own = curve.pieces[segment.piece];
+  if (segment.isArc) {
+    return arcRegionPoint(curve, segment, local, cut);
+  }
+  if (segment.symbolic != nullptr && own.value->kind == CurveKind::Line) {
+    return symbolicLineRegionPoint(*segment.symbolic, local);
+  }
+  if (segment.symbolic != nullptr) {
+    return symbolicPointAt(*segment.symbolic, *own.value, local);
+  }
+  if (countsItsSteps(segment)) {
+    Scalar count = Scalar::of(arithmetic_.value(stepsOf(segment)), ValueType::F64);
+    Scalar u = arithmetic_.binary(Opcode::Div, local, count);
+    if (segment.split) {
+      return movedSplitSpanPoint(segment, u);
+    }
+    return applied(*segment.moved, spanPointAt(cleanedSpan(own.spans[segment.span]), u));
+  }
+  if (segment.isNurbs && segment.steps > 1) {
+    CurvePoint point = spanPointAt(cleanedSpan(own.spans[segment.span]), local);
+    return segment.moved != nullptr ? applied(*segment.moved, point)
+                                    : transformed(own.transform, point);
+  }
+  if (segment.isNurbs) {
+    return nurbsSegmentPoint(curve, segment, local, cut);
+  }
+  return pointAt(curve, segment.piece, segment.span, local, cut);
+}
+
+// The lap as a curve.lap, its regions steppedRegionPoint's.
 void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
                                   const std::vector<ControllerSegment>& segments, ValueId zFrom,
                                   ValueId zTo, ValueId feed, const CutStmt& cut) {
@@ -159,23 +209,8 @@ void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
   operands.insert(operands.end(), lap.computedSteps.begin(), lap.computedSteps.end());
   std::size_t region = 0; // the regions are made in order, one per segment
   emitCurveLapAt(curve, lap.table, std::move(operands),
-                 [&](std::size_t piece, std::size_t span, Scalar local) -> LapRegionPoint {
-                   const ControllerSegment& segment = segments[region++];
-                   const CurvePiece& own = curve.pieces[piece];
-                   if (segment.isArc) {
-                     return arcRegionPoint(curve, segment, local, cut);
-                   }
-                   if (segment.symbolic != nullptr && own.value->kind == CurveKind::Line) {
-                     return symbolicLineRegionPoint(*segment.symbolic, local);
-                   }
-                   if (segment.symbolic != nullptr) {
-                     return symbolicPointAt(*segment.symbolic, *own.value, local);
-                   }
-                   if (segment.isNurbs && segment.steps > 1) {
-                     return transformed(own.transform,
-                                        spanPointAt(cleanedSpan(own.spans[span]), local));
-                   }
-                   return pointAt(curve, piece, span, local, cut);
+                 [&](std::size_t, std::size_t, Scalar local) {
+                   return steppedRegionPoint(curve, segments[region++], local, cut);
                  });
 }
 

@@ -500,6 +500,9 @@ private:
                     const CutCurve& curve, const frontend::CutStmt& cut);
   LapRegionPoint arcRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
                                 Scalar local, const frontend::CutStmt& cut);
+  static bool countsItsSteps(const ControllerSegment& segment);
+  LapRegionPoint steppedRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
+                                    Scalar local, const frontend::CutStmt& cut);
   void checkStepDrift(const frontend::CutStmt& cut, const CurveTableEntry& entry);
   std::optional<SteppedLap> steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
                                        const std::vector<ControllerSegment>& segments,
