@@ -145,6 +145,11 @@ void FunctionBuilder::curveArc(ValueId x, ValueId y, ValueId z, ValueId toCentre
   endLapRegion();
 }
 
+void FunctionBuilder::curveWalk(ValueId x, ValueId y, ValueId z, ValueId step) {
+  operation(Opcode::CurveWalk, {x, y, z, step});
+  endLapRegion();
+}
+
 // After a region's last instruction: the lap's next region, or after the lap.
 void FunctionBuilder::endLapRegion() {
   auto& [lap, region] = insertion_.back();

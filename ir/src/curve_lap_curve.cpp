@@ -74,7 +74,8 @@ public:
       }
       switch (instruction.opcode) {
       case Opcode::CurvePoint:
-      case Opcode::CurveArc: // its point; the centre follows from the points
+      case Opcode::CurveArc:  // its point; the centre follows from the points
+      case Opcode::CurveWalk: // its point; the step is the walk's
         for (std::size_t k = 0; k < 3; ++k) {
           program->point[k] = operand(instruction.operands[k], known);
         }

@@ -30,8 +30,8 @@ private:
   }
   void writeLap(const Instruction& lap) override { expandLap(lap); }
   void writePoint(const Instruction& lap, const Instruction& point) override {
-    if (point.opcode == Opcode::CurveArc) {
-      arcPoint_ = mappedOperands(point); // read by emitArcBlock
+    if (point.opcode == Opcode::CurveArc || point.opcode == Opcode::CurveWalk) {
+      regionEnd_ = mappedOperands(point); // read by emitArcBlock and emitWalk
       return;
     }
     feedToPoint(lap, point);
@@ -48,6 +48,8 @@ private:
       single_ = steps.single;
       if (const ArcRegion* arc = entry.arcRegion(region)) {
         emitArcRegion(lap, *arc, steps);
+      } else if (entry.isWalkRegion(region)) {
+        emitWalk(lap, region, steps);
       } else if (steps.single) {
         replace(lap.result, valueOf(steps.to));
         rewriteRegion(lap.regions[region]);
@@ -140,8 +142,8 @@ private:
       return;
     }
     if (steps.count.isNumber() && steps.count.number <= largestUnrolledArc) {
-      Operand step = arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from),
-                                steps.count);
+      Operand step =
+          arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
       for (double j = 1; j <= steps.count.number; ++j) {
         emitArcBlock(lap, arc,
                      arc.wholeTurns ? steps.from
@@ -156,11 +158,31 @@ private:
     Operand step =
         arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
     Operand start =
-        arc.wholeTurns ? steps.from
-                       : add(steps.from, multiply(arithmetic(Opcode::Sub, index, {ValueId{}, 1}), step));
+        arc.wholeTurns
+            ? steps.from
+            : add(steps.from, multiply(arithmetic(Opcode::Sub, index, {ValueId{}, 1}), step));
     emitArcBlock(lap, arc, start, add(steps.from, multiply(index, step)), std::nullopt);
     endRegions();
   }
+
+  // A walk from the region's start while u is below its end: the step the
+  // region computes at u, a feed to its point at min(u + step, end), which
+  // is the loop's next u (loop.next).
+  void emitWalk(const Instruction& lap, std::size_t region, const RegionSteps& steps) {
+    ValueId u = beginLapLoop(lap, valueOf(steps.from), valueOf(steps.to));
+    rewriteRegionFor(lap, region, u, {3});
+    Operand next = minimum(add({u, 0}, operandOf(regionEnd_[3])), steps.to);
+    rewriteRegionFor(lap, region, valueOf(next), {0, 1, 2});
+    std::vector<ValueId> point = regionEnd_;
+    ValueId z = valueOf(add(heightDone(lap, next), operandOf(point[2])));
+    emitFeedMove(lap, point[0], point[1], z);
+    Instruction advance;
+    advance.opcode = Opcode::LoopNext;
+    emit(advance, {valueOf(next)});
+    endRegions();
+  }
+
+  Operand minimum(const Operand& a, const Operand& b) { return {binary(Opcode::Min, a, b), 0}; }
 
   // One move.arc: to the region's point at `to` about the centre seen from
   // its point at `from`; whole turns (`from` the region's start) end where
@@ -174,11 +196,11 @@ private:
     } else {
       rewriteRegionFor(lap, region, valueOf(to), {0, 1, 2});
     }
-    std::vector<ValueId> end = arcPoint_;
+    std::vector<ValueId> end = regionEnd_;
     if (arc.wholeTurns) {
       rewriteRegionFor(lap, region, valueOf(from), {0, 1, 3, 4});
-      end[0] = arcPoint_[0];
-      end[1] = arcPoint_[1];
+      end[0] = regionEnd_[0];
+      end[1] = regionEnd_[1];
     } else {
       rewriteRegionFor(lap, region, valueOf(from), {3, 4});
     }
@@ -189,7 +211,7 @@ private:
     move.span = lap.span;
     move.pass = lap.pass;
     ValueId z = valueOf(add(heightDone(lap, fraction), operandOf(end[2])));
-    emit(move, {end[0], end[1], z, arcPoint_[3], arcPoint_[4], mapped(lap.operands[2])});
+    emit(move, {end[0], end[1], z, regionEnd_[3], regionEnd_[4], mapped(lap.operands[2])});
   }
 
   // A ramp lap's regions' shares (null on a level lap), and the region's;
@@ -201,7 +223,7 @@ private:
   bool single_ = true;
   ValueId index_;
   std::map<std::uint32_t, std::vector<LapRegionShare>> entryShares_;
-  std::vector<ValueId> arcPoint_; // of an arc region just written
+  std::vector<ValueId> regionEnd_; // the operands of an arc's or walk's end just written
 };
 
 } // namespace
@@ -225,15 +247,7 @@ std::vector<StepRange> lapStepRanges(const CurveTableEntry& entry,
 std::vector<LapStep> lapSteps(const std::vector<StepRange>& ranges) {
   std::vector<LapStep> steps;
   for (std::size_t region = 0; region < ranges.size(); ++region) {
-    const StepRange& range = ranges[region];
-    if (range.single) {
-      steps.push_back({region, range.to, 1});
-      continue;
-    }
-    double step = (range.to - range.from) / range.count;
-    for (double i = 1; i <= range.count; ++i) {
-      steps.push_back({region, range.from + i * step, i / range.count});
-    }
+    forEachRegionStep(region, ranges[region], [&](const LapStep& step) { steps.push_back(step); });
   }
   return steps;
 }

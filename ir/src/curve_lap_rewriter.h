@@ -53,7 +53,8 @@ protected:
   virtual void writePoint(const Instruction& lap, const Instruction& point) = 0;
 
   void visit(const Instruction& instruction) final {
-    bool ends = instruction.opcode == Opcode::CurvePoint || instruction.opcode == Opcode::CurveArc;
+    bool ends = instruction.opcode == Opcode::CurvePoint ||
+                instruction.opcode == Opcode::CurveArc || instruction.opcode == Opcode::CurveWalk;
     if (!kept_.empty() && !ends && !kept_[instructionIdOf(instruction)]) {
       return; // not needed by the operands of the region's end being written
     }
@@ -71,8 +72,8 @@ protected:
   }
 
   // Writes the lap's region at the parameter t, only what the operands
-  // `wanted` of its curve.point or curve.arc need (a point is written where
-  // its region ends: writePoint, whose other operands are not to be read).
+  // `wanted` of its end (curve.point, curve.arc or curve.walk) need; the end
+  // is written by writePoint, which must not read the other operands.
   void rewriteRegionFor(const Instruction& lap, std::size_t region, ValueId t,
                         std::initializer_list<std::size_t> wanted) {
     const Region& body = lap.regions[region];

@@ -46,6 +46,10 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
 // step's point.
 std::vector<double> stepParameters(const CurveTableEntry& entry) {
   std::vector<double> parameters = {entry.from};
+  if (!entry.walkRegions.empty()) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+                        "the points of a walked region are computed by the program");
+  }
   std::vector<StepRange> ranges = lapStepRanges(entry, [&](std::size_t) -> StepRange {
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
                         "the steps of this lap are computed by the program");

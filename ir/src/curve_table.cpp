@@ -25,6 +25,10 @@ const ArcRegion* CurveTableEntry::arcRegion(std::size_t region) const {
   return nullptr;
 }
 
+bool CurveTableEntry::isWalkRegion(std::size_t region) const {
+  return std::find(walkRegions.begin(), walkRegions.end(), region) != walkRegions.end();
+}
+
 std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const {
   std::size_t region = 0;
   for (std::size_t p = 0; p < piece; ++p) {

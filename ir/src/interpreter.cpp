@@ -99,6 +99,10 @@ private:
       lapPoint_ = {value(operands[0]), value(operands[1]), value(operands[2])};
       lapToCentre_ = {value(operands[3]), value(operands[4])};
       return;
+    case Opcode::CurveWalk:
+      lapPoint_ = {value(operands[0]), value(operands[1]), value(operands[2])};
+      lapWalkStep_ = value(operands[3]);
+      return;
     case Opcode::Arc:
       recordArc(instruction);
       return;
@@ -244,25 +248,52 @@ private:
       return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
                        passes::constantValue(function_, count) == 1.0};
     });
-    std::optional<LapStep> previous;
-    for (const LapStep& step : lapSteps(ranges)) {
+    for (std::size_t region = 0; region < ranges.size(); ++region) {
+      // The lap's height where `fraction` of the region is done.
+      auto heightAt = [&](double fraction) {
+        if (shares == nullptr) {
+          return zTo;
+        }
+        const LapRegionShare& share = (*shares)[region];
+        return zFrom + (zTo - zFrom) * (share.before + share.share * fraction);
+      };
+      const StepRange& range = ranges[region];
+      if (entry.isWalkRegion(region)) {
+        runWalk(lap, region, range, heightAt, feed);
+        continue;
+      }
+      const ArcRegion* arc = entry.arcRegion(region);
+      double start = range.from; // of an arc's block: the step before
+      forEachRegionStep(region, range, [&](const LapStep& step) {
+        countStep();
+        if (arc != nullptr) {
+          runArcBlock(lap, *arc, arc->wholeTurns ? range.from : start, step.local,
+                      heightAt(step.fraction), feed);
+        } else {
+          regionPoint(lap, region, step.local);
+          feedToLapPoint(lap, heightAt(step.fraction), feed);
+        }
+        start = step.local;
+      });
+    }
+  }
+
+  // A walked region from its start: at each u the step the region computes
+  // there, to min(u + step, end), while u is below the end.
+  template <class HeightAt>
+  void runWalk(const Instruction& lap, std::size_t region, const StepRange& range,
+               const HeightAt& heightAt, double feed) {
+    for (double u = range.from; u < range.to;) {
       countStep();
-      double height = zTo;
-      if (shares != nullptr) {
-        const LapRegionShare& share = (*shares)[step.region];
-        height = zFrom + (zTo - zFrom) * (share.before + share.share * step.fraction);
+      regionPoint(lap, region, u);
+      double next = std::min(u + lapWalkStep_, range.to);
+      if (!(next > u)) {
+        throw InterpreterError(
+            fmt::format("a walk along a curve does not advance: {} after {}", next, u));
       }
-      if (const ArcRegion* arc = entry.arcRegion(step.region)) {
-        // A block from the step before in the region (or its start).
-        double regionStart = ranges[step.region].from;
-        bool first = !previous || previous->region != step.region;
-        runArcBlock(lap, *arc, arc->wholeTurns || first ? regionStart : previous->local, step.local,
-                    height, feed);
-      } else {
-        regionPoint(lap, step.region, step.local);
-        feedToLapPoint(lap, height, feed);
-      }
-      previous = step;
+      regionPoint(lap, region, next);
+      feedToLapPoint(lap, heightAt(next), feed);
+      u = next;
     }
   }
 
@@ -521,6 +552,7 @@ private:
   // The point the last curve.point gave.
   std::array<double, 3> lapPoint_{0, 0, 0};
   std::array<double, 2> lapToCentre_{0, 0}; // of an arc region's point
+  double lapWalkStep_ = 0;                  // of a walked region's point
   // The curves a lap kept, the latest last.
   static constexpr std::size_t maximumCurvesPerLap = 8;
   std::map<const Instruction*, std::vector<LapPoints>> lapPoints_;

@@ -319,18 +319,9 @@ private:
       return;
     case Opcode::CurvePoint:
     case Opcode::CurveArc:
+    case Opcode::CurveWalk:
       if (!open_.empty() && open_.back().opcode == Opcode::CurveLap) {
-        std::vector<ValueId> point = operandList(rest);
-        bool arc = opcode->second == Opcode::CurveArc;
-        if (point.size() != (arc ? 5U : 3U)) {
-          throw Failure{arc ? "expected 'curve.arc %x, %y, %z, %i, %j'"
-                            : "expected 'curve.point %x, %y, %z'"};
-        }
-        if (arc) {
-          builder_->curveArc(point[0], point[1], point[2], point[3], point[4]);
-        } else {
-          builder_->curvePoint(point[0], point[1], point[2]);
-        }
+        parseRegionEnd(opcode->second, rest);
         open_.back().pointEnded = true;
         return;
       }
@@ -532,6 +523,23 @@ private:
     curve_->to = parseNumber(words[7]);
   }
 
+  // A curve.lap region's curve.point, curve.arc or curve.walk.
+  void parseRegionEnd(Opcode opcode, std::string_view rest) {
+    std::vector<ValueId> point = operandList(rest);
+    const OpcodeInfo& info = opcodeInfo(opcode);
+    if (point.size() != static_cast<std::size_t>(info.operandCount)) {
+      throw Failure{
+          fmt::format("expected '{}' with {} operands", info.spelling, info.operandCount)};
+    }
+    if (opcode == Opcode::CurveArc) {
+      builder_->curveArc(point[0], point[1], point[2], point[3], point[4]);
+    } else if (opcode == Opcode::CurveWalk) {
+      builder_->curveWalk(point[0], point[1], point[2], point[3]);
+    } else {
+      builder_->curvePoint(point[0], point[1], point[2]);
+    }
+  }
+
   // `2 ccw`, `0 cw turns`: a region cut as an arc, its turn, whole turns.
   ArcRegion parseArcRegion(std::string_view text) {
     std::vector<std::string_view> words = splitWords(text);
@@ -568,6 +576,12 @@ private:
       }
       return;
     }
+    if (startsWith(line, "walks ")) {
+      for (std::string_view region : splitList(line.substr(6))) {
+        curve_->walkRegions.push_back(parseWholeNumber(region));
+      }
+      return;
+    }
     if (startsWith(line, "arcs ")) {
       for (std::string_view arc : splitList(line.substr(5))) {
         curve_->arcRegions.push_back(parseArcRegion(arc));
@@ -593,7 +607,7 @@ private:
     }
     if (!startsWith(line, "piece ")) {
       throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', "
-                    "'arcs', 'progress', "
+                    "'arcs', 'walks', 'progress', "
                     "'host', 'chosen' or '}'"};
     }
     std::size_t spansAt = line.find(" spans ");

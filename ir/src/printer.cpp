@@ -65,9 +65,9 @@ public:
 
 private:
   // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
-  // the printed grid of arcs, the table of blocks, the regions' step counts and arcs, the share of a longer
-  // lap's descent, the host regions and the chosen parameters; the entry's geometry, fitted arcs
-  // and source spans are not text.
+  // the printed grid of arcs, the table of blocks, the regions' step counts and arcs, the share of
+  // a longer lap's descent, the host regions and the chosen parameters; the entry's geometry,
+  // fitted arcs and source spans are not text.
   void printCurve(std::size_t index, const CurveTableEntry& entry) {
     out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
                         curveSamplingName(entry.sampling), entry.amount, entry.from, entry.to);
@@ -95,6 +95,9 @@ private:
                                    arc.wholeTurns ? " turns" : ""));
       }
       out_ += fmt::format("    arcs {}\n", fmt::join(arcs, ", "));
+    }
+    if (!entry.walkRegions.empty()) {
+      out_ += fmt::format("    walks {}\n", fmt::join(entry.walkRegions, ", "));
     }
     if (entry.progressFrom != 0 || entry.progressShare != 1) {
       out_ += fmt::format("    progress {} share {}\n", entry.progressFrom, entry.progressShare);

@@ -69,7 +69,7 @@ private:
   // `visible` holds the values defined so far on the way to this point.
   // `owner`: the operation whose region it is (the body: none); a loop's
   // body alone may end in loop.next, and a curve.lap's regions end in
-  // curve.point or curve.arc, which appear nowhere else.
+  // curve.point, curve.arc or curve.walk, which appear nowhere else.
   void verifyRegion(const Region& region, std::vector<bool>& visible,
                     std::optional<Opcode> owner = std::nullopt) {
     std::vector<ValueId> definedHere;
@@ -77,7 +77,7 @@ private:
     if (lapRegion && (region.instructions.empty() ||
                       region.instructions.back() >= function_.instructions.size() ||
                       !endsLapRegion(function_.instructions[region.instructions.back()].opcode))) {
-      problem("a curve.lap region does not end with curve.point or curve.arc");
+      problem("a curve.lap region does not end with curve.point, curve.arc or curve.walk");
     }
     for (InstructionId id : region.instructions) {
       bool last = id == region.instructions.back();
@@ -86,8 +86,8 @@ private:
           !(owner == Opcode::Loop && last)) {
         problem(fmt::format("instruction {} (loop.next) is not the last of a loop's body", id));
       }
-      if (id < function_.instructions.size() &&
-          endsLapRegion(function_.instructions[id].opcode) && !(lapRegion && last)) {
+      if (id < function_.instructions.size() && endsLapRegion(function_.instructions[id].opcode) &&
+          !(lapRegion && last)) {
         problem(fmt::format("instruction {} ({}) is not the last of a curve.lap region", id,
                             opcodeInfo(function_.instructions[id].opcode).spelling));
       }
@@ -207,12 +207,16 @@ private:
     }
     for (std::size_t region = 0; region < lap.regions.size(); ++region) {
       const std::vector<InstructionId>& body = lap.regions[region].instructions;
-      bool arc = !body.empty() && body.back() < function_.instructions.size() &&
-                 function_.instructions[body.back()].opcode == Opcode::CurveArc;
-      if (arc != (entry.arcRegion(region) != nullptr)) {
-        problem(fmt::format("{}: its region {} ends in {} but its curve cuts it as {}", where,
-                            region, arc ? "curve.arc" : "curve.point",
-                            arc ? "points" : "an arc"));
+      if (body.empty() || body.back() >= function_.instructions.size()) {
+        continue; // the region's own problem
+      }
+      Opcode end = function_.instructions[body.back()].opcode;
+      Opcode wanted = entry.arcRegion(region) != nullptr ? Opcode::CurveArc
+                      : entry.isWalkRegion(region)       ? Opcode::CurveWalk
+                                                         : Opcode::CurvePoint;
+      if (endsLapRegion(end) && end != wanted) {
+        problem(fmt::format("{}: its region {} ends in {} but its curve wants {}", where, region,
+                            opcodeInfo(end).spelling, opcodeInfo(wanted).spelling));
       }
     }
     std::size_t wanted = 3 + 3 * entry.computedRegionCount();
@@ -304,7 +308,8 @@ private:
   }
 
   static bool endsLapRegion(Opcode opcode) {
-    return opcode == Opcode::CurvePoint || opcode == Opcode::CurveArc;
+    return opcode == Opcode::CurvePoint || opcode == Opcode::CurveArc ||
+           opcode == Opcode::CurveWalk;
   }
 
   // A loop's variable and a curve.lap's parameter: visible in its regions only.
@@ -390,19 +395,34 @@ private:
     }
   }
 
+  // Regions of the entry, each later than the one before.
+  void verifyRegionList(const std::string& where, const CurveTableEntry& entry,
+                        const std::vector<std::size_t>& regions, std::string_view what) {
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      if (regions[k] >= entry.regionCount() || (k > 0 && regions[k] <= regions[k - 1])) {
+        problem(fmt::format("{} has {} region {} that is not a later region of it", where, what,
+                            regions[k]));
+      }
+    }
+  }
+
   // Steps: a count for each region (0: computed by the program).
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
-      if (!entry.regionSteps.empty() || !entry.arcRegions.empty()) {
-        problem(fmt::format("{} has step counts or arcs but is not cut in steps", where));
+      if (!entry.regionSteps.empty() || !entry.arcRegions.empty() || !entry.walkRegions.empty()) {
+        problem(fmt::format("{} has step counts, arcs or walks but is not cut in steps", where));
       }
       return;
     }
-    for (std::size_t k = 0; k < entry.arcRegions.size(); ++k) {
-      std::size_t region = entry.arcRegions[k].region;
-      if (region >= entry.regionCount() || (k > 0 && region <= entry.arcRegions[k - 1].region)) {
-        problem(fmt::format("{} has an arc region {} that is not a later region of it", where,
-                            region));
+    std::vector<std::size_t> arcs;
+    for (const ArcRegion& arc : entry.arcRegions) {
+      arcs.push_back(arc.region);
+    }
+    verifyRegionList(where, entry, arcs, "an arc");
+    verifyRegionList(where, entry, entry.walkRegions, "a walked");
+    for (std::size_t region : entry.walkRegions) {
+      if (entry.arcRegion(region) != nullptr) {
+        problem(fmt::format("{} has region {} both an arc and walked", where, region));
       }
     }
     bool counted = entry.regionSteps.size() == entry.regionCount();

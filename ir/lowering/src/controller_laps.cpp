@@ -71,12 +71,12 @@ std::optional<PartLowering::SteppedLap>
 PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
                          const std::vector<ControllerSegment>& segments, double budget) {
   for (const ControllerSegment& segment : segments) {
-    bool uniform = !segment.stepPerPoint && !(segment.isNurbs && segment.symbolic != nullptr);
+    bool uniform = !(segment.isNurbs && segment.symbolic != nullptr);
     // A symbolic piece's count is an operand; a line's region of one step
     // folds to its end (symbolicLineRegionPoint); a knot span's count the
     // program computes counts its region's parameter (countsItsSteps).
     bool line = curve.pieces[segment.piece].value->kind == CurveKind::Line;
-    bool counted = segment.isArc || countsItsSteps(segment) ||
+    bool counted = segment.isArc || segment.stepPerPoint || countsItsSteps(segment) ||
                    (segment.symbolic != nullptr ? segment.steps != 1 || line
                                                 : !segment.stepCount && segment.steps >= 1);
     if (!uniform || !counted) {
@@ -93,6 +93,10 @@ PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
   for (const ControllerSegment& segment : segments) {
     if (segment.isArc) {
       addArcRegion(entry, lap, segment, curve, cut);
+      continue;
+    }
+    if (segment.stepPerPoint) {
+      addWalkRegion(entry, lap, segment);
       continue;
     }
     bool computed = segment.symbolic != nullptr || countsItsSteps(segment);
@@ -137,9 +141,8 @@ void PartLowering::addArcRegion(CurveTableEntry& entry, SteppedLap& lap,
 }
 
 // The point of an arc's region and the offset from it to the centre.
-LapRegionPoint PartLowering::arcRegionPoint(const CutCurve& curve,
-                                            const ControllerSegment& segment, Scalar local,
-                                            const CutStmt& cut) {
+LapRegionPoint PartLowering::arcRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
+                                            Scalar local, const CutStmt& cut) {
   const CurvePiece& own = curve.pieces[segment.piece];
   if (segment.symbolic != nullptr) {
     ArcPath path = symbolicArcPath(*segment.symbolic, *own.value);
@@ -155,13 +158,28 @@ LapRegionPoint PartLowering::arcRegionPoint(const CutCurve& curve,
   return {pointAt(curve, segment.piece, 0, local, cut), transformed(direction, toCentre)};
 }
 
+// A rational span walked by a step computed at each point
+// (rational_span_walk.cpp) over its u, 0 .. 1; its count, the most steps
+// the walk takes, in the entry or an operand.
+void PartLowering::addWalkRegion(CurveTableEntry& entry, SteppedLap& lap,
+                                 const ControllerSegment& segment) {
+  entry.walkRegions.push_back(entry.regionSteps.size());
+  entry.regionSteps.push_back(segment.stepCount ? 0 : segment.steps);
+  if (segment.stepCount) {
+    for (Scalar operand : {Scalar::of(0), Scalar::of(1), *segment.stepCount}) {
+      lap.computedSteps.push_back(arithmetic_.value(operand));
+    }
+  }
+}
+
 // A knot span split by parameters (its control points computed by the
 // program), or moved by a scale the program computes, is cut at u = i / N
 // (a quotient: no step rounded to the controller's digits adds up over the
 // span): its region's parameter runs over 0 .. N (the range and count the
 // lap's operands) and the region divides it by N.
 bool PartLowering::countsItsSteps(const ControllerSegment& segment) {
-  return segment.isNurbs && (segment.split || (segment.moved != nullptr && segment.stepCount));
+  return segment.isNurbs && !segment.stepPerPoint &&
+         (segment.split || (segment.moved != nullptr && segment.stepCount));
 }
 
 // A region's point at its parameter: an arc's with the offset to its centre,
@@ -181,6 +199,11 @@ LapRegionPoint PartLowering::steppedRegionPoint(const CutCurve& curve,
   }
   if (segment.symbolic != nullptr) {
     return symbolicPointAt(*segment.symbolic, *own.value, local);
+  }
+  if (segment.stepPerPoint) {
+    LapRegionPoint walked = movedSplitSpanPoint(segment, local);
+    walked.walkStep = rationalSpanStep(segment, local, splitSpanDerivative(segment, local, 0));
+    return walked;
   }
   if (countsItsSteps(segment)) {
     Scalar count = Scalar::of(arithmetic_.value(stepsOf(segment)), ValueType::F64);

@@ -617,6 +617,8 @@ void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table,
       if (region.toCentre) {
         ValueId i = arithmetic_.value(region.toCentre->x);
         builder_.curveArc(x, y, z, i, arithmetic_.value(region.toCentre->y));
+      } else if (region.walkStep) {
+        builder_.curveWalk(x, y, z, arithmetic_.value(*region.walkStep));
       } else {
         builder_.curvePoint(x, y, z);
       }

@@ -271,6 +271,7 @@ private:
     switch (instruction.opcode) {
     case Opcode::Feed:
     case Opcode::CurvePoint:
+    case Opcode::CurveWalk:
     case Opcode::Polynomial:
       coordinates = 3;
       break;

@@ -15,9 +15,9 @@
 
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace cncc::ir::lowering {
@@ -61,12 +61,15 @@ struct CurvePoint {
 };
 
 // What a region of a curve.lap computes: its point, and for a region cut as
-// an arc of a circle the offset from the point to the centre (z: 0).
+// an arc of a circle the offset from the point to the centre (z: 0), for a
+// walked region the step to the next point.
 struct LapRegionPoint {
   LapRegionPoint(CurvePoint at) : point(at) {} // NOLINT: a point is a region's point
   LapRegionPoint(CurvePoint at, CurvePoint centre) : point(at), toCentre(centre) {}
   CurvePoint point;
   std::optional<CurvePoint> toCentre;
+  // A walked region's: the step from the parameter to the next point.
+  std::optional<Scalar> walkStep = std::nullopt;
 };
 
 // One smooth piece of a cut's curve: a line, an arc, a polar or param

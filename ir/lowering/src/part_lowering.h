@@ -500,6 +500,7 @@ private:
                     const CutCurve& curve, const frontend::CutStmt& cut);
   LapRegionPoint arcRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
                                 Scalar local, const frontend::CutStmt& cut);
+  void addWalkRegion(CurveTableEntry& entry, SteppedLap& lap, const ControllerSegment& segment);
   static bool countsItsSteps(const ControllerSegment& segment);
   LapRegionPoint steppedRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
                                     Scalar local, const frontend::CutStmt& cut);

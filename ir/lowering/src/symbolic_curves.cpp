@@ -272,8 +272,9 @@ CurvePoint PartLowering::symbolicLineRegionPoint(const SymbolicPiece& piece, Sca
   Scalar rest = arithmetic_.binary(Opcode::Sub, Scalar::of(1), local);
   Scalar coordinates[3];
   for (int c = 0; c < 3; ++c) {
-    coordinates[c] = from[c].sameAs(to[c]) ? from[c]
-                                           : arithmetic_.add(times(from[c], rest), times(to[c], local));
+    coordinates[c] = from[c].sameAs(to[c])
+                         ? from[c]
+                         : arithmetic_.add(times(from[c], rest), times(to[c], local));
   }
   return applied(piece.transform, {coordinates[0], coordinates[1], coordinates[2]});
 }

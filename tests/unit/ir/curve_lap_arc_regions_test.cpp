@@ -15,6 +15,8 @@ namespace cncc::ir {
 namespace {
 
 using curve_lap_test::countOf;
+using curve_lap_test::expandedPath;
+using curve_lap_test::movesOf;
 using curve_lap_test::parsed;
 using curve_lap_test::pi;
 using curve_lap_test::replaced;
@@ -83,43 +85,6 @@ constexpr std::string_view helixText = R"(func @helix(r = 5) {
 }
 )";
 
-std::vector<MachineEvent> movesOf(const ToolPath& path) {
-  std::vector<MachineEvent> moves;
-  for (const MachineEvent& event : path.events) {
-    if (event.kind == MachineEvent::Kind::Feed || event.kind == MachineEvent::Kind::Arc) {
-      moves.push_back(event);
-    }
-  }
-  return moves;
-}
-
-// The same moves, bit for bit, arcs' centres and turns included.
-void expectSameMoves(const ToolPath& expected, const ToolPath& actual) {
-  std::vector<MachineEvent> a = movesOf(expected);
-  std::vector<MachineEvent> b = movesOf(actual);
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    EXPECT_EQ(a[k].kind, b[k].kind) << k;
-    EXPECT_EQ(a[k].x, b[k].x) << k;
-    EXPECT_EQ(a[k].y, b[k].y) << k;
-    EXPECT_EQ(a[k].z, b[k].z) << k;
-    EXPECT_EQ(a[k].centreX, b[k].centreX) << k;
-    EXPECT_EQ(a[k].centreY, b[k].centreY) << k;
-    EXPECT_EQ(a[k].clockwise, b[k].clockwise) << k;
-  }
-}
-
-// The lap before and after expand-controller-loops: the same moves.
-ToolPath expandedPath(Function& function, const InterpreterOptions& options = {}) {
-  ToolPath before = interpret(function, options);
-  EXPECT_TRUE(expandControllerLoops(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
-  ToolPath after = interpret(function, options);
-  expectSameMoves(before, after);
-  return after;
-}
-
 TEST(CurveLapArcRegions, AnEntryPrintsAndParsesWithItsArcs) {
   Function function = parsed(slotText);
   ASSERT_EQ(function.curves.size(), 1u);
@@ -138,16 +103,17 @@ TEST(CurveLapArcRegions, AnEntryPrintsAndParsesWithItsArcs) {
 }
 
 TEST(CurveLapArcRegions, TheVerifierKeepsCurveArcToTheArcRegions) {
-  EXPECT_THAT(verifyFunction(parsed(replaced(slotText, "    arcs 0 ccw\n", ""))),
-              Contains(HasSubstr("its region 0 ends in curve.arc but its curve cuts it as points")));
-  EXPECT_THAT(verifyFunction(parsed(replaced(slotText, "arcs 0 ccw", "arcs 0 ccw, 1 cw"))),
-              Contains(HasSubstr("its region 1 ends in curve.point but its curve cuts it as an arc")));
+  EXPECT_THAT(
+      verifyFunction(parsed(replaced(slotText, "    arcs 0 ccw\n", ""))),
+      Contains(HasSubstr("its region 0 ends in curve.arc but its curve wants curve.point")));
+  EXPECT_THAT(
+      verifyFunction(parsed(replaced(slotText, "arcs 0 ccw", "arcs 0 ccw, 1 cw"))),
+      Contains(HasSubstr("its region 1 ends in curve.point but its curve wants curve.arc")));
   EXPECT_THAT(verifyFunction(parsed(replaced(slotText, "arcs 0 ccw", "arcs 0 ccw, 2 cw"))),
               Contains(HasSubstr("an arc region 2 that is not a later region of it")));
-  EXPECT_THAT(
-      verifyFunction(parsed(replaced(replaced(slotText, "steps 0", "chords 0.01"),
-                                     "    counts 1, 1\n", ""))),
-      Contains(HasSubstr("has step counts or arcs but is not cut in steps")));
+  EXPECT_THAT(verifyFunction(parsed(
+                  replaced(replaced(slotText, "steps 0", "chords 0.01"), "    counts 1, 1\n", ""))),
+              Contains(HasSubstr("has step counts, arcs or walks but is not cut in steps")));
 }
 
 TEST(CurveLapArcRegions, AnArcRegionRunsAsTheControllersCircle) {

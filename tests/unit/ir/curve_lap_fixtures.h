@@ -3,9 +3,11 @@
 #pragma once
 
 #include "cncc/ir/builder.h"
+#include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/printer.h"
+#include "cncc/ir/verifier.h"
 
 #include <gtest/gtest.h>
 
@@ -128,6 +130,45 @@ inline void expectSamePath(const ToolPath& expected, const ToolPath& actual) {
     EXPECT_EQ(a.z, b.z) << k;
     EXPECT_EQ(a.feed, b.feed) << k;
   }
+}
+
+// The feed and arc moves of a path.
+inline std::vector<MachineEvent> movesOf(const ToolPath& path) {
+  std::vector<MachineEvent> moves;
+  for (const MachineEvent& event : path.events) {
+    if (event.kind == MachineEvent::Kind::Feed || event.kind == MachineEvent::Kind::Arc) {
+      moves.push_back(event);
+    }
+  }
+  return moves;
+}
+
+// The same moves, bit for bit, arcs' centres and turns included.
+inline void expectSameMoves(const ToolPath& expected, const ToolPath& actual) {
+  std::vector<MachineEvent> a = movesOf(expected);
+  std::vector<MachineEvent> b = movesOf(actual);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].kind, b[k].kind) << k;
+    EXPECT_EQ(a[k].x, b[k].x) << k;
+    EXPECT_EQ(a[k].y, b[k].y) << k;
+    EXPECT_EQ(a[k].z, b[k].z) << k;
+    EXPECT_EQ(a[k].centreX, b[k].centreX) << k;
+    EXPECT_EQ(a[k].centreY, b[k].centreY) << k;
+    EXPECT_EQ(a[k].clockwise, b[k].clockwise) << k;
+  }
+}
+
+// A function cut in steps before and after expand-controller-loops: the
+// same moves; the path after.
+inline ToolPath expandedPath(Function& function, const InterpreterOptions& options = {}) {
+  ToolPath before = interpret(function, options);
+  EXPECT_TRUE(expandControllerLoops(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  ToolPath after = interpret(function, options);
+  expectSameMoves(before, after);
+  return after;
 }
 
 inline std::string replaced(std::string_view text, std::string_view from, std::string_view to) {

@@ -302,10 +302,11 @@ INSTANTIATE_TEST_SUITE_P(EveryOperation, JitOpcodeTest,
                          });
 
 // A new operation in ir_ops.def needs a case here (and code in the JIT);
-// curve.lap and its curve.point and curve.arc are expanded before the JIT and refused by
+// curve.lap and its region ends (curve.point, curve.arc, curve.walk) are expanded before the JIT and refused by
 // it (jit_error_test.cpp).
 TEST(JitOpcodes, EveryOperationOfTheIrIsTested) {
-  std::set<Opcode> tested{Opcode::CurveLap, Opcode::CurvePoint, Opcode::CurveArc};
+  std::set<Opcode> tested{Opcode::CurveLap, Opcode::CurvePoint, Opcode::CurveArc,
+                          Opcode::CurveWalk};
   for (const OpcodeCase& opcodeCase : opcodeCases()) {
     for (const ir::Instruction& instruction : opcodeCase.function.instructions) {
       tested.insert(instruction.opcode);

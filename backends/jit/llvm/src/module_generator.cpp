@@ -201,6 +201,7 @@ private:
     case Opcode::CurveLap:
     case Opcode::CurvePoint:
     case Opcode::CurveArc:
+    case Opcode::CurveWalk:
       throw backends::JitError(
           "a curve.lap must be expanded (expand-curve-laps) before the JIT compiles it");
     case Opcode::Rapid:

@@ -48,6 +48,8 @@ public:
   void curvePoint(ValueId x, ValueId y, ValueId z);
   // The point of a region cut as an arc, and the offset from it to the centre.
   void curveArc(ValueId x, ValueId y, ValueId z, ValueId toCentreX, ValueId toCentreY);
+  // The point of a walked region, and the step from its parameter to the next.
+  void curveWalk(ValueId x, ValueId y, ValueId z, ValueId step);
 
   void rapid(ValueId x, ValueId y, ValueId z);
   void feed(ValueId x, ValueId y, ValueId z, ValueId feedRate);

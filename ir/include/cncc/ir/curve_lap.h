@@ -173,7 +173,22 @@ std::vector<StepRange> lapStepRanges(const CurveTableEntry& entry,
 // The points of a lap cut in steps (CurveSampling::Steps), in order: per
 // region of N steps, from + i (to - from) / N for i = 1, 2, .. while i <= N
 // (as the loop the controller runs computes them); a single step, its end.
+// (An arc region's are its blocks' ends; a walked region's are not known
+// before it runs.)
 std::vector<LapStep> lapSteps(const std::vector<StepRange>& ranges);
+
+// The same for one region, each step given to `visit` as it is computed.
+template <class Visit>
+void forEachRegionStep(std::size_t region, const StepRange& range, const Visit& visit) {
+  if (range.single) {
+    visit(LapStep{region, range.to, 1});
+    return;
+  }
+  double step = (range.to - range.from) / range.count;
+  for (double i = 1; i <= range.count; ++i) {
+    visit(LapStep{region, range.from + i * step, i / range.count});
+  }
+}
 
 // `expand-controller-loops`: every curve.lap cut in steps written out as a
 // loop per region (its arithmetic at the loop's parameter, a feed move to

@@ -53,7 +53,8 @@ struct CurveLocation {
 // a target that prints G02/G03). Or each region is cut in its own number of
 // uniform steps of its parameter by a loop the controller runs (a level lap
 // of pieces without knot spans, on a target that runs loops), an arc region
-// in blocks of the controller's circular interpolation. Or the lap
+// in blocks of the controller's circular interpolation, a walked region by
+// a step the program computes at each point. Or the lap
 // is the target's own curve blocks, whose data the lowering fitted within
 // the cut's tolerance and put in a table of the function: a NURBS block
 // (G06.2, move.nurbs, the lap's operands after its three the weights),
@@ -110,6 +111,11 @@ struct CurveTableEntry {
   std::vector<int> regionSteps = {};
   // Steps: the regions cut as arcs of a circle, in order of region.
   std::vector<ArcRegion> arcRegions = {};
+  // Steps: the regions walked from their start by a step computed at each
+  // point (each ends in curve.walk, which gives the step too) to their end:
+  // the next point is at min(u + step, end); its count is the most steps
+  // the walk takes. In order of region.
+  std::vector<std::size_t> walkRegions = {};
   // The `curve` expression and the `cut` statement: where a failure to
   // choose the points is reported.
   frontend::SourceSpan curveSpan;
@@ -146,6 +152,7 @@ struct CurveTableEntry {
   std::size_t computedRegionCount() const;
   // Steps: the region's arc, or null when its steps are chords.
   const ArcRegion* arcRegion(std::size_t region) const;
+  bool isWalkRegion(std::size_t region) const;
   // The later piece at a join (as a composite curve evaluates it); a
   // parameter outside a piece's range is clamped into it.
   CurveLocation locate(double t) const;
