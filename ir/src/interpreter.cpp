@@ -286,7 +286,8 @@ private:
     for (double u = range.from; u < range.to;) {
       countStep();
       regionPoint(lap, region, u);
-      double next = std::min(u + lapWalkStep_, range.to);
+      // min as the program's min computes it (a NaN step included).
+      double next = *binaryResult(Opcode::Min, u + lapWalkStep_, range.to);
       if (!(next > u)) {
         throw InterpreterError(
             fmt::format("a walk along a curve does not advance: {} after {}", next, u));

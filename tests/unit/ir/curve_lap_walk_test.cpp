@@ -8,6 +8,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
+
 namespace cncc::ir {
 namespace {
 
@@ -105,6 +108,28 @@ TEST(CurveLapWalk, AWalkThatDoesNotAdvanceStopsTheRun) {
   EXPECT_THROW(interpret(function, options), InterpreterError);
   ASSERT_TRUE(expandControllerLoops(function));
   EXPECT_THROW(interpret(function, options), InterpreterError);
+}
+
+// A step that is not a number: the walk before the legalisation does what
+// the loop after it does (min as the program computes it).
+TEST(CurveLapWalk, ANonFiniteStepRunsAsTheLoopRunsIt) {
+  Function function = parsed(walkText);
+  InterpreterOptions options;
+  options.parameters = {{"s", std::nan("")}};
+  auto run = [&](const Function& walked) -> std::optional<ToolPath> {
+    try {
+      return interpret(walked, options);
+    } catch (const InterpreterError&) {
+      return std::nullopt;
+    }
+  };
+  std::optional<ToolPath> before = run(function);
+  ASSERT_TRUE(expandControllerLoops(function));
+  std::optional<ToolPath> after = run(function);
+  ASSERT_EQ(before.has_value(), after.has_value());
+  if (before) {
+    curve_lap_test::expectSameMoves(*before, *after);
+  }
 }
 
 } // namespace
