@@ -337,38 +337,26 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   builder_.rapid(startX, startY, safeValue);
   builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
                 feedValue);
-  // Laps of constant pieces are curve.laps the legalisation expand-
-  // controller-loops writes out as the loops below would be.
-  std::optional<SteppedLap> lap =
-      runtimeOffset_ ? std::nullopt : steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
-  if (ramp && lap) {
-    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
-    builder_.comment("ramp");
-    emitSteppedLap(curve, *lap, *planned, arithmetic_.value(previousZ), arithmetic_.value(z),
-                   feedValue, cut);
-  } else if (ramp) {
-    // One lap descending from the pass above (see RampSegment), in the
-    // pass loop: its lines have no pass number of their own.
-    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
-    builder_.comment("ramp");
-    std::vector<RampSegment> shares = rampSegments(curve, cut);
+  if (runtimeOffset_) {
+    // Beside the curve, the tool's radius a parameter: loops written here
+    // (controller_offset_cuts.cpp), never a ramp.
     for (const ControllerSegment& segment : *planned) {
-      RampLap lap{previousZ, z, rampSegmentOf(shares, segment.piece, segment.span)};
-      emitControllerSegment(curve, segment, z, feedValue, cut, &lap);
-    }
-  }
-  if (lap) {
-    ValueId height = arithmetic_.value(z);
-    emitSteppedLap(curve, *lap, *planned, height, height, feedValue, cut);
-  }
-  for (const ControllerSegment& segment : *planned) {
-    if (lap) {
-      break;
-    }
-    emitControllerSegment(curve, segment, z, feedValue, cut, nullptr);
-    if (runtimeOffset_) {
+      emitOffsetSegment(curve, segment, z, feedValue, cut);
       emitOffsetJoin(curve, segment, z, feedValue, cut);
     }
+  } else {
+    // Each lap a curve.lap, which expand-controller-loops writes out.
+    SteppedLap lap = steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
+    if (ramp) {
+      // Descending from the pass above, in the pass loop: its lines have
+      // no pass number of their own.
+      PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
+      builder_.comment("ramp");
+      emitSteppedLap(curve, lap, *planned, arithmetic_.value(previousZ), arithmetic_.value(z),
+                     feedValue, cut);
+    }
+    ValueId height = arithmetic_.value(z);
+    emitSteppedLap(curve, lap, *planned, height, height, feedValue, cut);
   }
   CurvePoint finish = endPoint(last, true);
   if (runtimeOffset_ && runtimeOffset_->closed &&
@@ -576,90 +564,6 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     segment.steps = constantSteps(moved, span.t0, span.t1);
   }
   return segments;
-}
-
-void PartLowering::emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment,
-                                         Scalar z, ValueId feed, const CutStmt& cut,
-                                         const RampLap* ramp) {
-  const CurvePiece& piece = curve.pieces[segment.piece];
-  // The pass's z, or on a ramp lap from + (to - from) (before + share fraction).
-  auto heightAt = [&](Scalar fraction) {
-    if (ramp == nullptr) {
-      return z;
-    }
-    Scalar share = arithmetic_.add(Scalar::of(ramp->segment.before),
-                                   times(Scalar::of(ramp->segment.share), fraction));
-    return arithmetic_.add(ramp->from,
-                           times(arithmetic_.binary(Opcode::Sub, ramp->to, ramp->from), share));
-  };
-  if (segment.isArc) {
-    ArcPath path = segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
-                                               : constantArcPath(curve, segment.piece, cut);
-    emitArc(runtimeOffset_ ? offsetArcPath(segment.piece, std::move(path), cut) : path, heightAt,
-            feed, cut);
-    return;
-  }
-  std::function<void(const CurvePoint&, Scalar)> move = [&](const CurvePoint& point, Scalar index) {
-    Scalar height =
-        ramp == nullptr ? z : heightAt(arithmetic_.binary(Opcode::Div, index, stepsOf(segment)));
-    builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
-                  arithmetic_.value(arithmetic_.add(height, point.z)), feed);
-  };
-  if (segment.steps == 1) {
-    Scalar end = Scalar::of(segment.to);
-    CurvePoint point = segment.symbolic
-                           ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
-                       : segment.split   ? movedSplitSpanPoint(segment, end)
-                       : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
-                                         : pointAt(curve, segment.piece, segment.span, end, cut);
-    move(runtimeOffset_ ? offsetSegmentEnd(curve, segment, true, point) : point, Scalar::of(1));
-    return;
-  }
-  if (segment.stepPerPoint && !runtimeOffset_) {
-    emitRationalSpanWalk(segment, [&](const CurvePoint& point, Scalar share) {
-      builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
-                    arithmetic_.value(arithmetic_.add(heightAt(share), point.z)), feed);
-    });
-    return;
-  }
-  ValueId count = arithmetic_.value(stepsOf(segment));
-  ValueId i = builder_.beginLoop(builder_.constant(1), count, LoopRole::Curve);
-  Scalar index = Scalar::of(i, ValueType::F64);
-  if (runtimeOffset_) {
-    // The tool centre beside each point, along the derivative in i.
-    move = [&, drawnMove = move](const CurvePoint& point, Scalar at) {
-      drawnMove(offsetAlongDerivative(point, i, cut), at);
-    };
-  }
-  if (segment.symbolic != nullptr) {
-    Scalar step = arithmetic_.binary(
-        Opcode::Div, arithmetic_.binary(Opcode::Sub, segment.end, segment.start),
-        segment.steps > 0 ? Scalar::of(segment.steps) : Scalar::of(count, ValueType::F64));
-    Scalar t = arithmetic_.add(segment.start, arithmetic_.multiply(index, step));
-    move(symbolicPointAt(*segment.symbolic, *piece.value, t), index);
-  } else if (segment.isNurbs && !segment.split) {
-    // u = i / steps, written as a product the printer can step by.
-    geom::PolynomialSpan span = cleanedSpan(piece.spans[segment.span]);
-    Scalar u = segment.steps > 0
-                   ? arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps))
-                   : arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64));
-    CurvePoint point = spanPointAt(span, u);
-    move(segment.moved != nullptr ? applied(*segment.moved, point)
-                                  : transformed(piece.transform, point),
-         index);
-  } else if (segment.split) {
-    move(movedSplitSpanPoint(
-             segment, arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))),
-         index);
-  } else {
-    Scalar step = segment.steps > 0
-                      ? Scalar::of((segment.to - segment.from) / segment.steps)
-                      : arithmetic_.binary(Opcode::Div, Scalar::of(segment.to - segment.from),
-                                           Scalar::of(count, ValueType::F64));
-    Scalar t = arithmetic_.add(Scalar::of(segment.from), arithmetic_.multiply(index, step));
-    move(pointAt(curve, segment.piece, segment.span, t, cut), index);
-  }
-  builder_.endLoop();
 }
 
 } // namespace cncc::ir::lowering

@@ -60,33 +60,15 @@ void PartLowering::checkStepDrift(const CutStmt& cut, const CurveTableEntry& ent
   }
 }
 
-// A curve table entry cutting each piece in the steps planned for it, when
-// every piece (or knot span) is one the controller evaluates from the
-// curve's own arithmetic at uniform steps (no span moved or split by
-// parameters), or an arc (move.arc blocks): a count chosen here, or the
-// range and count the program computes of a piece that depends on
-// parameters (its symbolic form);
+// The curve table entry cutting each piece (or knot span) as planned for
+// it: uniform steps, a count chosen here or the range and count the
+// program computes of a piece that depends on parameters (its symbolic
+// form, a span counting its steps); an arc's move.arc blocks; a walk.
 // `budget` is the chord tolerance the counts keep (0: samples= gave them).
-std::optional<PartLowering::SteppedLap>
-PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
-                         const std::vector<ControllerSegment>& segments, double budget) {
-  for (const ControllerSegment& segment : segments) {
-    bool uniform = !(segment.isNurbs && segment.symbolic != nullptr);
-    // A symbolic piece's count is an operand; a line's region of one step
-    // folds to its end (symbolicLineRegionPoint); a knot span's count the
-    // program computes counts its region's parameter (countsItsSteps).
-    bool line = curve.pieces[segment.piece].value->kind == CurveKind::Line;
-    bool counted = segment.isArc || segment.stepPerPoint || countsItsSteps(segment) ||
-                   (segment.symbolic != nullptr ? segment.steps != 1 || line
-                                                : !segment.stepCount && segment.steps >= 1);
-    if (!uniform || !counted) {
-      return std::nullopt;
-    }
-  }
-  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
-  if (segments.size() != entry.regionCount()) {
-    return std::nullopt;
-  }
+PartLowering::SteppedLap PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
+                                                  const std::vector<ControllerSegment>& segments,
+                                                  double budget) {
+  CurveTableEntry entry = wholeCurveTableEntry(cut, curve); // a region per segment
   entry.sampling = CurveSampling::Steps;
   entry.amount = budget;
   SteppedLap lap;

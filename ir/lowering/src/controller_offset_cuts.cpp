@@ -422,4 +422,66 @@ void PartLowering::emitOffsetJoin(const CutCurve& curve, const ControllerSegment
       path, [z](Scalar) { return z; }, feed, cut);
 }
 
+// One piece (or knot span) of a cut beside its curve at height z: an arc
+// as move.arc blocks on its offset radius, a piece of one step a feed to
+// its end's offset, another a loop whose point is moved along the normal
+// of its derivative in the loop's index.
+void PartLowering::emitOffsetSegment(const CutCurve& curve, const ControllerSegment& segment,
+                                     Scalar z, ValueId feed, const CutStmt& cut) {
+  const CurvePiece& piece = curve.pieces[segment.piece];
+  if (segment.isArc) {
+    ArcPath path = segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
+                                               : constantArcPath(curve, segment.piece, cut);
+    emitArc(
+        offsetArcPath(segment.piece, std::move(path), cut), [z](Scalar) { return z; }, feed, cut);
+    return;
+  }
+  auto move = [&](const CurvePoint& point) {
+    builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
+                  arithmetic_.value(arithmetic_.add(z, point.z)), feed);
+  };
+  if (segment.steps == 1) {
+    Scalar end = Scalar::of(segment.to);
+    CurvePoint point = segment.symbolic
+                           ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
+                       : segment.split   ? movedSplitSpanPoint(segment, end)
+                       : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
+                                         : pointAt(curve, segment.piece, segment.span, end, cut);
+    move(offsetSegmentEnd(curve, segment, true, point));
+    return;
+  }
+  ValueId count = arithmetic_.value(stepsOf(segment));
+  ValueId i = builder_.beginLoop(builder_.constant(1), count, LoopRole::Curve);
+  Scalar index = Scalar::of(i, ValueType::F64);
+  // The tool centre beside each point, along the derivative in i.
+  auto moveBeside = [&](const CurvePoint& point) { move(offsetAlongDerivative(point, i, cut)); };
+  if (segment.symbolic != nullptr) {
+    Scalar step = arithmetic_.binary(
+        Opcode::Div, arithmetic_.binary(Opcode::Sub, segment.end, segment.start),
+        segment.steps > 0 ? Scalar::of(segment.steps) : Scalar::of(count, ValueType::F64));
+    Scalar t = arithmetic_.add(segment.start, arithmetic_.multiply(index, step));
+    moveBeside(symbolicPointAt(*segment.symbolic, *piece.value, t));
+  } else if (segment.isNurbs && !segment.split) {
+    // u = i / steps, written as a product the printer can step by.
+    geom::PolynomialSpan span = cleanedSpan(piece.spans[segment.span]);
+    Scalar u = segment.steps > 0
+                   ? arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps))
+                   : arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64));
+    CurvePoint point = spanPointAt(span, u);
+    moveBeside(segment.moved != nullptr ? applied(*segment.moved, point)
+                                        : transformed(piece.transform, point));
+  } else if (segment.split) {
+    moveBeside(movedSplitSpanPoint(
+        segment, arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))));
+  } else {
+    Scalar step = segment.steps > 0
+                      ? Scalar::of((segment.to - segment.from) / segment.steps)
+                      : arithmetic_.binary(Opcode::Div, Scalar::of(segment.to - segment.from),
+                                           Scalar::of(count, ValueType::F64));
+    Scalar t = arithmetic_.add(Scalar::of(segment.from), arithmetic_.multiply(index, step));
+    moveBeside(pointAt(curve, segment.piece, segment.span, t, cut));
+  }
+  builder_.endLoop();
+}
+
 } // namespace cncc::ir::lowering

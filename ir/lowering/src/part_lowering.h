@@ -133,13 +133,6 @@ struct RampSegment {
   double share = 0;
 };
 
-// A ramp lap's descent from z = `from` to z = `to`, and where the current
-// segment lies in it.
-struct RampLap {
-  Scalar from, to;
-  RampSegment segment;
-};
-
 // A translate/rotate/scale chain as controller arithmetic:
 // p -> (linear * p.xy + offset, zScale * p.z), row-major linear.
 struct RuntimeTransform {
@@ -505,9 +498,8 @@ private:
   LapRegionPoint steppedRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
                                     Scalar local, const frontend::CutStmt& cut);
   void checkStepDrift(const frontend::CutStmt& cut, const CurveTableEntry& entry);
-  std::optional<SteppedLap> steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
-                                       const std::vector<ControllerSegment>& segments,
-                                       double budget);
+  SteppedLap steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
+                        const std::vector<ControllerSegment>& segments, double budget);
   void emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
                       const std::vector<ControllerSegment>& segments, ValueId zFrom, ValueId zTo,
                       ValueId feed, const frontend::CutStmt& cut);
@@ -546,8 +538,8 @@ private:
   symbolicList(const frontend::Expr& expression, const Bindings& bindings,
                const frontend::Environment& environment);
   const frontend::Expr* curveArgument(const frontend::CutStmt& cut, std::string_view name);
-  void emitControllerSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
-                             ValueId feed, const frontend::CutStmt& cut, const RampLap* ramp);
+  void emitOffsetSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
+                         ValueId feed, const frontend::CutStmt& cut);
   std::optional<Scalar> polarStepCount(const SymbolicPiece& piece,
                                        const frontend::CurveValue& value, double budget);
   using SymbolicList = std::vector<std::optional<Lowered>>;
@@ -569,8 +561,6 @@ private:
                           const std::array<Scalar, 4>& point);
   // The span's loop, its parameter advanced by rationalSpanStep; moveTo
   // gets each point and its parameter (the share of the span done).
-  void emitRationalSpanWalk(const ControllerSegment& segment,
-                            const std::function<void(const CurvePoint&, Scalar)>& moveTo);
 
   // symbolic_curves.cpp
   std::optional<std::vector<SymbolicPiece>> symbolicPieces(const frontend::Expr& curve);

@@ -1,6 +1,7 @@
 // A rational NURBS span whose weights the program computes, walked with a
-// step computed at each point (a loop ending in loop.next) instead of one
-// count for the whole span.
+// step computed at each point instead of one count for the whole span: its
+// region of the lap gives the step (curve.walk), and expand-controller-loops
+// writes the loop ending in loop.next.
 //
 // The bound is that of rational_span_steps.h taken over one step [u, u + h]
 // instead of the whole span: with c = C(u), the chord's start, g = W (C -
@@ -148,18 +149,6 @@ Scalar PartLowering::rationalSpanStep(const ControllerSegment& segment, Scalar u
   }
   // Inline extremes: a rounding here is harmless.
   return math.larger(math.smaller(low, high), div(Scalar::of(1), stepsOf(segment)));
-}
-
-void PartLowering::emitRationalSpanWalk(
-    const ControllerSegment& segment,
-    const std::function<void(const CurvePoint&, Scalar)>& moveTo) {
-  ValueId u = builder_.beginLoop(builder_.constant(0), builder_.constant(1), LoopRole::Curve);
-  Scalar at = Scalar::of(u, ValueType::F64);
-  Scalar step = rationalSpanStep(segment, at, splitSpanDerivative(segment, at, 0));
-  // The exact minimum: the last point is the span's end, u = 1.
-  Scalar next = arithmetic_.binary(Opcode::Min, arithmetic_.add(at, step), Scalar::of(1));
-  moveTo(movedSplitSpanPoint(segment, next), next);
-  builder_.endLoopAdvancingTo(arithmetic_.value(next));
 }
 
 } // namespace cncc::ir::lowering
