@@ -174,7 +174,12 @@ private:
     Operand next = minimum(add({u, 0}, operandOf(regionEnd_[3])), steps.to);
     rewriteRegionFor(lap, region, valueOf(next), {0, 1, 2});
     std::vector<ValueId> point = regionEnd_;
-    ValueId z = valueOf(add(heightDone(lap, next), operandOf(point[2])));
+    // On a ramp, done: (next - from) / (to - from), next itself on 0 .. 1.
+    Operand done = shares_ == nullptr
+                       ? next
+                       : arithmetic(Opcode::Div, arithmetic(Opcode::Sub, next, steps.from),
+                                    arithmetic(Opcode::Sub, steps.to, steps.from));
+    ValueId z = valueOf(add(heightDone(lap, done), operandOf(point[2])));
     emitFeedMove(lap, point[0], point[1], z);
     Instruction advance;
     advance.opcode = Opcode::LoopNext;

@@ -293,7 +293,7 @@ private:
             fmt::format("a walk along a curve does not advance: {} after {}", next, u));
       }
       regionPoint(lap, region, next);
-      feedToLapPoint(lap, heightAt(next), feed);
+      feedToLapPoint(lap, heightAt((next - range.from) / (range.to - range.from)), feed);
       u = next;
     }
   }

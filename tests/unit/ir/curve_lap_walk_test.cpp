@@ -110,6 +110,19 @@ TEST(CurveLapWalk, AWalkThatDoesNotAdvanceStopsTheRun) {
   EXPECT_THROW(interpret(function, options), InterpreterError);
 }
 
+// From z = 0 to z = -1: each point as deep as the share of the walk done.
+TEST(CurveLapWalk, ARampDescendsAlongTheWalk) {
+  Function function =
+      parsed(replaced(replaced(walkText, "  %3 = const -1\n", "  %3 = const -1\n  %12 = const 0\n"),
+                      "curve.lap @0, %3, %3", "curve.lap @0, %12, %3"));
+  std::vector<MachineEvent> moves = movesOf(expandedPath(function));
+  std::vector<double> parameters = walkedParameters(1);
+  ASSERT_EQ(moves.size(), parameters.size());
+  for (std::size_t k = 0; k < moves.size(); ++k) {
+    EXPECT_NEAR(moves[k].z, -parameters[k], 1e-12) << k;
+  }
+}
+
 // A step that is not a number: the walk before the legalisation does what
 // the loop after it does (min as the program computes it).
 TEST(CurveLapWalk, ANonFiniteStepRunsAsTheLoopRunsIt) {
