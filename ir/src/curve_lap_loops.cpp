@@ -41,9 +41,10 @@ private:
     const CurveTableEntry& entry = source_.curves[lap.index];
     shares_ = isRamp(lap) ? &sharesOf(lap) : nullptr;
     std::size_t computed = 0;
-    for (std::size_t region = 0; region < entry.regionCount(); ++region) {
+    std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
+    for (std::size_t region = 0; region < places.size(); ++region) {
       share_ = shares_ != nullptr ? (*shares_)[region] : LapRegionShare{};
-      RegionSteps steps = stepsOf(lap, entry, region, computed);
+      RegionSteps steps = stepsOf(lap, entry, region, places[region], computed);
       count_ = steps.count;
       single_ = steps.single;
       if (const ArcRegion* arc = entry.arcRegion(region)) {
@@ -66,10 +67,10 @@ private:
     bool single = false;
   };
   RegionSteps stepsOf(const Instruction& lap, const CurveTableEntry& entry, std::size_t region,
-                      std::size_t& computed) {
+                      const CurveTableEntry::RegionPlace& place, std::size_t& computed) {
     int count = entry.regionSteps[region];
     if (count > 0) {
-      auto [from, to] = entry.regionRange(region);
+      auto [from, to] = entry.regionRange(place);
       return {
           {ValueId{}, from}, {ValueId{}, to}, {ValueId{}, static_cast<double>(count)}, count == 1};
     }
@@ -237,12 +238,13 @@ std::vector<StepRange> lapStepRanges(const CurveTableEntry& entry,
                                      const std::function<StepRange(std::size_t)>& computed) {
   std::vector<StepRange> ranges;
   std::size_t computedSoFar = 0;
-  for (std::size_t region = 0; region < entry.regionCount(); ++region) {
+  std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
+  for (std::size_t region = 0; region < places.size(); ++region) {
     int count = region < entry.regionSteps.size() ? entry.regionSteps[region] : 0;
     if (count == 0) {
       ranges.push_back(computed(computedSoFar++));
     } else {
-      auto [from, to] = entry.regionRange(region);
+      auto [from, to] = entry.regionRange(places[region]);
       ranges.push_back({from, to, static_cast<double>(count), count == 1});
     }
   }

@@ -10,7 +10,9 @@
 #include "passes/evaluate.h"
 #include "passes/rewriter.h"
 
+#include <cstdint>
 #include <initializer_list>
+#include <unordered_set>
 #include <vector>
 
 namespace cncc::ir {
@@ -55,7 +57,7 @@ protected:
   void visit(const Instruction& instruction) final {
     bool ends = instruction.opcode == Opcode::CurvePoint ||
                 instruction.opcode == Opcode::CurveArc || instruction.opcode == Opcode::CurveWalk;
-    if (!kept_.empty() && !ends && !kept_[instructionIdOf(instruction)]) {
+    if (slicing_ && !ends && !kept_.contains(instructionIdOf(instruction))) {
       return; // not needed by the operands of the region's end being written
     }
     if (instruction.opcode == Opcode::CurveLap && writes(source_.curves[instruction.index])) {
@@ -77,24 +79,26 @@ protected:
   void rewriteRegionFor(const Instruction& lap, std::size_t region, ValueId t,
                         std::initializer_list<std::size_t> wanted) {
     const Region& body = lap.regions[region];
-    kept_.assign(source_.instructions.size(), false);
-    std::vector<bool> needed(source_.valueTypes.size(), false);
+    // Sets of the region's own ids and values: the work is the region's size.
+    kept_.clear();
+    std::unordered_set<std::uint32_t> needed;
     const Instruction& end = source_.instructions[body.instructions.back()];
     for (std::size_t k : wanted) {
-      needed[end.operands[k].index] = true;
+      needed.insert(end.operands[k].index);
     }
     for (auto id = body.instructions.rbegin(); id != body.instructions.rend(); ++id) {
       const Instruction& instruction = source_.instructions[*id];
-      if (instruction.result.valid() && needed[instruction.result.index]) {
-        kept_[*id] = true;
+      if (instruction.result.valid() && needed.contains(instruction.result.index)) {
+        kept_.insert(*id);
         for (ValueId operand : instruction.operands) {
-          needed[operand.index] = true;
+          needed.insert(operand.index);
         }
       }
     }
     replace(lap.result, t);
+    slicing_ = true;
     rewriteRegion(body);
-    kept_.clear();
+    slicing_ = false;
   }
 
   // A loop over a lap's points, from `low` to `high`, its body the output
@@ -225,9 +229,10 @@ private:
   }
 
   const Instruction* lap_ = nullptr; // being written
-  // While a region is written for some of its end's operands: the
-  // instructions they need (empty: all).
-  std::vector<bool> kept_;
+  // While a region is written for some of its end's operands (slicing_):
+  // the instructions they need.
+  bool slicing_ = false;
+  std::unordered_set<std::size_t> kept_;
 };
 
 } // namespace cncc::ir

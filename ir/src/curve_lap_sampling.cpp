@@ -54,8 +54,9 @@ std::vector<double> stepParameters(const CurveTableEntry& entry) {
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
                         "the steps of this lap are computed by the program");
   });
+  std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
   for (const LapStep& step : lapSteps(ranges)) {
-    parameters.push_back(entry.wholeParameter(step.region, step.local));
+    parameters.push_back(entry.wholeParameter(places[step.region], step.local));
   }
   return parameters;
 }

@@ -16,17 +16,16 @@ std::size_t CurveTableEntry::computedRegionCount() const {
   return static_cast<std::size_t>(std::count(regionSteps.begin(), regionSteps.end(), 0));
 }
 
+// The lists are in order of region (the verifier keeps them so).
 const ArcRegion* CurveTableEntry::arcRegion(std::size_t region) const {
-  for (const ArcRegion& arc : arcRegions) {
-    if (arc.region == region) {
-      return &arc;
-    }
-  }
-  return nullptr;
+  auto found = std::lower_bound(
+      arcRegions.begin(), arcRegions.end(), region,
+      [](const ArcRegion& arc, std::size_t wanted) { return arc.region < wanted; });
+  return found != arcRegions.end() && found->region == region ? &*found : nullptr;
 }
 
 bool CurveTableEntry::isWalkRegion(std::size_t region) const {
-  return std::find(walkRegions.begin(), walkRegions.end(), region) != walkRegions.end();
+  return std::binary_search(walkRegions.begin(), walkRegions.end(), region);
 }
 
 std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const {
@@ -48,12 +47,30 @@ CurveTableEntry::pieceOfRegion(std::size_t region) const {
   return {nullptr, 0};
 }
 
+std::vector<CurveTableEntry::RegionPlace> CurveTableEntry::regionPlaces() const {
+  std::vector<RegionPlace> places;
+  for (std::size_t piece = 0; piece < pieces.size(); ++piece) {
+    for (std::size_t span = 0; span < pieces[piece].regionCount(); ++span) {
+      places.push_back({piece, span});
+    }
+  }
+  return places;
+}
+
 std::pair<double, double> CurveTableEntry::regionRange(std::size_t region) const {
   auto [piece, span] = pieceOfRegion(region);
-  if (piece == nullptr || !piece->spans.empty()) {
+  if (piece == nullptr) {
     return {0.0, 1.0};
   }
-  return {piece->from, piece->to};
+  return regionRange({static_cast<std::size_t>(piece - pieces.data()), span});
+}
+
+std::pair<double, double> CurveTableEntry::regionRange(const RegionPlace& place) const {
+  const CurvePieceLayout& piece = pieces[place.piece];
+  if (!piece.spans.empty()) {
+    return {0.0, 1.0};
+  }
+  return {piece.from, piece.to};
 }
 
 double CurveTableEntry::wholeParameter(std::size_t region, double local) const {
@@ -61,12 +78,17 @@ double CurveTableEntry::wholeParameter(std::size_t region, double local) const {
   if (piece == nullptr) {
     return to;
   }
+  return wholeParameter({static_cast<std::size_t>(piece - pieces.data()), span}, local);
+}
+
+double CurveTableEntry::wholeParameter(const RegionPlace& place, double local) const {
+  const CurvePieceLayout& piece = pieces[place.piece];
   double own = local;
-  if (!piece->spans.empty()) {
-    auto [spanFrom, spanTo] = piece->spans[span];
+  if (!piece.spans.empty()) {
+    auto [spanFrom, spanTo] = piece.spans[place.span];
     own = spanFrom + local * (spanTo - spanFrom);
   }
-  return pieces.size() == 1 ? own : piece->start + (own - piece->from);
+  return pieces.size() == 1 ? own : piece.start + (own - piece.from);
 }
 
 CurveLocation CurveTableEntry::locate(double t) const {

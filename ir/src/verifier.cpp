@@ -398,8 +398,9 @@ private:
   // Regions of the entry, each later than the one before.
   void verifyRegionList(const std::string& where, const CurveTableEntry& entry,
                         const std::vector<std::size_t>& regions, std::string_view what) {
+    std::size_t count = entry.regionCount();
     for (std::size_t k = 0; k < regions.size(); ++k) {
-      if (regions[k] >= entry.regionCount() || (k > 0 && regions[k] <= regions[k - 1])) {
+      if (regions[k] >= count || (k > 0 && regions[k] <= regions[k - 1])) {
         problem(fmt::format("{} has {} region {} that is not a later region of it", where, what,
                             regions[k]));
       }

@@ -60,9 +60,13 @@ Scalar Arithmetic::unary(Opcode opcode, Scalar operand) {
 // sin, cos and tan are periodic, so both mean the same point. The angle's
 // own instructions stay as they are for their other uses (dead code goes).
 ValueId Arithmetic::angleModuloTurns(ValueId angle, int depth) {
-  // Copies: the builder's instructions move as it appends.
-  Instruction definition = builder_.function().definition(angle);
-  if (definition.opcode == Opcode::Const) {
+  // A copy (the builder's instructions move as it appends), not of the
+  // regions: the angle may be a curve.lap's parameter, whose instruction
+  // holds every region of the lap.
+  const Instruction definition = withoutRegions(builder_.function().definition(angle));
+  const Opcode opcode = definition.opcode;
+  const std::vector<ValueId>& operands = definition.operands;
+  if (opcode == Opcode::Const) {
     double number = definition.number;
     if (!std::isfinite(number) || std::abs(number) <= turn) {
       return angle;
@@ -73,8 +77,7 @@ ValueId Arithmetic::angleModuloTurns(ValueId angle, int depth) {
   if (depth >= deepestAngleTerm) {
     return angle;
   }
-  const std::vector<ValueId>& operands = definition.operands;
-  switch (definition.opcode) {
+  switch (opcode) {
   case Opcode::Neg: {
     ValueId term = angleModuloTurns(operands[0], depth + 1);
     return term == operands[0] ? angle : builder_.unary(Opcode::Neg, term);
@@ -82,7 +85,7 @@ ValueId Arithmetic::angleModuloTurns(ValueId angle, int depth) {
   case Opcode::Add:
   case Opcode::Sub:
   case Opcode::Mul: {
-    bool multiple = definition.opcode == Opcode::Mul;
+    bool multiple = opcode == Opcode::Mul;
     const Function& function = builder_.function();
     bool leftWhole = multiple && isWholeMultiple(function, operands[0]);
     bool rightWhole = multiple && isWholeMultiple(function, operands[1]);
@@ -95,7 +98,7 @@ ValueId Arithmetic::angleModuloTurns(ValueId angle, int depth) {
     if (left == operands[0] && right == operands[1]) {
       return angle;
     }
-    return builder_.binary(definition.opcode, left, right);
+    return builder_.binary(opcode, left, right);
   }
   default:
     return angle;

@@ -30,22 +30,25 @@ void PartLowering::checkStepDrift(const CutStmt& cut, const CurveTableEntry& ent
   }
   double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
   bool closed = (entry.geometry->point(entry.from) - entry.geometry->point(entry.to)).norm() < 1e-9;
-  for (std::size_t region = 0; region < entry.regionSteps.size(); ++region) {
+  std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
+  for (std::size_t region = 0; region < entry.regionSteps.size() && region < places.size();
+       ++region) {
     int steps = entry.regionSteps[region];
     bool runsOntoItsStart = closed && region + 1 == entry.regionSteps.size();
     // An arc's blocks end on points the host computes (whole turns: its start).
     if (steps < 2 || runsOntoItsStart || entry.arcRegion(region) != nullptr) {
       continue;
     }
-    auto [from, to] = entry.regionRange(region);
+    auto [from, to] = entry.regionRange(places[region]);
     double step = (to - from) / steps;
     double drift = steps * (controllerReading(step, digits) - step);
     if (!(drift > 0)) {
       continue;
     }
     double probe = (to - from) * 1e-6;
-    Eigen::Vector3d end = entry.geometry->point(entry.wholeParameter(region, to));
-    Eigen::Vector3d before = entry.geometry->point(entry.wholeParameter(region, to - probe));
+    Eigen::Vector3d end = entry.geometry->point(entry.wholeParameter(places[region], to));
+    Eigen::Vector3d before =
+        entry.geometry->point(entry.wholeParameter(places[region], to - probe));
     double movement = drift * (end - before).norm() / probe;
     if (movement > tolerance / 4) {
       fail(cut.span,

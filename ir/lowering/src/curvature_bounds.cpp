@@ -113,8 +113,8 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
     if (auto found = memo.find(scalar.value.index); found != memo.end()) {
       return found->second;
     }
-    // A copy: the arithmetic below appends instructions.
-    Instruction instruction = builder_.function().definition(scalar.value);
+    // A copy, without regions: the arithmetic below appends instructions.
+    Instruction instruction = withoutRegions(builder_.function().definition(scalar.value));
     std::vector<DerivativeBounds> operands;
     for (ValueId operand : instruction.operands) {
       std::optional<DerivativeBounds> own = bounds(Scalar::of(operand, ValueType::F64));

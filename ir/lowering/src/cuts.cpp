@@ -571,7 +571,9 @@ CurvePieceLayout PartLowering::pieceLayout(const CurvePiece& piece, double start
 
 void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
                                   const CutStmt& cut) {
-  std::size_t firstRegion = entry.regionCount();
+  // Counted only for a piece with knot spans: a path of many lines and arcs
+  // would count its regions once per piece.
+  std::size_t firstRegion = piece.spans.empty() ? 0 : entry.regionCount();
   for (std::size_t s = 0; s < piece.spans.size(); ++s) {
     if (piece.value->kind == CurveKind::Nurbs &&
         !spanLiteralsFit(piece.spans[s], cut, piece.transform.stretch())) {

@@ -34,8 +34,8 @@ std::optional<Scalar> ForwardDerivative::of(Scalar value) {
   if (auto found = derivatives_.find(value.value.index); found != derivatives_.end()) {
     return found->second;
   }
-  // A copy: the arithmetic below appends instructions.
-  Instruction instruction = builder_.function().definition(value.value);
+  // A copy, without regions: the arithmetic below appends instructions.
+  Instruction instruction = withoutRegions(builder_.function().definition(value.value));
   std::vector<Scalar> operands;
   for (ValueId operand : instruction.operands) {
     // A condition (a select's) has no derivative; its value picks one.

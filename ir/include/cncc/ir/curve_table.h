@@ -163,6 +163,15 @@ struct CurveTableEntry {
   std::pair<double, double> regionRange(std::size_t region) const;
   // The whole curve's parameter where a region's parameter is `local`.
   double wholeParameter(std::size_t region, double local) const;
+  // Each region's piece and span, found in one walk over the pieces (a
+  // lookup by region walks them each time: loops over the regions use these).
+  struct RegionPlace {
+    std::size_t piece = 0;
+    std::size_t span = 0;
+  };
+  std::vector<RegionPlace> regionPlaces() const;
+  std::pair<double, double> regionRange(const RegionPlace& place) const;
+  double wholeParameter(const RegionPlace& place, double local) const;
 
 private:
   // The piece a region belongs to and the region's span in it (0 for a

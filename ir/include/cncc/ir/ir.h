@@ -108,6 +108,21 @@ struct Instruction {
   SweepPass pass;
 };
 
+// A copy of the instruction without its regions (a loop's or a lap's can
+// hold thousands): what reading its operation and operands needs.
+inline Instruction withoutRegions(const Instruction& instruction) {
+  Instruction copy;
+  copy.opcode = instruction.opcode;
+  copy.operands = instruction.operands;
+  copy.result = instruction.result;
+  copy.number = instruction.number;
+  copy.index = instruction.index;
+  copy.text = instruction.text;
+  copy.span = instruction.span;
+  copy.pass = instruction.pass;
+  return copy;
+}
+
 struct Parameter {
   std::string name;
   double defaultValue = 0;
