@@ -302,8 +302,8 @@ INSTANTIATE_TEST_SUITE_P(EveryOperation, JitOpcodeTest,
                          });
 
 // A new operation in ir_ops.def needs a case here (and code in the JIT);
-// curve.lap and its region ends (curve.point, curve.arc, curve.walk) are expanded before the JIT and refused by
-// it (jit_error_test.cpp).
+// curve.lap and its regions' ends (curve.point, curve.arc, curve.walk) are
+// expanded before the JIT and refused by it (jit_error_test.cpp).
 TEST(JitOpcodes, EveryOperationOfTheIrIsTested) {
   std::set<Opcode> tested{Opcode::CurveLap, Opcode::CurvePoint, Opcode::CurveArc,
                           Opcode::CurveWalk};
