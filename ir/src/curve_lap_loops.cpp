@@ -92,17 +92,22 @@ private:
     return known->second;
   }
 
-  // i = 1 .. count, the region at from + i * step: a number where the range
-  // and count are, else computed in the loop.
-  void emitLoop(const Instruction& lap, std::size_t region, const RegionSteps& steps) {
+  // (to - from) / count: a number where the range and count are, else
+  // computed where it is asked.
+  Operand stepOf(const RegionSteps& steps) {
     bool numbers = steps.from.isNumber() && steps.to.isNumber() && steps.count.isNumber();
+    if (numbers) {
+      return {ValueId{}, (steps.to.number - steps.from.number) / steps.count.number};
+    }
+    return arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
+  }
+
+  // i = 1 .. count, the region at from + i * step.
+  void emitLoop(const Instruction& lap, std::size_t region, const RegionSteps& steps) {
     ValueId first = constant(1);
     ValueId last = valueOf(steps.count);
     ValueId index = beginLapLoop(lap, first, last);
-    Operand step =
-        numbers
-            ? Operand{ValueId{}, (steps.to.number - steps.from.number) / steps.count.number}
-            : arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
+    Operand step = stepOf(steps);
     Operand t = add(steps.from, multiply({index, 0}, step));
     index_ = index;
     replace(lap.result, valueOf(t));
@@ -143,8 +148,7 @@ private:
       return;
     }
     if (steps.count.isNumber() && steps.count.number <= largestUnrolledArc) {
-      Operand step =
-          arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
+      Operand step = stepOf(steps);
       for (double j = 1; j <= steps.count.number; ++j) {
         emitArcBlock(lap, arc,
                      arc.wholeTurns ? steps.from
@@ -156,8 +160,7 @@ private:
     }
     index_ = beginLapLoop(lap, constant(1), valueOf(steps.count));
     Operand index{index_, 0};
-    Operand step =
-        arithmetic(Opcode::Div, arithmetic(Opcode::Sub, steps.to, steps.from), steps.count);
+    Operand step = stepOf(steps);
     Operand start =
         arc.wholeTurns
             ? steps.from

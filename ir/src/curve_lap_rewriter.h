@@ -55,8 +55,7 @@ protected:
   virtual void writePoint(const Instruction& lap, const Instruction& point) = 0;
 
   void visit(const Instruction& instruction) final {
-    bool ends = instruction.opcode == Opcode::CurvePoint ||
-                instruction.opcode == Opcode::CurveArc || instruction.opcode == Opcode::CurveWalk;
+    bool ends = endsLapRegion(instruction.opcode);
     if (slicing_ && !ends && !kept_.contains(instructionIdOf(instruction))) {
       return; // not needed by the operands of the region's end being written
     }

@@ -36,15 +36,15 @@ std::size_t CurveTableEntry::regionOf(std::size_t piece, std::size_t span) const
   return region + span;
 }
 
-std::pair<const CurvePieceLayout*, std::size_t>
-CurveTableEntry::pieceOfRegion(std::size_t region) const {
-  for (const CurvePieceLayout& piece : pieces) {
-    if (region < piece.regionCount()) {
-      return {&piece, region};
+std::optional<CurveTableEntry::RegionPlace>
+CurveTableEntry::placeOfRegion(std::size_t region) const {
+  for (std::size_t piece = 0; piece < pieces.size(); ++piece) {
+    if (region < pieces[piece].regionCount()) {
+      return RegionPlace{piece, region};
     }
-    region -= piece.regionCount();
+    region -= pieces[piece].regionCount();
   }
-  return {nullptr, 0};
+  return std::nullopt;
 }
 
 std::vector<CurveTableEntry::RegionPlace> CurveTableEntry::regionPlaces() const {
@@ -58,11 +58,8 @@ std::vector<CurveTableEntry::RegionPlace> CurveTableEntry::regionPlaces() const 
 }
 
 std::pair<double, double> CurveTableEntry::regionRange(std::size_t region) const {
-  auto [piece, span] = pieceOfRegion(region);
-  if (piece == nullptr) {
-    return {0.0, 1.0};
-  }
-  return regionRange({static_cast<std::size_t>(piece - pieces.data()), span});
+  std::optional<RegionPlace> place = placeOfRegion(region);
+  return place ? regionRange(*place) : std::pair{0.0, 1.0};
 }
 
 std::pair<double, double> CurveTableEntry::regionRange(const RegionPlace& place) const {
@@ -74,11 +71,8 @@ std::pair<double, double> CurveTableEntry::regionRange(const RegionPlace& place)
 }
 
 double CurveTableEntry::wholeParameter(std::size_t region, double local) const {
-  auto [piece, span] = pieceOfRegion(region);
-  if (piece == nullptr) {
-    return to;
-  }
-  return wholeParameter({static_cast<std::size_t>(piece - pieces.data()), span}, local);
+  std::optional<RegionPlace> place = placeOfRegion(region);
+  return place ? wholeParameter(*place, local) : to;
 }
 
 double CurveTableEntry::wholeParameter(const RegionPlace& place, double local) const {

@@ -1,5 +1,7 @@
 #include "cncc/ir/register_allocation.h"
 
+#include "passes/rewriter.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -294,9 +296,7 @@ private:
   }
 
   std::optional<double> constantValue(ValueId value) const {
-    const Instruction& instruction = definition(value);
-    return instruction.opcode == Opcode::Const ? std::optional<double>(instruction.number)
-                                               : std::nullopt;
+    return passes::constantValue(function_, value);
   }
 
   // A counting loop from a constant whose index has one reader, a product

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <optional>
 #include <set>
+#include <span>
 
 namespace cncc::ir {
 
@@ -268,20 +269,25 @@ private:
 
   // Its table holds spline blocks (spline_move.h).
   void checkSpline(std::uint32_t table, const std::string& where) {
-    std::string why;
-    if (table >= function_.tables.size()) {
-      problem(fmt::format("{} names table {}, which does not exist", where, table));
-    } else if (!readSplineMoveTable(function_.tables[table], &why)) {
-      problem(fmt::format("{}: {}", where, why));
-    }
+    checkBlocksTable(table, where, [](std::span<const double> data, std::string* why) {
+      return readSplineMoveTable(data, why).has_value();
+    });
   }
 
   // Its table holds cubic spans (polynomial_move.h).
   void checkPolynomialSpans(std::uint32_t table, const std::string& where) {
+    checkBlocksTable(table, where, [](std::span<const double> data, std::string* why) {
+      return readPolynomialMoveTable(data, why).has_value();
+    });
+  }
+
+  // The table exists and `read` reads it (else says why not).
+  void checkBlocksTable(std::uint32_t table, const std::string& where,
+                        bool (*read)(std::span<const double>, std::string*)) {
     std::string why;
     if (table >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, table));
-    } else if (!readPolynomialMoveTable(function_.tables[table], &why)) {
+    } else if (!read(function_.tables[table], &why)) {
       problem(fmt::format("{}: {}", where, why));
     }
   }
@@ -305,11 +311,6 @@ private:
     if (hasVariable) {
       visible[instruction.result.index] = false;
     }
-  }
-
-  static bool endsLapRegion(Opcode opcode) {
-    return opcode == Opcode::CurvePoint || opcode == Opcode::CurveArc ||
-           opcode == Opcode::CurveWalk;
   }
 
   // A loop's variable and a curve.lap's parameter: visible in its regions only.

@@ -278,22 +278,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
 
   const ControllerSegment& first = planned->front();
   const ControllerSegment& last = planned->back();
-  auto drawnEndPoint = [&](const ControllerSegment& segment, bool atEnd) {
-    if (segment.symbolic != nullptr) {
-      return symbolicPointAt(*segment.symbolic, *curve.pieces[segment.piece].value,
-                             atEnd ? segment.end : segment.start);
-    }
-    double local = atEnd ? segment.to : segment.from;
-    if (segment.split) {
-      return movedSplitSpanPoint(segment, Scalar::of(local));
-    }
-    if (segment.isNurbs) {
-      return nurbsSegmentPoint(curve, segment, Scalar::of(local), cut);
-    }
-    return pointAt(curve, segment.piece, segment.span, Scalar::of(local), cut);
-  };
   auto endPoint = [&](const ControllerSegment& segment, bool atEnd) {
-    CurvePoint point = drawnEndPoint(segment, atEnd);
+    CurvePoint point = segmentEndPoint(curve, segment, atEnd, cut);
     return runtimeOffset_ ? offsetSegmentEnd(curve, segment, atEnd, point) : point;
   };
 
@@ -368,6 +354,23 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     builder_.endLoop();
   }
   return true;
+}
+
+// The drawn curve's point where the segment starts or ends.
+CurvePoint PartLowering::segmentEndPoint(const CutCurve& curve, const ControllerSegment& segment,
+                                         bool atEnd, const CutStmt& cut) {
+  if (segment.symbolic != nullptr) {
+    return symbolicPointAt(*segment.symbolic, *curve.pieces[segment.piece].value,
+                           atEnd ? segment.end : segment.start);
+  }
+  Scalar local = Scalar::of(atEnd ? segment.to : segment.from);
+  if (segment.split) {
+    return movedSplitSpanPoint(segment, local);
+  }
+  if (segment.isNurbs) {
+    return nurbsSegmentPoint(curve, segment, local, cut);
+  }
+  return pointAt(curve, segment.piece, segment.span, local, cut);
 }
 
 // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one

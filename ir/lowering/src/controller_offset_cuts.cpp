@@ -441,13 +441,7 @@ void PartLowering::emitOffsetSegment(const CutCurve& curve, const ControllerSegm
                   arithmetic_.value(arithmetic_.add(z, point.z)), feed);
   };
   if (segment.steps == 1) {
-    Scalar end = Scalar::of(segment.to);
-    CurvePoint point = segment.symbolic
-                           ? symbolicPointAt(*segment.symbolic, *piece.value, segment.end)
-                       : segment.split   ? movedSplitSpanPoint(segment, end)
-                       : segment.isNurbs ? nurbsSegmentPoint(curve, segment, end, cut)
-                                         : pointAt(curve, segment.piece, segment.span, end, cut);
-    move(offsetSegmentEnd(curve, segment, true, point));
+    move(offsetSegmentEnd(curve, segment, true, segmentEndPoint(curve, segment, true, cut)));
     return;
   }
   ValueId count = arithmetic_.value(stepsOf(segment));

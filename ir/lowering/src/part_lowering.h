@@ -538,6 +538,8 @@ private:
   symbolicList(const frontend::Expr& expression, const Bindings& bindings,
                const frontend::Environment& environment);
   const frontend::Expr* curveArgument(const frontend::CutStmt& cut, std::string_view name);
+  CurvePoint segmentEndPoint(const CutCurve& curve, const ControllerSegment& segment, bool atEnd,
+                             const frontend::CutStmt& cut);
   void emitOffsetSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
                          ValueId feed, const frontend::CutStmt& cut);
   std::optional<Scalar> polarStepCount(const SymbolicPiece& piece,

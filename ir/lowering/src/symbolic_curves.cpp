@@ -308,9 +308,7 @@ CurvePoint PartLowering::symbolicPointAt(const SymbolicPiece& piece, const Curve
     std::vector<Scalar> to = point("to");
     Scalar coordinates[3];
     for (int c = 0; c < 3; ++c) {
-      bool same = from[c].isConstant() == to[c].isConstant() &&
-                  (from[c].isConstant() ? from[c].constant == to[c].constant
-                                        : from[c].value == to[c].value);
+      bool same = from[c].sameAs(to[c]);
       bool atEnd = local.isConstant() && local.constant == 1;
       coordinates[c] =
           same || (local.isConstant() && local.constant == 0) ? from[c]

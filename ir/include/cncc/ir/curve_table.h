@@ -175,8 +175,8 @@ struct CurveTableEntry {
 
 private:
   // The piece a region belongs to and the region's span in it (0 for a
-  // piece without spans); null past the last region.
-  std::pair<const CurvePieceLayout*, std::size_t> pieceOfRegion(std::size_t region) const;
+  // piece without spans); nullopt past the last region.
+  std::optional<RegionPlace> placeOfRegion(std::size_t region) const;
 };
 
 } // namespace cncc::ir

@@ -108,6 +108,11 @@ struct Instruction {
   SweepPass pass;
 };
 
+// The operations that end a curve.lap's region (and appear nowhere else).
+inline bool endsLapRegion(Opcode opcode) {
+  return opcode == Opcode::CurvePoint || opcode == Opcode::CurveArc || opcode == Opcode::CurveWalk;
+}
+
 // A copy of the instruction without its regions (a loop's or a lap's can
 // hold thousands): what reading its operation and operands needs.
 inline Instruction withoutRegions(const Instruction& instruction) {
