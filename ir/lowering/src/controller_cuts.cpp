@@ -323,27 +323,20 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   builder_.rapid(startX, startY, safeValue);
   builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
                 feedValue);
-  if (runtimeOffset_) {
-    // Beside the curve, the tool's radius a parameter: loops written here
-    // (controller_offset_cuts.cpp), never a ramp.
-    for (const ControllerSegment& segment : *planned) {
-      emitOffsetSegment(curve, segment, z, feedValue, cut);
-      emitOffsetJoin(curve, segment, z, feedValue, cut);
-    }
-  } else {
-    // Each lap a curve.lap, which expand-controller-loops writes out.
-    SteppedLap lap = steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
-    if (ramp) {
-      // Descending from the pass above, in the pass loop: its lines have
-      // no pass number of their own.
-      PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
-      builder_.comment("ramp");
-      emitSteppedLap(curve, lap, *planned, arithmetic_.value(previousZ), arithmetic_.value(z),
-                     feedValue, cut);
-    }
-    ValueId height = arithmetic_.value(z);
-    emitSteppedLap(curve, lap, *planned, height, height, feedValue, cut);
+  // Each lap a curve.lap, which expand-controller-loops writes out; beside
+  // the curve, never a ramp (controller_offset_laps.cpp).
+  SteppedLap lap = runtimeOffset_ ? besideSteppedLap(cut, curve, *planned, budget)
+                                  : steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
+  if (ramp) {
+    // Descending from the pass above, in the pass loop: its lines have
+    // no pass number of their own.
+    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
+    builder_.comment("ramp");
+    emitSteppedLap(curve, lap, *planned, arithmetic_.value(previousZ), arithmetic_.value(z),
+                   feedValue, cut);
   }
+  ValueId height = arithmetic_.value(z);
+  emitSteppedLap(curve, lap, *planned, height, height, feedValue, cut);
   CurvePoint finish = endPoint(last, true);
   if (runtimeOffset_ && runtimeOffset_->closed &&
       runtimeOffset_->joins.back().kind == PieceJoin::CornerArc) {

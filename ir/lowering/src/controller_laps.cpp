@@ -215,11 +215,15 @@ void PartLowering::emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
                                   ValueId zTo, ValueId feed, const CutStmt& cut) {
   std::vector<ValueId> operands = {zFrom, zTo, feed};
   operands.insert(operands.end(), lap.computedSteps.begin(), lap.computedSteps.end());
-  std::size_t region = 0; // the regions are made in order, one per segment
-  emitCurveLapAt(curve, lap.table, std::move(operands),
-                 [&](std::size_t, std::size_t, Scalar local) {
-                   return steppedRegionPoint(curve, segments[region++], local, cut);
-                 });
+  // The regions are made in order: one per segment, or beside the curve
+  // one per segment and corner arc (controller_offset_laps.cpp).
+  bool beside = !lap.besideRegions.empty();
+  emitLapRegions(
+      lap.table, std::move(operands), beside ? lap.besideRegions.size() : segments.size(),
+      [&](std::size_t region, Scalar local) {
+        return beside ? besideRegionPoint(curve, segments, lap.besideRegions[region], local, cut)
+                      : steppedRegionPoint(curve, segments[region], local, cut);
+      });
 }
 
 } // namespace cncc::ir::lowering

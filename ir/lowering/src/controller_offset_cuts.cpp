@@ -134,17 +134,48 @@ PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom:
   return low;
 }
 
-bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledDistance) {
-  if (const Modifier* entry = findModifier(cut, "entry"); entry != nullptr && rampEntry(cut)) {
+// Whether a cut beside its curve whose tool radius is a number is cut with
+// the offset the controller computes: where that makes the program shorter
+// (a piece that is neither a line nor an arc, which the host cuts as
+// chords) and nothing asks for what only the host's offset gives (a ramp,
+// lead arcs, samples= or spacing=, spline blocks, fitted arcs).
+bool PartLowering::offsetOnControllerWanted(const CutStmt& cut, const CutCurve& curve) {
+  std::string method = methodOf(cut);
+  if (rampEntry(cut) || asksFittedArcs(cut) || !(method.empty() || method == "linear")) {
+    return false;
+  }
+  for (std::string_view name : {"lead", "samples", "spacing"}) {
+    if (findModifier(cut, name) != nullptr) {
+      return false;
+    }
+  }
+  for (const CurvePiece& piece : curve.pieces) {
+    if (piece.value->kind != CurveKind::Line && piece.value->kind != CurveKind::Arc) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// With `runtime` the tool's radius is a parameter; without, a number, and
+// the cut is lowered here only where offsetOnControllerWanted says so and
+// the controller's offset can follow the path (false otherwise).
+bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledDistance,
+                                            bool runtime) {
+  if (const Modifier* entry = findModifier(cut, "entry");
+      runtime && entry != nullptr && rampEntry(cut)) {
     unsupported(entry->span(), "entry=ramp beside a curve whose tool diameter is a parameter");
   }
   for (std::string_view name : {"lead", "samples", "spacing"}) {
-    if (const Modifier* modifier = findModifier(cut, name)) {
+    if (const Modifier* modifier = findModifier(cut, name); runtime && modifier != nullptr) {
       unsupported(modifier->span(),
                   fmt::format("{}= beside a curve whose tool diameter is a parameter", name));
     }
   }
   CutCurve curve = cutCurve(cut);
+  if (!runtime && !offsetOnControllerWanted(cut, curve)) {
+    return false;
+  }
   RuntimeOffset offset;
   offset.compiledDistance = compiledDistance;
   DrawnClearance drawn = drawnClearance(cut, movedPieces(curve));
@@ -166,22 +197,22 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     std::size_t after = (j + 1) % pieces.size();
     if (offset.joins[j].kind == PieceJoin::Crossing &&
         !(isLine(*pieces[j]) && isLine(*pieces[after]))) {
+      if (!runtime) {
+        return false;
+      }
       unsupported(cut.span, "a concave corner at a piece that is not a line, beside a curve "
                             "whose tool diameter is a parameter");
     }
   }
-  offset.radius = arithmetic_.multiply(number(*toolDiameter_), Scalar::of(0.5));
-  offset.distance =
-      compiledDistance > 0 ? offset.radius : arithmetic_.unary(Opcode::Neg, offset.radius);
-  offset.largestRadius = largestFittingRadius(pieces, compiledDistance, drawn);
-
-  alarmWhen(arithmetic_.binary(Opcode::Le, offset.radius, Scalar::of(0)),
-            "the tool diameter is not positive");
-  if (std::isfinite(offset.largestRadius)) {
-    // Printed with four decimals, rounded down: a radius at it is refused.
-    double limit = std::floor(offset.largestRadius * 1e4) / 1e4;
-    alarmWhen(arithmetic_.binary(Opcode::Ge, offset.radius, Scalar::of(limit)),
-              fmt::format("the tool radius must be below {:.4f} for this curve", limit));
+  if (runtime) {
+    offset.radius = arithmetic_.multiply(number(*toolDiameter_), Scalar::of(0.5));
+    offset.distance =
+        compiledDistance > 0 ? offset.radius : arithmetic_.unary(Opcode::Neg, offset.radius);
+    offset.largestRadius = largestFittingRadius(pieces, compiledDistance, drawn);
+    guardRuntimeRadius(offset);
+  } else {
+    offset.radius = Scalar::of(std::fabs(compiledDistance));
+    offset.distance = Scalar::of(compiledDistance);
   }
   runtimeOffset_ = std::move(offset);
   // Unset however the lowering leaves (an error, a retry with unrolling).
@@ -190,22 +221,39 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     ~Unset() { offset.reset(); }
   } unset{runtimeOffset_};
   bool lowered = lowerControllerCut(cut, curve);
-  if (!lowered) {
+  if (!lowered && runtime) {
     unsupported(cut.span, "this cut beside its curve with a tool diameter that is a parameter");
   }
-  return true;
+  return lowered;
+}
+
+// Before the cut: an alarm for a radius that is not positive, or not below
+// the largest the tool fits the curve with.
+void PartLowering::guardRuntimeRadius(const RuntimeOffset& offset) {
+  alarmWhen(arithmetic_.binary(Opcode::Le, offset.radius, Scalar::of(0)),
+            "the tool diameter is not positive");
+  if (std::isfinite(offset.largestRadius)) {
+    // Printed with four decimals, rounded down: a radius at it is refused.
+    double limit = std::floor(offset.largestRadius * 1e4) / 1e4;
+    alarmWhen(arithmetic_.binary(Opcode::Ge, offset.radius, Scalar::of(limit)),
+              fmt::format("the tool radius must be below {:.4f} for this curve", limit));
+  }
 }
 
 void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                                    double budget, const CutStmt& cut) {
   const RuntimeOffset& offset = *runtimeOffset_;
   double compiledRadius = std::fabs(offset.compiledDistance);
-  // Radii the step count is checked at against the exact offset.
-  std::vector<double> radii{compiledRadius / 4, compiledRadius};
-  double wide =
-      std::isfinite(offset.largestRadius) ? 0.9 * offset.largestRadius : 4 * compiledRadius;
-  if (wide > compiledRadius) {
-    radii.push_back(wide);
+  // Radii the step count is checked at against the exact offset (a radius
+  // that is a number: that one).
+  std::vector<double> radii{compiledRadius};
+  if (!offset.radius.isConstant()) {
+    radii.insert(radii.begin(), compiledRadius / 4);
+    double wide =
+        std::isfinite(offset.largestRadius) ? 0.9 * offset.largestRadius : 4 * compiledRadius;
+    if (wide > compiledRadius) {
+      radii.push_back(wide);
+    }
   }
   double measured = budget - options_.coordinateIncrement * literalShare;
   // The points asked of the exact offsets so far, over the cut.
@@ -239,6 +287,10 @@ void PartLowering::planOffsetStepCounts(const CutCurve& curve,
     if (segment.isNurbs) {
       from = piece.spans[segment.span].t0;
       to = piece.spans[segment.span].t1;
+    }
+    if (offset.radius.isConstant()) {
+      segment.steps = fewestOffsetSteps(moved, from, to, measured, cut, evaluated);
+      continue;
     }
     double drawn = segment.steps;
     int samples = std::min(largestGrowthSamples, growthSamplesPerStep * segment.steps);
@@ -282,6 +334,26 @@ void PartLowering::planOffsetStepCounts(const CutCurve& curve,
         arithmetic_.multiply(Scalar::of(drawn), arithmetic_.unary(Opcode::Sqrt, share)));
     segment.steps = 0;
   }
+}
+
+// The fewest uniform steps over [from, to] within `measured` of the offset
+// of `piece` at the compiled distance.
+int PartLowering::fewestOffsetSteps(const std::shared_ptr<const geom::Curve>& piece, double from,
+                                    double to, double measured, const CutStmt& cut,
+                                    std::size_t& evaluated) {
+  double distance = runtimeOffset_->compiledDistance;
+  geom::OffsetCurve offsetCurve(piece, distance);
+  geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
+  EvaluationsCharged charged{evaluated, exact};
+  int steps = fewestUniformSteps(exact, from, to, measured);
+  if (steps == 0) {
+    fail(cut.span,
+         fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
+                     "steps on one piece within its tolerance",
+                     std::fabs(distance), maximumStepsPerPiece),
+         DiagnosticKind::ProgramTooLarge);
+  }
+  return steps;
 }
 
 Scalar PartLowering::plusScaled(Scalar base, Scalar value, Scalar factor) {
@@ -346,136 +418,6 @@ CurvePoint PartLowering::offsetAlongDerivative(const CurvePoint& point, ValueId 
   Scalar share = arithmetic_.binary(Opcode::Div, runtimeOffset_->distance, speed);
   return {arithmetic_.binary(Opcode::Sub, point.x, times(share, *dy)),
           arithmetic_.add(point.y, times(share, *dx)), point.z};
-}
-
-ArcPath PartLowering::offsetArcPath(std::size_t piece, ArcPath drawn, const CutStmt& cut) {
-  const auto* arc = dynamic_cast<const geom::ArcCurve*>(runtimeOffset_->pieces[piece].get());
-  if (arc == nullptr) {
-    unsupported(cut.span, "an arc moved by a map that is not a rotation and a scale, beside a "
-                          "curve whose tool diameter is a parameter");
-  }
-  // Left of a counter-clockwise arc is towards its centre.
-  Scalar inwards = arc->sweep() > 0 ? runtimeOffset_->distance
-                                    : arithmetic_.unary(Opcode::Neg, runtimeOffset_->distance);
-  Scalar share = times(inwards, Scalar::of(1 / arc->radius()));
-  Scalar kept = arithmetic_.binary(Opcode::Sub, Scalar::of(1), share);
-  ArcPath path = drawn;
-  path.radius = arithmetic_.binary(Opcode::Sub, Scalar::of(arc->radius()), inwards);
-  path.pointAt = [this, drawn, share](Scalar fraction) {
-    CurvePoint point = drawn.pointAt(fraction);
-    CurvePoint centre = drawn.toCentre(fraction);
-    return CurvePoint{plusScaled(point.x, share, centre.x), plusScaled(point.y, share, centre.y),
-                      point.z};
-  };
-  path.toCentre = [this, drawn, kept](Scalar fraction) {
-    CurvePoint centre = drawn.toCentre(fraction);
-    return CurvePoint{times(kept, centre.x), times(kept, centre.y), centre.z};
-  };
-  return path;
-}
-
-void PartLowering::emitOffsetJoin(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
-                                  ValueId feed, const CutStmt& cut) {
-  const RuntimeOffset& offset = *runtimeOffset_;
-  const CurvePiece& piece = curve.pieces[segment.piece];
-  bool endsPiece = !segment.isNurbs || segment.span + 1 == piece.spans.size();
-  if (!endsPiece || segment.piece >= offset.joins.size()) {
-    return;
-  }
-  const PieceJoin& join = offset.joins[segment.piece];
-  if (join.kind != PieceJoin::CornerArc) {
-    return;
-  }
-  // An arc of the tool's radius about the corner, from d n1 to d n2.
-  Eigen::Vector3d corner = join.corner;
-  Eigen::Vector2d normal = join.before;
-  double turn = join.turn;
-  auto radial = [this, normal, turn](Scalar fraction) {
-    Scalar angle = times(fraction, Scalar::of(turn));
-    Scalar cosine = angle.isConstant() ? Scalar::of(std::cos(angle.constant))
-                                       : arithmetic_.unary(Opcode::Cos, angle);
-    Scalar sine = angle.isConstant() ? Scalar::of(std::sin(angle.constant))
-                                     : arithmetic_.unary(Opcode::Sin, angle);
-    Scalar x = arithmetic_.binary(Opcode::Sub, times(cosine, Scalar::of(normal.x())),
-                                  times(sine, Scalar::of(normal.y())));
-    Scalar y =
-        arithmetic_.add(times(sine, Scalar::of(normal.x())), times(cosine, Scalar::of(normal.y())));
-    return std::pair{x, y}; // times the distance
-  };
-  ArcPath path;
-  path.sweep = Scalar::of(turn);
-  path.turnsCounterClockwise = turn > 0;
-  path.radius = offset.radius;
-  Scalar distance = offset.distance;
-  path.pointAt = [this, radial, corner, distance](Scalar fraction) {
-    auto [x, y] = radial(fraction);
-    return CurvePoint{plusScaled(Scalar::of(corner.x()), distance, x),
-                      plusScaled(Scalar::of(corner.y()), distance, y), Scalar::of(corner.z())};
-  };
-  path.toCentre = [this, radial, distance](Scalar fraction) {
-    auto [x, y] = radial(fraction);
-    Scalar minus = arithmetic_.unary(Opcode::Neg, distance);
-    return CurvePoint{plusScaled(Scalar::of(0), minus, x), plusScaled(Scalar::of(0), minus, y),
-                      Scalar::of(0)};
-  };
-  emitArc(
-      path, [z](Scalar) { return z; }, feed, cut);
-}
-
-// One piece (or knot span) of a cut beside its curve at height z: an arc
-// as move.arc blocks on its offset radius, a piece of one step a feed to
-// its end's offset, another a loop whose point is moved along the normal
-// of its derivative in the loop's index.
-void PartLowering::emitOffsetSegment(const CutCurve& curve, const ControllerSegment& segment,
-                                     Scalar z, ValueId feed, const CutStmt& cut) {
-  const CurvePiece& piece = curve.pieces[segment.piece];
-  if (segment.isArc) {
-    ArcPath path = segment.symbolic != nullptr ? symbolicArcPath(*segment.symbolic, *piece.value)
-                                               : constantArcPath(curve, segment.piece, cut);
-    emitArc(
-        offsetArcPath(segment.piece, std::move(path), cut), [z](Scalar) { return z; }, feed, cut);
-    return;
-  }
-  auto move = [&](const CurvePoint& point) {
-    builder_.feed(arithmetic_.value(point.x), arithmetic_.value(point.y),
-                  arithmetic_.value(arithmetic_.add(z, point.z)), feed);
-  };
-  if (segment.steps == 1) {
-    move(offsetSegmentEnd(curve, segment, true, segmentEndPoint(curve, segment, true, cut)));
-    return;
-  }
-  ValueId count = arithmetic_.value(stepsOf(segment));
-  ValueId i = builder_.beginLoop(builder_.constant(1), count, LoopRole::Curve);
-  Scalar index = Scalar::of(i, ValueType::F64);
-  // The tool centre beside each point, along the derivative in i.
-  auto moveBeside = [&](const CurvePoint& point) { move(offsetAlongDerivative(point, i, cut)); };
-  if (segment.symbolic != nullptr) {
-    Scalar step = arithmetic_.binary(
-        Opcode::Div, arithmetic_.binary(Opcode::Sub, segment.end, segment.start),
-        segment.steps > 0 ? Scalar::of(segment.steps) : Scalar::of(count, ValueType::F64));
-    Scalar t = arithmetic_.add(segment.start, arithmetic_.multiply(index, step));
-    moveBeside(symbolicPointAt(*segment.symbolic, *piece.value, t));
-  } else if (segment.isNurbs && !segment.split) {
-    // u = i / steps, written as a product the printer can step by.
-    geom::PolynomialSpan span = cleanedSpan(piece.spans[segment.span]);
-    Scalar u = segment.steps > 0
-                   ? arithmetic_.multiply(index, Scalar::of(1.0 / segment.steps))
-                   : arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64));
-    CurvePoint point = spanPointAt(span, u);
-    moveBeside(segment.moved != nullptr ? applied(*segment.moved, point)
-                                        : transformed(piece.transform, point));
-  } else if (segment.split) {
-    moveBeside(movedSplitSpanPoint(
-        segment, arithmetic_.binary(Opcode::Div, index, Scalar::of(count, ValueType::F64))));
-  } else {
-    Scalar step = segment.steps > 0
-                      ? Scalar::of((segment.to - segment.from) / segment.steps)
-                      : arithmetic_.binary(Opcode::Div, Scalar::of(segment.to - segment.from),
-                                           Scalar::of(count, ValueType::F64));
-    Scalar t = arithmetic_.add(Scalar::of(segment.from), arithmetic_.multiply(index, step));
-    moveBeside(pointAt(curve, segment.piece, segment.span, t, cut));
-  }
-  builder_.endLoop();
 }
 
 } // namespace cncc::ir::lowering

@@ -603,27 +603,38 @@ PartLowering::LapPointOf PartLowering::curvePointOf(const CutCurve& curve, const
 void PartLowering::emitCurveLapAt(const CutCurve& curve, std::uint32_t table,
                                   std::vector<ValueId> operands, const LapPointOf& pointOf,
                                   std::size_t firstPiece, std::size_t endPiece) {
-  std::vector<ValueId> computedSteps(operands.begin() + 3, operands.end());
-  Scalar local = Scalar::of(
-      builder_.beginCurveLap(table, operands[0], operands[1], operands[2], computedSteps),
-      ValueType::F64);
+  std::vector<std::pair<std::size_t, std::size_t>> places; // piece and span of each region
   endPiece = std::min(endPiece, curve.pieces.size());
   for (std::size_t p = firstPiece; p < endPiece; ++p) {
     std::size_t spans = std::max<std::size_t>(curve.pieces[p].spans.size(), 1);
     for (std::size_t s = 0; s < spans; ++s) {
-      LapRegionPoint region = pointOf(p, s, local);
-      const CurvePoint& point = region.point;
-      ValueId x = arithmetic_.value(point.x);
-      ValueId y = arithmetic_.value(point.y);
-      ValueId z = arithmetic_.value(point.z);
-      if (region.toCentre) {
-        ValueId i = arithmetic_.value(region.toCentre->x);
-        builder_.curveArc(x, y, z, i, arithmetic_.value(region.toCentre->y));
-      } else if (region.walkStep) {
-        builder_.curveWalk(x, y, z, arithmetic_.value(*region.walkStep));
-      } else {
-        builder_.curvePoint(x, y, z);
-      }
+      places.emplace_back(p, s);
+    }
+  }
+  emitLapRegions(table, std::move(operands), places.size(), [&](std::size_t region, Scalar local) {
+    return pointOf(places[region].first, places[region].second, local);
+  });
+}
+
+void PartLowering::emitLapRegions(std::uint32_t table, std::vector<ValueId> operands,
+                                  std::size_t regions, const RegionPointOf& pointOf) {
+  std::vector<ValueId> computedSteps(operands.begin() + 3, operands.end());
+  Scalar local = Scalar::of(
+      builder_.beginCurveLap(table, operands[0], operands[1], operands[2], computedSteps),
+      ValueType::F64);
+  for (std::size_t r = 0; r < regions; ++r) {
+    LapRegionPoint region = pointOf(r, local);
+    const CurvePoint& point = region.point;
+    ValueId x = arithmetic_.value(point.x);
+    ValueId y = arithmetic_.value(point.y);
+    ValueId z = arithmetic_.value(point.z);
+    if (region.toCentre) {
+      ValueId i = arithmetic_.value(region.toCentre->x);
+      builder_.curveArc(x, y, z, i, arithmetic_.value(region.toCentre->y));
+    } else if (region.walkStep) {
+      builder_.curveWalk(x, y, z, arithmetic_.value(*region.walkStep));
+    } else {
+      builder_.curvePoint(x, y, z);
     }
   }
 }

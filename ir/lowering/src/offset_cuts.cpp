@@ -355,8 +355,11 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     lowerCompensatedCut(cut, *comp, distance);
     return true;
   }
-  if (options_.controllerLoops && !parametersOf(*toolDiameter_).empty()) {
-    return lowerControllerOffsetCut(cut, distance);
+  if (options_.controllerLoops) {
+    bool runtime = !parametersOf(*toolDiameter_).empty();
+    if (lowerControllerOffsetCut(cut, distance, runtime)) {
+      return true;
+    }
   }
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
@@ -482,15 +485,19 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
   return false;
 }
 
-std::optional<std::vector<geom::ArcSegment>>
-PartLowering::fittedOffsetArcs(const CutStmt& cut, const geom::Curve& offset) {
-  CutCurve stand{{}, std::shared_ptr<const geom::Curve>(&offset, [](const geom::Curve*) {}), {}};
+bool PartLowering::asksFittedArcs(const CutStmt& cut) {
   std::optional<bool> wanted;
   if (const Expr* arcs = modifierValue(cut, "arcs");
       arcs != nullptr && arcs->kind == ExprKind::Bool) {
     wanted = as<BoolExpr>(*arcs).value;
   }
-  if (!options_.arcBlocks || !wanted.value_or(options_.arcsOnEveryCut)) {
+  return options_.arcBlocks && wanted.value_or(options_.arcsOnEveryCut);
+}
+
+std::optional<std::vector<geom::ArcSegment>>
+PartLowering::fittedOffsetArcs(const CutStmt& cut, const geom::Curve& offset) {
+  CutCurve stand{{}, std::shared_ptr<const geom::Curve>(&offset, [](const geom::Curve*) {}), {}};
+  if (!asksFittedArcs(cut)) {
     return std::nullopt;
   }
   std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, stand);

@@ -326,6 +326,10 @@ private:
   void emitCurveLapAt(const CutCurve& curve, std::uint32_t table, std::vector<ValueId> operands,
                       const LapPointOf& pointOf, std::size_t firstPiece = 0,
                       std::size_t endPiece = SIZE_MAX);
+  // The same for a lap of `regions` regions, region r computing `pointOf(r, local)`.
+  using RegionPointOf = std::function<LapRegionPoint(std::size_t region, Scalar local)>;
+  void emitLapRegions(std::uint32_t table, std::vector<ValueId> operands, std::size_t regions,
+                      const RegionPointOf& pointOf);
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before any point is computed: the curve and the depth within the
@@ -422,6 +426,8 @@ private:
                                             const geom::Curve& offset, double distance);
   bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
                             const std::shared_ptr<const geom::Curve>& offset);
+  // arcs=true, or --arcs on a target that prints arcs, without arcs=false.
+  bool asksFittedArcs(const frontend::CutStmt& cut);
   std::optional<std::vector<geom::ArcSegment>> fittedOffsetArcs(const frontend::CutStmt& cut,
                                                                 const geom::Curve& offset);
   // The chords' ends after the first, each with its share of the lap's
@@ -483,9 +489,16 @@ private:
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
   // A lap cut in steps: its curve table entry and the ranges and counts of
   // its regions whose steps the program computes.
+  // Beside the curve, each region is a segment's offset or the arc about
+  // the convex corner of a join (controller_offset_laps.cpp).
+  struct BesideRegion {
+    std::optional<std::size_t> segment;
+    std::size_t join = 0;
+  };
   struct SteppedLap {
     std::uint32_t table = 0;
     std::vector<ValueId> computedSteps;
+    std::vector<BesideRegion> besideRegions = {};
   };
   // An arc segment's region: its blocks in the entry, their count an
   // operand where the program computes it or the arc is symbolic.
@@ -503,7 +516,12 @@ private:
   void emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,
                       const std::vector<ControllerSegment>& segments, ValueId zFrom, ValueId zTo,
                       ValueId feed, const frontend::CutStmt& cut);
-  bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance);
+  bool offsetOnControllerWanted(const frontend::CutStmt& cut, const CutCurve& curve);
+  bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance,
+                                bool runtime);
+  void guardRuntimeRadius(const RuntimeOffset& offset);
+  int fewestOffsetSteps(const std::shared_ptr<const geom::Curve>& piece, double from, double to,
+                        double measured, const frontend::CutStmt& cut, std::size_t& evaluated);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);
   void planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
@@ -520,9 +538,17 @@ private:
                               const CurvePoint& point);
   CurvePoint offsetAlongDerivative(const CurvePoint& point, ValueId variable,
                                    const frontend::CutStmt& cut);
-  ArcPath offsetArcPath(std::size_t piece, ArcPath drawn, const frontend::CutStmt& cut);
-  void emitOffsetJoin(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
-                      ValueId feed, const frontend::CutStmt& cut);
+  // controller_offset_laps.cpp
+  SteppedLap besideSteppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
+                              const std::vector<ControllerSegment>& segments, double budget);
+  LapRegionPoint besideRegionPoint(const CutCurve& curve,
+                                   const std::vector<ControllerSegment>& segments,
+                                   const BesideRegion& region, Scalar local,
+                                   const frontend::CutStmt& cut);
+  LapRegionPoint offsetArcRegionPoint(const CutCurve& curve, const ControllerSegment& segment,
+                                      Scalar local, const frontend::CutStmt& cut);
+  LapRegionPoint cornerArcRegionPoint(const PieceJoin& join, Scalar fraction);
+  CurvePoint pointBetween(const CurvePoint& from, const CurvePoint& to, Scalar fraction);
   std::optional<std::vector<ControllerSegment>>
   planControllerSegments(const CutCurve& curve, const frontend::CutStmt& cut, double budget,
                          const std::vector<SymbolicPiece>* symbolic,
@@ -540,8 +566,6 @@ private:
   const frontend::Expr* curveArgument(const frontend::CutStmt& cut, std::string_view name);
   CurvePoint segmentEndPoint(const CutCurve& curve, const ControllerSegment& segment, bool atEnd,
                              const frontend::CutStmt& cut);
-  void emitOffsetSegment(const CutCurve& curve, const ControllerSegment& segment, Scalar z,
-                         ValueId feed, const frontend::CutStmt& cut);
   std::optional<Scalar> polarStepCount(const SymbolicPiece& piece,
                                        const frontend::CurveValue& value, double budget);
   using SymbolicList = std::vector<std::optional<Lowered>>;

@@ -269,14 +269,18 @@ std::vector<Scalar> PartLowering::symbolicPoint(const SymbolicPiece& piece, std:
 CurvePoint PartLowering::symbolicLineRegionPoint(const SymbolicPiece& piece, Scalar local) {
   std::vector<Scalar> from = symbolicPoint(piece, "from");
   std::vector<Scalar> to = symbolicPoint(piece, "to");
-  Scalar rest = arithmetic_.binary(Opcode::Sub, Scalar::of(1), local);
-  Scalar coordinates[3];
-  for (int c = 0; c < 3; ++c) {
-    coordinates[c] = from[c].sameAs(to[c])
-                         ? from[c]
-                         : arithmetic_.add(times(from[c], rest), times(to[c], local));
-  }
-  return applied(piece.transform, {coordinates[0], coordinates[1], coordinates[2]});
+  return applied(piece.transform,
+                 pointBetween({from[0], from[1], from[2]}, {to[0], to[1], to[2]}, local));
+}
+
+// from (1 - fraction) + to fraction, a coordinate the two share as it is.
+CurvePoint PartLowering::pointBetween(const CurvePoint& from, const CurvePoint& to,
+                                      Scalar fraction) {
+  Scalar rest = arithmetic_.binary(Opcode::Sub, Scalar::of(1), fraction);
+  auto between = [&](const Scalar& a, const Scalar& b) {
+    return a.sameAs(b) ? a : arithmetic_.add(times(a, rest), times(b, fraction));
+  };
+  return {between(from.x, to.x), between(from.y, to.y), between(from.z, to.z)};
 }
 
 CurvePoint PartLowering::symbolicPointAt(const SymbolicPiece& piece, const CurveValue& value,

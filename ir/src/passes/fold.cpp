@@ -2,7 +2,9 @@
 //
 // The rule for identities: one is used only when it gives the same bits as
 // the operation for every input the operand can hold. So `x + -0 -> x`,
-// `x - 0 -> x`, `x * 1`, `x / 1`, `-(-x)`, `min(x, x)` always apply, but
+// `x - 0 -> x`, `x * 1`, `x / 1`, `-(-x)`, `min(x, x)` always apply, and so do
+// `x * -1 -> -x`, `a + -b -> a - b`, `a - -b -> a + b` and `a + b * -c ->
+// a - b * c`; but
 //   x + 0  -> x   only when x is known not to be -0 (-0 + 0 is +0, and the
 //                 sign of a zero reaches atan2 and division);
 //   x * 0  -> 0   only when x is known finite and not negative (inf * 0 is
@@ -131,14 +133,21 @@ private:
   ValueId simplified(const Instruction& instruction, const std::vector<ValueId>& operands) {
     switch (instruction.opcode) {
     case Opcode::Add:
-      return simplifiedAdd(operands[0], operands[1]);
+      return simplifiedAdd(instruction, operands[0], operands[1]);
     case Opcode::Sub:
       if (isConstant(operands[1], 0.0)) {
         return operands[0];
       }
+      if (definition(operands[1]).opcode == Opcode::Neg) {
+        return rewritten(instruction, Opcode::Add,
+                         {operands[0], definition(operands[1]).operands[0]});
+      }
+      if (ValueId product = negatedProduct(instruction, operands[1]); product.valid()) {
+        return rewritten(instruction, Opcode::Add, {operands[0], product});
+      }
       return operands[0] == operands[1] && facts(operands[0]).finite ? constant(0.0) : ValueId{};
     case Opcode::Mul:
-      return simplifiedMultiply(operands[0], operands[1]);
+      return simplifiedMultiply(instruction, operands[0], operands[1]);
     case Opcode::Div:
       return isConstant(operands[1], 1.0) ? operands[0] : ValueId{};
     case Opcode::Neg:
@@ -159,19 +168,59 @@ private:
     return simplifiedLogic(instruction.opcode, operands);
   }
 
-  ValueId simplifiedAdd(ValueId left, ValueId right) {
+  // The same operation as `instruction` (its span and pass) with another opcode.
+  ValueId rewritten(const Instruction& instruction, Opcode opcode, std::vector<ValueId> operands) {
+    Instruction other = instruction;
+    other.opcode = opcode;
+    return emit(other, std::move(operands));
+  }
+
+  // a + -b and -b + a are a - b, a + b * -c and b * -c + a are a - b * c:
+  // the same bits for every a and b.
+  ValueId simplifiedAdd(const Instruction& instruction, ValueId left, ValueId right) {
     for (auto [value, other] : {std::pair{left, right}, std::pair{right, left}}) {
       if (isConstant(other, -0.0) || (isConstant(other, 0.0) && facts(value).nonNegative)) {
         return value;
+      }
+      if (definition(other).opcode == Opcode::Neg) {
+        return rewritten(instruction, Opcode::Sub, {value, definition(other).operands[0]});
+      }
+    }
+    for (auto [value, other] : {std::pair{left, right}, std::pair{right, left}}) {
+      if (ValueId product = negatedProduct(instruction, other); product.valid()) {
+        return rewritten(instruction, Opcode::Sub, {value, product});
       }
     }
     return {};
   }
 
-  ValueId simplifiedMultiply(ValueId left, ValueId right) {
+  // b * c for a product b * -c of a constant -c < 0: a + b * -c is a - b * c
+  // and a - b * -c is a + b * c, bit for bit (negation is exact).
+  ValueId negatedProduct(const Instruction& instruction, ValueId value) {
+    const Instruction& product = definition(value);
+    if (product.opcode != Opcode::Mul) {
+      return {};
+    }
+    for (auto [factor, other] : {std::pair{product.operands[1], product.operands[0]},
+                                 std::pair{product.operands[0], product.operands[1]}}) {
+      std::optional<double> number = constantValue(output_, factor);
+      if (number && std::signbit(*number) && !std::isnan(*number)) {
+        Instruction positive = instruction;
+        positive.opcode = Opcode::Mul;
+        return emit(positive, {other, constant(-*number)});
+      }
+    }
+    return {};
+  }
+
+  // x * -1 is -x, bit for bit.
+  ValueId simplifiedMultiply(const Instruction& instruction, ValueId left, ValueId right) {
     for (auto [value, other] : {std::pair{left, right}, std::pair{right, left}}) {
       if (isConstant(other, 1.0)) {
         return value;
+      }
+      if (isConstant(other, -1.0)) {
+        return rewritten(instruction, Opcode::Neg, {value});
       }
       ValueFacts known = facts(value);
       if (isConstant(other, 0.0) && known.finite && known.nonNegative) {

@@ -49,7 +49,7 @@ private:
       foldTo(instruction, *folded);
       return;
     }
-    ValueId same = identity(instruction.opcode, operands);
+    ValueId same = identity(instruction, operands);
     if (same.valid()) {
       replace(instruction.result, same);
       markChanged();
@@ -105,17 +105,23 @@ private:
     markChanged();
   }
 
-  // x+0, 0+x, x-0, x*1, 1*x and x/1 are x; x*0 and 0*x are a new 0.
-  ValueId identity(Opcode opcode, const std::vector<ValueId>& operands) {
+  // x+0, 0+x, x-0, x*1, 1*x and x/1 are x; x*0 and 0*x are a new 0; 0-x
+  // is a new -x.
+  ValueId identity(const Instruction& instruction, const std::vector<ValueId>& operands) {
     if (operands.size() != 2) {
       return {};
     }
     ValueId left = operands[0];
     ValueId right = operands[1];
-    switch (opcode) {
+    switch (instruction.opcode) {
     case Opcode::Add:
       return isNumber(left, 0) ? right : isNumber(right, 0) ? left : ValueId{};
     case Opcode::Sub:
+      if (isNumber(left, 0)) {
+        Instruction negation = instruction;
+        negation.opcode = Opcode::Neg;
+        return emit(negation, {right});
+      }
       return isNumber(right, 0) ? left : ValueId{};
     case Opcode::Mul:
       if (isNumber(left, 0) || isNumber(right, 0)) {

@@ -65,6 +65,13 @@ TEST(PassesFoldFiniteTest, AddingOrSubtractingZeroAndMultiplyingOrDividingByOneI
   }
 }
 
+// 0 - x is -x here (fold keeps it: 0 - 0 is +0, -0 is -0).
+TEST(PassesFoldFiniteTest, ZeroMinusAValueIsItsNegation) {
+  std::string folded = foldedText(withParameter("sub %c, %x", "0"));
+  EXPECT_THAT(folded, HasSubstr("neg %0"));
+  EXPECT_THAT(folded, Not(HasSubstr("sub")));
+}
+
 // `fold` keeps x + 0 (x may be -0) and x * 0 (x may be infinite); on a
 // controller's finite numbers without a sign of zero they are x and 0.
 TEST(PassesFoldFiniteTest, WhatFoldKeepsForSignedZerosAndInfinitiesFoldsHere) {
@@ -86,7 +93,7 @@ TEST(PassesFoldFiniteTest, WhatFoldKeepsForSignedZerosAndInfinitiesFoldsHere) {
 
 TEST(PassesFoldFiniteTest, OperationsThatAreNotIdentitiesStay) {
   for (auto [operation, constant] :
-       {std::pair{"sub %c, %x", "0"}, std::pair{"div %c, %x", "1"}, std::pair{"div %x, %c", "0"},
+       {std::pair{"sub %c, %x", "1"}, std::pair{"div %c, %x", "1"}, std::pair{"div %x, %c", "0"},
         std::pair{"add %x, %c", "1"}, std::pair{"mul %x, %c", "2"}, std::pair{"pow %x, %c", "1"},
         std::pair{"min %x, %c", "0"}}) {
     bool changed = true;

@@ -88,6 +88,80 @@ TEST(PassesFoldTest, FoldedValuesAreTheInterpretersBitForBit) {
   EXPECT_GT(folded, 1000);
 }
 
+// a + -b, -b + a, a - -b, x * -1, a + b * -c, b * -c + a and a - b * -c
+// are rewritten
+// as a - b, a + b, -x and a -/+ b * c: the same bits for every a and b the
+// parameters hold (signed zeros, infinities and NaN included).
+TEST(PassesFoldTest, NegationsBecomeSubtractionsBitForBit) {
+  enum Form {
+    PlusNegated,
+    NegatedPlus,
+    MinusNegated,
+    TimesMinusOne,
+    PlusProduct,
+    ProductPlus,
+    MinusProduct
+  };
+  auto build = [](Form form, double a, double b) {
+    FunctionBuilder builder("f");
+    ValueId left = builder.parameter(builder.addParameter("a", a));
+    ValueId right = builder.parameter(builder.addParameter("b", b));
+    ValueId negated = builder.unary(Opcode::Neg, right);
+    ValueId product = builder.binary(Opcode::Mul, right, builder.constant(-2.5));
+    ValueId result;
+    switch (form) {
+    case PlusNegated:
+      result = builder.binary(Opcode::Add, left, negated);
+      break;
+    case NegatedPlus:
+      result = builder.binary(Opcode::Add, negated, left);
+      break;
+    case MinusNegated:
+      result = builder.binary(Opcode::Sub, left, negated);
+      break;
+    case TimesMinusOne:
+      result = builder.binary(Opcode::Mul, builder.constant(-1), left);
+      break;
+    case PlusProduct:
+      result = builder.binary(Opcode::Add, left, product);
+      break;
+    case ProductPlus:
+      result = builder.binary(Opcode::Add, product, left);
+      break;
+    case MinusProduct:
+      result = builder.binary(Opcode::Sub, left, product);
+      break;
+    }
+    ValueId zero = builder.constant(0);
+    builder.feed(result, zero, zero, zero);
+    return builder.finish();
+  };
+  for (Form form : {PlusNegated, NegatedPlus, MinusNegated, TimesMinusOne, PlusProduct, ProductPlus,
+                    MinusProduct}) {
+    Function sample = build(form, 1, 2);
+    foldConstants(sample);
+    eliminateDeadCode(sample);
+    std::string text = printFunction(sample);
+    EXPECT_THAT(text, Not(HasSubstr("-1\n"))) << text;
+    EXPECT_THAT(text, Not(HasSubstr("-2.5"))) << text;
+    if (form != TimesMinusOne) {
+      EXPECT_THAT(text, Not(HasSubstr("neg"))) << text;
+    }
+    for (double a : inputs) {
+      for (double b : inputs) {
+        Function function = build(form, a, b);
+        double before = interpret(function).events[0].x;
+        foldConstants(function);
+        ASSERT_TRUE(verifyFunction(function).empty());
+        double after = interpret(function).events[0].x;
+        EXPECT_TRUE(std::bit_cast<std::uint64_t>(before) == std::bit_cast<std::uint64_t>(after) ||
+                    (std::isnan(before) && std::isnan(after)))
+            << text << " at a = " << a << ", b = " << b;
+      }
+    }
+  }
+}
+
 TEST(PassesFoldTest, NonFiniteResultsStayOperations) {
   Function function = oneOperation(Opcode::Div, 1, 0, false);
   foldConstants(function);

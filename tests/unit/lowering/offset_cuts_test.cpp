@@ -10,11 +10,15 @@
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_curve.h"
 #include "cncc/ir/interpreter.h"
+#include "cncc/ir/passes.h"
 #include "cncc/ir/printer.h"
+#include "cncc/ir/verifier.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -187,6 +191,131 @@ TEST(OffsetCuts, ControllerOffsetsCheckTheRadiusAndGrowTheirSteps) {
   std::size_t thin = feeds("0.1");
   std::size_t wide = feeds("4.6");
   EXPECT_GT(static_cast<double>(wide), 1.2 * static_cast<double>(thin));
+}
+
+// The cut's feeds at z = 0 (the plunge's end first).
+std::vector<Eigen::Vector3d> levelFeeds(const ToolPath& path) {
+  std::vector<Eigen::Vector3d> points;
+  for (const MachineEvent& event : path.events) {
+    if (event.kind == MachineEvent::Kind::Feed && event.z == 0) {
+      points.emplace_back(event.x, event.y, 0);
+    }
+  }
+  return points;
+}
+
+// The same events, every number to the last bit (centres included).
+void expectSameEvents(const ToolPath& before, const ToolPath& after, const std::string& name) {
+  ASSERT_EQ(before.events.size(), after.events.size()) << name;
+  for (std::size_t i = 0; i < before.events.size(); ++i) {
+    const MachineEvent& a = before.events[i];
+    const MachineEvent& b = after.events[i];
+    ASSERT_EQ(a.kind, b.kind) << name << " event " << i;
+    for (auto [x, y] : {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z},
+                        std::pair{a.centreX, b.centreX}, std::pair{a.centreY, b.centreY}}) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(x), std::bit_cast<std::uint64_t>(y))
+          << name << " event " << i << ": " << x << " and " << y;
+    }
+  }
+}
+
+// A slot of lines and an arc, its convex corners rounded and its concave
+// one (the notch) cut back: with the diameter a parameter, one curve.lap
+// per pass whose regions are the pieces' offsets and an arc region per
+// convex corner, written out as loops and blocks that run the same path for
+// the values edited at the machine.
+TEST(OffsetCuts, ControllerOffsetsAreLapsOfThePiecesAndTheCornerArcs) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  controller.expandCurveLaps = false;
+  controller.coordinateIncrement = 0.001;
+  Compiled compiled("part p(dia = 4) {\n  tool 1 diameter=dia feed=300\n  safe z=5\n"
+                    "  curve path(line((0, 0), (40, 0)), arc(center=(40, 8), radius=8, "
+                    "from=-pi/2, to=pi/2), line((40, 16), (20, 16)), line((20, 16), (20, 30)), "
+                    "line((20, 30), (0, 30)), line((0, 30), (0, 0))) side=right\n}\n",
+                    controller);
+  ASSERT_TRUE(compiled.part);
+  Function& function = compiled.part->function;
+  ASSERT_EQ(function.curves.size(), 1u);
+  const CurveTableEntry& entry = function.curves.front();
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  // Six pieces; convex corners after the fourth, fifth and sixth piece (the
+  // last where the path closes); the notch's is concave.
+  EXPECT_EQ(entry.regionCount(), 9u);
+  ASSERT_EQ(entry.arcRegions.size(), 4u);
+  EXPECT_EQ(entry.arcRegions[0].region, 1u); // the slot's end
+  EXPECT_EQ(entry.arcRegions[1].region, 4u);
+  EXPECT_EQ(entry.arcRegions[3].region, 8u);
+  Function expanded = function;
+  runCurveLegalisation(expanded);
+  EXPECT_TRUE(verifyFunction(expanded).empty());
+  for (const std::map<std::string, double>& edited :
+       {std::map<std::string, double>{}, {{"dia", 2}}, {{"dia", 6.5}}}) {
+    InterpreterOptions options;
+    options.parameters = edited;
+    ToolPath before = interpret(function, options);
+    expectSameEvents(before, interpret(expanded, options), "slot");
+    // The notch's crossing lies the radius from both lines it joins.
+    double radius = (edited.empty() ? 4 : edited.begin()->second) / 2;
+    bool crossing = false;
+    for (const Eigen::Vector3d& point : levelFeeds(before)) {
+      crossing = crossing || (point - Eigen::Vector3d(20 + radius, 16 + radius, 0)).norm() < 1e-9;
+    }
+    EXPECT_TRUE(crossing) << "dia " << 2 * radius;
+  }
+}
+
+// A tool radius that is a number: on a target that runs loops a curve that
+// is neither a line nor an arc is cut by the controller's loop over its
+// offset (steps counted on the exact offset), within the tolerance.
+TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  controller.expandCurveLaps = false;
+  Compiled compiled(polarPart("right"), controller);
+  ASSERT_TRUE(compiled.part);
+  Function& function = compiled.part->function;
+  ASSERT_EQ(function.curves.size(), 1u);
+  const CurveTableEntry& entry = function.curves.front();
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  ASSERT_EQ(entry.regionSteps.size(), 1u);
+  EXPECT_GT(entry.regionSteps.front(), 100); // a count the compiler chose
+  EXPECT_EQ(printFunction(function).find("alarm"), std::string::npos);
+  const auto* offset =
+      dynamic_cast<const geom::OffsetCurve*>(compiled.part->cuts.front().curve.get());
+  ASSERT_NE(offset, nullptr);
+  std::vector<Eigen::Vector3d> points = levelFeeds(interpret(function));
+  geom::DeviationOptions coarse;
+  coarse.accuracy = 1e-5;
+  double deviation = geom::measureDeviation(points, *offset, coarse).maxDeviation();
+  EXPECT_LE(deviation, 0.01 + coarse.accuracy);
+  EXPECT_GT(deviation, 0.005); // the steps use the tolerance
+}
+
+// What only the compiler's offset gives keeps the host's chords: a ramp,
+// lead arcs, samples=, fitted arcs; and so does a path of lines and arcs.
+TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
+  LoweringOptions controller;
+  controller.controllerLoops = true;
+  controller.expandCurveLaps = false;
+  for (const char* modifier :
+       {" sweep depth=2 step=1 entry=ramp", " lead=3", " samples=200", " arcs=true"}) {
+    std::string text = polarPart("right");
+    text.insert(text.find("tolerance=0.01") + 14, modifier);
+    LoweringOptions options = controller;
+    options.arcBlocks = std::string(modifier) == " arcs=true";
+    Compiled compiled(text, options);
+    ASSERT_TRUE(compiled.part) << modifier;
+    for (const CurveTableEntry& entry : compiled.part->function.curves) {
+      EXPECT_NE(entry.sampling, CurveSampling::Steps) << modifier;
+    }
+  }
+  Compiled slot("part p() {\n  tool 1 diameter=4 feed=300\n  safe z=5\n  curve path(line((0, "
+                "0), (40, 0)), arc(center=(40, 8), radius=8, from=-pi/2, to=pi/2), line((40, 16), "
+                "(0, 16)), line((0, 16), (0, 0))) side=right\n}\n",
+                controller);
+  ASSERT_TRUE(slot.part);
+  EXPECT_TRUE(slot.part->function.curves.empty());
 }
 
 TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {

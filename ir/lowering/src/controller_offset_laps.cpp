@@ -1,0 +1,213 @@
+// The laps of a cut beside its curve whose tool radius the controller knows
+// only as it runs (planned in controller_offset_cuts.cpp): each lap is a
+// curve.lap cut in steps, written out by expand-controller-loops as any
+// other. Its regions follow the tool along the path:
+// - a line's offset, from its offset start to its offset end (where a
+//   concave corner cuts it back, the crossing the radius gives), in one step
+//   over the fraction 0 .. 1;
+// - an arc's, an arc region in the drawn arc's parameter on the radius the
+//   tool's grows or shrinks, in the drawn arc's blocks;
+// - another piece's (a knot span, a polar or param curve), the tool centre
+//   C + d (-y', x') / |C'| with C' the derivative in the region's parameter
+//   (forward_derivative.h), its count computed by the program from the
+//   radius (planOffsetSteps); a knot span counts its steps, u = t / N;
+// - after a piece that ends at a convex corner, an arc region of the tool's
+//   radius about the corner over the fraction 0 .. 1 of its turn.
+// The entry's geometry is the offset at the compiled radius in the same
+// parameters (geom::offsetOfPieces makes the same pieces and corner arcs).
+#include "controller_segment.h"
+
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/function_curve.h"
+#include "cncc/geom/line_arc_curves.h"
+
+#include <cmath>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+bool isLineSegment(const ControllerSegment& segment, const CurvePiece& piece) {
+  return !segment.isArc && !segment.isNurbs && piece.value->kind == CurveKind::Line;
+}
+
+bool endsPiece(const ControllerSegment& segment, const CurvePiece& piece) {
+  return !segment.isNurbs || segment.span + 1 == piece.spans.size();
+}
+
+// The compiled offset's pieces (one per drawn piece, one per corner arc) in
+// the parameters the entry lays out: each mapped linearly onto its own.
+// Null when the offset is made of other pieces than the entry lays out.
+std::shared_ptr<const geom::Curve>
+besideGeometry(const CurveTableEntry& entry, const std::shared_ptr<const geom::Curve>& offset) {
+  std::vector<const geom::Curve*> parts = geom::piecesOf(*offset);
+  if (parts.size() != entry.pieces.size()) {
+    return nullptr;
+  }
+  std::vector<std::shared_ptr<const geom::Curve>> pieces;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const CurvePieceLayout& layout = entry.pieces[p];
+    geom::ParameterRange own = parts[p]->domain();
+    double scale = own.length() / (layout.to - layout.from);
+    const geom::Curve* part = parts[p];
+    pieces.push_back(std::make_shared<geom::FunctionCurve>(
+        geom::ParameterRange{layout.from, layout.to},
+        [offset, part, own, from = layout.from, scale](double t) {
+          return part->point(own.t0 + (t - from) * scale);
+        }));
+  }
+  if (pieces.size() == 1) {
+    return pieces.front();
+  }
+  // As geom::offsetOfPieces joins them (pieces meeting tangentially).
+  constexpr double joinTolerance = 1e-6;
+  return std::make_shared<geom::CompositeCurve>(std::move(pieces), joinTolerance);
+}
+
+} // namespace
+
+PartLowering::SteppedLap
+PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
+                               const std::vector<ControllerSegment>& segments, double budget) {
+  const RuntimeOffset& offset = *runtimeOffset_;
+  CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
+  entry.sampling = CurveSampling::Steps;
+  entry.amount = budget;
+  double start = 0;
+  auto addPiece = [&](CurvePieceLayout layout) {
+    layout.start = start;
+    start += layout.to - layout.from;
+    entry.pieces.push_back(std::move(layout));
+  };
+  SteppedLap lap;
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const ControllerSegment& segment = segments[s];
+    const CurvePiece& piece = curve.pieces[segment.piece];
+    bool line = isLineSegment(segment, piece);
+    if (!segment.isNurbs || segment.span == 0) {
+      addPiece(line ? CurvePieceLayout{0, 0, 1} : pieceLayout(piece, 0));
+    }
+    lap.besideRegions.push_back({s, 0});
+    if (segment.isArc) {
+      addArcRegion(entry, lap, segment, curve, cut);
+    } else if (line || segment.steps > 0) {
+      entry.regionSteps.push_back(line ? 1 : segment.steps);
+    } else {
+      // The count the radius gives; a knot span counts its steps (u = t / N).
+      Scalar count = stepsOf(segment);
+      entry.regionSteps.push_back(0);
+      for (Scalar operand : {segment.isNurbs ? Scalar::of(0) : Scalar::of(segment.from),
+                             segment.isNurbs ? count : Scalar::of(segment.to), count}) {
+        lap.computedSteps.push_back(arithmetic_.value(operand));
+      }
+    }
+    bool corner = endsPiece(segment, piece) && segment.piece < offset.joins.size() &&
+                  offset.joins[segment.piece].kind == PieceJoin::CornerArc;
+    if (corner) {
+      const PieceJoin& join = offset.joins[segment.piece];
+      ArcPath turn;
+      turn.sweep = Scalar::of(join.turn);
+      addPiece({0, 0, 1});
+      entry.arcRegions.push_back({entry.regionSteps.size(), join.turn > 0, false});
+      entry.regionSteps.push_back(static_cast<int>(arcBlocks(turn, cut).count.constant));
+      lap.besideRegions.push_back({std::nullopt, segment.piece});
+    }
+  }
+  if (entry.pieces.size() == 1) {
+    entry.pieces.front().start = entry.pieces.front().from;
+    entry.from = entry.pieces.front().from;
+    entry.to = entry.pieces.front().to;
+  } else {
+    entry.from = 0;
+    entry.to = start;
+  }
+  entry.geometry = besideGeometry(entry, offset.compiled);
+  checkStepDrift(cut, entry);
+  lap.table = builder_.addCurve(std::move(entry));
+  return lap;
+}
+
+LapRegionPoint PartLowering::besideRegionPoint(const CutCurve& curve,
+                                               const std::vector<ControllerSegment>& segments,
+                                               const BesideRegion& region, Scalar local,
+                                               const CutStmt& cut) {
+  if (!region.segment) {
+    return cornerArcRegionPoint(runtimeOffset_->joins[region.join], local);
+  }
+  const ControllerSegment& segment = segments[*region.segment];
+  const CurvePiece& piece = curve.pieces[segment.piece];
+  if (segment.isArc) {
+    return offsetArcRegionPoint(curve, segment, local, cut);
+  }
+  if (isLineSegment(segment, piece)) {
+    CurvePoint from =
+        offsetSegmentEnd(curve, segment, false, segmentEndPoint(curve, segment, false, cut));
+    CurvePoint to =
+        offsetSegmentEnd(curve, segment, true, segmentEndPoint(curve, segment, true, cut));
+    return pointBetween(from, to, local);
+  }
+  CurvePoint point;
+  if (segment.isNurbs) {
+    Scalar u =
+        segment.steps > 0
+            ? local
+            : arithmetic_.binary(Opcode::Div, local,
+                                 Scalar::of(arithmetic_.value(stepsOf(segment)), ValueType::F64));
+    point = spanPointAt(cleanedSpan(piece.spans[segment.span]), u);
+    point = segment.moved != nullptr ? applied(*segment.moved, point)
+                                     : transformed(piece.transform, point);
+  } else {
+    point = pointAt(curve, segment.piece, segment.span, local, cut);
+  }
+  return offsetAlongDerivative(point, local.value, cut);
+}
+
+// The drawn arc's point moved towards its centre by the share d / R (left of
+// a counter-clockwise arc is inwards), the centre nearer by as much.
+LapRegionPoint PartLowering::offsetArcRegionPoint(const CutCurve& curve,
+                                                  const ControllerSegment& segment, Scalar local,
+                                                  const CutStmt& cut) {
+  const auto* arc =
+      dynamic_cast<const geom::ArcCurve*>(runtimeOffset_->pieces[segment.piece].get());
+  if (arc == nullptr) {
+    unsupported(cut.span, "an arc moved by a map that is not a rotation and a scale, beside a "
+                          "curve whose tool diameter is a parameter");
+  }
+  Scalar inwards = arc->sweep() > 0 ? runtimeOffset_->distance
+                                    : arithmetic_.unary(Opcode::Neg, runtimeOffset_->distance);
+  Scalar share = times(inwards, Scalar::of(1 / arc->radius()));
+  Scalar kept = arithmetic_.binary(Opcode::Sub, Scalar::of(1), share);
+  LapRegionPoint drawn = arcRegionPoint(curve, segment, local, cut);
+  const CurvePoint& point = drawn.point;
+  const CurvePoint& centre = *drawn.toCentre;
+  return {{plusScaled(point.x, share, centre.x), plusScaled(point.y, share, centre.y), point.z},
+          {times(kept, centre.x), times(kept, centre.y), centre.z}};
+}
+
+// The tool centre on an arc of its radius about the corner, turning from d n1
+// (the normal of the piece ending there) by the fraction of the corner's turn.
+LapRegionPoint PartLowering::cornerArcRegionPoint(const PieceJoin& join, Scalar fraction) {
+  Scalar angle = times(fraction, Scalar::of(join.turn));
+  Scalar cosine = angle.isConstant() ? Scalar::of(std::cos(angle.constant))
+                                     : arithmetic_.unary(Opcode::Cos, angle);
+  Scalar sine = angle.isConstant() ? Scalar::of(std::sin(angle.constant))
+                                   : arithmetic_.unary(Opcode::Sin, angle);
+  const Eigen::Vector2d& normal = join.before;
+  // The radial direction, to be scaled by the distance.
+  Scalar x = arithmetic_.binary(Opcode::Sub, times(cosine, Scalar::of(normal.x())),
+                                times(sine, Scalar::of(normal.y())));
+  Scalar y =
+      arithmetic_.add(times(sine, Scalar::of(normal.x())), times(cosine, Scalar::of(normal.y())));
+  const Scalar& distance = runtimeOffset_->distance;
+  Scalar minus = arithmetic_.unary(Opcode::Neg, distance);
+  CurvePoint point{plusScaled(Scalar::of(join.corner.x()), distance, x),
+                   plusScaled(Scalar::of(join.corner.y()), distance, y),
+                   Scalar::of(join.corner.z())};
+  CurvePoint toCentre{plusScaled(Scalar::of(0), minus, x), plusScaled(Scalar::of(0), minus, y),
+                      Scalar::of(0)};
+  return {point, toCentre};
+}
+
+} // namespace cncc::ir::lowering
