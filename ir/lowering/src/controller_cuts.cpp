@@ -241,7 +241,9 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     return false;
   }
   if (runtimeOffset_) {
-    planOffsetSteps(curve, *planned, budget, cut);
+    if (!planOffsetSteps(curve, *planned, budget, cut)) {
+      return false;
+    }
   } else if (!stepsFitAtCompiledValues(*planned)) {
     return false; // the tables, bounded, with what the curve reads fixed
   }

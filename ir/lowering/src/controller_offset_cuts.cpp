@@ -183,6 +183,16 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   checkCutBounds(cut, *offset.compiled);
   offset.pieces = movedPieces(curve);
   const auto& pieces = offset.pieces;
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    if (curve.pieces[p].value->kind == CurveKind::Arc &&
+        dynamic_cast<const geom::ArcCurve*>(pieces[p].get()) == nullptr) {
+      if (!runtime) {
+        return false;
+      }
+      unsupported(cut.span, "an arc moved by a map that is not a rotation and a scale, beside a "
+                            "curve whose tool diameter is a parameter");
+    }
+  }
   for (std::size_t p = 0; p + 1 < pieces.size(); ++p) {
     offset.joins.push_back(joinOf(*pieces[p], *pieces[p + 1], compiledDistance));
   }
@@ -240,7 +250,10 @@ void PartLowering::guardRuntimeRadius(const RuntimeOffset& offset) {
   }
 }
 
-void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+// False where a tool radius that is a number would take more uniform steps
+// than a piece may have, or more points to plan them than a cut may ask:
+// the host's chords then.
+bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                                    double budget, const CutStmt& cut) {
   const RuntimeOffset& offset = *runtimeOffset_;
   double compiledRadius = std::fabs(offset.compiledDistance);
@@ -259,8 +272,11 @@ void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
   // The points asked of the exact offsets so far, over the cut.
   std::size_t evaluated = 0;
   try {
-    planOffsetStepCounts(curve, segments, radii, measured, cut, evaluated);
+    return planOffsetStepCounts(curve, segments, radii, measured, cut, evaluated);
   } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
+    if (offset.radius.isConstant()) {
+      return false;
+    }
     fail(cut.span,
          fmt::format("checking the steps of this curve's offset within its tolerance asks more "
                      "than {} points of it; that is the limit of one cut",
@@ -269,7 +285,7 @@ void PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
   }
 }
 
-void PartLowering::planOffsetStepCounts(const CutCurve& curve,
+bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
                                         std::vector<ControllerSegment>& segments,
                                         const std::vector<double>& radii, double measured,
                                         const CutStmt& cut, std::size_t& evaluated) {
@@ -289,7 +305,10 @@ void PartLowering::planOffsetStepCounts(const CutCurve& curve,
       to = piece.spans[segment.span].t1;
     }
     if (offset.radius.isConstant()) {
-      segment.steps = fewestOffsetSteps(moved, from, to, measured, cut, evaluated);
+      segment.steps = fewestOffsetSteps(moved, from, to, measured, evaluated);
+      if (segment.steps == 0) {
+        return false; // the host's chords, which need not be uniform
+      }
       continue;
     }
     double drawn = segment.steps;
@@ -334,26 +353,18 @@ void PartLowering::planOffsetStepCounts(const CutCurve& curve,
         arithmetic_.multiply(Scalar::of(drawn), arithmetic_.unary(Opcode::Sqrt, share)));
     segment.steps = 0;
   }
+  return true;
 }
 
 // The fewest uniform steps over [from, to] within `measured` of the offset
-// of `piece` at the compiled distance.
+// of `piece` at the compiled distance; 0 past maximumStepsPerPiece.
 int PartLowering::fewestOffsetSteps(const std::shared_ptr<const geom::Curve>& piece, double from,
-                                    double to, double measured, const CutStmt& cut,
-                                    std::size_t& evaluated) {
+                                    double to, double measured, std::size_t& evaluated) {
   double distance = runtimeOffset_->compiledDistance;
   geom::OffsetCurve offsetCurve(piece, distance);
   geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
   EvaluationsCharged charged{evaluated, exact};
-  int steps = fewestUniformSteps(exact, from, to, measured);
-  if (steps == 0) {
-    fail(cut.span,
-         fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
-                     "steps on one piece within its tolerance",
-                     std::fabs(distance), maximumStepsPerPiece),
-         DiagnosticKind::ProgramTooLarge);
-  }
-  return steps;
+  return fewestUniformSteps(exact, from, to, measured);
 }
 
 Scalar PartLowering::plusScaled(Scalar base, Scalar value, Scalar factor) {

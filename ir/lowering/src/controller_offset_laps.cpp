@@ -169,12 +169,8 @@ LapRegionPoint PartLowering::besideRegionPoint(const CutCurve& curve,
 LapRegionPoint PartLowering::offsetArcRegionPoint(const CutCurve& curve,
                                                   const ControllerSegment& segment, Scalar local,
                                                   const CutStmt& cut) {
-  const auto* arc =
-      dynamic_cast<const geom::ArcCurve*>(runtimeOffset_->pieces[segment.piece].get());
-  if (arc == nullptr) {
-    unsupported(cut.span, "an arc moved by a map that is not a rotation and a scale, beside a "
-                          "curve whose tool diameter is a parameter");
-  }
+  // An arc piece moved is an arc (lowerControllerOffsetCut checked).
+  const auto* arc = static_cast<const geom::ArcCurve*>(runtimeOffset_->pieces[segment.piece].get());
   Scalar inwards = arc->sweep() > 0 ? runtimeOffset_->distance
                                     : arithmetic_.unary(Opcode::Neg, runtimeOffset_->distance);
   Scalar share = times(inwards, Scalar::of(1 / arc->radius()));

@@ -521,14 +521,15 @@ private:
                                 bool runtime);
   void guardRuntimeRadius(const RuntimeOffset& offset);
   int fewestOffsetSteps(const std::shared_ptr<const geom::Curve>& piece, double from, double to,
-                        double measured, const frontend::CutStmt& cut, std::size_t& evaluated);
+                        double measured, std::size_t& evaluated);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);
-  void planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+  bool planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                        double budget, const frontend::CutStmt& cut);
   // The step count of each segment at `radii`, raised until it fits (within
-  // maximumOffsetStepEvaluations in all, counted in `evaluated`).
-  void planOffsetStepCounts(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+  // maximumOffsetStepEvaluations in all, counted in `evaluated`); false when
+  // a radius that is a number needs more than a piece may have.
+  bool planOffsetStepCounts(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                             const std::vector<double>& radii, double measured,
                             const frontend::CutStmt& cut, std::size_t& evaluated);
   // base + value * factor, a constant factor's sign as a subtraction.
