@@ -73,8 +73,9 @@ private:
     if (ramp) {
       fillProgress(points, entry);
     }
-    // Each run's progress table follows its parameters' table.
-    for (Run& run : runs) {
+    // Each run's progress table follows its parameters' table (points as
+    // numbers need neither).
+    for (Run& run : entry.pointsAsNumbers ? noRuns_ : runs) {
       run.localTable = addTable(run.locals);
       if (ramp) {
         run.progressTable = addTable(run.progress);
@@ -97,10 +98,17 @@ private:
   // writes, but a valid function): the progress tables then, from the
   // points already chosen.
   void addProgressTables(EntryPoints& points, const Instruction& lap, bool ramp) {
+    const CurveTableEntry& entry = source_.curves[lap.index];
     if (!ramp || points.runs.empty() || points.runs.front().progressTable) {
       return;
     }
-    fillProgress(points, source_.curves[lap.index]);
+    if (entry.pointsAsNumbers) {
+      if (points.runs.front().progress.empty()) {
+        fillProgress(points, entry);
+      }
+      return;
+    }
+    fillProgress(points, entry);
     for (Run& run : points.runs) {
       run.progressTable = addTable(run.progress);
     }
@@ -163,7 +171,25 @@ private:
     return &*run.host;
   }
 
+  // The run's points computed here, a feed move to each as numbers.
+  void emitRunAsNumbers(const Instruction& lap, const Run& run, bool ramp) {
+    auto constantOnly = [&](ValueId value) { return passes::constantValue(source_, value); };
+    LapRegionEvaluator region(source_, lap, run.region, constantOnly);
+    for (std::size_t i = 0; i < run.locals.size(); ++i) {
+      Eigen::Vector3d point = region(run.locals[i]);
+      Operand progress{ValueId{}, ramp ? run.progress[i] : 1.0};
+      emitFeed(lap,
+               {Operand{ValueId{}, point.x()}, Operand{ValueId{}, point.y()},
+                Operand{ValueId{}, point.z()}},
+               ramp, progress);
+    }
+  }
+
   void emitRun(const Instruction& lap, Run& run, bool ramp) {
+    if (source_.curves[lap.index].pointsAsNumbers) {
+      emitRunAsNumbers(lap, run, ramp);
+      return;
+    }
     ValueId last = constant(static_cast<double>(run.locals.size()) - 1);
     ValueId first = constant(0);
     index_ = beginLapLoop(lap, first, last);
@@ -175,7 +201,7 @@ private:
         point[c] = host->tables[c] ? Operand{load(*host->tables[c]), 0}
                                    : Operand{ValueId{}, host->constant[c]};
       }
-      emitFeed(lap, point);
+      emitFeed(lap, point, ramp_, tableProgress());
     } else {
       replace(lap.result, load(run.localTable));
       rewriteRegion(lap.regions[run.region]);
@@ -193,15 +219,21 @@ private:
   // The region's curve.point: a feed move there, raised by the lap's height.
   void feedToPoint(const Instruction& lap, const Instruction& point) {
     std::vector<ValueId> operands = mappedOperands(point);
-    emitFeed(lap, {operandOf(operands[0]), operandOf(operands[1]), operandOf(operands[2])});
+    emitFeed(lap, {operandOf(operands[0]), operandOf(operands[1]), operandOf(operands[2])}, ramp_,
+             tableProgress());
   }
 
-  void emitFeed(const Instruction& lap, const std::array<Operand, 3>& point) {
+  // The ramp's progress at the loop's point: its table.
+  Operand tableProgress() {
+    return ramp_ ? Operand{load(*run_->progressTable), 0} : Operand{ValueId{}, 1.0};
+  }
+
+  void emitFeed(const Instruction& lap, const std::array<Operand, 3>& point, bool ramp,
+                const Operand& progress) {
     Operand to = operandOf(mapped(lap.operands[1]));
     Operand z = to;
-    if (ramp_) {
+    if (ramp) {
       Operand from = operandOf(mapped(lap.operands[0]));
-      Operand progress{load(*run_->progressTable), 0};
       Operand rise = from.isNumber() && to.isNumber() ? Operand{ValueId{}, to.number - from.number}
                                                       : Operand{binary(Opcode::Sub, to, from), 0};
       z = add(from, multiply(rise, progress));
@@ -213,6 +245,7 @@ private:
   }
 
   std::map<std::uint32_t, EntryPoints> entries_;
+  std::vector<Run> noRuns_;
   Run* run_ = nullptr;
   bool ramp_ = false;
   ValueId index_;

@@ -113,6 +113,15 @@ std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curv
   return std::move(samples.parameters);
 }
 
+namespace {
+
+// The regions' lengths, for their shares of a ramp's descent, to a ten
+// thousandth of a micrometre: finer than any printed height, and within
+// reach of a curve whose derivatives are differences (an offset's).
+constexpr double shareLengthTolerance = 1e-7;
+
+} // namespace
+
 std::vector<LapRegionShare> lapRegionShares(const CurveTableEntry& entry,
                                             const geom::Curve& curve) {
   std::vector<LapRegionShare> shares;
@@ -127,7 +136,7 @@ std::vector<LapRegionShare> lapRegionShares(const CurveTableEntry& entry,
         double from = piece.spans.empty() ? piece.from : piece.spans[s].first;
         double to = piece.spans.empty() ? piece.to : piece.spans[s].second;
         shares.push_back({total, 0});
-        lengths.push_back(geom::arcLength(curve, global(from), global(to)));
+        lengths.push_back(geom::arcLength(curve, global(from), global(to), shareLengthTolerance));
         total += lengths.back();
       }
     }

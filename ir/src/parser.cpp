@@ -562,6 +562,10 @@ private:
       }
       return;
     }
+    if (line == "numbers") {
+      curve_->pointsAsNumbers = true;
+      return;
+    }
     if (startsWith(line, "chosen ")) {
       std::vector<double> parameters;
       for (std::string_view parameter : splitList(line.substr(7))) {
@@ -608,7 +612,7 @@ private:
     if (!startsWith(line, "piece ")) {
       throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', "
                     "'arcs', 'walks', 'progress', "
-                    "'host', 'chosen' or '}'"};
+                    "'host', 'numbers', 'chosen' or '}'"};
     }
     std::size_t spansAt = line.find(" spans ");
     std::vector<std::string_view> words = splitWords(line.substr(0, spansAt));

@@ -66,7 +66,8 @@ public:
 private:
   // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
   // the printed grid of arcs, the table of blocks, the regions' step counts and arcs, the share of
-  // a longer lap's descent, the host regions and the chosen parameters; the entry's geometry,
+  // a longer lap's descent, the host regions, whether the points are numbers and the chosen
+  // parameters; the entry's geometry,
   // fitted arcs and source spans are not text.
   void printCurve(std::size_t index, const CurveTableEntry& entry) {
     out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
@@ -104,6 +105,9 @@ private:
     }
     if (!entry.hostPointRegions.empty()) {
       out_ += fmt::format("    host {}\n", fmt::join(entry.hostPointRegions, ", "));
+    }
+    if (entry.pointsAsNumbers) {
+      out_ += "    numbers\n";
     }
     if (entry.chosenParameters) {
       out_ += fmt::format("    chosen {}\n", fmt::join(*entry.chosenParameters, ", "));

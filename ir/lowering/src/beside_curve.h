@@ -68,6 +68,14 @@ struct PieceJoin {
   double turn = 0; // from the one tangent to the other, counter-clockwise positive
 };
 
+// How the offsets of `before` and `after` join (as geom::offsetOfPieces).
+PieceJoin pieceJoin(const geom::Curve& before, const geom::Curve& after, double distance);
+// The joins of a path's pieces: joins[p] from piece p's end to piece p + 1's
+// start, and for a closed path (`closed` set) the last from its end to its
+// start.
+std::vector<PieceJoin> pieceJoins(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                                  double distance, bool& closed);
+
 // A cut beside its curve whose tool radius the controller knows only when
 // it runs (controller_offset_cuts.cpp).
 struct RuntimeOffset {

@@ -58,24 +58,6 @@ Eigen::Vector2d leftNormal(const Eigen::Vector3d& tangent) {
   return geom::leftNormalOf(tangent).head<2>();
 }
 
-PieceJoin joinOf(const geom::Curve& before, const geom::Curve& after, double distance) {
-  PieceJoin join;
-  geom::ParameterRange own = before.domain();
-  join.corner = before.point(own.t1);
-  Eigen::Vector3d incoming = before.derivative(own.t1);
-  Eigen::Vector3d outgoing = after.derivative(after.domain().t0);
-  join.before = leftNormal(incoming);
-  join.after = leftNormal(outgoing);
-  join.turn = geom::cornerTurn(before, after);
-  // Offsets that meet (within geom's tangent join) are joined directly.
-  if (std::fabs(distance) * (join.before - join.after).norm() <= 1e-7) {
-    join.kind = PieceJoin::Direct;
-  } else {
-    join.kind = distance * join.turn < 0 ? PieceJoin::CornerArc : PieceJoin::Crossing;
-  }
-  return join;
-}
-
 bool isLine(const geom::Curve& curve) {
   return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
 }
@@ -137,11 +119,11 @@ PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom:
 // Whether a cut beside its curve whose tool radius is a number is cut with
 // the offset the controller computes: where that makes the program shorter
 // (a piece that is neither a line nor an arc, which the host cuts as
-// chords) and nothing asks for what only the host's offset gives (a ramp,
-// lead arcs, samples= or spacing=, spline blocks, fitted arcs).
+// chords) and nothing asks for what only the host's offset gives (lead
+// arcs, samples= or spacing=, spline blocks, fitted arcs).
 bool PartLowering::offsetOnControllerWanted(const CutStmt& cut, const CutCurve& curve) {
   std::string method = methodOf(cut);
-  if (rampEntry(cut) || asksFittedArcs(cut) || !(method.empty() || method == "linear")) {
+  if (asksFittedArcs(cut) || !(method.empty() || method == "linear")) {
     return false;
   }
   for (std::string_view name : {"lead", "samples", "spacing"}) {
@@ -162,10 +144,6 @@ bool PartLowering::offsetOnControllerWanted(const CutStmt& cut, const CutCurve& 
 // the controller's offset can follow the path (false otherwise).
 bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledDistance,
                                             bool runtime) {
-  if (const Modifier* entry = findModifier(cut, "entry");
-      runtime && entry != nullptr && rampEntry(cut)) {
-    unsupported(entry->span(), "entry=ramp beside a curve whose tool diameter is a parameter");
-  }
   for (std::string_view name : {"lead", "samples", "spacing"}) {
     if (const Modifier* modifier = findModifier(cut, name); runtime && modifier != nullptr) {
       unsupported(modifier->span(),
@@ -193,16 +171,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
                             "curve whose tool diameter is a parameter");
     }
   }
-  for (std::size_t p = 0; p + 1 < pieces.size(); ++p) {
-    offset.joins.push_back(joinOf(*pieces[p], *pieces[p + 1], compiledDistance));
-  }
-  const geom::Curve& first = *pieces.front();
-  const geom::Curve& last = *pieces.back();
-  offset.closed = pieces.size() > 1 &&
-                  (last.point(last.domain().t1) - first.point(first.domain().t0)).norm() <= 1e-9;
-  if (offset.closed) {
-    offset.joins.push_back(joinOf(last, first, compiledDistance));
-  }
+  offset.joins = pieceJoins(pieces, compiledDistance, offset.closed);
   for (std::size_t j = 0; j < offset.joins.size(); ++j) {
     std::size_t after = (j + 1) % pieces.size();
     if (offset.joins[j].kind == PieceJoin::Crossing &&
@@ -418,7 +387,7 @@ CurvePoint PartLowering::offsetSegmentEnd(const CutCurve& curve, const Controlle
 }
 
 CurvePoint PartLowering::offsetAlongDerivative(const CurvePoint& point, ValueId variable,
-                                               const CutStmt& cut) {
+                                               Scalar distance, const CutStmt& cut) {
   ForwardDerivative derivative(builder_, arithmetic_, variable);
   std::optional<Scalar> dx = derivative.of(point.x);
   std::optional<Scalar> dy = derivative.of(point.y);
@@ -426,7 +395,7 @@ CurvePoint PartLowering::offsetAlongDerivative(const CurvePoint& point, ValueId 
     unsupported(cut.curve->span, "this curve's tangent on the controller");
   }
   Scalar speed = arithmetic_.unary(Opcode::Sqrt, arithmetic_.add(times(*dx, *dx), times(*dy, *dy)));
-  Scalar share = arithmetic_.binary(Opcode::Div, runtimeOffset_->distance, speed);
+  Scalar share = arithmetic_.binary(Opcode::Div, distance, speed);
   return {arithmetic_.binary(Opcode::Sub, point.x, times(share, *dy)),
           arithmetic_.add(point.y, times(share, *dx)), point.z};
 }

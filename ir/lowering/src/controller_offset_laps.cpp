@@ -161,7 +161,7 @@ LapRegionPoint PartLowering::besideRegionPoint(const CutCurve& curve,
   } else {
     point = pointAt(curve, segment.piece, segment.span, local, cut);
   }
-  return offsetAlongDerivative(point, local.value, cut);
+  return offsetAlongDerivative(point, local.value, runtimeOffset_->distance, cut);
 }
 
 // The drawn arc's point moved towards its centre by the share d / R (left of

@@ -285,38 +285,55 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
     }
     return {lower(curve.x), lower(curve.y), curve.z ? lower(curve.z) : Scalar::of(0)};
   }
-  case CurveKind::Line: {
-    double length = piece.geometry->domain().t1;
-    Scalar s = math.binary(Opcode::Div, local, Scalar::of(length));
-    Scalar coordinates[3];
-    for (int i = 0; i < 3; ++i) {
-      double change = curve.to[i] - curve.from[i];
-      coordinates[i] =
-          change == 0 ? Scalar::of(curve.from[i])
-                      : math.add(Scalar::of(curve.from[i]), math.multiply(Scalar::of(change), s));
-    }
-    return {coordinates[0], coordinates[1], coordinates[2]};
-  }
+  case CurveKind::Line:
+    return linePointAt({curve.from[0], curve.from[1], curve.from[2]},
+                       {curve.to[0], curve.to[1], curve.to[2]}, piece.geometry->domain().t1, local);
   case CurveKind::Arc: {
     const auto& arc = static_cast<const geom::ArcCurve&>(*piece.geometry);
-    Scalar angle = math.add(Scalar::of(curve.startAngle),
-                            math.multiply(Scalar::of(arc.sweep() / arc.length()), local));
-    Scalar r = Scalar::of(curve.arcRadius);
-    // A helix climbs in proportion to the angle, so to the parameter too.
-    Scalar z = curve.endZ == curve.startZ
-                   ? Scalar::of(curve.startZ)
-                   : math.add(Scalar::of(curve.startZ),
-                              math.multiply(Scalar::of((curve.endZ - curve.startZ) / arc.length()),
-                                            local));
-    return {math.add(Scalar::of(curve.center[0]), math.multiply(r, math.unary(Opcode::Cos, angle))),
-            math.add(Scalar::of(curve.center[1]), math.multiply(r, math.unary(Opcode::Sin, angle))),
-            z};
+    return arcPointAt({{curve.center[0], curve.center[1]},
+                       curve.arcRadius,
+                       curve.startAngle,
+                       arc.sweep() / arc.length(),
+                       curve.startZ,
+                       curve.endZ == curve.startZ ? 0 : (curve.endZ - curve.startZ) / arc.length()},
+                      local);
   }
   case CurveKind::Nurbs:
     return spanPointAt(piece.spans[span], local);
   default:
     unsupported(cut.curve->span, fmt::format("a '{}' curve", curve.constructor));
   }
+}
+
+// from + (to - from) s at s = local / length, a coordinate that does not
+// change a number.
+CurvePoint PartLowering::linePointAt(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                     double length, Scalar local) {
+  Scalar s = arithmetic_.binary(Opcode::Div, local, Scalar::of(length));
+  Scalar coordinates[3];
+  for (int i = 0; i < 3; ++i) {
+    double change = to[i] - from[i];
+    coordinates[i] = change == 0 ? Scalar::of(from[i])
+                                 : arithmetic_.add(Scalar::of(from[i]),
+                                                   arithmetic_.multiply(Scalar::of(change), s));
+  }
+  return {coordinates[0], coordinates[1], coordinates[2]};
+}
+
+// centre + r (cos a, sin a) at a = start + turn local; a helix climbs in
+// proportion to the angle, so to the parameter too.
+CurvePoint PartLowering::arcPointAt(const ArcNumbers& arc, Scalar local) {
+  Arithmetic& math = arithmetic_;
+  Scalar angle =
+      math.add(Scalar::of(arc.startAngle), math.multiply(Scalar::of(arc.turnPerLength), local));
+  Scalar r = Scalar::of(arc.radius);
+  Scalar z =
+      arc.climbPerLength == 0
+          ? Scalar::of(arc.startZ)
+          : math.add(Scalar::of(arc.startZ), math.multiply(Scalar::of(arc.climbPerLength), local));
+  return {math.add(Scalar::of(arc.centre.x()), math.multiply(r, math.unary(Opcode::Cos, angle))),
+          math.add(Scalar::of(arc.centre.y()), math.multiply(r, math.unary(Opcode::Sin, angle))),
+          z};
 }
 
 namespace {

@@ -485,20 +485,25 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
 // estimate), and the NURBS spans the host computes as points.
 CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve& curve) {
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  // A controller that rounds every coordinate to its increment takes up to
+  // half an increment per axis of the tolerance (LoweringOptions).
+  chooseSampling(entry, cut, *curve.geometry, toleranceBudget(cut).forPoints());
+  return entry;
+}
+
+void PartLowering::chooseSampling(CurveTableEntry& entry, const CutStmt& cut,
+                                  const geom::Curve& curve, double chordTolerance) {
   if (modifierValue(cut, "samples") != nullptr) {
     entry.sampling = CurveSampling::Samples;
     entry.amount = static_cast<double>(sampleCount(cut));
   } else if (const Expr* expression = modifierValue(cut, "spacing")) {
     entry.sampling = CurveSampling::Spacing;
     entry.amount = constantNumber(*expression, "spacing=");
-    checkSpacing(cut, *curve.geometry, entry.amount);
+    checkSpacing(cut, curve, entry.amount);
   } else {
-    // A controller that rounds every coordinate to its increment takes up to
-    // half an increment per axis of the tolerance (LoweringOptions).
-    entry.amount = toleranceBudget(cut).forPoints();
-    checkChordCount(cut, *curve.geometry, entry.amount);
+    entry.amount = chordTolerance;
+    checkChordCount(cut, curve, entry.amount);
   }
-  return entry;
 }
 
 // An entry for the cut's whole curve, its pieces laid out; its points not

@@ -75,6 +75,38 @@ std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curv
   return pieces;
 }
 
+PieceJoin pieceJoin(const geom::Curve& before, const geom::Curve& after, double distance) {
+  PieceJoin join;
+  geom::ParameterRange own = before.domain();
+  join.corner = before.point(own.t1);
+  join.before = geom::leftNormalOf(before.derivative(own.t1)).head<2>();
+  join.after = geom::leftNormalOf(after.derivative(after.domain().t0)).head<2>();
+  join.turn = geom::cornerTurn(before, after);
+  // Offsets that meet (within geom's tangent join) are joined directly.
+  if (std::fabs(distance) * (join.before - join.after).norm() <= 1e-7) {
+    join.kind = PieceJoin::Direct;
+  } else {
+    join.kind = distance * join.turn < 0 ? PieceJoin::CornerArc : PieceJoin::Crossing;
+  }
+  return join;
+}
+
+std::vector<PieceJoin> pieceJoins(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                                  double distance, bool& closed) {
+  std::vector<PieceJoin> joins;
+  for (std::size_t p = 0; p + 1 < pieces.size(); ++p) {
+    joins.push_back(pieceJoin(*pieces[p], *pieces[p + 1], distance));
+  }
+  const geom::Curve& first = *pieces.front();
+  const geom::Curve& last = *pieces.back();
+  closed = pieces.size() > 1 &&
+           (last.point(last.domain().t1) - first.point(first.domain().t0)).norm() <= 1e-9;
+  if (closed) {
+    joins.push_back(pieceJoin(last, first, distance));
+  }
+  return joins;
+}
+
 // The offset as line and arc moves, when it is made of nothing else.
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& offset) {
   std::vector<const geom::Curve*> parts = geom::piecesOf(offset);
@@ -393,23 +425,31 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     arcs = fittedOffsetArcs(cut, *offset);
     arcMoves = arcs ? CutArcs::Fitted : CutArcs::None;
   }
-  // Chords for the lap without arcs, and for a ramp lap.
-  geom::CurveSamples samples;
+  // The offset's points for the lap without arcs, and for a ramp lap: a
+  // curve.lap (offset_laps.cpp), or chords where the offset's pieces are
+  // joined otherwise than it follows.
+  std::vector<HostBesideRegion> regions;
+  std::optional<std::uint32_t> table;
+  OffsetChords chords;
   if (!arcs || begun.ramp) {
-    samples = offsetSamples(cut, *offset);
+    table = hostOffsetCurve(cut, curve, offset, distance, regions);
+    if (!table) {
+      chords = offsetChords(offsetSamples(cut, *offset), begun.ramp);
+    }
   }
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
   beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                  cut.span, methodOf(cut), arcMoves});
   markCutBeside(curve.geometry, std::fabs(distance));
-  OffsetChords chords = offsetChords(samples, begun.ramp);
   auto lap = [&](double zFrom, double zTo) {
     if (arcs && zFrom == zTo) {
       double planeZ = arcs->front().start.z();
       emitArcLap(*arcs,
                  builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)),
                  feed);
+    } else if (table) {
+      emitHostOffsetLap(curve, *table, regions, distance, zFrom, zTo, feed, cut);
     } else {
       emitChordLap(chords, zFrom, zTo, feed);
     }

@@ -259,6 +259,18 @@ private:
   bool spanLiteralsFit(const geom::PolynomialSpan& span, const frontend::CutStmt& cut,
                        double stretch);
   CurvePoint transformed(const Affine& transform, const CurvePoint& point);
+  CurvePoint linePointAt(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double length,
+                         Scalar local);
+  // An arc in numbers, in its length's parameter.
+  struct ArcNumbers {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    double radius = 0;
+    double startAngle = 0;
+    double turnPerLength = 0;
+    double startZ = 0;
+    double climbPerLength = 0;
+  };
+  CurvePoint arcPointAt(const ArcNumbers& arc, Scalar local);
 
   // cuts.cpp
   void lowerCut(const frontend::CutStmt& cut);
@@ -299,6 +311,10 @@ private:
   void checkSpacing(const frontend::CutStmt& cut, const geom::Curve& curve, double spacing);
   void lowerCurveLaps(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
+  // How the entry's points are chosen on `curve`: samples=, spacing= or
+  // within `chordTolerance` (checked here as far as an estimate goes).
+  void chooseSampling(CurveTableEntry& entry, const frontend::CutStmt& cut,
+                      const geom::Curve& curve, double chordTolerance);
   CurveTableEntry wholeCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntryOn(const frontend::CutStmt& cut,
                                     std::shared_ptr<const geom::Curve> geometry);
@@ -441,6 +457,27 @@ private:
   };
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
+  // offset_laps.cpp: a host offset's laps. A region: its piece of the
+  // offset, and unless that is a line or an arc the drawn piece whose offset
+  // it is (the knot span and the share of it, u = spanFrom + spanShare t).
+  struct HostBesideRegion {
+    const geom::Curve* part = nullptr;
+    std::optional<std::size_t> drawn;
+    std::size_t span = 0;
+    double spanFrom = 0;
+    double spanShare = 1;
+  };
+  // The offset's entry in the curve table (nullopt where its pieces are not
+  // the drawn pieces' offsets and corner arcs), and its regions.
+  std::optional<std::uint32_t> hostOffsetCurve(const frontend::CutStmt& cut, const CutCurve& curve,
+                                               const std::shared_ptr<const geom::Curve>& offset,
+                                               double distance,
+                                               std::vector<HostBesideRegion>& regions);
+  void emitHostOffsetLap(const CutCurve& curve, std::uint32_t table,
+                         const std::vector<HostBesideRegion>& regions, double distance,
+                         double zFrom, double zTo, ValueId feed, const frontend::CutStmt& cut);
+  LapRegionPoint hostBesidePoint(const CutCurve& curve, const HostBesideRegion& region,
+                                 double distance, Scalar local, const frontend::CutStmt& cut);
   // G39 after chord `after` (0-based), towards the next move's direction.
   struct ChordCorner {
     std::size_t after = 0;
@@ -537,7 +574,8 @@ private:
   CurvePoint besideAt(const CurvePoint& point, const Eigen::Vector2d& normal);
   CurvePoint offsetSegmentEnd(const CutCurve& curve, const ControllerSegment& segment, bool atEnd,
                               const CurvePoint& point);
-  CurvePoint offsetAlongDerivative(const CurvePoint& point, ValueId variable,
+  // point + distance (-y', x') / |C'|, C' the derivative of the point in `variable`.
+  CurvePoint offsetAlongDerivative(const CurvePoint& point, ValueId variable, Scalar distance,
                                    const frontend::CutStmt& cut);
   // controller_offset_laps.cpp
   SteppedLap besideSteppedLap(const frontend::CutStmt& cut, const CutCurve& curve,

@@ -158,6 +158,35 @@ TEST(CurveLapExpansion, MarkedRegionsWithoutParametersBecomePointTables) {
   }
 }
 
+// An entry of points as numbers: a feed move to each, the numbers the
+// regions compute at the chosen parameters, no table and no loop; a ramp
+// lap descends by the same progress as the tables'.
+TEST(CurveLapExpansion, PointsAsNumbersAreFeedMovesToNumbers) {
+  LineThenHalfCircle shape;
+  shape.radiusIsParameter = false;
+  for (bool ramp : {false, true}) {
+    Function plain = lapFunction(shape, 0.01, ramp);
+    Function numbers = plain;
+    numbers.curves[0].pointsAsNumbers = true;
+    ASSERT_TRUE(expandCurveLaps(plain));
+    ASSERT_TRUE(expandCurveLaps(numbers));
+    EXPECT_TRUE(verifyFunction(numbers).empty());
+    EXPECT_TRUE(numbers.tables.empty());
+    for (const Instruction& instruction : numbers.instructions) {
+      EXPECT_NE(instruction.opcode, Opcode::Loop);
+      EXPECT_NE(instruction.opcode, Opcode::Sin);
+    }
+    std::vector<MachineEvent> expected = feeds(plain);
+    std::vector<MachineEvent> moves = feeds(numbers);
+    ASSERT_EQ(moves.size(), expected.size()) << ramp;
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      EXPECT_EQ(moves[i].x, expected[i].x) << i;
+      EXPECT_EQ(moves[i].y, expected[i].y) << i;
+      EXPECT_NEAR(moves[i].z, expected[i].z, 1e-12) << i;
+    }
+  }
+}
+
 TEST(CurveLapExpansion, AMarkedRegionThatReadsAParameterStaysInTheProgram) {
   LineThenHalfCircle shape;
   Function function = lapFunction(shape, 0.01, false);

@@ -52,6 +52,7 @@ inline constexpr std::string_view pathText = R"(func @path() {
   curve @1 spacing 0.25 over -1 .. 1e+300 {
     piece at 0 over -1 .. 1e+300
     progress 0.25 share 0.5
+    numbers
     chosen -1, 0.1, 1e+300
   }
   %0 = const 0

@@ -56,6 +56,8 @@ TEST(IrCurveLapText, ParsedTableHasTheLayoutAndNoGeometry) {
   EXPECT_EQ(*function.curves[1].chosenParameters, (std::vector<double>{-1, 0.1, 1e300}));
   EXPECT_EQ(function.curves[0].chosenParameters, nullptr);
   EXPECT_EQ(function.curves[0].progressShare, 1);
+  EXPECT_FALSE(function.curves[0].pointsAsNumbers);
+  EXPECT_TRUE(function.curves[1].pointsAsNumbers);
   EXPECT_EQ(onlyLap(function).regions.size(), 4u);
   EXPECT_THAT(verifyFunction(function), IsEmpty());
 }
@@ -73,7 +75,7 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
   EXPECT_EQ(parseComplaint(replaced(circleText, "curve.lap @0", "curve.lap @3")),
             "10: curve @3 is not in the curve table");
   EXPECT_EQ(parseComplaint(replaced(pathText, "  } piece {\n    %8", "    %8")),
-            "26: 'curve.point' ends a curve.lap region: expected '} piece {' or '}'");
+            "27: 'curve.point' ends a curve.lap region: expected '} piece {' or '}'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "    curve.point %6, %8, %3\n", "")),
             "15: a curve.lap region must end with 'curve.point'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "    curve.point %6, %8, %3\n",
@@ -83,7 +85,7 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
                                       "  } piece {\n    %8 = const 12\n    %9 = add %8, %3\n    "
                                       "curve.point %9, %0, %0\n",
                                       "");
-  EXPECT_EQ(parseComplaint(threeRegions), "26: this curve.lap has 3 regions, its curve needs 4");
+  EXPECT_EQ(parseComplaint(threeRegions), "27: this curve.lap has 3 regions, its curve needs 4");
   EXPECT_EQ(parseComplaint(replaced(circleText, "chords", "strides")),
             "2: a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs', 'steps', "
             "'nurbs-blocks', 'spline-blocks' or "
@@ -95,7 +97,7 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
   EXPECT_EQ(
       parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
       "4: expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', 'arcs', 'walks', "
-      "'progress', 'host', 'chosen' or '}'");
+      "'progress', 'host', 'numbers', 'chosen' or '}'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "  %4 = curve.lap", "  curve.lap")),
             "10: this operation has a result; write '%name = ...'");
 }

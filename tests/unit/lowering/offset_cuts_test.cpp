@@ -292,14 +292,16 @@ TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
   EXPECT_GT(deviation, 0.005); // the steps use the tolerance
 }
 
-// What only the compiler's offset gives keeps the host's chords: a ramp,
-// lead arcs, samples=, fitted arcs; and so does a path of lines and arcs.
+// What only the compiler's offset gives keeps the host's points (a lap of
+// points as numbers): lead arcs, samples=, fitted arcs; and so does a path
+// of lines and arcs. A ramp is the controller's.
 TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
   LoweringOptions controller;
   controller.controllerLoops = true;
   controller.expandCurveLaps = false;
   for (const char* modifier :
-       {" sweep depth=2 step=1 entry=ramp", " lead=3", " samples=200", " arcs=true"}) {
+       {" lead=3", " samples=200", " arcs=true", " sweep depth=2 step=1 entry=ramp"}) {
+    bool ramp = std::string(modifier).ends_with("ramp");
     std::string text = polarPart("right");
     text.insert(text.find("tolerance=0.01") + 14, modifier);
     LoweringOptions options = controller;
@@ -307,7 +309,8 @@ TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
     Compiled compiled(text, options);
     ASSERT_TRUE(compiled.part) << modifier;
     for (const CurveTableEntry& entry : compiled.part->function.curves) {
-      EXPECT_NE(entry.sampling, CurveSampling::Steps) << modifier;
+      EXPECT_EQ(entry.sampling == CurveSampling::Steps, ramp) << modifier;
+      EXPECT_EQ(entry.pointsAsNumbers, !ramp) << modifier;
     }
   }
   Compiled slot("part p() {\n  tool 1 diameter=4 feed=300\n  safe z=5\n  curve path(line((0, "
@@ -316,6 +319,52 @@ TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
                 controller);
   ASSERT_TRUE(slot.part);
   EXPECT_TRUE(slot.part->function.curves.empty());
+}
+
+// On the host the offset is a curve.lap too: its pieces the offset's (a
+// NURBS cut back at both ends, where it meets the lines at concave
+// corners), its regions the drawn curve's arithmetic moved along the
+// normal; the points the legalisation writes out are the ones the lap ran,
+// and they lie on the exact offset.
+TEST(OffsetCuts, HostOffsetsAreLapsOnTheExactOffset) {
+  LoweringOptions host;
+  host.expandCurveLaps = false;
+  Compiled compiled("part p() {\n  tool 1 diameter=4 feed=300\n  safe z=5\n"
+                    "  curve path(nurbs(degree=3, points=[(0, 0), (10, 20), (30, 25), (50, 0)]), "
+                    "line((50, 0), (50, -20)), line((50, -20), (0, 0))) side=right "
+                    "tolerance=0.01 sweep depth=2 step=1 entry=ramp\n}\n",
+                    host);
+  ASSERT_TRUE(compiled.part);
+  Function& function = compiled.part->function;
+  ASSERT_EQ(function.curves.size(), 1u);
+  const CurveTableEntry& entry = function.curves.front();
+  EXPECT_EQ(entry.sampling, CurveSampling::ChordTolerance);
+  EXPECT_FALSE(entry.pointsAsNumbers);
+  const geom::Curve& offset = *compiled.part->cuts.front().curve;
+  EXPECT_EQ(entry.geometry.get(), &offset);
+  ASSERT_GE(entry.pieces.size(), 3u);
+  const CurvePieceLayout& nurbs = entry.pieces.front();
+  ASSERT_FALSE(nurbs.spans.empty());
+  EXPECT_GT(nurbs.from, 0.0); // cut back at the concave corners
+  EXPECT_LT(nurbs.to, 1.0);
+  EXPECT_EQ(nurbs.spans.front().first, nurbs.from);
+  EXPECT_EQ(nurbs.spans.back().second, nurbs.to);
+  ToolPath before = interpret(function);
+  Function expanded = function;
+  ASSERT_TRUE(expandCurveLaps(expanded));
+  EXPECT_TRUE(verifyFunction(expanded).empty());
+  expectSameEvents(before, interpret(expanded), "path");
+  std::vector<Eigen::Vector3d> points;
+  for (const MachineEvent& event : before.events) {
+    if (event.kind == MachineEvent::Kind::Feed && event.z == -2) {
+      points.emplace_back(event.x, event.y, 0);
+    }
+  }
+  ASSERT_GT(points.size(), 20u);
+  geom::CurveProximity near(offset, 1e-7);
+  for (const Eigen::Vector3d& point : points) {
+    EXPECT_LT(near.closestPoint(point).distance, 1e-6) << point.transpose();
+  }
 }
 
 TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {

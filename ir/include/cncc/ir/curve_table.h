@@ -129,6 +129,10 @@ struct CurveTableEntry {
   // into tables even on a target that evaluates the curve in the program:
   // a NURBS span whose coefficients the controller would read too coarsely.
   std::vector<std::size_t> hostPointRegions = {};
+  // Every point the host computes, printed as numbers, a feed move each (a
+  // cut beside its curve whose offset the host computes, on a controller
+  // that keeps its numbers in a few hundred variables, not in tables).
+  bool pointsAsNumbers = false;
   // The same curve evaluated from the source, transforms applied (what the
   // regions compute, for choosing the points without interpreting them);
   // null in a function read from text, where the regions are interpreted.

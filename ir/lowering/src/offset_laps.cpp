@@ -1,0 +1,127 @@
+// The laps of a cut beside its curve whose offset the host computes
+// (offset_cuts.cpp), when they are cut as points: each lap is a curve.lap
+// on the exact offset (geom::offsetOfPieces, the cut's curve in the cut
+// table), its pieces laid out in the offset's own parameter, one region per
+// piece (per knot span of a NURBS piece's offset):
+// - a line's offset (cut back at a concave corner) and an arc's, and the
+//   arc about a convex corner: the line or arc the host computed, in
+//   numbers;
+// - another piece's offset: the drawn piece's own arithmetic C at the
+//   parameter and the tool centre C + d (-y', x') / |C'|, C' its derivative
+//   (forward_derivative.h), over the range left of it at concave corners.
+// The points are chosen by the target's legalisation (expand-curve-laps)
+// within the cut's tolerance of the offset, as samples= or spacing= ask;
+// on a target that runs loops they are printed as numbers (the entry's
+// pointsAsNumbers), a controller keeping its numbers in a few hundred
+// variables.
+#include "forward_derivative.h"
+
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/line_arc_curves.h"
+
+#include <cmath>
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+bool isLine(const geom::Curve& curve) {
+  return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
+}
+
+bool isArc(const geom::Curve& curve) {
+  return dynamic_cast<const geom::ArcCurve*>(&curve) != nullptr;
+}
+
+} // namespace
+
+std::optional<std::uint32_t>
+PartLowering::hostOffsetCurve(const CutStmt& cut, const CutCurve& curve,
+                              const std::shared_ptr<const geom::Curve>& offset, double distance,
+                              std::vector<HostBesideRegion>& regions) {
+  std::vector<std::shared_ptr<const geom::Curve>> drawn = movedPieces(curve);
+  bool closed = false;
+  std::vector<PieceJoin> joins = pieceJoins(drawn, distance, closed);
+  // The offset's pieces: each drawn piece's, then a corner's arc.
+  std::vector<std::optional<std::size_t>> origins;
+  for (std::size_t p = 0; p < drawn.size(); ++p) {
+    origins.emplace_back(p);
+    if (p < joins.size() && joins[p].kind == PieceJoin::CornerArc) {
+      origins.emplace_back(std::nullopt);
+    }
+  }
+  std::vector<const geom::Curve*> parts = geom::piecesOf(*offset);
+  if (parts.size() != origins.size()) {
+    return std::nullopt; // joined otherwise than this lowering follows
+  }
+  CurveTableEntry entry = curveTableEntryOn(cut, offset);
+  double start = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    geom::ParameterRange own = parts[k]->domain();
+    CurvePieceLayout layout{parts.size() == 1 ? own.t0 : start, own.t0, own.t1};
+    start += own.length();
+    const CurvePiece* piece = origins[k] ? &curve.pieces[*origins[k]] : nullptr;
+    bool numbers = isLine(*parts[k]) || isArc(*parts[k]);
+    if (numbers || piece == nullptr || piece->spans.empty()) {
+      regions.push_back({parts[k], numbers ? std::nullopt : origins[k]});
+    } else {
+      // The knot spans left of the piece, each a region.
+      for (std::size_t s = 0; s < piece->spans.size(); ++s) {
+        const geom::PolynomialSpan& span = piece->spans[s];
+        double from = std::max(own.t0, span.t0);
+        double to = std::min(own.t1, span.t1);
+        if (to > from) {
+          layout.spans.emplace_back(from, to);
+          double length = span.t1 - span.t0;
+          regions.push_back(
+              {parts[k], origins[k], s, (from - span.t0) / length, (to - from) / length});
+        }
+      }
+    }
+    entry.pieces.push_back(std::move(layout));
+  }
+  ToleranceBudget budget = toleranceBudget(cut);
+  // The points a controller-side target prints are read back by tools that
+  // print fewer digits than the controller keeps (LinuxCNC's rs274: 4
+  // decimals): a hundredth of the tolerance is left for them.
+  double chords = budget.forPoints() -
+                  (options_.controllerLoops && chordTolerance(cut) ? budget.tolerance / 100 : 0);
+  chooseSampling(entry, cut, *offset, chords);
+  entry.pointsAsNumbers = options_.controllerLoops;
+  return builder_.addCurve(std::move(entry));
+}
+
+void PartLowering::emitHostOffsetLap(const CutCurve& curve, std::uint32_t table,
+                                     const std::vector<HostBesideRegion>& regions, double distance,
+                                     double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
+  ValueId to = builder_.constant(zTo);
+  ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
+  emitLapRegions(table, {from, to, feed}, regions.size(), [&](std::size_t region, Scalar local) {
+    return hostBesidePoint(curve, regions[region], distance, local, cut);
+  });
+}
+
+LapRegionPoint PartLowering::hostBesidePoint(const CutCurve& curve, const HostBesideRegion& region,
+                                             double distance, Scalar local, const CutStmt& cut) {
+  if (const auto* line = dynamic_cast<const geom::LineCurve*>(region.part)) {
+    geom::ParameterRange own = line->domain();
+    return linePointAt(line->point(own.t0), line->point(own.t1), own.length(), local);
+  }
+  if (const auto* arc = dynamic_cast<const geom::ArcCurve*>(region.part)) {
+    return arcPointAt({arc->centre(), arc->radius(), arc->startAngle(),
+                       arc->sweep() / arc->length(), arc->startZ(), arc->zChange() / arc->length()},
+                      local);
+  }
+  const CurvePiece& piece = curve.pieces[*region.drawn];
+  Scalar own = local;
+  if (!piece.spans.empty()) {
+    own = arithmetic_.add(Scalar::of(region.spanFrom),
+                          arithmetic_.multiply(Scalar::of(region.spanShare), local));
+  }
+  CurvePoint point = pointAt(curve, *region.drawn, region.span, own, cut);
+  return offsetAlongDerivative(point, local.value, Scalar::of(distance), cut);
+}
+
+} // namespace cncc::ir::lowering
