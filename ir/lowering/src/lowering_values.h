@@ -147,4 +147,34 @@ struct ArcBlocks {
 // The height added to an arc's own z at a fraction of it (the pass, a ramp).
 using ArcHeight = std::function<Scalar(Scalar fraction)>;
 
+// An arc in numbers, in its length's parameter.
+struct ArcNumbers {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double radius = 0;
+  double startAngle = 0;
+  double turnPerLength = 0;
+  double startZ = 0;
+  double climbPerLength = 0;
+};
+
+// A region of a lap beside the curve whose offset the host computes
+// (offset_laps.cpp): its piece of the offset, and unless that is a line or
+// an arc the drawn piece whose offset it is (the knot span and the share of
+// it, u = spanFrom + spanShare t).
+struct HostBesideRegion {
+  const geom::Curve* part = nullptr;
+  std::optional<std::size_t> drawn;
+  std::size_t span = 0;
+  double spanFrom = 0;
+  double spanShare = 1;
+};
+
+// A region of a lap beside the curve whose offset the controller computes
+// (controller_offset_laps.cpp): a segment's offset, or the arc about the
+// convex corner of a join.
+struct BesideRegion {
+  std::optional<std::size_t> segment;
+  std::size_t join = 0;
+};
+
 } // namespace cncc::ir::lowering

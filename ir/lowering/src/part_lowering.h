@@ -261,15 +261,6 @@ private:
   CurvePoint transformed(const Affine& transform, const CurvePoint& point);
   CurvePoint linePointAt(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double length,
                          Scalar local);
-  // An arc in numbers, in its length's parameter.
-  struct ArcNumbers {
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    double radius = 0;
-    double startAngle = 0;
-    double turnPerLength = 0;
-    double startZ = 0;
-    double climbPerLength = 0;
-  };
   CurvePoint arcPointAt(const ArcNumbers& arc, Scalar local);
 
   // cuts.cpp
@@ -457,17 +448,7 @@ private:
   };
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
-  // offset_laps.cpp: a host offset's laps. A region: its piece of the
-  // offset, and unless that is a line or an arc the drawn piece whose offset
-  // it is (the knot span and the share of it, u = spanFrom + spanShare t).
-  struct HostBesideRegion {
-    const geom::Curve* part = nullptr;
-    std::optional<std::size_t> drawn;
-    std::size_t span = 0;
-    double spanFrom = 0;
-    double spanShare = 1;
-  };
-  // The offset's entry in the curve table (nullopt where its pieces are not
+  // offset_laps.cpp: the offset's entry in the curve table (nullopt where its pieces are not
   // the drawn pieces' offsets and corner arcs), and its regions.
   std::optional<std::uint32_t> hostOffsetCurve(const frontend::CutStmt& cut, const CutCurve& curve,
                                                const std::shared_ptr<const geom::Curve>& offset,
@@ -526,12 +507,6 @@ private:
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
   // A lap cut in steps: its curve table entry and the ranges and counts of
   // its regions whose steps the program computes.
-  // Beside the curve, each region is a segment's offset or the arc about
-  // the convex corner of a join (controller_offset_laps.cpp).
-  struct BesideRegion {
-    std::optional<std::size_t> segment;
-    std::size_t join = 0;
-  };
   struct SteppedLap {
     std::uint32_t table = 0;
     std::vector<ValueId> computedSteps;
