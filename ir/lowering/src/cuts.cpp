@@ -519,7 +519,7 @@ CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const Cut
 CurveTableEntry PartLowering::blocksTableEntry(const CutStmt& cut, const CutCurve& curve,
                                                CurveSampling sampling, std::uint32_t blockTable,
                                                double tolerance) {
-  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  CurveTableEntry entry = curve.beside ? curve.beside->layout : wholeCurveTableEntry(cut, curve);
   entry.sampling = sampling;
   entry.amount = std::isfinite(tolerance) ? tolerance : 0;
   entry.blockTable = blockTable;
@@ -594,6 +594,10 @@ void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piec
 void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom,
                                 double zTo, ValueId feed, const CutStmt& cut,
                                 std::size_t firstPiece, std::size_t endPiece) {
+  if (curve.beside) {
+    emitBesideLap(*curve.beside, table, zFrom, zTo, feed, cut);
+    return;
+  }
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
   emitCurveLapAt(curve, table, {from, to, feed}, curvePointOf(curve, cut), firstPiece, endPiece);

@@ -86,11 +86,15 @@ struct CurvePiece {
 // A cut's curve: its pieces in order, and the whole of it as one geom curve
 // (transforms applied; a path's pieces joined) whose parameter the samples
 // use.
+struct BesideCurve;
 struct CutCurve {
   std::vector<CurvePiece> pieces;
   std::shared_ptr<const geom::Curve> geometry;
   // Where each piece starts in the whole curve's parameter, and the end.
   std::vector<double> pieceStarts;
+  // A curve beside the cut's (an offset, `geometry`, without pieces of its
+  // own): how its laps compute it from the drawn curve (offset_laps.cpp).
+  std::shared_ptr<const BesideCurve> beside = nullptr;
 };
 
 // Where a sample of the whole curve lies: its piece, the NURBS span in the
@@ -167,6 +171,17 @@ struct HostBesideRegion {
   std::size_t span = 0;
   double spanFrom = 0;
   double spanShare = 1;
+};
+
+// The offset the host computes as the laps compute it (offset_laps.cpp):
+// its pieces laid out in the curve table (`layout`, its points not yet
+// chosen: geometry the offset), the region of each, the drawn curve they
+// compute from and the distance (left positive).
+struct BesideCurve {
+  CurveTableEntry layout;
+  std::vector<HostBesideRegion> regions;
+  CutCurve drawn;
+  double distance = 0;
 };
 
 // A region of a lap beside the curve whose offset the controller computes

@@ -116,7 +116,7 @@ void PartLowering::fixNurbsBlockParameters(const CutStmt& cut) {
   }
 }
 
-bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
+bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
   if (!options_.nurbsBlocks || word != "nurbs" || rampEntry(cut)) {
@@ -127,7 +127,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
          DiagnosticKind::NoSafeHeight);
   }
   Scalar feed = cutFeed(cut);
-  CutCurve curve = cutCurve(cut);
+  CutCurve curve = given != nullptr ? *given : cutCurve(cut);
   checkCutBounds(cut, *curve.geometry);
   std::vector<std::optional<ValueId>> parameters = parameterWeights(cut, curve);
   fixNurbsBlockParameters(cut);
@@ -164,7 +164,11 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut) {
     ValueId height = builder_.constant(z);
     std::vector<ValueId> operands = {height, height, feedValue};
     operands.insert(operands.end(), weights.begin(), weights.end());
-    emitCurveLapAt(curve, lapTable, std::move(operands), curvePointOf(curve, cut));
+    if (curve.beside) {
+      emitBesideLapAt(*curve.beside, lapTable, std::move(operands), cut);
+    } else {
+      emitCurveLapAt(curve, lapTable, std::move(operands), curvePointOf(curve, cut));
+    }
     builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
   }
   return true;

@@ -406,7 +406,8 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
         std::max(1e-9, options_.coordinateIncrement));
   }
   checkCutBounds(cut, *path);
-  if (lowerOffsetSplineCut(cut, offset)) {
+  std::shared_ptr<const BesideCurve> beside = besideCurve(cut, curve, offset, distance);
+  if (lowerOffsetSplineCut(cut, beside, offset)) {
     markCutBeside(curve.geometry, std::fabs(distance));
     return true;
   }
@@ -428,14 +429,12 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   // The offset's points for the lap without arcs, and for a ramp lap: a
   // curve.lap (offset_laps.cpp), or chords where the offset's pieces are
   // joined otherwise than it follows.
-  std::vector<HostBesideRegion> regions;
   std::optional<std::uint32_t> table;
   OffsetChords chords;
-  if (!arcs || begun.ramp) {
-    table = hostOffsetCurve(cut, curve, offset, distance, regions);
-    if (!table) {
-      chords = offsetChords(offsetSamples(cut, *offset), begun.ramp);
-    }
+  if ((!arcs || begun.ramp) && beside) {
+    table = besideChordsCurve(cut, *beside);
+  } else if (!arcs || begun.ramp) {
+    chords = offsetChords(offsetSamples(cut, *offset), begun.ramp);
   }
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
@@ -449,7 +448,7 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
                  builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)),
                  feed);
     } else if (table) {
-      emitHostOffsetLap(curve, *table, regions, distance, zFrom, zTo, feed, cut);
+      emitBesideLap(*beside, *table, zFrom, zTo, feed, cut);
     } else {
       emitChordLap(chords, zFrom, zTo, feed);
     }
@@ -497,16 +496,18 @@ std::optional<CompensatedLeads> PartLowering::hostLeads(const CutStmt& cut, cons
 // no pieces. A ramp's lap descends along the statement's pieces there, so
 // a ramped cut is cut as chords, and so is one with lead arcs.
 bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
+                                        const std::shared_ptr<const BesideCurve>& beside,
                                         const std::shared_ptr<const geom::Curve>& offset) {
   std::string method = methodOf(cut);
   if (method.empty() || method == "linear") {
     return false;
   }
-  CutCurve stand{{}, offset, {}};
+  CutCurve stand{{}, offset, {}, beside};
   // The spline ways emit their own passes, without lead arcs.
   bool leads = findModifier(cut, "lead") != nullptr;
   if (!rampEntry(cut) && !leads &&
-      (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand))) {
+      (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand) ||
+       (beside && lowerNurbsCut(cut, &stand)))) {
     return true;
   }
   // A target without spline blocks cuts the method as chords anyway (and

@@ -13,7 +13,8 @@
 // within the cut's tolerance of the offset, as samples= or spacing= ask;
 // on a target that runs loops they are printed as numbers (the entry's
 // pointsAsNumbers), a controller keeping its numbers in a few hundred
-// variables.
+// variables. Spline, SPL and NURBS blocks fitted to the offset are laps of the
+// same regions (the stand-in CutCurve whose `beside` this is).
 #include "forward_derivative.h"
 
 #include "cncc/geom/composite_curve.h"
@@ -37,10 +38,9 @@ bool isArc(const geom::Curve& curve) {
 
 } // namespace
 
-std::optional<std::uint32_t>
-PartLowering::hostOffsetCurve(const CutStmt& cut, const CutCurve& curve,
-                              const std::shared_ptr<const geom::Curve>& offset, double distance,
-                              std::vector<HostBesideRegion>& regions) {
+std::shared_ptr<const BesideCurve>
+PartLowering::besideCurve(const CutStmt& cut, const CutCurve& curve,
+                          const std::shared_ptr<const geom::Curve>& offset, double distance) {
   std::vector<std::shared_ptr<const geom::Curve>> drawn = movedPieces(curve);
   bool closed = false;
   std::vector<PieceJoin> joins = pieceJoins(drawn, distance, closed);
@@ -54,9 +54,12 @@ PartLowering::hostOffsetCurve(const CutStmt& cut, const CutCurve& curve,
   }
   std::vector<const geom::Curve*> parts = geom::piecesOf(*offset);
   if (parts.size() != origins.size()) {
-    return std::nullopt; // joined otherwise than this lowering follows
+    return nullptr; // joined otherwise than this lowering follows
   }
-  CurveTableEntry entry = curveTableEntryOn(cut, offset);
+  auto beside = std::make_shared<BesideCurve>();
+  beside->layout = curveTableEntryOn(cut, offset);
+  beside->drawn = curve;
+  beside->distance = distance;
   double start = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {
     geom::ParameterRange own = parts[k]->domain();
@@ -65,7 +68,7 @@ PartLowering::hostOffsetCurve(const CutStmt& cut, const CutCurve& curve,
     const CurvePiece* piece = origins[k] ? &curve.pieces[*origins[k]] : nullptr;
     bool numbers = isLine(*parts[k]) || isArc(*parts[k]);
     if (numbers || piece == nullptr || piece->spans.empty()) {
-      regions.push_back({parts[k], numbers ? std::nullopt : origins[k]});
+      beside->regions.push_back({parts[k], numbers ? std::nullopt : origins[k]});
     } else {
       // The knot spans left of the piece, each a region.
       for (std::size_t s = 0; s < piece->spans.size(); ++s) {
@@ -75,36 +78,46 @@ PartLowering::hostOffsetCurve(const CutStmt& cut, const CutCurve& curve,
         if (to > from) {
           layout.spans.emplace_back(from, to);
           double length = span.t1 - span.t0;
-          regions.push_back(
+          beside->regions.push_back(
               {parts[k], origins[k], s, (from - span.t0) / length, (to - from) / length});
         }
       }
     }
-    entry.pieces.push_back(std::move(layout));
+    beside->layout.pieces.push_back(std::move(layout));
   }
+  return beside;
+}
+
+std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCurve& beside) {
+  CurveTableEntry entry = beside.layout;
   ToleranceBudget budget = toleranceBudget(cut);
   // The points a controller-side target prints are read back by tools that
   // print fewer digits than the controller keeps (LinuxCNC's rs274: 4
   // decimals): a hundredth of the tolerance is left for them.
   double chords = budget.forPoints() -
                   (options_.controllerLoops && chordTolerance(cut) ? budget.tolerance / 100 : 0);
-  chooseSampling(entry, cut, *offset, chords);
+  chooseSampling(entry, cut, *entry.geometry, chords);
   entry.pointsAsNumbers = options_.controllerLoops;
   return builder_.addCurve(std::move(entry));
 }
 
-void PartLowering::emitHostOffsetLap(const CutCurve& curve, std::uint32_t table,
-                                     const std::vector<HostBesideRegion>& regions, double distance,
-                                     double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
+void PartLowering::emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom,
+                                 double zTo, ValueId feed, const CutStmt& cut) {
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
-  emitLapRegions(table, {from, to, feed}, regions.size(), [&](std::size_t region, Scalar local) {
-    return hostBesidePoint(curve, regions[region], distance, local, cut);
-  });
+  emitBesideLapAt(beside, table, {from, to, feed}, cut);
 }
 
-LapRegionPoint PartLowering::hostBesidePoint(const CutCurve& curve, const HostBesideRegion& region,
-                                             double distance, Scalar local, const CutStmt& cut) {
+void PartLowering::emitBesideLapAt(const BesideCurve& beside, std::uint32_t table,
+                                   std::vector<ValueId> operands, const CutStmt& cut) {
+  emitLapRegions(table, std::move(operands), beside.regions.size(),
+                 [&](std::size_t region, Scalar local) {
+                   return besidePoint(beside, beside.regions[region], local, cut);
+                 });
+}
+
+LapRegionPoint PartLowering::besidePoint(const BesideCurve& beside, const HostBesideRegion& region,
+                                         Scalar local, const CutStmt& cut) {
   if (const auto* line = dynamic_cast<const geom::LineCurve*>(region.part)) {
     geom::ParameterRange own = line->domain();
     return linePointAt(line->point(own.t0), line->point(own.t1), own.length(), local);
@@ -114,6 +127,7 @@ LapRegionPoint PartLowering::hostBesidePoint(const CutCurve& curve, const HostBe
                        arc->sweep() / arc->length(), arc->startZ(), arc->zChange() / arc->length()},
                       local);
   }
+  const CutCurve& curve = beside.drawn;
   const CurvePiece& piece = curve.pieces[*region.drawn];
   Scalar own = local;
   if (!piece.spans.empty()) {
@@ -121,7 +135,7 @@ LapRegionPoint PartLowering::hostBesidePoint(const CutCurve& curve, const HostBe
                           arithmetic_.multiply(Scalar::of(region.spanShare), local));
   }
   CurvePoint point = pointAt(curve, *region.drawn, region.span, own, cut);
-  return offsetAlongDerivative(point, local.value, Scalar::of(distance), cut);
+  return offsetAlongDerivative(point, local.value, Scalar::of(beside.distance), cut);
 }
 
 } // namespace cncc::ir::lowering

@@ -393,7 +393,8 @@ private:
   CurvePoint radiusTowardsCentre(Scalar radius, Scalar from, Scalar sweep, Scalar fraction);
 
   // nurbs_cuts.cpp
-  bool lowerNurbsCut(const frontend::CutStmt& cut);
+  // `given`: a curve beside the cut's (lowerOffsetSplineCut), else the cut's own.
+  bool lowerNurbsCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
                                                        const CutCurve& curve);
   ToleranceBudget nurbsBlockBudget(const frontend::CutStmt& cut);
@@ -432,6 +433,7 @@ private:
   std::optional<CompensatedLeads> hostLeads(const frontend::CutStmt& cut, const CutCurve& curve,
                                             const geom::Curve& offset, double distance);
   bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
+                            const std::shared_ptr<const BesideCurve>& beside,
                             const std::shared_ptr<const geom::Curve>& offset);
   // arcs=true, or --arcs on a target that prints arcs, without arcs=false.
   bool asksFittedArcs(const frontend::CutStmt& cut);
@@ -448,17 +450,21 @@ private:
   };
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
-  // offset_laps.cpp: the offset's entry in the curve table (nullopt where its pieces are not
-  // the drawn pieces' offsets and corner arcs), and its regions.
-  std::optional<std::uint32_t> hostOffsetCurve(const frontend::CutStmt& cut, const CutCurve& curve,
-                                               const std::shared_ptr<const geom::Curve>& offset,
-                                               double distance,
-                                               std::vector<HostBesideRegion>& regions);
-  void emitHostOffsetLap(const CutCurve& curve, std::uint32_t table,
-                         const std::vector<HostBesideRegion>& regions, double distance,
-                         double zFrom, double zTo, ValueId feed, const frontend::CutStmt& cut);
-  LapRegionPoint hostBesidePoint(const CutCurve& curve, const HostBesideRegion& region,
-                                 double distance, Scalar local, const frontend::CutStmt& cut);
+  // offset_laps.cpp: the offset as its laps compute it (null where its
+  // pieces are not the drawn pieces' offsets and corner arcs); its entry cut
+  // as points; a lap of it.
+  std::shared_ptr<const BesideCurve> besideCurve(const frontend::CutStmt& cut,
+                                                 const CutCurve& curve,
+                                                 const std::shared_ptr<const geom::Curve>& offset,
+                                                 double distance);
+  std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside);
+  void emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom, double zTo,
+                     ValueId feed, const frontend::CutStmt& cut);
+  // The lap with its operands (z from, z to, feed, then a NURBS block's weights).
+  void emitBesideLapAt(const BesideCurve& beside, std::uint32_t table,
+                       std::vector<ValueId> operands, const frontend::CutStmt& cut);
+  LapRegionPoint besidePoint(const BesideCurve& beside, const HostBesideRegion& region,
+                             Scalar local, const frontend::CutStmt& cut);
   // G39 after chord `after` (0-based), towards the next move's direction.
   struct ChordCorner {
     std::size_t after = 0;

@@ -149,10 +149,10 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   geometry.method = word;
   beginCutMoves(geometry);
 
-  // A curve beside the cut's (an offset) has no pieces whose regions would
-  // compute it: its spans are the moves themselves.
+  // A curve beside the cut's (an offset) computed otherwise than its laps
+  // follow has no regions: its spans are the moves themselves.
   std::optional<std::uint32_t> spansTable;
-  if (!curve.pieces.empty()) {
+  if (!curve.pieces.empty() || curve.beside) {
     std::uint32_t table = builder_.addTable(polynomialMoveTable(spans));
     spansTable = builder_.addCurve(blocksTableEntry(cut, curve, CurveSampling::PolynomialBlocks,
                                                     table, toleranceBudget(cut).forPoints()));

@@ -134,10 +134,10 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   }
   FittedSplineBlocks blocks = splineBlocksFor(cut, curve, *kind, samples, ramp);
   std::uint32_t table = builder_.addTable(splineMoveTable(blocks.data));
-  // A curve beside the cut's (an offset) has no pieces whose regions would
-  // compute it: its blocks are the move itself.
+  // A curve beside the cut's (an offset) computed otherwise than its laps
+  // follow has no regions: its blocks are the move itself.
   std::optional<std::uint32_t> blocksTable;
-  if (!curve.pieces.empty()) {
+  if (!curve.pieces.empty() || curve.beside) {
     blocksTable = builder_.addCurve(blocksTableEntry(cut, curve, CurveSampling::SplineBlocks, table,
                                                      toleranceBudget(cut).tolerance));
   }
