@@ -422,9 +422,15 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     arcs = exactSegments(*offset);
     arcMoves = arcs ? CutArcs::Native : CutArcs::None;
   }
-  if (!arcs) {
-    arcs = fittedOffsetArcs(cut, *offset);
-    arcMoves = arcs ? CutArcs::Fitted : CutArcs::None;
+  // Fitted arcs: a lap the fit-arcs legalisation writes out (offset_laps.cpp).
+  std::shared_ptr<const geom::ArcFit> fit = arcs ? nullptr : fittedOffsetArcs(cut, *offset);
+  std::optional<std::uint32_t> arcsTable;
+  if (fit) {
+    arcs = fit->segments;
+    arcMoves = CutArcs::Fitted;
+    if (beside) {
+      arcsTable = besideArcsCurve(cut, *beside, fit);
+    }
   }
   // The offset's points for the lap without arcs, and for a ramp lap: a
   // curve.lap (offset_laps.cpp), or chords where the offset's pieces are
@@ -442,7 +448,9 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
                  cut.span, methodOf(cut), arcMoves});
   markCutBeside(curve.geometry, std::fabs(distance));
   auto lap = [&](double zFrom, double zTo) {
-    if (arcs && zFrom == zTo) {
+    if (arcsTable && zFrom == zTo) {
+      emitBesideLap(*beside, *arcsTable, zTo, zTo, feed, cut);
+    } else if (arcs && zFrom == zTo) {
       double planeZ = arcs->front().start.z();
       emitArcLap(*arcs,
                  builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)),
@@ -535,19 +543,19 @@ bool PartLowering::asksFittedArcs(const CutStmt& cut) {
   return options_.arcBlocks && wanted.value_or(options_.arcsOnEveryCut);
 }
 
-std::optional<std::vector<geom::ArcSegment>>
-PartLowering::fittedOffsetArcs(const CutStmt& cut, const geom::Curve& offset) {
+std::shared_ptr<const geom::ArcFit> PartLowering::fittedOffsetArcs(const CutStmt& cut,
+                                                                   const geom::Curve& offset) {
   CutCurve stand{{}, std::shared_ptr<const geom::Curve>(&offset, [](const geom::Curve*) {}), {}};
   if (!asksFittedArcs(cut)) {
-    return std::nullopt;
+    return nullptr;
   }
   std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, stand);
   if (const std::string* problem = std::get_if<std::string>(&fitted)) {
     diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
                          fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
-    return std::nullopt;
+    return nullptr;
   }
-  return std::get<geom::ArcFit>(fitted).segments;
+  return std::make_shared<const geom::ArcFit>(std::get<geom::ArcFit>(std::move(fitted)));
 }
 
 geom::CurveSamples PartLowering::offsetSamples(const CutStmt& cut, const geom::Curve& offset) {

@@ -101,6 +101,18 @@ std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCu
   return builder_.addCurve(std::move(entry));
 }
 
+// Cut as the arcs fitted to the offset (the fit that decided it), which the
+// fit-arcs legalisation writes out.
+std::uint32_t PartLowering::besideArcsCurve(const CutStmt& cut, const BesideCurve& beside,
+                                            std::shared_ptr<const geom::ArcFit> fit) {
+  CurveTableEntry entry = beside.layout;
+  entry.sampling = CurveSampling::Arcs;
+  entry.amount = toleranceBudget(cut).forArcs();
+  entry.grid = options_.coordinateIncrement;
+  entry.fittedArcs = std::move(fit);
+  return builder_.addCurve(std::move(entry));
+}
+
 void PartLowering::emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom,
                                  double zTo, ValueId feed, const CutStmt& cut) {
   ValueId to = builder_.constant(zTo);

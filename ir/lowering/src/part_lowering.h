@@ -437,8 +437,8 @@ private:
                             const std::shared_ptr<const geom::Curve>& offset);
   // arcs=true, or --arcs on a target that prints arcs, without arcs=false.
   bool asksFittedArcs(const frontend::CutStmt& cut);
-  std::optional<std::vector<geom::ArcSegment>> fittedOffsetArcs(const frontend::CutStmt& cut,
-                                                                const geom::Curve& offset);
+  std::shared_ptr<const geom::ArcFit> fittedOffsetArcs(const frontend::CutStmt& cut,
+                                                       const geom::Curve& offset);
   // The chords' ends after the first, each with its share of the lap's
   // length (for a ramp); on a host target also as constant tables.
   struct OffsetChords {
@@ -458,6 +458,8 @@ private:
                                                  const std::shared_ptr<const geom::Curve>& offset,
                                                  double distance);
   std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside);
+  std::uint32_t besideArcsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
+                                std::shared_ptr<const geom::ArcFit> fit);
   void emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom, double zTo,
                      ValueId feed, const frontend::CutStmt& cut);
   // The lap with its operands (z from, z to, feed, then a NURBS block's weights).

@@ -292,9 +292,9 @@ TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
   EXPECT_GT(deviation, 0.005); // the steps use the tolerance
 }
 
-// What only the compiler's offset gives keeps the host's points (a lap of
-// points as numbers): lead arcs, samples=, fitted arcs; and so does a path
-// of lines and arcs. A ramp is the controller's.
+// What only the compiler's offset gives keeps the host's laps: points as
+// numbers for lead arcs and samples=, the fit for fitted arcs; a path of
+// lines and arcs is its arcs. A ramp is the controller's.
 TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
   LoweringOptions controller;
   controller.controllerLoops = true;
@@ -302,6 +302,7 @@ TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
   for (const char* modifier :
        {" lead=3", " samples=200", " arcs=true", " sweep depth=2 step=1 entry=ramp"}) {
     bool ramp = std::string(modifier).ends_with("ramp");
+    bool arcs = std::string(modifier) == " arcs=true";
     std::string text = polarPart("right");
     text.insert(text.find("tolerance=0.01") + 14, modifier);
     LoweringOptions options = controller;
@@ -310,7 +311,8 @@ TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
     ASSERT_TRUE(compiled.part) << modifier;
     for (const CurveTableEntry& entry : compiled.part->function.curves) {
       EXPECT_EQ(entry.sampling == CurveSampling::Steps, ramp) << modifier;
-      EXPECT_EQ(entry.pointsAsNumbers, !ramp) << modifier;
+      EXPECT_EQ(entry.sampling == CurveSampling::Arcs, arcs) << modifier;
+      EXPECT_EQ(entry.pointsAsNumbers, !ramp && !arcs) << modifier;
     }
   }
   Compiled slot("part p() {\n  tool 1 diameter=4 feed=300\n  safe z=5\n  curve path(line((0, "

@@ -87,9 +87,11 @@ constexpr Example examples[] = {
     {"cam_profile.cdl", ""},
     {"helix_bore.cdl", "bore_plate_mm"},
     {"helix_bore.cdl", "bore_plate_inch"},
+    {"offset_contours.cdl", ""},
     {"polar_contour.cdl", ""},
     {"rosette_plate.cdl", ""},
     {"s_profile.cdl", ""},
+    {"worn_cutter.cdl", ""},
 };
 
 TEST(PassesExamplesTest, DefaultPipelineKeepsToolPathAndDoesNotGrow) {
