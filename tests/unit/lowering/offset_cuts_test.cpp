@@ -14,9 +14,10 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
 
+#include "../ir/curve_lap_fixtures.h"
+
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -204,21 +205,6 @@ std::vector<Eigen::Vector3d> levelFeeds(const ToolPath& path) {
   return points;
 }
 
-// The same events, every number to the last bit (centres included).
-void expectSameEvents(const ToolPath& before, const ToolPath& after, const std::string& name) {
-  ASSERT_EQ(before.events.size(), after.events.size()) << name;
-  for (std::size_t i = 0; i < before.events.size(); ++i) {
-    const MachineEvent& a = before.events[i];
-    const MachineEvent& b = after.events[i];
-    ASSERT_EQ(a.kind, b.kind) << name << " event " << i;
-    for (auto [x, y] : {std::pair{a.x, b.x}, std::pair{a.y, b.y}, std::pair{a.z, b.z},
-                        std::pair{a.centreX, b.centreX}, std::pair{a.centreY, b.centreY}}) {
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(x), std::bit_cast<std::uint64_t>(y))
-          << name << " event " << i << ": " << x << " and " << y;
-    }
-  }
-}
-
 // A slot of lines and an arc, its convex corners rounded and its concave
 // one (the notch) cut back: with the diameter a parameter, one curve.lap
 // per pass whose regions are the pieces' offsets and an arc region per
@@ -254,7 +240,7 @@ TEST(OffsetCuts, ControllerOffsetsAreLapsOfThePiecesAndTheCornerArcs) {
     InterpreterOptions options;
     options.parameters = edited;
     ToolPath before = interpret(function, options);
-    expectSameEvents(before, interpret(expanded, options), "slot");
+    curve_lap_test::expectSameMoves(before, interpret(expanded, options));
     // The notch's crossing lies the radius from both lines it joins.
     double radius = (edited.empty() ? 4 : edited.begin()->second) / 2;
     bool crossing = false;
@@ -355,7 +341,7 @@ TEST(OffsetCuts, HostOffsetsAreLapsOnTheExactOffset) {
   Function expanded = function;
   ASSERT_TRUE(expandCurveLaps(expanded));
   EXPECT_TRUE(verifyFunction(expanded).empty());
-  expectSameEvents(before, interpret(expanded), "path");
+  curve_lap_test::expectSameMoves(before, interpret(expanded));
   std::vector<Eigen::Vector3d> points;
   for (const MachineEvent& event : before.events) {
     if (event.kind == MachineEvent::Kind::Feed && event.z == -2) {
