@@ -25,17 +25,14 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-namespace {
-
-std::optional<bool> arcsModifier(const CutStmt& cut) {
-  const Expr* arcs = modifierValue(cut, "arcs");
-  if (arcs != nullptr && arcs->kind == ExprKind::Bool) {
-    return as<BoolExpr>(*arcs).value;
+bool PartLowering::asksFittedArcs(const CutStmt& cut) {
+  std::optional<bool> wanted;
+  if (const Expr* arcs = modifierValue(cut, "arcs");
+      arcs != nullptr && arcs->kind == ExprKind::Bool) {
+    wanted = as<BoolExpr>(*arcs).value;
   }
-  return std::nullopt;
+  return options_.arcBlocks && wanted.value_or(options_.arcsOnEveryCut);
 }
-
-} // namespace
 
 // Why the cut cannot be printed as host-fitted arcs, before its curve is
 // built; nullopt when nothing stands in the way.
@@ -77,7 +74,7 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
 }
 
 bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
-  if (!options_.arcBlocks || !arcsModifier(cut).value_or(options_.arcsOnEveryCut)) {
+  if (!asksFittedArcs(cut)) {
     return false;
   }
   std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, curve);

@@ -10,6 +10,7 @@
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/evaluation_budget.h"
+#include "cncc/ir/cut_geometry.h"
 
 #include <Eigen/Core>
 
@@ -90,6 +91,32 @@ struct RuntimeOffset {
   // last is its end to its start.
   std::vector<PieceJoin> joins;
   bool closed = false;
+};
+
+// The chords' ends after the first, each with its share of the lap's
+// length (for a ramp); on a host target also as constant tables.
+struct OffsetChords {
+  std::vector<Eigen::Vector3d> ends;
+  std::vector<double> progress;
+  bool tables = false;
+  std::uint32_t x = 0, y = 0, z = 0, progressTable = 0;
+  bool planar = true; // every z is 0: no z table
+};
+
+// G39 after chord `after` (0-based), towards the next move's direction.
+struct ChordCorner {
+  std::size_t after = 0;
+  Eigen::Vector3d nextTangent = Eigen::Vector3d::Zero();
+};
+
+// How a host offset's laps are cut: its own arcs or fitted ones (then
+// their lap's table), else its points (their lap's table, or chords).
+struct HostOffsetLaps {
+  std::optional<std::vector<geom::ArcSegment>> arcs;
+  CutArcs arcMoves = CutArcs::None;
+  std::optional<std::uint32_t> arcsTable;
+  std::optional<std::uint32_t> pointsTable;
+  OffsetChords chords;
 };
 
 // The cut's pieces in part coordinates, lines and arcs kept as such.

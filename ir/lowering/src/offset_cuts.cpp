@@ -393,6 +393,13 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
       return true;
     }
   }
+  lowerHostOffsetCut(cut, distance);
+  return true;
+}
+
+// The offset computed here: spline blocks fitted to it, or each lap as arcs
+// or points (hostOffsetLaps), with lead arcs where lead= asks.
+void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
   CutCurve curve = cutCurve(cut);
   std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
   std::optional<CompensatedLeads> leads = hostLeads(cut, curve, *offset, distance);
@@ -409,61 +416,25 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   std::shared_ptr<const BesideCurve> beside = besideCurve(cut, curve, offset, distance);
   if (lowerOffsetSplineCut(cut, beside, offset)) {
     markCutBeside(curve.geometry, std::fabs(distance));
-    return true;
+    return;
   }
   HostCut begun = beginHostCut(cut);
   geom::ParameterRange domain = offset->domain();
   if (begun.ramp && (offset->point(domain.t0) - offset->point(domain.t1)).norm() > 1e-6) {
     unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
   }
-  std::optional<std::vector<geom::ArcSegment>> arcs;
-  CutArcs arcMoves = CutArcs::None;
-  if (wantsNativeArcs(cut)) {
-    arcs = exactSegments(*offset);
-    arcMoves = arcs ? CutArcs::Native : CutArcs::None;
-  }
-  // Fitted arcs: a lap the fit-arcs legalisation writes out (offset_laps.cpp).
-  std::shared_ptr<const geom::ArcFit> fit = arcs ? nullptr : fittedOffsetArcs(cut, *offset);
-  std::optional<std::uint32_t> arcsTable;
-  if (fit) {
-    arcs = fit->segments;
-    arcMoves = CutArcs::Fitted;
-    if (beside) {
-      arcsTable = besideArcsCurve(cut, *beside, fit);
-    }
-  }
-  // The offset's points for the lap without arcs, and for a ramp lap: a
-  // curve.lap (offset_laps.cpp), or chords where the offset's pieces are
-  // joined otherwise than it follows.
-  std::optional<std::uint32_t> table;
-  OffsetChords chords;
-  if ((!arcs || begun.ramp) && beside) {
-    table = besideChordsCurve(cut, *beside);
-  } else if (!arcs || begun.ramp) {
-    chords = offsetChords(offsetSamples(cut, *offset), begun.ramp);
-  }
+  HostOffsetLaps laps = hostOffsetLaps(cut, offset, beside, begun.ramp);
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
   beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
-                 cut.span, methodOf(cut), arcMoves});
+                 cut.span, methodOf(cut), laps.arcMoves});
   markCutBeside(curve.geometry, std::fabs(distance));
   auto lap = [&](double zFrom, double zTo) {
-    if (arcsTable && zFrom == zTo) {
-      emitBesideLap(*beside, *arcsTable, zTo, zTo, feed, cut);
-    } else if (arcs && zFrom == zTo) {
-      double planeZ = arcs->front().start.z();
-      emitArcLap(*arcs,
-                 builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)),
-                 feed);
-    } else if (table) {
-      emitBesideLap(*beside, *table, zFrom, zTo, feed, cut);
-    } else {
-      emitChordLap(chords, zFrom, zTo, feed);
-    }
+    emitHostOffsetLap(laps, beside.get(), zFrom, zTo, feed, cut);
   };
   Eigen::Vector3d start = offset->point(domain.t0);
   Eigen::Vector3d finish = offset->point(domain.t1);
-  if (arcs) {
+  if (laps.arcs) {
     double increment = options_.coordinateIncrement;
     for (Eigen::Vector3d* end : {&start, &finish}) {
       *end = {onPrintedGrid(end->x(), increment), onPrintedGrid(end->y(), increment), end->z()};
@@ -475,7 +446,52 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
   }
   emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap,
                  leads ? &*leads : nullptr);
-  return true;
+}
+
+// The offset's own lines and arcs where it is made of nothing else (moves at
+// once), else arcs fitted to it where the cut asks (a lap fit-arcs writes
+// out); the points of the laps without arcs and of a ramp lap: a curve.lap
+// (offset_laps.cpp), or chords where the offset's pieces are joined
+// otherwise than besideCurve follows.
+HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
+                                            const std::shared_ptr<const geom::Curve>& offset,
+                                            const std::shared_ptr<const BesideCurve>& beside,
+                                            bool ramp) {
+  HostOffsetLaps laps;
+  if (wantsNativeArcs(cut)) {
+    laps.arcs = exactSegments(*offset);
+    laps.arcMoves = laps.arcs ? CutArcs::Native : CutArcs::None;
+  }
+  std::shared_ptr<const geom::ArcFit> fit = laps.arcs ? nullptr : fittedOffsetArcs(cut, *offset);
+  if (fit) {
+    laps.arcs = fit->segments;
+    laps.arcMoves = CutArcs::Fitted;
+    if (beside) {
+      laps.arcsTable = besideArcsCurve(cut, *beside, fit);
+    }
+  }
+  if ((!laps.arcs || ramp) && beside) {
+    laps.pointsTable = besideChordsCurve(cut, *beside);
+  } else if (!laps.arcs || ramp) {
+    laps.chords = offsetChords(offsetSamples(cut, *offset), ramp);
+  }
+  return laps;
+}
+
+void PartLowering::emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside,
+                                     double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
+  bool level = zFrom == zTo;
+  if (laps.arcsTable && level) {
+    emitBesideLap(*beside, *laps.arcsTable, zTo, zTo, feed, cut);
+  } else if (laps.arcs && level) {
+    double planeZ = laps.arcs->front().start.z();
+    emitArcLap(*laps.arcs,
+               builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)), feed);
+  } else if (laps.pointsTable) {
+    emitBesideLap(*beside, *laps.pointsTable, zFrom, zTo, feed, cut);
+  } else {
+    emitChordLap(laps.chords, zFrom, zTo, feed);
+  }
 }
 
 // lead=R: the tool centre's tangent arcs of radius R onto the offset's
@@ -534,15 +550,6 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
   return false;
 }
 
-bool PartLowering::asksFittedArcs(const CutStmt& cut) {
-  std::optional<bool> wanted;
-  if (const Expr* arcs = modifierValue(cut, "arcs");
-      arcs != nullptr && arcs->kind == ExprKind::Bool) {
-    wanted = as<BoolExpr>(*arcs).value;
-  }
-  return options_.arcBlocks && wanted.value_or(options_.arcsOnEveryCut);
-}
-
 std::shared_ptr<const geom::ArcFit> PartLowering::fittedOffsetArcs(const CutStmt& cut,
                                                                    const geom::Curve& offset) {
   CutCurve stand{{}, std::shared_ptr<const geom::Curve>(&offset, [](const geom::Curve*) {}), {}};
@@ -569,8 +576,7 @@ geom::CurveSamples PartLowering::offsetSamples(const CutStmt& cut, const geom::C
   return chordsWithinBudget(cut, offset, budget.forPoints() - budget.tolerance / 100);
 }
 
-PartLowering::OffsetChords PartLowering::offsetChords(const geom::CurveSamples& samples,
-                                                      bool ramp) {
+OffsetChords PartLowering::offsetChords(const geom::CurveSamples& samples, bool ramp) {
   OffsetChords chords;
   double travelled = 0;
   for (std::size_t i = 1; i < samples.points.size(); ++i) {

@@ -439,15 +439,6 @@ private:
   bool asksFittedArcs(const frontend::CutStmt& cut);
   std::shared_ptr<const geom::ArcFit> fittedOffsetArcs(const frontend::CutStmt& cut,
                                                        const geom::Curve& offset);
-  // The chords' ends after the first, each with its share of the lap's
-  // length (for a ramp); on a host target also as constant tables.
-  struct OffsetChords {
-    std::vector<Eigen::Vector3d> ends;
-    std::vector<double> progress;
-    bool tables = false;
-    std::uint32_t x = 0, y = 0, z = 0, progressTable = 0;
-    bool planar = true; // every z is 0: no z table
-  };
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
   // offset_laps.cpp: the offset as its laps compute it (null where its
@@ -467,15 +458,16 @@ private:
                        std::vector<ValueId> operands, const frontend::CutStmt& cut);
   LapRegionPoint besidePoint(const BesideCurve& beside, const HostBesideRegion& region,
                              Scalar local, const frontend::CutStmt& cut);
-  // G39 after chord `after` (0-based), towards the next move's direction.
-  struct ChordCorner {
-    std::size_t after = 0;
-    Eigen::Vector3d nextTangent = Eigen::Vector3d::Zero();
-  };
   // The chords from zFrom to zTo; `corners` (constant chords only, in
   // order) each get their G39 (compensated_cuts.cpp).
   void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed,
                     std::span<const ChordCorner> corners = {});
+  void lowerHostOffsetCut(const frontend::CutStmt& cut, double distance);
+  HostOffsetLaps hostOffsetLaps(const frontend::CutStmt& cut,
+                                const std::shared_ptr<const geom::Curve>& offset,
+                                const std::shared_ptr<const BesideCurve>& beside, bool ramp);
+  void emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside, double zFrom,
+                         double zTo, ValueId feed, const frontend::CutStmt& cut);
 
   // compensated_cuts.cpp: comp=controller, the curve itself with the
   // controller's cutter radius compensation (G41/G42 D.., G40) and tangent
