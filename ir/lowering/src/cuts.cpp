@@ -509,6 +509,9 @@ void PartLowering::chooseSampling(CurveTableEntry& entry, const CutStmt& cut,
 // An entry for the cut's whole curve, its pieces laid out; its points not
 // yet chosen.
 CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const CutCurve& curve) {
+  if (curve.beside) {
+    return curve.beside->layout; // the offset's pieces (offset_laps.cpp)
+  }
   CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
     addPieceLayout(entry, curve.pieces[p], curve.pieceStarts[p], cut);
@@ -519,7 +522,7 @@ CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const Cut
 CurveTableEntry PartLowering::blocksTableEntry(const CutStmt& cut, const CutCurve& curve,
                                                CurveSampling sampling, std::uint32_t blockTable,
                                                double tolerance) {
-  CurveTableEntry entry = curve.beside ? curve.beside->layout : wholeCurveTableEntry(cut, curve);
+  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
   entry.sampling = sampling;
   entry.amount = std::isfinite(tolerance) ? tolerance : 0;
   entry.blockTable = blockTable;

@@ -514,11 +514,12 @@ std::optional<CompensatedLeads> PartLowering::hostLeads(const CutStmt& cut, cons
   return leads;
 }
 
-// Spline blocks fitted to the offset where the target prints them
-// (Sinumerik BSPLINE/CSPLINE/ASPLINE, Heidenhain SPL): the ways of lowering
-// that read only the curve's geometry take the offset in a stand-in with
-// no pieces. A ramp's lap descends along the statement's pieces there, so
-// a ramped cut is cut as chords, and so is one with lead arcs.
+// Blocks fitted to the offset where the target prints them (Sinumerik
+// BSPLINE/CSPLINE/ASPLINE, Heidenhain SPL, G06.2 for method=nurbs): the ways
+// of lowering that read the curve's geometry take the offset in a stand-in
+// without pieces of its own, whose laps compute the offset (`beside`). A cut
+// with lead arcs is cut as chords, and so is a ramped one where a target's
+// blocks have no ramp (SPL, G06.2).
 bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
                                         const std::shared_ptr<const BesideCurve>& beside,
                                         const std::shared_ptr<const geom::Curve>& offset) {
@@ -527,9 +528,12 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
     return false;
   }
   CutCurve stand{{}, offset, {}, beside};
-  // The spline ways emit their own passes, without lead arcs.
+  // The spline ways emit their own passes, without lead arcs; a ramp's lap
+  // (Sinumerik's: chords through the points the blocks were fitted to) is
+  // the offset's, which needs its regions.
   bool leads = findModifier(cut, "lead") != nullptr;
-  if (!rampEntry(cut) && !leads &&
+  bool rampWithoutLap = rampEntry(cut) && !beside;
+  if (!rampWithoutLap && !leads &&
       (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand) ||
        (beside && lowerNurbsCut(cut, &stand)))) {
     return true;
