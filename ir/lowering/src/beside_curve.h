@@ -1,8 +1,9 @@
 // What a cut beside its curve (side=) is planned with: the lead arcs of
 // comp=controller and lead=, why an offset cannot be built, how a path's
-// offset pieces join, and the offset the controller computes when the tool
-// diameter is a parameter (offset_cuts.cpp, compensated_cuts.cpp,
-// controller_offset_cuts.cpp).
+// offset pieces join, how the laps of an offset the host computes are cut,
+// and the offset the controller computes (offset_cuts.cpp, offset_laps.cpp,
+// compensated_cuts.cpp, controller_offset_cuts.cpp,
+// controller_offset_laps.cpp).
 #pragma once
 
 #include "lowering_values.h"
@@ -77,8 +78,9 @@ PieceJoin pieceJoin(const geom::Curve& before, const geom::Curve& after, double 
 std::vector<PieceJoin> pieceJoins(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                                   double distance, bool& closed);
 
-// A cut beside its curve whose tool radius the controller knows only when
-// it runs (controller_offset_cuts.cpp).
+// A cut beside its curve whose offset the controller computes
+// (controller_offset_cuts.cpp): its tool radius a parameter the controller
+// knows only when it runs, or a number.
 struct RuntimeOffset {
   Scalar distance; // left of the direction of travel positive
   Scalar radius;   // |distance|

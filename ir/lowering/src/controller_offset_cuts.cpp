@@ -1,7 +1,9 @@
 // A cut beside its curve (side=) on a target that runs the curve loop
-// itself, when the tool's diameter is a part parameter: the shop edits one
-// number for a worn cutter and the controller computes the offset. The cut
-// is lowered by controller_cuts.cpp with runtimeOffset_ set, and:
+// itself, when the controller computes the offset: the tool's diameter a
+// part parameter (the shop edits one number for a worn cutter), or a number
+// where the curve has a piece that is neither a line nor an arc (the loop is
+// a tenth of the chords' program). The cut is lowered by controller_cuts.cpp
+// with runtimeOffset_ set, each lap a curve.lap (controller_offset_laps.cpp):
 // - each step's point C and its derivative C' come from the same
 //   arithmetic (forward_derivative.h: Horner's rule of a NURBS span and
 //   its derivative, a polar or param curve's expressions differentiated),
@@ -10,17 +12,19 @@
 //   the tool's radius, a convex corner of a path gets an arc of that radius
 //   about it and a concave corner between two lines their offsets'
 //   crossing, c + d (n1 + n2) / (1 + n1.n2), as geom::offsetOfPieces does;
-// - the step count of a piece grows with the radius: a chord over a
+// - with a radius that is a number, each piece's step count is the fewest
+//   uniform steps measured on the exact offset; with a parameter it grows
+//   with the radius: a chord over a
 //   parameter step h deviates from the offset by about h^2 s'^2 |k (1 - d k)|
 //   / 8 (s' the speed, k the signed curvature), at most h^2 (s'^2 |k| + r
 //   s'^2 k^2) / 8, so N(r) = sqrt(N0^2 + Q r) steps, N0 the fewest measured
 //   on the drawn curve and Q from the largest s'^2 k^2 over the piece;
 //   N(r) is measured on the exact offset at a few radii and Q raised until
 //   it fits;
-// - before it cuts, the program raises an alarm for a radius that is not
-//   positive, or not below the largest radius the tool fits the curve with
-//   (its tightest concave bend, a path's concave corner, the offset
-//   crossing itself), found here by bisection.
+// - before it cuts, the program raises an alarm for a radius (a parameter)
+//   that is not positive, or not below the largest radius the tool fits the
+//   curve with (its tightest concave bend, a path's concave corner, the
+//   offset crossing itself), found here by bisection.
 #include "controller_segment.h"
 #include "forward_derivative.h"
 
