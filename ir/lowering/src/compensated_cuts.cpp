@@ -387,9 +387,10 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   if (!options_.cutterCompensation) {
     fail(comp.span(),
          fmt::format("comp=controller (the controller's cutter radius compensation, G41/G42) is "
-                     "not available on the {} target yet; leave comp= out for the compiler's "
+                     "not available on {} yet; leave comp= out for the compiler's "
                      "exact offset (comp=host)",
-                     options_.targetName.empty() ? std::string("this") : options_.targetName),
+                     options_.targetName.empty() ? std::string("this target")
+                                                 : "the " + options_.targetName + " target"),
          DiagnosticKind::CompensationUnavailable);
   }
   if (rampEntry(cut)) {
@@ -486,7 +487,17 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
       }
     }
   }
-  OffsetChords chords = offsetChords(samples, false); // constants on controllerLoops
+  // The contour's points, where no G39 goes between them: a lap of the
+  // drawn curve itself (beside it at distance 0) at the points chosen here.
+  std::shared_ptr<const BesideCurve> drawn =
+      !arcs && chordCorners.empty() ? besideCurve(cut, curve, contour, 0) : nullptr;
+  std::optional<std::uint32_t> pointsTable;
+  OffsetChords chords;
+  if (drawn) {
+    pointsTable = chosenPointsCurve(cut, *drawn, samples.parameters);
+  } else if (!arcs) {
+    chords = offsetChords(samples, false); // constants on controllerLoops
+  }
   std::vector<double> depths = passDepths(cut);
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
@@ -498,8 +509,10 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
         emitArcLapWithCorners(*arcs, distance, z, feed);
       } else if (arcs) {
         emitArcLap(*arcs, z, feed);
+      } else if (pointsTable) {
+        emitBesideLap(*drawn, *pointsTable, passZ, passZ, feed, cut);
       } else {
-        emitChordLap(chords, passZ, passZ, feed, chordCorners); // none without G39
+        emitChordLap(chords, passZ, passZ, feed, chordCorners);
       }
     });
   }

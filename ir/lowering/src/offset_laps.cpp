@@ -101,6 +101,18 @@ std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCu
   return builder_.addCurve(std::move(entry));
 }
 
+// Cut at parameters chosen for something else too (comp=controller's
+// chords, kept within the budget of their offsets).
+std::uint32_t PartLowering::chosenPointsCurve(const CutStmt& cut, const BesideCurve& beside,
+                                              const std::vector<double>& parameters) {
+  CurveTableEntry entry = beside.layout;
+  // How the points would be chosen again (IR read from text keeps them).
+  chooseSampling(entry, cut, *entry.geometry, toleranceBudget(cut).forPoints());
+  entry.chosenParameters = std::make_shared<const std::vector<double>>(parameters);
+  entry.pointsAsNumbers = options_.controllerLoops;
+  return builder_.addCurve(std::move(entry));
+}
+
 // Cut as the arcs fitted to the offset (the fit that decided it), which the
 // fit-arcs legalisation writes out.
 std::uint32_t PartLowering::besideArcsCurve(const CutStmt& cut, const BesideCurve& beside,
@@ -147,6 +159,9 @@ LapRegionPoint PartLowering::besidePoint(const BesideCurve& beside, const HostBe
                           arithmetic_.multiply(Scalar::of(region.spanShare), local));
   }
   CurvePoint point = pointAt(curve, *region.drawn, region.span, own, cut);
+  if (beside.distance == 0) {
+    return point; // the drawn curve itself (comp=controller's)
+  }
   return offsetAlongDerivative(point, local.value, Scalar::of(beside.distance), cut);
 }
 

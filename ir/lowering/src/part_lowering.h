@@ -449,6 +449,8 @@ private:
                                                  const std::shared_ptr<const geom::Curve>& offset,
                                                  double distance);
   std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside);
+  std::uint32_t chosenPointsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
+                                  const std::vector<double>& parameters);
   std::uint32_t besideArcsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
                                 std::shared_ptr<const geom::ArcFit> fit);
   void emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom, double zTo,

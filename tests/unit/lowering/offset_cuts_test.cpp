@@ -355,6 +355,39 @@ TEST(OffsetCuts, HostOffsetsAreLapsOnTheExactOffset) {
   }
 }
 
+// comp=controller runs the drawn curve: where no G39 goes between its
+// chords, a curve.lap of the curve itself at the points chosen for the
+// offsets' budget, the same moves after the legalisation.
+TEST(OffsetCuts, CompensatedChordsAreALapOfTheDrawnCurve) {
+  LoweringOptions host;
+  host.expandCurveLaps = false;
+  host.cutterCompensation = true;
+  std::string text = polarPart("right");
+  text.insert(text.find(" tolerance=0.01"), " comp=controller");
+  Compiled compiled(text, host);
+  ASSERT_TRUE(compiled.part);
+  Function& function = compiled.part->function;
+  EXPECT_TRUE(verifyFunction(function).empty());
+  ASSERT_EQ(function.curves.size(), 1u);
+  const CurveTableEntry& entry = function.curves.front();
+  ASSERT_NE(entry.chosenParameters, nullptr);
+  EXPECT_GT(entry.chosenParameters->size(), 150u);
+  ToolPath before = interpret(function);
+  Function expanded = function;
+  ASSERT_TRUE(expandCurveLaps(expanded));
+  EXPECT_TRUE(verifyFunction(expanded).empty());
+  curve_lap_test::expectSameMoves(before, interpret(expanded));
+  // The lap's points are the drawn curve's, r = 18 + 4 cos 2t cos 6t at t
+  // (the other feeds are the start-up, lead and cancel moves).
+  std::size_t onCurve = 0;
+  for (const Eigen::Vector3d& point : levelFeeds(before)) {
+    double t = std::atan2(point.y(), point.x());
+    double r = 18 + 4 * std::cos(2 * t) * std::cos(6 * t);
+    onCurve += std::abs(point.norm() - r) < 1e-9 ? 1 : 0;
+  }
+  EXPECT_GE(onCurve, entry.chosenParameters->size() - 1);
+}
+
 TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {
   Compiled compiled(
       polarPart("right").replace(polarPart("right").find("diameter=4"), 10, "diameter=5"), {});
