@@ -8,6 +8,7 @@
 #include "linuxcnc_target.h"
 #include "machine_options.h"
 #include "macro_targets.h"
+#include "own_program_readers.h"
 #include "sinumerik_target.h"
 
 #include "cncc/backends/gcode_writer.h"
@@ -94,7 +95,7 @@ constexpr Target targetTable[] = {
      .lowering = sinumerikLoweringOptions,
      .splineOptions = true,
      .cutterCompensation = true,
-     .ownProgramReader = true},
+     .ownProgramReader = simulateSinumerikProgram},
     {.name = "gcode",
      .description = "plain G-code: G00/G01 and G02/G03 blocks computed on the host",
      .backend = gcodeBackend,
@@ -108,7 +109,7 @@ constexpr Target targetTable[] = {
      .lowering = linuxcncLoweringOptions,
      .fittedArcs = true,
      .cutterCompensation = true,
-     .ownProgramReader = true},
+     .ownProgramReader = simulateLinuxcncProgram},
     {.name = "heidenhain",
      .description = "Heidenhain TNC conversational program with Q parameters (parameters stay "
                     "editable)",
@@ -117,7 +118,7 @@ constexpr Target targetTable[] = {
      .fittedArcs = true,
      .parameterVariables = heidenhainParameterQ,
      .cutterCompensation = true,
-     .ownProgramReader = true,
+     .ownProgramReader = simulateTncProgram,
      .tncProfiles = true},
     {.name = "jit",
      .description = "run the part on the host and print the tool path",

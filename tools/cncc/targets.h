@@ -62,6 +62,10 @@ using LoweringFunction = ir::LoweringOptions (*)(const frontend::PartItem& part,
 using HostProgramFunction = backends::ExecutedProgram (*)(const BackendRequest& request,
                                                           const ir::ToolPath& path);
 
+// Runs the program `text` read from `path` (`sim`); the exit code.
+using OwnProgramReader = int (*)(const DriverOptions& options, const std::string& path,
+                                 const std::string& text);
+
 using ParameterVariablesFunction = std::vector<int> (*)(std::size_t count,
                                                         const DriverOptions& options);
 
@@ -89,7 +93,7 @@ struct Target {
   bool cutterCompensation = false;
   // `sim` runs its program in a reader of its own (not the macro
   // controller's, so none of -a, --strict, --peck-retract, --peck-clearance).
-  bool ownProgramReader = false;
+  OwnProgramReader ownProgramReader = nullptr;
   // --profile names a TNC profile (tnc640, itnc530) for it, not a macro
   // controller's.
   bool tncProfiles = false;
