@@ -487,14 +487,14 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
       }
     }
   }
-  // The contour's points, where no G39 goes between them: a lap of the
-  // drawn curve itself (beside it at distance 0) at the points chosen here.
-  std::shared_ptr<const BesideCurve> drawn =
-      !arcs && chordCorners.empty() ? besideCurve(cut, curve, contour, 0) : nullptr;
-  std::optional<std::uint32_t> pointsTable;
+  // The contour's points: laps of the drawn curve itself (beside it at
+  // distance 0) at the points chosen here, one per stretch between the
+  // corners that get a G39.
+  std::shared_ptr<const BesideCurve> drawn = arcs ? nullptr : besideCurve(cut, curve, contour, 0);
+  std::vector<std::uint32_t> stretches;
   OffsetChords chords;
   if (drawn) {
-    pointsTable = chosenPointsCurve(cut, *drawn, samples.parameters);
+    stretches = stretchCurves(cut, *drawn, samples.parameters, chordCorners);
   } else if (!arcs) {
     chords = offsetChords(samples, false); // constants on controllerLoops
   }
@@ -509,13 +509,34 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
         emitArcLapWithCorners(*arcs, distance, z, feed);
       } else if (arcs) {
         emitArcLap(*arcs, z, feed);
-      } else if (pointsTable) {
-        emitBesideLap(*drawn, *pointsTable, passZ, passZ, feed, cut);
+      } else if (drawn) {
+        for (std::size_t k = 0; k < stretches.size(); ++k) {
+          if (k > 0) {
+            emitCornerArc(chordCorners[k - 1].nextTangent);
+          }
+          emitBesideLap(*drawn, stretches[k], passZ, passZ, feed, cut);
+        }
       } else {
         emitChordLap(chords, passZ, passZ, feed, chordCorners);
       }
     });
   }
+}
+
+// The laps of the stretches between the corners (G39 after chord `after`:
+// the stretch ends at sample after + 1, where the next starts).
+std::vector<std::uint32_t> PartLowering::stretchCurves(const CutStmt& cut, const BesideCurve& drawn,
+                                                       const std::vector<double>& parameters,
+                                                       const std::vector<ChordCorner>& corners) {
+  std::vector<std::uint32_t> stretches;
+  auto from = parameters.begin();
+  for (const ChordCorner& corner : corners) {
+    auto to = parameters.begin() + static_cast<std::ptrdiff_t>(corner.after + 1);
+    stretches.push_back(chosenPointsCurve(cut, drawn, std::vector<double>(from, to + 1)));
+    from = to;
+  }
+  stretches.push_back(chosenPointsCurve(cut, drawn, std::vector<double>(from, parameters.end())));
+  return stretches;
 }
 
 // One pass: down off the part, compensation on with the start-up line, the

@@ -487,6 +487,9 @@ private:
                            const std::function<void(ValueId z)>& contour);
   // G39 (corner.arc) at convex corners (LoweringOptions::compensationCornerArcs).
   void emitCornerArc(const Eigen::Vector3d& tangent);
+  std::vector<std::uint32_t> stretchCurves(const frontend::CutStmt& cut, const BesideCurve& drawn,
+                                           const std::vector<double>& parameters,
+                                           const std::vector<ChordCorner>& corners);
   void emitArcLapWithCorners(const std::vector<geom::ArcSegment>& segments, double offset,
                              ValueId z, ValueId feed);
 
