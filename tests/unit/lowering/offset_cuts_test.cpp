@@ -388,6 +388,38 @@ TEST(OffsetCuts, CompensatedChordsAreALapOfTheDrawnCurve) {
   EXPECT_GE(onCurve, entry.chosenParameters->size() - 1);
 }
 
+// With G39 at the corners (fanuc, m80), one lap per stretch between them,
+// a corner.arc between the laps; the legalisation keeps the moves.
+TEST(OffsetCuts, CompensatedChordsWithCornersAreALapPerStretch) {
+  LoweringOptions controller;
+  controller.expandCurveLaps = false;
+  controller.cutterCompensation = true;
+  controller.controllerLoops = true;
+  controller.compensationCornerArcs = true;
+  Compiled compiled("part p() {\n  tool 1 diameter=6 feed=400\n  safe z=5\n"
+                    "  curve path(line((20, 0), (40, 0)), param(x = 20 + 20*cos(t), y = "
+                    "15*sin(t), t = 0 .. pi), line((0, 0), (20, 0))) side=right comp=controller "
+                    "tolerance=0.01\n}\n",
+                    controller);
+  ASSERT_TRUE(compiled.part);
+  Function& function = compiled.part->function;
+  EXPECT_TRUE(verifyFunction(function).empty());
+  ASSERT_EQ(function.curves.size(), 3u); // two convex corners inside the path
+  std::size_t corners = 0;
+  for (const Instruction& instruction : function.instructions) {
+    corners += instruction.opcode == Opcode::CornerArc ? 1 : 0;
+  }
+  EXPECT_EQ(corners, 2u);
+  // Each stretch starts where the one before ends.
+  EXPECT_EQ(function.curves[0].chosenParameters->back(),
+            function.curves[1].chosenParameters->front());
+  ToolPath before = interpret(function);
+  Function expanded = function;
+  ASSERT_TRUE(expandCurveLaps(expanded));
+  EXPECT_TRUE(verifyFunction(expanded).empty());
+  curve_lap_test::expectSameMoves(before, interpret(expanded));
+}
+
 TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {
   Compiled compiled(
       polarPart("right").replace(polarPart("right").find("diameter=4"), 10, "diameter=5"), {});
