@@ -28,6 +28,7 @@
 #include "controller_segment.h"
 #include "forward_derivative.h"
 
+#include "cncc/geom/composite_curve.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_clearance.h"
@@ -176,6 +177,18 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     }
   }
   offset.joins = pieceJoins(pieces, compiledDistance, offset.closed);
+  // The laps follow geom's offset: its pieces and a corner arc per convex join.
+  std::size_t cornerArcs = 0;
+  for (const PieceJoin& join : offset.joins) {
+    cornerArcs += join.kind == PieceJoin::CornerArc ? 1 : 0;
+  }
+  if (geom::piecesOf(*offset.compiled).size() != pieces.size() + cornerArcs) {
+    if (!runtime) {
+      return false;
+    }
+    unsupported(cut.span, "a path whose offset's pieces join otherwise than its own, beside a "
+                          "curve whose tool diameter is a parameter");
+  }
   for (std::size_t j = 0; j < offset.joins.size(); ++j) {
     std::size_t after = (j + 1) % pieces.size();
     if (offset.joins[j].kind == PieceJoin::Crossing &&
