@@ -290,13 +290,6 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
       from = piece.spans[segment.span].t0;
       to = piece.spans[segment.span].t1;
     }
-    if (offset.radius.isConstant()) {
-      segment.steps = fewestOffsetSteps(moved, from, to, measured, evaluated);
-      if (segment.steps == 0) {
-        return false; // the host's chords, which need not be uniform
-      }
-      continue;
-    }
     double drawn = segment.steps;
     int samples = std::min(largestGrowthSamples, growthSamplesPerStep * segment.steps);
     double growth = (to - from) * (to - from) * largestCurvatureGrowth(*moved, from, to, samples) /
@@ -307,6 +300,7 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
     auto stepsAt = [&](double radius) {
       return std::ceil(std::sqrt(drawn * drawn + growth * radius));
     };
+    bool constant = offset.radius.isConstant();
     for (double radius : radii) {
       geom::OffsetCurve offsetCurve(moved, side * radius);
       geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
@@ -315,6 +309,9 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
       while (stepsAt(radius) <= maximumStepsPerPiece &&
              !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured)) {
         if (++tries > growthTries) {
+          if (constant) {
+            return false; // the host's chords, which need not be uniform
+          }
           fail(cut.span,
                fmt::format("cannot bound the steps of this curve's offset at radius {:g} "
                            "within its tolerance",
@@ -324,12 +321,20 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
         growth = growth * growthRaise + 1;
       }
       if (radius == compiledRadius && stepsAt(radius) > maximumStepsPerPiece) {
+        if (constant) {
+          return false;
+        }
         fail(cut.span,
              fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
                          "steps on one piece within its tolerance",
                          radius, maximumStepsPerPiece),
              DiagnosticKind::ProgramTooLarge);
       }
+    }
+    if (constant) {
+      // The count the bound gave, checked on the exact offset at this radius.
+      segment.steps = static_cast<int>(stepsAt(compiledRadius));
+      continue;
     }
     // N0 SQRT[1 + (Q / N0^2) r]: literals of the size of N0, not its square,
     // for the controller's digits (a relative 1e-8 of Q is in its margin).
@@ -340,17 +345,6 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
     segment.steps = 0;
   }
   return true;
-}
-
-// The fewest uniform steps over [from, to] within `measured` of the offset
-// of `piece` at the compiled distance; 0 past maximumStepsPerPiece.
-int PartLowering::fewestOffsetSteps(const std::shared_ptr<const geom::Curve>& piece, double from,
-                                    double to, double measured, std::size_t& evaluated) {
-  double distance = runtimeOffset_->compiledDistance;
-  geom::OffsetCurve offsetCurve(piece, distance);
-  geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
-  EvaluationsCharged charged{evaluated, exact};
-  return fewestUniformSteps(exact, from, to, measured);
 }
 
 Scalar PartLowering::plusScaled(Scalar base, Scalar value, Scalar factor) {

@@ -537,8 +537,6 @@ private:
   bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance,
                                 bool runtime);
   void guardRuntimeRadius(const RuntimeOffset& offset);
-  int fewestOffsetSteps(const std::shared_ptr<const geom::Curve>& piece, double from, double to,
-                        double measured, std::size_t& evaluated);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);
   bool planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
