@@ -13,8 +13,10 @@
 // within the cut's tolerance of the offset, as samples= or spacing= ask;
 // on a target that runs loops they are printed as numbers (the entry's
 // pointsAsNumbers), a controller keeping its numbers in a few hundred
-// variables. Spline, SPL and NURBS blocks fitted to the offset are laps of the
-// same regions (the stand-in CutCurve whose `beside` this is).
+// variables. Fitted arcs and the spline, SPL and NURBS blocks fitted to the
+// offset are laps of the same regions (the stand-in CutCurve whose `beside`
+// this is). At distance 0 the regions are the drawn curve itself:
+// comp=controller's chords (compensated_cuts.cpp).
 #include "forward_derivative.h"
 
 #include "cncc/geom/composite_curve.h"
