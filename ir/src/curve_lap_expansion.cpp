@@ -73,9 +73,11 @@ private:
     if (ramp) {
       fillProgress(points, entry);
     }
-    // Each run's progress table follows its parameters' table (points as
-    // numbers need neither).
-    for (Run& run : entry.pointsAsNumbers ? noRuns_ : runs) {
+    if (entry.pointsAsNumbers) {
+      return runs; // written as numbers: neither table
+    }
+    // Each run's progress table follows its parameters' table.
+    for (Run& run : runs) {
       run.localTable = addTable(run.locals);
       if (ramp) {
         run.progressTable = addTable(run.progress);
@@ -245,7 +247,6 @@ private:
   }
 
   std::map<std::uint32_t, EntryPoints> entries_;
-  std::vector<Run> noRuns_;
   Run* run_ = nullptr;
   bool ramp_ = false;
   ValueId index_;

@@ -121,6 +121,10 @@ struct HostOffsetLaps {
   OffsetChords chords;
 };
 
+// Whether a curve is a line or an arc (geom's LineCurve, ArcCurve).
+bool isLineCurve(const geom::Curve& curve);
+bool isArcCurve(const geom::Curve& curve);
+
 // The cut's pieces in part coordinates, lines and arcs kept as such.
 std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
 // A curve of lines and arcs as line and arc moves; nullopt for other curves.

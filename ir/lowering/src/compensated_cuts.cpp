@@ -453,8 +453,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   if (!arcs) {
     samples = offsetSamples(cut, *contour);
     if (chordTolerance(cut)) { // the chords' budget for their offsets too (offsetSamples)
-      ToleranceBudget budget = toleranceBudget(cut);
-      double chords = budget.forPoints() - (options_.controllerLoops ? budget.tolerance / 100 : 0);
+      double chords = offsetChordTolerance(cut);
       // Where the controller runs slight corners as tangent, what that adds
       // comes off the chords' budget (down to a quarter of it; beyond, verify
       // reports the cut).

@@ -12,15 +12,14 @@
 //   the tool's radius, a convex corner of a path gets an arc of that radius
 //   about it and a concave corner between two lines their offsets'
 //   crossing, c + d (n1 + n2) / (1 + n1.n2), as geom::offsetOfPieces does;
-// - with a radius that is a number, each piece's step count is the fewest
-//   uniform steps measured on the exact offset; with a parameter it grows
-//   with the radius: a chord over a
+// - the step count of a piece grows with the radius (with a radius that
+//   is a number, the count at that one radius): a chord over a
 //   parameter step h deviates from the offset by about h^2 s'^2 |k (1 - d k)|
 //   / 8 (s' the speed, k the signed curvature), at most h^2 (s'^2 |k| + r
 //   s'^2 k^2) / 8, so N(r) = sqrt(N0^2 + Q r) steps, N0 the fewest measured
 //   on the drawn curve and Q from the largest s'^2 k^2 over the piece;
-//   N(r) is measured on the exact offset at a few radii and Q raised until
-//   it fits;
+//   N(r) is measured on the exact offset at a few radii (a number: at it)
+//   and Q raised until it fits;
 // - before it cuts, the program raises an alarm for a radius (a parameter)
 //   that is not positive, or not below the largest radius the tool fits the
 //   curve with (its tightest concave bend, a path's concave corner, the
@@ -63,10 +62,6 @@ Eigen::Vector2d leftNormal(const Eigen::Vector3d& tangent) {
   return geom::leftNormalOf(tangent).head<2>();
 }
 
-bool isLine(const geom::Curve& curve) {
-  return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
-}
-
 // The largest s'^2 k^2 = |C' x C''|^2 / |C'|^4 over [from, to], sampled.
 double largestCurvatureGrowth(const geom::Curve& curve, double from, double to, int samples) {
   double largest = 0;
@@ -105,7 +100,7 @@ PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom:
       if ((arc->sweep() > 0) == (side > 0)) {
         upper = std::min(upper, arc->radius());
       }
-    } else if (!isLine(*piece)) {
+    } else if (!isLineCurve(*piece)) {
       upper = std::min(upper, geom::offsetClearance(*piece, compiledDistance).concave.radius);
     }
   }
@@ -167,8 +162,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   offset.pieces = movedPieces(curve);
   const auto& pieces = offset.pieces;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
-    if (curve.pieces[p].value->kind == CurveKind::Arc &&
-        dynamic_cast<const geom::ArcCurve*>(pieces[p].get()) == nullptr) {
+    if (curve.pieces[p].value->kind == CurveKind::Arc && !isArcCurve(*pieces[p])) {
       if (!runtime) {
         return false;
       }
@@ -192,7 +186,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   for (std::size_t j = 0; j < offset.joins.size(); ++j) {
     std::size_t after = (j + 1) % pieces.size();
     if (offset.joins[j].kind == PieceJoin::Crossing &&
-        !(isLine(*pieces[j]) && isLine(*pieces[after]))) {
+        !(isLineCurve(*pieces[j]) && isLineCurve(*pieces[after]))) {
       if (!runtime) {
         return false;
       }
@@ -375,13 +369,11 @@ CurvePoint PartLowering::offsetSegmentEnd(const CutCurve& curve, const Controlle
   const RuntimeOffset& offset = *runtimeOffset_;
   const CurvePiece& piece = curve.pieces[segment.piece];
   std::size_t lastPiece = curve.pieces.size() - 1;
-  bool endsPiece = !segment.isNurbs || segment.span + 1 == piece.spans.size();
-  bool startsPiece = !segment.isNurbs || segment.span == 0;
   // The join at this end, if any.
   const PieceJoin* join = nullptr;
-  if (atEnd && endsPiece && (segment.piece < lastPiece || offset.closed)) {
+  if (atEnd && endsItsPiece(segment, piece) && (segment.piece < lastPiece || offset.closed)) {
     join = &offset.joins[segment.piece];
-  } else if (!atEnd && startsPiece && segment.piece == 0 && offset.closed) {
+  } else if (!atEnd && startsItsPiece(segment) && segment.piece == 0 && offset.closed) {
     join = &offset.joins.back();
   }
   if (join != nullptr && join->kind == PieceJoin::Crossing) {

@@ -33,13 +33,10 @@ bool isLineSegment(const ControllerSegment& segment, const CurvePiece& piece) {
   return !segment.isArc && !segment.isNurbs && piece.value->kind == CurveKind::Line;
 }
 
-bool endsPiece(const ControllerSegment& segment, const CurvePiece& piece) {
-  return !segment.isNurbs || segment.span + 1 == piece.spans.size();
-}
-
 // The compiled offset's pieces (one per drawn piece, one per corner arc) in
 // the parameters the entry lays out: each mapped linearly onto its own.
-// Null when the offset is made of other pieces than the entry lays out.
+// Null when the offset is made of other pieces than the entry lays out
+// (lowerControllerOffsetCut refuses such a path before: a guard).
 std::shared_ptr<const geom::Curve>
 besideGeometry(const CurveTableEntry& entry, const std::shared_ptr<const geom::Curve>& offset) {
   std::vector<const geom::Curve*> parts = geom::piecesOf(*offset);
@@ -86,7 +83,7 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
     const ControllerSegment& segment = segments[s];
     const CurvePiece& piece = curve.pieces[segment.piece];
     bool line = isLineSegment(segment, piece);
-    if (!segment.isNurbs || segment.span == 0) {
+    if (startsItsPiece(segment)) {
       addPiece(line ? CurvePieceLayout{0, 0, 1} : pieceLayout(piece, 0));
     }
     lap.besideRegions.push_back({s, 0});
@@ -103,7 +100,7 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
         lap.computedSteps.push_back(arithmetic_.value(operand));
       }
     }
-    bool corner = endsPiece(segment, piece) && segment.piece < offset.joins.size() &&
+    bool corner = endsItsPiece(segment, piece) && segment.piece < offset.joins.size() &&
                   offset.joins[segment.piece].kind == PieceJoin::CornerArc;
     if (corner) {
       const PieceJoin& join = offset.joins[segment.piece];

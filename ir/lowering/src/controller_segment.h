@@ -113,4 +113,12 @@ struct ControllerSegment {
   Scalar stretch = Scalar::of(1);
 };
 
+// Whether the segment is the last (first) of its piece: a knot span may not be.
+inline bool endsItsPiece(const ControllerSegment& segment, const CurvePiece& piece) {
+  return !segment.isNurbs || segment.span + 1 == piece.spans.size();
+}
+inline bool startsItsPiece(const ControllerSegment& segment) {
+  return !segment.isNurbs || segment.span == 0;
+}
+
 } // namespace cncc::ir::lowering

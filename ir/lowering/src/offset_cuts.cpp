@@ -75,6 +75,14 @@ std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curv
   return pieces;
 }
 
+bool isLineCurve(const geom::Curve& curve) {
+  return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
+}
+
+bool isArcCurve(const geom::Curve& curve) {
+  return dynamic_cast<const geom::ArcCurve*>(&curve) != nullptr;
+}
+
 PieceJoin pieceJoin(const geom::Curve& before, const geom::Curve& after, double distance) {
   PieceJoin join;
   geom::ParameterRange own = before.domain();
@@ -137,7 +145,7 @@ std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& of
             arc->sweep() > 0 ? geom::ArcDirection::CounterClockwise : geom::ArcDirection::Clockwise;
         segments.push_back(piece);
       }
-    } else if (dynamic_cast<const geom::LineCurve*>(part) != nullptr) {
+    } else if (isLineCurve(*part)) {
       segments.push_back(segment);
     } else {
       return std::nullopt;
@@ -184,8 +192,7 @@ offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, d
   double radius = std::fabs(distance);
   for (const auto& piece : pieces) {
     // A line never bends; an arc's offset radius is checked as it is built.
-    if (dynamic_cast<const geom::LineCurve*>(piece.get()) != nullptr ||
-        dynamic_cast<const geom::ArcCurve*>(piece.get()) != nullptr) {
+    if (isLineCurve(*piece) || isArcCurve(*piece)) {
       continue;
     }
     geom::CurvatureExtreme concave = geom::offsetClearance(*piece, distance).concave;
@@ -236,9 +243,7 @@ double distanceToPiece(const geom::Curve& piece, const Eigen::Vector3d& point) {
 
 // "piece 3 (a line)" of a path, for the diagnostics.
 std::string pieceName(const geom::Curve& piece, std::size_t index) {
-  const char* kind = dynamic_cast<const geom::LineCurve*>(&piece) != nullptr  ? " (a line)"
-                     : dynamic_cast<const geom::ArcCurve*>(&piece) != nullptr ? " (an arc)"
-                                                                              : "";
+  const char* kind = isLineCurve(piece) ? " (a line)" : isArcCurve(piece) ? " (an arc)" : "";
   return fmt::format("piece {}{}", index + 1, kind);
 }
 
@@ -569,15 +574,20 @@ std::shared_ptr<const geom::ArcFit> PartLowering::fittedOffsetArcs(const CutStmt
   return std::make_shared<const geom::ArcFit>(std::get<geom::ArcFit>(std::move(fitted)));
 }
 
+// The points a controller-side target prints are read back by tools that
+// print fewer digits than the controller keeps (LinuxCNC's rs274: 4
+// decimals): a hundredth of the tolerance is left for them.
+double PartLowering::offsetChordTolerance(const CutStmt& cut) {
+  ToleranceBudget budget = toleranceBudget(cut);
+  bool readBack = options_.controllerLoops && chordTolerance(cut);
+  return budget.forPoints() - (readBack ? budget.tolerance / 100 : 0);
+}
+
 geom::CurveSamples PartLowering::offsetSamples(const CutStmt& cut, const geom::Curve& offset) {
   if (!options_.controllerLoops || !chordTolerance(cut)) {
     return checkedSamplesFor(cut, offset);
   }
-  // The points a controller-side target prints are read back by tools that
-  // print fewer digits than the controller keeps (LinuxCNC's rs274: 4
-  // decimals): a hundredth of the tolerance is left for them.
-  ToleranceBudget budget = toleranceBudget(cut);
-  return chordsWithinBudget(cut, offset, budget.forPoints() - budget.tolerance / 100);
+  return chordsWithinBudget(cut, offset, offsetChordTolerance(cut));
 }
 
 OffsetChords PartLowering::offsetChords(const geom::CurveSamples& samples, bool ramp) {

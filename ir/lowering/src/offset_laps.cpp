@@ -28,18 +28,6 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-namespace {
-
-bool isLine(const geom::Curve& curve) {
-  return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
-}
-
-bool isArc(const geom::Curve& curve) {
-  return dynamic_cast<const geom::ArcCurve*>(&curve) != nullptr;
-}
-
-} // namespace
-
 std::shared_ptr<const BesideCurve>
 PartLowering::besideCurve(const CutStmt& cut, const CutCurve& curve,
                           const std::shared_ptr<const geom::Curve>& offset, double distance) {
@@ -68,7 +56,7 @@ PartLowering::besideCurve(const CutStmt& cut, const CutCurve& curve,
     CurvePieceLayout layout{parts.size() == 1 ? own.t0 : start, own.t0, own.t1};
     start += own.length();
     const CurvePiece* piece = origins[k] ? &curve.pieces[*origins[k]] : nullptr;
-    bool numbers = isLine(*parts[k]) || isArc(*parts[k]);
+    bool numbers = isLineCurve(*parts[k]) || isArcCurve(*parts[k]);
     if (numbers || piece == nullptr || piece->spans.empty()) {
       beside->regions.push_back({parts[k], numbers ? std::nullopt : origins[k]});
     } else {
@@ -92,13 +80,7 @@ PartLowering::besideCurve(const CutStmt& cut, const CutCurve& curve,
 
 std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCurve& beside) {
   CurveTableEntry entry = beside.layout;
-  ToleranceBudget budget = toleranceBudget(cut);
-  // The points a controller-side target prints are read back by tools that
-  // print fewer digits than the controller keeps (LinuxCNC's rs274: 4
-  // decimals): a hundredth of the tolerance is left for them.
-  double chords = budget.forPoints() -
-                  (options_.controllerLoops && chordTolerance(cut) ? budget.tolerance / 100 : 0);
-  chooseSampling(entry, cut, *entry.geometry, chords);
+  chooseSampling(entry, cut, *entry.geometry, offsetChordTolerance(cut));
   entry.pointsAsNumbers = options_.controllerLoops;
   return builder_.addCurve(std::move(entry));
 }

@@ -441,6 +441,8 @@ private:
                                                        const geom::Curve& offset);
   OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
+  // The chord tolerance of an offset's points (less a reader's rounding).
+  double offsetChordTolerance(const frontend::CutStmt& cut);
   // offset_laps.cpp: the offset as its laps compute it (null where its
   // pieces are not the drawn pieces' offsets and corner arcs); its entry cut
   // as points; a lap of it.

@@ -139,11 +139,10 @@ private:
         return operands[0];
       }
       if (definition(operands[1]).opcode == Opcode::Neg) {
-        return rewritten(instruction, Opcode::Add,
-                         {operands[0], definition(operands[1]).operands[0]});
+        return emitAs(instruction, Opcode::Add, {operands[0], definition(operands[1]).operands[0]});
       }
       if (ValueId product = negatedProduct(instruction, operands[1]); product.valid()) {
-        return rewritten(instruction, Opcode::Add, {operands[0], product});
+        return emitAs(instruction, Opcode::Add, {operands[0], product});
       }
       return operands[0] == operands[1] && facts(operands[0]).finite ? constant(0.0) : ValueId{};
     case Opcode::Mul:
@@ -168,13 +167,6 @@ private:
     return simplifiedLogic(instruction.opcode, operands);
   }
 
-  // The same operation as `instruction` (its span and pass) with another opcode.
-  ValueId rewritten(const Instruction& instruction, Opcode opcode, std::vector<ValueId> operands) {
-    Instruction other = instruction;
-    other.opcode = opcode;
-    return emit(other, std::move(operands));
-  }
-
   // a + -b and -b + a are a - b, a + b * -c and b * -c + a are a - b * c:
   // the same bits for every a and b.
   ValueId simplifiedAdd(const Instruction& instruction, ValueId left, ValueId right) {
@@ -183,12 +175,12 @@ private:
         return value;
       }
       if (definition(other).opcode == Opcode::Neg) {
-        return rewritten(instruction, Opcode::Sub, {value, definition(other).operands[0]});
+        return emitAs(instruction, Opcode::Sub, {value, definition(other).operands[0]});
       }
     }
     for (auto [value, other] : {std::pair{left, right}, std::pair{right, left}}) {
       if (ValueId product = negatedProduct(instruction, other); product.valid()) {
-        return rewritten(instruction, Opcode::Sub, {value, product});
+        return emitAs(instruction, Opcode::Sub, {value, product});
       }
     }
     return {};
@@ -205,9 +197,7 @@ private:
                                  std::pair{product.operands[0], product.operands[1]}}) {
       std::optional<double> number = constantValue(output_, factor);
       if (number && std::signbit(*number) && !std::isnan(*number)) {
-        Instruction positive = instruction;
-        positive.opcode = Opcode::Mul;
-        return emit(positive, {other, constant(-*number)});
+        return emitAs(instruction, Opcode::Mul, {other, constant(-*number)});
       }
     }
     return {};
@@ -220,7 +210,7 @@ private:
         return value;
       }
       if (isConstant(other, -1.0)) {
-        return rewritten(instruction, Opcode::Neg, {value});
+        return emitAs(instruction, Opcode::Neg, {value});
       }
       ValueFacts known = facts(value);
       if (isConstant(other, 0.0) && known.finite && known.nonNegative) {

@@ -118,9 +118,7 @@ private:
       return isNumber(left, 0) ? right : isNumber(right, 0) ? left : ValueId{};
     case Opcode::Sub:
       if (isNumber(left, 0)) {
-        Instruction negation = instruction;
-        negation.opcode = Opcode::Neg;
-        return emit(negation, {right});
+        return emitAs(instruction, Opcode::Neg, {right});
       }
       return isNumber(right, 0) ? left : ValueId{};
     case Opcode::Mul:

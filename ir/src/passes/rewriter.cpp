@@ -133,14 +133,14 @@ ValueId Rewriter::append(Instruction instruction) {
 }
 
 ValueId Rewriter::emit(const Instruction& instruction, std::vector<ValueId> operands) {
-  Instruction copy;
-  copy.opcode = instruction.opcode;
+  return emitAs(instruction, instruction.opcode, std::move(operands));
+}
+
+ValueId Rewriter::emitAs(const Instruction& instruction, Opcode opcode,
+                         std::vector<ValueId> operands) {
+  Instruction copy = withoutRegions(instruction); // its result is the output's (append)
+  copy.opcode = opcode;
   copy.operands = std::move(operands);
-  copy.number = instruction.number;
-  copy.index = instruction.index;
-  copy.text = instruction.text;
-  copy.span = instruction.span;
-  copy.pass = instruction.pass;
   return append(std::move(copy));
 }
 

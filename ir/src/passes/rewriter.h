@@ -55,6 +55,9 @@ protected:
   // Appends a copy of a region-less instruction with these operands and
   // returns its result (invalid when it has none).
   ValueId emit(const Instruction& instruction, std::vector<ValueId> operands);
+  // The same with another opcode (an operation rewritten as another: its
+  // span and pass kept).
+  ValueId emitAs(const Instruction& instruction, Opcode opcode, std::vector<ValueId> operands);
   ValueId constant(double value);
   ValueId constantBool(bool value);
 
