@@ -9,9 +9,8 @@ namespace cncc::driver {
 
 std::string helpFooter() {
   std::string footer = "\nTargets:\n";
-  for (const Target& target : allTargets()) {
-    footer += fmt::format("  {:<11}{}{}\n", target.name, target.description,
-                          target.available() ? "" : " (not in this version)");
+  for (const backends::TargetInfo* target : backends::allTargetInfos()) {
+    footer += fmt::format("  {:<11}{}\n", target->name, target->description);
   }
   footer += "\nExamples:\n"
             "  cncc examples/s_profile.cdl -t m80 -o O1000\n"

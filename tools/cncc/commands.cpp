@@ -46,9 +46,9 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
     return "";
   }
   const frontend::PartItem& part = *program->selectedPart;
-  const Target* target = options.target.empty() ? nullptr : findTarget(options.target);
+  const backends::TargetInfo* target = options.target.empty() ? nullptr : &optionsTarget(options);
   ir::LoweringOptions lowering =
-      target != nullptr ? target->loweringOptions(part, options) : ir::LoweringOptions{};
+      target != nullptr ? targetLoweringOptions(*target, part, options) : ir::LoweringOptions{};
   lowering.expandCurveLaps = false; // shown as the first of the target's passes
   std::optional<ir::Function> function = ir::lowerPart(*program, part, diagnostics, lowering);
   if (!function) {
@@ -142,11 +142,6 @@ int runCompile(const DriverOptions& options) {
   if (!program || diagnostics.hasErrors()) {
     return 1;
   }
-  const Target& target = *findTarget(options.target);
-  if (!target.available()) {
-    output.driverError(fmt::format("target '{}' has no backend in this version", target.name));
-    return 1;
-  }
   std::error_code error;
   std::optional<AtomicOutputFile> file = AtomicOutputFile::create(options.output, error);
   if (!file) {
@@ -157,8 +152,8 @@ int runCompile(const DriverOptions& options) {
   backends::LineOrigins lineOrigins;
   std::map<int, backends::VariableMeaning> variables;
   bool mapped = !options.sourceMap.empty();
-  target.backend({*program, sources, options, backendDiagnostics, *file,
-                  mapped ? &lineOrigins : nullptr, mapped ? &variables : nullptr});
+  compileForTarget({*program, sources, options, backendDiagnostics, *file,
+                    mapped ? &lineOrigins : nullptr, mapped ? &variables : nullptr});
   output.print(backendDiagnostics, sources);
   if (backendDiagnostics.hasErrors()) {
     return 1; // the file discards what the backend wrote

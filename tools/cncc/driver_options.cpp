@@ -139,9 +139,9 @@ std::vector<std::string> importPaths(const std::vector<std::string>& includeDire
 }
 
 void checkTarget(const std::string& name) {
-  if (findTarget(name) == nullptr) {
-    throw UsageError(
-        fmt::format("unknown target '{}'; valid targets are: {}", name, targetNameList()));
+  if (backends::findTargetInfo(name) == nullptr) {
+    throw UsageError(fmt::format("unknown target '{}'; valid targets are: {}", name,
+                                 backends::targetNameList()));
   }
 }
 
@@ -178,7 +178,8 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
                    : raw.emit == "ir"   ? EmitKind::Ir
                                         : EmitKind::Ast;
   } else if (raw.target.empty()) {
-    throw UsageError(fmt::format("no target; choose one with -t TARGET ({})", targetNameList()));
+    throw UsageError(
+        fmt::format("no target; choose one with -t TARGET ({})", backends::targetNameList()));
   }
   if ((raw.stats || app.count("--rapid-rate") > 0) && options.command != Command::Compile) {
     throw UsageError("--stats and --rapid-rate need a target to compile for, not --emit");
@@ -186,7 +187,7 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (app.count("--rapid-rate") > 0 && !raw.stats) {
     throw UsageError("--rapid-rate only sets the time estimate of --stats");
   }
-  const Target* target = findTarget(raw.target);
+  const backends::TargetInfo* target = backends::findTargetInfo(raw.target);
   bool printsArcs = target != nullptr && target->fittedArcs;
   // --emit=ir -t TARGET --arcs shows the IR the backend receives.
   bool compiles = options.command == Command::Compile ||
@@ -194,7 +195,9 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (raw.arcs && (!compiles || !printsArcs)) {
     throw UsageError(
         fmt::format("--arcs is for the targets {}: it prints cuts as G02/G03 arcs",
-                    targetNameList([](const Target& candidate) { return candidate.fittedArcs; })));
+                    backends::targetNameList([](const backends::TargetInfo& candidate) {
+                      return candidate.fittedArcs;
+                    })));
   }
   if ((raw.subprograms || !raw.splineEnds.empty()) &&
       (target == nullptr || !target->splineOptions)) {
@@ -203,7 +206,7 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
   if (raw.stats && !canMeasure(raw.target) && !canVerify(raw.target)) {
     throw UsageError(
         fmt::format("--stats is not available for target '{}' in this version ({} have it)",
-                    raw.target, targetNameList([](const Target& candidate) {
+                    raw.target, backends::targetNameList([](const backends::TargetInfo& candidate) {
                       return canMeasure(candidate.name) || canVerify(candidate.name);
                     })));
   }
@@ -213,7 +216,7 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
 // controller's for the others.
 void checkProfileFitsTarget(const RawOptions& raw) {
   bool tnc = backends::findTncProfile(raw.profile) != nullptr;
-  const Target* target = findTarget(raw.target);
+  const backends::TargetInfo* target = backends::findTargetInfo(raw.target);
   if (!raw.profile.empty() && tnc != (target != nullptr && target->tncProfiles)) {
     throw UsageError(fmt::format("--profile {} is {}", raw.profile,
                                  tnc ? "a TNC profile, for -t heidenhain"
@@ -332,7 +335,8 @@ DriverOptions plotOptions(const RawOptions& raw, const CLI::App& app) {
   if (!canMeasure(options.target)) {
     throw UsageError(fmt::format(
         "'plot' is not available for target '{}' in this version ({} have it)", options.target,
-        targetNameList([](const Target& candidate) { return canMeasure(candidate.name); })));
+        backends::targetNameList(
+            [](const backends::TargetInfo& candidate) { return canMeasure(candidate.name); })));
   }
   options.command = Command::Plot;
   options.plotPng = raw.plotFormat == "png";
@@ -361,7 +365,8 @@ DriverOptions verifyOptions(const RawOptions& raw, const CLI::App& app) {
     }
   }
   if (raw.target.empty()) {
-    throw UsageError(fmt::format("'verify' needs a target: -t TARGET ({})", targetNameList()));
+    throw UsageError(
+        fmt::format("'verify' needs a target: -t TARGET ({})", backends::targetNameList()));
   }
   RawOptions compile = raw;
   compile.input = raw.verifyInput;
@@ -411,16 +416,17 @@ std::map<int, double> toolRadiiOf(const std::vector<std::string>& texts) {
 }
 
 DriverOptions simulateOptions(const RawOptions& raw) {
-  const Target* target = findTarget(raw.target);
+  const backends::TargetInfo* target = backends::findTargetInfo(raw.target);
   // Sinumerik, LinuxCNC and Heidenhain programs run in readers of their own;
   // only the Heidenhain one takes a --profile (tnc640, itnc530). On those,
   // --tool-radius N gives the tool whose radius is R (its cutting edges,
   // its row of the tool table).
-  bool ownReader = target != nullptr && target->ownProgramReader;
+  bool ownReader = target != nullptr && target->runOwnProgram;
   if (!ownReader && (target == nullptr || target->controllerProfile.empty())) {
     throw UsageError(
-        fmt::format("'sim' needs -t with one of: {}", targetNameList([](const Target& candidate) {
-                      return candidate.ownProgramReader || !candidate.controllerProfile.empty();
+        fmt::format("'sim' needs -t with one of: {}",
+                    backends::targetNameList([](const backends::TargetInfo& candidate) {
+                      return candidate.runOwnProgram || !candidate.controllerProfile.empty();
                     })));
   }
   if (ownReader && (!raw.macroArguments.empty() || raw.strictReading || raw.peckRetract ||

@@ -40,7 +40,7 @@ enum class FormatMode { Print, Check, InPlace };
 struct DriverOptions {
   Command command = Command::Compile;
   std::vector<std::string> inputs; // one, except for `check`
-  std::string target;              // a name from the target table
+  std::string target;              // a registered target's name (target_info.h)
   std::string output = "-";        // "-" is standard output
   EmitKind emit = EmitKind::Ast;
   std::map<std::string, double, std::less<>> defines; // -D name=value

@@ -1,5 +1,7 @@
 #include "machine_options.h"
 
+#include "cncc/backends/target_info.h"
+
 #include "commands.h"
 #include "diagnostic_output.h"
 
@@ -67,7 +69,11 @@ std::string fileText(const std::string& path) {
 } // namespace
 
 const backends::MachineSetup& machineSetup(const DriverOptions& options) {
-  return options.machine ? options.machine->setup : backends::builtinMachineSetup(options.target);
+  if (options.machine) {
+    return options.machine->setup;
+  }
+  const backends::TargetInfo* target = backends::findTargetInfo(options.target);
+  return backends::builtinMachineSetup(target != nullptr ? target->machineSetup : "");
 }
 
 const backends::ControllerProfile& controllerProfile(const DriverOptions& options,
@@ -80,6 +86,15 @@ const backends::ControllerProfile& controllerProfile(const DriverOptions& option
   const backends::ControllerProfile* profile = backends::findControllerProfile(name);
   if (profile == nullptr) {
     throw InternalError(fmt::format("unknown controller profile '{}'", name));
+  }
+  return *profile;
+}
+
+const backends::TncProfile& tncProfile(const DriverOptions& options) {
+  std::string_view name = options.profile.empty() ? "tnc640" : std::string_view(options.profile);
+  const backends::TncProfile* profile = backends::findTncProfile(name);
+  if (profile == nullptr) {
+    throw InternalError(fmt::format("unknown TNC profile '{}'", name));
   }
   return *profile;
 }

@@ -8,6 +8,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/machine_file.h"
 #include "cncc/backends/machine_setup.h"
+#include "cncc/backends/tnc_profile.h"
 
 #include <memory>
 #include <optional>
@@ -23,6 +24,9 @@ const backends::MachineSetup& machineSetup(const DriverOptions& options);
 // or `defaultProfile`.
 const backends::ControllerProfile& controllerProfile(const DriverOptions& options,
                                                      std::string_view defaultProfile);
+
+// The TNC profile --profile names (tnc640 without one).
+const backends::TncProfile& tncProfile(const DriverOptions& options);
 
 // The machine file's controller profile, if it has one (for the executors).
 std::optional<backends::ControllerProfile> machineProfile(const DriverOptions& options);

@@ -1,10 +1,9 @@
 // cncc sim: a program run in the virtual controller of its target (the
-// macro controllers' here, a target's own reader where it has one:
-// own_program_readers.cpp), its tool path written as CSV.
+// macro controllers' here, a target's own reader where its TargetInfo has
+// one), its tool path written as CSV.
 #include "atomic_output_file.h"
 #include "commands.h"
 #include "machine_options.h"
-#include "own_program_readers.h"
 #include "targets.h"
 
 #include "cncc/backends/controller_profile.h"
@@ -30,8 +29,7 @@ std::optional<std::string> readWholeFile(const std::string& path) {
   return text.str();
 }
 
-} // namespace
-
+// A usage error of `sim` (exit code 2).
 int simulateUsageError(const std::string& message) {
   fmt::print(stderr, "cncc: error: {}\nRun 'cncc sim --help' for usage.\n", message);
   return 2;
@@ -64,6 +62,29 @@ int writeSimulatedPath(const DriverOptions& options, const ir::ToolPath& path) {
   return 0;
 }
 
+// `text`, read from `path`, run in the target's own reader.
+int runOwnReader(const backends::TargetInfo& target, const DriverOptions& options,
+                 const std::string& path, const std::string& text) {
+  backends::OwnReaderSettings settings;
+  if (target.tncProfiles && !options.profile.empty()) {
+    settings.tncProfile = backends::findTncProfile(options.profile);
+    if (settings.tncProfile == nullptr) {
+      return simulateUsageError(
+          fmt::format("--profile {}: the TNC profiles are tnc640 and itnc530", options.profile));
+    }
+  }
+  settings.toolRadii = options.toolRadii;
+  settings.chordError = options.chordError;
+  backends::OwnProgramRun run = target.runOwnProgram(text, settings);
+  if (run.failure) {
+    return reportSimulationError(path, run.failure->line, run.failure->message,
+                                 run.failure->lineText);
+  }
+  return writeSimulatedPath(options, run.path);
+}
+
+} // namespace
+
 int runSimulate(const DriverOptions& options) {
   const std::string& path = options.inputs.front();
   std::optional<std::string> text = readWholeFile(path);
@@ -71,8 +92,8 @@ int runSimulate(const DriverOptions& options) {
     fmt::print(stderr, "cncc: error: cannot read '{}'\n", path);
     return 1;
   }
-  if (const Target* target = findTarget(options.target); target && target->ownProgramReader) {
-    return target->ownProgramReader(options, path, *text);
+  if (const backends::TargetInfo& target = optionsTarget(options); target.runOwnProgram) {
+    return runOwnReader(target, options, path, *text);
   }
   const backends::ControllerProfile* profile = &controllerProfile(options, options.target);
   backends::sim::SimulationOptions simulation;
@@ -87,7 +108,8 @@ int runSimulate(const DriverOptions& options) {
   }
   simulation.runAsMacroCall = !options.macroArguments.empty();
   simulation.reading.strict = options.strictReading;
-  simulation.reading.family = backends::sim::controllerFamilyOf(options.target);
+  simulation.reading.family =
+      backends::sim::controllerFamilyOf(optionsTarget(options).controllerProfile);
   // The machine file's registers, with --tool-radius over them.
   if (options.machine) {
     simulation.toolRadii = options.machine->radiusOffsets;

@@ -52,12 +52,12 @@ std::vector<std::string> cutNames(const std::vector<ir::CutGeometry>& cuts,
 } // namespace
 
 bool canMeasure(std::string_view name) {
-  const Target* target = findTarget(name);
+  const backends::TargetInfo* target = backends::findTargetInfo(name);
   return target != nullptr && target->hostProgram != nullptr;
 }
 
 std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
-  const Target* target = findTarget(request.options.target);
+  const backends::TargetInfo* target = backends::findTargetInfo(request.options.target);
   if (target == nullptr || target->hostProgram == nullptr) {
     throw InternalError(fmt::format("target '{}' cannot be measured", request.options.target));
   }
@@ -78,7 +78,10 @@ std::optional<MeasuredPart> measurePart(const BackendRequest& request) {
   }
   MeasuredPart measured;
   try {
-    measured.program = target->hostProgram(request, run->toolPath);
+    measured.program =
+        target->hostProgram(targetSettings(*target, request.options, *request.program.selectedPart,
+                                           request.output.path()),
+                            run->toolPath);
   } catch (const std::logic_error& mismatch) { // ExecutionMismatch, or arcs off the tool path
     throw InternalError(fmt::format("the {} program does not execute as its tool path: {}",
                                     target->name, mismatch.what()));

@@ -1,6 +1,6 @@
 // What --stats and `cncc plot` measure: a target's program, the path the
 // controller executes when it runs it, and the true curve of every cut.
-// A target that can be measured has a hostProgram in its Target entry.
+// A target that can be measured has a hostProgram in its TargetInfo.
 #pragma once
 
 #include "targets.h"

@@ -63,16 +63,11 @@ std::unique_ptr<CheckedInput> checkedInput(const DriverOptions& options,
 std::optional<std::string> compiledText(const CheckedProgram& program, const SourceManager& sources,
                                         const DriverOptions& options,
                                         const DiagnosticOutput& output) {
-  const Target* target = findTarget(options.target);
-  if (target == nullptr || !target->available()) {
-    output.driverError(fmt::format("target '{}' has no backend in this version", options.target));
-    return std::nullopt;
-  }
   DiagnosticEngine diagnostics(options.errorLimit);
   AtomicOutputFile memory = AtomicOutputFile::inMemory();
   DriverOptions compile = options; // what a compile with --stats adds is printed once, before
   compile.stats = false;
-  target->backend({program, sources, compile, diagnostics, memory});
+  compileForTarget({program, sources, compile, diagnostics, memory});
   output.print(diagnostics, sources);
   if (diagnostics.hasErrors()) {
     return std::nullopt;
@@ -226,8 +221,10 @@ parameterValues(const frontend::PartItem& part, const DriverOptions& options,
 // The -D values in the variables the target's own kind of program sets at its top.
 std::vector<backends::ParameterValue> ownParameterValues(const frontend::PartItem& part,
                                                          const DriverOptions& options,
-                                                         const Target& target) {
-  return definedValues(part, options, target.parameterVariables(part.parameters.size(), options));
+                                                         const backends::TargetInfo& target) {
+  std::vector<int> variables =
+      target.parameterVariables(part.parameters.size(), targetSettings(target, options, part));
+  return definedValues(part, options, variables);
 }
 
 backends::StatisticsOptions statisticsOptions(const CheckedProgram& program,
@@ -262,8 +259,9 @@ void reportFailure(const backends::VerificationReport& report, const DriverOptio
 
 } // namespace
 
-bool canVerify(std::string_view target) {
-  return backends::findTargetExecutor(target) != nullptr;
+bool canVerify(std::string_view name) {
+  const backends::TargetInfo* target = backends::findTargetInfo(name);
+  return target != nullptr && target->execute != nullptr;
 }
 
 int runVerify(const DriverOptions& options) {
@@ -272,9 +270,8 @@ int runVerify(const DriverOptions& options) {
   if (!truth) {
     return 1;
   }
-  const Target* target = findTarget(options.target);
-  bool symbolic = target != nullptr &&
-                  (!target->controllerProfile.empty() || target->parameterVariables != nullptr);
+  const backends::TargetInfo* target = &optionsTarget(options);
+  bool symbolic = !target->controllerProfile.empty() || target->parameterVariables != nullptr;
   backends::ExecutionRequest execution;
   std::optional<std::string> text;
   if (symbolic) {
@@ -315,8 +312,10 @@ int runVerify(const DriverOptions& options) {
   execution.radiiOfTools = reference->radiiOfTools;
   backends::StatisticsOptions statistics =
       statisticsOptions(*truth->program, truth->sources, *reference);
-  backends::VerificationReport report = backends::verifyProgram(
-      {options.target, std::move(execution), reference->path, reference->cuts}, statistics);
+  backends::VerificationReport report =
+      backends::verifyProgram({options.target, optionsTarget(options).execute, std::move(execution),
+                               reference->path, reference->cuts},
+                              statistics);
   fmt::print("verification of part {} ({}) with {}:\n{}", truth->program->selectedPart->name,
              fileName(options.inputs.front()), parameterLine(options),
              backends::formatVerification(report, statistics));
@@ -347,8 +346,10 @@ int printVerifiedStatistics(const BackendRequest& request,
   execution.radiiOfTools = reference->radiiOfTools;
   backends::StatisticsOptions statistics =
       statisticsOptions(request.program, request.sources, *reference);
-  backends::VerificationReport report = backends::verifyProgram(
-      {options.target, std::move(execution), reference->path, reference->cuts}, statistics);
+  backends::VerificationReport report =
+      backends::verifyProgram({options.target, optionsTarget(options).execute, std::move(execution),
+                               reference->path, reference->cuts},
+                              statistics);
   collectCutDeviations(report.statistics, reference->cuts, deviations);
   fmt::print(stderr, "statistics of part {} for target {}:\n{}", request.program.selectedPart->name,
              options.target, backends::formatVerification(report, statistics));

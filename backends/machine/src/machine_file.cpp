@@ -1,4 +1,5 @@
 #include "cncc/backends/machine_file.h"
+#include "cncc/backends/target_info.h"
 
 #include "machine_block.h"
 
@@ -26,9 +27,6 @@
 namespace cncc::backends {
 
 namespace {
-
-constexpr std::array<std::string_view, 6> machineTargets = {"fanuc",     "m80",   "linuxcnc",
-                                                            "sinumerik", "gcode", "jit"};
 
 // Blocks on the targets without a controller profile: a conservative line
 // length every controller accepts (LinuxCNC's reader takes 255 (?)).
@@ -88,8 +86,15 @@ std::string_view typeName(toml::node_type type) {
   }
 }
 
+// The targets a machine file may name, for messages.
+std::string machineTargetNames() {
+  return targetNameList([](const TargetInfo& target) { return !target.machineSetup.empty(); });
+}
+
+// A target whose programs are printed for a controller profile.
 bool isMacroTarget(std::string_view target) {
-  return target == "fanuc" || target == "m80";
+  const TargetInfo* info = findTargetInfo(target);
+  return info != nullptr && !info->controllerProfile.empty();
 }
 
 class MachineReader {
@@ -106,7 +111,8 @@ public:
     readString(root, "name", machine.name);
     readString(root, "description", machine.description);
     readTarget(root, machine);
-    machine.setup = builtinMachineSetup(machine.target);
+    const TargetInfo* target = findTargetInfo(machine.target);
+    machine.setup = builtinMachineSetup(target != nullptr ? target->machineSetup : "");
     readProfile(root, machine);
     int blockLength =
         machine.profile ? machine.profile->maximumBlockLength : defaultMaximumBlockLength;
@@ -260,7 +266,7 @@ private:
       diagnostics_.push_back(
           {1, 1,
            fmt::format("the machine file names no target; add target = \"...\" ({})",
-                       fmt::join(machineTargets, ", ")),
+                       machineTargetNames()),
            "machine-missing-key"});
       return;
     }
@@ -270,7 +276,7 @@ private:
     if (!isMachineTarget(machine.target)) {
       report(node->source(), "machine-unknown-target",
              fmt::format("unknown target '{}'; expected one of: {}", machine.target,
-                         fmt::join(machineTargets, ", ")));
+                         machineTargetNames()));
     }
   }
 
@@ -460,9 +466,9 @@ private:
               "program");
     MachineSetup& setup = machine.setup;
     // The largest N the controller takes (rs274 stops at 99999 as Fanuc does).
-    int largest = machine.profile                 ? machine.profile->maximumSequenceNumber
-                  : machine.target == "sinumerik" ? 99999999
-                                                  : 99999;
+    int largest = machine.profile                ? machine.profile->maximumSequenceNumber
+                  : setup.dialect == "sinumerik" ? 99999999
+                                                 : 99999;
     setup.lineNumbers.maximum = std::min(setup.lineNumbers.maximum, largest);
     if (const toml::value<bool>* on =
             typed<toml::value<bool>>(table, "line_numbers", "a boolean")) {
@@ -525,7 +531,8 @@ private:
 } // namespace
 
 bool isMachineTarget(std::string_view target) {
-  return std::find(machineTargets.begin(), machineTargets.end(), target) != machineTargets.end();
+  const TargetInfo* info = findTargetInfo(target);
+  return info != nullptr && !info->machineSetup.empty();
 }
 
 std::optional<MachineDescription> readMachineText(std::string_view text,

@@ -177,11 +177,10 @@ bool VerificationReport::passed() const {
 }
 
 VerificationReport verifyProgram(const VerificationInput& input, const StatisticsOptions& options) {
-  const TargetExecutor* executor = findTargetExecutor(input.target);
-  if (executor == nullptr) {
+  if (input.execute == nullptr) {
     throw std::invalid_argument(fmt::format("target '{}' cannot be verified", input.target));
   }
-  ProgramExecution execution = executor->execute(input.execution);
+  ProgramExecution execution = input.execute(input.execution);
   VerificationReport report;
   report.target = input.target;
   MacroProgramStatistics size = measureMacroProgram(execution.text);

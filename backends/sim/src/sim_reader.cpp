@@ -346,8 +346,8 @@ void addBlock(ProgramText& program, Block block, bool& started) {
 
 } // namespace
 
-ControllerFamily controllerFamilyOf(std::string_view target) {
-  return target == "m80" ? ControllerFamily::Mitsubishi : ControllerFamily::Fanuc;
+ControllerFamily controllerFamilyOf(std::string_view profile) {
+  return profile == "m80" ? ControllerFamily::Mitsubishi : ControllerFamily::Fanuc;
 }
 
 ProgramText readProgram(std::string_view text, const ControllerProfile& profile,

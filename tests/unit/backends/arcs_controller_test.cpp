@@ -11,6 +11,7 @@
 #include "cncc/backends/linuxcnc_canon.h"
 #include "cncc/backends/linuxcnc_program.h"
 #include "cncc/backends/macro_program.h"
+#include "cncc/backends/target_info.h"
 #include "cncc/backends/verification.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
@@ -154,9 +155,10 @@ std::optional<MacroRun> runMacro(const ArcCase& test) {
   MacroRun run;
   run.text = program.text;
   run.cuts = host->cuts;
-  run.report = verifyProgram({test.target, std::move(execution),
-                              executedPathOfToolPath(ir::interpret(host->function)), run.cuts},
-                             statistics);
+  run.report =
+      verifyProgram({test.target, findTargetInfo(test.target)->execute, std::move(execution),
+                     executedPathOfToolPath(ir::interpret(host->function)), run.cuts},
+                    statistics);
   return run;
 }
 

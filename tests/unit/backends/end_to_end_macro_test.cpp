@@ -7,6 +7,7 @@
 // to its tolerance and the controller must accept the program.
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
+#include "cncc/backends/target_info.h"
 #include "cncc/backends/verification.h"
 #include "cncc/backends/virtual_controller.h"
 #include "cncc/frontend/sema.h"
@@ -78,7 +79,7 @@ std::unique_ptr<CheckedExample> checkExample(const MacroCase& test, const Parame
 }
 
 // The program the macro backend prints for the part's defaults, as
-// tools/cncc/macro_targets.cpp prints it: lowered into controller loops
+// backends/macro/src/macro_targets.cpp prints it: lowered into controller loops
 // within the budget the profile's increment leaves (method=nurbs as G06.2
 // blocks), optimised by the default pipeline, given the passes before
 // printing, printed for the profile.
@@ -163,8 +164,9 @@ std::optional<CaseRun> runCase(const MacroCase& test) {
       ir::partUnits(*truth->program->selectedPart) == ir::PartUnits::Inches ? "in" : "mm";
   CaseRun run;
   run.cuts = lowered->cuts;
-  run.report = verifyProgram(
-      {test.target, std::move(execution), std::move(reference), lowered->cuts}, options);
+  run.report = verifyProgram({test.target, findTargetInfo(test.target)->execute,
+                              std::move(execution), std::move(reference), lowered->cuts},
+                             options);
   run.summary = formatVerification(run.report, options);
   return run;
 }

@@ -7,6 +7,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/program_execution.h"
+#include "cncc/backends/target_info.h"
 #include "cncc/backends/verification.h"
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/source_manager.h"
@@ -129,7 +130,9 @@ VerificationReport run(const std::string& text, const std::string& target, const
   ExecutedPath reference = executedPathOfToolPath(ir::interpret(lowered->function));
   StatisticsOptions options;
   VerificationReport report =
-      verifyProgram({target, std::move(execution), std::move(reference), lowered->cuts}, options);
+      verifyProgram({target, findTargetInfo(target)->execute, std::move(execution),
+                     std::move(reference), lowered->cuts},
+                    options);
   EXPECT_FALSE(report.failure) << formatVerification(report, options);
   EXPECT_TRUE(report.missedCuts.empty()) << formatVerification(report, options);
   EXPECT_EQ(report.stray.count, 0u) << formatVerification(report, options);
@@ -197,7 +200,7 @@ TEST(MacroControllerLoops, ToolTooLargeForTheCurveRaisesItsAlarm) {
     execution.passing = ParameterPassing::MacroArguments;
     execution.callable = true;
     execution.parameters.push_back({"diameter", 1, diameter});
-    ProgramExecution executed = findTargetExecutor("fanuc")->execute(execution);
+    ProgramExecution executed = findTargetInfo("fanuc")->execute(execution);
     ASSERT_TRUE(executed.failure) << diameter;
     EXPECT_NE(executed.failure->message.find("THE TOOL RADIUS MUST BE BELOW 2.3313"),
               std::string::npos)

@@ -1,12 +1,13 @@
 // cncc verify's library: macro programs run on the virtual controller with
 // the parameters set as the operator sets them, the executed path matched
-// to the reference's cuts and measured, operations counted per point; the
-// executor table.
+// to the reference's cuts and measured, operations counted per point; each
+// target's executor (its TargetInfo).
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/program_execution.h"
 #include "cncc/backends/rs274.h"
 #include "cncc/backends/sim_operation_count.h"
+#include "cncc/backends/target_info.h"
 #include "cncc/backends/tool_path_csv.h"
 #include "cncc/backends/verification.h"
 #include "cncc/geom/line_arc_curves.h"
@@ -92,7 +93,9 @@ Reference reference(double radius, double tolerance) {
 
 VerificationReport verify(std::string_view target, ExecutionRequest execution,
                           const Reference& part) {
-  return verifyProgram({std::string(target), std::move(execution), part.path, part.cuts}, {});
+  return verifyProgram({std::string(target), findTargetInfo(target)->execute, std::move(execution),
+                        part.path, part.cuts},
+                       {});
 }
 
 TEST(Verification, PassesAMacroProgramWithinItsTolerance) {
@@ -303,12 +306,13 @@ TEST(Verification, ReadsTheJitTargetsToolPathBack) {
 TEST(Verification, HasAnExecutorForEachTargetItRuns) {
   for (std::string_view target :
        {"m80", "fanuc", "gcode", "jit", "sinumerik", "linuxcnc", "heidenhain"}) {
-    const TargetExecutor* executor = findTargetExecutor(target);
-    ASSERT_NE(executor, nullptr) << target;
-    EXPECT_EQ(executor->target, target);
+    const TargetInfo* info = findTargetInfo(target);
+    ASSERT_NE(info, nullptr) << target;
+    EXPECT_EQ(info->name, target);
+    EXPECT_NE(info->execute, nullptr) << target;
   }
-  EXPECT_EQ(findTargetExecutor("no-such-target"), nullptr);
-  EXPECT_THROW(verifyProgram({"no-such-target", {}, {}, {}}, {}), std::invalid_argument);
+  EXPECT_EQ(findTargetInfo("no-such-target"), nullptr);
+  EXPECT_THROW(verifyProgram({"no-such-target", nullptr, {}, {}, {}}, {}), std::invalid_argument);
 }
 
 // Sets an environment variable while it lives, then restores it.
@@ -361,7 +365,7 @@ private:
 
 // A plunge and a line run by `executor`, for the LinuxCNC runs below; it
 // must run.
-ProgramExecution plungeAndLineOn(const TargetExecutor& executor, ExecutionRequest& request) {
+ProgramExecution plungeAndLineOn(const TargetInfo& executor, ExecutionRequest& request) {
   request.text = "G21 G90\nT3 M6\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10 Y5\nM2\n";
   ProgramExecution run = executor.execute(request);
   EXPECT_FALSE(run.failure) << run.failure->message;
@@ -372,7 +376,7 @@ ProgramExecution plungeAndLineOn(const TargetExecutor& executor, ExecutionReques
 // its feed moves are the path, read within the program's own 5 decimals,
 // and a program it refuses is a failure at its line.
 TEST(Verification, LinuxcncProgramsRunInLinuxcncsInterpreter) {
-  const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
+  const TargetInfo* linuxcnc = findTargetInfo("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
   ProgramExecution run = plungeAndLineOn(*linuxcnc, request);
@@ -395,7 +399,7 @@ TEST(Verification, LinuxcncProgramsRunInLinuxcncsInterpreter) {
 TEST(Verification, LinuxcncProgramsRunInRs274WithoutTheModule) {
   PythonWithoutTheModule python;
   ScopedEnvironment chosen("CNCC_LINUXCNC_PYTHON", python.path());
-  const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
+  const TargetInfo* linuxcnc = findTargetInfo("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
   ProgramExecution run = plungeAndLineOn(*linuxcnc, request);
@@ -450,7 +454,7 @@ TEST(Verification, LinuxcncReadsTheInterpretersDoubles) {
 // `G41 D<n>` comes from the request's radii, and what rs274 refuses (an
 // entry move not longer than the radius) fails the run.
 TEST(Verification, LinuxcncCompensationRunsInRs274) {
-  const TargetExecutor* linuxcnc = findTargetExecutor("linuxcnc");
+  const TargetInfo* linuxcnc = findTargetInfo("linuxcnc");
   ASSERT_NE(linuxcnc, nullptr);
   ExecutionRequest request;
   request.text = "G21 G90\nT1 M6\nG0 X0 Y-10 Z0\nG1 X0 Y-10 F100\nG42 D7 X0 Y0\nG1 X10\n"

@@ -1,9 +1,9 @@
 // Running a target's program text to find the path it executes: what
-// `cncc verify` measures. Each target that can be verified has one entry in
-// the executor table (program_execution.cpp): the macro targets run in the
-// virtual controller with the part parameters given as the operator gives
-// them, gcode runs there as plain G-code, jit's tool path is read back. A
-// new target (say sinumerik) plugs in by adding an entry.
+// `cncc verify` measures. A target that can be verified names its executor
+// in its TargetInfo (target_info.h): the macro targets run in the virtual
+// controller with the part parameters given as the operator gives them
+// (runMacroProgram), gcode runs there as plain G-code, jit's tool path is
+// read back, the others run in their controllers' readers.
 #pragma once
 
 #include "cncc/backends/controller_profile.h"
@@ -13,7 +13,6 @@
 #include <cstddef>
 #include <map>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -73,13 +72,16 @@ struct ProgramExecution {
 
 using ProgramExecutor = ProgramExecution (*)(const ExecutionRequest& request);
 
-struct TargetExecutor {
-  std::string_view target;
-  ProgramExecutor execute;
-};
+// A run that failed before the controller read a block (line 0) or at `line`.
+ProgramExecution failedExecution(std::string text, int line, std::string message);
 
-std::span<const TargetExecutor> targetExecutors();
-// Null when target `name`'s programs cannot be executed here.
-const TargetExecutor* findTargetExecutor(std::string_view name);
+// The line `number` (1-based) of a program's text; empty past its end.
+std::string programLine(std::string_view text, int number);
+
+// The program in the virtual macro controller with `profile`.
+ProgramExecution runOnController(const ExecutionRequest& request, const ControllerProfile& profile);
+// In the profile the request names (its machine profile, else `profile`,
+// else `defaultProfile`).
+ProgramExecution runMacroProgram(const ExecutionRequest& request, std::string_view defaultProfile);
 
 } // namespace cncc::backends

@@ -27,6 +27,7 @@ namespace cncc::backends {
 
 struct VerificationInput {
   std::string target;
+  ProgramExecutor execute = nullptr; // how the target's programs run
   ExecutionRequest execution;
   // The part run on the host with the same parameter values, its feed
   // moves carrying their cuts (executedPathOfToolPath).

@@ -160,8 +160,8 @@ struct ReadingRules {
   }
 };
 
-// The family of a target name ("m80": Mitsubishi, everything else Fanuc).
-ControllerFamily controllerFamilyOf(std::string_view target);
+// The family of a controller profile ("m80": Mitsubishi, every other Fanuc).
+ControllerFamily controllerFamilyOf(std::string_view profile);
 
 // Reads a whole program file; throws SimulationError at the first problem.
 ProgramText readProgram(std::string_view text, const ControllerProfile& profile,

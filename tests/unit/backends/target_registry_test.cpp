@@ -1,0 +1,168 @@
+// The target registry: every target `-t` takes is described by its
+// TargetInfo alone, so a part compiled through nothing but that description
+// (lowering, printing, running its program) keeps the part's tolerances.
+#include "cncc/backends/controller_profile.h"
+#include "cncc/backends/machine_file.h"
+#include "cncc/backends/target_info.h"
+#include "cncc/backends/verification.h"
+#include "cncc/frontend/sema.h"
+#include "cncc/frontend/source_manager.h"
+#include "cncc/ir/interpreter.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/verifier.h"
+#include "cncc/lowering/lowering.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace cncc::backends {
+namespace {
+
+std::string exampleText(const std::string& name) {
+  std::ifstream file(std::string(CNCC_SOURCE_DIR) + "/examples/" + name);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+TEST(TargetRegistry, DescribesEachTargetOnceAndCompletely) {
+  std::set<std::string_view> names;
+  for (const TargetInfo* target : allTargetInfos()) {
+    SCOPED_TRACE(target->name);
+    EXPECT_TRUE(names.insert(target->name).second);
+    EXPECT_EQ(findTargetInfo(target->name), target);
+    EXPECT_FALSE(target->description.empty());
+    EXPECT_NE(target->lowering, nullptr);
+    EXPECT_NE(target->print, nullptr);
+    if (!target->controllerProfile.empty()) {
+      EXPECT_NE(findControllerProfile(target->controllerProfile), nullptr);
+    }
+    // A machine file may name exactly the targets with a built-in set-up.
+    EXPECT_EQ(isMachineTarget(target->name), !target->machineSetup.empty());
+    if (!target->machineSetup.empty()) {
+      EXPECT_EQ(builtinMachineSetup(target->machineSetup).dialect, target->machineSetup);
+    }
+  }
+  EXPECT_EQ(findTargetInfo("no-such-target"), nullptr);
+  EXPECT_EQ(targetNameList([](const TargetInfo& target) { return target.tncProfiles; }),
+            "heidenhain");
+}
+
+// The part checked; the program stays alive because the cut curves
+// evaluate its expressions.
+struct CheckedExample {
+  frontend::SourceManager sources;
+  frontend::DiagnosticEngine diagnostics;
+  std::optional<frontend::CheckedProgram> program;
+};
+
+std::unique_ptr<CheckedExample> checkExample(const std::string& name) {
+  auto checked = std::make_unique<CheckedExample>();
+  frontend::FileId file = checked->sources.addFile(name, exampleText(name));
+  frontend::CheckOptions options;
+  options.importPaths = {CNCC_STDLIB_DIR};
+  options.requirePart = true;
+  checked->program = frontend::checkProgram(checked->sources, file, options, checked->diagnostics);
+  if (checked->diagnostics.hasErrors() || checked->program->selectedPart == nullptr) {
+    ADD_FAILURE() << name << " does not check";
+    return nullptr;
+  }
+  return checked;
+}
+
+TargetSettings settingsFor(const TargetInfo& target, const frontend::PartItem& part) {
+  TargetSettings settings;
+  settings.sourceName = "part.cdl";
+  settings.partName = part.name;
+  settings.setup = builtinMachineSetup(target.machineSetup);
+  if (!target.controllerProfile.empty()) {
+    settings.controllerProfile = findControllerProfile(target.controllerProfile);
+  }
+  if (target.tncProfiles) {
+    settings.tncProfile = findTncProfile("tnc640");
+  }
+  return settings;
+}
+
+// The example compiled for `target` as its TargetInfo says, its program
+// run by the target's executor and measured against the part run on the host.
+VerificationReport compileAndVerify(const TargetInfo& target, const std::string& example) {
+  std::unique_ptr<CheckedExample> checked = checkExample(example);
+  if (!checked) {
+    return {};
+  }
+  const frontend::PartItem& part = *checked->program->selectedPart;
+  TargetSettings settings = settingsFor(target, part);
+  ir::LoweringOptions lowering = target.lowering(settings);
+  std::optional<ir::LoweredPart> lowered =
+      ir::lowerPartWithCuts(*checked->program, part, checked->diagnostics, lowering);
+  if (!lowered) {
+    ADD_FAILURE() << "the part does not lower";
+    return {};
+  }
+  ir::runDefaultPipeline(lowered->function);
+  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
+  EXPECT_TRUE(ir::verifyFunction(lowered->function).empty());
+  std::optional<ir::ToolPath> hostPath;
+  if (target.hostRun != HostRun::None) {
+    hostPath = ir::interpret(lowered->function);
+  }
+  PrintedProgram printed =
+      target.print({lowered->function, lowered->cuts, hostPath ? &*hostPath : nullptr, settings});
+  EXPECT_TRUE(printed.problems.empty()) << printed.problems.front();
+  EXPECT_FALSE(printed.text.empty());
+  frontend::DiagnosticEngine diagnostics;
+  std::optional<ir::LoweredPart> reference =
+      ir::lowerPartWithCuts(*checked->program, part, diagnostics);
+  if (!reference) {
+    ADD_FAILURE() << "the part does not lower for the host";
+    return {};
+  }
+  ExecutionRequest execution;
+  execution.text = printed.text;
+  return verifyProgram({std::string(target.name), target.execute, std::move(execution),
+                        executedPathOfToolPath(ir::interpret(reference->function)),
+                        reference->cuts},
+                       {});
+}
+
+TEST(TargetRegistry, EveryTargetCompilesThroughItsDescriptionAlone) {
+  for (const TargetInfo* target : allTargetInfos()) {
+    for (const char* example : {"s_profile.cdl", "bolt_circle.cdl"}) {
+      SCOPED_TRACE(fmt::format("{} on {}", example, target->name));
+      ASSERT_NE(target->execute, nullptr);
+      VerificationReport report = compileAndVerify(*target, example);
+      EXPECT_FALSE(report.failure) << report.failure->message;
+      EXPECT_TRUE(report.passed());
+      EXPECT_GT(report.blocks, 0U);
+    }
+  }
+}
+
+// A program that does not fit its controller is not printed: the problem
+// names the limit.
+TEST(TargetRegistry, AProgramThatDoesNotFitIsAProblemNamingTheLimit) {
+  const TargetInfo& fanuc = *findTargetInfo("fanuc");
+  std::unique_ptr<CheckedExample> checked = checkExample("s_profile.cdl");
+  ASSERT_NE(checked, nullptr);
+  const frontend::PartItem& part = *checked->program->selectedPart;
+  TargetSettings settings = settingsFor(fanuc, part);
+  ControllerProfile tiny = *findControllerProfile("fanuc");
+  tiny.maximumProgramNumber = 10; // O1000 is past it
+  settings.controllerProfile = &tiny;
+  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
+      *checked->program, part, checked->diagnostics, fanuc.lowering(settings));
+  ASSERT_TRUE(lowered);
+  PrintedProgram printed = fanuc.print({lowered->function, lowered->cuts, nullptr, settings});
+  ASSERT_FALSE(printed.problems.empty());
+  EXPECT_NE(printed.problems.front().find("the part does not fit the fanuc profile"),
+            std::string::npos)
+      << printed.problems.front();
+}
+
+} // namespace
+} // namespace cncc::backends
