@@ -86,20 +86,6 @@ struct HostReference {
   std::map<int, double> radiiOfTools;
 };
 
-// The radii by register, or (`byTool`) by the number of the tool in use.
-std::map<int, double> compensationRadii(const ir::ToolPath& path, bool byTool) {
-  std::map<int, double> radii;
-  int tool = 0;
-  for (const ir::MachineEvent& event : path.events) {
-    if (event.kind == ir::MachineEvent::Kind::Tool) {
-      tool = static_cast<int>(std::lround(event.number));
-    } else if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
-      radii[byTool ? tool : static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
-    }
-  }
-  return radii;
-}
-
 // The part run on the host with the checked parameter values.
 std::optional<HostReference> hostReference(const CheckedProgram& program,
                                            const SourceManager& sources,
@@ -154,7 +140,8 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
       }
     }
     return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
-                         compensationRadii(programmed, false), compensationRadii(programmed, true)};
+                         backends::compensationRadii(programmed, false),
+                         backends::compensationRadii(programmed, true)};
   } catch (const ir::InterpreterError& error) {
     output.driverError(fmt::format("the part cannot be run on the host: {}", error.what()));
     return std::nullopt;

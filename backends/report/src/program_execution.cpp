@@ -166,6 +166,19 @@ ProgramExecution runMacroProgram(const ExecutionRequest& request, std::string_vi
   return runOnController(request, *profile);
 }
 
+std::map<int, double> compensationRadii(const ir::ToolPath& path, bool byTool) {
+  std::map<int, double> radii;
+  int tool = 0;
+  for (const ir::MachineEvent& event : path.events) {
+    if (event.kind == ir::MachineEvent::Kind::Tool) {
+      tool = static_cast<int>(std::lround(event.number));
+    } else if (event.kind == ir::MachineEvent::Kind::Compensation && event.number != 0) {
+      radii[byTool ? tool : static_cast<int>(event.offsetRegister)] = std::fabs(event.number);
+    }
+  }
+  return radii;
+}
+
 std::string programLine(std::string_view text, int number) {
   for (int line = 1; line < number && !text.empty(); ++line) {
     std::size_t newline = text.find('\n');

@@ -1,33 +1,18 @@
 // The target registry: every target `-t` takes is described by its
 // TargetInfo alone, so a part compiled through nothing but that description
 // (lowering, printing, running its program) keeps the part's tolerances.
-#include "cncc/backends/controller_profile.h"
+#include "target_compile.h"
+
 #include "cncc/backends/machine_file.h"
-#include "cncc/backends/target_info.h"
 #include "cncc/backends/verification.h"
-#include "cncc/frontend/sema.h"
-#include "cncc/frontend/source_manager.h"
-#include "cncc/ir/interpreter.h"
-#include "cncc/ir/passes.h"
-#include "cncc/ir/verifier.h"
-#include "cncc/lowering/lowering.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
 namespace cncc::backends {
 namespace {
-
-std::string exampleText(const std::string& name) {
-  std::ifstream file(std::string(CNCC_SOURCE_DIR) + "/examples/" + name);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
 
 TEST(TargetRegistry, DescribesEachTargetOnceAndCompletely) {
   std::set<std::string_view> names;
@@ -52,78 +37,25 @@ TEST(TargetRegistry, DescribesEachTargetOnceAndCompletely) {
             "heidenhain");
 }
 
-// The part checked; the program stays alive because the cut curves
-// evaluate its expressions.
-struct CheckedExample {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-};
-
-std::unique_ptr<CheckedExample> checkExample(const std::string& name) {
-  auto checked = std::make_unique<CheckedExample>();
-  frontend::FileId file = checked->sources.addFile(name, exampleText(name));
-  frontend::CheckOptions options;
-  options.importPaths = {CNCC_STDLIB_DIR};
-  options.requirePart = true;
-  checked->program = frontend::checkProgram(checked->sources, file, options, checked->diagnostics);
-  if (checked->diagnostics.hasErrors() || checked->program->selectedPart == nullptr) {
-    ADD_FAILURE() << name << " does not check";
-    return nullptr;
-  }
-  return checked;
-}
-
-TargetSettings settingsFor(const TargetInfo& target, const frontend::PartItem& part) {
-  TargetSettings settings;
-  settings.sourceName = "part.cdl";
-  settings.partName = part.name;
-  settings.setup = builtinMachineSetup(target.machineSetup);
-  if (!target.controllerProfile.empty()) {
-    settings.controllerProfile = findControllerProfile(target.controllerProfile);
-  }
-  if (target.tncProfiles) {
-    settings.tncProfile = findTncProfile("tnc640");
-  }
-  return settings;
-}
-
 // The example compiled for `target` as its TargetInfo says, its program
 // run by the target's executor and measured against the part run on the host.
 VerificationReport compileAndVerify(const TargetInfo& target, const std::string& example) {
-  std::unique_ptr<CheckedExample> checked = checkExample(example);
-  if (!checked) {
+  std::unique_ptr<testing::CheckedExample> checked = testing::checkExample(example);
+  std::optional<testing::TargetCompilation> compiled =
+      checked ? testing::compileThroughTarget(target, *checked) : std::nullopt;
+  if (!compiled) {
     return {};
   }
-  const frontend::PartItem& part = *checked->program->selectedPart;
-  TargetSettings settings = settingsFor(target, part);
-  ir::LoweringOptions lowering = target.lowering(settings);
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(*checked->program, part, checked->diagnostics, lowering);
-  if (!lowered) {
-    ADD_FAILURE() << "the part does not lower";
-    return {};
-  }
-  ir::runDefaultPipeline(lowered->function);
-  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
-  EXPECT_TRUE(ir::verifyFunction(lowered->function).empty());
-  std::optional<ir::ToolPath> hostPath;
-  if (target.hostRun != HostRun::None) {
-    hostPath = ir::interpret(lowered->function);
-  }
-  PrintedProgram printed =
-      target.print({lowered->function, lowered->cuts, hostPath ? &*hostPath : nullptr, settings});
-  EXPECT_TRUE(printed.problems.empty()) << printed.problems.front();
-  EXPECT_FALSE(printed.text.empty());
+  EXPECT_FALSE(compiled->printed.text.empty());
   frontend::DiagnosticEngine diagnostics;
   std::optional<ir::LoweredPart> reference =
-      ir::lowerPartWithCuts(*checked->program, part, diagnostics);
+      ir::lowerPartWithCuts(*checked->program, *checked->program->selectedPart, diagnostics);
   if (!reference) {
     ADD_FAILURE() << "the part does not lower for the host";
     return {};
   }
   ExecutionRequest execution;
-  execution.text = printed.text;
+  execution.text = compiled->printed.text;
   return verifyProgram({std::string(target.name), target.execute, std::move(execution),
                         executedPathOfToolPath(ir::interpret(reference->function)),
                         reference->cuts},
@@ -147,10 +79,10 @@ TEST(TargetRegistry, EveryTargetCompilesThroughItsDescriptionAlone) {
 // names the limit.
 TEST(TargetRegistry, AProgramThatDoesNotFitIsAProblemNamingTheLimit) {
   const TargetInfo& fanuc = *findTargetInfo("fanuc");
-  std::unique_ptr<CheckedExample> checked = checkExample("s_profile.cdl");
+  std::unique_ptr<testing::CheckedExample> checked = testing::checkExample("s_profile.cdl");
   ASSERT_NE(checked, nullptr);
   const frontend::PartItem& part = *checked->program->selectedPart;
-  TargetSettings settings = settingsFor(fanuc, part);
+  TargetSettings settings = testing::defaultSettings(fanuc, part);
   ControllerProfile tiny = *findControllerProfile("fanuc");
   tiny.maximumProgramNumber = 10; // O1000 is past it
   settings.controllerProfile = &tiny;

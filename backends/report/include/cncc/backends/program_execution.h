@@ -9,6 +9,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/executed_path.h"
 #include "cncc/backends/sim_operation_count.h"
+#include "cncc/ir/tool_path.h"
 
 #include <cstddef>
 #include <map>
@@ -74,6 +75,11 @@ using ProgramExecutor = ProgramExecution (*)(const ExecutionRequest& request);
 
 // A run that failed before the controller read a block (line 0) or at `line`.
 ProgramExecution failedExecution(std::string text, int line, std::string message);
+
+// The radius each of the path's cutter radius compensations is for, by the
+// offset register it reads (what ExecutionRequest::toolRadii gives), or
+// (`byTool`) by the number of the tool in use (ExecutionRequest::radiiOfTools).
+std::map<int, double> compensationRadii(const ir::ToolPath& path, bool byTool);
 
 // The line `number` (1-based) of a program's text; empty past its end.
 std::string programLine(std::string_view text, int number);
