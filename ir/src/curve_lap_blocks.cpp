@@ -5,9 +5,16 @@
 // at the lap's height and feed (a NURBS block's weights, the lap's
 // operands after its three, carried over, so a weight that is a part
 // parameter stays one). The lap's regions, the curve the blocks were fitted
-// to, go: the blocks are what the controller cuts.
+// to, go: the blocks are what the controller cuts. An entry that names no
+// table has its blocks fitted here, once (curve_blocks.h): the spans of SPL
+// blocks (a spline whose transitions make the TNC stop exactly a warning of
+// the function), or the G06.2 block of a curve that is not a NURBS of its
+// own, a table of the function with its weights.
+#include "cncc/ir/curve_blocks.h"
+
 #include "curve_lap_rewriter.h"
 
+#include <map>
 #include <span>
 
 namespace cncc::ir {
@@ -30,25 +37,64 @@ private:
                           "a lap cut as curve blocks is level: its two heights must be one value");
     }
     if (entry.sampling == CurveSampling::PolynomialBlocks) {
-      writeSpans(lap, *entry.blockTable);
+      writeSpans(lap, entry.blockTable ? std::span<const double>(source_.tables[*entry.blockTable])
+                                       : std::span<const double>(fittedSpans(lap)));
       return;
     }
     Instruction move;
     move.opcode = entry.sampling == CurveSampling::NurbsBlocks ? Opcode::Nurbs : Opcode::Spline;
-    move.index = entry.blockTable.value_or(0); // verified to be there
+    const FittedNurbs* fitted = entry.blockTable ? nullptr : &fittedNurbs(lap);
+    move.index = fitted != nullptr ? fitted->table : *entry.blockTable;
     move.span = lap.span;
     move.pass = lap.pass;
     std::vector<ValueId> operands;
     for (std::size_t k = 1; k < lap.operands.size(); ++k) {
       operands.push_back(mapped(lap.operands[k])); // height, feed, weights
     }
+    for (std::size_t k = 0; fitted != nullptr && k < fitted->weights.size(); ++k) {
+      operands.push_back(constant(fitted->weights[k])); // the fitted B-spline's
+    }
     emit(move, std::move(operands));
+  }
+
+  // The table of cubic spans fitted to the lap's curve (once per entry),
+  // and its warning once.
+  const std::vector<double>& fittedSpans(const Instruction& lap) {
+    auto known = fitted_.find(lap.index);
+    if (known == fitted_.end()) {
+      const CurveTableEntry& entry = source_.curves[lap.index];
+      std::vector<PolynomialMove> spans = lapPolynomialSpans(entry, *curveOf(lap));
+      if (std::optional<std::string> stops = splineExactStops(spans)) {
+        output_.warnings.push_back(
+            {LegalisationWarning::Kind::SplineExactStop, entry.cutSpan, *stops});
+      }
+      known = fitted_.emplace(lap.index, polynomialMoveTable(spans)).first;
+    }
+    return known->second;
+  }
+
+  struct FittedNurbs {
+    std::uint32_t table = 0;
+    std::vector<double> weights; // one per control point
+  };
+
+  // The NURBS block fitted to the lap's curve (once per entry), its data a
+  // table of the function.
+  const FittedNurbs& fittedNurbs(const Instruction& lap) {
+    auto known = nurbs_.find(lap.index);
+    if (known == nurbs_.end()) {
+      FittedNurbsBlock block = lapFittedNurbs(source_.curves[lap.index], *curveOf(lap));
+      output_.tables.push_back(std::move(block.table));
+      FittedNurbs fitted{static_cast<std::uint32_t>(output_.tables.size() - 1),
+                         std::move(block.weights)};
+      known = nurbs_.emplace(lap.index, std::move(fitted)).first;
+    }
+    return known->second;
   }
 
   // A move.polynomial per cubic span of the table, its end raised by the
   // lap's height, its coefficients numbers.
-  void writeSpans(const Instruction& lap, std::uint32_t table) {
-    std::span<const double> spans = source_.tables[table];
+  void writeSpans(const Instruction& lap, std::span<const double> spans) {
     Operand height = operandOf(mapped(lap.operands[1]));
     for (std::size_t at = 0; at + 12 <= spans.size(); at += 12) {
       Instruction move;
@@ -64,6 +110,9 @@ private:
       emit(move, std::move(operands));
     }
   }
+
+  std::map<std::uint32_t, std::vector<double>> fitted_; // spans by curve
+  std::map<std::uint32_t, FittedNurbs> nurbs_;          // by curve
 };
 
 } // namespace

@@ -1,6 +1,7 @@
 #include "cncc/ir/interpreter.h"
 
 #include "cncc/ir/arithmetic.h"
+#include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/polynomial_move.h"
@@ -192,6 +193,8 @@ private:
     std::vector<double> parameters;
     std::vector<double> progress;
     std::optional<LapArcs> arcs;        // a lap cut as arcs: its moves, no parameters
+    std::vector<double> blocks;         // blocks fitted to it: their table's data
+    std::vector<double> blockWeights;   // and a NURBS block's weights
     std::vector<LapRegionShare> shares; // a ramp lap cut in steps: each region's
   };
 
@@ -212,10 +215,17 @@ private:
       Opcode kind = entry.sampling == CurveSampling::NurbsBlocks    ? Opcode::Nurbs
                     : entry.sampling == CurveSampling::SplineBlocks ? Opcode::Spline
                                                                     : Opcode::Polynomial;
-      if (!entry.blockTable) {
-        throw InterpreterError("a lap cut as curve blocks names no table of them");
+      if (entry.blockTable) {
+        recordBlocks(lap, kind, *entry.blockTable, function_.tables[*entry.blockTable], zTo, feed,
+                     operandValues(lap, 3));
+        return;
       }
-      recordBlocks(lap, kind, *entry.blockTable, zTo, feed, 3);
+      if (kind == Opcode::Spline) {
+        throw InterpreterError("a lap cut as spline blocks names no table of them");
+      }
+      // Blocks the legalisation fits (curve_blocks.h), fitted as it does.
+      const LapPoints& points = lapPoints(lap, entry, false);
+      recordBlocks(lap, kind, 0, points.blocks, zTo, feed, points.blockWeights);
       return;
     }
     if (entry.sampling == CurveSampling::Steps) {
@@ -377,6 +387,17 @@ private:
 
   // Chosen once per lap and values read from outside it (a lap in a loop
   // over passes goes along the same curve each time).
+  // The blocks write-curve-blocks fits to a lap that names no table.
+  static void fitBlocks(const CurveTableEntry& entry, LapPoints& points) {
+    if (entry.sampling == CurveSampling::PolynomialBlocks) {
+      points.blocks = polynomialMoveTable(lapPolynomialSpans(entry, *points.curve));
+      return;
+    }
+    FittedNurbsBlock block = lapFittedNurbs(entry, *points.curve);
+    points.blocks = std::move(block.table);
+    points.blockWeights = std::move(block.weights);
+  }
+
   const LapPoints& lapPoints(const Instruction& lap, const CurveTableEntry& entry, bool ramp) {
     LapPoints fresh;
     try {
@@ -401,6 +422,8 @@ private:
         }
         if (entry.sampling == CurveSampling::Arcs) {
           fresh.arcs = lapArcs(entry, *fresh.curve);
+        } else if (entry.isBlocks()) {
+          fitBlocks(entry, fresh);
         } else if (entry.sampling != CurveSampling::Steps) {
           fresh.parameters = lapParameters(entry, *fresh.curve);
         }
@@ -481,34 +504,41 @@ private:
   }
 
   void recordNurbs(const Instruction& instruction) {
-    recordBlocks(instruction, Opcode::Nurbs, instruction.index, value(instruction.operands[0]),
-                 value(instruction.operands[1]), 2);
+    recordBlocks(instruction, Opcode::Nurbs, instruction.index, function_.tables[instruction.index],
+                 value(instruction.operands[0]), value(instruction.operands[1]),
+                 operandValues(instruction, 2));
   }
 
   void recordSpline(const Instruction& instruction) {
-    recordBlocks(instruction, Opcode::Spline, instruction.index, value(instruction.operands[0]),
-                 value(instruction.operands[1]), 2);
+    recordBlocks(instruction, Opcode::Spline, instruction.index,
+                 function_.tables[instruction.index], value(instruction.operands[0]),
+                 value(instruction.operands[1]), {});
+  }
+
+  // The values of the instruction's operands from `first` on.
+  std::vector<double> operandValues(const Instruction& instruction, std::size_t first) {
+    std::vector<double> values;
+    for (std::size_t k = first; k < instruction.operands.size(); ++k) {
+      values.push_back(value(instruction.operands[k]));
+    }
+    return values;
   }
 
   // The moves of a NURBS block, of spline blocks or of cubic spans
   // (move.nurbs, move.spline, or a curve.lap cut as them, or as
-  // move.polynomials) from table `table` at height z; a NURBS block's
-  // weights are the operands from `firstWeight` on.
-  void recordBlocks(const Instruction& instruction, Opcode kind, std::uint32_t table, double z,
-                    double feed, std::size_t firstWeight) {
+  // move.polynomials) from `data` (table `table`'s, or what a lap that
+  // names none is fitted to) at height z; a NURBS block's `weights`.
+  void recordBlocks(const Instruction& instruction, Opcode kind, std::uint32_t table,
+                    std::span<const double> data, double z, double feed,
+                    const std::vector<double>& weights) {
     std::size_t first = path_.events.size();
     if (kind == Opcode::Nurbs) {
-      std::vector<double> weights;
-      for (std::size_t k = firstWeight; k < instruction.operands.size(); ++k) {
-        weights.push_back(value(instruction.operands[k]));
-      }
-      nurbsMove(position_, function_.tables[table], z, feed, weights, path_.events);
+      nurbsMove(position_, data, z, feed, weights, path_.events);
     } else if (kind == Opcode::Spline) {
-      splineMove(table, function_.tables[table], z, feed, path_.events);
+      splineMove(table, data, z, feed, path_.events);
     } else {
       std::string problem;
-      std::optional<std::vector<PolynomialMove>> spans =
-          readPolynomialMoveTable(function_.tables[table], &problem);
+      std::optional<std::vector<PolynomialMove>> spans = readPolynomialMoveTable(data, &problem);
       if (!spans) {
         throw InterpreterError(problem);
       }

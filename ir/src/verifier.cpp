@@ -192,8 +192,12 @@ private:
       return;
     }
     const CurveTableEntry& entry = function_.curves[lap.index];
+    if (entry.sampling == CurveSampling::NurbsBlocks && !entry.blockTable &&
+        lap.operands.size() != 3) {
+      problem(fmt::format("{} has weights for a NURBS block that write-curve-blocks fits", where));
+    }
     if (entry.isBlocks() && !entry.blockTable) {
-      return; // the entry's own problem
+      return; // fitted by write-curve-blocks, or the entry's own problem
     }
     if (entry.sampling == CurveSampling::NurbsBlocks) {
       checkNurbs(*entry.blockTable,
@@ -374,7 +378,11 @@ private:
       problem(fmt::format("{} is cut by {} but has chosen points or a share of a descent", where,
                           curveSamplingName(entry.sampling)));
     }
-    if (entry.isBlocks() != entry.blockTable.has_value()) {
+    // Blocks the legalisation fits need no table: SPL spans and a fitted
+    // NURBS block; Sinumerik spline blocks are fitted by the lowering.
+    bool tableNeeded = entry.sampling == CurveSampling::SplineBlocks;
+    if (entry.blockTable.has_value() != entry.isBlocks() &&
+        (entry.blockTable.has_value() || tableNeeded)) {
       problem(fmt::format("{} is cut by {} and names {} table of blocks", where,
                           curveSamplingName(entry.sampling), entry.blockTable ? "a" : "no"));
     }
@@ -387,11 +395,14 @@ private:
     }
   }
 
-  // A grid belongs to arcs.
+  // A grid belongs to arcs and to the blocks write-curve-blocks fits.
   void verifyArcs(const std::string& where, const CurveTableEntry& entry) {
-    bool arcs = entry.sampling == CurveSampling::Arcs;
-    if (!std::isfinite(entry.grid) || entry.grid < 0 || (!arcs && entry.grid != 0)) {
-      problem(fmt::format("{} has the grid {}, which is not arcs' grid of zero or more", where,
+    bool gridded = entry.sampling == CurveSampling::Arcs ||
+                   (entry.isBlocks() && entry.sampling != CurveSampling::SplineBlocks);
+    if (!std::isfinite(entry.grid) || entry.grid < 0 || (!gridded && entry.grid != 0)) {
+      problem(fmt::format("{} has the grid {}, which is not a grid of arcs or fitted blocks of "
+                          "zero or more",
+                          where,
                           entry.grid));
     }
   }

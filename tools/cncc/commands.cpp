@@ -61,6 +61,7 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
   if (target != nullptr) {
     try {
       ir::runCurveLegalisation(*function, printAfterCallback(options));
+      ir::reportLegalisationWarnings(*function, diagnostics);
     } catch (const ir::CurveLapError& error) {
       ir::reportCurveLapError(error, diagnostics);
       return "";

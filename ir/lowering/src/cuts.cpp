@@ -520,7 +520,8 @@ CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const Cut
 }
 
 CurveTableEntry PartLowering::blocksTableEntry(const CutStmt& cut, const CutCurve& curve,
-                                               CurveSampling sampling, std::uint32_t blockTable,
+                                               CurveSampling sampling,
+                                               std::optional<std::uint32_t> blockTable,
                                                double tolerance) {
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
   entry.sampling = sampling;

@@ -1,17 +1,18 @@
 // method=nurbs on a target that prints NURBS blocks (LoweringOptions::
-// nurbsBlocks: Fanuc and Mitsubishi G06.2). The cut's curve is the block
-// data, in a table: the curve itself when it is a NURBS, else a cubic
-// B-spline fitted within the tolerance less the rounding of the control
-// points, which are put on the printed grid. Each pass is a rapid over the
-// first control point, a plunge and a curve.lap at the pass height whose
-// entry gives the table (CurveSampling::NurbsBlocks), which the legalisation
-// write-curve-blocks writes out as one move.nurbs; a weight that is a part
-// parameter is an SSA operand of the lap and of the move, so the printer
-// writes it as that parameter's variable (`R#3`) and the operator's edit
-// reaches the curve. Every other number of the curve is fixed at its default.
+// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass is a rapid over the
+// block's first control point, a plunge and a curve.lap at the pass height
+// whose entry asks for the block (CurveSampling::NurbsBlocks), which the
+// legalisation write-curve-blocks writes out as one move.nurbs. A curve that
+// is a NURBS of its own is its block: the lowering puts its data, control
+// points on the printed grid, in a table the entry names, and its weights
+// are operands of the lap, so a weight that is a part parameter stays its
+// SSA value, the printer writes it as that parameter's variable (`R#3`) and
+// the operator's edit reaches the curve. Any other curve's block is a cubic
+// B-spline that write-curve-blocks fits within the tolerance less the
+// rounding of the control points, on the grid (curve_blocks.h). Every other
+// number of the curve is fixed at its default.
 #include "part_lowering.h"
 
-#include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/printed_grid.h"
@@ -48,50 +49,37 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
 }
 
 // The budget of the NURBS blocks: samples= or spacing= choose no points of
-// them, so they keep the default tolerance.
+// them, so they keep the default tolerance, which must leave room for the
+// rounding of the control points.
 ToleranceBudget PartLowering::nurbsBlockBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
   if (std::isnan(budget.tolerance)) {
     budget.tolerance = options_.defaultTolerance;
   }
-  return budget;
-}
-
-// The NURBS the blocks carry, control points on the printed grid.
-geom::NurbsCurve PartLowering::nurbsForBlocks(const CutStmt& cut, const CutCurve& curve) {
-  ToleranceBudget budget = nurbsBlockBudget(cut);
-  double tolerance = budget.tolerance;
   double rounding = budget.pointRounding();
-  if (!(tolerance > 2 * rounding)) {
+  if (!(budget.tolerance > 2 * rounding)) {
     const Expr* written = modifierValue(cut, "tolerance");
     fail(written != nullptr ? written->span : cut.span,
          fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
                      "NURBS control points ({:.6g})",
-                     tolerance, rounding),
+                     budget.tolerance, rounding),
          DiagnosticKind::InvalidTolerance);
   }
-  std::optional<geom::NurbsCurve> nurbs;
-  if (const auto* own = dynamic_cast<const geom::NurbsCurve*>(curve.geometry.get())) {
-    nurbs = *own;
-  } else {
-    try {
-      geom::BSplineFitOptions fit;
-      fit.degree = 3;
-      fit.tolerance = budget.forPoints();
-      nurbs = geom::fitBSpline(*curve.geometry, fit).spline;
-    } catch (const geom::GeometryError& error) {
-      fail(cut.span,
-           fmt::format("no B-spline fits this curve within {:g} for the NURBS blocks: {}",
-                       budget.forPoints(), error.what()),
-           DiagnosticKind::InvalidTolerance);
-    }
-  }
-  std::vector<Eigen::Vector3d> points = nurbs->controlPoints();
-  for (Eigen::Vector3d& point : points) {
-    point = onPrintedGrid(point, budget.increment);
-  }
-  return geom::NurbsCurve(nurbs->knots(), std::move(points), nurbs->weights());
+  return budget;
 }
+
+namespace {
+
+// A NURBS's own block: its control points on the printed grid.
+geom::NurbsCurve onGrid(const geom::NurbsCurve& own, double increment) {
+  std::vector<Eigen::Vector3d> points = own.controlPoints();
+  for (Eigen::Vector3d& point : points) {
+    point = onPrintedGrid(point, increment);
+  }
+  return geom::NurbsCurve(own.knots(), std::move(points), own.weights());
+}
+
+} // namespace
 
 // The blocks carry the host's control points and knots: every parameter
 // they read is fixed, except a weight that is a parameter itself (R#n).
@@ -131,19 +119,33 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   checkCutBounds(cut, *curve.geometry);
   std::vector<std::optional<ValueId>> parameters = parameterWeights(cut, curve);
   fixNurbsBlockParameters(cut);
-  geom::NurbsCurve blocks = nurbsForBlocks(cut, curve);
-  // A fitted curve has weights of its own: the parameters' weights no longer apply.
-  bool ownCurve = dynamic_cast<const geom::NurbsCurve*>(curve.geometry.get()) != nullptr;
+  ToleranceBudget budget = nurbsBlockBudget(cut);
+  CurveTableEntry entry =
+      blocksTableEntry(cut, curve, CurveSampling::NurbsBlocks, std::nullopt, budget.forPoints());
+  // A NURBS of its own is its block (its weights operands of the lap, a
+  // parameter's its SSA value); any other curve's block is the cubic
+  // B-spline write-curve-blocks fits, its weights its own.
   std::vector<ValueId> weights;
-  for (std::size_t i = 0; i < blocks.controlPoints().size(); ++i) {
-    bool parameter = ownCurve && i < parameters.size() && parameters[i];
-    weights.push_back(
-        parameter ? *parameters[i]
-                  : builder_.constant(blocks.weights().empty() ? 1.0 : blocks.weights()[i]));
+  // The block starts and ends at its first and last control points, on the
+  // printed grid: a fitted B-spline's are where the curve starts and ends.
+  geom::ParameterRange domain = curve.geometry->domain();
+  Eigen::Vector3d first = onPrintedGrid(curve.geometry->point(domain.t0), budget.increment);
+  Eigen::Vector3d last = onPrintedGrid(curve.geometry->point(domain.t1), budget.increment);
+  if (const auto* own = dynamic_cast<const geom::NurbsCurve*>(curve.geometry.get())) {
+    geom::NurbsCurve blocks = onGrid(*own, budget.increment);
+    first = blocks.controlPoints().front();
+    last = blocks.controlPoints().back();
+    for (std::size_t i = 0; i < blocks.controlPoints().size(); ++i) {
+      bool parameter = i < parameters.size() && parameters[i];
+      weights.push_back(
+          parameter ? *parameters[i]
+                    : builder_.constant(blocks.weights().empty() ? 1.0 : blocks.weights()[i]));
+    }
+    entry.blockTable = builder_.addTable(nurbsMoveTable(blocks));
+  } else {
+    entry.grid = budget.increment;
   }
-  std::uint32_t table = builder_.addTable(nurbsMoveTable(blocks));
-  std::uint32_t lapTable = builder_.addCurve(blocksTableEntry(
-      cut, curve, CurveSampling::NurbsBlocks, table, nurbsBlockBudget(cut).forPoints()));
+  std::uint32_t lapTable = builder_.addCurve(std::move(entry));
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   CutGeometry geometry;
@@ -152,8 +154,6 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   geometry.span = cut.span;
   beginCutMoves(geometry);
 
-  const Eigen::Vector3d& first = blocks.controlPoints().front();
-  const Eigen::Vector3d& last = blocks.controlPoints().back();
   std::vector<double> depths = passDepths(cut);
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));

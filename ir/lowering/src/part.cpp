@@ -98,6 +98,7 @@ std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, cons
     LoweredPart lowered = lowering.run();
     if (options.expandCurveLaps) {
       runCurveLegalisation(lowered.function);
+      reportLegalisationWarnings(lowered.function, diagnostics);
     }
     if (options.literalSignificantDigits > 0 &&
         !trigonometricLiteralsFit(lowered, diagnostics, options)) {
@@ -137,10 +138,24 @@ void reportCurveLapError(const CurveLapError& error, DiagnosticEngine& diagnosti
   case CurveLapError::Kind::TooFewPoints:
     kind = DiagnosticKind::TooFewPoints;
     break;
+  case CurveLapError::Kind::InvalidTolerance:
+    kind = DiagnosticKind::InvalidTolerance;
+    break;
   case CurveLapError::Kind::DegenerateCurve:
     break;
   }
   diagnostics.report(kind, error.span, error.what());
+}
+
+void reportLegalisationWarnings(Function& function, DiagnosticEngine& diagnostics) {
+  for (const LegalisationWarning& warning : function.warnings) {
+    switch (warning.kind) {
+    case LegalisationWarning::Kind::SplineExactStop:
+      diagnostics.report(DiagnosticKind::SplineExactStop, warning.span, warning.message);
+      break;
+    }
+  }
+  function.warnings.clear();
 }
 
 PartUnits partUnits(const PartItem& part) {

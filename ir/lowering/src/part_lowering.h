@@ -309,12 +309,13 @@ private:
   CurveTableEntry wholeCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntryOn(const frontend::CutStmt& cut,
                                     std::shared_ptr<const geom::Curve> geometry);
-  // The whole curve cut as the target's blocks (NurbsBlocks or SplineBlocks)
-  // whose data is table `blockTable`, fitted within `tolerance` (0: through
-  // the points samples= or spacing= chose).
+  // The whole curve cut as the target's blocks (NurbsBlocks, SplineBlocks or
+  // PolynomialBlocks) whose data is table `blockTable` (none: fitted by
+  // write-curve-blocks), fitted within `tolerance` (0: through the points
+  // samples= or spacing= chose).
   CurveTableEntry blocksTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
-                                   CurveSampling sampling, std::uint32_t blockTable,
-                                   double tolerance);
+                                   CurveSampling sampling,
+                                   std::optional<std::uint32_t> blockTable, double tolerance);
   CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
                                        std::size_t piece, const std::vector<RampSegment>& shares);
   CurvePieceLayout pieceLayout(const CurvePiece& piece, double start);
@@ -398,7 +399,6 @@ private:
   std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
                                                        const CutCurve& curve);
   ToleranceBudget nurbsBlockBudget(const frontend::CutStmt& cut);
-  geom::NurbsCurve nurbsForBlocks(const frontend::CutStmt& cut, const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
 
   // spline_cuts.cpp
@@ -410,8 +410,7 @@ private:
   // `given`: the curve to cut instead of the statement's (an offset's stand-in).
   void emitPolynomialMoves(const std::vector<PolynomialMove>& spans, double z, ValueId feed);
   bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
-  std::vector<PolynomialMove> polynomialSpans(const frontend::CutStmt& cut, const CutCurve& curve);
-  void reportSplineCorners(const frontend::CutStmt& cut, const std::vector<PolynomialMove>& spans);
+  ToleranceBudget polynomialBudget(const frontend::CutStmt& cut);
 
   // offset_cuts.cpp: cuts beside the curve (side=left|right).
   bool lowerOffsetCut(const frontend::CutStmt& cut);

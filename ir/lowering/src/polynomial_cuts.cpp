@@ -1,22 +1,17 @@
 // A spline cut (method=cspline, aspline, bspline or nurbs) on a target
 // with polynomial span blocks (LoweringOptions::polynomialBlocks: the
-// Heidenhain TNC's SPL). The cut's curve becomes cubic spans: exactly, one
-// per knot span, when it is a non-rational NURBS of degree 3 or less;
-// otherwise (a rational NURBS, any other curve) from a cubic B-spline fitted
-// within the tolerance less the rounding of the end points. Each end point
-// is put on the printed grid and each span made to start exactly where the
-// one before ends (polynomial_move.h). A transition that turns by more than
-// the TNC's 0.1 degree, where the control stops exactly, is a warning
-// naming how many there are. The spans are a table of the function; each
-// pass is a rapid over the start, a plunge, and a curve.lap at the pass
-// height whose entry names the table (CurveSampling::PolynomialBlocks),
-// which the legalisation write-curve-blocks writes out as one
-// move.polynomial per span.
+// Heidenhain TNC's SPL). Each pass is a rapid over the curve's start on the
+// printed grid, a plunge, and a curve.lap at the pass height whose entry
+// asks for the cubic spans (CurveSampling::PolynomialBlocks) within the
+// tolerance less the rounding of the end points, on the printed grid: the
+// legalisation write-curve-blocks fits them (curve_blocks.h: exactly, one
+// per knot span, for a non-rational NURBS of degree 3 or less; else from a
+// cubic B-spline), writes a move.polynomial per span and warns of
+// transitions that turn by more than the TNC's 0.1 degree, where the
+// control stops exactly.
 #include "part_lowering.h"
 
-#include "cncc/geom/bspline_fitting.h"
-#include "cncc/geom/evaluation_budget.h"
-#include "cncc/geom/geometry_error.h"
+#include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/printed_grid.h"
 
@@ -29,27 +24,12 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-namespace {
-
-// The TNC stops exactly where consecutive spline blocks turn by more.
-constexpr double smoothTransitionDegrees = 0.1;
-
-bool nonRationalCubic(const geom::Curve& curve) {
-  const auto* nurbs = dynamic_cast<const geom::NurbsCurve*>(&curve);
-  if (nurbs == nullptr || nurbs->degree() > 3) {
-    return false;
-  }
-  const std::vector<double>& weights = nurbs->weights();
-  return std::all_of(weights.begin(), weights.end(),
-                     [&](double weight) { return weight == weights.front(); });
-}
-
-} // namespace
-
-std::vector<PolynomialMove> PartLowering::polynomialSpans(const CutStmt& cut,
-                                                          const CutCurve& curve) {
+// The budget of the spans: samples= or spacing= choose no points of them,
+// so they keep the default tolerance; a tolerance that leaves no room for
+// rounding their ends is an error.
+ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
-  if (std::isnan(budget.tolerance)) { // samples= or spacing=: the default tolerance
+  if (std::isnan(budget.tolerance)) {
     budget.tolerance = options_.defaultTolerance;
   }
   double rounding = budget.pointRounding();
@@ -61,51 +41,7 @@ std::vector<PolynomialMove> PartLowering::polynomialSpans(const CutStmt& cut,
                      budget.tolerance, rounding),
          DiagnosticKind::InvalidTolerance);
   }
-  std::vector<PolynomialMove> spans;
-  try {
-    if (nonRationalCubic(*curve.geometry)) {
-      spans = polynomialMoves(dynamic_cast<const geom::NurbsCurve&>(*curve.geometry));
-    } else {
-      geom::BSplineFitOptions fit;
-      fit.degree = 3;
-      fit.tolerance = budget.forPoints();
-      // A fit asks derivatives too, each some ten points' work.
-      geom::BudgetedCurve budgeted(*curve.geometry, maximumCurveEvaluations / 8);
-      spans = polynomialMoves(geom::fitBSpline(budgeted, fit).spline);
-    }
-  } catch (const geom::GeometryError& error) {
-    fail(cut.span,
-         fmt::format("no cubic spans follow this curve within {:g} for the spline blocks: {}",
-                     budget.forPoints(), error.what()),
-         DiagnosticKind::InvalidTolerance);
-  }
-  Eigen::Vector3d start = onPrintedGrid(spans.front().start(), budget.increment);
-  for (PolynomialMove& span : spans) {
-    span.end = onPrintedGrid(span.end, budget.increment);
-    span.startAt(start);
-    start = span.end;
-  }
-  return spans;
-}
-
-void PartLowering::reportSplineCorners(const CutStmt& cut,
-                                       const std::vector<PolynomialMove>& spans) {
-  int corners = 0;
-  double largest = 0;
-  for (std::size_t i = 1; i < spans.size(); ++i) {
-    double turn = polynomialTransitionDegrees(spans[i - 1], spans[i]);
-    if (turn > smoothTransitionDegrees) {
-      ++corners;
-      largest = std::max(largest, turn);
-    }
-  }
-  if (corners > 0) {
-    diagnostics_->report(DiagnosticKind::SplineExactStop, cut.span,
-                         fmt::format("{} of this curve's spline transitions turn by more than "
-                                     "{} degrees (the largest {:.3g}): the control stops "
-                                     "exactly there",
-                                     corners, smoothTransitionDegrees, largest));
-  }
+  return budget;
 }
 
 // A move.polynomial per span at height z.
@@ -138,8 +74,7 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   Scalar feed = cutFeed(cut);
   CutCurve curve = given != nullptr ? *given : cutCurve(cut);
   fixParameters(*cut.curve, cut.curve->span, "this curve's points");
-  std::vector<PolynomialMove> spans = polynomialSpans(cut, curve);
-  reportSplineCorners(cut, spans);
+  ToleranceBudget budget = polynomialBudget(cut);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   CutGeometry geometry;
@@ -149,15 +84,25 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   geometry.method = word;
   beginCutMoves(geometry);
 
+  CurveTableEntry entry = blocksTableEntry(cut, curve, CurveSampling::PolynomialBlocks,
+                                           std::nullopt, budget.forPoints());
+  entry.grid = budget.increment;
   // A curve beside the cut's (an offset) computed otherwise than its laps
-  // follow has no regions: its spans are the moves themselves.
+  // follow has no regions: its spans, fitted here, are the moves themselves.
+  std::optional<std::vector<PolynomialMove>> spans;
   std::optional<std::uint32_t> spansTable;
   if (!curve.pieces.empty() || curve.beside) {
-    std::uint32_t table = builder_.addTable(polynomialMoveTable(spans));
-    spansTable = builder_.addCurve(blocksTableEntry(cut, curve, CurveSampling::PolynomialBlocks,
-                                                    table, toleranceBudget(cut).forPoints()));
+    spansTable = builder_.addCurve(std::move(entry));
+  } else {
+    spans = lapPolynomialSpans(entry, *curve.geometry);
+    if (std::optional<std::string> stops = splineExactStops(*spans)) {
+      diagnostics_->report(DiagnosticKind::SplineExactStop, cut.span, *stops);
+    }
   }
-  Eigen::Vector3d first = spans.front().start();
+  // The spans start and end where the curve does, on the printed grid.
+  geom::ParameterRange domain = curve.geometry->domain();
+  Eigen::Vector3d first = onPrintedGrid(curve.geometry->point(domain.t0), budget.increment);
+  Eigen::Vector3d last = onPrintedGrid(curve.geometry->point(domain.t1), budget.increment);
   std::vector<double> depths = passDepths(cut);
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
@@ -168,9 +113,8 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
       // a move.polynomial per span.
       emitCurveLap(curve, *spansTable, z, z, feedValue, cut);
     } else {
-      emitPolynomialMoves(spans, z, feedValue);
+      emitPolynomialMoves(*spans, z, feedValue);
     }
-    const Eigen::Vector3d& last = spans.back().end;
     builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
   }
   return true;

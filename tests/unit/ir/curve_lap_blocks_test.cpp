@@ -2,7 +2,10 @@
 // or spline blocks prints and parses, the verifier checks the table and a
 // NURBS block's weights, the interpreter runs the lap as the block, and
 // write-curve-blocks writes each such lap out as that one move (a weight
-// that is a parameter still one).
+// that is a parameter still one). An entry of SPL spans or of a NURBS block
+// that names no table has its blocks fitted by write-curve-blocks, and the
+// interpreter runs the lap as they are fitted.
+#include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/verifier.h"
@@ -197,6 +200,123 @@ TEST(CurveLapBlocks, CubicSpansAreAMoveEach) {
   EXPECT_TRUE(expanded.tables.empty());
   EXPECT_TRUE(expanded.curves.empty());
   curve_lap_test::expectSamePath(before, interpret(expanded));
+}
+
+// The circle of radius r (its default 5) as blocks the pass fits: `sampling`
+// within 0.001, on the grid 0.0001, no table; its curve is its region
+// interpreted at r's default (IR read from text has no geometry).
+std::string circleAsFittedBlocks(std::string_view sampling) {
+  std::string text =
+      replaced(curve_lap_test::circleText, "chords 0.01", std::string(sampling) + " 0.001");
+  text = replaced(text, "    piece at 0 over 0 .. 6.283185307179586\n",
+                  "    piece at 0 over 0 .. 6.283185307179586\n    grid 0.0001\n");
+  // Down to the lap's height first: the blocks start where the machine is.
+  return replaced(text, "  %4 = curve.lap", "  move.feed %0, %3, %2, %1\n  %4 = curve.lap");
+}
+
+// Every feed move's end within `tolerance` of the circle of radius 5.
+void expectOnTheCircle(const ToolPath& path, double tolerance) {
+  std::size_t feeds = 0;
+  for (const MachineEvent& event : path.events) {
+    if (event.kind == MachineEvent::Kind::Feed) {
+      ++feeds;
+      EXPECT_NEAR(std::hypot(event.x, event.y), 5, tolerance) << event.x << ", " << event.y;
+    }
+  }
+  EXPECT_GT(feeds, 20u);
+}
+
+TEST(CurveLapBlocks, SplSpansWithoutATableAreFittedByThePass) {
+  std::string text = circleAsFittedBlocks("polynomial-blocks");
+  Function function = parsed(text);
+  EXPECT_EQ(printFunction(function), text);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(writeCurveBlocks(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  EXPECT_GE(countOf(function, Opcode::Polynomial), 4u);
+  curve_lap_test::expectSamePath(before, interpret(function));
+  expectOnTheCircle(before, 0.001 + 0.0001);
+  // A circle's spans join smoothly: no stop to warn of.
+  EXPECT_TRUE(function.warnings.empty());
+}
+
+TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
+  std::string text = circleAsFittedBlocks("nurbs-blocks");
+  Function function = parsed(text);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function);
+  std::size_t tables = function.tables.size();
+  ASSERT_TRUE(writeCurveBlocks(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  ASSERT_EQ(countOf(function, Opcode::Nurbs), 1u);
+  EXPECT_EQ(function.tables.size(), tables + 1); // the block's data
+  curve_lap_test::expectSamePath(before, interpret(function));
+  expectOnTheCircle(before, 0.001 + 0.0001);
+  // Weights belong to a NURBS of the lap's own, whose table it names.
+  std::vector<std::string> problems =
+      verifyFunction(parsed(replaced(text, "%2, %2, %1 {", "%2, %2, %1, %0 {")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("weights for a NURBS block that write-curve-blocks fits"),
+            std::string::npos)
+      << problems[0];
+}
+
+// An L of two pieces, (0, 0) to (10, 0) to (10, 10), cut at z = -1 and
+// z = -2 as SPL spans the pass fits.
+constexpr std::string_view cornerText = R"(func @corner() {
+  curve @0 polynomial-blocks 0.001 over 0 .. 2 {
+    piece at 0 over 0 .. 1
+    piece at 1 over 0 .. 1
+    grid 0.0001
+  }
+  %0 = const 0
+  %1 = const -1
+  %2 = const 300
+  %3 = const 10
+  %4 = const -2
+  move.feed %0, %0, %1, %2
+  %5 = curve.lap @0, %1, %1, %2 {
+    %6 = mul %3, %5
+    curve.point %6, %0, %0
+  } piece {
+    %7 = mul %3, %5
+    curve.point %3, %7, %0
+  }
+  move.feed %0, %0, %4, %2
+  %8 = curve.lap @0, %4, %4, %2 {
+    %9 = mul %3, %8
+    curve.point %9, %0, %0
+  } piece {
+    %10 = mul %3, %8
+    curve.point %3, %10, %0
+  }
+}
+)";
+
+// The TNC stops where spans turn: the pass warns of the corner once for the
+// entry, however many laps cut it. The entry's geometry is the L as a cubic
+// B-spline with a triple knot at the corner, whose spans the pass takes as
+// they are (the regions say the same L).
+TEST(CurveLapBlocks, SpansThroughACornerAreAWarningOfThePass) {
+  Function function = parsed(cornerText);
+  ASSERT_TRUE(verifyFunction(function).empty()) << verifyFunction(function).front();
+  std::vector<Eigen::Vector3d> points = {{0, 0, 0},  {10 / 3.0, 0, 0},  {20 / 3.0, 0, 0},
+                                         {10, 0, 0}, {10, 10 / 3.0, 0}, {10, 20 / 3.0, 0},
+                                         {10, 10, 0}};
+  function.curves[0].geometry = std::make_shared<geom::NurbsCurve>(
+      geom::NurbsCurve::bspline(geom::KnotVector({0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 2}, 3), points));
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(writeCurveBlocks(function));
+  EXPECT_EQ(countOf(function, Opcode::Polynomial), 4u); // two spans a lap
+  curve_lap_test::expectSamePath(before, interpret(function));
+  ASSERT_EQ(function.warnings.size(), 1u);
+  EXPECT_EQ(function.warnings[0].kind, LegalisationWarning::Kind::SplineExactStop);
+  EXPECT_NE(function.warnings[0].message.find("1 of this curve's spline transitions turn by more "
+                                              "than 0.1 degrees (the largest 90)"),
+            std::string::npos)
+      << function.warnings[0].message;
 }
 
 // Blocks are cut at one height: a ramp lap is refused by the pass and by

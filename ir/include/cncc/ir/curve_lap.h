@@ -22,7 +22,13 @@ namespace cncc::ir {
 // Why a lap's points could not be chosen, at the source it names.
 class CurveLapError : public std::runtime_error {
 public:
-  enum class Kind { ProgramTooLarge, DegenerateCurve, NonFiniteValue, TooFewPoints };
+  enum class Kind {
+    ProgramTooLarge,
+    DegenerateCurve,
+    NonFiniteValue,
+    TooFewPoints,
+    InvalidTolerance
+  };
   CurveLapError(Kind kind, frontend::SourceSpan span, const std::string& message)
       : std::runtime_error(message), kind(kind), span(span) {}
   Kind kind;

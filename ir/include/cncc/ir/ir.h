@@ -145,6 +145,16 @@ struct Function;
 bool isTooLarge(const Function& function);
 std::string functionTooLargeMessage();
 
+// What a legalisation found that the part's author should hear of, though
+// the program is right (a spline whose transitions make the control stop
+// exactly): the caller reports it at `span` and clears the list.
+struct LegalisationWarning {
+  enum class Kind { SplineExactStop };
+  Kind kind = Kind::SplineExactStop;
+  frontend::SourceSpan span;
+  std::string message;
+};
+
 struct Function {
   std::string name;
   std::vector<Parameter> parameters;
@@ -157,6 +167,8 @@ struct Function {
   std::vector<ValueType> valueTypes;
   std::vector<InstructionId> definitions;
   Region body;
+  // Not part of the program (not printed): the legalisations' warnings.
+  std::vector<LegalisationWarning> warnings;
 
   const Instruction& definition(ValueId value) const {
     return instructions[definitions[value.index]];

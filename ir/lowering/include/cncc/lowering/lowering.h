@@ -53,6 +53,8 @@ std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
 
 // A lap's points that could not be chosen, as a diagnostic at its source.
 void reportCurveLapError(const CurveLapError& error, frontend::DiagnosticEngine& diagnostics);
+// Reports the warnings the legalisations left in the function, and clears them.
+void reportLegalisationWarnings(Function& function, frontend::DiagnosticEngine& diagnostics);
 
 enum class PartUnits { Millimetres, Inches };
 // The `units` statement at the top of the part's body (millimetres without one).

@@ -1,0 +1,42 @@
+// The target's own curve blocks for a lap's curve, fitted where the
+// legalisation write-curve-blocks writes a lap that names no table of them
+// (and where the interpreter runs such a lap): the cubic spans of Heidenhain
+// SPL blocks, and the G06.2 block of a curve that is not a NURBS of its own.
+// The lowering only says how (CurveSampling, the tolerance the blocks keep
+// in `amount`, the printed grid in `grid`).
+#pragma once
+
+#include "cncc/geom/nurbs_curve.h"
+#include "cncc/ir/curve_table.h"
+#include "cncc/ir/polynomial_move.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cncc::ir {
+
+// The cubic spans of a lap cut as PolynomialBlocks: exactly, a span per knot
+// span, for a non-rational NURBS of degree 3 or less; else from a cubic
+// B-spline fitted within the entry's amount. Every end on the entry's grid,
+// each span starting where the one before ends. Throws CurveLapError at the
+// cut when no spans follow the curve within the amount.
+std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
+                                               const geom::Curve& curve);
+
+// The NURBS block of a lap cut as NurbsBlocks that names no table: a cubic
+// B-spline fitted within the entry's amount, its control points on the
+// entry's grid, as move.nurbs's table and weight operands. Throws
+// CurveLapError at the cut when none fits.
+struct FittedNurbsBlock {
+  std::vector<double> table; // nurbsMoveTable's
+  std::vector<double> weights; // one per control point
+};
+FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve);
+
+// The warning for the transitions between consecutive spans that turn by
+// more than the TNC's 0.1 degree, where the control stops exactly; nullopt
+// when there are none.
+std::optional<std::string> splineExactStops(const std::vector<PolynomialMove>& spans);
+
+} // namespace cncc::ir

@@ -1,0 +1,108 @@
+#include "cncc/ir/curve_blocks.h"
+
+#include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/evaluation_budget.h"
+#include "cncc/geom/geometry_error.h"
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/nurbs_move.h"
+#include "cncc/ir/printed_grid.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace cncc::ir {
+
+namespace {
+
+// The TNC stops exactly where consecutive spline blocks turn by more.
+constexpr double smoothTransitionDegrees = 0.1;
+
+bool nonRationalCubic(const geom::Curve& curve) {
+  const auto* nurbs = dynamic_cast<const geom::NurbsCurve*>(&curve);
+  if (nurbs == nullptr || nurbs->degree() > 3) {
+    return false;
+  }
+  const std::vector<double>& weights = nurbs->weights();
+  return std::all_of(weights.begin(), weights.end(),
+                     [&](double weight) { return weight == weights.front(); });
+}
+
+// A clamped cubic B-spline within the entry's amount, its ends the curve's.
+geom::NurbsCurve fittedCubic(const geom::Curve& curve, double tolerance) {
+  geom::BSplineFitOptions fit;
+  fit.degree = 3;
+  fit.tolerance = tolerance;
+  return geom::fitBSpline(curve, fit).spline;
+}
+
+} // namespace
+
+std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
+                                               const geom::Curve& curve) {
+  std::vector<PolynomialMove> spans;
+  try {
+    if (nonRationalCubic(curve)) {
+      spans = polynomialMoves(dynamic_cast<const geom::NurbsCurve&>(curve));
+    } else {
+      // A fit asks derivatives too, each some ten points' work.
+      geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations / 8);
+      spans = polynomialMoves(fittedCubic(budgeted, entry.amount));
+    }
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(
+        CurveLapError::Kind::InvalidTolerance, entry.cutSpan,
+        fmt::format("no cubic spans follow this curve within {:g} for the spline blocks: {}",
+                    entry.amount, error.what()));
+  }
+  Eigen::Vector3d start = onPrintedGrid(spans.front().start(), entry.grid);
+  for (PolynomialMove& span : spans) {
+    span.end = onPrintedGrid(span.end, entry.grid);
+    span.startAt(start);
+    start = span.end;
+  }
+  return spans;
+}
+
+FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve) {
+  std::optional<geom::NurbsCurve> nurbs;
+  try {
+    nurbs = fittedCubic(curve, entry.amount);
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(CurveLapError::Kind::InvalidTolerance, entry.cutSpan,
+                        fmt::format("no B-spline fits this curve within {:g} for the NURBS "
+                                    "blocks: {}",
+                                    entry.amount, error.what()));
+  }
+  std::vector<Eigen::Vector3d> points = nurbs->controlPoints();
+  for (Eigen::Vector3d& point : points) {
+    point = onPrintedGrid(point, entry.grid);
+  }
+  geom::NurbsCurve block(nurbs->knots(), std::move(points), nurbs->weights());
+  FittedNurbsBlock fitted;
+  fitted.table = nurbsMoveTable(block);
+  for (std::size_t k = 0; k < block.controlPoints().size(); ++k) {
+    fitted.weights.push_back(block.weights().empty() ? 1.0 : block.weights()[k]);
+  }
+  return fitted;
+}
+
+std::optional<std::string> splineExactStops(const std::vector<PolynomialMove>& spans) {
+  int corners = 0;
+  double largest = 0;
+  for (std::size_t i = 1; i < spans.size(); ++i) {
+    double turn = polynomialTransitionDegrees(spans[i - 1], spans[i]);
+    if (turn > smoothTransitionDegrees) {
+      ++corners;
+      largest = std::max(largest, turn);
+    }
+  }
+  if (corners == 0) {
+    return std::nullopt;
+  }
+  return fmt::format("{} of this curve's spline transitions turn by more than {} degrees (the "
+                     "largest {:.3g}): the control stops exactly there",
+                     corners, smoothTransitionDegrees, largest);
+}
+
+} // namespace cncc::ir
