@@ -8,10 +8,10 @@ namespace cncc::backends {
 
 namespace {
 
-// A target is this list's line and its folder's TargetInfo.
 constexpr const TargetInfo* registeredTargets[] = {
-    &m80Target,      &fanucTarget,      &sinumerikTarget, &gcodeTarget,
-    &linuxcncTarget, &heidenhainTarget, &jitTarget,
+#define CNCC_TARGET(name) &name,
+#include "registered_targets.def"
+#undef CNCC_TARGET
 };
 
 } // namespace

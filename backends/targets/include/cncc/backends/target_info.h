@@ -1,6 +1,6 @@
 // The targets `-t` takes. Each is described once, by a TargetInfo in its
 // backend folder (say macro/src/macro_targets.cpp), and registered by one
-// line of target_registry.cpp: how it lowers a part, how it prints the
+// line of targets/src/registered_targets.def: how it lowers a part, how it prints the
 // lowered part, what else it takes, and how its programs run for `verify`,
 // `--stats` and `sim`. The driver asks this table, never a target's name.
 #pragma once
