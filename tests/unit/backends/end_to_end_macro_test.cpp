@@ -5,6 +5,8 @@
 // a callable macro), and measured against the true curves of the part with
 // those values (verifyProgram, as `cncc verify` does). Every cut must keep
 // to its tolerance and the controller must accept the program.
+#include "target_compile.h"
+
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/macro_program.h"
 #include "cncc/backends/target_info.h"
@@ -47,70 +49,28 @@ void PrintTo(const MacroCase& test, std::ostream* out) {
   }
 }
 
-// A checked example; kept whole because analytic cut curves evaluate the
-// program's expressions.
-struct CheckedExample {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-};
+using testing::CheckedExample;
 
+// The case's example (or a test part given by its path in the source tree)
+// checked with `defines`.
 std::unique_ptr<CheckedExample> checkExample(const MacroCase& test, const Parameters& defines) {
-  auto example = std::make_unique<CheckedExample>();
-  // An example, or a test part given by its path in the source tree.
   std::string path = test.file.starts_with("tests/") ? test.file : "examples/" + test.file;
-  std::optional<frontend::FileId> file =
-      example->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/" + path);
-  if (!file) {
-    ADD_FAILURE() << "cannot read " << test.file;
-    return nullptr;
-  }
-  frontend::CheckOptions options;
-  options.importPaths = {CNCC_STDLIB_DIR};
-  options.requirePart = true;
-  options.partName = test.part;
-  options.defines = defines;
-  example->program = frontend::checkProgram(example->sources, *file, options, example->diagnostics);
-  if (example->diagnostics.hasErrors() || example->program->selectedPart == nullptr) {
-    ADD_FAILURE() << test.file << " does not check";
-    return nullptr;
-  }
-  return example;
+  return testing::checkSource(path, test.part, defines);
 }
 
-// The program the macro backend prints for the part's defaults, as
-// backends/macro/src/macro_targets.cpp prints it: lowered into controller loops
-// within the budget the profile's increment leaves (method=nurbs as G06.2
-// blocks), optimised by the default pipeline, given the passes before
-// printing, printed for the profile.
+// The program the macro target prints for the part's defaults, compiled
+// through its TargetInfo as `cncc FILE -t TARGET [--macro]` compiles it.
 std::optional<std::string> macroProgram(const CheckedExample& example, const MacroCase& test) {
-  const ControllerProfile& profile = *findControllerProfile(test.target);
-  const frontend::PartItem& part = *example.program->selectedPart;
-  bool inches = ir::partUnits(part) == ir::PartUnits::Inches;
-  ir::LoweringOptions lowering = macroLoweringOptions(profile, inches);
-  lowering.nurbsBlocks = true;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<ir::LoweredPart> lowered =
-      ir::lowerPartWithCuts(*example.program, part, diagnostics, lowering);
-  if (!lowered) {
-    ADD_FAILURE() << "the part does not lower";
+  const TargetInfo& target = *findTargetInfo(test.target);
+  TargetSettings settings = testing::defaultSettings(target, *example.program->selectedPart);
+  settings.sourceName = test.file.substr(test.file.rfind('/') + 1);
+  settings.macroCall = test.callable;
+  std::optional<testing::TargetCompilation> compiled =
+      testing::compileThroughTarget(target, example, settings);
+  if (!compiled || !compiled->printed.problems.empty()) {
     return std::nullopt;
   }
-  ir::runDefaultPipeline(lowered->function);
-  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
-  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
-  EXPECT_TRUE(problems.empty()) << problems.front();
-  MacroProgramOptions options;
-  options.sourceName = test.file.substr(test.file.rfind('/') + 1);
-  options.partName = part.name;
-  options.inches = inches;
-  options.callable = test.callable;
-  MacroProgram program = writeMacroProgram(lowered->function, profile, options);
-  EXPECT_TRUE(program.errors.empty()) << program.errors.front();
-  if (!program.errors.empty()) {
-    return std::nullopt;
-  }
-  return program.text;
+  return compiled->printed.text;
 }
 
 std::vector<ParameterValue> parameterValues(const frontend::PartItem& part, const MacroCase& test) {

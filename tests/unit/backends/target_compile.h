@@ -14,10 +14,9 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
 namespace cncc::testing {
@@ -30,25 +29,35 @@ struct CheckedExample {
   std::optional<frontend::CheckedProgram> program;
 };
 
-// examples/`name` checked, its part `part` selected (empty: its only one).
-inline std::unique_ptr<CheckedExample> checkExample(const std::string& name,
-                                                    const std::string& part = {}) {
-  std::string path = std::string(CNCC_SOURCE_DIR) + "/examples/" + name;
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
+// The source at `path` (from the source tree's root) checked with the
+// values `defines`, its part `part` selected (empty: its only one).
+inline std::unique_ptr<CheckedExample> checkSource(const std::string& path,
+                                                   const std::string& part = {},
+                                                   const frontend::ParameterDefines& defines = {}) {
   auto checked = std::make_unique<CheckedExample>();
-  frontend::FileId id = checked->sources.addFile(path, text.str());
+  std::optional<frontend::FileId> file =
+      checked->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/" + path);
+  if (!file) {
+    ADD_FAILURE() << "cannot read " << path;
+    return nullptr;
+  }
   frontend::CheckOptions options;
   options.importPaths = {CNCC_STDLIB_DIR};
   options.requirePart = true;
   options.partName = part;
-  checked->program = frontend::checkProgram(checked->sources, id, options, checked->diagnostics);
+  options.defines = defines;
+  checked->program = frontend::checkProgram(checked->sources, *file, options, checked->diagnostics);
   if (checked->diagnostics.hasErrors() || checked->program->selectedPart == nullptr) {
-    ADD_FAILURE() << name << " does not check";
+    ADD_FAILURE() << path << " does not check";
     return nullptr;
   }
   return checked;
+}
+
+// examples/`name` checked, its part `part` selected (empty: its only one).
+inline std::unique_ptr<CheckedExample> checkExample(const std::string& name,
+                                                    const std::string& part = {}) {
+  return checkSource("examples/" + name, part);
 }
 
 // The settings a compile without options gives `target` for `part`.
@@ -74,10 +83,12 @@ struct TargetCompilation {
   backends::PrintedProgram printed;
 };
 
-inline std::optional<TargetCompilation> compileThroughTarget(const backends::TargetInfo& target,
-                                                             const CheckedExample& checked) {
+// `settings`: what the command line asks (none: defaultSettings).
+inline std::optional<TargetCompilation>
+compileThroughTarget(const backends::TargetInfo& target, const CheckedExample& checked,
+                     std::optional<backends::TargetSettings> given = std::nullopt) {
   const frontend::PartItem& part = *checked.program->selectedPart;
-  backends::TargetSettings settings = defaultSettings(target, part);
+  backends::TargetSettings settings = given ? *given : defaultSettings(target, part);
   ir::LoweringOptions lowering = target.lowering(settings);
   lowering.cutterCompensation = target.cutterCompensation;
   frontend::DiagnosticEngine diagnostics;
