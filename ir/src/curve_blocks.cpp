@@ -28,12 +28,16 @@ bool nonRationalCubic(const geom::Curve& curve) {
                      [&](double weight) { return weight == weights.front(); });
 }
 
-// A clamped cubic B-spline within the entry's amount, its ends the curve's.
+// A clamped cubic B-spline within `tolerance`, its ends the curve's; the
+// search asks a bounded number of points of the curve (a fit asks
+// derivatives too, each some ten points' work), past which it throws
+// geom::EvaluationBudgetExceeded.
 geom::NurbsCurve fittedCubic(const geom::Curve& curve, double tolerance) {
+  geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations / 8);
   geom::BSplineFitOptions fit;
   fit.degree = 3;
   fit.tolerance = tolerance;
-  return geom::fitBSpline(curve, fit).spline;
+  return geom::fitBSpline(budgeted, fit).spline;
 }
 
 } // namespace
@@ -45,9 +49,7 @@ std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
     if (nonRationalCubic(curve)) {
       spans = polynomialMoves(dynamic_cast<const geom::NurbsCurve&>(curve));
     } else {
-      // A fit asks derivatives too, each some ten points' work.
-      geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations / 8);
-      spans = polynomialMoves(fittedCubic(budgeted, entry.amount));
+      spans = polynomialMoves(fittedCubic(curve, entry.amount));
     }
   } catch (const geom::GeometryError& error) {
     throw CurveLapError(

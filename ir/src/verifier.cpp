@@ -402,8 +402,7 @@ private:
     if (!std::isfinite(entry.grid) || entry.grid < 0 || (!gridded && entry.grid != 0)) {
       problem(fmt::format("{} has the grid {}, which is not a grid of arcs or fitted blocks of "
                           "zero or more",
-                          where,
-                          entry.grid));
+                          where, entry.grid));
     }
   }
 

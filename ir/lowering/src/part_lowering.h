@@ -314,8 +314,8 @@ private:
   // write-curve-blocks), fitted within `tolerance` (0: through the points
   // samples= or spacing= chose).
   CurveTableEntry blocksTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
-                                   CurveSampling sampling,
-                                   std::optional<std::uint32_t> blockTable, double tolerance);
+                                   CurveSampling sampling, std::optional<std::uint32_t> blockTable,
+                                   double tolerance);
   CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
                                        std::size_t piece, const std::vector<RampSegment>& shares);
   CurvePieceLayout pieceLayout(const CurvePiece& piece, double start);

@@ -263,6 +263,22 @@ TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
       << problems[0];
 }
 
+// A fit asks a bounded number of points of the curve: a tolerance no
+// B-spline of a reasonable size keeps is an error naming the bound, in
+// about a second, not a search of minutes.
+TEST(CurveLapBlocks, AFitPastItsBoundIsAnErrorNamingIt) {
+  Function function = parsed(
+      replaced(circleAsFittedBlocks("nurbs-blocks"), "nurbs-blocks 0.001", "nurbs-blocks 1e-12"));
+  try {
+    writeCurveBlocks(function);
+    ADD_FAILURE() << "fitted within 1e-12";
+  } catch (const CurveLapError& error) {
+    EXPECT_NE(std::string(error.what()).find("asked more than 2500000 points of the curve"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 // An L of two pieces, (0, 0) to (10, 0) to (10, 10), cut at z = -1 and
 // z = -2 as SPL spans the pass fits.
 constexpr std::string_view cornerText = R"(func @corner() {

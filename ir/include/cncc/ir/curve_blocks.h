@@ -29,7 +29,7 @@ std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
 // entry's grid, as move.nurbs's table and weight operands. Throws
 // CurveLapError at the cut when none fits.
 struct FittedNurbsBlock {
-  std::vector<double> table; // nurbsMoveTable's
+  std::vector<double> table;   // nurbsMoveTable's
   std::vector<double> weights; // one per control point
 };
 FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve);
