@@ -146,7 +146,7 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
     return std::nullopt;
   }
   if (cuts != nullptr) {
-    *cuts = std::move(lowered->cuts);
+    *cuts = std::move(lowered->function.cuts);
   }
   return runOnHost(request, lowered->function, native);
 }
@@ -168,7 +168,7 @@ void compileForTarget(const BackendRequest& request) {
   backends::TargetSettings settings =
       targetSettings(target, request.options, part, request.output.path());
   backends::PrintedProgram printed =
-      target.print({lowered->function, lowered->cuts, hostPath ? &*hostPath : nullptr, settings});
+      target.print({lowered->function, hostPath ? &*hostPath : nullptr, settings});
   for (const std::string& problem : printed.problems) {
     request.diagnostics.report(frontend::DiagnosticKind::ProgramTooLarge, part.nameSpan, problem);
   }

@@ -118,7 +118,7 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
     // The reference only tells the cuts apart (within twice their
     // tolerance): its arcs need not be finer than a tenth of the smallest.
     double sagitta = std::numeric_limits<double>::infinity();
-    for (const ir::CutGeometry& cut : lowered->cuts) {
+    for (const ir::CutGeometry& cut : lowered->function.cuts) {
       sagitta = std::min(sagitta, cut.tolerance / 10); // NaN (samples=) is left out
     }
     sagitta = std::isfinite(sagitta) ? std::max(sagitta, backends::executedArcSagitta)
@@ -139,7 +139,8 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
         return std::nullopt;
       }
     }
-    return HostReference{std::move(lowered->cuts), backends::executedPathOfToolPath(path, sagitta),
+    return HostReference{std::move(lowered->function.cuts),
+                         backends::executedPathOfToolPath(path, sagitta),
                          backends::compensationRadii(programmed, false),
                          backends::compensationRadii(programmed, true)};
   } catch (const ir::InterpreterError& error) {

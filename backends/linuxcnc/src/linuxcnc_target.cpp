@@ -35,7 +35,7 @@ PrintedProgram printLinuxcncProgram(const PrintInput& input) {
   options.inches = input.settings.inches;
   options.callable = input.settings.macroCall;
   options.setup = input.settings.setup;
-  options.blendTolerance = linuxcncBlendTolerance(input.cuts);
+  options.blendTolerance = linuxcncBlendTolerance(input.function.cuts);
   LinuxcncProgram program = writeLinuxcncProgram(input.function, options);
   PrintedProgram printed;
   printed.problems = doesNotFit("LinuxCNC", program.errors);

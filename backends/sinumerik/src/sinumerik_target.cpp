@@ -57,12 +57,13 @@ std::string splineBlocksReport(const std::string& partName,
 }
 
 PrintedProgram printSinumerikProgram(const PrintInput& input) {
-  SinumerikProgram program = writeSinumerik(*input.hostPath, input.function.tables,
-                                            input.cuts.size(), sinumerikOptionsFor(input.settings));
+  SinumerikProgram program =
+      writeSinumerik(*input.hostPath, input.function.tables, input.function.cuts.size(),
+                     sinumerikOptionsFor(input.settings));
   PrintedProgram printed;
   printed.text = std::move(program.text);
   printed.lineOrigins = std::move(program.lineOrigins);
-  printed.statistics = splineBlocksReport(input.settings.partName, input.cuts);
+  printed.statistics = splineBlocksReport(input.settings.partName, input.function.cuts);
   return printed;
 }
 

@@ -40,7 +40,8 @@ std::string roundedNumber(const Function& function, const Instruction& source, i
 
 // The cut's tolerance, the default where samples= or spacing= chose its points.
 double cutTolerance(const LoweredPart& lowered, std::uint32_t cut, const LoweringOptions& options) {
-  double tolerance = cut < lowered.cuts.size() ? lowered.cuts[cut].tolerance : std::nan("");
+  double tolerance =
+      cut < lowered.function.cuts.size() ? lowered.function.cuts[cut].tolerance : std::nan("");
   return std::isnan(tolerance) ? options.defaultTolerance : tolerance;
 }
 
@@ -81,8 +82,9 @@ bool trigonometricLiteralsFit(const LoweredPart& lowered, DiagnosticEngine& diag
                     "{:g} mm",
                     controller, digits, roundedNumber(function, source, digits), move.movement,
                     cutTolerance(lowered, move.cut, options)));
-    if (move.cut < lowered.cuts.size() && !(lowered.cuts[move.cut].span == source.span)) {
-      diagnostics.addNote(diagnostic, lowered.cuts[move.cut].span, "the cut");
+    if (move.cut < lowered.function.cuts.size() &&
+        !(lowered.function.cuts[move.cut].span == source.span)) {
+      diagnostics.addNote(diagnostic, lowered.function.cuts[move.cut].span, "the cut");
     }
   }
   return refused.empty();

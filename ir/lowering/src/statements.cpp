@@ -43,7 +43,8 @@ LoweredPart PartLowering::run() {
       parameter.fixed = parameter.fixed || parameter.name == fixed.name;
     }
   }
-  return {std::move(function), std::move(fixedParameters_), std::move(cuts_)};
+  function.cuts = std::move(cuts_);
+  return {std::move(function), std::move(fixedParameters_)};
 }
 
 void PartLowering::unsupported(SourceSpan span, std::string_view what) {

@@ -56,6 +56,7 @@ Rewriter::Rewriter(const Function& source) : source_(source), map_(source.valueT
   output_.parameters = source.parameters;
   output_.tables = source.tables;
   output_.curves = source.curves;
+  output_.cuts = source.cuts;
   output_.warnings = source.warnings;
 }
 

@@ -154,7 +154,7 @@ std::optional<MacroRun> runMacro(const ArcCase& test) {
   statistics.unit = inches ? "in" : "mm";
   MacroRun run;
   run.text = program.text;
-  run.cuts = host->cuts;
+  run.cuts = host->function.cuts;
   run.report =
       verifyProgram({test.target, findTargetInfo(test.target)->execute, std::move(execution),
                      executedPathOfToolPath(ir::interpret(host->function)), run.cuts},
@@ -239,7 +239,7 @@ TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
   LinuxcncProgramOptions printing;
   printing.sourceName = "spiral.cdl";
   printing.partName = "spiral";
-  printing.blendTolerance = linuxcncBlendTolerance(lowered->cuts);
+  printing.blendTolerance = linuxcncBlendTolerance(lowered->function.cuts);
   LinuxcncProgram program = writeLinuxcncProgram(lowered->function, printing);
   ASSERT_TRUE(program.errors.empty()) << program.errors.front();
   std::size_t arcs = arcBlockCount(program.text);
@@ -265,7 +265,7 @@ TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
     }
   }
   ASSERT_GE(lap.size(), arcs + 1);
-  const ir::CutGeometry& cut = lowered->cuts.front();
+  const ir::CutGeometry& cut = lowered->function.cuts.front();
   double deviation = geom::measureDeviation(lap, *cut.curve, {1e-6}).maxDeviation();
   // rs274 prints four decimals: half a unit of the last on each axis.
   EXPECT_LE(deviation, cut.tolerance + 0.5e-4 * std::sqrt(3.0));

@@ -201,9 +201,9 @@ void expectArcsWithinTolerance(const std::string& example, const std::string& pa
   ASSERT_TRUE(part);
   std::vector<ExecutedPass> passes = executePasses(*part);
   std::size_t measured = 0;
-  std::vector<const ExecutedPass*> firstPass(part->lowered->cuts.size(), nullptr);
+  std::vector<const ExecutedPass*> firstPass(part->lowered->function.cuts.size(), nullptr);
   for (const ExecutedPass& pass : passes) {
-    const ir::CutGeometry& cut = part->lowered->cuts.at(pass.cut);
+    const ir::CutGeometry& cut = part->lowered->function.cuts.at(pass.cut);
     bool fitted = cut.arcMoves == ir::CutArcs::Fitted;
     if (cut.arcMoves == ir::CutArcs::None) {
       EXPECT_EQ(pass.arcs, 0u) << "cut " << pass.cut << " has no fit but arcs";
@@ -255,7 +255,7 @@ TEST(ArcsOutput, HelixBoreCutsItsArcsNatively) {
     std::vector<ExecutedPass> passes = executePasses(*part);
     ASSERT_EQ(passes.size(), 6u) << partName; // a bore and a floor per hole
     for (const ExecutedPass& pass : passes) {
-      EXPECT_EQ(part->lowered->cuts.at(pass.cut).arcMoves, ir::CutArcs::Native);
+      EXPECT_EQ(part->lowered->function.cuts.at(pass.cut).arcMoves, ir::CutArcs::Native);
       EXPECT_EQ(pass.lines, 0u) << partName << " cut " << pass.cut;
       EXPECT_EQ(pass.arcs, pass.cut % 2 == 0 ? 6u : 1u) << partName << " cut " << pass.cut;
     }
@@ -273,7 +273,7 @@ TEST(ArcsOutput, SpiralInAThirdOfTheMinimalChords) {
   RecordProperty("blocks", static_cast<int>(blocks));
   EXPECT_LE(blocks, 30u);
   EXPECT_GE(passes[0].arcs, 2u);
-  EXPECT_LE(passDeviation(passes[0], part->lowered->cuts[0]), 0.005);
+  EXPECT_LE(passDeviation(passes[0], part->lowered->function.cuts[0]), 0.005);
 }
 
 // The fitted arcs are IR ops: every pass of the S profile (depth 3, step 1)
@@ -282,7 +282,7 @@ TEST(ArcsOutput, SpiralInAThirdOfTheMinimalChords) {
 TEST(ArcsOutput, FittedArcsAreMovesOfTheIr) {
   std::unique_ptr<CompiledPart> part = compileWithArcs("s_profile.cdl", "");
   ASSERT_TRUE(part);
-  ASSERT_EQ(part->lowered->cuts.at(0).arcMoves, ir::CutArcs::Fitted);
+  ASSERT_EQ(part->lowered->function.cuts.at(0).arcMoves, ir::CutArcs::Fitted);
   std::map<double, std::size_t> arcsAtDepth;
   for (const ir::MachineEvent& event : part->path.events) {
     if (event.kind == ir::MachineEvent::Kind::Arc) {

@@ -123,9 +123,9 @@ std::optional<CaseRun> runCase(const MacroCase& test) {
   options.unit =
       ir::partUnits(*truth->program->selectedPart) == ir::PartUnits::Inches ? "in" : "mm";
   CaseRun run;
-  run.cuts = lowered->cuts;
+  run.cuts = lowered->function.cuts;
   run.report = verifyProgram({test.target, findTargetInfo(test.target)->execute,
-                              std::move(execution), std::move(reference), lowered->cuts},
+                              std::move(execution), std::move(reference), lowered->function.cuts},
                              options);
   run.summary = formatVerification(run.report, options);
   return run;

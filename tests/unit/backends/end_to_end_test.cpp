@@ -206,7 +206,7 @@ class EveryExample : public testing::TestWithParam<ExampleCase> {};
 TEST_P(EveryExample, EveryCutStaysWithinItsTolerance) {
   std::unique_ptr<CompiledExample> example = compile(GetParam().file, GetParam().part);
   ASSERT_TRUE(example);
-  const std::vector<ir::CutGeometry>& cuts = example->lowered->cuts;
+  const std::vector<ir::CutGeometry>& cuts = example->lowered->function.cuts;
   ASSERT_FALSE(cuts.empty());
   // Arcs as the chords a controller's interpolation stays within (1e-5 mm).
   std::vector<std::vector<Pass>> passes =
@@ -247,7 +247,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(EndToEnd, RosetteUnrollsLoopsAndChoosesOneBranch) {
   std::unique_ptr<CompiledExample> example = compile("rosette_plate.cdl");
   ASSERT_TRUE(example);
-  const std::vector<ir::CutGeometry>& cuts = example->lowered->cuts;
+  const std::vector<ir::CutGeometry>& cuts = example->lowered->function.cuts;
   // Rough edge, 6 petals, 4 bolt holes, 1 finishing pass.
   ASSERT_EQ(cuts.size(), 12u);
   EXPECT_TRUE(std::isnan(cuts[7].tolerance)) << "the bolt holes use samples=";

@@ -101,7 +101,7 @@ std::unique_ptr<Compiled> compile(const std::string& file, const std::string& pa
   printing.sourceName = file;
   printing.partName = selected.name;
   printing.inches = ir::partUnits(selected) == ir::PartUnits::Inches;
-  printing.blendTolerance = backends::linuxcncBlendTolerance(result->lowered->cuts);
+  printing.blendTolerance = backends::linuxcncBlendTolerance(result->lowered->function.cuts);
   printing.callable = callable;
   backends::LinuxcncProgram program =
       backends::writeLinuxcncProgram(result->lowered->function, printing);
@@ -231,7 +231,7 @@ double passDeviation(const Pass& pass, const geom::Curve& curve) {
 void expectWithinTolerance(const ir::ToolPath& host, const Compiled& truth,
                            const std::string& program, const std::string& rs274,
                            const std::string& what) {
-  const std::vector<ir::CutGeometry>& cuts = truth.truth->cuts;
+  const std::vector<ir::CutGeometry>& cuts = truth.truth->function.cuts;
   testing::Rs274Run run = testing::runRs274(rs274, program, testing::toolTableOf(host));
   ASSERT_EQ(run.exitCode, 0) << what << ": rs274 failed:\n" << run.errors << run.canon;
   backends::ExecutedPath executed;

@@ -98,7 +98,7 @@ std::optional<std::string> compileExample(const ProgramCase& test) {
   printing.sourceName = std::filesystem::path(test.file).filename().string();
   printing.partName = test.part;
   printing.inches = inches;
-  printing.blendTolerance = linuxcncBlendTolerance(lowered->cuts);
+  printing.blendTolerance = linuxcncBlendTolerance(lowered->function.cuts);
   LinuxcncProgram printed = writeLinuxcncProgram(lowered->function, printing);
   if (!printed.errors.empty()) {
     ADD_FAILURE() << printed.errors.front();

@@ -131,14 +131,14 @@ VerificationReport run(const std::string& text, const std::string& target, const
   StatisticsOptions options;
   VerificationReport report =
       verifyProgram({target, findTargetInfo(target)->execute, std::move(execution),
-                     std::move(reference), lowered->cuts},
+                     std::move(reference), lowered->function.cuts},
                     options);
   EXPECT_FALSE(report.failure) << formatVerification(report, options);
   EXPECT_TRUE(report.missedCuts.empty()) << formatVerification(report, options);
   EXPECT_EQ(report.stray.count, 0u) << formatVerification(report, options);
-  EXPECT_EQ(report.statistics.cuts.size(), lowered->cuts.size());
+  EXPECT_EQ(report.statistics.cuts.size(), lowered->function.cuts.size());
   for (const CutDeviation& cut : report.statistics.cuts) {
-    EXPECT_LE(cut.maxDeviation, lowered->cuts[cut.cut].tolerance)
+    EXPECT_LE(cut.maxDeviation, lowered->function.cuts[cut.cut].tolerance)
         << formatVerification(report, options);
   }
   return report;

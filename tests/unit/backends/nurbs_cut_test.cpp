@@ -72,7 +72,7 @@ std::unique_ptr<CompiledNurbsPart> compile(const std::string& source, const std:
     return nullptr;
   }
   EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
-  part->cuts = lowered->cuts;
+  part->cuts = lowered->function.cuts;
   part->function = lowered->function;
   MacroProgramOptions options;
   options.partName = part->program->selectedPart->name;

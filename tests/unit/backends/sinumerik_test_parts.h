@@ -68,7 +68,7 @@ inline std::unique_ptr<SinumerikPart> compileForSinumerik(const std::string& tex
   }
   part->function = lowered->function;
   part->path = ir::interpret(lowered->function);
-  part->cuts = std::move(lowered->cuts);
+  part->cuts = std::move(lowered->function.cuts);
   part->output =
       backends::writeSinumerik(part->path, part->function.tables, part->cuts.size(), options);
   return part;

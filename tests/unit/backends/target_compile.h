@@ -106,8 +106,7 @@ compileThroughTarget(const backends::TargetInfo& target, const CheckedExample& c
   compiled.programmed = ir::interpret(compiled.lowered.function);
   const ir::ToolPath* hostPath =
       target.hostRun != backends::HostRun::None ? &compiled.programmed : nullptr;
-  compiled.printed =
-      target.print({compiled.lowered.function, compiled.lowered.cuts, hostPath, settings});
+  compiled.printed = target.print({compiled.lowered.function, hostPath, settings});
   EXPECT_TRUE(compiled.printed.problems.empty()) << compiled.printed.problems.front();
   return compiled;
 }

@@ -124,12 +124,12 @@ TEST_P(TargetIrAgreement, TheFinalIrRunsAsThePrintedProgram) {
 
   // Each feed move of the program lies on the IR's path...
   double allowance = chordAgreement + 2 * execution.increment;
-  std::vector<double> allowances(compiled->lowered.cuts.size(), allowance);
+  std::vector<double> allowances(compiled->lowered.function.cuts.size(), allowance);
   // ... but where the controller offsets it (comp=controller): its offset
   // of the printed points, whose rounding the offset turns with each chord,
   // keeps within the cut's tolerance of the IR's model of it.
   for (std::size_t cut : compensatedCuts(compiled->programmed)) {
-    allowances[cut] += compiled->lowered.cuts[cut].tolerance;
+    allowances[cut] += compiled->lowered.function.cuts[cut].tolerance;
   }
   StrayMoves stray = assignCuts(execution.path, irPath, allowances, allowance);
   EXPECT_EQ(stray.count, 0U) << stray.count << " moves off the IR's path, the farthest "

@@ -58,7 +58,7 @@ VerificationReport compileAndVerify(const TargetInfo& target, const std::string&
   execution.text = compiled->printed.text;
   return verifyProgram({std::string(target.name), target.execute, std::move(execution),
                         executedPathOfToolPath(ir::interpret(reference->function)),
-                        reference->cuts},
+                        reference->function.cuts},
                        {});
 }
 
@@ -89,7 +89,7 @@ TEST(TargetRegistry, AProgramThatDoesNotFitIsAProblemNamingTheLimit) {
   std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
       *checked->program, part, checked->diagnostics, fanuc.lowering(settings));
   ASSERT_TRUE(lowered);
-  PrintedProgram printed = fanuc.print({lowered->function, lowered->cuts, nullptr, settings});
+  PrintedProgram printed = fanuc.print({lowered->function, nullptr, settings});
   ASSERT_FALSE(printed.problems.empty());
   EXPECT_NE(printed.problems.front().find("the part does not fit the fanuc profile"),
             std::string::npos)

@@ -66,9 +66,9 @@ TEST(OffsetCuts, TheCutTableHoldsTheExactOffsetAndTheToolPathFollowsIt) {
   for (const char* side : {"left", "right"}) {
     Compiled compiled(polarPart(side), {});
     ASSERT_TRUE(compiled.part) << side;
-    ASSERT_EQ(compiled.part->cuts.size(), 1u);
+    ASSERT_EQ(compiled.part->function.cuts.size(), 1u);
     const auto* offset =
-        dynamic_cast<const geom::OffsetCurve*>(compiled.part->cuts.front().curve.get());
+        dynamic_cast<const geom::OffsetCurve*>(compiled.part->function.cuts.front().curve.get());
     ASSERT_NE(offset, nullptr) << side;
     EXPECT_EQ(offset->distance(), std::string(side) == "left" ? 2.0 : -2.0);
     for (double t = 0; t < 6.28; t += 0.1) {
@@ -101,7 +101,7 @@ TEST(OffsetCuts, LinesAndArcsStayNativeArcs) {
                     "side=right\n}\n",
                     {});
   ASSERT_TRUE(compiled.part);
-  const CutGeometry& cut = compiled.part->cuts.front();
+  const CutGeometry& cut = compiled.part->function.cuts.front();
   EXPECT_EQ(cut.arcMoves, CutArcs::Native);
   const auto* offset = dynamic_cast<const geom::CompositeCurve*>(cut.curve.get());
   ASSERT_NE(offset, nullptr);
@@ -129,7 +129,7 @@ TEST(OffsetCuts, ControllerTargetsRefuseAnOffsetThatDependsOnAParameter) {
                 "  curve arc(center=(0, 0), radius=size, from=0, to=2*pi) side=left\n}\n",
                 {});
   ASSERT_TRUE(host.part);
-  EXPECT_NEAR(host.part->cuts.front().curve->point(0).x(), 18.0, 1e-12);
+  EXPECT_NEAR(host.part->function.cuts.front().curve->point(0).x(), 18.0, 1e-12);
 }
 
 // With the tool diameter a parameter the controller computes each tool
@@ -148,7 +148,7 @@ TEST(OffsetCuts, ControllerOffsetsFollowTheCurvesDerivative) {
                       controller);
     ASSERT_TRUE(compiled.part) << side;
     const auto* offset =
-        dynamic_cast<const geom::OffsetCurve*>(compiled.part->cuts.front().curve.get());
+        dynamic_cast<const geom::OffsetCurve*>(compiled.part->function.cuts.front().curve.get());
     ASSERT_NE(offset, nullptr);
     std::vector<Eigen::Vector3d> feeds;
     for (const MachineEvent& event : interpret(compiled.part->function).events) {
@@ -268,7 +268,7 @@ TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
   EXPECT_GT(entry.regionSteps.front(), 100); // a count the compiler chose
   EXPECT_EQ(printFunction(function).find("alarm"), std::string::npos);
   const auto* offset =
-      dynamic_cast<const geom::OffsetCurve*>(compiled.part->cuts.front().curve.get());
+      dynamic_cast<const geom::OffsetCurve*>(compiled.part->function.cuts.front().curve.get());
   ASSERT_NE(offset, nullptr);
   std::vector<Eigen::Vector3d> points = levelFeeds(interpret(function));
   geom::DeviationOptions coarse;
@@ -328,7 +328,7 @@ TEST(OffsetCuts, HostOffsetsAreLapsOnTheExactOffset) {
   const CurveTableEntry& entry = function.curves.front();
   EXPECT_EQ(entry.sampling, CurveSampling::ChordTolerance);
   EXPECT_FALSE(entry.pointsAsNumbers);
-  const geom::Curve& offset = *compiled.part->cuts.front().curve;
+  const geom::Curve& offset = *compiled.part->function.cuts.front().curve;
   EXPECT_EQ(entry.geometry.get(), &offset);
   ASSERT_GE(entry.pieces.size(), 3u);
   const CurvePieceLayout& nurbs = entry.pieces.front();
@@ -440,7 +440,7 @@ TEST(OffsetCuts, LeadArcsJoinTheOffsetTangentiallyOnTheToolsSide) {
   Compiled compiled(circlePart("right", "5"), {});
   ASSERT_TRUE(compiled.part);
   const auto* path =
-      dynamic_cast<const geom::CompositeCurve*>(compiled.part->cuts.front().curve.get());
+      dynamic_cast<const geom::CompositeCurve*>(compiled.part->function.cuts.front().curve.get());
   ASSERT_NE(path, nullptr);
   ASSERT_EQ(path->pieceCount(), 3u); // lead-in, the offset, lead-out
   const auto* leadIn = dynamic_cast<const geom::ArcCurve*>(&path->piece(0));

@@ -8,6 +8,7 @@
 
 #include "cncc/frontend/source_span.h"
 #include "cncc/ir/curve_table.h"
+#include "cncc/ir/cut_geometry.h"
 #include "cncc/ir/sweep_pass.h"
 
 #include <cstdint>
@@ -162,6 +163,10 @@ struct Function {
   std::vector<std::vector<double>> tables;
   // The curves that `curve.lap` ops go along (curve_table.h).
   std::vector<CurveTableEntry> curves;
+  // The part's cuts, indexed by cut.begin (a cut in an unrolled loop has
+  // one per iteration): what verify measures and plots draw. Not text yet:
+  // a function read from text has none.
+  std::vector<CutGeometry> cuts;
   std::vector<Instruction> instructions;
   // The type of each value, and the instruction that defines it.
   std::vector<ValueType> valueTypes;

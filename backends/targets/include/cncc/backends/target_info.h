@@ -51,12 +51,11 @@ struct TargetSettings {
 // or `otherwise`.
 int programNumberOf(const TargetSettings& settings, int otherwise);
 
-// What a target prints: the lowered part after its passes, and when the
-// target asks for it (TargetInfo::hostRun) the tool path of its run on the
-// host.
+// What a target prints: the lowered part after its passes (its cut table
+// too), and when the target asks for it (TargetInfo::hostRun) the tool path
+// of its run on the host.
 struct PrintInput {
   ir::Function& function;
-  std::vector<ir::CutGeometry>& cuts;
   const ir::ToolPath* hostPath = nullptr;
   const TargetSettings& settings;
 };

@@ -36,8 +36,6 @@ struct LoweredPart {
   Function function;
   // In the order first fixed; each also has Parameter::fixed set.
   std::vector<FixedParameter> fixedParameters;
-  // Indexed by cut.begin; a cut in an unrolled loop has one per iteration.
-  std::vector<CutGeometry> cuts;
 };
 
 // The lowered part, or nullopt after an error diagnostic.
