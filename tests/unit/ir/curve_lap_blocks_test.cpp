@@ -265,8 +265,13 @@ TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
 
 // A fit asks a bounded number of points of the curve: a tolerance no
 // B-spline of a reasonable size keeps is an error naming the bound, in
-// about a second, not a search of minutes.
+// about two seconds, not a search of minutes. (Under AddressSanitizer the
+// bound's 2.5 million interpreted points take minutes and gigabytes: the
+// bound is a release build's promise, checked in the first CI stage.)
 TEST(CurveLapBlocks, AFitPastItsBoundIsAnErrorNamingIt) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "the bound's work is a release build's";
+#endif
   Function function = parsed(
       replaced(circleAsFittedBlocks("nurbs-blocks"), "nurbs-blocks 0.001", "nurbs-blocks 1e-12"));
   try {
