@@ -6,6 +6,7 @@
 // LinuxCNC: the spiral run by LinuxCNC's own interpreter (`rs274 -g`), its
 // ARC_FEED calls measured against the curve.
 #include "linuxcnc_rs274.h"
+#include "target_compile.h"
 
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/linuxcnc_canon.h"
@@ -33,30 +34,11 @@ namespace {
 
 const std::string spiralFile = "tests/golden/arcs/spiral_fanuc.cdl";
 
-struct Checked {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-};
+using Checked = testing::CheckedExample;
 
+// The source at `file` (from the source tree's root) checked, `part` selected.
 std::unique_ptr<Checked> check(const std::string& file, const std::string& part) {
-  auto checked = std::make_unique<Checked>();
-  std::optional<frontend::FileId> id =
-      checked->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/" + file);
-  if (!id) {
-    ADD_FAILURE() << "cannot read " << file;
-    return nullptr;
-  }
-  frontend::CheckOptions options;
-  options.importPaths = {CNCC_STDLIB_DIR};
-  options.requirePart = true;
-  options.partName = part;
-  checked->program = frontend::checkProgram(checked->sources, *id, options, checked->diagnostics);
-  if (checked->diagnostics.hasErrors() || checked->program->selectedPart == nullptr) {
-    ADD_FAILURE() << file << " does not check";
-    return nullptr;
-  }
-  return checked;
+  return testing::checkSource(file, part);
 }
 
 std::optional<ir::LoweredPart> lower(const Checked& checked, ir::LoweringOptions lowering) {
