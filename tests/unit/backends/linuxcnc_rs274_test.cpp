@@ -6,6 +6,7 @@
 // for that rounding (half a unit of the last digit on each axis) and for
 // nothing else. Without rs274 installed the tests fail (CNCC_FIND_RS274).
 #include "linuxcnc_rs274.h"
+#include "target_compile.h"
 
 #include "cncc/backends/linuxcnc_canon.h"
 #include "cncc/backends/linuxcnc_program.h"
@@ -40,11 +41,9 @@ const double printRounding = 0.5e-4 * std::sqrt(3.0);
 constexpr double matchDistance = 2e-4;
 
 struct Compiled {
-  frontend::SourceManager sources;
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<frontend::CheckedProgram> program;
-  std::optional<ir::LoweredPart> lowered;
-  ir::ToolPath path;
+  std::unique_ptr<testing::CheckedExample> checked;
+  std::optional<ir::LoweredPart> lowered; // after the target's passes
+  ir::ToolPath path;                      // the final IR run
   std::string text;
   // The part as the host targets lower it, every loop unrolled: one true
   // curve for each cut the program makes (a controller loop makes one cut
@@ -53,63 +52,35 @@ struct Compiled {
   ir::ToolPath truthPath;
 };
 
+// The example's part compiled as `cncc FILE -t linuxcnc [--macro]` does.
 std::unique_ptr<Compiled> compile(const std::string& file, const std::string& part,
                                   const frontend::ParameterDefines& defines = {},
                                   bool callable = false) {
   auto result = std::make_unique<Compiled>();
-  std::optional<frontend::FileId> id =
-      result->sources.loadFile(std::string(CNCC_SOURCE_DIR) + "/examples/" + file);
-  if (!id) {
-    ADD_FAILURE() << "cannot read " << file;
+  result->checked = testing::checkSource("examples/" + file, part, defines);
+  if (!result->checked) {
     return nullptr;
   }
-  frontend::CheckOptions options;
-  options.importPaths = {CNCC_STDLIB_DIR};
-  options.requirePart = true;
-  options.partName = part;
-  options.defines = defines;
-  result->program = frontend::checkProgram(result->sources, *id, options, result->diagnostics);
-  if (result->diagnostics.hasErrors() || result->program->selectedPart == nullptr) {
-    ADD_FAILURE() << file << " does not check";
+  const frontend::CheckedProgram& program = *result->checked->program;
+  const backends::TargetInfo& linuxcnc = *backends::findTargetInfo("linuxcnc");
+  backends::TargetSettings settings = testing::defaultSettings(linuxcnc, *program.selectedPart);
+  settings.sourceName = file;
+  settings.macroCall = callable;
+  std::optional<testing::TargetCompilation> compiled =
+      testing::compileThroughTarget(linuxcnc, *result->checked, settings);
+  if (!compiled || !compiled->printed.problems.empty()) {
     return nullptr;
   }
-  const frontend::PartItem& selected = *result->program->selectedPart;
-  ir::LoweringOptions lowering;
-  lowering.controllerLoops = true; // as the linuxcnc target lowers
-  lowering.passesBeforePrinting = backends::macroPassesBeforePrinting();
-  result->lowered =
-      ir::lowerPartWithCuts(*result->program, selected, result->diagnostics, lowering);
-  if (!result->lowered) {
-    ADD_FAILURE() << file << " does not lower";
-    return nullptr;
-  }
-  ir::runDefaultPipeline(result->lowered->function);
-  EXPECT_TRUE(ir::runPasses(result->lowered->function, lowering.passesBeforePrinting, {}));
-  result->truth = ir::lowerPartWithCuts(*result->program, selected, result->diagnostics);
+  frontend::DiagnosticEngine diagnostics;
+  result->truth = ir::lowerPartWithCuts(program, *program.selectedPart, diagnostics);
   if (!result->truth) {
     ADD_FAILURE() << file << " does not lower for the host";
     return nullptr;
   }
   result->truthPath = ir::interpret(result->truth->function);
-  std::vector<std::string> problems = ir::verifyFunction(result->lowered->function);
-  if (!problems.empty()) {
-    ADD_FAILURE() << file << ": " << problems.front();
-    return nullptr;
-  }
-  result->path = ir::interpret(result->lowered->function);
-  backends::LinuxcncProgramOptions printing;
-  printing.sourceName = file;
-  printing.partName = selected.name;
-  printing.inches = ir::partUnits(selected) == ir::PartUnits::Inches;
-  printing.blendTolerance = backends::linuxcncBlendTolerance(result->lowered->function.cuts);
-  printing.callable = callable;
-  backends::LinuxcncProgram program =
-      backends::writeLinuxcncProgram(result->lowered->function, printing);
-  if (!program.errors.empty()) {
-    ADD_FAILURE() << file << ": " << program.errors.front();
-    return nullptr;
-  }
-  result->text = std::move(program.text);
+  result->lowered = std::move(compiled->lowered);
+  result->path = std::move(compiled->programmed);
+  result->text = std::move(compiled->printed.text);
   return result;
 }
 
@@ -292,7 +263,7 @@ TEST_P(EveryExampleOnLinuxcnc, Rs274RunsItsSubroutineCalledWithTheDefaults) {
   const std::string end = "\nM2\n";
   ASSERT_TRUE(compiled->text.ends_with(end));
   std::string program = compiled->text.substr(0, compiled->text.size() - end.size() + 1);
-  std::string name(compiled->program->selectedPart->name);
+  std::string name(compiled->checked->program->selectedPart->name);
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   program += "o<" + name + "> call";
