@@ -41,20 +41,19 @@ std::unique_ptr<Checked> check(const std::string& file, const std::string& part)
   return testing::checkSource(file, part);
 }
 
-std::optional<ir::LoweredPart> lower(const Checked& checked, ir::LoweringOptions lowering) {
-  lowering.arcsOnEveryCut = true; // --arcs
-  frontend::DiagnosticEngine diagnostics;
-  std::optional<ir::LoweredPart> lowered = ir::lowerPartWithCuts(
-      *checked.program, *checked.program->selectedPart, diagnostics, lowering);
-  if (!lowered) {
-    ADD_FAILURE() << "the part does not lower";
+// The part compiled for `target` with --arcs, as `cncc FILE -t TARGET --arcs`.
+std::optional<testing::TargetCompilation>
+compileWithArcs(const Checked& checked, const std::string& target, const std::string& sourceName) {
+  const TargetInfo& info = *findTargetInfo(target);
+  TargetSettings settings = testing::defaultSettings(info, *checked.program->selectedPart);
+  settings.sourceName = sourceName;
+  settings.arcs = true;
+  std::optional<testing::TargetCompilation> compiled =
+      testing::compileThroughTarget(info, checked, settings);
+  if (compiled && !compiled->printed.problems.empty()) {
     return std::nullopt;
   }
-  ir::runDefaultPipeline(lowered->function);
-  EXPECT_TRUE(ir::runPasses(lowered->function, lowering.passesBeforePrinting, {}));
-  std::vector<std::string> problems = ir::verifyFunction(lowered->function);
-  EXPECT_TRUE(problems.empty()) << problems.front();
-  return lowered;
+  return compiled;
 }
 
 // Blocks that end an arc: `G2 X.. Y.. I.. J..`, or the same without the
@@ -104,24 +103,14 @@ std::optional<MacroRun> runMacro(const ArcCase& test) {
   if (!checked) {
     return std::nullopt;
   }
-  const ControllerProfile& profile = *findControllerProfile(test.target);
   const frontend::PartItem& part = *checked->program->selectedPart;
   bool inches = ir::partUnits(part) == ir::PartUnits::Inches;
-  ir::LoweringOptions lowering = macroLoweringOptions(profile, inches);
-  lowering.nurbsBlocks = true;
-  std::optional<ir::LoweredPart> lowered = lower(*checked, lowering);
-  if (!lowered) {
+  std::optional<testing::TargetCompilation> compiled =
+      compileWithArcs(*checked, test.target, test.file);
+  if (!compiled) {
     return std::nullopt;
   }
-  MacroProgramOptions options;
-  options.sourceName = test.file;
-  options.partName = part.name;
-  options.inches = inches;
-  MacroProgram program = writeMacroProgram(lowered->function, profile, options);
-  EXPECT_TRUE(program.errors.empty()) << program.errors.front();
-  if (!program.errors.empty()) {
-    return std::nullopt;
-  }
+  const std::string& text = compiled->printed.text;
   // The reference: the part run on the host as the gcode target lowers it.
   frontend::DiagnosticEngine diagnostics;
   std::optional<ir::LoweredPart> host = ir::lowerPartWithCuts(*checked->program, part, diagnostics);
@@ -130,12 +119,12 @@ std::optional<MacroRun> runMacro(const ArcCase& test) {
     return std::nullopt;
   }
   ExecutionRequest execution;
-  execution.text = program.text;
+  execution.text = text;
   execution.passing = ParameterPassing::EditedDefaults;
   StatisticsOptions statistics;
   statistics.unit = inches ? "in" : "mm";
   MacroRun run;
-  run.text = program.text;
+  run.text = text;
   run.cuts = host->function.cuts;
   run.report =
       verifyProgram({test.target, findTargetInfo(test.target)->execute, std::move(execution),
@@ -212,23 +201,15 @@ TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
   CNCC_FIND_RS274(rs274);
   std::unique_ptr<Checked> checked = check(spiralFile, "");
   ASSERT_TRUE(checked);
-  ir::LoweringOptions lowering;
-  lowering.controllerLoops = true; // as the linuxcnc target lowers
-  lowering.arcBlocks = true;
-  lowering.passesBeforePrinting = macroPassesBeforePrinting();
-  std::optional<ir::LoweredPart> lowered = lower(*checked, lowering);
-  ASSERT_TRUE(lowered);
-  LinuxcncProgramOptions printing;
-  printing.sourceName = "spiral.cdl";
-  printing.partName = "spiral";
-  printing.blendTolerance = linuxcncBlendTolerance(lowered->function.cuts);
-  LinuxcncProgram program = writeLinuxcncProgram(lowered->function, printing);
-  ASSERT_TRUE(program.errors.empty()) << program.errors.front();
+  std::optional<testing::TargetCompilation> compiled =
+      compileWithArcs(*checked, "linuxcnc", "spiral.cdl");
+  ASSERT_TRUE(compiled);
+  const PrintedProgram& program = compiled->printed;
   std::size_t arcs = arcBlockCount(program.text);
   EXPECT_GT(arcs, 0u) << program.text;
   EXPECT_LE(arcs, 30u) << program.text;
 
-  ir::ToolPath host = ir::interpret(lowered->function);
+  const ir::ToolPath& host = compiled->programmed;
   testing::Rs274Run run = testing::runRs274(*rs274, program.text, testing::toolTableOf(host));
   ASSERT_EQ(run.exitCode, 0) << run.errors << run.canon;
   std::size_t arcFeeds = 0;
@@ -247,7 +228,7 @@ TEST(LinuxcncArcs, Rs274CutsTheSpiralArcsWithinItsTolerance) {
     }
   }
   ASSERT_GE(lap.size(), arcs + 1);
-  const ir::CutGeometry& cut = lowered->function.cuts.front();
+  const ir::CutGeometry& cut = compiled->lowered.function.cuts.front();
   double deviation = geom::measureDeviation(lap, *cut.curve, {1e-6}).maxDeviation();
   // rs274 prints four decimals: half a unit of the last on each axis.
   EXPECT_LE(deviation, cut.tolerance + 0.5e-4 * std::sqrt(3.0));
