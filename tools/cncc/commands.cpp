@@ -133,6 +133,11 @@ bool writeDependencyFile(DiagnosticOutput& output, const DriverOptions& options,
 
 } // namespace
 
+std::string fileName(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
 int runCompile(const DriverOptions& options) {
   DiagnosticOutput output = diagnosticOutputFor(options);
   SourceManager sources;

@@ -74,6 +74,9 @@ int runVerify(const DriverOptions& options);
 int runWhere(const DriverOptions& options);
 // Whether `cncc verify` can run target `name`'s programs.
 bool canVerify(std::string_view name);
+
+// The name of the file at `path`, without its folders.
+std::string fileName(const std::string& path);
 // --stats of a target measured by running its program on the virtual
 // controller (m80, fanuc): the report of verify, on stderr.
 int printVerifiedStatistics(const BackendRequest& request,

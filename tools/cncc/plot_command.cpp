@@ -21,10 +21,7 @@ namespace cncc::driver {
 namespace {
 
 std::string plotTitle(const DriverOptions& options, const frontend::PartItem& part) {
-  const std::string& input = options.inputs.front();
-  std::size_t slash = input.find_last_of('/');
-  return fmt::format("{}, part {}, target {}",
-                     slash == std::string::npos ? input : input.substr(slash + 1), part.name,
+  return fmt::format("{}, part {}, target {}", fileName(options.inputs.front()), part.name,
                      options.target);
 }
 

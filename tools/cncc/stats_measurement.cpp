@@ -28,11 +28,6 @@ std::optional<HostRun> runOnHost(const BackendRequest& request) {
   return run;
 }
 
-std::string fileName(const std::string& path) {
-  std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 std::vector<std::string> cutNames(const std::vector<ir::CutGeometry>& cuts,
                                   const frontend::SourceManager& sources) {
   std::vector<std::string> names;

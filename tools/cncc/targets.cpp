@@ -54,11 +54,6 @@ std::optional<ir::ToolPath> runOnHost(const BackendRequest& request, const ir::F
   }
 }
 
-std::string fileName(const std::string& path) {
-  std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 } // namespace
 
 const backends::TargetInfo& optionsTarget(const DriverOptions& options) {
@@ -96,21 +91,25 @@ backends::TargetSettings targetSettings(const backends::TargetInfo& target,
 ir::LoweringOptions targetLoweringOptions(const backends::TargetInfo& target,
                                           const frontend::PartItem& part,
                                           const DriverOptions& options) {
-  ir::LoweringOptions lowered = target.lowering(targetSettings(target, options, part));
-  const backends::MachineSetup& setup = machineSetup(options);
+  backends::TargetSettings settings = targetSettings(target, options, part);
+  ir::LoweringOptions lowered = target.lowering(settings);
+  const backends::MachineSetup& setup = settings.setup;
   lowered.maximumExtendedWorkOffset =
       setup.extendedWorkOffset.empty() ? 0 : setup.maximumExtendedWorkOffset;
   lowered.throughSpindleCoolant = !setup.coolantThrough.empty();
   lowered.targetName = std::string(target.name);
   lowered.cutterCompensation = target.cutterCompensation;
-  // Every program's numbers stay within the controller profile's range (the
-  // conservative Fanuc one for the targets without a macro profile of their
-  // own, whose --profile, if any, names another kind; jit's tool path is for
-  // a controller too).
-  lowered.largestNumber =
-      target.controllerProfile.empty() && !machineProfile(options)
-          ? backends::findControllerProfile("fanuc")->maximumCoordinate
-          : driver::controllerProfile(options, target.controllerProfile).maximumCoordinate;
+  // Every program's numbers stay within the controller profile's range: the
+  // target's, else the machine file's, else the conservative Fanuc one (for
+  // the targets without a macro profile of their own, whose --profile, if
+  // any, names another kind; jit's tool path is for a controller too).
+  const backends::ControllerProfile* profile = settings.controllerProfile;
+  if (profile == nullptr) {
+    profile = options.machine && options.machine->profile
+                  ? &*options.machine->profile
+                  : backends::findControllerProfile("fanuc");
+  }
+  lowered.largestNumber = profile->maximumCoordinate;
   if (options.machine) {
     lowered.maximumFeed = options.machine->maximumFeed;
     lowered.maximumSpindleSpeed = options.machine->maximumSpindleSpeed;

@@ -149,11 +149,6 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
   }
 }
 
-std::string fileName(const std::string& path) {
-  std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 std::vector<std::string> cutNames(const std::vector<ir::CutGeometry>& cuts,
                                   const SourceManager& sources) {
   std::vector<std::string> names;
