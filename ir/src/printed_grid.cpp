@@ -26,4 +26,11 @@ Eigen::Vector3d onPrintedGrid(const Eigen::Vector3d& point, double increment) {
           onPrintedGrid(point.z(), increment)};
 }
 
+std::pair<Eigen::Vector3d, Eigen::Vector3d> curveEndsOnGrid(const geom::Curve& curve,
+                                                            double increment) {
+  geom::ParameterRange domain = curve.domain();
+  return {onPrintedGrid(curve.point(domain.t0), increment),
+          onPrintedGrid(curve.point(domain.t1), increment)};
+}
+
 } // namespace cncc::ir

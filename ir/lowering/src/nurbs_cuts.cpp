@@ -128,9 +128,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   std::vector<ValueId> weights;
   // The block starts and ends at its first and last control points, on the
   // printed grid: a fitted B-spline's are where the curve starts and ends.
-  geom::ParameterRange domain = curve.geometry->domain();
-  Eigen::Vector3d first = onPrintedGrid(curve.geometry->point(domain.t0), budget.increment);
-  Eigen::Vector3d last = onPrintedGrid(curve.geometry->point(domain.t1), budget.increment);
+  auto [first, last] = curveEndsOnGrid(*curve.geometry, budget.increment);
   if (const auto* own = dynamic_cast<const geom::NurbsCurve*>(curve.geometry.get())) {
     geom::NurbsCurve blocks = onGrid(*own, budget.increment);
     first = blocks.controlPoints().front();

@@ -99,10 +99,7 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
       diagnostics_->report(DiagnosticKind::SplineExactStop, cut.span, *stops);
     }
   }
-  // The spans start and end where the curve does, on the printed grid.
-  geom::ParameterRange domain = curve.geometry->domain();
-  Eigen::Vector3d first = onPrintedGrid(curve.geometry->point(domain.t0), budget.increment);
-  Eigen::Vector3d last = onPrintedGrid(curve.geometry->point(domain.t1), budget.increment);
+  auto [first, last] = curveEndsOnGrid(*curve.geometry, budget.increment);
   std::vector<double> depths = passDepths(cut);
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));

@@ -3,7 +3,11 @@
 // constants are the printed program's numbers.
 #pragma once
 
+#include "cncc/geom/curve.h"
+
 #include <Eigen/Core>
+
+#include <utility>
 
 namespace cncc::ir {
 
@@ -13,5 +17,10 @@ namespace cncc::ir {
 double onPrintedGrid(double value, double increment);
 
 Eigen::Vector3d onPrintedGrid(const Eigen::Vector3d& point, double increment);
+
+// Where `curve` starts and ends, on the printed grid: where the blocks fitted
+// to it (SPL spans, a fitted G06.2 block) start and end.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> curveEndsOnGrid(const geom::Curve& curve,
+                                                            double increment);
 
 } // namespace cncc::ir
