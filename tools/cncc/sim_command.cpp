@@ -66,13 +66,8 @@ int writeSimulatedPath(const DriverOptions& options, const ir::ToolPath& path) {
 int runOwnReader(const backends::TargetInfo& target, const DriverOptions& options,
                  const std::string& path, const std::string& text) {
   backends::OwnReaderSettings settings;
-  if (target.tncProfiles && !options.profile.empty()) {
-    settings.tncProfile = backends::findTncProfile(options.profile);
-    if (settings.tncProfile == nullptr) {
-      return simulateUsageError(
-          fmt::format("--profile {}: the TNC profiles are tnc640 and itnc530", options.profile));
-    }
-  }
+  // --profile, checked by the command line to be a TNC profile here.
+  settings.tncProfile = target.tncProfiles ? &tncProfile(options) : nullptr;
   settings.toolRadii = options.toolRadii;
   settings.chordError = options.chordError;
   backends::OwnProgramRun run = target.runOwnProgram(text, settings);
