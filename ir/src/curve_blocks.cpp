@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace cncc::ir {
 
@@ -38,6 +39,53 @@ geom::NurbsCurve fittedCubic(const geom::Curve& curve, double tolerance) {
   fit.degree = 3;
   fit.tolerance = tolerance;
   return geom::fitBSpline(budgeted, fit).spline;
+}
+
+// The XY direction of the last chord through `points`, on the printed grid.
+std::optional<Eigen::Vector3d> lastChordDirection(const std::vector<Eigen::Vector3d>& points,
+                                                  double grid) {
+  std::size_t n = points.size();
+  if (n < 2) {
+    return std::nullopt;
+  }
+  Eigen::Vector3d direction =
+      onPrintedGrid(points[n - 1], grid) - onPrintedGrid(points[n - 2], grid);
+  direction.z() = 0;
+  return direction.norm() > 1e-9 ? std::optional<Eigen::Vector3d>(direction) : std::nullopt;
+}
+
+// How an A or C spline starts and ends; `arrival` the XY direction of the
+// ramp's last chord, as printed, if the spline follows a ramp.
+geom::SplineTransitions splineTransitions(SplineEnds ends,
+                                          const std::optional<Eigen::Vector3d>& arrival) {
+  geom::SplineTransitions transitions;
+  switch (ends) {
+  case SplineEnds::Automatic:
+    transitions.start =
+        arrival ? geom::SplineEndCondition::Tangent : geom::SplineEndCondition::Natural;
+    transitions.startDirection = arrival;
+    transitions.end = geom::SplineEndCondition::Natural;
+    break;
+  case SplineEnds::Natural:
+    transitions.start = transitions.end = geom::SplineEndCondition::Natural;
+    break;
+  case SplineEnds::Auto:
+    transitions.start = transitions.end = geom::SplineEndCondition::Auto;
+    break;
+  }
+  return transitions;
+}
+
+std::string_view splineKindName(SplineKind kind) {
+  switch (kind) {
+  case SplineKind::CSpline:
+    return "CSPLINE";
+  case SplineKind::ASpline:
+    return "ASPLINE";
+  case SplineKind::BSpline:
+    break;
+  }
+  return "BSPLINE";
 }
 
 } // namespace
@@ -87,6 +135,40 @@ FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve&
     fitted.weights.push_back(block.weights().empty() ? 1.0 : block.weights()[k]);
   }
   return fitted;
+}
+
+FittedSplineBlocks lapSplineBlocks(const CurveTableEntry& entry, const geom::Curve& curve) {
+  const SplineBlocksFit fit = entry.splineFit.value_or(SplineBlocksFit{});
+  SplineFitRequest request;
+  request.curve = &curve;
+  request.kind = fit.kind;
+  request.budget.tolerance =
+      entry.amount > 0 ? entry.amount : std::numeric_limits<double>::quiet_NaN();
+  request.budget.increment = entry.grid;
+  if (entry.chosenParameters) {
+    for (double t : *entry.chosenParameters) {
+      request.samples.push_back(curve.point(t));
+    }
+  }
+  std::optional<Eigen::Vector3d> arrival;
+  if (fit.afterRamp) {
+    arrival = lastChordDirection(request.samples, entry.grid);
+  }
+  request.transitions = splineTransitions(fit.ends, arrival);
+  std::string_view name = splineKindName(fit.kind);
+  try {
+    return fitSplineBlocks(request);
+  } catch (const geom::EvaluationBudgetExceeded& error) {
+    throw CurveLapError(
+        CurveLapError::Kind::ProgramTooLarge, entry.cutSpan,
+        fmt::format("fitting {} blocks to this curve within its tolerance asks more than {} "
+                    "points of it; that is the limit of one cut's spline fit (a coarser "
+                    "tolerance, or a shorter curve, needs fewer)",
+                    name, error.limit));
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.cutSpan,
+                        fmt::format("cannot write this cut as {} blocks: {}", name, error.what()));
+  }
 }
 
 std::optional<std::string> splineExactStops(const std::vector<PolynomialMove>& spans) {

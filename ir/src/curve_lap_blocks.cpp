@@ -8,8 +8,10 @@
 // to, go: the blocks are what the controller cuts. An entry that names no
 // table has its blocks fitted here, once (curve_blocks.h): the spans of SPL
 // blocks (a spline whose transitions make the TNC stop exactly a warning of
-// the function), or the G06.2 block of a curve that is not a NURBS of its
-// own, a table of the function with its weights.
+// the function), the G06.2 block of a curve that is not a NURBS of its
+// own, a table of the function with its weights, or Sinumerik spline blocks
+// (a table, and how they were found a comment before each move.spline and
+// the cut's splineBlocks).
 #include "cncc/ir/curve_blocks.h"
 
 #include "curve_lap_rewriter.h"
@@ -39,6 +41,10 @@ private:
     if (entry.sampling == CurveSampling::PolynomialBlocks) {
       writeSpans(lap, entry.blockTable ? std::span<const double>(source_.tables[*entry.blockTable])
                                        : std::span<const double>(fittedSpans(lap)));
+      return;
+    }
+    if (entry.sampling == CurveSampling::SplineBlocks && !entry.blockTable) {
+      writeFittedSpline(lap);
       return;
     }
     Instruction move;
@@ -92,6 +98,40 @@ private:
     return known->second;
   }
 
+  struct FittedSpline {
+    std::uint32_t table = 0;
+    std::string comment; // how they were found
+  };
+
+  // The spline blocks fitted to the lap's curve (once per entry), their
+  // comment before the move.spline and in the cut's summary (CutGeometry).
+  void writeFittedSpline(const Instruction& lap) {
+    auto known = splines_.find(lap.index);
+    if (known == splines_.end()) {
+      FittedSplineBlocks blocks = lapSplineBlocks(source_.curves[lap.index], *curveOf(lap));
+      output_.tables.push_back(splineMoveTable(blocks.data));
+      FittedSpline fitted{static_cast<std::uint32_t>(output_.tables.size() - 1),
+                          splineBlocksComment(blocks)};
+      known = splines_.emplace(lap.index, std::move(fitted)).first;
+    }
+    const FittedSpline& fitted = known->second;
+    if (std::optional<std::uint32_t> cut = currentCut(); cut && *cut < output_.cuts.size()) {
+      output_.cuts[*cut].splineBlocks = fitted.comment;
+    }
+    Instruction comment;
+    comment.opcode = Opcode::Comment;
+    comment.text = fitted.comment;
+    comment.span = lap.span;
+    comment.pass = lap.pass;
+    emit(comment, {});
+    Instruction move;
+    move.opcode = Opcode::Spline;
+    move.index = fitted.table;
+    move.span = lap.span;
+    move.pass = lap.pass;
+    emit(move, {mapped(lap.operands[1]), mapped(lap.operands[2])});
+  }
+
   // A move.polynomial per cubic span of the table, its end raised by the
   // lap's height, its coefficients numbers.
   void writeSpans(const Instruction& lap, std::span<const double> spans) {
@@ -113,6 +153,7 @@ private:
 
   std::map<std::uint32_t, std::vector<double>> fitted_; // spans by curve
   std::map<std::uint32_t, FittedNurbs> nurbs_;          // by curve
+  std::map<std::uint32_t, FittedSpline> splines_;       // by curve
 };
 
 } // namespace

@@ -59,6 +59,9 @@ protected:
     if (slicing_ && !ends && !kept_.contains(instructionIdOf(instruction))) {
       return; // not needed by the operands of the region's end being written
     }
+    if (instruction.opcode == Opcode::CutBegin) {
+      cut_ = instruction.index;
+    }
     if (instruction.opcode == Opcode::CurveLap && writes(source_.curves[instruction.index])) {
       const Instruction* outer = lap_;
       lap_ = &instruction;
@@ -123,6 +126,10 @@ protected:
     }
     return passes::constantValue(source_, value);
   }
+
+  // The cut (of the function's cut table) the moves being written belong
+  // to: the last cut.begin met; nullopt before the first.
+  std::optional<std::uint32_t> currentCut() const { return cut_; }
 
   // Whether the lap climbs or descends: its two heights not one value.
   bool isRamp(const Instruction& lap) const {
@@ -228,6 +235,7 @@ private:
   }
 
   const Instruction* lap_ = nullptr; // being written
+  std::optional<std::uint32_t> cut_;
   // While a region is written for some of its end's operands (slicing_):
   // the instructions they need.
   bool slicing_ = false;

@@ -195,6 +195,7 @@ private:
     std::optional<LapArcs> arcs;        // a lap cut as arcs: its moves, no parameters
     std::vector<double> blocks;         // blocks fitted to it: their table's data
     std::vector<double> blockWeights;   // and a NURBS block's weights
+    std::string blocksComment;          // or spline blocks' comment
     std::vector<LapRegionShare> shares; // a ramp lap cut in steps: each region's
   };
 
@@ -220,11 +221,17 @@ private:
                      operandValues(lap, 3));
         return;
       }
-      if (kind == Opcode::Spline) {
-        throw InterpreterError("a lap cut as spline blocks names no table of them");
-      }
-      // Blocks the legalisation fits (curve_blocks.h), fitted as it does.
+      // Blocks the legalisation fits (curve_blocks.h), fitted as it does
+      // (spline blocks after the comment it writes).
       const LapPoints& points = lapPoints(lap, entry, false);
+      if (!points.blocksComment.empty()) {
+        MachineEvent comment;
+        comment.kind = MachineEvent::Kind::Comment;
+        comment.text = points.blocksComment;
+        comment.span = lap.span;
+        comment.pass = lap.pass;
+        path_.events.push_back(std::move(comment));
+      }
       recordBlocks(lap, kind, 0, points.blocks, zTo, feed, points.blockWeights);
       return;
     }
@@ -391,6 +398,12 @@ private:
   static void fitBlocks(const CurveTableEntry& entry, LapPoints& points) {
     if (entry.sampling == CurveSampling::PolynomialBlocks) {
       points.blocks = polynomialMoveTable(lapPolynomialSpans(entry, *points.curve));
+      return;
+    }
+    if (entry.sampling == CurveSampling::SplineBlocks) {
+      FittedSplineBlocks blocks = lapSplineBlocks(entry, *points.curve);
+      points.blocks = splineMoveTable(blocks.data);
+      points.blocksComment = splineBlocksComment(blocks);
       return;
     }
     FittedNurbsBlock block = lapFittedNurbs(entry, *points.curve);

@@ -1,8 +1,10 @@
 // Reads the text form that printer.cpp writes, one instruction a line.
+#include "curve_table_text.h"
+#include "text_reading.h"
+
 #include "cncc/ir/builder.h"
 #include "cncc/ir/printer.h"
 
-#include <charconv>
 #include <fmt/format.h>
 #include <map>
 #include <memory>
@@ -11,57 +13,7 @@ namespace cncc::ir {
 
 namespace {
 
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) {
-    text.remove_prefix(1);
-  }
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) {
-    text.remove_suffix(1);
-  }
-  return text;
-}
-
-bool startsWith(std::string_view text, std::string_view prefix) {
-  return text.substr(0, prefix.size()) == prefix;
-}
-
-std::vector<std::string_view> splitList(std::string_view text) {
-  std::vector<std::string_view> parts;
-  while (!trim(text).empty()) {
-    std::size_t comma = text.find(',');
-    parts.push_back(trim(text.substr(0, comma)));
-    if (comma == std::string_view::npos) {
-      break;
-    }
-    text.remove_prefix(comma + 1);
-  }
-  return parts;
-}
-
-struct Failure {
-  std::string message;
-};
-
-double parseNumber(std::string_view text) {
-  text = trim(text);
-  double value = 0;
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size()) {
-    throw Failure{fmt::format("expected a number, found '{}'", text)};
-  }
-  return value;
-}
-
-// A whole number that fits an index (`cut.begin n`, a register).
-std::uint32_t parseWholeNumber(std::string_view text) {
-  text = trim(text);
-  std::uint32_t index = 0;
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), index);
-  if (error != std::errc() || end != text.data() + text.size()) {
-    throw Failure{fmt::format("expected a whole number, found '{}'", text)};
-  }
-  return index;
-}
+using namespace text;
 
 class IrParser {
 public:
@@ -103,7 +55,10 @@ private:
       throw Failure{"text after the end of the function"};
     }
     if (curve_) {
-      parseCurveLine(line);
+      if (readCurveEntryLine(line, *curve_)) {
+        builder_->addCurve(std::move(*curve_));
+        curve_.reset();
+      }
       return;
     }
     if (!open_.empty() && open_.back().pointEnded && line != "}" && line != "} piece {") {
@@ -129,7 +84,7 @@ private:
       return;
     }
     if (startsWith(line, "curve @")) {
-      parseCurveHeader(line);
+      curve_ = readCurveEntryHeader(line, builder_->function().curves.size());
       return;
     }
     std::string_view result;
@@ -378,20 +333,6 @@ private:
     builder_->compensation(words[0] == "left" ? radius : -radius, parseWholeNumber(words[1]));
   }
 
-  static std::vector<std::string_view> splitWords(std::string_view text) {
-    std::vector<std::string_view> words;
-    std::size_t at = 0;
-    while (at < text.size()) {
-      std::size_t end = text.find(' ', at);
-      end = end == std::string_view::npos ? text.size() : end;
-      if (end > at) {
-        words.push_back(text.substr(at, end - at));
-      }
-      at = end + 1;
-    }
-    return words;
-  }
-
   // `move.arc cw|ccw %x, %y, %z, %i, %j, %f`
   void parseArc(std::string_view rest) {
     std::size_t space = rest.find(' ');
@@ -501,28 +442,6 @@ private:
     open.pointEnded = false;
   }
 
-  // `curve @c chords 0.005 over from .. to {`: the lines up to `}` describe it.
-  void parseCurveHeader(std::string_view line) {
-    std::vector<std::string_view> words = splitWords(line);
-    std::size_t index = builder_->function().curves.size();
-    if (words.size() != 9 || words[4] != "over" || words[6] != ".." || words[8] != "{") {
-      throw Failure{"expected 'curve @c chords|samples|spacing amount over from .. to {'"};
-    }
-    if (parseWholeNumber(words[1].substr(1)) != index) {
-      throw Failure{fmt::format("expected curve @{} next", index)};
-    }
-    std::optional<CurveSampling> sampling = curveSamplingNamed(words[2]);
-    if (!sampling) {
-      throw Failure{"a curve's laps are cut by 'chords', 'samples', 'spacing', 'arcs', 'steps', "
-                    "'nurbs-blocks', 'spline-blocks' or 'polynomial-blocks'"};
-    }
-    curve_.emplace();
-    curve_->sampling = *sampling;
-    curve_->amount = parseNumber(words[3]);
-    curve_->from = parseNumber(words[5]);
-    curve_->to = parseNumber(words[7]);
-  }
-
   // A curve.lap region's curve.point, curve.arc or curve.walk.
   void parseRegionEnd(Opcode opcode, std::string_view rest) {
     std::vector<ValueId> point = operandList(rest);
@@ -538,102 +457,6 @@ private:
     } else {
       builder_->curvePoint(point[0], point[1], point[2]);
     }
-  }
-
-  // `2 ccw`, `0 cw turns`: a region cut as an arc, its turn, whole turns.
-  ArcRegion parseArcRegion(std::string_view text) {
-    std::vector<std::string_view> words = splitWords(text);
-    bool turns = words.size() == 3 && words[2] == "turns";
-    if ((words.size() != 2 && !turns) || (words[1] != "ccw" && words[1] != "cw")) {
-      throw Failure{"expected 'arcs REGION ccw|cw [turns], ...'"};
-    }
-    return {parseWholeNumber(words[0]), words[1] == "ccw", turns};
-  }
-
-  void parseCurveLine(std::string_view line) {
-    if (line == "}") {
-      builder_->addCurve(std::move(*curve_));
-      curve_.reset();
-      return;
-    }
-    if (startsWith(line, "host ")) {
-      for (std::string_view region : splitList(line.substr(5))) {
-        curve_->hostPointRegions.push_back(parseWholeNumber(region));
-      }
-      return;
-    }
-    if (line == "numbers") {
-      curve_->pointsAsNumbers = true;
-      return;
-    }
-    if (startsWith(line, "chosen ")) {
-      std::vector<double> parameters;
-      for (std::string_view parameter : splitList(line.substr(7))) {
-        parameters.push_back(parseNumber(parameter));
-      }
-      curve_->chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
-      return;
-    }
-    if (startsWith(line, "counts ")) {
-      for (std::string_view count : splitList(line.substr(7))) {
-        curve_->regionSteps.push_back(static_cast<int>(parseWholeNumber(count)));
-      }
-      return;
-    }
-    if (startsWith(line, "walks ")) {
-      for (std::string_view region : splitList(line.substr(6))) {
-        curve_->walkRegions.push_back(parseWholeNumber(region));
-      }
-      return;
-    }
-    if (startsWith(line, "arcs ")) {
-      for (std::string_view arc : splitList(line.substr(5))) {
-        curve_->arcRegions.push_back(parseArcRegion(arc));
-      }
-      return;
-    }
-    if (startsWith(line, "grid ")) {
-      curve_->grid = parseNumber(line.substr(5));
-      return;
-    }
-    if (startsWith(line, "blocks @")) {
-      curve_->blockTable = static_cast<std::uint32_t>(parseWholeNumber(line.substr(8)));
-      return;
-    }
-    if (startsWith(line, "progress ")) {
-      std::vector<std::string_view> words = splitWords(line);
-      if (words.size() != 4 || words[2] != "share") {
-        throw Failure{"expected 'progress from share share'"};
-      }
-      curve_->progressFrom = parseNumber(words[1]);
-      curve_->progressShare = parseNumber(words[3]);
-      return;
-    }
-    if (!startsWith(line, "piece ")) {
-      throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'counts', "
-                    "'arcs', 'walks', 'progress', "
-                    "'host', 'numbers', 'chosen' or '}'"};
-    }
-    std::size_t spansAt = line.find(" spans ");
-    std::vector<std::string_view> words = splitWords(line.substr(0, spansAt));
-    if (words.size() != 7 || words[1] != "at" || words[3] != "over" || words[5] != "..") {
-      throw Failure{"expected 'piece at start over from .. to [spans a .. b, ...]'"};
-    }
-    CurvePieceLayout piece;
-    piece.start = parseNumber(words[2]);
-    piece.from = parseNumber(words[4]);
-    piece.to = parseNumber(words[6]);
-    if (spansAt != std::string_view::npos) {
-      for (std::string_view span : splitList(line.substr(spansAt + 7))) {
-        std::size_t dots = span.find(" .. ");
-        if (dots == std::string_view::npos) {
-          throw Failure{"expected a knot span 'from .. to'"};
-        }
-        piece.spans.emplace_back(parseNumber(span.substr(0, dots)),
-                                 parseNumber(span.substr(dots + 4)));
-      }
-    }
-    curve_->pieces.push_back(std::move(piece));
   }
 
   static const std::map<std::string, Opcode>& opcodes() {

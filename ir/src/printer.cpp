@@ -1,5 +1,7 @@
 #include "cncc/ir/printer.h"
 
+#include "curve_table_text.h"
+
 #include <cmath>
 #include <fmt/format.h>
 #include <iterator>
@@ -56,7 +58,7 @@ public:
       out_ += fmt::format("  table @{} = [{}]\n", i, fmt::join(function_.tables[i], ", "));
     }
     for (std::size_t i = 0; i < function_.curves.size(); ++i) {
-      printCurve(i, function_.curves[i]);
+      out_ += curveEntryText(i, function_.curves[i]);
     }
     printRegion(function_.body, 1);
     out_ += "}\n";
@@ -64,57 +66,6 @@ public:
   }
 
 private:
-  // `curve @c chords 0.005 over from .. to {`, a `piece` line per piece,
-  // the printed grid of arcs, the table of blocks, the regions' step counts and arcs, the share of
-  // a longer lap's descent, the host regions, whether the points are numbers and the chosen
-  // parameters; the entry's geometry,
-  // fitted arcs and source spans are not text.
-  void printCurve(std::size_t index, const CurveTableEntry& entry) {
-    out_ += fmt::format("  curve @{} {} {} over {} .. {} {{\n", index,
-                        curveSamplingName(entry.sampling), entry.amount, entry.from, entry.to);
-    for (const CurvePieceLayout& piece : entry.pieces) {
-      out_ += fmt::format("    piece at {} over {} .. {}", piece.start, piece.from, piece.to);
-      for (std::size_t k = 0; k < piece.spans.size(); ++k) {
-        out_ += fmt::format("{}{} .. {}", k == 0 ? " spans " : ", ", piece.spans[k].first,
-                            piece.spans[k].second);
-      }
-      out_ += "\n";
-    }
-    if (entry.grid != 0) {
-      out_ += fmt::format("    grid {}\n", entry.grid);
-    }
-    if (entry.blockTable) {
-      out_ += fmt::format("    blocks @{}\n", *entry.blockTable);
-    }
-    if (!entry.regionSteps.empty()) {
-      out_ += fmt::format("    counts {}\n", fmt::join(entry.regionSteps, ", "));
-    }
-    if (!entry.arcRegions.empty()) {
-      std::vector<std::string> arcs;
-      for (const ArcRegion& arc : entry.arcRegions) {
-        arcs.push_back(fmt::format("{} {}{}", arc.region, arc.counterClockwise ? "ccw" : "cw",
-                                   arc.wholeTurns ? " turns" : ""));
-      }
-      out_ += fmt::format("    arcs {}\n", fmt::join(arcs, ", "));
-    }
-    if (!entry.walkRegions.empty()) {
-      out_ += fmt::format("    walks {}\n", fmt::join(entry.walkRegions, ", "));
-    }
-    if (entry.progressFrom != 0 || entry.progressShare != 1) {
-      out_ += fmt::format("    progress {} share {}\n", entry.progressFrom, entry.progressShare);
-    }
-    if (!entry.hostPointRegions.empty()) {
-      out_ += fmt::format("    host {}\n", fmt::join(entry.hostPointRegions, ", "));
-    }
-    if (entry.pointsAsNumbers) {
-      out_ += "    numbers\n";
-    }
-    if (entry.chosenParameters) {
-      out_ += fmt::format("    chosen {}\n", fmt::join(*entry.chosenParameters, ", "));
-    }
-    out_ += "  }\n";
-  }
-
   std::string name(ValueId value) {
     auto [entry, inserted] = names_.try_emplace(value.index, names_.size());
     return fmt::format("%{}", entry->second);

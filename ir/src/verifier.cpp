@@ -373,19 +373,14 @@ private:
     verifySteps(where, entry);
     bool notPoints = entry.sampling == CurveSampling::Arcs ||
                      entry.sampling == CurveSampling::Steps || entry.isBlocks();
-    if (notPoints &&
-        (entry.chosenParameters || entry.progressFrom != 0 || entry.progressShare != 1)) {
+    // Spline blocks the legalisation fits go through (or after) chosen points.
+    bool chosenAllowed = !notPoints || entry.splineFit;
+    if ((entry.chosenParameters && !chosenAllowed) ||
+        (notPoints && (entry.progressFrom != 0 || entry.progressShare != 1))) {
       problem(fmt::format("{} is cut by {} but has chosen points or a share of a descent", where,
                           curveSamplingName(entry.sampling)));
     }
-    // Blocks the legalisation fits need no table: SPL spans and a fitted
-    // NURBS block; Sinumerik spline blocks are fitted by the lowering.
-    bool tableNeeded = entry.sampling == CurveSampling::SplineBlocks;
-    if (entry.blockTable.has_value() != entry.isBlocks() &&
-        (entry.blockTable.has_value() || tableNeeded)) {
-      problem(fmt::format("{} is cut by {} and names {} table of blocks", where,
-                          curveSamplingName(entry.sampling), entry.blockTable ? "a" : "no"));
-    }
+    verifyBlockTable(where, entry);
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {
       if (region >= regions) {
@@ -395,10 +390,37 @@ private:
     }
   }
 
+  // Blocks name their table, or are fitted by the legalisation (SPL spans
+  // and a NURBS block without more; spline blocks by their fit's settings,
+  // through the chosen points where samples= chose them or a ramp's last
+  // chord leads in).
+  void verifyBlockTable(const std::string& where, const CurveTableEntry& entry) {
+    bool spline = entry.sampling == CurveSampling::SplineBlocks;
+    if (entry.blockTable && !entry.isBlocks()) {
+      problem(fmt::format("{} is cut by {} and names a table of blocks", where,
+                          curveSamplingName(entry.sampling)));
+    }
+    if (entry.splineFit && (!spline || entry.blockTable)) {
+      problem(fmt::format("{} is cut by {}{} and says how spline blocks are fitted", where,
+                          curveSamplingName(entry.sampling),
+                          entry.blockTable ? " from a table" : ""));
+    }
+    if (spline && !entry.blockTable && !entry.splineFit) {
+      problem(fmt::format("{} is cut by spline blocks and names neither a table of them nor how "
+                          "they are fitted",
+                          where));
+    }
+    bool needsPoints = entry.splineFit && (entry.amount == 0 || entry.splineFit->afterRamp);
+    if (needsPoints && !entry.chosenParameters) {
+      problem(fmt::format("{} fits spline blocks {} but has no chosen points", where,
+                          entry.amount == 0 ? "through the points samples= chose"
+                                            : "after a ramp's last chord"));
+    }
+  }
+
   // A grid belongs to arcs and to the blocks write-curve-blocks fits.
   void verifyArcs(const std::string& where, const CurveTableEntry& entry) {
-    bool gridded = entry.sampling == CurveSampling::Arcs ||
-                   (entry.isBlocks() && entry.sampling != CurveSampling::SplineBlocks);
+    bool gridded = entry.sampling == CurveSampling::Arcs || entry.isBlocks();
     if (!std::isfinite(entry.grid) || entry.grid < 0 || (!gridded && entry.grid != 0)) {
       problem(fmt::format("{} has the grid {}, which is not a grid of arcs or fitted blocks of "
                           "zero or more",

@@ -7,9 +7,8 @@
 
 #include "affine.h"
 #include "beside_curve.h"
+#include "cncc/ir/tolerance_budget.h"
 #include "lowering_values.h"
-#include "spline_fitting.h"
-#include "tolerance_budget.h"
 
 #include "cncc/frontend/sema.h"
 #include "cncc/frontend/value.h"
@@ -403,9 +402,6 @@ private:
 
   // spline_cuts.cpp
   bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);
-  std::optional<Eigen::Vector3d> rampArrival(const geom::CurveSamples& samples);
-  FittedSplineBlocks splineBlocksFor(const frontend::CutStmt& cut, const CutCurve& curve,
-                                     SplineKind kind, const geom::CurveSamples& samples, bool ramp);
   // polynomial_cuts.cpp
   // `given`: the curve to cut instead of the statement's (an offset's stand-in).
   void emitPolynomialMoves(const std::vector<PolynomialMove>& spans, double z, ValueId feed);

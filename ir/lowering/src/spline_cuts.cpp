@@ -1,23 +1,18 @@
 // method=bspline, nurbs, cspline or aspline on a target that prints
-// Sinumerik spline blocks (LoweringOptions::splineBlocks). The cut's blocks
-// are fitted once (spline_fitting.cpp), every number on the printed grid,
-// and put in a table; each pass is a rapid over the spline's start, a
-// plunge (and the ramp lap's chords with entry=ramp), the blocks' comment
-// and a curve.lap at the pass height whose entry gives the table
-// (CurveSampling::SplineBlocks), which the legalisation write-curve-blocks
-// writes out as one move.spline, and a retract. A curve that does
-// not lie in one plane z = constant (the spline axes are X and Y) is cut as
-// chords.
+// Sinumerik spline blocks (LoweringOptions::splineBlocks). Each pass is a
+// rapid over the curve's start, a plunge (and the ramp lap's chords with
+// entry=ramp) and a curve.lap at the pass height whose entry asks for the
+// blocks (CurveSampling::SplineBlocks: their kind and ends, the cut's
+// tolerance, the printed grid, the points chosen for the cut), which the
+// legalisation write-curve-blocks fits once and writes out as the blocks'
+// comment and one move.spline; then a retract. A curve that does not lie
+// in one plane z = constant (the spline axes are X and Y) is cut as chords.
 #include "part_lowering.h"
-#include "spline_fitting.h"
-
-#include "cncc/geom/evaluation_budget.h"
-#include "cncc/ir/printed_grid.h"
 
 #include "cncc/geom/geometry_error.h"
+#include "cncc/ir/curve_blocks.h"
+#include "cncc/ir/printed_grid.h"
 #include "cncc/ir/spline_move.h"
-
-#include <fmt/format.h>
 
 #include <cmath>
 #include <limits>
@@ -57,69 +52,7 @@ bool isPlanar(const geom::Curve& curve) {
   return true;
 }
 
-// How an A or C spline starts and ends; `arrival` is the XY direction of
-// the ramp's last chord, as printed, if the spline follows a ramp.
-geom::SplineTransitions transitionsFor(SplineEnds ends,
-                                       const std::optional<Eigen::Vector3d>& arrival) {
-  geom::SplineTransitions transitions;
-  switch (ends) {
-  case SplineEnds::Automatic:
-    transitions.start =
-        arrival ? geom::SplineEndCondition::Tangent : geom::SplineEndCondition::Natural;
-    transitions.startDirection = arrival;
-    transitions.end = geom::SplineEndCondition::Natural;
-    break;
-  case SplineEnds::Natural:
-    transitions.start = transitions.end = geom::SplineEndCondition::Natural;
-    break;
-  case SplineEnds::Auto:
-    transitions.start = transitions.end = geom::SplineEndCondition::Auto;
-    break;
-  }
-  return transitions;
-}
-
 } // namespace
-
-// The XY direction of the ramp lap's last chord, on the printed grid.
-std::optional<Eigen::Vector3d> PartLowering::rampArrival(const geom::CurveSamples& samples) {
-  std::size_t n = samples.points.size();
-  if (n < 2) {
-    return std::nullopt;
-  }
-  double increment = options_.coordinateIncrement;
-  Eigen::Vector3d direction = onPrintedGrid(samples.points[n - 1], increment) -
-                              onPrintedGrid(samples.points[n - 2], increment);
-  direction.z() = 0;
-  return direction.norm() > 1e-9 ? std::optional<Eigen::Vector3d>(direction) : std::nullopt;
-}
-
-FittedSplineBlocks PartLowering::splineBlocksFor(const CutStmt& cut, const CutCurve& curve,
-                                                 SplineKind kind, const geom::CurveSamples& samples,
-                                                 bool ramp) {
-  SplineFitRequest request;
-  request.curve = curve.geometry.get();
-  request.kind = kind;
-  request.budget = toleranceBudget(cut);
-  request.samples = samples.points;
-  request.transitions =
-      transitionsFor(options_.splineEnds, ramp ? rampArrival(samples) : std::nullopt);
-  try {
-    return fitSplineBlocks(request);
-  } catch (const geom::EvaluationBudgetExceeded& error) {
-    fail(cut.span,
-         fmt::format("fitting {} blocks to this curve within its tolerance asks more than {} "
-                     "points of it; that is the limit of one cut's spline fit (a coarser "
-                     "tolerance, or a shorter curve, needs fewer)",
-                     methodOf(cut), error.limit),
-         DiagnosticKind::ProgramTooLarge);
-  } catch (const geom::GeometryError& error) {
-    fail(
-        cut.span,
-        fmt::format("cannot write cut {} as {}: {}", cuts_.size() + 1, methodOf(cut), error.what()),
-        DiagnosticKind::DegenerateCurve);
-  }
-}
 
 bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   std::optional<SplineKind> kind = splineKindOf(methodOf(cut));
@@ -132,46 +65,53 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   if (ramp) {
     checkRampCloses(curve, cut);
   }
-  FittedSplineBlocks blocks = splineBlocksFor(cut, curve, *kind, samples, ramp);
-  std::uint32_t table = builder_.addTable(splineMoveTable(blocks.data));
-  // A curve beside the cut's (an offset) computed otherwise than its laps
-  // follow has no regions: its blocks are the move itself.
-  std::optional<std::uint32_t> blocksTable;
-  if (!curve.pieces.empty() || curve.beside) {
-    blocksTable = builder_.addCurve(blocksTableEntry(cut, curve, CurveSampling::SplineBlocks, table,
-                                                     toleranceBudget(cut).tolerance));
+  auto chosen = std::make_shared<const std::vector<double>>(samples.parameters);
+  CurveTableEntry blocks = blocksTableEntry(cut, curve, CurveSampling::SplineBlocks, std::nullopt,
+                                            toleranceBudget(cut).tolerance);
+  blocks.grid = options_.coordinateIncrement;
+  blocks.splineFit = SplineBlocksFit{*kind, options_.splineEnds, ramp};
+  if (blocks.amount == 0 || ramp) {
+    blocks.chosenParameters = chosen; // the points the blocks go through, or the ramp's
   }
-  std::string comment = splineBlocksComment(blocks);
+  // A curve beside the cut's (an offset) computed otherwise than its laps
+  // follow has no regions: its blocks, fitted here, are the move itself.
+  std::optional<std::uint32_t> ownTable;
+  std::string comment;
+  if (curve.pieces.empty() && !curve.beside) {
+    blocks.geometry = curve.geometry;
+    FittedSplineBlocks fitted = lapSplineBlocks(blocks, *curve.geometry);
+    ownTable = builder_.addTable(splineMoveTable(fitted.data));
+    comment = splineBlocksComment(fitted);
+  }
+  std::uint32_t blocksEntry = ownTable ? 0 : builder_.addCurve(std::move(blocks));
 
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   CutGeometry geometry{curve.geometry,
                        chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                        cut.span, methodOf(cut)};
-  geometry.splineBlocks = comment;
+  geometry.splineBlocks = comment; // blocks the pass fits: written there
   beginCutMoves(std::move(geometry));
-  // The ramp's lap as chords through the points the blocks were fitted to.
+  // The ramp's lap as chords through the points the blocks are fitted to.
   std::optional<std::uint32_t> rampTable;
   if (ramp) {
     CurveTableEntry entry = curveTableEntry(cut, curve);
-    entry.chosenParameters = std::make_shared<const std::vector<double>>(samples.parameters);
+    entry.chosenParameters = chosen;
     rampTable = builder_.addCurve(std::move(entry));
   }
-  // The ramp's lap as chords, the lap at the pass height as the blocks
-  // (a curve.lap that write-curve-blocks writes out as the move.spline).
   auto lap = [&](double zFrom, double zTo) {
     if (zFrom != zTo) {
       emitCurveLap(curve, *rampTable, zFrom, zTo, feedValue, cut);
-      return;
-    }
-    builder_.comment(comment);
-    if (blocksTable) {
-      emitCurveLap(curve, *blocksTable, zTo, zTo, feedValue, cut);
+    } else if (ownTable) {
+      builder_.comment(comment);
+      builder_.spline(*ownTable, builder_.constant(zTo), feedValue);
     } else {
-      builder_.spline(table, builder_.constant(zTo), feedValue);
+      emitCurveLap(curve, blocksEntry, zTo, zTo, feedValue, cut);
     }
   };
-  emitHostPasses(depths, ramp, blocks.start, blocks.data.points.back(), feedValue, safeValue, lap);
+  // The blocks start and end where the curve does, on the printed grid.
+  auto [first, last] = curveEndsOnGrid(*curve.geometry, options_.coordinateIncrement);
+  emitHostPasses(depths, ramp, first, last, feedValue, safeValue, lap);
   return true;
 }
 

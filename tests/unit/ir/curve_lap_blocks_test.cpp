@@ -129,7 +129,16 @@ TEST(CurveLapBlocks, TheVerifierChecksTheTableAndTheWeights) {
       << problems[0];
   problems = verifyFunction(parsed(replaced(splineWaveText, "    blocks @0\n", "")));
   ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].find("names no table"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("names neither a table of them nor how they are fitted"),
+            std::string::npos)
+      << problems[0];
+  // How to fit them, and their table besides.
+  problems = verifyFunction(parsed(
+      replaced(splineWaveText, "    blocks @0\n", "    blocks @0\n    spline bspline auto\n")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("from a table and says how spline blocks are fitted"),
+            std::string::npos)
+      << problems[0];
 }
 
 // The lap runs as the block does, before and after write-curve-blocks, and
@@ -203,32 +212,8 @@ TEST(CurveLapBlocks, CubicSpansAreAMoveEach) {
   curve_lap_test::expectSamePath(before, interpret(expanded));
 }
 
-// The circle of radius r (its default 5) as blocks the pass fits: `sampling`
-// within 0.001, on the grid 0.0001, no table; its curve is its region
-// interpreted at r's default (IR read from text has no geometry).
-std::string circleAsFittedBlocks(std::string_view sampling) {
-  std::string text =
-      replaced(curve_lap_test::circleText, "chords 0.01", std::string(sampling) + " 0.001");
-  text = replaced(text, "    piece at 0 over 0 .. 6.283185307179586\n",
-                  "    piece at 0 over 0 .. 6.283185307179586\n    grid 0.0001\n");
-  // Down to the lap's height first: the blocks start where the machine is.
-  return replaced(text, "  %4 = curve.lap", "  move.feed %0, %3, %2, %1\n  %4 = curve.lap");
-}
-
-// Every feed move's end within `tolerance` of the circle of radius 5.
-void expectOnTheCircle(const ToolPath& path, double tolerance) {
-  std::size_t feeds = 0;
-  for (const MachineEvent& event : path.events) {
-    if (event.kind == MachineEvent::Kind::Feed) {
-      ++feeds;
-      EXPECT_NEAR(std::hypot(event.x, event.y), 5, tolerance) << event.x << ", " << event.y;
-    }
-  }
-  EXPECT_GT(feeds, 20u);
-}
-
 TEST(CurveLapBlocks, SplSpansWithoutATableAreFittedByThePass) {
-  std::string text = circleAsFittedBlocks("polynomial-blocks");
+  std::string text = curve_lap_test::circleAsFittedBlocks("polynomial-blocks");
   Function function = parsed(text);
   EXPECT_EQ(printFunction(function), text);
   EXPECT_TRUE(verifyFunction(function).empty());
@@ -238,13 +223,13 @@ TEST(CurveLapBlocks, SplSpansWithoutATableAreFittedByThePass) {
   EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
   EXPECT_GE(countOf(function, Opcode::Polynomial), 4u);
   curve_lap_test::expectSamePath(before, interpret(function));
-  expectOnTheCircle(before, 0.001 + 0.0001);
+  curve_lap_test::expectOnTheCircle(before, 0.001 + 0.0001);
   // A circle's spans join smoothly: no stop to warn of.
   EXPECT_TRUE(function.warnings.empty());
 }
 
 TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
-  std::string text = circleAsFittedBlocks("nurbs-blocks");
+  std::string text = curve_lap_test::circleAsFittedBlocks("nurbs-blocks");
   Function function = parsed(text);
   EXPECT_TRUE(verifyFunction(function).empty());
   ToolPath before = interpret(function);
@@ -254,7 +239,7 @@ TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
   ASSERT_EQ(countOf(function, Opcode::Nurbs), 1u);
   EXPECT_EQ(function.tables.size(), tables + 1); // the block's data
   curve_lap_test::expectSamePath(before, interpret(function));
-  expectOnTheCircle(before, 0.001 + 0.0001);
+  curve_lap_test::expectOnTheCircle(before, 0.001 + 0.0001);
   // Weights belong to a NURBS of the lap's own, whose table it names.
   std::vector<std::string> problems =
       verifyFunction(parsed(replaced(text, "%2, %2, %1 {", "%2, %2, %1, %0 {")));
@@ -270,8 +255,8 @@ TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
 // circle itself (as the lowering gives it), so the bound's points are
 // geometry's, not the region interpreted at each.
 TEST(CurveLapBlocks, AFitPastItsBoundIsAnErrorNamingIt) {
-  Function function = parsed(
-      replaced(circleAsFittedBlocks("nurbs-blocks"), "nurbs-blocks 0.001", "nurbs-blocks 1e-12"));
+  Function function = parsed(replaced(curve_lap_test::circleAsFittedBlocks("nurbs-blocks"),
+                                      "nurbs-blocks 0.001", "nurbs-blocks 1e-12"));
   function.curves[0].geometry =
       std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 5.0, 0.0, 2 * curve_lap_test::pi);
   try {

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 #include <string>
 #include <string_view>
@@ -180,6 +181,29 @@ inline std::string replaced(std::string_view text, std::string_view from, std::s
     result.replace(at, from.size(), to);
   }
   return result;
+}
+
+// The circle of radius r (its default 5) as blocks the pass fits: `sampling`
+// within 0.001, on the grid 0.0001, no table; its curve is its region
+// interpreted at r's default (IR read from text has no geometry).
+inline std::string circleAsFittedBlocks(std::string_view sampling) {
+  std::string text = replaced(circleText, "chords 0.01", std::string(sampling) + " 0.001");
+  text = replaced(text, "    piece at 0 over 0 .. 6.283185307179586\n",
+                  "    piece at 0 over 0 .. 6.283185307179586\n    grid 0.0001\n");
+  // Down to the lap's height first: the blocks start where the machine is.
+  return replaced(text, "  %4 = curve.lap", "  move.feed %0, %3, %2, %1\n  %4 = curve.lap");
+}
+
+// Every feed move's end within `tolerance` of the circle of radius 5.
+inline void expectOnTheCircle(const ToolPath& path, double tolerance) {
+  std::size_t feeds = 0;
+  for (const MachineEvent& event : path.events) {
+    if (event.kind == MachineEvent::Kind::Feed) {
+      ++feeds;
+      EXPECT_NEAR(std::hypot(event.x, event.y), 5, tolerance) << event.x << ", " << event.y;
+    }
+  }
+  EXPECT_GT(feeds, 20u);
 }
 
 // A loop over three passes, each a lap around the circle at z = -pass.

@@ -1,14 +1,16 @@
 // The target's own curve blocks for a lap's curve, fitted where the
 // legalisation write-curve-blocks writes a lap that names no table of them
 // (and where the interpreter runs such a lap): the cubic spans of Heidenhain
-// SPL blocks, and the G06.2 block of a curve that is not a NURBS of its own.
-// The lowering only says how (CurveSampling, the tolerance the blocks keep
-// in `amount`, the printed grid in `grid`).
+// SPL blocks, the G06.2 block of a curve that is not a NURBS of its own, and
+// Sinumerik spline blocks. The lowering only says how (CurveSampling, the
+// tolerance the blocks keep in `amount`, the printed grid in `grid`, a
+// spline's kind and ends in `splineFit`).
 #pragma once
 
 #include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/curve_table.h"
 #include "cncc/ir/polynomial_move.h"
+#include "cncc/ir/spline_fitting.h"
 
 #include <optional>
 #include <string>
@@ -33,6 +35,15 @@ struct FittedNurbsBlock {
   std::vector<double> weights; // one per control point
 };
 FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve);
+
+// The Sinumerik spline blocks of a lap cut as SplineBlocks that names no
+// table, fitted as the entry's splineFit says (spline_fitting.h) within its
+// amount (0: through the chosen points samples= or spacing= chose), every
+// number on its grid; an automatic start tangent to the last chord through
+// the chosen points when a ramp leads in. Throws CurveLapError at the cut
+// when no blocks keep the tolerance, or the fit asks more of the curve than
+// maximumSplineFitEvaluations.
+FittedSplineBlocks lapSplineBlocks(const CurveTableEntry& entry, const geom::Curve& curve);
 
 // The warning for the transitions between consecutive spans that turn by
 // more than the TNC's 0.1 degree, where the control stops exactly; nullopt

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "cncc/frontend/source_span.h"
+#include "cncc/ir/spline_blocks_kind.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -59,7 +60,8 @@ struct CurveLocation {
 // the cut's tolerance and put in a table of the function: a NURBS block
 // (G06.2, move.nurbs, the lap's operands after its three the weights),
 // Sinumerik spline blocks (move.spline) or the cubic spans of Heidenhain
-// SPL blocks (a move.polynomial each).
+// SPL blocks (a move.polynomial each); or blocks the legalisation
+// write-curve-blocks fits (an entry that names no table).
 enum class CurveSampling {
   ChordTolerance,
   Samples,
@@ -86,6 +88,16 @@ struct ArcRegion {
   bool wholeTurns = false;
 };
 
+// Sinumerik spline blocks that write-curve-blocks fits: which, how an A or
+// C spline begins and ends, and whether they follow a ramp lap, whose last
+// chord (through the last two chosen points, on the grid) an automatic
+// start continues tangentially.
+struct SplineBlocksFit {
+  SplineKind kind = SplineKind::BSpline;
+  SplineEnds ends = SplineEnds::Automatic;
+  bool afterRamp = false;
+};
+
 struct CurveTableEntry {
   std::vector<CurvePieceLayout> pieces;
   // The whole curve's parameter range (the first piece's start to the last
@@ -97,13 +109,17 @@ struct CurveTableEntry {
   // already taken off), the number of points, the spacing in mm, the arcs'
   // tolerance (the rounding of their ends and centres taken off), or the
   // chord tolerance the steps keep (0: counts the cut gave, samples=), or
-  // the tolerance the blocks were fitted within.
+  // the tolerance the blocks keep (Sinumerik spline blocks: the cut's
+  // whole tolerance, which the fit shares with the rounding itself; 0 when
+  // samples= or spacing= chose the chosen points they go through).
   double amount = 0;
-  // Arcs: the printed grid their ends and centres are put on (0: none).
+  // Arcs and fitted blocks: the printed grid their numbers are put on (0: none).
   double grid = 0;
   // Blocks: the function's table that holds their data (as move.nurbs or
   // move.spline reads it, or polynomialMoveTable's spans).
   std::optional<std::uint32_t> blockTable = std::nullopt;
+  // Spline blocks without a table: how write-curve-blocks fits them.
+  std::optional<SplineBlocksFit> splineFit = std::nullopt;
   // Steps: each region's number of uniform steps (the first point is where
   // the region starts: the end of the one before, or the lap's start); 0
   // where the program computes them: the region's range and count are then
@@ -141,6 +157,9 @@ struct CurveTableEntry {
   std::shared_ptr<const geom::Curve> geometry = nullptr;
   // The parameters lapParameters gives, when the lowering chose them for
   // something else too (the points a spline is fitted to); null otherwise.
+  // Spline blocks fitted by write-curve-blocks: the points chosen for the
+  // cut (the ramp lap's before them), which samples= or spacing= makes the
+  // blocks' own.
   std::shared_ptr<const std::vector<double>> chosenParameters = nullptr;
   // Arcs: the fit the lowering made to decide the cut is printed as arcs;
   // null in a function read from text, where the curve is fitted again.

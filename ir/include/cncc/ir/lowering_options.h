@@ -4,20 +4,13 @@
 // (cncc/lowering/lowering.h) reads it; a backend says what it wants.
 #pragma once
 
+#include "cncc/ir/spline_blocks_kind.h"
+
 #include <limits>
 #include <string>
 #include <vector>
 
 namespace cncc::ir {
-
-// How A and C spline blocks begin and end (--spline-ends).
-enum class SplineEnds {
-  // A tangent start where the block before the spline moves in XY (the
-  // last chord of a ramp), a natural one after a vertical plunge; a natural end.
-  Automatic,
-  Natural, // BNAT ENAT
-  Auto,    // BAUTO EAUTO
-};
 
 struct LoweringOptions {
   // Whether the lowering writes each lap along a curve out for the target

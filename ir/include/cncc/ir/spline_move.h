@@ -17,6 +17,7 @@
 
 #include "cncc/geom/curve.h"
 #include "cncc/geom/interpolating_splines.h"
+#include "cncc/ir/spline_blocks_kind.h"
 #include "cncc/ir/tool_path.h"
 
 #include <Eigen/Core>
@@ -29,8 +30,6 @@
 #include <vector>
 
 namespace cncc::ir {
-
-enum class SplineKind { BSpline = 0, CSpline = 1, ASpline = 2 };
 
 struct SplineBlockData {
   SplineKind kind = SplineKind::BSpline;

@@ -1,11 +1,12 @@
-// The Sinumerik spline blocks of one cut, fitted once by the lowering: the
+// The Sinumerik spline blocks of one cut, fitted once (lapSplineBlocks,
+// curve_blocks.h, for write-curve-blocks and the interpreter): the
 // control points, weights PW and knot intervals PL of a BSPLINE, or the
 // knots of a CSPLINE / ASPLINE, every number on the printed grid, such that
 // the spline the controller builds from them (geom's models, as move.spline
 // runs them) stays within the cut's ToleranceBudget.
 #pragma once
 
-#include "tolerance_budget.h"
+#include "cncc/ir/tolerance_budget.h"
 
 #include "cncc/geom/curve.h"
 #include "cncc/geom/interpolating_splines.h"
@@ -16,14 +17,14 @@
 #include <string>
 #include <vector>
 
-namespace cncc::ir::lowering {
+namespace cncc::ir {
 
 struct SplineFitRequest {
   const geom::Curve* curve = nullptr;
   SplineKind kind = SplineKind::BSpline;
   // Its tolerance NaN when samples= or spacing= chose `samples`.
   ToleranceBudget budget;
-  // The cut's points as the lowering chose them (the first is the start).
+  // The cut's chosen points (the first is the start).
   std::vector<Eigen::Vector3d> samples;
   // A and C splines: how they start and end (a tangent start's direction
   // is the block's before it, as printed).
@@ -57,4 +58,4 @@ FittedSplineBlocks fitSplineBlocks(const SplineFitRequest& request);
 // "; 6 BSPLINE control points, deviation 1.2e-07 mm, ..." without the ";".
 std::string splineBlocksComment(const FittedSplineBlocks& blocks);
 
-} // namespace cncc::ir::lowering
+} // namespace cncc::ir

@@ -1,4 +1,4 @@
-#include "spline_fitting.h"
+#include "cncc/ir/spline_fitting.h"
 
 #include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/controller_bspline.h"
@@ -17,7 +17,7 @@
 #include <cmath>
 #include <optional>
 
-namespace cncc::ir::lowering {
+namespace cncc::ir {
 
 namespace {
 
@@ -258,4 +258,4 @@ std::string splineBlocksComment(const FittedSplineBlocks& blocks) {
                      blocks.note.empty() ? "" : ", " + blocks.note);
 }
 
-} // namespace cncc::ir::lowering
+} // namespace cncc::ir

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-namespace cncc::ir::lowering {
+namespace cncc::ir {
 
 struct ToleranceBudget {
   // The cut's promise; NaN when samples= or spacing= chose its points.
@@ -39,4 +39,4 @@ struct ToleranceBudget {
   double forSplineKnots() const { return tolerance - measurementAccuracy() - 3 * pointRounding(); }
 };
 
-} // namespace cncc::ir::lowering
+} // namespace cncc::ir

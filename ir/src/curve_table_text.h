@@ -1,0 +1,23 @@
+// The function's curve table as IR text: printer.cpp writes each entry as
+// a `curve @c ... { ... }` block before the body, parser.cpp reads it back.
+// The entry's geometry, fitted arcs and source spans are not text.
+#pragma once
+
+#include "cncc/ir/curve_table.h"
+
+#include <string>
+#include <string_view>
+
+namespace cncc::ir {
+
+// `  curve @c chords 0.005 over from .. to {`, a `piece` line per piece, a
+// line for each of the entry's other settings, `  }`.
+std::string curveEntryText(std::size_t index, const CurveTableEntry& entry);
+
+// Reading an entry back, a line at a time (each trimmed): its header (the
+// entry `index` of the table), then each line to its `}`, for which
+// readCurveEntryLine returns true. Both throw text::Failure.
+CurveTableEntry readCurveEntryHeader(std::string_view line, std::size_t index);
+bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry);
+
+} // namespace cncc::ir
