@@ -1,6 +1,6 @@
 #include "curve_table_text.h"
 
-#include "text_reading.h"
+#include "ir_text.h"
 
 #include "cncc/ir/printer.h"
 

@@ -1,6 +1,7 @@
 // Reads the text form that printer.cpp writes, one instruction a line.
 #include "curve_table_text.h"
-#include "text_reading.h"
+#include "cut_table_text.h"
+#include "ir_text.h"
 
 #include "cncc/ir/builder.h"
 #include "cncc/ir/printer.h"
@@ -32,7 +33,9 @@ public:
     if (!builder_ || !finished_) {
       throw Failure{"the function is not closed with '}'"};
     }
-    return builder_->finish();
+    Function function = builder_->finish();
+    function.cuts = std::move(cuts_);
+    return function;
   }
 
   int line() const { return line_; }
@@ -85,6 +88,10 @@ private:
     }
     if (startsWith(line, "curve @")) {
       curve_ = readCurveEntryHeader(line, builder_->function().curves.size());
+      return;
+    }
+    if (startsWith(line, "cut @")) {
+      cuts_.push_back(readCutEntry(line, cuts_.size()));
       return;
     }
     std::string_view result;
@@ -350,20 +357,6 @@ private:
                   operands[1], operands[2], operands[3], operands[4], operands[5]);
   }
 
-  static std::string unquote(std::string_view text) {
-    if (text.size() < 2 || text.front() != '"' || text.back() != '"') {
-      throw Failure{"expected a quoted string"};
-    }
-    std::string result;
-    for (std::size_t i = 1; i + 1 < text.size(); ++i) {
-      if (text[i] == '\\' && i + 2 < text.size()) {
-        ++i;
-      }
-      result += text[i];
-    }
-    return result;
-  }
-
   void close() {
     if (open_.empty()) {
       finished_ = true;
@@ -476,6 +469,8 @@ private:
   std::vector<OpenRegions> open_; // innermost last
   // A `curve @c ... {` block being read.
   std::optional<CurveTableEntry> curve_;
+  std::vector<CutGeometry> cuts_; // the `cut @n` lines read
+
   bool finished_ = false;
   int line_ = 0;
 };

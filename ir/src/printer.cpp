@@ -1,6 +1,8 @@
 #include "cncc/ir/printer.h"
 
 #include "curve_table_text.h"
+#include "cut_table_text.h"
+#include "ir_text.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -32,16 +34,7 @@ std::optional<CurveSampling> curveSamplingNamed(std::string_view name) {
 
 namespace {
 
-std::string quoted(std::string_view text) {
-  std::string result = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') {
-      result += '\\';
-    }
-    result += c == '\n' ? ' ' : c;
-  }
-  return result + "\"";
-}
+using text::quoted;
 
 class Printer {
 public:
@@ -59,6 +52,9 @@ public:
     }
     for (std::size_t i = 0; i < function_.curves.size(); ++i) {
       out_ += curveEntryText(i, function_.curves[i]);
+    }
+    for (std::size_t i = 0; i < function_.cuts.size(); ++i) {
+      out_ += cutEntryText(i, function_.cuts[i]);
     }
     printRegion(function_.body, 1);
     out_ += "}\n";

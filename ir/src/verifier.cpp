@@ -180,6 +180,13 @@ private:
     if (instruction.opcode == Opcode::TableLoad && instruction.index >= function_.tables.size()) {
       problem(fmt::format("{} names table {}, which does not exist", where, instruction.index));
     }
+    // A function with a cut table (every lowered one) names its cuts; one
+    // built by hand without may begin any.
+    if (instruction.opcode == Opcode::CutBegin && !function_.cuts.empty() &&
+        instruction.index >= function_.cuts.size()) {
+      problem(fmt::format("{} begins cut {}, but the cut table has {}", where, instruction.index,
+                          function_.cuts.size()));
+    }
     checkSetting(instruction, where);
   }
 

@@ -22,7 +22,7 @@ using curve_lap_test::replaced;
 
 // The circle of radius 5 as spline blocks the pass fits, `fit` the entry's
 // `spline` line and `chosen` its chosen parameters (none if empty), in cut 0
-// of the function's cut table.
+// of the function's cut table (whose summary the pass writes).
 std::string circleAsSpline(std::string_view fit, std::string_view chosen = "") {
   std::string text = curve_lap_test::circleAsFittedBlocks("spline-blocks");
   std::string lines = "    grid 0.0001\n    spline " + std::string(fit) + "\n";
@@ -30,18 +30,14 @@ std::string circleAsSpline(std::string_view fit, std::string_view chosen = "") {
     lines += "    chosen " + std::string(chosen) + "\n";
   }
   text = replaced(text, "    grid 0.0001\n", lines);
+  text =
+      replaced(text, "  %0 = param r", "  cut @0 tolerance 0.001 method cspline\n  %0 = param r");
   return replaced(text, "  move.rapid", "  cut.begin 0\n  move.rapid");
 }
 
 // A quarter turn apart around the circle.
 constexpr std::string_view quarters =
     "0, 1.5707963267948966, 3.141592653589793, 4.71238898038469, 6.283185307179586";
-
-Function withOneCut(std::string_view text) {
-  Function function = parsed(text);
-  function.cuts.resize(1); // the cut table is not text
-  return function;
-}
 
 const Instruction& only(const Function& function, Opcode opcode) {
   const Instruction* found = nullptr;
@@ -64,7 +60,7 @@ SplineBlockData blocksOf(const Function& function) {
 
 TEST(CurveLapSplineFit, SplineBlocksWithoutATableAreFittedByThePass) {
   std::string text = circleAsSpline("cspline natural");
-  Function function = withOneCut(text);
+  Function function = parsed(text);
   EXPECT_EQ(printFunction(function), text);
   EXPECT_TRUE(verifyFunction(function).empty());
   ToolPath before = interpret(function);
@@ -93,7 +89,7 @@ TEST(CurveLapSplineFit, SplineBlocksWithoutATableAreFittedByThePass) {
 // to (5, 0)); without a ramp it is natural.
 TEST(CurveLapSplineFit, AfterARampTheSplineContinuesItsLastChord) {
   std::string text = circleAsSpline("aspline automatic after-ramp", quarters);
-  Function function = withOneCut(text);
+  Function function = parsed(text);
   EXPECT_EQ(printFunction(function), text);
   EXPECT_TRUE(verifyFunction(function).empty());
   ASSERT_TRUE(writeCurveBlocks(function));
@@ -101,7 +97,7 @@ TEST(CurveLapSplineFit, AfterARampTheSplineContinuesItsLastChord) {
   EXPECT_EQ(blocks.kind, SplineKind::ASpline);
   EXPECT_EQ(blocks.start, geom::SplineEndCondition::Tangent);
 
-  Function level = withOneCut(circleAsSpline("aspline automatic"));
+  Function level = parsed(circleAsSpline("aspline automatic"));
   ASSERT_TRUE(writeCurveBlocks(level));
   EXPECT_EQ(blocksOf(level).start, geom::SplineEndCondition::Natural);
 
@@ -119,7 +115,7 @@ TEST(CurveLapSplineFit, AfterARampTheSplineContinuesItsLastChord) {
 TEST(CurveLapSplineFit, SamplesAreTheControlPoints) {
   std::string text = replaced(circleAsSpline("bspline automatic", quarters), "spline-blocks 0.001",
                               "spline-blocks 0");
-  Function function = withOneCut(text);
+  Function function = parsed(text);
   EXPECT_TRUE(verifyFunction(function).empty());
   ASSERT_TRUE(writeCurveBlocks(function));
   SplineBlockData blocks = blocksOf(function);

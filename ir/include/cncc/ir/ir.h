@@ -164,8 +164,8 @@ struct Function {
   // The curves that `curve.lap` ops go along (curve_table.h).
   std::vector<CurveTableEntry> curves;
   // The part's cuts, indexed by cut.begin (a cut in an unrolled loop has
-  // one per iteration): what verify measures and plots draw. Not text yet:
-  // a function read from text has none.
+  // one per iteration): what verify measures and plots draw. In the text a
+  // `cut @n` line each, without their curves and spans.
   std::vector<CutGeometry> cuts;
   std::vector<Instruction> instructions;
   // The type of each value, and the instruction that defines it.

@@ -1,5 +1,6 @@
-// What the IR text reader (parser.cpp, curve_table_text.cpp) reads words,
-// lists and numbers with; a Failure is its message for the line.
+// What the IR text's reader and writer (parser.cpp, printer.cpp and the
+// tables' text) read words, lists, numbers and strings with; a Failure is
+// the reader's message for the line.
 #pragma once
 
 #include <charconv>
@@ -77,6 +78,32 @@ inline std::uint32_t parseWholeNumber(std::string_view text) {
     throw Failure{fmt::format("expected a whole number, found '{}'", text)};
   }
   return index;
+}
+
+// `"text"`, a quote or backslash escaped by a backslash, a newline a space.
+inline std::string quoted(std::string_view text) {
+  std::string result = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      result += '\\';
+    }
+    result += c == '\n' ? ' ' : c;
+  }
+  return result + "\"";
+}
+
+inline std::string unquote(std::string_view text) {
+  if (text.size() < 2 || text.front() != '"' || text.back() != '"') {
+    throw Failure{"expected a quoted string"};
+  }
+  std::string result;
+  for (std::size_t i = 1; i + 1 < text.size(); ++i) {
+    if (text[i] == '\\' && i + 2 < text.size()) {
+      ++i;
+    }
+    result += text[i];
+  }
+  return result;
 }
 
 } // namespace cncc::ir::text

@@ -1,0 +1,78 @@
+#include "cut_table_text.h"
+
+#include "ir_text.h"
+
+#include <fmt/format.h>
+
+namespace cncc::ir {
+
+using namespace text;
+
+namespace {
+
+constexpr std::string_view arcMovesNames[] = {"none", "native", "fitted"};
+
+CutArcs arcMovesNamed(std::string_view word) {
+  for (std::size_t i = 0; i < std::size(arcMovesNames); ++i) {
+    if (arcMovesNames[i] == word) {
+      return static_cast<CutArcs>(i);
+    }
+  }
+  throw Failure{fmt::format("expected 'arcs native' or 'arcs fitted', found 'arcs {}'", word)};
+}
+
+} // namespace
+
+std::string cutEntryText(std::size_t index, const CutGeometry& cut) {
+  std::string line = fmt::format("  cut @{} tolerance {}", index, cut.tolerance);
+  if (!cut.method.empty()) {
+    line += fmt::format(" method {}", cut.method);
+  }
+  if (cut.arcMoves != CutArcs::None) {
+    line += fmt::format(" arcs {}", arcMovesNames[static_cast<std::size_t>(cut.arcMoves)]);
+  }
+  if (cut.toolRadius != 0) {
+    line += fmt::format(" beside {}", cut.toolRadius);
+  }
+  if (!cut.splineBlocks.empty()) {
+    line += " blocks " + quoted(cut.splineBlocks);
+  }
+  return line + "\n";
+}
+
+CutGeometry readCutEntry(std::string_view line, std::size_t index) {
+  std::string_view words = line;
+  std::string_view blocks;
+  if (std::size_t at = line.find(" blocks \""); at != std::string_view::npos) {
+    words = line.substr(0, at);
+    blocks = line.substr(at + 8);
+  }
+  std::vector<std::string_view> parts = splitWords(words);
+  if (parts.size() < 4 || parts.size() % 2 != 0 || parts[2] != "tolerance") {
+    throw Failure{"expected 'cut @n tolerance T [method M] [arcs native|fitted] [beside R] "
+                  "[blocks \"...\"]'"};
+  }
+  if (parseWholeNumber(parts[1].substr(1)) != index) {
+    throw Failure{fmt::format("expected cut @{} next", index)};
+  }
+  CutGeometry cut;
+  cut.tolerance = parseNumber(parts[3]);
+  for (std::size_t k = 4; k + 1 < parts.size(); k += 2) {
+    if (parts[k] == "method") {
+      cut.method = parts[k + 1];
+    } else if (parts[k] == "arcs") {
+      cut.arcMoves = arcMovesNamed(parts[k + 1]);
+    } else if (parts[k] == "beside") {
+      cut.toolRadius = parseNumber(parts[k + 1]);
+    } else {
+      throw Failure{
+          fmt::format("expected 'method', 'arcs', 'beside' or 'blocks', found '{}'", parts[k])};
+    }
+  }
+  if (!blocks.empty()) {
+    cut.splineBlocks = unquote(blocks);
+  }
+  return cut;
+}
+
+} // namespace cncc::ir
