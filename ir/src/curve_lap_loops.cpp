@@ -7,6 +7,8 @@
 // by its share of the lap's length, in proportion to i / N. Nothing is
 // tabled: the program computes every point, so the part's parameters stay
 // editable at the machine.
+#include "cncc/ir/curve_lap_steps.h"
+
 #include "curve_lap_rewriter.h"
 
 #include <functional>
@@ -38,7 +40,7 @@ private:
   }
 
   void expandLap(const Instruction& lap) {
-    const CurveTableEntry& entry = source_.curves[lap.index];
+    const CurveTableEntry& entry = countedEntry(lap);
     shares_ = isRamp(lap) ? &sharesOf(lap) : nullptr;
     std::size_t computed = 0;
     std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
@@ -80,6 +82,29 @@ private:
                       operandOf(mapped(lap.operands[first + 2]))};
     steps.single = passes::constantValue(source_, lap.operands[first + 2]) == 1.0;
     return steps;
+  }
+
+  // The lap's entry with the counts it leaves to the legalisation chosen
+  // (curve_lap_steps.h), once per entry, and checked against the
+  // controller's reading of their steps; the output's entry says them.
+  const CurveTableEntry& countedEntry(const Instruction& lap) {
+    const CurveTableEntry& entry = source_.curves[lap.index];
+    if (!hasChosenSteps(entry) && !entry.stepReading) {
+      return entry;
+    }
+    auto known = counted_.find(lap.index);
+    if (known == counted_.end()) {
+      std::shared_ptr<const geom::Curve> curve = curveOf(lap);
+      CurveTableEntry counted = withChosenSteps(entry, *curve);
+      if (entry.stepReading) {
+        checkStepDrift(counted, *curve, entry.stepReading->digits, entry.stepReading->tolerance);
+      }
+      if (lap.index < output_.curves.size()) {
+        output_.curves[lap.index].regionSteps = counted.regionSteps; // as written
+      }
+      known = counted_.emplace(lap.index, std::move(counted)).first;
+    }
+    return known->second;
   }
 
   const std::vector<LapRegionShare>& sharesOf(const Instruction& lap) {
@@ -233,6 +258,7 @@ private:
   ValueId index_;
   std::map<std::uint32_t, std::vector<LapRegionShare>> entryShares_;
   std::vector<ValueId> regionEnd_; // the operands of an arc's or walk's end just written
+  std::map<std::uint32_t, CurveTableEntry> counted_; // by curve: its chosen counts
 };
 
 } // namespace

@@ -48,6 +48,28 @@ std::string arcRegionsText(const std::vector<ArcRegion>& regions) {
   return fmt::format("    arcs {}\n", fmt::join(arcs, ", "));
 }
 
+// `counts 12, ?, 0`: `?` where the legalisation chooses the count.
+std::string countsText(const std::vector<int>& counts) {
+  std::vector<std::string> words;
+  for (int count : counts) {
+    words.push_back(count == stepsChosenByLegalisation ? "?" : fmt::format("{}", count));
+  }
+  return fmt::format("    counts {}\n", fmt::join(words, ", "));
+}
+
+int readCount(std::string_view word) {
+  return word == "?" ? stepsChosenByLegalisation : static_cast<int>(parseWholeNumber(word));
+}
+
+// `reading 8 digits within 0.01`
+StepReading readStepReading(std::string_view rest) {
+  std::vector<std::string_view> words = splitWords(rest);
+  if (words.size() != 4 || words[1] != "digits" || words[2] != "within") {
+    throw Failure{"expected 'reading N digits within TOLERANCE'"};
+  }
+  return {static_cast<int>(parseWholeNumber(words[0])), parseNumber(words[3])};
+}
+
 std::string splineFitText(const SplineBlocksFit& fit) {
   return fmt::format("    spline {} {}{}\n", splineKindNames[static_cast<std::size_t>(fit.kind)],
                      splineEndsNames[static_cast<std::size_t>(fit.ends)],
@@ -124,7 +146,9 @@ bool readSetting(std::string_view line, CurveTableEntry& entry) {
     readList(rest, parameters, parseNumber);
     entry.chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
   } else if (keyword == "counts") {
-    readList(rest, entry.regionSteps, parseWholeNumber);
+    readList(rest, entry.regionSteps, readCount);
+  } else if (keyword == "reading") {
+    entry.stepReading = readStepReading(rest);
   } else if (keyword == "walks") {
     readList(rest, entry.walkRegions, parseWholeNumber);
   } else if (keyword == "arcs") {
@@ -169,7 +193,11 @@ std::string curveEntryText(std::size_t index, const CurveTableEntry& entry) {
     out += splineFitText(*entry.splineFit);
   }
   if (!entry.regionSteps.empty()) {
-    out += fmt::format("    counts {}\n", fmt::join(entry.regionSteps, ", "));
+    out += countsText(entry.regionSteps);
+  }
+  if (entry.stepReading) {
+    out += fmt::format("    reading {} digits within {}\n", entry.stepReading->digits,
+                       entry.stepReading->tolerance);
   }
   if (!entry.arcRegions.empty()) {
     out += arcRegionsText(entry.arcRegions);
@@ -221,7 +249,8 @@ bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry) {
     entry.pieces.push_back(readPiece(line));
   } else if (!readSetting(line, entry)) {
     throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', "
-                  "'counts', 'arcs', 'walks', 'progress', 'host', 'numbers', 'chosen' or '}'"};
+                  "'counts', 'reading', 'arcs', 'walks', 'progress', 'host', 'numbers', 'chosen' "
+                  "or '}'"};
   }
   return false;
 }

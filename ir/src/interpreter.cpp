@@ -3,6 +3,7 @@
 #include "cncc/ir/arithmetic.h"
 #include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/curve_lap.h"
+#include "cncc/ir/curve_lap_steps.h"
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/polynomial_move.h"
 #include "cncc/ir/printer.h"
@@ -192,11 +193,12 @@ private:
     std::shared_ptr<const geom::Curve> curve;
     std::vector<double> parameters;
     std::vector<double> progress;
-    std::optional<LapArcs> arcs;        // a lap cut as arcs: its moves, no parameters
-    std::vector<double> blocks;         // blocks fitted to it: their table's data
-    std::vector<double> blockWeights;   // and a NURBS block's weights
-    std::string blocksComment;          // or spline blocks' comment
-    std::vector<LapRegionShare> shares; // a ramp lap cut in steps: each region's
+    std::optional<LapArcs> arcs;            // a lap cut as arcs: its moves, no parameters
+    std::vector<double> blocks;             // blocks fitted to it: their table's data
+    std::vector<double> blockWeights;       // and a NURBS block's weights
+    std::string blocksComment;              // or spline blocks' comment
+    std::optional<CurveTableEntry> counted; // a lap cut in steps: its chosen counts
+    std::vector<LapRegionShare> shares;     // a ramp lap cut in steps: each region's
   };
 
   // A feed move to each point after the first, the region that holds it
@@ -259,7 +261,10 @@ private:
                      double feed) {
     const std::vector<LapRegionShare>* shares =
         zFrom != zTo ? &lapPoints(lap, entry, true).shares : nullptr;
-    std::vector<StepRange> ranges = lapStepRanges(entry, [&](std::size_t computed) {
+    // Counts left to the legalisation, chosen as it chooses them.
+    const CurveTableEntry& counted =
+        hasChosenSteps(entry) ? *lapPoints(lap, entry, zFrom != zTo).counted : entry;
+    std::vector<StepRange> ranges = lapStepRanges(counted, [&](std::size_t computed) {
       std::size_t first = 3 + 3 * computed;
       ValueId count = lap.operands[first + 2];
       return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
@@ -437,6 +442,8 @@ private:
           fresh.arcs = lapArcs(entry, *fresh.curve);
         } else if (entry.isBlocks()) {
           fitBlocks(entry, fresh);
+        } else if (entry.sampling == CurveSampling::Steps && hasChosenSteps(entry)) {
+          fresh.counted = withChosenSteps(entry, *fresh.curve);
         } else if (entry.sampling != CurveSampling::Steps) {
           fresh.parameters = lapParameters(entry, *fresh.curve);
         }

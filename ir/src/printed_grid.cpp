@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -19,6 +20,16 @@ double onPrintedGrid(double value, double increment) {
   // The decimal text, as printed, read back: halves round as the printers
   // round them (the binary value decides), not as value / increment would.
   return std::stod(fmt::format("{:.{}f}", value, decimals));
+}
+
+double controllerReading(double value, int digits) {
+  double magnitude = std::abs(value);
+  if (!std::isfinite(value) || digits <= 0) {
+    return value;
+  }
+  int wholeDigits = magnitude < 1 ? 0 : static_cast<int>(std::floor(std::log10(magnitude))) + 1;
+  double scale = std::pow(10.0, std::max(0, digits - wholeDigits));
+  return std::nearbyint(value * scale) / scale;
 }
 
 Eigen::Vector3d onPrintedGrid(const Eigen::Vector3d& point, double increment) {

@@ -450,10 +450,18 @@ private:
   // Steps: a count for each region (0: computed by the program).
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
-      if (!entry.regionSteps.empty() || !entry.arcRegions.empty() || !entry.walkRegions.empty()) {
-        problem(fmt::format("{} has step counts, arcs or walks but is not cut in steps", where));
+      if (!entry.regionSteps.empty() || !entry.arcRegions.empty() || !entry.walkRegions.empty() ||
+          entry.stepReading) {
+        problem(fmt::format("{} has step counts, arcs, walks or a reading of its steps but is "
+                            "not cut in steps",
+                            where));
       }
       return;
+    }
+    if (entry.stepReading && !(entry.stepReading->digits > 0 && entry.stepReading->tolerance > 0)) {
+      problem(fmt::format("{} reads its steps with {} digits within {}, not a positive number of "
+                          "each",
+                          where, entry.stepReading->digits, entry.stepReading->tolerance));
     }
     std::vector<std::size_t> arcs;
     for (const ArcRegion& arc : entry.arcRegions) {
@@ -468,11 +476,24 @@ private:
     }
     bool counted = entry.regionSteps.size() == entry.regionCount();
     for (int steps : entry.regionSteps) {
-      counted = counted && steps >= 0 && steps <= maximumStepsPerRegion;
+      counted = counted && steps >= stepsChosenByLegalisation && steps <= maximumStepsPerRegion;
     }
     if (!counted) {
-      problem(fmt::format("{} has {} step counts for {} regions, not each 0 .. {}", where,
+      problem(fmt::format("{} has {} step counts for {} regions, not each ? or 0 .. {}", where,
                           entry.regionSteps.size(), entry.regionCount(), maximumStepsPerRegion));
+    }
+    // The legalisation chooses uniform steps of a piece's own parameter
+    // within the entry's amount: not an arc's blocks, a walk, or a count
+    // the cut gave.
+    for (std::size_t region = 0; region < entry.regionSteps.size(); ++region) {
+      bool chosen = entry.regionSteps[region] == stepsChosenByLegalisation;
+      bool choosable =
+          entry.arcRegion(region) == nullptr && !entry.isWalkRegion(region) && entry.amount > 0;
+      if (chosen && !choosable) {
+        problem(fmt::format("{} leaves the count of region {} to the legalisation, which chooses "
+                            "uniform steps within a tolerance only",
+                            where, region));
+      }
     }
   }
 

@@ -10,10 +10,11 @@
 // (the budget). Then:
 // - Constant geometry: the step count of each piece is the fewest uniform
 //   steps whose chords all stay within the budget, measured exactly on the
-//   curve (geom::chordDeviation). A NURBS span is evaluated by Horner's
-//   rule in the loop index, its power-basis coefficients rescaled to the
-//   index and written as literals; a rational span adds its denominator
-//   and one division per coordinate.
+//   curve (geom::chordDeviation): by the legalisation for a piece of its
+//   own (curve_lap_steps.h), here for a knot span. A NURBS span is
+//   evaluated by Horner's rule in the loop index, its power-basis
+//   coefficients rescaled to the index and written as literals; a rational
+//   span adds its denominator and one division per coordinate.
 // - Geometry that depends on parameters: the controller computes the step
 //   count of the piece, once per cut, from a bound M >= |C''| over the
 //   piece: a chord over a parameter step h deviates at most h^2 M / 8, so
@@ -58,35 +59,6 @@ namespace {
 constexpr double passCountOffset = 0.49999999;
 
 } // namespace
-
-bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget) {
-  double previous = from;
-  for (int j = 1; j <= steps; ++j) {
-    double next = j == steps ? to : from + (to - from) * j / steps;
-    if (!(geom::chordDeviation(curve, previous, next) <= budget)) {
-      return false;
-    }
-    previous = next;
-  }
-  return true;
-}
-
-int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
-  auto fits = [&](int steps) { return uniformStepsFit(curve, from, to, steps, budget); };
-  int high = 1;
-  while (!fits(high)) {
-    high *= 2;
-    if (high > maximumStepsPerPiece) {
-      return 0;
-    }
-  }
-  int low = high / 2; // does not fit (or 0)
-  while (high - low > 1) {
-    int middle = low + (high - low) / 2;
-    (fits(middle) ? high : low) = middle;
-  }
-  return high;
-}
 
 // The span without the rounding noise of the conversion: a weight that is
 // constant makes the span polynomial (its coordinates divided by it).
@@ -416,8 +388,7 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       EvaluationsCharged charged{evaluated, counted};
       // Less a fiftieth of an increment for the literals' 8 significant
       // digits (coefficients, the step), a few micrometres at most.
-      steps = fewestUniformSteps(counted, from, to,
-                                 budget - options_.coordinateIncrement * literalShare);
+      steps = fewestUniformSteps(counted, from, to, measuredBudget(budget));
     } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
       fail(cut.span,
            fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
@@ -521,8 +492,13 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       continue;
     }
     if (!segment.isNurbs) {
-      auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
-      segment.steps = constantSteps(*moved, segment.from, segment.to);
+      if (runtimeOffset_) {
+        // The offset's counts grow from the drawn piece's (planOffsetSteps).
+        auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
+        segment.steps = constantSteps(*moved, segment.from, segment.to);
+      } else {
+        segment.steps = stepsChosenByLegalisation; // measured by the legalisation
+      }
       continue;
     }
     if (symbolic != nullptr && (*symbolic)[segment.piece].shapeDependent) {

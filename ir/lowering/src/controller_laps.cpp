@@ -16,64 +16,32 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-// A region of N uniform steps is cut by a loop whose parameter grows by the
-// step c = (to - from) / N as the controller reads it, c': where c' > c,
-// its last point lies N (c' - c) past the region's end, about that times
-// the curve's speed off its end (a region that ends short leaves its last
-// chord along the curve; the last region of a closed curve runs on along
-// its start). Refused past a quarter of the cut's tolerance (the share a
-// rounded literal may take, as in literal_rounding.h).
-void PartLowering::checkStepDrift(const CutStmt& cut, const CurveTableEntry& entry) {
+double PartLowering::measuredBudget(double budget) const {
+  return budget > 0 ? budget - options_.coordinateIncrement * literalShare : 0.0;
+}
+
+std::optional<StepReading> PartLowering::stepReading(const CutStmt& cut) {
   int digits = options_.literalSignificantDigits;
-  if (digits <= 0 || entry.geometry == nullptr) {
-    return;
+  if (digits <= 0) {
+    return std::nullopt;
   }
-  double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
-  bool closed = (entry.geometry->point(entry.from) - entry.geometry->point(entry.to)).norm() < 1e-9;
-  std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
-  for (std::size_t region = 0; region < entry.regionSteps.size() && region < places.size();
-       ++region) {
-    int steps = entry.regionSteps[region];
-    bool runsOntoItsStart = closed && region + 1 == entry.regionSteps.size();
-    // An arc's blocks end on points the host computes (whole turns: its start).
-    if (steps < 2 || runsOntoItsStart || entry.arcRegion(region) != nullptr) {
-      continue;
-    }
-    auto [from, to] = entry.regionRange(places[region]);
-    double step = (to - from) / steps;
-    double drift = steps * (controllerReading(step, digits) - step);
-    if (!(drift > 0)) {
-      continue;
-    }
-    double probe = (to - from) * 1e-6;
-    Eigen::Vector3d end = entry.geometry->point(entry.wholeParameter(places[region], to));
-    Eigen::Vector3d before =
-        entry.geometry->point(entry.wholeParameter(places[region], to - probe));
-    double movement = drift * (end - before).norm() / probe;
-    if (movement > tolerance / 4) {
-      fail(cut.span,
-           fmt::format("the {}controller's {} significant digits round this curve's parameter "
-                       "step {} to {}: after its {} steps the last point lies {:.3g} mm past "
-                       "the curve's end, more than a quarter of the tolerance {:g} mm (a "
-                       "coarser tolerance takes fewer steps)",
-                       options_.targetName.empty() ? "" : options_.targetName + " ", digits, step,
-                       controllerReading(step, digits), steps, movement, tolerance),
-           DiagnosticKind::LiteralRounding);
-    }
-  }
+  return StepReading{digits, chordTolerance(cut).value_or(options_.defaultTolerance)};
 }
 
 // The curve table entry cutting each piece (or knot span) as planned for
 // it: uniform steps, a count chosen here or the range and count the
 // program computes of a piece that depends on parameters (its symbolic
-// form, a span counting its steps); an arc's move.arc blocks; a walk.
-// `budget` is the chord tolerance the counts keep (0: samples= gave them).
+// form, a span counting its steps), or a count of a piece of its own
+// the legalisation measures (stepsChosenByLegalisation); an arc's move.arc
+// blocks; a walk. `budget` is the chord tolerance the counts keep less the
+// printed rounding (0: samples= gave them).
 PartLowering::SteppedLap PartLowering::steppedLap(const CutStmt& cut, const CutCurve& curve,
                                                   const std::vector<ControllerSegment>& segments,
                                                   double budget) {
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve); // a region per segment
   entry.sampling = CurveSampling::Steps;
-  entry.amount = budget;
+  entry.amount = measuredBudget(budget);
+  entry.stepReading = stepReading(cut);
   SteppedLap lap;
   for (const ControllerSegment& segment : segments) {
     if (segment.isArc) {
@@ -97,7 +65,6 @@ PartLowering::SteppedLap PartLowering::steppedLap(const CutStmt& cut, const CutC
       }
     }
   }
-  checkStepDrift(cut, entry);
   lap.table = builder_.addCurve(std::move(entry));
   return lap;
 }

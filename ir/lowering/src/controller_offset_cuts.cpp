@@ -248,7 +248,7 @@ bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
       radii.push_back(wide);
     }
   }
-  double measured = budget - options_.coordinateIncrement * literalShare;
+  double measured = measuredBudget(budget);
   // The points asked of the exact offsets so far, over the cut.
   std::size_t evaluated = 0;
   try {

@@ -71,7 +71,7 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
   const RuntimeOffset& offset = *runtimeOffset_;
   CurveTableEntry entry = curveTableEntryOn(cut, curve.geometry);
   entry.sampling = CurveSampling::Steps;
-  entry.amount = budget;
+  entry.amount = measuredBudget(budget);
   double start = 0;
   auto addPiece = [&](CurvePieceLayout layout) {
     layout.start = start;
@@ -121,7 +121,7 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
     entry.to = start;
   }
   entry.geometry = besideGeometry(entry, offset.compiled);
-  checkStepDrift(cut, entry);
+  entry.stepReading = stepReading(cut);
   lap.table = builder_.addCurve(std::move(entry));
   return lap;
 }

@@ -5,6 +5,8 @@
 
 #include "part_lowering.h"
 
+#include "cncc/ir/curve_lap_steps.h"
+
 #include <array>
 #include <optional>
 #include <utility>
@@ -17,14 +19,6 @@ using Polynomial = std::vector<double>; // ascending powers of u
 inline constexpr int maximumStepsPerPiece = maximumStepsPerRegion;
 // The share of the increment kept for the rounding of printed literals.
 inline constexpr double literalShare = 0.02;
-
-// Whether `steps` uniform steps over [from, to] keep every chord within
-// `budget` of the curve (measured, stopping at the first that does not).
-bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget);
-// The fewest uniform steps over [from, to] whose chords all deviate at most
-// `budget` from the curve (found by doubling, then bisection; every count
-// returned has been measured); 0 past maximumStepsPerPiece.
-int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget);
 
 // The span without the rounding noise of the conversion: a weight that is
 // constant makes the span polynomial (its coordinates divided by it).

@@ -9,16 +9,6 @@
 
 namespace cncc::ir::lowering {
 
-double controllerReading(double value, int digits) {
-  double magnitude = std::abs(value);
-  if (!std::isfinite(value) || digits <= 0) {
-    return value;
-  }
-  int wholeDigits = magnitude < 1 ? 0 : static_cast<int>(std::floor(std::log10(magnitude))) + 1;
-  double scale = std::pow(10.0, std::max(0, digits - wholeDigits));
-  return std::nearbyint(value * scale) / scale;
-}
-
 namespace {
 
 constexpr InstructionId noSource = std::numeric_limits<InstructionId>::max();

@@ -12,6 +12,7 @@
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/curve_lap.h"
+#include "cncc/ir/curve_lap_steps.h"
 
 #include <cstdint>
 #include <functional>
@@ -110,10 +111,8 @@ struct SampleLocation {
 // ask of it (curve_lap.h): a few seconds of a curve the front end evaluates.
 using ir::maximumCurveEvaluations;
 // The points the searches for the fewest uniform steps of a controller
-// cut's pieces may ask of its curve, over the cut (a 20-turn spiral within
-// 1 um asks some 32 million, in 3 s: the steps are measured on the curve's
-// compiled form).
-inline constexpr std::size_t maximumStepSearchEvaluations = 50'000'000;
+// cut's pieces may ask of its curve, over the cut (curve_lap_steps.h).
+using ir::maximumStepSearchEvaluations;
 // The points the search for a controller offset's step counts may ask of
 // the exact offsets it checks them on, over one cut.
 inline constexpr std::size_t maximumOffsetStepEvaluations = 10'000'000;

@@ -20,8 +20,7 @@ namespace {
 // factor that turns an angle into the controller's degrees.
 std::string roundedNumber(const Function& function, const Instruction& source, int digits) {
   auto reading = [&](double value) {
-    return fmt::format("{} to {:.{}g}", value, lowering::controllerReading(value, digits),
-                       digits + 1);
+    return fmt::format("{} to {:.{}g}", value, controllerReading(value, digits), digits + 1);
   };
   switch (source.opcode) {
   case Opcode::Const:
@@ -142,6 +141,9 @@ void reportCurveLapError(const CurveLapError& error, DiagnosticEngine& diagnosti
     break;
   case CurveLapError::Kind::InvalidTolerance:
     kind = DiagnosticKind::InvalidTolerance;
+    break;
+  case CurveLapError::Kind::LiteralRounding:
+    kind = DiagnosticKind::LiteralRounding;
     break;
   case CurveLapError::Kind::DegenerateCurve:
     break;

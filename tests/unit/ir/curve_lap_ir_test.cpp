@@ -94,10 +94,9 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
             "6: expected a whole number, found 'x'");
   EXPECT_EQ(parseComplaint(replaced(pathText, "spans 0 .. 1,", "spans 0 1,")),
             "5: expected a knot span 'from .. to'");
-  EXPECT_EQ(
-      parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
-      "4: expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', 'counts', 'arcs', "
-      "'walks', 'progress', 'host', 'numbers', 'chosen' or '}'");
+  EXPECT_EQ(parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
+            "4: expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', 'counts', "
+            "'reading', 'arcs', 'walks', 'progress', 'host', 'numbers', 'chosen' or '}'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "  %4 = curve.lap", "  curve.lap")),
             "10: this operation has a result; write '%name = ...'");
 }

@@ -27,7 +27,8 @@ public:
     DegenerateCurve,
     NonFiniteValue,
     TooFewPoints,
-    InvalidTolerance
+    InvalidTolerance,
+    LiteralRounding
   };
   CurveLapError(Kind kind, frontend::SourceSpan span, const std::string& message)
       : std::runtime_error(message), kind(kind), span(span) {}

@@ -76,6 +76,19 @@ enum class CurveSampling {
 // The most uniform steps one region of a lap cut in steps may take.
 inline constexpr int maximumStepsPerRegion = 100'000;
 
+// A region's count that the legalisation chooses (curve_lap_steps.h): the
+// fewest uniform steps within the entry's amount, measured on the curve.
+inline constexpr int stepsChosenByLegalisation = -1;
+
+// How a controller reads a lap's parameter steps: literals of `digits`
+// significant digits; the counts whose rounded step moves the lap's last
+// point past a quarter of the cut's `tolerance` are refused
+// (checkStepDrift, curve_lap_steps.h).
+struct StepReading {
+  int digits = 0;
+  double tolerance = 0;
+};
+
 // A region of a lap cut in steps that is an arc of a circle: its count is
 // a number of move.arc blocks (the controller's circular interpolation),
 // each turning by an equal share of the region, counter-clockwise or not;
@@ -108,7 +121,8 @@ struct CurveTableEntry {
   // The chord tolerance (what the points must keep, the printed rounding
   // already taken off), the number of points, the spacing in mm, the arcs'
   // tolerance (the rounding of their ends and centres taken off), or the
-  // chord tolerance the steps keep (0: counts the cut gave, samples=), or
+  // chord tolerance the steps keep (the printed rounding and the literals'
+  // share taken off; 0: counts the cut gave, samples=), or
   // the tolerance the blocks keep (Sinumerik spline blocks: the cut's
   // whole tolerance, which the fit shares with the rounding itself; 0 when
   // samples= or spacing= chose the chosen points they go through).
@@ -123,8 +137,11 @@ struct CurveTableEntry {
   // Steps: each region's number of uniform steps (the first point is where
   // the region starts: the end of the one before, or the lap's start); 0
   // where the program computes them: the region's range and count are then
-  // operands of the lap (start, end, count after the lap's three).
+  // operands of the lap (start, end, count after the lap's three);
+  // stepsChosenByLegalisation where the legalisation measures them.
   std::vector<int> regionSteps = {};
+  // Steps: how the controller reads the steps, if its literals are rounded.
+  std::optional<StepReading> stepReading = std::nullopt;
   // Steps: the regions cut as arcs of a circle, in order of region.
   std::vector<ArcRegion> arcRegions = {};
   // Steps: the regions walked from their start by a step computed at each

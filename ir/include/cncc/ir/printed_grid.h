@@ -18,6 +18,12 @@ double onPrintedGrid(double value, double increment);
 
 Eigen::Vector3d onPrintedGrid(const Eigen::Vector3d& point, double increment);
 
+// The number as a controller that keeps `digits` significant digits reads
+// it: as the macro printers write it, with at most `digits` digits, the
+// whole part's included, and at most `digits` decimals; the number itself
+// when `digits` is 0.
+double controllerReading(double value, int digits);
+
 // Where `curve` starts and ends, on the printed grid: where the blocks fitted
 // to it (SPL spans, a fitted G06.2 block) start and end.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> curveEndsOnGrid(const geom::Curve& curve,

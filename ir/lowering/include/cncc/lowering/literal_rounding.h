@@ -28,16 +28,15 @@
 #pragma once
 
 #include "cncc/ir/ir.h"
+#include "cncc/ir/printed_grid.h"
 
 #include <cstdint>
 #include <vector>
 
 namespace cncc::ir::lowering {
 
-// The number as a controller that keeps `digits` significant digits reads
-// it: as the macro printers write it, with at most `digits` digits, the
-// whole part's included, and at most `digits` decimals.
-double controllerReading(double value, int digits);
+// controllerReading (printed_grid.h): the number as such a controller reads it.
+using ir::controllerReading;
 
 // The largest movement of one cut's feed moves.
 struct LiteralRoundingMove {

@@ -1,0 +1,123 @@
+// Counts of a lap cut in steps that the lowering leaves to the legalisation
+// (`counts ?`): expand-controller-loops measures the fewest uniform steps
+// within the entry's amount on the lap's curve, once per entry, and writes
+// its loop; the interpreter runs the lap with the same count. A controller
+// that reads the step rounded (`reading N digits within T`) has counts whose
+// drift moves the last point too far refused.
+#include "cncc/geom/discretisation.h"
+#include "cncc/geom/line_arc_curves.h"
+#include "cncc/ir/curve_lap_steps.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/verifier.h"
+#include "curve_lap_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace cncc::ir {
+namespace {
+
+using curve_lap_test::countOf;
+using curve_lap_test::parsed;
+using curve_lap_test::replaced;
+
+// The circle of radius 5 cut in steps within `amount`, its count chosen.
+std::string circleInSteps(std::string_view amount, std::string_view more = "") {
+  std::string text =
+      replaced(curve_lap_test::circleText, "chords 0.01", "steps " + std::string(amount));
+  return replaced(text, "    piece at 0 over 0 .. 6.283185307179586\n",
+                  "    piece at 0 over 0 .. 6.283185307179586\n    counts ?\n" + std::string(more));
+}
+
+// A chord of 2 pi / N on a circle of radius 5 deviates 5 (1 - cos(pi / N)):
+// within 0.01 from N = 50 (49 leave 0.0103).
+TEST(CurveLapChosenSteps, TheFewestUniformStepsWithinTheAmount) {
+  std::string text = circleInSteps("0.01");
+  Function function = parsed(text);
+  EXPECT_EQ(printFunction(function), text);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(expandControllerLoops(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
+  curve_lap_test::expectSamePath(before, interpret(function));
+  std::vector<MachineEvent> feeds = curve_lap_test::feedMoves(before);
+  ASSERT_EQ(feeds.size(), 50u);
+  EXPECT_NEAR(std::hypot(feeds.back().x - 5, feeds.back().y), 0, 1e-9);
+
+  geom::ArcCurve circle(Eigen::Vector2d(0, 0), 5, 0, 2 * curve_lap_test::pi);
+  EXPECT_EQ(fewestUniformSteps(circle, 0, circle.domain().t1, 0.01), 50);
+  EXPECT_FALSE(uniformStepsFit(circle, 0, circle.domain().t1, 49, 0.01));
+}
+
+// Past the most steps a region may take, an error at the cut naming it,
+// quickly (the entry's geometry is the circle itself, as the lowering
+// gives it).
+TEST(CurveLapChosenSteps, TooManyStepsIsAnErrorNamingTheLimit) {
+  Function function = parsed(circleInSteps("1e-12"));
+  function.curves[0].geometry =
+      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 5.0, 0.0, 2 * curve_lap_test::pi);
+  try {
+    expandControllerLoops(function);
+    ADD_FAILURE() << "steps within 1e-12";
+  } catch (const CurveLapError& error) {
+    EXPECT_EQ(error.kind, CurveLapError::Kind::ProgramTooLarge);
+    EXPECT_EQ(std::string(error.what()),
+              "this curve needs more than 100000 uniform steps on one piece within its tolerance");
+  }
+}
+
+// Half the circle in 6 steps of pi / 6 = 0.5235987755982988, which 8
+// significant digits read as 0.52359878: the last point lies 6 * 4.4e-9
+// radians on, 1.32e-7 mm along the circle.
+TEST(CurveLapChosenSteps, AStepTheControllerReadsRoundedMayDriftTooFar) {
+  std::string half = replaced(curve_lap_test::circleText, "6.283185307179586", "3.141592653589793");
+  half = replaced(half, "6.283185307179586", "3.141592653589793");
+  half = replaced(half, "chords 0.01", "steps 0.01");
+  std::string within = replaced(half, "    piece at 0 over 0 .. 3.141592653589793\n",
+                                "    piece at 0 over 0 .. 3.141592653589793\n    counts 6\n"
+                                "    reading 8 digits within 1e-07\n");
+  Function function = parsed(within);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  try {
+    expandControllerLoops(function);
+    ADD_FAILURE() << "a drift of 1.3e-7 within 1e-7";
+  } catch (const CurveLapError& error) {
+    EXPECT_EQ(error.kind, CurveLapError::Kind::LiteralRounding);
+    EXPECT_NE(std::string(error.what())
+                  .find("the controller's 8 significant digits round this curve's parameter step "
+                        "0.5235987755982988 to 0.52359878: after its 6 steps the last point lies "
+                        "1.32e-07 mm past"),
+              std::string::npos)
+        << error.what();
+  }
+  // Within 1e-6, or read exactly, it stands.
+  Function coarser = parsed(replaced(within, "within 1e-07", "within 1e-06"));
+  EXPECT_TRUE(expandControllerLoops(coarser));
+  Function exact = parsed(replaced(within, "    reading 8 digits within 1e-07\n", ""));
+  EXPECT_TRUE(expandControllerLoops(exact));
+}
+
+TEST(CurveLapChosenSteps, TheVerifierKeepsChosenCountsToUniformSteps) {
+  // Without a tolerance to choose within.
+  std::vector<std::string> problems = verifyFunction(parsed(circleInSteps("0")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("leaves the count of region 0 to the legalisation"), std::string::npos)
+      << problems[0];
+  // An arc's blocks are the arc's own.
+  problems = verifyFunction(parsed(circleInSteps("0.01", "    arcs 0 ccw\n")));
+  ASSERT_FALSE(problems.empty());
+  EXPECT_NE(problems[0].find("leaves the count of region 0 to the legalisation"), std::string::npos)
+      << problems[0];
+  // A reading needs digits.
+  problems = verifyFunction(parsed(circleInSteps("0.01", "    reading 0 digits within 0.01\n")));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("reads its steps with 0 digits"), std::string::npos) << problems[0];
+  EXPECT_EQ(curve_lap_test::parseComplaint(circleInSteps("0.01", "    reading 8 within 0.01\n")),
+            "5: expected 'reading N digits within TOLERANCE'");
+}
+
+} // namespace
+} // namespace cncc::ir
