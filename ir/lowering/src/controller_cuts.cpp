@@ -10,11 +10,12 @@
 // (the budget). Then:
 // - Constant geometry: the step count of each piece is the fewest uniform
 //   steps whose chords all stay within the budget, measured exactly on the
-//   curve (geom::chordDeviation): by the legalisation for a piece of its
-//   own (curve_lap_steps.h), here for a knot span. A NURBS span is
-//   evaluated by Horner's rule in the loop index, its power-basis
-//   coefficients rescaled to the index and written as literals; a rational
-//   span adds its denominator and one division per coordinate.
+//   curve (geom::chordDeviation) by the legalisation (curve_lap_steps.h;
+//   here only for an offset the controller computes, whose counts grow
+//   from the drawn piece's). A NURBS span is evaluated by Horner's rule in
+//   the loop index, its power-basis coefficients rescaled to the index and
+//   written as literals; a rational span adds its denominator and one
+//   division per coordinate.
 // - Geometry that depends on parameters: the controller computes the step
 //   count of the piece, once per cut, from a bound M >= |C''| over the
 //   piece: a chord over a parameter step h deviates at most h^2 M / 8, so
@@ -381,6 +382,9 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
   // search is bounded by maximumStepsPerPiece, their sum by
   // maximumStepSearchEvaluations.
   std::size_t evaluated = 0;
+  // The fewest steps (an offset the controller computes grows its counts
+  // from these), or for the legalisation to choose: whether one step is
+  // enough, as the lowering asks (a lap of single steps is no loop).
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
     int steps = 0;
     try {
@@ -388,7 +392,12 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       EvaluationsCharged charged{evaluated, counted};
       // Less a fiftieth of an increment for the literals' 8 significant
       // digits (coefficients, the step), a few micrometres at most.
-      steps = fewestUniformSteps(counted, from, to, measuredBudget(budget));
+      if (runtimeOffset_) {
+        steps = fewestUniformSteps(counted, from, to, measuredBudget(budget));
+      } else {
+        bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
+        steps = single ? 1 : stepsChosenByLegalisation;
+      }
     } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
       fail(cut.span,
            fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
@@ -492,13 +501,8 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
       continue;
     }
     if (!segment.isNurbs) {
-      if (runtimeOffset_) {
-        // The offset's counts grow from the drawn piece's (planOffsetSteps).
-        auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
-        segment.steps = constantSteps(*moved, segment.from, segment.to);
-      } else {
-        segment.steps = stepsChosenByLegalisation; // measured by the legalisation
-      }
+      auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
+      segment.steps = constantSteps(*moved, segment.from, segment.to);
       continue;
     }
     if (symbolic != nullptr && (*symbolic)[segment.piece].shapeDependent) {

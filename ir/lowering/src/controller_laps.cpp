@@ -165,7 +165,8 @@ LapRegionPoint PartLowering::steppedRegionPoint(const CutCurve& curve,
     }
     return applied(*segment.moved, spanPointAt(cleanedSpan(own.spans[segment.span]), u));
   }
-  if (segment.isNurbs && segment.steps > 1) {
+  // A constant span of more than one step: its polynomial in u.
+  if (segment.isNurbs && (segment.steps > 1 || segment.steps == stepsChosenByLegalisation)) {
     CurvePoint point = spanPointAt(cleanedSpan(own.spans[segment.span]), local);
     return segment.moved != nullptr ? applied(*segment.moved, point)
                                     : transformed(own.transform, point);

@@ -9,7 +9,6 @@
 // in one plane z = constant (the spline axes are X and Y) is cut as chords.
 #include "part_lowering.h"
 
-#include "cncc/geom/geometry_error.h"
 #include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/printed_grid.h"
 #include "cncc/ir/spline_move.h"

@@ -270,6 +270,23 @@ part ring(depth = 4) {
   expectLoopsKeepPath(function, "ring");
 }
 
+// A span one chord cuts is one step, as the lowering says (no loop for the
+// nesting of the program's loops to count); the legalisation chooses only
+// counts of more.
+TEST(PassesExamplesTest, ASpanOneChordCutsIsOneStep) {
+  LoweringOptions controller = controllerLoopOptions();
+  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
+part square() {
+  tool 1 diameter=4 feed=200
+  safe z=3
+  curve bspline(degree=1, points=[(0,0), (10,0), (10,10), (0,10)]) sweep depth=2 step=1
+})",
+                                                                               controller);
+  ASSERT_TRUE(lowered->part);
+  const CurveTableEntry& entry = lowered->part->function.curves.front();
+  EXPECT_EQ(entry.regionSteps, (std::vector<int>{1, 1, 1}));
+}
+
 // A B-spline's knot spans are regions of u in 0 .. 1, each in its own
 // count of steps, the program computing each point from the span's
 // polynomial: the loops run the points the lap ran, on the ramp too.
@@ -291,9 +308,12 @@ part hook() {
   ASSERT_EQ(entry.pieces.size(), 1u);
   EXPECT_EQ(entry.pieces.front().spans.size(), 4u);
   ASSERT_EQ(entry.regionSteps.size(), 4u);
+  // Each span's count is the legalisation's, measured on the curve.
+  std::vector<int> counts = withChosenSteps(entry, *entry.geometry).regionSteps;
   for (std::size_t region = 0; region < 4; ++region) {
     EXPECT_EQ(entry.regionRange(region), (std::pair<double, double>{0.0, 1.0}));
-    EXPECT_GT(entry.regionSteps[region], 1);
+    EXPECT_EQ(entry.regionSteps[region], stepsChosenByLegalisation);
+    EXPECT_GT(counts[region], 1);
   }
   expectLoopsKeepPath(function, "hook");
 }
