@@ -156,6 +156,7 @@ FittedSplineBlocks lapSplineBlocks(const CurveTableEntry& entry, const geom::Cur
   }
   request.transitions = splineTransitions(fit.ends, arrival);
   std::string_view name = splineKindName(fit.kind);
+  checkFiniteAlong(entry, curve, request.samples);
   try {
     return fitSplineBlocks(request);
   } catch (const geom::EvaluationBudgetExceeded& error) {

@@ -87,6 +87,31 @@ geom::CurveSamples chordsWithinTolerance(const geom::Curve& curve, double tolera
   }
 }
 
+namespace {
+
+void checkFinitePoints(const CurveTableEntry& entry, std::span<const Eigen::Vector3d> points) {
+  for (const Eigen::Vector3d& point : points) {
+    if (!point.allFinite()) {
+      throw CurveLapError(CurveLapError::Kind::NonFiniteValue, entry.curveSpan,
+                          "this curve has a point that is not a finite number");
+    }
+  }
+}
+
+} // namespace
+
+void checkFiniteAlong(const CurveTableEntry& entry, const geom::Curve& curve,
+                      std::span<const Eigen::Vector3d> points) {
+  constexpr int probes = 16;
+  geom::ParameterRange domain = curve.domain();
+  std::vector<Eigen::Vector3d> probed;
+  for (int k = 0; k <= probes; ++k) {
+    probed.push_back(curve.point(domain.t0 + domain.length() * k / probes));
+  }
+  checkFinitePoints(entry, probed);
+  checkFinitePoints(entry, points);
+}
+
 std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curve& curve) {
   if (entry.chosenParameters) {
     return *entry.chosenParameters;
@@ -100,12 +125,7 @@ std::vector<double> lapParameters(const CurveTableEntry& entry, const geom::Curv
   } catch (const geom::GeometryError& error) {
     throw degenerate(entry, error);
   }
-  for (const Eigen::Vector3d& point : samples.points) {
-    if (!point.allFinite()) {
-      throw CurveLapError(CurveLapError::Kind::NonFiniteValue, entry.curveSpan,
-                          "this curve has a point that is not a finite number");
-    }
-  }
+  checkFinitePoints(entry, samples.points);
   if (samples.parameters.size() < 2) {
     throw CurveLapError(CurveLapError::Kind::TooFewPoints, entry.curveSpan,
                         "this curve gave fewer than two points");

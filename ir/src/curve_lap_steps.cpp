@@ -49,6 +49,9 @@ bool hasChosenSteps(const CurveTableEntry& entry) {
 
 CurveTableEntry withChosenSteps(const CurveTableEntry& entry, const geom::Curve& curve) {
   CurveTableEntry counted = entry;
+  if (hasChosenSteps(entry)) {
+    checkFiniteAlong(entry, curve);
+  }
   std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
   // One bound over the lap's searches.
   geom::BudgetedCurve budgeted(curve, maximumStepSearchEvaluations);

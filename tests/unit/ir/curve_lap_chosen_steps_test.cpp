@@ -69,6 +69,20 @@ TEST(CurveLapChosenSteps, TooManyStepsIsAnErrorNamingTheLimit) {
   }
 }
 
+// A curve that is not finite is an error at once, not a search to the
+// limit (whose message would blame the tolerance).
+TEST(CurveLapChosenSteps, ACurveThatIsNotFiniteIsAnError) {
+  Function function = parsed(
+      replaced(circleInSteps("0.01"), "    %5 = cos %4\n", "    %9 = neg %4\n    %5 = sqrt %9\n"));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  try {
+    expandControllerLoops(function);
+    ADD_FAILURE() << "steps on a curve of NaN";
+  } catch (const CurveLapError& error) {
+    EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
+  }
+}
+
 // Half the circle in 6 steps of pi / 6 = 0.5235987755982988, which 8
 // significant digits read as 0.52359878: the last point lies 6 * 4.4e-9
 // radians on, 1.32e-7 mm along the circle.

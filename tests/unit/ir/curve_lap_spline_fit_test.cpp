@@ -137,6 +137,22 @@ TEST(CurveLapSplineFit, SamplesAreTheControlPoints) {
   }
 }
 
+// A curve that is not finite (here the root of a negative number) is an
+// error at once, not a fit searching to its bound.
+TEST(CurveLapSplineFit, ACurveThatIsNotFiniteIsAnError) {
+  std::string text = replaced(circleAsSpline("cspline natural"), "    %5 = cos %4\n",
+                              "    %9 = neg %4\n    %5 = sqrt %9\n");
+  Function function = parsed(text);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  try {
+    writeCurveBlocks(function);
+    ADD_FAILURE() << "fitted a curve of NaN";
+  } catch (const CurveLapError& error) {
+    EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
+    EXPECT_EQ(std::string(error.what()), "this curve has a point that is not a finite number");
+  }
+}
+
 TEST(CurveLapSplineFit, TheFitsSettingsAreReadAsWritten) {
   for (std::string_view fit : {"bspline auto", "cspline natural after-ramp", "aspline automatic"}) {
     Function function = parsed(circleAsSpline(fit));

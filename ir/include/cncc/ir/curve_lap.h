@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -89,6 +90,12 @@ inline constexpr std::size_t maximumArcFitEvaluations = 5'000'000;
 geom::CurveSamples chordsWithinTolerance(const geom::Curve& curve, double tolerance,
                                          frontend::SourceSpan cutSpan,
                                          frontend::SourceSpan curveSpan);
+
+// Throws CurveLapError (NonFiniteValue, at the curve) where one of `points`
+// or the curve at a few probes along it is not finite: a search over a
+// curve that is not would run to its bound before it failed.
+void checkFiniteAlong(const CurveTableEntry& entry, const geom::Curve& curve,
+                      std::span<const Eigen::Vector3d> points = {});
 
 // The whole-curve parameters of the lap's points, the curve's start first
 // and its end last, as the entry's sampling says; bounded (a limit of
