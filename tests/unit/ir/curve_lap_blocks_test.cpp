@@ -213,19 +213,12 @@ TEST(CurveLapBlocks, CubicSpansAreAMoveEach) {
 }
 
 TEST(CurveLapBlocks, SplSpansWithoutATableAreFittedByThePass) {
-  std::string text = curve_lap_test::circleAsFittedBlocks("polynomial-blocks");
-  Function function = parsed(text);
-  EXPECT_EQ(printFunction(function), text);
-  EXPECT_TRUE(verifyFunction(function).empty());
-  ToolPath before = interpret(function);
-  ASSERT_TRUE(writeCurveBlocks(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
-  EXPECT_GE(countOf(function, Opcode::Polynomial), 4u);
-  curve_lap_test::expectSamePath(before, interpret(function));
-  curve_lap_test::expectOnTheCircle(before, 0.001 + 0.0001);
+  curve_lap_test::PassRun run = curve_lap_test::runThroughPass(
+      curve_lap_test::circleAsFittedBlocks("polynomial-blocks"), writeCurveBlocks);
+  EXPECT_GE(countOf(run.function, Opcode::Polynomial), 4u);
+  curve_lap_test::expectOnTheCircle(run.before, 0.001 + 0.0001);
   // A circle's spans join smoothly: no stop to warn of.
-  EXPECT_TRUE(function.warnings.empty());
+  EXPECT_TRUE(run.function.warnings.empty());
 }
 
 TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {

@@ -33,17 +33,11 @@ std::string circleInSteps(std::string_view amount, std::string_view more = "") {
 // A chord of 2 pi / N on a circle of radius 5 deviates 5 (1 - cos(pi / N)):
 // within 0.01 from N = 50 (49 leave 0.0103).
 TEST(CurveLapChosenSteps, TheFewestUniformStepsWithinTheAmount) {
-  std::string text = circleInSteps("0.01");
-  Function function = parsed(text);
-  EXPECT_EQ(printFunction(function), text);
-  EXPECT_TRUE(verifyFunction(function).empty());
-  ToolPath before = interpret(function);
-  ASSERT_TRUE(expandControllerLoops(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
-  EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
-  curve_lap_test::expectSamePath(before, interpret(function));
-  std::vector<MachineEvent> feeds = curve_lap_test::feedMoves(before);
+  curve_lap_test::PassRun run =
+      curve_lap_test::runThroughPass(circleInSteps("0.01"), expandControllerLoops);
+  EXPECT_EQ(countOf(run.function, Opcode::Loop), 1u);
+  EXPECT_EQ(run.function.curves[0].regionSteps, std::vector<int>{50}); // as written
+  std::vector<MachineEvent> feeds = curve_lap_test::feedMoves(run.before);
   ASSERT_EQ(feeds.size(), 50u);
   EXPECT_NEAR(std::hypot(feeds.back().x - 5, feeds.back().y), 0, 1e-9);
 
@@ -56,7 +50,8 @@ TEST(CurveLapChosenSteps, TheFewestUniformStepsWithinTheAmount) {
 // quickly (the entry's geometry is the circle itself, as the lowering
 // gives it).
 TEST(CurveLapChosenSteps, TooManyStepsIsAnErrorNamingTheLimit) {
-  Function function = parsed(circleInSteps("1e-12"));
+  std::string text = circleInSteps("1e-12");
+  Function function = parsed(text);
   function.curves[0].geometry =
       std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 5.0, 0.0, 2 * curve_lap_test::pi);
   try {
@@ -72,15 +67,10 @@ TEST(CurveLapChosenSteps, TooManyStepsIsAnErrorNamingTheLimit) {
 // A curve that is not finite is an error at once, not a search to the
 // limit (whose message would blame the tolerance).
 TEST(CurveLapChosenSteps, ACurveThatIsNotFiniteIsAnError) {
-  Function function = parsed(
-      replaced(circleInSteps("0.01"), "    %5 = cos %4\n", "    %9 = neg %4\n    %5 = sqrt %9\n"));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  try {
-    expandControllerLoops(function);
-    ADD_FAILURE() << "steps on a curve of NaN";
-  } catch (const CurveLapError& error) {
-    EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
-  }
+  CurveLapError error = curve_lap_test::passError(
+      replaced(circleInSteps("0.01"), "    %5 = cos %4\n", "    %9 = neg %4\n    %5 = sqrt %9\n"),
+      expandControllerLoops);
+  EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
 }
 
 // Half the circle in 6 steps of pi / 6 = 0.5235987755982988, which 8
@@ -93,20 +83,14 @@ TEST(CurveLapChosenSteps, AStepTheControllerReadsRoundedMayDriftTooFar) {
   std::string within = replaced(half, "    piece at 0 over 0 .. 3.141592653589793\n",
                                 "    piece at 0 over 0 .. 3.141592653589793\n    counts 6\n"
                                 "    reading 8 digits within 1e-07\n");
-  Function function = parsed(within);
-  EXPECT_TRUE(verifyFunction(function).empty());
-  try {
-    expandControllerLoops(function);
-    ADD_FAILURE() << "a drift of 1.3e-7 within 1e-7";
-  } catch (const CurveLapError& error) {
-    EXPECT_EQ(error.kind, CurveLapError::Kind::LiteralRounding);
-    EXPECT_NE(std::string(error.what())
-                  .find("the controller's 8 significant digits round this curve's parameter step "
-                        "0.5235987755982988 to 0.52359878: after its 6 steps the last point lies "
-                        "1.32e-07 mm past"),
-              std::string::npos)
-        << error.what();
-  }
+  CurveLapError error = curve_lap_test::passError(within, expandControllerLoops);
+  EXPECT_EQ(error.kind, CurveLapError::Kind::LiteralRounding);
+  EXPECT_NE(std::string(error.what())
+                .find("the controller's 8 significant digits round this curve's parameter step "
+                      "0.5235987755982988 to 0.52359878: after its 6 steps the last point lies "
+                      "1.32e-07 mm past"),
+            std::string::npos)
+      << error.what();
   // Within 1e-6, or read exactly, it stands.
   Function coarser = parsed(replaced(within, "within 1e-07", "within 1e-06"));
   EXPECT_TRUE(expandControllerLoops(coarser));

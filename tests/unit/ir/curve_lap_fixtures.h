@@ -183,6 +183,39 @@ inline std::string replaced(std::string_view text, std::string_view from, std::s
   return result;
 }
 
+// A function read from `text` (which it prints back) and verified, run,
+// rewritten by a legalisation `pass` (which must change it, leaving no
+// curve.lap and a function that verifies) and run again: the same path.
+struct PassRun {
+  Function function;
+  ToolPath before; // the path before the pass
+};
+inline PassRun runThroughPass(std::string_view text, bool (*pass)(Function&)) {
+  PassRun run{parsed(text), {}};
+  EXPECT_EQ(printFunction(run.function), text);
+  EXPECT_TRUE(verifyFunction(run.function).empty());
+  run.before = interpret(run.function);
+  EXPECT_TRUE(pass(run.function));
+  EXPECT_TRUE(verifyFunction(run.function).empty());
+  EXPECT_EQ(countOf(run.function, Opcode::CurveLap), 0u);
+  expectSamePath(run.before, interpret(run.function));
+  return run;
+}
+
+// The CurveLapError a legalisation `pass` throws on a function read from
+// `text` (which verifies); a failure when it throws none.
+inline CurveLapError passError(std::string_view text, bool (*pass)(Function&)) {
+  Function function = parsed(text);
+  EXPECT_TRUE(verifyFunction(function).empty());
+  try {
+    pass(function);
+  } catch (const CurveLapError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "the pass ran";
+  return CurveLapError(CurveLapError::Kind::DegenerateCurve, {}, "none");
+}
+
 // The circle of radius r (its default 5) as blocks the pass fits: `sampling`
 // within 0.001, on the grid 0.0001, no table; its curve is its region
 // interpreted at r's default (IR read from text has no geometry).

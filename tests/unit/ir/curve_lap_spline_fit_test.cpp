@@ -59,14 +59,9 @@ SplineBlockData blocksOf(const Function& function) {
 }
 
 TEST(CurveLapSplineFit, SplineBlocksWithoutATableAreFittedByThePass) {
-  std::string text = circleAsSpline("cspline natural");
-  Function function = parsed(text);
-  EXPECT_EQ(printFunction(function), text);
-  EXPECT_TRUE(verifyFunction(function).empty());
-  ToolPath before = interpret(function);
-  ASSERT_TRUE(writeCurveBlocks(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  curve_lap_test::PassRun run =
+      curve_lap_test::runThroughPass(circleAsSpline("cspline natural"), writeCurveBlocks);
+  const Function& function = run.function;
   SplineBlockData blocks = blocksOf(function);
   EXPECT_EQ(blocks.kind, SplineKind::CSpline);
   EXPECT_EQ(blocks.start, geom::SplineEndCondition::Natural);
@@ -79,9 +74,9 @@ TEST(CurveLapSplineFit, SplineBlocksWithoutATableAreFittedByThePass) {
   const std::string& comment = only(function, Opcode::Comment).text;
   EXPECT_NE(comment.find("CSPLINE knots, deviation"), std::string::npos) << comment;
   EXPECT_EQ(function.cuts[0].splineBlocks, comment);
-  // The interpreter ran the lap as the pass wrote it, comment included.
-  curve_lap_test::expectSamePath(before, interpret(function));
-  curve_lap_test::expectOnTheCircle(before, 0.001 + 1e-5);
+  // The interpreter ran the lap as the pass wrote it (runThroughPass),
+  // comment included, within the tolerance of the circle.
+  curve_lap_test::expectOnTheCircle(run.before, 0.001 + 1e-5);
 }
 
 // After a ramp an automatic start is tangent to the ramp's last chord, the
@@ -125,32 +120,22 @@ TEST(CurveLapSplineFit, SamplesAreTheControlPoints) {
   EXPECT_EQ(blocks.points[2], Eigen::Vector3d(0, -5, 0));
   EXPECT_EQ(blocks.points[3], Eigen::Vector3d(5, 0, 0));
 
-  Function two = parsed(replaced(text, quarters, "0, 3.141592653589793"));
-  EXPECT_TRUE(verifyFunction(two).empty());
-  try {
-    writeCurveBlocks(two);
-    ADD_FAILURE() << "a B spline through two points";
-  } catch (const CurveLapError& error) {
-    EXPECT_EQ(std::string(error.what()),
-              "cannot write this cut as BSPLINE blocks: a B spline needs at least three points");
-    EXPECT_EQ(error.kind, CurveLapError::Kind::DegenerateCurve);
-  }
+  CurveLapError error =
+      curve_lap_test::passError(replaced(text, quarters, "0, 3.141592653589793"), writeCurveBlocks);
+  EXPECT_EQ(std::string(error.what()),
+            "cannot write this cut as BSPLINE blocks: a B spline needs at least three points");
+  EXPECT_EQ(error.kind, CurveLapError::Kind::DegenerateCurve);
 }
 
 // A curve that is not finite (here the root of a negative number) is an
 // error at once, not a fit searching to its bound.
 TEST(CurveLapSplineFit, ACurveThatIsNotFiniteIsAnError) {
-  std::string text = replaced(circleAsSpline("cspline natural"), "    %5 = cos %4\n",
-                              "    %9 = neg %4\n    %5 = sqrt %9\n");
-  Function function = parsed(text);
-  EXPECT_TRUE(verifyFunction(function).empty());
-  try {
-    writeCurveBlocks(function);
-    ADD_FAILURE() << "fitted a curve of NaN";
-  } catch (const CurveLapError& error) {
-    EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
-    EXPECT_EQ(std::string(error.what()), "this curve has a point that is not a finite number");
-  }
+  CurveLapError error =
+      curve_lap_test::passError(replaced(circleAsSpline("cspline natural"), "    %5 = cos %4\n",
+                                         "    %9 = neg %4\n    %5 = sqrt %9\n"),
+                                writeCurveBlocks);
+  EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
+  EXPECT_EQ(std::string(error.what()), "this curve has a point that is not a finite number");
 }
 
 TEST(CurveLapSplineFit, TheFitsSettingsAreReadAsWritten) {

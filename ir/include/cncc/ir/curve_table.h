@@ -78,7 +78,7 @@ inline constexpr int maximumStepsPerRegion = 100'000;
 
 // A region's count that the legalisation chooses (curve_lap_steps.h): the
 // fewest uniform steps within the entry's amount, measured on the curve
-// (the lowering gives a region that one chord cuts its count, 1).
+// (a region that one chord cuts gets its count, 1, from the lowering).
 inline constexpr int stepsChosenByLegalisation = -1;
 
 // How a controller reads a lap's parameter steps: literals of `digits`
