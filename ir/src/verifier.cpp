@@ -447,7 +447,8 @@ private:
     }
   }
 
-  // Steps: a count for each region (0: computed by the program).
+  // Steps: a count for each region (0: computed by the program; ?: chosen
+  // by the legalisation).
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
       if (!entry.regionSteps.empty() || !entry.arcRegions.empty() || !entry.walkRegions.empty() ||
