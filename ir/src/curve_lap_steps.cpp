@@ -42,6 +42,30 @@ int fewestUniformSteps(const geom::Curve& curve, double from, double to, double 
   return high;
 }
 
+int searchedSteps(const std::function<int()>& search, frontend::SourceSpan cutSpan,
+                  frontend::SourceSpan curveSpan) {
+  int steps = 0;
+  try {
+    steps = search();
+  } catch (const geom::EvaluationBudgetExceeded&) {
+    throw CurveLapError(
+        CurveLapError::Kind::ProgramTooLarge, cutSpan,
+        fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
+                    "{} points of it; that is the limit of one cut",
+                    maximumStepSearchEvaluations));
+  } catch (const geom::GeometryError& error) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan,
+                        fmt::format("cannot discretise this curve: {}", error.what()));
+  }
+  if (steps == 0) {
+    throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, cutSpan,
+                        fmt::format("this curve needs more than {} uniform steps on one piece "
+                                    "within its tolerance",
+                                    maximumStepsPerRegion));
+  }
+  return steps;
+}
+
 bool hasChosenSteps(const CurveTableEntry& entry) {
   return std::find(entry.regionSteps.begin(), entry.regionSteps.end(), stepsChosenByLegalisation) !=
          entry.regionSteps.end();
@@ -66,24 +90,9 @@ CurveTableEntry withChosenSteps(const CurveTableEntry& entry, const geom::Curve&
     // without knot spans): uniform steps of the one are the other's.
     double wholeFrom = entry.wholeParameter(places[region], from);
     double wholeTo = entry.wholeParameter(places[region], to);
-    try {
-      steps = fewestUniformSteps(budgeted, wholeFrom, wholeTo, entry.amount);
-    } catch (const geom::EvaluationBudgetExceeded&) {
-      throw CurveLapError(
-          CurveLapError::Kind::ProgramTooLarge, entry.cutSpan,
-          fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
-                      "{} points of it; that is the limit of one cut",
-                      maximumStepSearchEvaluations));
-    } catch (const geom::GeometryError& error) {
-      throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
-                          fmt::format("cannot discretise this curve: {}", error.what()));
-    }
-    if (steps == 0) {
-      throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, entry.cutSpan,
-                          fmt::format("this curve needs more than {} uniform steps on one piece "
-                                      "within its tolerance",
-                                      maximumStepsPerRegion));
-    }
+    steps = searchedSteps(
+        [&] { return fewestUniformSteps(budgeted, wholeFrom, wholeTo, entry.amount); },
+        entry.cutSpan, entry.curveSpan);
   }
   return counted;
 }

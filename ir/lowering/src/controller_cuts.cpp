@@ -386,36 +386,23 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
   // from these), or for the legalisation to choose: whether one step is
   // enough, as the lowering asks (a lap of single steps is no loop).
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
-    int steps = 0;
-    try {
-      geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
-      EvaluationsCharged charged{evaluated, counted};
-      // Less a fiftieth of an increment for the literals' 8 significant
-      // digits (coefficients, the step), a few micrometres at most.
+    geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
+    EvaluationsCharged charged{evaluated, counted};
+    // Less a fiftieth of an increment for the literals' 8 significant
+    // digits (coefficients, the step), a few micrometres at most.
+    auto search = [&] {
       if (runtimeOffset_) {
-        steps = fewestUniformSteps(counted, from, to, measuredBudget(budget));
-      } else {
-        bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
-        steps = single ? 1 : stepsChosenByLegalisation;
+        return fewestUniformSteps(counted, from, to, measuredBudget(budget));
       }
-    } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
-      fail(cut.span,
-           fmt::format("choosing this curve's uniform steps within its tolerance asks more than "
-                       "{} points of it; that is the limit of one cut",
-                       maximumStepSearchEvaluations),
-           DiagnosticKind::ProgramTooLarge);
-    } catch (const geom::GeometryError& error) {
-      fail(cut.curve->span, fmt::format("cannot discretise this curve: {}", error.what()),
-           DiagnosticKind::DegenerateCurve);
+      bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
+      return single ? 1 : stepsChosenByLegalisation;
+    };
+    try {
+      return searchedSteps(search, cut.span, cut.curve->span);
+    } catch (const CurveLapError& error) {
+      reportCurveLapError(error, *diagnostics_);
+      throw LoweringFailed{};
     }
-    if (steps == 0) {
-      fail(cut.span,
-           fmt::format("this curve needs more than {} uniform steps on one piece within its "
-                       "tolerance",
-                       maximumStepsPerPiece),
-           DiagnosticKind::ProgramTooLarge);
-    }
-    return steps;
   };
   if (uniformSteps &&
       (curve.pieces.size() != 1 || curve.pieces.front().value->kind == CurveKind::Nurbs)) {

@@ -77,7 +77,6 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   std::optional<std::uint32_t> ownTable;
   std::string comment;
   if (curve.pieces.empty() && !curve.beside) {
-    blocks.geometry = curve.geometry;
     FittedSplineBlocks fitted = lapSplineBlocks(blocks, *curve.geometry);
     ownTable = builder_.addTable(splineMoveTable(fitted.data));
     comment = splineBlocksComment(fitted);

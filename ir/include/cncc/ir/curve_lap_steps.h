@@ -11,6 +11,7 @@
 #include "cncc/ir/curve_table.h"
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -28,6 +29,13 @@ bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps
 // `budget` from the curve (found by doubling, then bisection; every count
 // returned has been measured); 0 past maximumStepsPerRegion.
 int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget);
+
+// The count a step search over a cut's curve returns (`search`: one of the
+// above on a geom::BudgetedCurve), its failures as CurveLapError: past the
+// curve's evaluation bound or maximumStepsPerRegion (a count of 0) at the
+// cut, a curve that cannot be measured at the curve.
+int searchedSteps(const std::function<int()>& search, frontend::SourceSpan cutSpan,
+                  frontend::SourceSpan curveSpan);
 
 // Whether the entry leaves a region's count to the legalisation.
 bool hasChosenSteps(const CurveTableEntry& entry);
