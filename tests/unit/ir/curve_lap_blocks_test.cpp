@@ -248,18 +248,14 @@ TEST(CurveLapBlocks, ANurbsBlockWithoutATableIsFittedByThePass) {
 // circle itself (as the lowering gives it), so the bound's points are
 // geometry's, not the region interpreted at each.
 TEST(CurveLapBlocks, AFitPastItsBoundIsAnErrorNamingIt) {
-  Function function = parsed(replaced(curve_lap_test::circleAsFittedBlocks("nurbs-blocks"),
-                                      "nurbs-blocks 0.001", "nurbs-blocks 1e-12"));
-  function.curves[0].geometry =
-      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 5.0, 0.0, 2 * curve_lap_test::pi);
-  try {
-    writeCurveBlocks(function);
-    ADD_FAILURE() << "fitted within 1e-12";
-  } catch (const CurveLapError& error) {
-    EXPECT_NE(std::string(error.what()).find("asked more than 2500000 points of the curve"),
-              std::string::npos)
-        << error.what();
-  }
+  CurveLapError error =
+      curve_lap_test::passError(curve_lap_test::withCircleGeometry(parsed(
+                                    replaced(curve_lap_test::circleAsFittedBlocks("nurbs-blocks"),
+                                             "nurbs-blocks 0.001", "nurbs-blocks 1e-12"))),
+                                writeCurveBlocks);
+  EXPECT_NE(std::string(error.what()).find("asked more than 2500000 points of the curve"),
+            std::string::npos)
+      << error.what();
 }
 
 // An L of two pieces, (0, 0) to (10, 0) to (10, 10), cut at z = -1 and

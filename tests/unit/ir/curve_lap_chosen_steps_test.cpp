@@ -50,18 +50,11 @@ TEST(CurveLapChosenSteps, TheFewestUniformStepsWithinTheAmount) {
 // quickly (the entry's geometry is the circle itself, as the lowering
 // gives it).
 TEST(CurveLapChosenSteps, TooManyStepsIsAnErrorNamingTheLimit) {
-  std::string text = circleInSteps("1e-12");
-  Function function = parsed(text);
-  function.curves[0].geometry =
-      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 5.0, 0.0, 2 * curve_lap_test::pi);
-  try {
-    expandControllerLoops(function);
-    ADD_FAILURE() << "steps within 1e-12";
-  } catch (const CurveLapError& error) {
-    EXPECT_EQ(error.kind, CurveLapError::Kind::ProgramTooLarge);
-    EXPECT_EQ(std::string(error.what()),
-              "this curve needs more than 100000 uniform steps on one piece within its tolerance");
-  }
+  CurveLapError error = curve_lap_test::passError(
+      curve_lap_test::withCircleGeometry(parsed(circleInSteps("1e-12"))), expandControllerLoops);
+  EXPECT_EQ(error.kind, CurveLapError::Kind::ProgramTooLarge);
+  EXPECT_EQ(std::string(error.what()),
+            "this curve needs more than 100000 uniform steps on one piece within its tolerance");
 }
 
 // A curve that is not finite is an error at once, not a search to the

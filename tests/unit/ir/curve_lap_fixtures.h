@@ -2,6 +2,7 @@
 // path of two pieces), parsing them, and reading their paths.
 #pragma once
 
+#include "cncc/geom/line_arc_curves.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
@@ -202,10 +203,9 @@ inline PassRun runThroughPass(std::string_view text, bool (*pass)(Function&)) {
   return run;
 }
 
-// The CurveLapError a legalisation `pass` throws on a function read from
-// `text` (which verifies); a failure when it throws none.
-inline CurveLapError passError(std::string_view text, bool (*pass)(Function&)) {
-  Function function = parsed(text);
+// The CurveLapError a legalisation `pass` throws on `function` (which
+// verifies); a failure when it throws none.
+inline CurveLapError passError(Function function, bool (*pass)(Function&)) {
   EXPECT_TRUE(verifyFunction(function).empty());
   try {
     pass(function);
@@ -214,6 +214,19 @@ inline CurveLapError passError(std::string_view text, bool (*pass)(Function&)) {
   }
   ADD_FAILURE() << "the pass ran";
   return CurveLapError(CurveLapError::Kind::DegenerateCurve, {}, "none");
+}
+
+inline CurveLapError passError(std::string_view text, bool (*pass)(Function&)) {
+  return passError(parsed(text), pass);
+}
+
+// The function of circleText's kind with its curve's geometry, the circle
+// of radius 5 itself (as the lowering gives it): a search over it asks
+// points of the circle, not of its region interpreted at each.
+inline Function withCircleGeometry(Function function) {
+  function.curves[0].geometry =
+      std::make_shared<geom::ArcCurve>(Eigen::Vector2d(0, 0), 5.0, 0.0, 2 * pi);
+  return function;
 }
 
 // The circle of radius r (its default 5) as blocks the pass fits: `sampling`
