@@ -90,6 +90,7 @@ public:
     }
     if (result_.failures.empty()) {
       assignVariables();
+      fitNumberedStatements();
     }
     result_.allocation = std::move(allocation_);
     return std::move(result_);
@@ -182,17 +183,42 @@ private:
     }
   }
 
-  InlineShape shapeOf(ValueId value) const {
-    const Instruction& instruction = definition(value);
-    if (materialized_[value.index] || instruction.opcode == Opcode::Const ||
-        instruction.opcode == Opcode::ConstBool) {
-      return InlineShape{};
+  bool isConstant(ValueId value) const {
+    Opcode opcode = definition(value).opcode;
+    return opcode == Opcode::Const || opcode == Opcode::ConstBool;
+  }
+
+  // The characters of a read of `value`'s variable: its own once the
+  // variables are numbered, the estimate before.
+  int readCharacters(ValueId value) const {
+    if (!options_.readCharacters) {
+      return 0;
     }
+    int variable = allocation_.variableOfValue[value.index];
+    return variable >= 0 ? options_.readCharacters(variable) : options_.estimatedReadCharacters;
+  }
+
+  // The shape of `instruction` written inline: from its operands' shapes,
+  // and the variables it reads itself.
+  InlineShape inlineShapeOf(const Instruction& instruction) const {
     std::vector<InlineShape> operands;
+    int reads = 0;
     for (ValueId operand : instruction.operands) {
       operands.push_back(shapeOf(operand));
+      if (materialized_[operand.index] && !isConstant(operand)) {
+        reads += readCharacters(operand);
+      }
     }
-    return options_.shape(function_, instruction, operands);
+    InlineShape shape = options_.shape(function_, instruction, operands);
+    shape.operations += reads;
+    return shape;
+  }
+
+  InlineShape shapeOf(ValueId value) const {
+    if (materialized_[value.index] || isConstant(value)) {
+      return InlineShape{};
+    }
+    return inlineShapeOf(definition(value));
   }
 
   // The cost of one consumer: the deepest bracket nesting it writes, and
@@ -203,11 +229,7 @@ private:
     if (consumer.result.valid() && materialized_[consumer.result.index] &&
         consumer.opcode != Opcode::Loop && !isStatementOpcode(consumer.opcode)) {
       // `#n=expr`: the expression itself, unbracketed.
-      std::vector<InlineShape> operands;
-      for (ValueId operand : consumer.operands) {
-        operands.push_back(shapeOf(operand));
-      }
-      InlineShape own = options_.shape(function_, consumer, operands);
+      InlineShape own = inlineShapeOf(consumer);
       return {own.bracketDepth, own.operations};
     }
     for (std::size_t i = 0; i < consumer.operands.size(); ++i) {
@@ -221,7 +243,10 @@ private:
         operandDepth += 1; // inside an `IF [..]` test
       }
       depth = std::max(depth, operandDepth);
-      operations += shape.operations; // one block holds them all
+      // One block holds them all. A variable read as a whole address
+      // (`X#104`), or not written at all where the word is modal, is left
+      // to the limit's room for the addresses.
+      operations += shape.operations;
     }
     return {depth, operations};
   }
@@ -284,13 +309,50 @@ private:
     }
   }
 
+  // A statement of its own: an effect, or a value computed into a variable.
+  bool isConsumer(InstructionId id) const {
+    const Instruction& instruction = function_.instructions[id];
+    return needed_[id] && (!isPure(instruction.opcode) ||
+                           (instruction.result.valid() && materialized_[instruction.result.index]));
+  }
+
   void fitExpressions() {
     for (InstructionId id : layout_.order) {
-      const Instruction& instruction = function_.instructions[id];
-      bool consumer = !isPure(instruction.opcode) ||
-                      (instruction.result.valid() && materialized_[instruction.result.index]);
-      if (needed_[id] && consumer) {
+      if (isConsumer(id)) {
         fit(id);
+      }
+    }
+  }
+
+  // The first numbering may leave a statement longer than its limit (a
+  // read estimated as `#nn` is `#104`): what is too long moves more into
+  // variables, and the variables are numbered again, until every statement
+  // fits with the variables it reads. Materialising only grows, so this
+  // ends; past a few rounds it is the limit's error.
+  void fitNumberedStatements() {
+    static constexpr int maximumRounds = 8;
+    for (int round = 0; options_.readCharacters && result_.failures.empty(); ++round) {
+      std::vector<InstructionId> tooLong;
+      for (InstructionId id : layout_.order) {
+        if (isConsumer(id) && !fits(function_.instructions[id])) {
+          tooLong.push_back(id);
+        }
+      }
+      if (tooLong.empty()) {
+        return;
+      }
+      if (round == maximumRounds) {
+        const Instruction& consumer = function_.instructions[tooLong.front()];
+        fail("inline operations", cost(consumer).second, operationLimit(consumer),
+             fmt::format("a statement, after numbering the variables {} times,", maximumRounds));
+        return;
+      }
+      for (InstructionId id : tooLong) {
+        fit(id);
+      }
+      if (result_.failures.empty()) {
+        allocation_.variableOfValue.assign(function_.valueTypes.size(), -1);
+        assignVariables();
       }
     }
   }

@@ -45,7 +45,7 @@ int operationsOf(std::span<const InlineShape> operands) {
 namespace {
 
 // The characters of an expression's own text: its operator or function
-// name, and the operands that are atoms (a literal, `#nn`).
+// name, and the operands that are literals.
 int ownCharacters(const ir::Function& function, const ir::Instruction& instruction,
                   std::span<const InlineShape> operands, int significantDigits) {
   int characters = 1;
@@ -77,9 +77,8 @@ int ownCharacters(const ir::Function& function, const ir::Instruction& instructi
       bool leadingZero = text.starts_with("0.") || text.starts_with("-0.");
       characters += static_cast<int>(text.size()) - (leadingZero && text.size() > 2 ? 1 : 0);
       characters += multiplicative && i == 1 && definition.number < 0 ? 2 : 0; // `*[-.5]`
-    } else {
-      characters += 3; // #nn
     }
+    // A variable's `#nn` is the allocator's to count (AllocationOptions::readCharacters).
   }
   return characters;
 }

@@ -10,8 +10,9 @@
 
 namespace cncc::backends {
 
-// The shape with `operations` counted as the characters of the text (an
-// estimate: variables as `#nn`), for the block length limit.
+// The shape with `operations` counted as the characters of the text but
+// its variables' names (the allocator adds those), for the block length
+// limit.
 ir::InlineShape macroInlineShape(const ControllerProfile& profile, const ir::Function& function,
                                  const ir::Instruction& instruction,
                                  std::span<const ir::InlineShape> operands);

@@ -81,7 +81,6 @@ PrintedMacroProgram MacroProgramPrinter::finish() {
     printed.text += block;
     printed.text += '\n';
   }
-  printed.longestLine = static_cast<int>(longest);
   if (tooLong > 0) {
     errors_.push_back(fmt::format("{} {} exceed {}'s {} characters, the longest has {}", tooLong,
                                   dialect_.linesName, dialect_.controllerName,

@@ -45,7 +45,6 @@ struct PrintedMacroProgram {
   std::string text;
   LineOrigins lineOrigins; // of each line of text
   std::map<int, VariableMeaning> variables;
-  int longestLine = 0; // of the lines longer than the dialect takes
 };
 
 class MacroProgramPrinter {

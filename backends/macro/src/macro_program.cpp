@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string>
 
 namespace cncc::backends {
 
@@ -57,6 +58,11 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
                              std::span<const ir::InlineShape> operands) {
     return macroInlineShape(profile, function, instruction, operands);
   };
+  // `#104` is four characters; before the variables are numbered, `#nn`.
+  options.readCharacters = [](int variable) {
+    return 1 + static_cast<int>(std::to_string(variable).size());
+  };
+  options.estimatedReadCharacters = 3;
   options.statementOpcodes = macroStatementOpcodes();
   // A curve's parameter u = i * c in the loop's variable, stepped by c:
   // one multiplication and one assignment fewer per point.
@@ -81,54 +87,6 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
 std::vector<std::string> macroPassesBeforePrinting() {
   return {"fold-finite"};
 }
-
-namespace {
-
-// The variables of a program and the program printed with them.
-struct AllocatedProgram {
-  ir::Allocation allocation;
-  PrintedMacroProgram printed;
-};
-
-// Allocates the variables and prints the program. The allocator estimates
-// a block's length from its expressions alone; the printed block adds the
-// addresses, the modal words and the numbers as formatted, so only the
-// printed text says whether a block is longer than the controller takes.
-// Where one is (and nothing else is wrong), the inline limits shrink by the
-// excess and the allocation runs again, five times at most. Nothing is
-// printed when the allocation fails.
-AllocatedProgram allocateAndPrint(const ir::Function& function, const ControllerProfile& profile,
-                                  ir::AllocationOptions allocationOptions,
-                                  const MacroPrintOptions& printOptions,
-                                  std::vector<std::string>& errors) {
-  MacroDialect dialect = customMacroDialect(profile);
-  AllocatedProgram program;
-  for (int attempt = 0;; ++attempt) {
-    errors.clear();
-    ir::AllocationResult allocated = ir::allocateVariables(function, allocationOptions);
-    for (const ir::AllocationFailure& failure : allocated.failures) {
-      errors.push_back(failure.message);
-    }
-    if (!errors.empty()) {
-      return {};
-    }
-    program.allocation = std::move(allocated.allocation);
-    program.printed =
-        MacroProgramPrinter(function, program.allocation, dialect, printOptions, errors).print();
-    int longest = program.printed.longestLine;
-    bool onlyTooLong = errors.size() == 1 && longest > profile.maximumBlockLength;
-    if (!onlyTooLong || attempt == 4 || allocationOptions.maximumInlineOperations <= 16) {
-      return program;
-    }
-    int excess = longest - profile.maximumBlockLength;
-    allocationOptions.maximumInlineOperations =
-        std::max(16, allocationOptions.maximumInlineOperations - excess - 2);
-    allocationOptions.maximumAssignmentOperations =
-        std::max(16, allocationOptions.maximumAssignmentOperations - excess - 2);
-  }
-}
-
-} // namespace
 
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,
                                const MacroProgramOptions& options) {
@@ -158,10 +116,21 @@ MacroProgram writeMacroProgram(const ir::Function& function, const ControllerPro
   printOptions.parametersInCommon = options.parametersInCommon;
   printOptions.setup = &options.setup;
   printOptions.profile = &profile;
-  AllocatedProgram allocated =
-      allocateAndPrint(function, profile, macroAllocationOptions(profile, parameterVariables),
-                       printOptions, program.errors);
-  PrintedMacroProgram& printed = allocated.printed;
+  ir::AllocationResult allocated =
+      ir::allocateVariables(function, macroAllocationOptions(profile, parameterVariables));
+  for (const ir::AllocationFailure& failure : allocated.failures) {
+    program.errors.push_back(failure.message);
+  }
+  if (!program.errors.empty()) {
+    return program;
+  }
+  // The printer checks every block's length as printed (the allocator
+  // counts the expressions and the variables they read, with room for the
+  // addresses).
+  PrintedMacroProgram printed =
+      MacroProgramPrinter(function, allocated.allocation, customMacroDialect(profile), printOptions,
+                          program.errors)
+          .print();
   program.lineOrigins = std::move(printed.lineOrigins);
   program.variables = std::move(printed.variables);
   if (!program.errors.empty()) {

@@ -4,6 +4,7 @@
 #include "cncc/backends/macro_program.h"
 #include "cncc/ir/builder.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -211,6 +212,34 @@ TEST(MacroProgram, KeepsEveryBlockWithinTheBracketLimit) {
     EXPECT_LE(deepestBrackets(line), 5) << line;
   }
   EXPECT_GT(program.statistics.variables, 1); // some steps had to be stored
+}
+
+// Thirteen products of parameters in common variables (`#500*#501+..`): as
+// `#nn` reads the sum fits a block, as the `#5nn` printed it does not, and
+// the allocator splits it by the variables' own numbers.
+TEST(MacroProgram, KeepsEveryBlockWithinTheLengthLimitWithFourDigitVariables) {
+  ir::FunctionBuilder builder("products");
+  std::vector<ValueId> parameters;
+  for (int i = 0; i < 14; ++i) {
+    parameters.push_back(builder.parameter(builder.addParameter(fmt::format("p{}", i), 1)));
+  }
+  ValueId sum = builder.binary(Opcode::Mul, parameters[0], parameters[1]);
+  for (std::size_t i = 1; i + 1 < parameters.size(); ++i) {
+    sum = builder.binary(Opcode::Add, sum,
+                         builder.binary(Opcode::Mul, parameters[i], parameters[i + 1]));
+  }
+  ValueId zero = builder.constant(0);
+  builder.feed(sum, zero, zero, builder.constant(100));
+  MacroProgramOptions options;
+  options.parametersInCommon = true;
+  const ControllerProfile& fanuc = profileNamed("fanuc");
+  MacroProgram program = writeMacroProgram(builder.finish(), fanuc, options);
+  ASSERT_THAT(program.errors, IsEmpty());
+  EXPECT_THAT(program.text, HasSubstr("#500*#501"));
+  for (const std::string& line : linesOf(program.text)) {
+    EXPECT_LE(static_cast<int>(line.size()), fanuc.maximumBlockLength) << line;
+  }
+  EXPECT_GT(program.statistics.variables, 14); // part of the sum in a variable
 }
 
 TEST(MacroProgram, WritesMinAndAtan2AsStatements) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
 
 namespace cncc::ir {
 namespace {
@@ -397,6 +398,58 @@ TEST(RegisterAllocation, GivesAssignmentsTheirOwnLengthLimit) {
   ASSERT_TRUE(roomy.ok());
   EXPECT_TRUE(roomy.allocation.inVariable(sum));
   EXPECT_EQ(inVariables(roomy), 0);
+}
+
+} // namespace
+} // namespace cncc::ir
+
+namespace cncc::ir {
+namespace {
+
+// a*b + c*d + a*c + b*d with the parameters in #100-#103: counted as `#nn`
+// the move's expression fits its limit, counted as the `#100` it prints it
+// does not, so it is split once they are numbered.
+TEST(RegisterAllocation, CountsTheVariablesAStatementReadsAsNumbered) {
+  FunctionBuilder builder("reads");
+  std::vector<ValueId> parameters;
+  for (const char* name : {"a", "b", "c", "d"}) {
+    parameters.push_back(builder.parameter(builder.addParameter(name, 1)));
+  }
+  auto product = [&](int left, int right) {
+    return builder.binary(Opcode::Mul, parameters[left], parameters[right]);
+  };
+  ValueId first = builder.binary(Opcode::Add, product(0, 1), product(2, 3));
+  ValueId second = builder.binary(Opcode::Add, first, product(0, 2));
+  ValueId sum = builder.binary(Opcode::Add, second, product(1, 3));
+  ValueId zero = builder.constant(0);
+  builder.rapid(sum, zero, zero);
+  Function function = builder.finish();
+
+  // 7 operations and 8 reads: 31 counted as `#nn`, 39 as `#100`.
+  AllocationOptions options = optionsWith({{200, 299}}, {100, 101, 102, 103});
+  options.maximumBracketDepth = 100;
+  options.maximumInlineOperations = 35;
+  options.estimatedReadCharacters = 3;
+  options.readCharacters = [](int) { return 3; };
+  AllocationResult estimated = allocateVariables(function, options);
+  ASSERT_TRUE(estimated.ok());
+  EXPECT_FALSE(estimated.allocation.inVariable(first));
+  EXPECT_FALSE(estimated.allocation.inVariable(second));
+
+  options.readCharacters = [](int variable) {
+    return 1 + static_cast<int>(std::to_string(variable).size());
+  };
+  AllocationResult numbered = allocateVariables(function, options);
+  ASSERT_TRUE(numbered.ok());
+  // The move reads `sum` from a variable, and `#n=sum` is split again.
+  EXPECT_TRUE(numbered.allocation.inVariable(sum));
+  EXPECT_TRUE(numbered.allocation.inVariable(first) || numbered.allocation.inVariable(second));
+
+  // A limit no split meets: the limit's error, not a loop.
+  options.maximumInlineOperations = 6;
+  AllocationResult impossible = allocateVariables(function, options);
+  ASSERT_FALSE(impossible.ok());
+  EXPECT_EQ(impossible.failures[0].limit, "inline operations");
 }
 
 } // namespace

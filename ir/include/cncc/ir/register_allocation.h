@@ -76,6 +76,13 @@ struct AllocationOptions {
   // The same limit for the expression of a `#n=expr` statement (0: as above).
   int maximumAssignmentOperations = 0;
   InlineShapeFunction shape; // empty: every operation adds a bracket level
+  // The characters a read of a variable adds to a statement (`#104`: 4),
+  // counted with the operations; empty: reads add nothing. Until the
+  // variables are numbered a read counts `estimatedReadCharacters`; then
+  // its own, and a statement that turns out too long moves more values
+  // into variables before they are numbered again.
+  std::function<int(int variable)> readCharacters;
+  int estimatedReadCharacters = 0;
   // Operations printed as several statements (min, max, select, ..): their
   // result always gets a variable, and their operands are written twice.
   std::vector<Opcode> statementOpcodes;
