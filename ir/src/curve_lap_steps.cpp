@@ -13,31 +13,79 @@
 
 namespace cncc::ir {
 
-bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget) {
-  double previous = from;
-  for (int j = 1; j <= steps; ++j) {
-    double next = j == steps ? to : from + (to - from) * j / steps;
-    if (!(geom::chordDeviation(curve, previous, next) <= budget)) {
-      return false;
+namespace {
+
+// Whether `steps` uniform chords keep the budget, the largest deviation
+// when they do, and where one that does not starts. The chord at `first`
+// (where a count too few failed before) is measured first: a count that
+// is still too few fails there at once.
+struct UniformChords {
+  bool fit = true;
+  double largest = 0;
+  double failingAt = 0;
+};
+
+UniformChords measureUniformChords(const geom::Curve& curve, double from, double to, int steps,
+                                   double budget, double first) {
+  auto chordStart = [&](int j) { return j == 0 ? from : from + (to - from) * j / steps; };
+  auto chordEnd = [&](int j) { return j + 1 == steps ? to : from + (to - from) * (j + 1) / steps; };
+  int firstChord =
+      std::clamp(static_cast<int>(std::floor((first - from) / (to - from) * steps)), 0, steps - 1);
+  UniformChords chords;
+  for (int k = 0; k < steps; ++k) {
+    int j = k == 0 ? firstChord : (k <= firstChord ? k - 1 : k);
+    double deviation = geom::chordDeviation(curve, chordStart(j), chordEnd(j));
+    if (!(deviation <= budget)) {
+      return {false, deviation, chordStart(j)};
     }
-    previous = next;
+    chords.largest = std::max(chords.largest, deviation);
   }
-  return true;
+  return chords;
+}
+
+} // namespace
+
+bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget) {
+  return measureUniformChords(curve, from, to, steps, budget, from).fit;
 }
 
 int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
-  auto fits = [&](int steps) { return uniformStepsFit(curve, from, to, steps, budget); };
+  constexpr int maximumPredictedProbes = 4;
+  double failingAt = from;
+  auto measure = [&](int steps) {
+    UniformChords chords = measureUniformChords(curve, from, to, steps, budget, failingAt);
+    if (!chords.fit) {
+      failingAt = chords.failingAt;
+    }
+    return chords;
+  };
   int high = 1;
-  while (!fits(high)) {
+  UniformChords atHigh = measure(high);
+  while (!atHigh.fit) {
     high *= 2;
     if (high > maximumStepsPerRegion) {
       return 0;
     }
+    atHigh = measure(high);
   }
   int low = high / 2; // does not fit (or 0)
-  while (high - low > 1) {
-    int middle = low + (high - low) / 2;
-    (fits(middle) ? high : low) = middle;
+  // A chord's deviation falls as the square of the step, so each count
+  // measured predicts the fewest: those predictions are tried first (a
+  // few), then bisection closes what is left.
+  auto predicted = [&](int steps, const UniformChords& chords) {
+    double count = std::ceil(steps * std::sqrt(chords.largest / budget));
+    double inward = chords.fit ? std::min(count, steps - 1.0) : std::max(count, steps + 1.0);
+    return std::isfinite(inward) ? inward : steps;
+  };
+  double next = predicted(high, atHigh);
+  for (int guided = 0; high - low > 1; ++guided) {
+    int steps = low + (high - low) / 2;
+    if (guided < maximumPredictedProbes) {
+      steps = static_cast<int>(std::clamp(next, low + 1.0, high - 1.0));
+    }
+    UniformChords chords = measure(steps);
+    (chords.fit ? high : low) = steps;
+    next = predicted(steps, chords);
   }
   return high;
 }

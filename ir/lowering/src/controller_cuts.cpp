@@ -391,7 +391,7 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     // Less a fiftieth of an increment for the literals' 8 significant
     // digits (coefficients, the step), a few micrometres at most.
     auto search = [&] {
-      if (runtimeOffset_) {
+      if (runtimeOffset_ && !runtimeOffset_->radius.isConstant()) {
         return fewestUniformSteps(counted, from, to, measuredBudget(budget));
       }
       bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));

@@ -230,15 +230,17 @@ void PartLowering::guardRuntimeRadius(const RuntimeOffset& offset) {
   }
 }
 
-// False where a tool radius that is a number would take more uniform steps
-// than a piece may have, or more points to plan them than a cut may ask:
-// the host's chords then.
+// The counts of the offset's pieces: with a radius that is a number, left
+// to the legalisation (measured on the exact offset) but where one chord
+// cuts the piece; with a radius the program reads, the count it computes
+// from the radius, bounded at radii around the compiled one. False where
+// the plan asks more points of the offset than a cut may: the host's
+// chords then (a radius that is a number).
 bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                                    double budget, const CutStmt& cut) {
   const RuntimeOffset& offset = *runtimeOffset_;
   double compiledRadius = std::fabs(offset.compiledDistance);
-  // Radii the step count is checked at against the exact offset (a radius
-  // that is a number: that one).
+  // Radii the step count is checked at against the exact offset.
   std::vector<double> radii{compiledRadius};
   if (!offset.radius.isConstant()) {
     radii.insert(radii.begin(), compiledRadius / 4);
@@ -252,7 +254,8 @@ bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
   // The points asked of the exact offsets so far, over the cut.
   std::size_t evaluated = 0;
   try {
-    return planOffsetStepCounts(curve, segments, radii, measured, cut, evaluated);
+    planOffsetStepCounts(curve, segments, radii, measured, cut, evaluated);
+    return true;
   } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
     if (offset.radius.isConstant()) {
       return false;
@@ -265,7 +268,7 @@ bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
   }
 }
 
-bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
+void PartLowering::planOffsetStepCounts(const CutCurve& curve,
                                         std::vector<ControllerSegment>& segments,
                                         const std::vector<double>& radii, double measured,
                                         const CutStmt& cut, std::size_t& evaluated) {
@@ -284,6 +287,14 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
       from = piece.spans[segment.span].t0;
       to = piece.spans[segment.span].t1;
     }
+    if (offset.radius.isConstant()) {
+      geom::OffsetCurve offsetCurve(moved, side * compiledRadius);
+      geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
+      EvaluationsCharged charged{evaluated, exact};
+      bool single = uniformStepsFit(exact, from, to, 1, measured);
+      segment.steps = single ? 1 : stepsChosenByLegalisation;
+      continue;
+    }
     double drawn = segment.steps;
     int samples = std::min(largestGrowthSamples, growthSamplesPerStep * segment.steps);
     double growth = (to - from) * (to - from) * largestCurvatureGrowth(*moved, from, to, samples) /
@@ -294,7 +305,6 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
     auto stepsAt = [&](double radius) {
       return std::ceil(std::sqrt(drawn * drawn + growth * radius));
     };
-    bool constant = offset.radius.isConstant();
     for (double radius : radii) {
       geom::OffsetCurve offsetCurve(moved, side * radius);
       geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
@@ -303,9 +313,6 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
       while (stepsAt(radius) <= maximumStepsPerPiece &&
              !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured)) {
         if (++tries > growthTries) {
-          if (constant) {
-            return false; // the host's chords, which need not be uniform
-          }
           fail(cut.span,
                fmt::format("cannot bound the steps of this curve's offset at radius {:g} "
                            "within its tolerance",
@@ -315,20 +322,12 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
         growth = growth * growthRaise + 1;
       }
       if (radius == compiledRadius && stepsAt(radius) > maximumStepsPerPiece) {
-        if (constant) {
-          return false;
-        }
         fail(cut.span,
              fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
                          "steps on one piece within its tolerance",
                          radius, maximumStepsPerPiece),
              DiagnosticKind::ProgramTooLarge);
       }
-    }
-    if (constant) {
-      // The count the bound gave, checked on the exact offset at this radius.
-      segment.steps = static_cast<int>(stepsAt(compiledRadius));
-      continue;
     }
     // N0 SQRT[1 + (Q / N0^2) r]: literals of the size of N0, not its square,
     // for the controller's digits (a relative 1e-8 of Q is in its margin).
@@ -338,7 +337,6 @@ bool PartLowering::planOffsetStepCounts(const CutCurve& curve,
         arithmetic_.multiply(Scalar::of(drawn), arithmetic_.unary(Opcode::Sqrt, share)));
     segment.steps = 0;
   }
-  return true;
 }
 
 Scalar PartLowering::plusScaled(Scalar base, Scalar value, Scalar factor) {

@@ -10,7 +10,9 @@
 // - another piece's (a knot span, a polar or param curve), the tool centre
 //   C + d (-y', x') / |C'| with C' the derivative in the region's parameter
 //   (forward_derivative.h), its count computed by the program from the
-//   radius (planOffsetSteps); a knot span counts its steps, u = t / N;
+//   radius (planOffsetSteps), or with a radius that is a number chosen by
+//   the legalisation on the entry's geometry; a knot span the program
+//   counts counts its steps, u = t / N;
 // - after a piece that ends at a convex corner, an arc region of the tool's
 //   radius about the corner over the fraction 0 .. 1 of its turn.
 // The entry's geometry is the offset at the compiled radius in the same
@@ -89,7 +91,7 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
     lap.besideRegions.push_back({s, 0});
     if (segment.isArc) {
       addArcRegion(entry, lap, segment, curve, cut);
-    } else if (line || segment.steps > 0) {
+    } else if (line || segment.steps > 0 || segment.steps == stepsChosenByLegalisation) {
       entry.regionSteps.push_back(line ? 1 : segment.steps);
     } else {
       // The count the radius gives; a knot span counts its steps (u = t / N).
@@ -148,7 +150,7 @@ LapRegionPoint PartLowering::besideRegionPoint(const CutCurve& curve,
   CurvePoint point;
   if (segment.isNurbs) {
     Scalar u =
-        segment.steps > 0
+        segment.steps > 0 || segment.steps == stepsChosenByLegalisation
             ? local
             : arithmetic_.binary(Opcode::Div, local,
                                  Scalar::of(arithmetic_.value(stepsOf(segment)), ValueType::F64));

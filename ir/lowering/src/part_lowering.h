@@ -544,9 +544,9 @@ private:
   bool planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                        double budget, const frontend::CutStmt& cut);
   // The step count of each segment at `radii`, raised until it fits (within
-  // maximumOffsetStepEvaluations in all, counted in `evaluated`); false when
-  // a radius that is a number needs more than a piece may have.
-  bool planOffsetStepCounts(const CutCurve& curve, std::vector<ControllerSegment>& segments,
+  // maximumOffsetStepEvaluations in all, counted in `evaluated`); with a
+  // radius that is a number, 1 or the legalisation's.
+  void planOffsetStepCounts(const CutCurve& curve, std::vector<ControllerSegment>& segments,
                             const std::vector<double>& radii, double measured,
                             const frontend::CutStmt& cut, std::size_t& evaluated);
   // base + value * factor, a constant factor's sign as a subtraction.

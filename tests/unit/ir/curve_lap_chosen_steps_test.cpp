@@ -5,6 +5,7 @@
 // that reads the step rounded (`reading N digits within T`) has counts whose
 // drift moves the last point too far refused.
 #include "cncc/geom/discretisation.h"
+#include "cncc/geom/function_curve.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/ir/curve_lap_steps.h"
 #include "cncc/ir/passes.h"
@@ -14,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace cncc::ir {
 namespace {
@@ -44,6 +46,53 @@ TEST(CurveLapChosenSteps, TheFewestUniformStepsWithinTheAmount) {
   geom::ArcCurve circle(Eigen::Vector2d(0, 0), 5, 0, 2 * curve_lap_test::pi);
   EXPECT_EQ(fewestUniformSteps(circle, 0, circle.domain().t1, 0.01), 50);
   EXPECT_FALSE(uniformStepsFit(circle, 0, circle.domain().t1, 49, 0.01));
+}
+
+// The search probes the counts the largest deviation predicts before it
+// bisects. On curves where more steps never deviate more (an ellipse, a
+// spiral) it returns the fewest count that fits, as every count from 1 up
+// says; on a spike, where an even count has a point on its peak and an odd
+// one does not, a count that fits whose count below does not, within a few
+// of the fewest.
+TEST(CurveLapChosenSteps, TheSearchFindsTheFewestCountThatFits) {
+  using geom::FunctionCurve;
+  struct Case {
+    FunctionCurve curve;
+    bool monotone;
+  };
+  std::vector<Case> cases = {
+      {FunctionCurve::fromCoordinates(
+           {0, 2 * curve_lap_test::pi}, [](double t) { return 30 * std::cos(t); },
+           [](double t) { return 15 * std::sin(t); }),
+       true},
+      {FunctionCurve::fromCoordinates(
+           {0, 6 * curve_lap_test::pi}, [](double t) { return (1 + t) * std::cos(t); },
+           [](double t) { return (1 + t) * std::sin(t); }),
+       true},
+      {FunctionCurve::fromCoordinates(
+           {-1, 1}, [](double t) { return 10 * t; },
+           [](double t) { return 20 * std::exp(-30 * t * t); }),
+       false},
+  };
+  for (const Case& test : cases) {
+    const FunctionCurve& curve = test.curve;
+    double from = curve.domain().t0;
+    double to = curve.domain().t1;
+    for (double budget : {0.05, 0.01}) {
+      int fewest = 1;
+      while (!uniformStepsFit(curve, from, to, fewest, budget)) {
+        ++fewest;
+      }
+      int found = fewestUniformSteps(curve, from, to, budget);
+      if (test.monotone) {
+        EXPECT_EQ(found, fewest) << budget;
+        continue;
+      }
+      EXPECT_TRUE(uniformStepsFit(curve, from, to, found, budget)) << budget;
+      EXPECT_FALSE(uniformStepsFit(curve, from, to, found - 1, budget)) << budget;
+      EXPECT_LE(found, fewest + 2) << budget;
+    }
+  }
 }
 
 // Past the most steps a region may take, an error at the cut naming it,

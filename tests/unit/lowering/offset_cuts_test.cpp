@@ -253,7 +253,8 @@ TEST(OffsetCuts, ControllerOffsetsAreLapsOfThePiecesAndTheCornerArcs) {
 
 // A tool radius that is a number: on a target that runs loops a curve that
 // is neither a line nor an arc is cut by the controller's loop over its
-// offset (steps counted on the exact offset), within the tolerance.
+// offset, its count left to the legalisation, which measures it on the
+// exact offset: within the tolerance, and using it.
 TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
   LoweringOptions controller;
   controller.controllerLoops = true;
@@ -265,8 +266,13 @@ TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
   const CurveTableEntry& entry = function.curves.front();
   EXPECT_EQ(entry.sampling, CurveSampling::Steps);
   ASSERT_EQ(entry.regionSteps.size(), 1u);
-  EXPECT_GT(entry.regionSteps.front(), 100); // a count the compiler chose
+  EXPECT_EQ(entry.regionSteps.front(), stepsChosenByLegalisation);
   EXPECT_EQ(printFunction(function).find("alarm"), std::string::npos);
+  Function expanded = function;
+  runCurveLegalisation(expanded);
+  ASSERT_EQ(expanded.curves.front().regionSteps.size(), 1u);
+  EXPECT_GT(expanded.curves.front().regionSteps.front(), 100);
+  curve_lap_test::expectSameMoves(interpret(function), interpret(expanded));
   const auto* offset =
       dynamic_cast<const geom::OffsetCurve*>(compiled.part->function.cuts.front().curve.get());
   ASSERT_NE(offset, nullptr);

@@ -17,8 +17,8 @@
 
 namespace cncc::ir {
 
-// The points the searches for one lap's counts may ask of its curve (a
-// 20-turn spiral within 1 um asks some 32 million, in 3 s).
+// The points the searches for one lap's counts may ask of its curve (104
+// turns of a spiral within 1 um in eight pieces pass it, in about 3 s).
 inline constexpr std::size_t maximumStepSearchEvaluations = 50'000'000;
 
 // Whether `steps` uniform steps over [from, to] keep every chord within
@@ -26,8 +26,10 @@ inline constexpr std::size_t maximumStepSearchEvaluations = 50'000'000;
 bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget);
 
 // The fewest uniform steps over [from, to] whose chords all deviate at most
-// `budget` from the curve (found by doubling, then bisection; every count
-// returned has been measured); 0 past maximumStepsPerRegion.
+// `budget` from the curve: a count that fits whose count below does not
+// (found by doubling, then from the largest deviation as chords shrink
+// with the square of the step, then bisection; every count returned has
+// been measured); 0 past maximumStepsPerRegion.
 int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget);
 
 // The count a step search over a cut's curve returns (`search`: one of the
