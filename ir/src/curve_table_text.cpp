@@ -17,18 +17,6 @@ namespace {
 constexpr std::array<std::string_view, 3> splineKindNames = {"bspline", "cspline", "aspline"};
 constexpr std::array<std::string_view, 3> splineEndsNames = {"automatic", "natural", "auto"};
 
-// The index of `word` in `names`, or a failure naming `what`.
-template <std::size_t N>
-std::size_t namedIndex(const std::array<std::string_view, N>& names, std::string_view word,
-                       std::string_view what) {
-  for (std::size_t i = 0; i < N; ++i) {
-    if (names[i] == word) {
-      return i;
-    }
-  }
-  throw Failure{fmt::format("expected {}, found '{}'", what, word)};
-}
-
 std::string pieceText(const CurvePieceLayout& piece) {
   std::string line =
       fmt::format("    piece at {} over {} .. {}", piece.start, piece.from, piece.to);

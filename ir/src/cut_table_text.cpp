@@ -12,15 +12,6 @@ namespace {
 
 constexpr std::string_view arcMovesNames[] = {"none", "native", "fitted"};
 
-CutArcs arcMovesNamed(std::string_view word) {
-  for (std::size_t i = 0; i < std::size(arcMovesNames); ++i) {
-    if (arcMovesNames[i] == word) {
-      return static_cast<CutArcs>(i);
-    }
-  }
-  throw Failure{fmt::format("expected 'arcs native' or 'arcs fitted', found 'arcs {}'", word)};
-}
-
 } // namespace
 
 std::string cutEntryText(std::size_t index, const CutGeometry& cut) {
@@ -61,7 +52,8 @@ CutGeometry readCutEntry(std::string_view line, std::size_t index) {
     if (parts[k] == "method") {
       cut.method = parts[k + 1];
     } else if (parts[k] == "arcs") {
-      cut.arcMoves = arcMovesNamed(parts[k + 1]);
+      cut.arcMoves = static_cast<CutArcs>(
+          namedIndex(arcMovesNames, parts[k + 1], "'arcs' with native or fitted"));
     } else if (parts[k] == "beside") {
       cut.toolRadius = parseNumber(parts[k + 1]);
     } else {

@@ -227,12 +227,7 @@ private:
       // (spline blocks after the comment it writes).
       const LapPoints& points = lapPoints(lap, entry, false);
       if (!points.blocksComment.empty()) {
-        MachineEvent comment;
-        comment.kind = MachineEvent::Kind::Comment;
-        comment.text = points.blocksComment;
-        comment.span = lap.span;
-        comment.pass = lap.pass;
-        path_.events.push_back(std::move(comment));
+        recordAt(lap, commentEvent(points.blocksComment));
       }
       recordBlocks(lap, kind, 0, points.blocks, zTo, feed, points.blockWeights);
       return;
@@ -504,10 +499,21 @@ private:
       event.y = value(operands[1]);
       break;
     default:
-      event.kind = MachineEvent::Kind::Comment;
-      event.text = instruction.text;
+      event = commentEvent(instruction.text);
       break;
     }
+    recordAt(instruction, std::move(event));
+  }
+
+  static MachineEvent commentEvent(std::string text) {
+    MachineEvent event;
+    event.kind = MachineEvent::Kind::Comment;
+    event.text = std::move(text);
+    return event;
+  }
+
+  // The event, as made by `instruction` (its source and pass).
+  void recordAt(const Instruction& instruction, MachineEvent event) {
     event.span = instruction.span;
     event.pass = instruction.pass;
     path_.events.push_back(std::move(event));

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdint>
 #include <fmt/format.h>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,6 +58,17 @@ inline std::vector<std::string_view> splitWords(std::string_view text) {
     at = end + 1;
   }
   return words;
+}
+
+// The index of `word` in `names`, or the failure: expected `what`, found it.
+inline std::size_t namedIndex(std::span<const std::string_view> names, std::string_view word,
+                              std::string_view what) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == word) {
+      return i;
+    }
+  }
+  throw Failure{fmt::format("expected {}, found '{}'", what, word)};
 }
 
 inline double parseNumber(std::string_view text) {

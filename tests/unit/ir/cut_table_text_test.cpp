@@ -49,7 +49,7 @@ TEST(CutTableText, EveryFieldPrintsAndParsesBack) {
 TEST(CutTableText, BadLinesAreRefusedWithTheirLine) {
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "cut @1", "cut @3")), "3: expected cut @1 next");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "arcs fitted", "arcs always")),
-            "3: expected 'arcs native' or 'arcs fitted', found 'arcs always'");
+            "3: expected 'arcs' with native or fitted, found 'always'");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "beside 2.5", "side 2.5")),
             "3: expected 'method', 'arcs', 'beside' or 'blocks', found 'side'");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "tolerance nan arcs", "nan arcs")),
