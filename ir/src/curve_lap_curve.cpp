@@ -97,8 +97,20 @@ public:
       step.instruction.opcode = instruction.opcode;
       step.instruction.number = instruction.number;
       step.instruction.index = instruction.index;
+      std::vector<double> numbers;
       for (ValueId value : instruction.operands) {
         step.operands.push_back(operand(value, known));
+        if (step.operands.back().kind == StepOperand::Kind::Number) {
+          numbers.push_back(step.operands.back().number);
+        }
+      }
+      // Arithmetic on numbers only is a number (the same evaluation, once).
+      if (numbers.size() == step.operands.size()) {
+        std::optional<double> folded = passes::evaluate(*tables_, step.instruction, numbers);
+        if (folded) {
+          known[instruction.result.index] = {StepOperand::Kind::Number, 0, *folded};
+          continue;
+        }
       }
       known[instruction.result.index] = {StepOperand::Kind::Result, program->steps.size(), 0};
       program->steps.push_back(std::move(step));
@@ -157,12 +169,40 @@ double operandValue(const StepOperand& operand, const std::vector<double>& resul
   return operand.number;
 }
 
+// + - * / and negation, most of a region's steps, without the general
+// evaluation's operand list (the same arithmetic as binaryResult's).
+std::optional<double> plainArithmetic(const Step& step, const std::vector<double>& results,
+                                      double parameter) {
+  auto operand = [&](std::size_t k) { return operandValue(step.operands[k], results, parameter); };
+  std::size_t count = step.operands.size();
+  switch (step.instruction.opcode) {
+  case Opcode::Neg:
+    return count == 1 ? std::optional<double>(-operand(0)) : std::nullopt;
+  case Opcode::Add:
+    return count == 2 ? std::optional<double>(operand(0) + operand(1)) : std::nullopt;
+  case Opcode::Sub:
+    return count == 2 ? std::optional<double>(operand(0) - operand(1)) : std::nullopt;
+  case Opcode::Mul:
+    return count == 2 ? std::optional<double>(operand(0) * operand(1)) : std::nullopt;
+  case Opcode::Div:
+    return count == 2 ? std::optional<double>(operand(0) / operand(1)) : std::nullopt;
+  default:
+    return std::nullopt;
+  }
+}
+
 // The region's point at its parameter, computed as the interpreter does.
 Eigen::Vector3d evaluateRegion(const RegionProgram& program, double parameter) {
-  std::vector<double> results(program.steps.size(), 0.0);
-  std::vector<double> operands;
+  // Kept between calls: a search asks millions of points.
+  thread_local std::vector<double> results;
+  thread_local std::vector<double> operands;
+  results.assign(program.steps.size(), 0.0);
   for (std::size_t k = 0; k < program.steps.size(); ++k) {
     const Step& step = program.steps[k];
+    if (std::optional<double> plain = plainArithmetic(step, results, parameter)) {
+      results[k] = *plain;
+      continue;
+    }
     operands.clear();
     for (const StepOperand& operand : step.operands) {
       operands.push_back(operandValue(operand, results, parameter));

@@ -7,10 +7,13 @@
 // by its share of the lap's length, in proportion to i / N. Nothing is
 // tabled: the program computes every point, so the part's parameters stay
 // editable at the machine.
+#include "cncc/geom/math_functions.h"
+#include "cncc/ir/curve_lap_offset_steps.h"
 #include "cncc/ir/curve_lap_steps.h"
 
 #include "curve_lap_rewriter.h"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <optional>
@@ -71,6 +74,9 @@ private:
   RegionSteps stepsOf(const Instruction& lap, const CurveTableEntry& entry, std::size_t region,
                       const CurveTableEntry::RegionPlace& place, std::size_t& computed) {
     int count = entry.regionSteps[region];
+    if (count == stepsChosenByLegalisation && entry.offsetGrowth) {
+      return offsetRegionSteps(lap, entry, region, place);
+    }
     if (count > 0) {
       auto [from, to] = entry.regionRange(place);
       return {
@@ -82,6 +88,40 @@ private:
                       operandOf(mapped(lap.operands[first + 2]))};
     steps.single = passes::constantValue(source_, lap.operands[first + 2]) == 1.0;
     return steps;
+  }
+
+  // A region of an offset whose count grows with the tool radius: the
+  // program computes ROUND[N0 * SQRT[1 + q * r] + 0.5] from the distance the
+  // lap reads, N0 and q measured once per entry (curve_lap_offset_steps.h).
+  RegionSteps offsetRegionSteps(const Instruction& lap, const CurveTableEntry& entry,
+                                std::size_t region, const CurveTableEntry::RegionPlace& place) {
+    auto known = offsetGrowth_.find(lap.index);
+    if (known == offsetGrowth_.end()) {
+      known = offsetGrowth_.emplace(lap.index, measureOffsetGrowth(source_, lap)).first;
+    }
+    const OffsetRegionGrowth& growth = known->second[region];
+    const OffsetStepGrowth& offset = *entry.offsetGrowth;
+    Operand distance = operandOf(mapped(lap.operands.back()));
+    Operand radius = offset.side > 0 ? distance : unary(Opcode::Neg, distance);
+    Operand share = add({ValueId{}, 1}, multiply({ValueId{}, growth.growth}, radius));
+    Operand steps = multiply({ValueId{}, growth.drawnSteps}, unary(Opcode::Sqrt, share));
+    Operand count = unary(Opcode::Round, add(steps, {ValueId{}, 0.5}));
+    auto [from, to] = entry.regionRange(place);
+    return {{ValueId{}, from}, {ValueId{}, to}, count, false};
+  }
+
+  // -a, SQRT[a], ROUND[a]: a number where a is (as offsetStepsAt computes it).
+  Operand unary(Opcode opcode, const Operand& operand) {
+    if (operand.isNumber()) {
+      double a = operand.number;
+      double number = opcode == Opcode::Neg    ? -a
+                      : opcode == Opcode::Sqrt ? geom::computeMath(geom::MathFunction::Sqrt, a)
+                                               : geom::computeMath(geom::MathFunction::Round, a);
+      return {ValueId{}, number};
+    }
+    Instruction instruction;
+    instruction.opcode = opcode;
+    return {emit(instruction, {operand.value}), 0};
   }
 
   // The lap's entry with the counts it leaves to the legalisation chosen
@@ -100,7 +140,10 @@ private:
         checkStepDrift(counted, *curve, entry.stepReading->digits, entry.stepReading->tolerance);
       }
       if (lap.index < output_.curves.size()) {
-        output_.curves[lap.index].regionSteps = counted.regionSteps; // as written
+        // As written: an offset's count that grows with the radius, the program's.
+        std::vector<int>& written = output_.curves[lap.index].regionSteps;
+        written = counted.regionSteps;
+        std::replace(written.begin(), written.end(), stepsChosenByLegalisation, 0);
       }
       known = counted_.emplace(lap.index, std::move(counted)).first;
     }
@@ -259,6 +302,7 @@ private:
   std::map<std::uint32_t, std::vector<LapRegionShare>> entryShares_;
   std::vector<ValueId> regionEnd_; // the operands of an arc's or walk's end just written
   std::map<std::uint32_t, CurveTableEntry> counted_; // by curve: its chosen counts
+  std::map<std::uint32_t, std::vector<OffsetRegionGrowth>> offsetGrowth_; // by curve
 };
 
 } // namespace

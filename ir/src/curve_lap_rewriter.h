@@ -7,6 +7,7 @@
 
 #include "cncc/ir/curve_lap.h"
 
+#include "compiled_values.h"
 #include "passes/evaluate.h"
 #include "passes/rewriter.h"
 
@@ -117,15 +118,9 @@ protected:
     return variable;
   }
 
-  // A value of the source the lap's curve reads from outside it: a constant
-  // or a parameter at its value.
-  std::optional<double> outsideValue(ValueId value) const {
-    const Instruction& definition = source_.definition(value);
-    if (definition.opcode == Opcode::Param) {
-      return source_.parameters[definition.index].defaultValue;
-    }
-    return passes::constantValue(source_, value);
-  }
+  // A value of the source the lap's curve reads from outside it, at the
+  // values the program was compiled with (compiled_values.h).
+  std::optional<double> outsideValue(ValueId value) const { return compiled_(value); }
 
   // The cut (of the function's cut table) the moves being written belong
   // to: the last cut.begin met; nullopt before the first.
@@ -234,6 +229,7 @@ private:
     return static_cast<std::size_t>(&instruction - source_.instructions.data());
   }
 
+  mutable CompiledValues compiled_{source_};
   const Instruction* lap_ = nullptr; // being written
   std::optional<std::uint32_t> cut_;
   // While a region is written for some of its end's operands (slicing_):

@@ -130,8 +130,8 @@ CurveTableEntry withChosenSteps(const CurveTableEntry& entry, const geom::Curve&
   for (std::size_t region = 0; region < counted.regionSteps.size() && region < places.size();
        ++region) {
     int& steps = counted.regionSteps[region];
-    if (steps != stepsChosenByLegalisation) {
-      continue;
+    if (steps != stepsChosenByLegalisation || entry.offsetGrowth) {
+      continue; // an offset's grow with the radius (curve_lap_offset_steps.h)
     }
     auto [from, to] = entry.regionRange(places[region]);
     // A region's parameter lies on the whole curve's at a shift (a piece

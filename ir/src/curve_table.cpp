@@ -16,6 +16,10 @@ std::size_t CurveTableEntry::computedRegionCount() const {
   return static_cast<std::size_t>(std::count(regionSteps.begin(), regionSteps.end(), 0));
 }
 
+std::size_t CurveTableEntry::lapOperandCount() const {
+  return 3 + 3 * computedRegionCount() + (offsetGrowth ? 1 : 0);
+}
+
 // The lists are in order of region (the verifier keeps them so).
 const ArcRegion* CurveTableEntry::arcRegion(std::size_t region) const {
   auto found = std::lower_bound(

@@ -58,6 +58,22 @@ StepReading readStepReading(std::string_view rest) {
   return {static_cast<int>(parseWholeNumber(words[0])), parseNumber(words[3])};
 }
 
+// `left radius 1.5 largest 6.2`: an offset's counts that grow with the
+// tool radius (side left: +1, right: -1).
+OffsetStepGrowth readOffsetGrowth(std::string_view rest) {
+  std::vector<std::string_view> words = splitWords(rest);
+  if (words.size() != 5 || (words[0] != "left" && words[0] != "right") || words[1] != "radius" ||
+      words[3] != "largest") {
+    throw Failure{"expected 'offset left|right radius R largest L'"};
+  }
+  return {words[0] == "left" ? 1.0 : -1.0, parseNumber(words[2]), parseNumber(words[4])};
+}
+
+std::string offsetGrowthText(const OffsetStepGrowth& growth) {
+  return fmt::format("    offset {} radius {} largest {}\n", growth.side > 0 ? "left" : "right",
+                     growth.compiledRadius, growth.largestRadius);
+}
+
 std::string splineFitText(const SplineBlocksFit& fit) {
   return fmt::format("    spline {} {}{}\n", splineKindNames[static_cast<std::size_t>(fit.kind)],
                      splineEndsNames[static_cast<std::size_t>(fit.ends)],
@@ -137,6 +153,8 @@ bool readSetting(std::string_view line, CurveTableEntry& entry) {
     readList(rest, entry.regionSteps, readCount);
   } else if (keyword == "reading") {
     entry.stepReading = readStepReading(rest);
+  } else if (keyword == "offset") {
+    entry.offsetGrowth = readOffsetGrowth(rest);
   } else if (keyword == "walks") {
     readList(rest, entry.walkRegions, parseWholeNumber);
   } else if (keyword == "arcs") {
@@ -186,6 +204,9 @@ std::string curveEntryText(std::size_t index, const CurveTableEntry& entry) {
   if (entry.stepReading) {
     out += fmt::format("    reading {} digits within {}\n", entry.stepReading->digits,
                        entry.stepReading->tolerance);
+  }
+  if (entry.offsetGrowth) {
+    out += offsetGrowthText(*entry.offsetGrowth);
   }
   if (!entry.arcRegions.empty()) {
     out += arcRegionsText(entry.arcRegions);
@@ -237,8 +258,8 @@ bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry) {
     entry.pieces.push_back(readPiece(line));
   } else if (!readSetting(line, entry)) {
     throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', "
-                  "'counts', 'reading', 'arcs', 'walks', 'progress', 'host', 'numbers', 'chosen' "
-                  "or '}'"};
+                  "'counts', 'reading', 'offset', 'arcs', 'walks', 'progress', 'host', "
+                  "'numbers', 'chosen' or '}'"};
   }
   return false;
 }

@@ -3,6 +3,7 @@
 #include "cncc/ir/arithmetic.h"
 #include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/curve_lap.h"
+#include "cncc/ir/curve_lap_offset_steps.h"
 #include "cncc/ir/curve_lap_steps.h"
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/polynomial_move.h"
@@ -193,12 +194,13 @@ private:
     std::shared_ptr<const geom::Curve> curve;
     std::vector<double> parameters;
     std::vector<double> progress;
-    std::optional<LapArcs> arcs;            // a lap cut as arcs: its moves, no parameters
-    std::vector<double> blocks;             // blocks fitted to it: their table's data
-    std::vector<double> blockWeights;       // and a NURBS block's weights
-    std::string blocksComment;              // or spline blocks' comment
-    std::optional<CurveTableEntry> counted; // a lap cut in steps: its chosen counts
-    std::vector<LapRegionShare> shares;     // a ramp lap cut in steps: each region's
+    std::optional<LapArcs> arcs;                  // a lap cut as arcs: its moves, no parameters
+    std::vector<double> blocks;                   // blocks fitted to it: their table's data
+    std::vector<double> blockWeights;             // and a NURBS block's weights
+    std::string blocksComment;                    // or spline blocks' comment
+    std::optional<CurveTableEntry> counted;       // a lap cut in steps: its chosen counts
+    std::vector<OffsetRegionGrowth> offsetGrowth; // and an offset's N0 and q
+    std::vector<LapRegionShare> shares;           // a ramp lap cut in steps: each region's
   };
 
   // A feed move to each point after the first, the region that holds it
@@ -257,14 +259,16 @@ private:
     const std::vector<LapRegionShare>* shares =
         zFrom != zTo ? &lapPoints(lap, entry, true).shares : nullptr;
     // Counts left to the legalisation, chosen as it chooses them.
-    const CurveTableEntry& counted =
-        hasChosenSteps(entry) ? *lapPoints(lap, entry, zFrom != zTo).counted : entry;
-    std::vector<StepRange> ranges = lapStepRanges(counted, [&](std::size_t computed) {
-      std::size_t first = 3 + 3 * computed;
-      ValueId count = lap.operands[first + 2];
-      return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
-                       passes::constantValue(function_, count) == 1.0};
-    });
+    const LapPoints* points =
+        hasChosenSteps(entry) ? &lapPoints(lap, entry, zFrom != zTo) : nullptr;
+    const CurveTableEntry& counted = points != nullptr ? *points->counted : entry;
+    std::vector<StepRange> ranges =
+        lapStepRanges(withOffsetSteps(lap, counted, points), [&](std::size_t computed) {
+          std::size_t first = 3 + 3 * computed;
+          ValueId count = lap.operands[first + 2];
+          return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
+                           passes::constantValue(function_, count) == 1.0};
+        });
     for (std::size_t region = 0; region < ranges.size(); ++region) {
       // The lap's height where `fraction` of the region is done.
       auto heightAt = [&](double fraction) {
@@ -293,6 +297,29 @@ private:
         start = step.local;
       });
     }
+  }
+
+  // The entry with an offset's counts that grow with the tool radius as the
+  // program computes them at the distance the lap reads.
+  CurveTableEntry withOffsetSteps(const Instruction& lap, const CurveTableEntry& counted,
+                                  const LapPoints* points) {
+    CurveTableEntry entry = counted;
+    if (!entry.offsetGrowth || points == nullptr) {
+      return entry;
+    }
+    double distance = value(lap.operands.back());
+    for (std::size_t region = 0; region < entry.regionSteps.size(); ++region) {
+      if (entry.regionSteps[region] != stepsChosenByLegalisation) {
+        continue;
+      }
+      double steps = offsetStepsAt(points->offsetGrowth[region], *entry.offsetGrowth, distance);
+      if (!(steps >= 1 && steps <= static_cast<double>(options_.maximumSteps))) {
+        throw InterpreterError(fmt::format(
+            "the program computes {} steps for a region of a curve beside its curve", steps));
+      }
+      entry.regionSteps[region] = static_cast<int>(steps);
+    }
+    return entry;
   }
 
   // A walked region from its start: at each u the step the region computes
@@ -411,16 +438,22 @@ private:
     points.blockWeights = std::move(block.weights);
   }
 
+  // What a lap's regions read from outside it, as the program has them
+  // now; each value asked is added to `asked`.
+  OutsideValue outsideOf(std::vector<double>& asked) {
+    return [this, &asked](ValueId outside) -> std::optional<double> {
+      const Instruction& definition = function_.definition(outside);
+      double number =
+          definition.opcode == Opcode::Param ? parameters_[definition.index] : value(outside);
+      asked.push_back(number);
+      return number;
+    };
+  }
+
   const LapPoints& lapPoints(const Instruction& lap, const CurveTableEntry& entry, bool ramp) {
     LapPoints fresh;
     try {
-      fresh.curve = lapCurve(function_, lap, [&](ValueId outside) -> std::optional<double> {
-        const Instruction& definition = function_.definition(outside);
-        double number =
-            definition.opcode == Opcode::Param ? parameters_[definition.index] : value(outside);
-        fresh.outside.push_back(number);
-        return number;
-      });
+      fresh.curve = lapCurve(function_, lap, outsideOf(fresh.outside));
       std::vector<LapPoints>& known = lapPoints_[&lap];
       auto same = std::find_if(known.begin(), known.end(), [&](const LapPoints& points) {
         return std::equal(points.outside.begin(), points.outside.end(), fresh.outside.begin(),
@@ -439,6 +472,9 @@ private:
           fitBlocks(entry, fresh);
         } else if (entry.sampling == CurveSampling::Steps && hasChosenSteps(entry)) {
           fresh.counted = withChosenSteps(entry, *fresh.curve);
+          if (entry.offsetGrowth) {
+            fresh.offsetGrowth = measureOffsetGrowth(function_, lap);
+          }
         } else if (entry.sampling != CurveSampling::Steps) {
           fresh.parameters = lapParameters(entry, *fresh.curve);
         }

@@ -397,12 +397,13 @@ private:
       throw Failure{fmt::format("curve @{} has no pieces", curve)};
     }
     // A NURBS block's weights, one per control point, are the verifier's to count.
-    std::size_t computed = 3 * curves[curve].computedRegionCount();
+    std::size_t more = curves[curve].lapOperandCount() - 3;
     bool weights = curves[curve].sampling == CurveSampling::NurbsBlocks;
-    if (!weights && parts.size() != 4 + computed) {
+    if (!weights && parts.size() != 1 + 3 + more) {
       throw Failure{fmt::format("curve @{} wants {} operands after the lap's three (a range and a "
-                                "count for each region whose steps the program computes)",
-                                curve, computed)};
+                                "count for each region whose steps the program computes, then an "
+                                "offset's distance)",
+                                curve, more)};
     }
     std::vector<ValueId> computedSteps;
     for (std::size_t k = 4; k < parts.size(); ++k) {

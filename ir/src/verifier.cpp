@@ -231,7 +231,7 @@ private:
                             opcodeInfo(end).spelling, opcodeInfo(wanted).spelling));
       }
     }
-    std::size_t wanted = 3 + 3 * entry.computedRegionCount();
+    std::size_t wanted = entry.lapOperandCount();
     if (lap.operands.size() != wanted) {
       problem(fmt::format("{} has {} operands, its curve wants {}", where, lap.operands.size(),
                           wanted));
@@ -452,12 +452,21 @@ private:
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
       if (!entry.regionSteps.empty() || !entry.arcRegions.empty() || !entry.walkRegions.empty() ||
-          entry.stepReading) {
-        problem(fmt::format("{} has step counts, arcs, walks or a reading of its steps but is "
-                            "not cut in steps",
+          entry.stepReading || entry.offsetGrowth) {
+        problem(fmt::format("{} has step counts, arcs, walks, a reading of its steps or an "
+                            "offset's growth but is not cut in steps",
                             where));
       }
       return;
+    }
+    if (entry.offsetGrowth) {
+      const OffsetStepGrowth& growth = *entry.offsetGrowth;
+      if (std::fabs(growth.side) != 1 || !(growth.compiledRadius > 0) ||
+          !(growth.largestRadius >= growth.compiledRadius)) {
+        problem(fmt::format("{} grows its counts with the radius on side {} from radius {} below "
+                            "{}, not a side of 1 or -1 and a positive radius below the largest",
+                            where, growth.side, growth.compiledRadius, growth.largestRadius));
+      }
     }
     if (entry.stepReading && !(entry.stepReading->digits > 0 && entry.stepReading->tolerance > 0)) {
       problem(fmt::format("{} reads its steps with {} digits within {}, not a positive number of "

@@ -214,7 +214,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     return false;
   }
   if (runtimeOffset_) {
-    if (!planOffsetSteps(curve, *planned, budget, cut)) {
+    if (!planOffsetSteps(curve, *planned, budget)) {
       return false;
     }
   } else if (!stepsFitAtCompiledValues(*planned)) {
@@ -382,17 +382,17 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
   // search is bounded by maximumStepsPerPiece, their sum by
   // maximumStepSearchEvaluations.
   std::size_t evaluated = 0;
-  // The fewest steps (an offset the controller computes grows its counts
-  // from these), or for the legalisation to choose: whether one step is
-  // enough, as the lowering asks (a lap of single steps is no loop).
+  // For the legalisation to choose: whether one step is enough, as the
+  // lowering asks (a lap of single steps is no loop); beside the curve,
+  // the offset's (planOffsetSteps).
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
     geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
     EvaluationsCharged charged{evaluated, counted};
     // Less a fiftieth of an increment for the literals' 8 significant
     // digits (coefficients, the step), a few micrometres at most.
     auto search = [&] {
-      if (runtimeOffset_ && !runtimeOffset_->radius.isConstant()) {
-        return fewestUniformSteps(counted, from, to, measuredBudget(budget));
+      if (runtimeOffset_) {
+        return stepsChosenByLegalisation; // the offset's (planOffsetSteps)
       }
       bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
       return single ? 1 : stepsChosenByLegalisation;

@@ -12,14 +12,9 @@
 //   the tool's radius, a convex corner of a path gets an arc of that radius
 //   about it and a concave corner between two lines their offsets'
 //   crossing, c + d (n1 + n2) / (1 + n1.n2), as geom::offsetOfPieces does;
-// - the step count of a piece grows with the radius (with a radius that
-//   is a number, the count at that one radius): a chord over a
-//   parameter step h deviates from the offset by about h^2 s'^2 |k (1 - d k)|
-//   / 8 (s' the speed, k the signed curvature), at most h^2 (s'^2 |k| + r
-//   s'^2 k^2) / 8, so N(r) = sqrt(N0^2 + Q r) steps, N0 the fewest measured
-//   on the drawn curve and Q from the largest s'^2 k^2 over the piece;
-//   N(r) is measured on the exact offset at a few radii (a number: at it)
-//   and Q raised until it fits;
+// - the step counts are the legalisation's (curve_lap_offset_steps.h): with
+//   a radius the program reads, N(r) = N0 sqrt(1 + q r), which the program
+//   computes; with a number, the fewest on the exact offset;
 // - before it cuts, the program raises an alarm for a radius (a parameter)
 //   that is not positive, or not below the largest radius the tool fits the
 //   curve with (its tightest concave bend, a path's concave corner, the
@@ -49,32 +44,8 @@ namespace {
 // The bisection for the largest radius stops within this share of it.
 constexpr double radiusSearchAccuracy = 1e-6;
 constexpr int radiusSearchSteps = 40;
-// Samples of s'^2 k^2 per drawn step, and their bound.
-constexpr int growthSamplesPerStep = 16;
-constexpr int largestGrowthSamples = 100'000;
-// The margin on the sampled largest s'^2 k^2, and how the growth is raised
-// where the exact offset needs more steps (at most growthTries times).
-constexpr double growthMargin = 1.1;
-constexpr double growthRaise = 1.25;
-constexpr int growthTries = 40;
-
 Eigen::Vector2d leftNormal(const Eigen::Vector3d& tangent) {
   return geom::leftNormalOf(tangent).head<2>();
-}
-
-// The largest s'^2 k^2 = |C' x C''|^2 / |C'|^4 over [from, to], sampled.
-double largestCurvatureGrowth(const geom::Curve& curve, double from, double to, int samples) {
-  double largest = 0;
-  for (int j = 0; j <= samples; ++j) {
-    geom::CurveDerivatives d = curve.derivatives(from + (to - from) * j / samples);
-    double speedSquared = d.first.head<2>().squaredNorm();
-    if (!(speedSquared > 0)) {
-      continue;
-    }
-    double cross = d.first.x() * d.second.y() - d.first.y() * d.second.x();
-    largest = std::max(largest, cross * cross / (speedSquared * speedSquared));
-  }
-  return largest;
 }
 
 } // namespace
@@ -230,113 +201,44 @@ void PartLowering::guardRuntimeRadius(const RuntimeOffset& offset) {
   }
 }
 
-// The counts of the offset's pieces: with a radius that is a number, left
-// to the legalisation (measured on the exact offset) but where one chord
-// cuts the piece; with a radius the program reads, the count it computes
-// from the radius, bounded at radii around the compiled one. False where
-// the plan asks more points of the offset than a cut may: the host's
-// chords then (a radius that is a number).
+// The counts of the offset's pieces, left to the legalisation: with a
+// radius that is a number measured on the exact offset (but where one chord
+// cuts a piece), with a radius the program reads grown with it
+// (OffsetStepGrowth, curve_lap_offset_steps.h). False where the check of
+// one chord asks more points of the offset than a cut may: the host's
+// chords then.
 bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
-                                   double budget, const CutStmt& cut) {
-  const RuntimeOffset& offset = *runtimeOffset_;
-  double compiledRadius = std::fabs(offset.compiledDistance);
-  // Radii the step count is checked at against the exact offset.
-  std::vector<double> radii{compiledRadius};
-  if (!offset.radius.isConstant()) {
-    radii.insert(radii.begin(), compiledRadius / 4);
-    double wide =
-        std::isfinite(offset.largestRadius) ? 0.9 * offset.largestRadius : 4 * compiledRadius;
-    if (wide > compiledRadius) {
-      radii.push_back(wide);
-    }
-  }
-  double measured = measuredBudget(budget);
-  // The points asked of the exact offsets so far, over the cut.
-  std::size_t evaluated = 0;
-  try {
-    planOffsetStepCounts(curve, segments, radii, measured, cut, evaluated);
-    return true;
-  } catch (const geom::EvaluationBudgetExceeded&) { // its limit is what was left
-    if (offset.radius.isConstant()) {
-      return false;
-    }
-    fail(cut.span,
-         fmt::format("checking the steps of this curve's offset within its tolerance asks more "
-                     "than {} points of it; that is the limit of one cut",
-                     maximumOffsetStepEvaluations),
-         DiagnosticKind::ProgramTooLarge);
-  }
-}
-
-void PartLowering::planOffsetStepCounts(const CutCurve& curve,
-                                        std::vector<ControllerSegment>& segments,
-                                        const std::vector<double>& radii, double measured,
-                                        const CutStmt& cut, std::size_t& evaluated) {
+                                   double budget) {
   const RuntimeOffset& offset = *runtimeOffset_;
   double side = offset.compiledDistance > 0 ? 1 : -1;
   double compiledRadius = std::fabs(offset.compiledDistance);
+  double measured = measuredBudget(budget);
+  std::size_t evaluated = 0; // the points asked of the exact offset so far
   for (ControllerSegment& segment : segments) {
     const CurvePiece& piece = curve.pieces[segment.piece];
     if (segment.isArc || piece.value->kind == CurveKind::Line) {
       continue;
     }
-    auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
-    double from = segment.from;
-    double to = segment.to;
-    if (segment.isNurbs) {
-      from = piece.spans[segment.span].t0;
-      to = piece.spans[segment.span].t1;
-    }
-    if (offset.radius.isConstant()) {
-      geom::OffsetCurve offsetCurve(moved, side * compiledRadius);
-      geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
-      EvaluationsCharged charged{evaluated, exact};
-      bool single = uniformStepsFit(exact, from, to, 1, measured);
-      segment.steps = single ? 1 : stepsChosenByLegalisation;
+    segment.steps = stepsChosenByLegalisation;
+    segment.stepCount.reset();
+    if (!offset.radius.isConstant()) {
       continue;
     }
-    double drawn = segment.steps;
-    int samples = std::min(largestGrowthSamples, growthSamplesPerStep * segment.steps);
-    double growth = (to - from) * (to - from) * largestCurvatureGrowth(*moved, from, to, samples) /
-                    (8 * measured) * growthMargin;
-    // The count the program computes, checked on the exact offset at each
-    // radius and raised until it fits (past maximumStepsPerPiece near a
-    // cusp of the offset the bound stands alone).
-    auto stepsAt = [&](double radius) {
-      return std::ceil(std::sqrt(drawn * drawn + growth * radius));
-    };
-    for (double radius : radii) {
-      geom::OffsetCurve offsetCurve(moved, side * radius);
-      geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
-      EvaluationsCharged charged{evaluated, exact};
-      int tries = 0;
-      while (stepsAt(radius) <= maximumStepsPerPiece &&
-             !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured)) {
-        if (++tries > growthTries) {
-          fail(cut.span,
-               fmt::format("cannot bound the steps of this curve's offset at radius {:g} "
-                           "within its tolerance",
-                           radius),
-               DiagnosticKind::ProgramTooLarge);
-        }
-        growth = growth * growthRaise + 1;
+    auto moved = std::make_shared<TransformedCurve>(piece.geometry, piece.transform);
+    double from = segment.isNurbs ? piece.spans[segment.span].t0 : segment.from;
+    double to = segment.isNurbs ? piece.spans[segment.span].t1 : segment.to;
+    geom::OffsetCurve offsetCurve(moved, side * compiledRadius);
+    geom::BudgetedCurve exact(offsetCurve, maximumOffsetStepEvaluations - evaluated);
+    EvaluationsCharged charged{evaluated, exact};
+    try {
+      if (uniformStepsFit(exact, from, to, 1, measured)) {
+        segment.steps = 1;
       }
-      if (radius == compiledRadius && stepsAt(radius) > maximumStepsPerPiece) {
-        fail(cut.span,
-             fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
-                         "steps on one piece within its tolerance",
-                         radius, maximumStepsPerPiece),
-             DiagnosticKind::ProgramTooLarge);
-      }
+    } catch (const geom::EvaluationBudgetExceeded&) {
+      return false;
     }
-    // N0 SQRT[1 + (Q / N0^2) r]: literals of the size of N0, not its square,
-    // for the controller's digits (a relative 1e-8 of Q is in its margin).
-    Scalar share = arithmetic_.add(
-        Scalar::of(1), arithmetic_.multiply(Scalar::of(growth / (drawn * drawn)), offset.radius));
-    segment.stepCount = roundedUpSteps(
-        arithmetic_.multiply(Scalar::of(drawn), arithmetic_.unary(Opcode::Sqrt, share)));
-    segment.steps = 0;
   }
+  return true;
 }
 
 Scalar PartLowering::plusScaled(Scalar base, Scalar value, Scalar factor) {

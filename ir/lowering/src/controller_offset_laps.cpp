@@ -9,15 +9,17 @@
 //   tool's grows or shrinks, in the drawn arc's blocks;
 // - another piece's (a knot span, a polar or param curve), the tool centre
 //   C + d (-y', x') / |C'| with C' the derivative in the region's parameter
-//   (forward_derivative.h), its count computed by the program from the
-//   radius (planOffsetSteps), or with a radius that is a number chosen by
-//   the legalisation on the entry's geometry; a knot span the program
-//   counts counts its steps, u = t / N;
+//   (forward_derivative.h), its count the legalisation's: with a radius
+//   the program reads, one it computes from the radius (the entry's
+//   offsetGrowth, the lap's last operand the distance), with a number the
+//   fewest on the entry's geometry;
 // - after a piece that ends at a convex corner, an arc region of the tool's
 //   radius about the corner over the fraction 0 .. 1 of its turn.
 // The entry's geometry is the offset at the compiled radius in the same
 // parameters (geom::offsetOfPieces makes the same pieces and corner arcs).
 #include "controller_segment.h"
+
+#include "cncc/ir/curve_lap_steps.h"
 
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/function_curve.h"
@@ -91,16 +93,10 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
     lap.besideRegions.push_back({s, 0});
     if (segment.isArc) {
       addArcRegion(entry, lap, segment, curve, cut);
-    } else if (line || segment.steps > 0 || segment.steps == stepsChosenByLegalisation) {
-      entry.regionSteps.push_back(line ? 1 : segment.steps);
     } else {
-      // The count the radius gives; a knot span counts its steps (u = t / N).
-      Scalar count = stepsOf(segment);
-      entry.regionSteps.push_back(0);
-      for (Scalar operand : {segment.isNurbs ? Scalar::of(0) : Scalar::of(segment.from),
-                             segment.isNurbs ? count : Scalar::of(segment.to), count}) {
-        lap.computedSteps.push_back(arithmetic_.value(operand));
-      }
+      // A line in one step; another piece's count is the legalisation's
+      // (planOffsetSteps), or 1 where one chord cuts it.
+      entry.regionSteps.push_back(line ? 1 : segment.steps);
     }
     bool corner = endsItsPiece(segment, piece) && segment.piece < offset.joins.size() &&
                   offset.joins[segment.piece].kind == PieceJoin::CornerArc;
@@ -124,6 +120,12 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
   }
   entry.geometry = besideGeometry(entry, offset.compiled);
   entry.stepReading = stepReading(cut);
+  if (!offset.radius.isConstant() && hasChosenSteps(entry)) {
+    // The counts grow with the radius: the lap reads the distance last.
+    entry.offsetGrowth = OffsetStepGrowth{offset.compiledDistance > 0 ? 1.0 : -1.0,
+                                          std::fabs(offset.compiledDistance), offset.largestRadius};
+    lap.computedSteps.push_back(arithmetic_.value(offset.distance));
+  }
   lap.table = builder_.addCurve(std::move(entry));
   return lap;
 }
@@ -149,12 +151,7 @@ LapRegionPoint PartLowering::besideRegionPoint(const CutCurve& curve,
   }
   CurvePoint point;
   if (segment.isNurbs) {
-    Scalar u =
-        segment.steps > 0 || segment.steps == stepsChosenByLegalisation
-            ? local
-            : arithmetic_.binary(Opcode::Div, local,
-                                 Scalar::of(arithmetic_.value(stepsOf(segment)), ValueType::F64));
-    point = spanPointAt(cleanedSpan(piece.spans[segment.span]), u);
+    point = spanPointAt(cleanedSpan(piece.spans[segment.span]), local); // u in 0 .. 1
     point = segment.moved != nullptr ? applied(*segment.moved, point)
                                      : transformed(piece.transform, point);
   } else {

@@ -542,13 +542,7 @@ private:
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);
   bool planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,
-                       double budget, const frontend::CutStmt& cut);
-  // The step count of each segment at `radii`, raised until it fits (within
-  // maximumOffsetStepEvaluations in all, counted in `evaluated`); with a
-  // radius that is a number, 1 or the legalisation's.
-  void planOffsetStepCounts(const CutCurve& curve, std::vector<ControllerSegment>& segments,
-                            const std::vector<double>& radii, double measured,
-                            const frontend::CutStmt& cut, std::size_t& evaluated);
+                       double budget);
   // base + value * factor, a constant factor's sign as a subtraction.
   Scalar plusScaled(Scalar base, Scalar value, Scalar factor);
   CurvePoint besideAt(const CurvePoint& point, const Eigen::Vector2d& normal);

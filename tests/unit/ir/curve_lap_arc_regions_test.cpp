@@ -111,11 +111,10 @@ TEST(CurveLapArcRegions, TheVerifierKeepsCurveArcToTheArcRegions) {
       Contains(HasSubstr("its region 1 ends in curve.point but its curve wants curve.arc")));
   EXPECT_THAT(verifyFunction(parsed(replaced(slotText, "arcs 0 ccw", "arcs 0 ccw, 2 cw"))),
               Contains(HasSubstr("an arc region 2 that is not a later region of it")));
-  EXPECT_THAT(
-      verifyFunction(
-          parsed(replaced(replaced(slotText, "steps 0", "chords 0.01"), "    counts 1, 1\n", ""))),
-      Contains(HasSubstr(
-          "has step counts, arcs, walks or a reading of its steps but is not cut in steps")));
+  EXPECT_THAT(verifyFunction(parsed(
+                  replaced(replaced(slotText, "steps 0", "chords 0.01"), "    counts 1, 1\n", ""))),
+              Contains(HasSubstr("has step counts, arcs, walks, a reading of its steps or an "
+                                 "offset's growth but is not cut in steps")));
 }
 
 TEST(CurveLapArcRegions, AnArcRegionRunsAsTheControllersCircle) {

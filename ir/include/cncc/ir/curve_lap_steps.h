@@ -43,7 +43,8 @@ int searchedSteps(const std::function<int()>& search, frontend::SourceSpan cutSp
 bool hasChosenSteps(const CurveTableEntry& entry);
 
 // The entry with every count left to the legalisation measured on `curve`
-// (the lap's, in the whole curve's parameter). Throws CurveLapError at the
+// (the lap's, in the whole curve's parameter), but an offset's that grow
+// with the tool radius (offsetGrowth: curve_lap_offset_steps.h). Throws CurveLapError at the
 // cut past maximumStepSearchEvaluations or maximumStepsPerRegion, or where
 // the curve cannot be measured.
 CurveTableEntry withChosenSteps(const CurveTableEntry& entry, const geom::Curve& curve);

@@ -112,6 +112,20 @@ struct SplineBlocksFit {
   bool afterRamp = false;
 };
 
+// Steps beside a curve whose tool radius the program reads: each region
+// whose count is left to the legalisation takes N(r) = N0 sqrt(1 + q r)
+// steps at the radius r, a count the program computes. The legalisation
+// measures N0 and q on the regions themselves (curve_lap_offset_steps.h):
+// their points at the tool-centre distance d = side r (the lap's last
+// operand, after the computed steps', which the regions read), at radius 0
+// and around `compiledRadius` (below `largestRadius`, the most the tool
+// fits with; infinite without such a limit).
+struct OffsetStepGrowth {
+  double side = 1;
+  double compiledRadius = 0;
+  double largestRadius = 0;
+};
+
 struct CurveTableEntry {
   std::vector<CurvePieceLayout> pieces;
   // The whole curve's parameter range (the first piece's start to the last
@@ -167,6 +181,8 @@ struct CurveTableEntry {
   // cut beside its curve whose offset the host computes, on a controller
   // that keeps its numbers in a few hundred variables, not in tables).
   bool pointsAsNumbers = false;
+  // Steps: counts of an offset that grow with the tool radius (above).
+  std::optional<OffsetStepGrowth> offsetGrowth = std::nullopt;
   // The same curve evaluated from the source, transforms applied (what the
   // regions compute, for choosing the points without interpreting them);
   // null in a function read from text, where the regions are interpreted.
@@ -191,6 +207,9 @@ struct CurveTableEntry {
   std::size_t regionCount() const;
   // Steps: the regions whose range and count the program computes.
   std::size_t computedRegionCount() const;
+  // The lap's operands its table entry wants: the two heights and the
+  // feed, each computed region's range and count, an offset's distance.
+  std::size_t lapOperandCount() const;
   // Steps: the region's arc, or null when its steps are chords.
   const ArcRegion* arcRegion(std::size_t region) const;
   bool isWalkRegion(std::size_t region) const;

@@ -1,0 +1,69 @@
+// A value at the values the program was compiled with, for the
+// legalisations that measure a lap's curve from its regions: a parameter at
+// its default, pure arithmetic on such values folded as the interpreter
+// computes it; nullopt for anything else (a loop's variable, an effect).
+#pragma once
+
+#include "cncc/ir/ir.h"
+
+#include "passes/evaluate.h"
+
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace cncc::ir {
+
+class CompiledValues {
+public:
+  explicit CompiledValues(const Function& function) : function_(function) {}
+
+  std::optional<double> operator()(ValueId value) {
+    std::vector<ValueId> work{value};
+    while (!work.empty()) {
+      ValueId next = work.back();
+      if (known_.contains(next.index)) {
+        work.pop_back();
+        continue;
+      }
+      const Instruction& definition = function_.definition(next);
+      if (definition.opcode == Opcode::Const || definition.opcode == Opcode::ConstBool) {
+        known_[next.index] = definition.number;
+        continue;
+      }
+      if (definition.opcode == Opcode::Param) {
+        known_[next.index] = function_.parameters[definition.index].defaultValue;
+        continue;
+      }
+      if (!isPure(definition.opcode) || definition.opcode == Opcode::Loop) {
+        known_[next.index] = std::nullopt;
+        continue;
+      }
+      std::vector<double> operands;
+      bool ready = true;
+      for (ValueId operand : definition.operands) {
+        auto found = known_.find(operand.index);
+        if (found == known_.end()) {
+          work.push_back(operand);
+          ready = false;
+        } else if (found->second) {
+          operands.push_back(*found->second);
+        } else {
+          known_[next.index] = std::nullopt; // reads what is not known
+          ready = false;
+          break;
+        }
+      }
+      if (ready) {
+        known_[next.index] = passes::evaluate(function_, definition, operands);
+      }
+    }
+    return known_[value.index];
+  }
+
+private:
+  const Function& function_;
+  std::map<std::uint32_t, std::optional<double>> known_;
+};
+
+} // namespace cncc::ir
