@@ -70,52 +70,70 @@ public:
   OffsetRegionGrowth measure(std::size_t region, double from, double to) {
     geom::FunctionCurve drawn = regionAt(region, from, to, 0);
     checkFiniteAlong(entry_, drawn);
-    double measured = entry_.amount;
-    double drawnSteps = searchedSteps(
-        [&] {
-          geom::BudgetedCurve budgeted(drawn, remaining());
-          Charged charged{*this, budgeted};
-          return fewestUniformSteps(budgeted, from, to, measured);
-        },
-        entry_.cutSpan, entry_.curveSpan);
+    double drawnSteps = fewestDrawnSteps(drawn, from, to);
     int samples =
         std::min(largestGrowthSamples, growthSamplesPerStep * static_cast<int>(drawnSteps));
     double growth = (to - from) * (to - from) * largestCurvatureGrowth(drawn, from, to, samples) /
-                    (8 * measured) * growthMargin;
-    auto stepsAt = [&](double radius) {
-      return std::ceil(std::sqrt(drawnSteps * drawnSteps + growth * radius));
-    };
+                    (8 * entry_.amount) * growthMargin;
     for (double radius : checkedRadii(growth_)) {
       geom::FunctionCurve offset = regionAt(region, from, to, growth_.side * radius);
-      geom::BudgetedCurve exact(offset, remaining());
-      Charged charged{*this, exact};
-      try {
-        for (int tries = 0;
-             stepsAt(radius) <= maximumStepsPerRegion &&
-             !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt(radius)), measured);
-             ++tries) {
-          if (tries == growthTries) {
-            tooLarge(fmt::format("cannot bound the steps of this curve's offset at radius {:g} "
-                                 "within its tolerance",
-                                 radius));
-          }
-          growth = growth * growthRaise + 1;
-        }
-      } catch (const geom::EvaluationBudgetExceeded&) {
-        tooLarge(fmt::format("checking the steps of this curve's offset within its tolerance "
-                             "asks more than {} points of it; that is the limit of one cut",
-                             maximumOffsetStepEvaluations));
-      }
-      if (radius == growth_.compiledRadius && stepsAt(radius) > maximumStepsPerRegion) {
-        tooLarge(fmt::format("the offset of this curve at radius {:g} needs more than {} "
-                             "uniform steps on one piece within its tolerance",
-                             radius, maximumStepsPerRegion));
-      }
+      growth = growthThatFits(offset, from, to, drawnSteps, growth, radius);
     }
     return {drawnSteps, growth / (drawnSteps * drawnSteps)};
   }
 
 private:
+  // N0: the fewest uniform steps on the drawn curve.
+  double fewestDrawnSteps(const geom::Curve& drawn, double from, double to) {
+    return searchedSteps(
+        [&] {
+          geom::BudgetedCurve budgeted(drawn, remaining());
+          Charged charged{*this, budgeted};
+          try {
+            return fewestUniformSteps(budgeted, from, to, entry_.amount);
+          } catch (const geom::EvaluationBudgetExceeded&) {
+            tooLarge(evaluationLimitMessage());
+          }
+        },
+        entry_.cutSpan, entry_.curveSpan);
+  }
+
+  // Q, raised until ceil(sqrt(N0^2 + Q r)) steps keep the exact offset at
+  // `radius` within the entry's amount.
+  double growthThatFits(const geom::Curve& offset, double from, double to, double drawnSteps,
+                        double growth, double radius) {
+    auto stepsAt = [&] { return std::ceil(std::sqrt(drawnSteps * drawnSteps + growth * radius)); };
+    geom::BudgetedCurve exact(offset, remaining());
+    Charged charged{*this, exact};
+    try {
+      for (int tries = 0;
+           stepsAt() <= maximumStepsPerRegion &&
+           !uniformStepsFit(exact, from, to, static_cast<int>(stepsAt()), entry_.amount);
+           ++tries) {
+        if (tries == growthTries) {
+          tooLarge(fmt::format("cannot bound the steps of this curve's offset at radius {:g} "
+                               "within its tolerance",
+                               radius));
+        }
+        growth = growth * growthRaise + 1;
+      }
+    } catch (const geom::EvaluationBudgetExceeded&) {
+      tooLarge(evaluationLimitMessage());
+    }
+    if (radius == growth_.compiledRadius && stepsAt() > maximumStepsPerRegion) {
+      tooLarge(fmt::format("the offset of this curve at radius {:g} needs more than {} uniform "
+                           "steps on one piece within its tolerance",
+                           radius, maximumStepsPerRegion));
+    }
+    return growth;
+  }
+
+  static std::string evaluationLimitMessage() {
+    return fmt::format("checking the steps of this curve's offset within its tolerance asks more "
+                       "than {} points of it; that is the limit of one cut",
+                       maximumOffsetStepEvaluations);
+  }
+
   // Adds what a curve asked to the lap's total when it goes.
   struct Charged {
     OffsetGrowthMeasure& measure;
@@ -131,7 +149,8 @@ private:
     throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, entry_.cutSpan, message);
   }
 
-  // The region's points with the tool centre at `distance` from the curve.
+  // The region's points with the tool centre at `distance` from the curve
+  // (what the region reads from outside is asked as it is compiled, here).
   geom::FunctionCurve regionAt(std::size_t region, double from, double to, double distance) {
     ValueId distanceValue = lap_.operands.back();
     auto evaluator = std::make_shared<LapRegionEvaluator>(
