@@ -17,6 +17,7 @@
 #include <bit>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -262,8 +263,9 @@ private:
     const LapPoints* points =
         hasChosenSteps(entry) ? &lapPoints(lap, entry, zFrom != zTo) : nullptr;
     const CurveTableEntry& counted = points != nullptr ? *points->counted : entry;
+    std::optional<CurveTableEntry> grown = withOffsetSteps(lap, counted, points);
     std::vector<StepRange> ranges =
-        lapStepRanges(withOffsetSteps(lap, counted, points), [&](std::size_t computed) {
+        lapStepRanges(grown ? *grown : counted, [&](std::size_t computed) {
           std::size_t first = 3 + 3 * computed;
           ValueId count = lap.operands[first + 2];
           return StepRange{value(lap.operands[first]), value(lap.operands[first + 1]), value(count),
@@ -300,22 +302,26 @@ private:
   }
 
   // The entry with an offset's counts that grow with the tool radius as the
-  // program computes them at the distance the lap reads.
-  CurveTableEntry withOffsetSteps(const Instruction& lap, const CurveTableEntry& counted,
-                                  const LapPoints* points) {
-    CurveTableEntry entry = counted;
-    if (!entry.offsetGrowth || points == nullptr) {
-      return entry;
+  // program computes them at the distance the lap reads; nullopt for an
+  // entry without them.
+  std::optional<CurveTableEntry>
+  withOffsetSteps(const Instruction& lap, const CurveTableEntry& counted, const LapPoints* points) {
+    if (!counted.offsetGrowth || points == nullptr) {
+      return std::nullopt;
     }
+    CurveTableEntry entry = counted;
     double distance = value(lap.operands.back());
+    double most = std::min(static_cast<double>(options_.maximumSteps),
+                           static_cast<double>(std::numeric_limits<int>::max()));
     for (std::size_t region = 0; region < entry.regionSteps.size(); ++region) {
       if (entry.regionSteps[region] != stepsChosenByLegalisation) {
         continue;
       }
       double steps = offsetStepsAt(points->offsetGrowth[region], *entry.offsetGrowth, distance);
-      if (!(steps >= 1 && steps <= static_cast<double>(options_.maximumSteps))) {
-        throw InterpreterError(fmt::format(
-            "the program computes {} steps for a region of a curve beside its curve", steps));
+      if (!(steps >= 1 && steps <= most)) {
+        throw InterpreterError(fmt::format("the program computes {} steps for a piece of a cut "
+                                           "beside its curve at the tool-centre distance {:g}",
+                                           steps, distance));
       }
       entry.regionSteps[region] = static_cast<int>(steps);
     }
