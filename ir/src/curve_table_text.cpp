@@ -74,6 +74,17 @@ std::string offsetGrowthText(const OffsetStepGrowth& growth) {
                      growth.compiledRadius, growth.largestRadius);
 }
 
+// The entry's chosen parameters, or the earlier entry that holds the same.
+std::string chosenText(std::span<const CurveTableEntry> curves, std::size_t index) {
+  const auto& parameters = curves[index].chosenParameters;
+  for (std::size_t other = 0; other < index; ++other) {
+    if (curves[other].chosenParameters == parameters) {
+      return fmt::format("    chosen as @{}\n", other);
+    }
+  }
+  return fmt::format("    chosen {}\n", fmt::join(*parameters, ", "));
+}
+
 std::string splineFitText(const SplineBlocksFit& fit) {
   return fmt::format("    spline {} {}{}\n", splineKindNames[static_cast<std::size_t>(fit.kind)],
                      splineEndsNames[static_cast<std::size_t>(fit.ends)],
@@ -137,7 +148,8 @@ CurvePieceLayout readPiece(std::string_view line) {
 
 // A `keyword rest` line of an entry other than a piece; false when the
 // keyword is none of them.
-bool readSetting(std::string_view line, CurveTableEntry& entry) {
+bool readSetting(std::string_view line, CurveTableEntry& entry,
+                 std::span<const CurveTableEntry> earlier) {
   std::size_t space = line.find(' ');
   std::string_view keyword = line.substr(0, space);
   std::string_view rest = space == std::string_view::npos ? "" : line.substr(space + 1);
@@ -145,6 +157,12 @@ bool readSetting(std::string_view line, CurveTableEntry& entry) {
     entry.pointsAsNumbers = true;
   } else if (keyword == "host") {
     readList(rest, entry.hostPointRegions, parseWholeNumber);
+  } else if (keyword == "chosen" && startsWith(rest, "as @")) {
+    std::uint32_t other = parseWholeNumber(rest.substr(4));
+    if (other >= earlier.size() || !earlier[other].chosenParameters) {
+      throw Failure{fmt::format("curve @{} before this one has no chosen parameters", other)};
+    }
+    entry.chosenParameters = earlier[other].chosenParameters;
   } else if (keyword == "chosen") {
     std::vector<double> parameters;
     readList(rest, parameters, parseNumber);
@@ -182,7 +200,8 @@ bool readSetting(std::string_view line, CurveTableEntry& entry) {
 
 } // namespace
 
-std::string curveEntryText(std::size_t index, const CurveTableEntry& entry) {
+std::string curveEntryText(std::span<const CurveTableEntry> curves, std::size_t index) {
+  const CurveTableEntry& entry = curves[index];
   std::string out =
       fmt::format("  curve @{} {} {} over {} .. {} {{\n", index, curveSamplingName(entry.sampling),
                   entry.amount, entry.from, entry.to);
@@ -224,7 +243,7 @@ std::string curveEntryText(std::size_t index, const CurveTableEntry& entry) {
     out += "    numbers\n";
   }
   if (entry.chosenParameters) {
-    out += fmt::format("    chosen {}\n", fmt::join(*entry.chosenParameters, ", "));
+    out += chosenText(curves, index);
   }
   return out + "  }\n";
 }
@@ -250,13 +269,14 @@ CurveTableEntry readCurveEntryHeader(std::string_view line, std::size_t index) {
   return entry;
 }
 
-bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry) {
+bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry,
+                        std::span<const CurveTableEntry> earlier) {
   if (line == "}") {
     return true;
   }
   if (startsWith(line, "piece ")) {
     entry.pieces.push_back(readPiece(line));
-  } else if (!readSetting(line, entry)) {
+  } else if (!readSetting(line, entry, earlier)) {
     throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', "
                   "'counts', 'reading', 'offset', 'arcs', 'walks', 'progress', 'host', "
                   "'numbers', 'chosen' or '}'"};

@@ -58,7 +58,7 @@ private:
       throw Failure{"text after the end of the function"};
     }
     if (curve_) {
-      if (readCurveEntryLine(line, *curve_)) {
+      if (readCurveEntryLine(line, *curve_, builder_->function().curves)) {
         builder_->addCurve(std::move(*curve_));
         curve_.reset();
       }

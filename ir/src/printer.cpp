@@ -51,7 +51,7 @@ public:
       out_ += fmt::format("  table @{} = [{}]\n", i, fmt::join(function_.tables[i], ", "));
     }
     for (std::size_t i = 0; i < function_.curves.size(); ++i) {
-      out_ += curveEntryText(i, function_.curves[i]);
+      out_ += curveEntryText(function_.curves, i);
     }
     for (std::size_t i = 0; i < function_.cuts.size(); ++i) {
       out_ += cutEntryText(i, function_.cuts[i]);

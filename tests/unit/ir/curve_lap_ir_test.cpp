@@ -62,6 +62,22 @@ TEST(IrCurveLapText, ParsedTableHasTheLayoutAndNoGeometry) {
   EXPECT_THAT(verifyFunction(function), IsEmpty());
 }
 
+// Chosen parameters two entries share (a ramp's, which spline blocks after
+// it go through) are written once: `chosen as @e` names the earlier entry,
+// and reading it back shares them again.
+TEST(IrCurveLapText, SharedChosenParametersAreWrittenOnce) {
+  Function function = parsed(pathText);
+  function.curves.push_back(function.curves[1]);
+  std::string text = printFunction(function);
+  EXPECT_NE(text.find("    chosen as @1\n"), std::string::npos);
+  Function again = parsed(text);
+  ASSERT_EQ(again.curves.size(), 3u);
+  EXPECT_EQ(again.curves[2].chosenParameters, again.curves[1].chosenParameters);
+  EXPECT_EQ(printFunction(again), text);
+  std::string unshared = replaced(pathText, "    chosen -1, 0.1, 1e+300\n", "    chosen as @0\n");
+  EXPECT_EQ(parseComplaint(unshared), "12: curve @0 before this one has no chosen parameters");
+}
+
 TEST(IrCurveLapText, ShortestRoundTripNumbers) {
   Function function = parsed(circleText);
   function.curves[0].amount = 0.1 + 0.2; // 0.30000000000000004
