@@ -195,13 +195,12 @@ private:
     std::shared_ptr<const geom::Curve> curve;
     std::vector<double> parameters;
     std::vector<double> progress;
-    std::optional<LapArcs> arcs;                  // a lap cut as arcs: its moves, no parameters
-    std::vector<double> blocks;                   // blocks fitted to it: their table's data
-    std::vector<double> blockWeights;             // and a NURBS block's weights
-    std::string blocksComment;                    // or spline blocks' comment
-    std::optional<CurveTableEntry> counted;       // a lap cut in steps: its chosen counts
-    std::vector<OffsetRegionGrowth> offsetGrowth; // and an offset's N0 and q
-    std::vector<LapRegionShare> shares;           // a ramp lap cut in steps: each region's
+    std::optional<LapArcs> arcs;            // a lap cut as arcs: its moves, no parameters
+    std::vector<double> blocks;             // blocks fitted to it: their table's data
+    std::vector<double> blockWeights;       // and a NURBS block's weights
+    std::string blocksComment;              // or spline blocks' comment
+    std::optional<CurveTableEntry> counted; // a lap cut in steps: its chosen counts
+    std::vector<LapRegionShare> shares;     // a ramp lap cut in steps: each region's
   };
 
   // A feed move to each point after the first, the region that holds it
@@ -263,7 +262,7 @@ private:
     const LapPoints* points =
         hasChosenSteps(entry) ? &lapPoints(lap, entry, zFrom != zTo) : nullptr;
     const CurveTableEntry& counted = points != nullptr ? *points->counted : entry;
-    std::optional<CurveTableEntry> grown = withOffsetSteps(lap, counted, points);
+    std::optional<CurveTableEntry> grown = withOffsetSteps(lap, counted);
     std::vector<StepRange> ranges =
         lapStepRanges(grown ? *grown : counted, [&](std::size_t computed) {
           std::size_t first = 3 + 3 * computed;
@@ -304,10 +303,20 @@ private:
   // The entry with an offset's counts that grow with the tool radius as the
   // program computes them at the distance the lap reads; nullopt for an
   // entry without them.
-  std::optional<CurveTableEntry>
-  withOffsetSteps(const Instruction& lap, const CurveTableEntry& counted, const LapPoints* points) {
-    if (!counted.offsetGrowth || points == nullptr) {
+  std::optional<CurveTableEntry> withOffsetSteps(const Instruction& lap,
+                                                 const CurveTableEntry& counted) {
+    if (!counted.offsetGrowth) {
       return std::nullopt;
+    }
+    // Measured at the compiled values: once per entry (as the pass does),
+    // whatever its laps read.
+    auto known = offsetGrowth_.find(lap.index);
+    if (known == offsetGrowth_.end()) {
+      try {
+        known = offsetGrowth_.emplace(lap.index, measureOffsetGrowth(function_, lap)).first;
+      } catch (const CurveLapError& error) {
+        throw InterpreterError(error.what());
+      }
     }
     CurveTableEntry entry = counted;
     double distance = value(lap.operands.back());
@@ -317,7 +326,7 @@ private:
       if (entry.regionSteps[region] != stepsChosenByLegalisation) {
         continue;
       }
-      double steps = offsetStepsAt(points->offsetGrowth[region], *entry.offsetGrowth, distance);
+      double steps = offsetStepsAt(known->second[region], *entry.offsetGrowth, distance);
       if (!(steps >= 1 && steps <= most)) {
         throw InterpreterError(fmt::format("the program computes {} steps for a piece of a cut "
                                            "beside its curve at the tool-centre distance {:g}",
@@ -478,9 +487,6 @@ private:
           fitBlocks(entry, fresh);
         } else if (entry.sampling == CurveSampling::Steps && hasChosenSteps(entry)) {
           fresh.counted = withChosenSteps(entry, *fresh.curve);
-          if (entry.offsetGrowth) {
-            fresh.offsetGrowth = measureOffsetGrowth(function_, lap);
-          }
         } else if (entry.sampling != CurveSampling::Steps) {
           fresh.parameters = lapParameters(entry, *fresh.curve);
         }
@@ -656,6 +662,7 @@ private:
   // The curves a lap kept, the latest last.
   static constexpr std::size_t maximumCurvesPerLap = 8;
   std::map<const Instruction*, std::vector<LapPoints>> lapPoints_;
+  std::map<std::uint32_t, std::vector<OffsetRegionGrowth>> offsetGrowth_; // by curve
 };
 
 } // namespace
