@@ -19,6 +19,7 @@
 namespace cncc::ir {
 namespace {
 
+using curve_lap_test::onlyLap;
 using curve_lap_test::parsed;
 using curve_lap_test::replaced;
 using ::testing::Contains;
@@ -54,17 +55,13 @@ constexpr std::string_view ringText = R"(func @ring(dia = 4) {
 }
 )";
 
-const Instruction& lapOf(const Function& function) {
-  return curve_lap_test::onlyLap(function);
-}
-
 // N0 is the fewest steps on the drawn circle (10 (1 - cos(pi / N)) <= 0.01
 // from N = 71), and N(r) keeps the chords of the exact offset, the circle of
 // radius 10 + r, within the entry's 0.01 at every radius the part may take.
 TEST(CurveLapOffsetSteps, TheCountGrowsWithTheRadiusAndKeepsTheTolerance) {
   Function function = parsed(ringText);
   ASSERT_TRUE(verifyFunction(function).empty());
-  std::vector<OffsetRegionGrowth> growth = measureOffsetGrowth(function, lapOf(function));
+  std::vector<OffsetRegionGrowth> growth = measureOffsetGrowth(function, onlyLap(function));
   ASSERT_EQ(growth.size(), 1u);
   EXPECT_EQ(growth[0].drawnSteps, 71);
   EXPECT_GT(growth[0].growth, 0);
@@ -96,7 +93,7 @@ TEST(CurveLapOffsetSteps, ThePassAndTheInterpreterCountAlike) {
     ToolPath unexpanded = interpret(before, options);
     curve_lap_test::expectSamePath(unexpanded, interpret(run.function, options));
     std::size_t feeds = curve_lap_test::feedMoves(unexpanded).size();
-    std::vector<OffsetRegionGrowth> growth = measureOffsetGrowth(before, lapOf(before));
+    std::vector<OffsetRegionGrowth> growth = measureOffsetGrowth(before, onlyLap(before));
     double steps = offsetStepsAt(growth[0], *before.curves[0].offsetGrowth, -diameter / 2);
     EXPECT_EQ(feeds, static_cast<std::size_t>(steps) + 1) << diameter; // and the plunge
   }
@@ -127,7 +124,7 @@ TEST(CurveLapOffsetSteps, TheTextAndTheVerifierKeepTheGrowth) {
 TEST(CurveLapOffsetSteps, ACurveThatIsNotFiniteIsAnError) {
   Function function = parsed(replaced(ringText, "%6 = const 10", "%6 = const nan"));
   try {
-    measureOffsetGrowth(function, lapOf(function));
+    measureOffsetGrowth(function, onlyLap(function));
     ADD_FAILURE() << "measured";
   } catch (const CurveLapError& error) {
     EXPECT_EQ(error.kind, CurveLapError::Kind::NonFiniteValue);
