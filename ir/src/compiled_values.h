@@ -7,6 +7,7 @@
 #include "cncc/ir/ir.h"
 
 #include "passes/evaluate.h"
+#include "passes/rewriter.h"
 
 #include <map>
 #include <optional>
@@ -27,8 +28,8 @@ public:
         continue;
       }
       const Instruction& definition = function_.definition(next);
-      if (definition.opcode == Opcode::Const || definition.opcode == Opcode::ConstBool) {
-        known_[next.index] = definition.number;
+      if (std::optional<double> number = passes::constantValue(function_, next)) {
+        known_[next.index] = number;
         continue;
       }
       if (definition.opcode == Opcode::Param) {

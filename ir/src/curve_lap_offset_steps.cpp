@@ -88,7 +88,7 @@ private:
     return searchedSteps(
         [&] {
           geom::BudgetedCurve budgeted(drawn, remaining());
-          Charged charged{*this, budgeted};
+          geom::EvaluationsCharged charged{evaluated_, budgeted};
           try {
             return fewestUniformSteps(budgeted, from, to, entry_.amount);
           } catch (const geom::EvaluationBudgetExceeded&) {
@@ -104,7 +104,7 @@ private:
                         double growth, double radius) {
     auto stepsAt = [&] { return std::ceil(std::sqrt(drawnSteps * drawnSteps + growth * radius)); };
     geom::BudgetedCurve exact(offset, remaining());
-    Charged charged{*this, exact};
+    geom::EvaluationsCharged charged{evaluated_, exact};
     try {
       for (int tries = 0;
            stepsAt() <= maximumStepsPerRegion &&
@@ -133,13 +133,6 @@ private:
                        "than {} points of it; that is the limit of one cut",
                        maximumOffsetStepEvaluations);
   }
-
-  // Adds what a curve asked to the lap's total when it goes.
-  struct Charged {
-    OffsetGrowthMeasure& measure;
-    const geom::BudgetedCurve& curve;
-    ~Charged() { measure.evaluated_ += curve.used(); }
-  };
 
   std::size_t remaining() const {
     return maximumOffsetStepEvaluations - std::min(evaluated_, maximumOffsetStepEvaluations);

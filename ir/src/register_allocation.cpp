@@ -172,10 +172,7 @@ private:
         continue;
       }
       for (ValueId operand : function_.instructions[id].operands) {
-        const Instruction& operandDefinition = definition(operand);
-        bool constant = operandDefinition.opcode == Opcode::Const ||
-                        operandDefinition.opcode == Opcode::ConstBool;
-        if (!constant && function_.valueTypes[operand.index] == ValueType::F64 &&
+        if (!isConstant(operand) && function_.valueTypes[operand.index] == ValueType::F64 &&
             layout_.loops[id].size() > layout_.loops[definitionId(operand)].size()) {
           materialized_[operand.index] = true;
         }
@@ -272,9 +269,7 @@ private:
     ValueId best;
     int bestScore = -1;
     for (ValueId operand : instruction.operands) {
-      const Instruction& operandDefinition = definition(operand);
-      if (materialized_[operand.index] || operandDefinition.opcode == Opcode::Const ||
-          operandDefinition.opcode == Opcode::ConstBool) {
+      if (materialized_[operand.index] || isConstant(operand)) {
         continue;
       }
       InlineShape shape = shapeOf(operand);
@@ -422,10 +417,10 @@ private:
   // The last position at which `value` is read, the loops it is read in
   // counted as a whole.
   void recordUse(ValueId value, int position, const std::vector<InstructionId>& loops) {
-    const Instruction& instruction = definition(value);
-    if (instruction.opcode == Opcode::Const || instruction.opcode == Opcode::ConstBool) {
+    if (isConstant(value)) {
       return;
     }
+    const Instruction& instruction = definition(value);
     if (!materialized_[value.index]) {
       for (ValueId operand : instruction.operands) {
         recordUse(operand, position, loops); // an inline value reads its operands where it is used

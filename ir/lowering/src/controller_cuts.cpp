@@ -11,11 +11,11 @@
 // - Constant geometry: the step count of each piece is the fewest uniform
 //   steps whose chords all stay within the budget, measured exactly on the
 //   curve (geom::chordDeviation) by the legalisation (curve_lap_steps.h;
-//   here only for an offset the controller computes, whose counts grow
-//   from the drawn piece's). A NURBS span is evaluated by Horner's rule in
-//   the loop index, its power-basis coefficients rescaled to the index and
-//   written as literals; a rational span adds its denominator and one
-//   division per coordinate.
+//   an offset's too, curve_lap_offset_steps.h); here only whether one
+//   chord is enough (a lap of single steps is no loop). A NURBS span is
+//   evaluated by Horner's rule in the loop index, its power-basis
+//   coefficients rescaled to the index and written as literals; a rational
+//   span adds its denominator and one division per coordinate.
 // - Geometry that depends on parameters: the controller computes the step
 //   count of the piece, once per cut, from a bound M >= |C''| over the
 //   piece: a chord over a parameter step h deviates at most h^2 M / 8, so
@@ -386,14 +386,14 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
   // lowering asks (a lap of single steps is no loop); beside the curve,
   // the offset's (planOffsetSteps).
   auto constantSteps = [&](const geom::Curve& geometry, double from, double to) {
+    if (runtimeOffset_) {
+      return stepsChosenByLegalisation; // the offset's (planOffsetSteps)
+    }
     geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
     EvaluationsCharged charged{evaluated, counted};
     // Less a fiftieth of an increment for the literals' 8 significant
     // digits (coefficients, the step), a few micrometres at most.
     auto search = [&] {
-      if (runtimeOffset_) {
-        return stepsChosenByLegalisation; // the offset's (planOffsetSteps)
-      }
       bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
       return single ? 1 : stepsChosenByLegalisation;
     };

@@ -12,6 +12,7 @@
 #include "cncc/geom/polynomial_span.h"
 #include "cncc/ir/builder.h"
 #include "cncc/ir/curve_lap.h"
+#include "cncc/ir/curve_lap_offset_steps.h"
 #include "cncc/ir/curve_lap_steps.h"
 
 #include <cstdint>
@@ -113,18 +114,10 @@ using ir::maximumCurveEvaluations;
 // The points the searches for the fewest uniform steps of a controller
 // cut's pieces may ask of its curve, over the cut (curve_lap_steps.h).
 using ir::maximumStepSearchEvaluations;
-// The points the search for a controller offset's step counts may ask of
-// the exact offsets it checks them on, over one cut.
-inline constexpr std::size_t maximumOffsetStepEvaluations = 10'000'000;
-
-// Adds the points `curve` was asked for to `total` when it goes out of
-// scope, also when its budget ran out (the budget of a search over a cut is
-// shared by the curves it makes).
-struct EvaluationsCharged {
-  std::size_t& total;
-  const geom::BudgetedCurve& curve;
-  ~EvaluationsCharged() { total += curve.used(); }
-};
+// The points the checks of a controller offset's step counts may ask of
+// the exact offsets, over one cut (curve_lap_offset_steps.h).
+using geom::EvaluationsCharged;
+using ir::maximumOffsetStepEvaluations;
 
 // An arc piece as native_arcs.cpp moves on it: its point at a fraction (0
 // to 1) of the piece, transformed, the helix's own z included; the way from

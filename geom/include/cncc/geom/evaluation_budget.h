@@ -44,4 +44,13 @@ private:
   mutable std::size_t used_ = 0;
 };
 
+// Adds the points `curve` was asked for to `total` when it goes out of
+// scope, also when its budget ran out (the budget of a search is shared by
+// the curves it makes).
+struct EvaluationsCharged {
+  std::size_t& total;
+  const BudgetedCurve& curve;
+  ~EvaluationsCharged() { total += curve.used(); }
+};
+
 } // namespace cncc::geom
