@@ -15,8 +15,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
+#include <variant>
 
 namespace cncc::ir {
 
@@ -39,15 +42,37 @@ bool printsAsLine(const geom::ArcSegment& segment, double grid) {
 
 class ArcLapFitter : public LapRewriter {
 public:
-  using LapRewriter::LapRewriter;
+  explicit ArcLapFitter(const Function& source) : LapRewriter(source) { decideAskedArcs(); }
 
 private:
-  bool writes(const CurveTableEntry& entry) const override {
-    return entry.sampling == CurveSampling::Arcs;
+  bool writes(std::uint32_t curve) const override {
+    return source_.curves[curve].sampling == CurveSampling::Arcs || arcs_.contains(curve);
   }
   void writeLap(const Instruction& lap) override { writeArcs(lap); }
   // The lap's regions are not rewritten: its moves are the fit's.
   void writePoint(const Instruction&, const Instruction& point) override { copy(point); }
+
+  // Each entry that asks for arcs fitted once, at the first of its laps:
+  // the fit's moves, or the arcs-as-chords warning and the entry left to
+  // its own expansion, asking no more.
+  void decideAskedArcs() {
+    for (const Instruction& lap : source_.instructions) {
+      if (lap.opcode != Opcode::CurveLap || !source_.curves[lap.index].arcsAsked ||
+          !decided_.insert(lap.index).second) {
+        continue;
+      }
+      const CurveTableEntry& entry = source_.curves[lap.index];
+      std::variant<LapArcs, std::string> fitted = askedLapArcs(entry, *curveOf(lap));
+      if (LapArcs* arcs = std::get_if<LapArcs>(&fitted)) {
+        arcs_.emplace(lap.index, std::move(*arcs));
+        continue;
+      }
+      output_.curves[lap.index].arcsAsked.reset();
+      output_.warnings.push_back({LegalisationWarning::Kind::ArcsAsChords, entry.cutSpan,
+                                  fmt::format("this cut is printed as G01 chords, not arcs: {}",
+                                              std::get<std::string>(fitted))});
+    }
+  }
 
   // The lap's height plus the plane's: a number where the height is one.
   ValueId heightOf(const Instruction& lap, double planeZ) {
@@ -73,6 +98,9 @@ private:
     if (known == arcs_.end()) {
       known = arcs_.emplace(lap.index, lapArcs(source_.curves[lap.index], *curveOf(lap))).first;
     }
+    if (std::optional<std::uint32_t> cut = currentCut(); cut && *cut < output_.cuts.size()) {
+      output_.cuts[*cut].arcMoves = CutArcs::Fitted;
+    }
     const LapArcs& arcs = known->second;
     ValueId z = heightOf(lap, arcs.planeZ);
     ValueId feed = mapped(lap.operands[2]);
@@ -91,6 +119,7 @@ private:
   }
 
   std::map<std::uint32_t, LapArcs> arcs_;
+  std::set<std::uint32_t> decided_;
 };
 
 } // namespace
@@ -139,22 +168,43 @@ geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, double tolerance,
   }
 }
 
-LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve) {
-  geom::ArcFit fitted;
-  const geom::ArcFit* fit = entry.fittedArcs.get();
-  if (fit == nullptr) {
-    fitted = fitArcsWithinBudget(curve, entry.amount, entry.cutSpan, entry.curveSpan);
-    fit = &fitted;
-  }
-  if (fit->segments.empty()) {
-    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, entry.curveSpan,
+namespace {
+
+LapArcs arcsOfFit(const geom::ArcFit& fit, double grid, frontend::SourceSpan curveSpan) {
+  if (fit.segments.empty()) {
+    throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan,
                         "the arcs fitted to this curve are none");
   }
-  return arcMovesOnGrid(fit->segments, entry.grid);
+  return arcMovesOnGrid(fit.segments, grid);
+}
+
+} // namespace
+
+LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve) {
+  return arcsOfFit(fitArcsWithinBudget(curve, entry.amount, entry.cutSpan, entry.curveSpan),
+                   entry.grid, entry.curveSpan);
+}
+
+std::variant<LapArcs, std::string> askedLapArcs(const CurveTableEntry& entry,
+                                                const geom::Curve& curve) {
+  const ArcsAsked& asked = *entry.arcsAsked;
+  try {
+    return arcsOfFit(fitArcsWithinBudget(curve, asked.tolerance, entry.cutSpan, entry.curveSpan),
+                     asked.grid, entry.curveSpan);
+  } catch (const CurveLapError& error) {
+    return std::string(error.what());
+  }
 }
 
 bool fitLapArcs(Function& function) {
-  return rewriteLaps<ArcLapFitter>(function, CurveSampling::Arcs);
+  bool asked = std::any_of(function.curves.begin(), function.curves.end(),
+                           [](const CurveTableEntry& entry) { return entry.arcsAsked; });
+  if (!asked && !hasCurveLap(function, CurveSampling::Arcs)) {
+    return false;
+  }
+  ArcLapFitter fitter(function);
+  function = fitter.run();
+  return true;
 }
 
 } // namespace cncc::ir

@@ -28,7 +28,7 @@ public:
   using LapRewriter::LapRewriter;
 
 private:
-  bool writes(const CurveTableEntry& entry) const override { return entry.isBlocks(); }
+  bool writes(std::uint32_t curve) const override { return source_.curves[curve].isBlocks(); }
   // The lap's regions are not rewritten: its move is the blocks'.
   void writePoint(const Instruction&, const Instruction& point) override { copy(point); }
 

@@ -39,7 +39,7 @@ public:
   }
 
 private:
-  bool writes(const CurveTableEntry&) const override { return true; }
+  bool writes(std::uint32_t) const override { return true; }
   void writeLap(const Instruction& lap) override { expandLap(lap); }
   void writePoint(const Instruction& lap, const Instruction& point) override {
     feedToPoint(lap, point);

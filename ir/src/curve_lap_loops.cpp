@@ -30,8 +30,8 @@ public:
   using LapRewriter::LapRewriter;
 
 private:
-  bool writes(const CurveTableEntry& entry) const override {
-    return entry.sampling == CurveSampling::Steps;
+  bool writes(std::uint32_t curve) const override {
+    return source_.curves[curve].sampling == CurveSampling::Steps;
   }
   void writeLap(const Instruction& lap) override { expandLap(lap); }
   void writePoint(const Instruction& lap, const Instruction& point) override {

@@ -47,9 +47,9 @@ public:
   using Rewriter::Rewriter;
 
 protected:
-  // Whether this legalisation writes out the laps of `entry` (writeLap);
-  // the others are copied as they are.
-  virtual bool writes(const CurveTableEntry& entry) const = 0;
+  // Whether this legalisation writes out the laps of the curve table's
+  // entry `curve` (writeLap); the others are copied as they are.
+  virtual bool writes(std::uint32_t curve) const = 0;
   virtual void writeLap(const Instruction& lap) = 0;
   // A curve.point of the lap being written, met where writeLap rewrites
   // one of its regions.
@@ -63,7 +63,7 @@ protected:
     if (instruction.opcode == Opcode::CutBegin) {
       cut_ = instruction.index;
     }
-    if (instruction.opcode == Opcode::CurveLap && writes(source_.curves[instruction.index])) {
+    if (instruction.opcode == Opcode::CurveLap && writes(instruction.index)) {
       const Instruction* outer = lap_;
       lap_ = &instruction;
       writeLap(instruction);

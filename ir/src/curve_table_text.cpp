@@ -69,6 +69,16 @@ OffsetStepGrowth readOffsetGrowth(std::string_view rest) {
   return {words[0] == "left" ? 1.0 : -1.0, parseNumber(words[2]), parseNumber(words[4])};
 }
 
+// `asks arcs within 0.0098 grid 0.001`: arcs in place of the lap's
+// chords or steps where a fit keeps them.
+ArcsAsked readArcsAsked(std::string_view rest) {
+  std::vector<std::string_view> words = splitWords(rest);
+  if (words.size() != 5 || words[0] != "arcs" || words[1] != "within" || words[3] != "grid") {
+    throw Failure{"expected 'asks arcs within TOLERANCE grid GRID'"};
+  }
+  return {parseNumber(words[2]), parseNumber(words[4])};
+}
+
 std::string offsetGrowthText(const OffsetStepGrowth& growth) {
   return fmt::format("    offset {} radius {} largest {}\n", growth.side > 0 ? "left" : "right",
                      growth.compiledRadius, growth.largestRadius);
@@ -173,6 +183,8 @@ bool readSetting(std::string_view line, CurveTableEntry& entry,
     entry.stepReading = readStepReading(rest);
   } else if (keyword == "offset") {
     entry.offsetGrowth = readOffsetGrowth(rest);
+  } else if (keyword == "asks") {
+    entry.arcsAsked = readArcsAsked(rest);
   } else if (keyword == "walks") {
     readList(rest, entry.walkRegions, parseWholeNumber);
   } else if (keyword == "arcs") {
@@ -227,6 +239,10 @@ std::string curveEntryText(std::span<const CurveTableEntry> curves, std::size_t 
   if (entry.offsetGrowth) {
     out += offsetGrowthText(*entry.offsetGrowth);
   }
+  if (entry.arcsAsked) {
+    out += fmt::format("    asks arcs within {} grid {}\n", entry.arcsAsked->tolerance,
+                       entry.arcsAsked->grid);
+  }
   if (!entry.arcRegions.empty()) {
     out += arcRegionsText(entry.arcRegions);
   }
@@ -278,7 +294,7 @@ bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry,
     entry.pieces.push_back(readPiece(line));
   } else if (!readSetting(line, entry, earlier)) {
     throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', "
-                  "'counts', 'reading', 'offset', 'arcs', 'walks', 'progress', 'host', "
+                  "'counts', 'reading', 'offset', 'asks', 'arcs', 'walks', 'progress', 'host', "
                   "'numbers', 'chosen' or '}'"};
   }
   return false;

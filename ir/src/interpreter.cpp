@@ -20,6 +20,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <variant>
 
 namespace cncc::ir {
 
@@ -233,6 +234,14 @@ private:
       }
       recordBlocks(lap, kind, 0, points.blocks, zTo, feed, points.blockWeights);
       return;
+    }
+    if (entry.arcsAsked && !ramp) {
+      // Arcs where a fit keeps them, as fit-arcs decides.
+      const LapPoints& points = lapPoints(lap, entry, false);
+      if (points.arcs) {
+        runArcLap(lap, *points.arcs, zTo + points.arcs->planeZ, feed);
+        return;
+      }
     }
     if (entry.sampling == CurveSampling::Steps) {
       runSteppedLap(lap, entry, zFrom, zTo, feed);
@@ -465,6 +474,14 @@ private:
     };
   }
 
+  // The arcs an entry asks for, where a fit keeps them.
+  static void askArcs(const CurveTableEntry& entry, LapPoints& points) {
+    std::variant<LapArcs, std::string> fitted = askedLapArcs(entry, *points.curve);
+    if (LapArcs* arcs = std::get_if<LapArcs>(&fitted)) {
+      points.arcs = std::move(*arcs);
+    }
+  }
+
   const LapPoints& lapPoints(const Instruction& lap, const CurveTableEntry& entry, bool ramp) {
     LapPoints fresh;
     try {
@@ -480,6 +497,9 @@ private:
       if (same == known.end()) {
         if (known.size() >= maximumCurvesPerLap) {
           known.erase(known.begin());
+        }
+        if (entry.arcsAsked && !ramp) {
+          askArcs(entry, fresh);
         }
         if (entry.sampling == CurveSampling::Arcs) {
           fresh.arcs = lapArcs(entry, *fresh.curve);
@@ -497,7 +517,7 @@ private:
         if (same->shares.empty()) {
           same->shares = lapRegionShares(entry, *same->curve);
         }
-      } else if (ramp && !same->arcs && same->progress.empty()) {
+      } else if (ramp && entry.sampling != CurveSampling::Arcs && same->progress.empty()) {
         same->progress = lapProgress(entry, *same->curve, same->parameters);
       }
       return *same;

@@ -377,6 +377,7 @@ private:
       verifyChosenParameters(where, entry, *entry.chosenParameters);
     }
     verifyArcs(where, entry);
+    verifyArcsAsked(where, entry);
     verifySteps(where, entry);
     bool notPoints = entry.sampling == CurveSampling::Arcs ||
                      entry.sampling == CurveSampling::Steps || entry.isBlocks();
@@ -432,6 +433,31 @@ private:
       problem(fmt::format("{} has the grid {}, which is not a grid of arcs or fitted blocks of "
                           "zero or more",
                           where, entry.grid));
+    }
+  }
+
+  // Arcs asked in place of chords within a tolerance or steps whose counts
+  // are numbers (a fit at the values compiled with).
+  void verifyArcsAsked(const std::string& where, const CurveTableEntry& entry) {
+    if (!entry.arcsAsked) {
+      return;
+    }
+    const ArcsAsked& asked = *entry.arcsAsked;
+    bool chords =
+        entry.sampling == CurveSampling::ChordTolerance || entry.sampling == CurveSampling::Steps;
+    bool computed = std::find(entry.regionSteps.begin(), entry.regionSteps.end(), 0) !=
+                        entry.regionSteps.end() ||
+                    !entry.walkRegions.empty() || entry.offsetGrowth.has_value();
+    if (!chords || computed) {
+      problem(fmt::format("{} asks for arcs but is cut by {}{}", where,
+                          curveSamplingName(entry.sampling),
+                          computed ? " the program computes" : ""));
+    }
+    if (!std::isfinite(asked.tolerance) || !(asked.tolerance > 0) || !std::isfinite(asked.grid) ||
+        asked.grid < 0) {
+      problem(fmt::format("{} asks for arcs within {} on the grid {}, not a positive tolerance and "
+                          "a grid of zero or more",
+                          where, asked.tolerance, asked.grid));
     }
   }
 

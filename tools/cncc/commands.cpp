@@ -59,11 +59,7 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
     throw InternalError("the lowered IR does not verify: " + problems.front());
   }
   if (target != nullptr) {
-    try {
-      ir::runCurveLegalisation(*function, printAfterCallback(options));
-      ir::reportLegalisationWarnings(*function, diagnostics);
-    } catch (const ir::CurveLapError& error) {
-      ir::reportCurveLapError(error, diagnostics);
+    if (!ir::legaliseCurves(*function, diagnostics, printAfterCallback(options))) {
       return "";
     }
     optimise(*function, options);

@@ -1,15 +1,15 @@
 // Fitted arcs on a target that prints G02/G03 (LoweringOptions::arcBlocks:
-// gcode, the macro targets and LinuxCNC). A cut that wants arcs (arcs=true, or
-// --arcs without arcs=false) has its curve fitted once with tangent-
-// continuous arcs (geom/arc_fitting.h) within its tolerance less the
-// rounding of the printed numbers; each pass is a rapid over the start, a
-// plunge (on the host, a ramp lap of chords) and a curve.lap whose entry
-// asks for arcs and holds the fit, which the fit-arcs legalisation writes
-// out as move.arc and move.feed ops. Every coordinate and centre offset is
-// on the printed grid (coordinateIncrement), so the IR is the path the
-// printed program makes. The arcs are the host's, so on a controller-side
-// target a cut whose geometry depends on a part parameter keeps its
-// controller loops, with an arcs-as-chords warning saying why.
+// gcode, the macro targets and LinuxCNC). A cut that wants arcs (arcs=true,
+// or --arcs without arcs=false) is lowered as any other (host chords, or
+// controller loops), its level laps' entry asking for arcs within its
+// tolerance less the rounding of the printed ends and centres, on the
+// printed grid (ArcsAsked); the legalisation fit-arcs fits the curve and
+// writes the arcs, or warns and leaves the laps to their expansion. What
+// the cut itself stands in the way of is reported here: samples= or
+// spacing=, and on a controller-side target a ramp or a curve that depends
+// on a part parameter (the arcs are the host's numbers), or a tolerance
+// that leaves no room for the grid. A cut beside its curve whose offset
+// the host computes is still fitted here (fittedOffsetArcs).
 #include "part_lowering.h"
 
 #include "cncc/geom/arc_fitting.h"
@@ -40,15 +40,20 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
   if (modifierValue(cut, "samples") != nullptr || modifierValue(cut, "spacing") != nullptr) {
     return "samples= or spacing= chose its points; arcs are fitted within a tolerance=";
   }
-  if (!options_.controllerLoops) {
-    return std::nullopt; // the host evaluates everything at the values compiled with
-  }
-  if (rampEntry(cut)) {
-    return "its entry=ramp laps are computed on the controller";
-  }
-  // A loop variable unrolls the loop: each copy's arcs are fitted.
-  if (std::optional<ParameterUse> use = parameterUse(cut)) {
-    return fmt::format("its {} depends on parameter '{}'", use->what, use->parameter);
+  if (options_.controllerLoops) {
+    if (rampEntry(cut)) {
+      return "its entry=ramp laps are computed on the controller";
+    }
+    // A loop variable unrolls the loop: each copy's arcs are fitted.
+    if (std::optional<ParameterUse> use = parameterUse(cut)) {
+      return fmt::format("its {} depends on parameter '{}'", use->what, use->parameter);
+    }
+  } // the host evaluates everything at the values compiled with
+  ToleranceBudget budget = toleranceBudget(cut);
+  if (!(budget.tolerance > 2.0 * budget.arcRounding())) {
+    return fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to the "
+                       "increment {:g}",
+                       budget.tolerance, budget.increment);
   }
   return std::nullopt;
 }
@@ -60,74 +65,28 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
   if (std::optional<std::string> problem = arcCutProblem(cut)) {
     return *problem;
   }
-  ToleranceBudget budget = toleranceBudget(cut);
-  if (!(budget.tolerance > 2.0 * budget.arcRounding())) {
-    return fmt::format("its tolerance {:g} leaves no room for rounding the arcs' centres to the "
-                       "increment {:g}",
-                       budget.tolerance, budget.increment);
-  }
   try {
-    return fitArcsWithinBudget(*curve.geometry, budget.forArcs(), cut.span, cut.curve->span);
+    return fitArcsWithinBudget(*curve.geometry, toleranceBudget(cut).forArcs(), cut.span,
+                               cut.curve->span);
   } catch (const CurveLapError& error) {
     return std::string(error.what());
   }
 }
 
-bool PartLowering::lowerArcCut(const CutStmt& cut, const CutCurve& curve) {
+void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view problem) {
+  diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
+                       fmt::format("this cut is printed as G01 chords, not arcs: {}", problem));
+}
+
+std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut) {
   if (!asksFittedArcs(cut)) {
-    return false;
+    return std::nullopt;
   }
-  std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, curve);
-  if (const std::string* problem = std::get_if<std::string>(&fitted)) {
-    diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
-                         fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
-    return false;
+  if (std::optional<std::string> problem = arcCutProblem(cut)) {
+    reportArcsAsChords(cut, *problem);
+    return std::nullopt;
   }
-  HostCut begun = beginHostCut(cut);
-  // The ramp lap as chords: each piece a curve.lap of its own.
-  std::vector<std::optional<std::uint32_t>> rampTables;
-  if (begun.ramp) {
-    checkRampCloses(curve, cut);
-    rampTables = pieceCurveTables(cut, curve, rampSegments(curve, cut), false);
-  }
-  ValueId feedValue = arithmetic_.value(begun.feed);
-  ValueId safeValue = arithmetic_.value(*safe_);
-  beginCutMoves({curve.geometry, *chordTolerance(cut), cut.span, methodOf(cut), CutArcs::Fitted});
-
-  // The level laps: curve.laps the fit-arcs legalisation writes out as the
-  // fit made here (which decided the cut is printed as arcs).
-  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
-  entry.sampling = CurveSampling::Arcs;
-  entry.amount = toleranceBudget(cut).forArcs();
-  entry.grid = options_.coordinateIncrement;
-  entry.fittedArcs =
-      std::make_shared<const geom::ArcFit>(std::get<geom::ArcFit>(std::move(fitted)));
-  LapArcs arcs = lapArcs(entry, *curve.geometry);
-  std::uint32_t arcsTable = builder_.addCurve(std::move(entry));
-  Eigen::Vector2d end = arcs.moves.empty() ? arcs.start : arcs.moves.back().end;
-
-  double increment = options_.coordinateIncrement;
-  std::vector<double> depths = passDepths(cut);
-  double previous = 0;
-  for (std::size_t k = 0; k < depths.size(); ++k) {
-    PassScope pass(builder_, sweepPass(k, depths.size()));
-    double passZ = beginPass(depths[k], depths.size());
-    double entryZ = begun.ramp ? previous : passZ;
-    builder_.rapid(builder_.constant(arcs.start.x()), builder_.constant(arcs.start.y()), safeValue);
-    builder_.feed(builder_.constant(arcs.start.x()), builder_.constant(arcs.start.y()),
-                  builder_.constant(onPrintedGrid(arcs.planeZ + entryZ, increment)), feedValue);
-    if (begun.ramp) {
-      PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
-      builder_.comment("ramp");
-      for (std::size_t p = 0; p < rampTables.size(); ++p) {
-        emitCurveLap(curve, *rampTables[p], entryZ, passZ, feedValue, cut, p, p + 1);
-      }
-    }
-    emitCurveLap(curve, arcsTable, passZ, passZ, feedValue, cut);
-    builder_.rapid(builder_.constant(end.x()), builder_.constant(end.y()), safeValue);
-    previous = passZ;
-  }
-  return true;
+  return ArcsAsked{toleranceBudget(cut).forArcs(), options_.coordinateIncrement};
 }
 
 // One lap of arcs at height z from their start on the grid; returns where

@@ -111,8 +111,9 @@ struct ChordCorner {
   Eigen::Vector3d nextTangent = Eigen::Vector3d::Zero();
 };
 
-// How a host offset's laps are cut: its own arcs or fitted ones (then
-// their lap's table), else its points (their lap's table, or chords).
+// How a host offset's laps are cut: its own arcs or ones fitted here, or
+// level laps asking for fitted arcs (their table), else its points (their
+// lap's table, or chords).
 struct HostOffsetLaps {
   std::optional<std::vector<geom::ArcSegment>> arcs;
   CutArcs arcMoves = CutArcs::None;

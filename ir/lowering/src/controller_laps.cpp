@@ -65,6 +65,7 @@ PartLowering::SteppedLap PartLowering::steppedLap(const CutStmt& cut, const CutC
       }
     }
   }
+  entry.arcsAsked = arcsAsked_; // never with a ramp (arcCutProblem)
   lap.table = builder_.addCurve(std::move(entry));
   return lap;
 }

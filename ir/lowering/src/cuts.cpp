@@ -414,13 +414,13 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   CutCurve curve = cutCurve(cut);
   checkCutBounds(cut, *curve.geometry);
   bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
-  if (!nativeArcs && lowerArcCut(cut, curve)) {
-    return;
-  }
-  if (!nativeArcs && lowerSplineCut(cut, curve)) {
+  // Fitted arcs are asked of the laps either way below; fit-arcs decides.
+  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut);
+  if (!nativeArcs && !arcsAsked_ && lowerSplineCut(cut, curve)) {
     return;
   }
   if (lowerControllerCut(cut, curve)) {
+    arcsAsked_.reset();
     return;
   }
   if (nativeArcs) {
@@ -428,13 +428,14 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     return;
   }
   lowerCurveLaps(cut, curve);
+  arcsAsked_.reset();
 }
 
 // The cut's passes, each lap along the curve a curve.lap whose points the
 // target's legalisation chooses (expand-curve-laps).
 void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   auto [feed, ramp] = beginHostCut(cut);
-  CurveTableEntry entry = curveTableEntry(cut, curve);
+  CurveTableEntry entry = curveTableEntry(cut, curve, arcsAsked_);
   std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
@@ -446,9 +447,15 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   beginCutMoves({curve.geometry,
                  chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
                  methodOf(cut)});
-  std::uint32_t table = builder_.addCurve(std::move(entry));
+  // Level laps ask for arcs where the cut does; a ramp lap is chords.
+  std::uint32_t table = builder_.addCurve(entry);
+  std::uint32_t rampTable = table;
+  if (ramp && entry.arcsAsked) {
+    entry.arcsAsked.reset();
+    rampTable = builder_.addCurve(std::move(entry));
+  }
   auto lap = [&](double zFrom, double zTo) {
-    emitCurveLap(curve, table, zFrom, zTo, feedValue, cut);
+    emitCurveLap(curve, zFrom == zTo ? table : rampTable, zFrom, zTo, feedValue, cut);
   };
 
   // The lap starts and ends where the curve does.
@@ -482,9 +489,12 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
 // The cut's curve for the function's curve table: its pieces' parameter
 // ranges and knot spans, how its points are chosen (checked here, where the
 // cut's own errors are reported, as far as that takes no more than an
-// estimate), and the NURBS spans the host computes as points.
-CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve& curve) {
+// estimate), and the NURBS spans the host computes as points; asking for
+// `arcs` where given.
+CurveTableEntry PartLowering::curveTableEntry(const CutStmt& cut, const CutCurve& curve,
+                                              std::optional<ArcsAsked> arcs) {
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
+  entry.arcsAsked = arcs;
   // A controller that rounds every coordinate to its increment takes up to
   // half an increment per axis of the tolerance (LoweringOptions).
   chooseSampling(entry, cut, *curve.geometry, toleranceBudget(cut).forPoints());
@@ -502,7 +512,9 @@ void PartLowering::chooseSampling(CurveTableEntry& entry, const CutStmt& cut,
     checkSpacing(cut, curve, entry.amount);
   } else {
     entry.amount = chordTolerance;
-    checkChordCount(cut, curve, entry.amount);
+    if (!entry.arcsAsked) { // arcs may keep a curve that chords cannot (fit-arcs)
+      checkChordCount(cut, curve, entry.amount);
+    }
   }
 }
 

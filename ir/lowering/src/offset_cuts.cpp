@@ -454,10 +454,10 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
 }
 
 // The offset's own lines and arcs where it is made of nothing else (moves at
-// once), else arcs fitted to it where the cut asks (a lap fit-arcs writes
-// out); the points of the laps without arcs and of a ramp lap: a curve.lap
-// (offset_laps.cpp), or chords where the offset's pieces are joined
-// otherwise than besideCurve follows.
+// once), else where the cut asks for fitted arcs level laps that ask for
+// them (fit-arcs decides); the points of the other laps and of a ramp lap:
+// a curve.lap (offset_laps.cpp), or chords where the offset's pieces are
+// joined otherwise than besideCurve follows (and arcs fitted here).
 HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
                                             const std::shared_ptr<const geom::Curve>& offset,
                                             const std::shared_ptr<const BesideCurve>& beside,
@@ -467,15 +467,17 @@ HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
     laps.arcs = exactSegments(*offset);
     laps.arcMoves = laps.arcs ? CutArcs::Native : CutArcs::None;
   }
-  std::shared_ptr<const geom::ArcFit> fit = laps.arcs ? nullptr : fittedOffsetArcs(cut, *offset);
-  if (fit) {
-    laps.arcs = fit->segments;
-    laps.arcMoves = CutArcs::Fitted;
-    if (beside) {
-      laps.arcsTable = besideArcsCurve(cut, *beside, fit);
+  if (!laps.arcs && beside) {
+    if (std::optional<ArcsAsked> asked = arcsAskedBy(cut)) {
+      laps.arcsTable = besideChordsCurve(cut, *beside, asked);
+    }
+  } else if (!laps.arcs) {
+    if (std::shared_ptr<const geom::ArcFit> fit = fittedOffsetArcs(cut, *offset)) {
+      laps.arcs = fit->segments;
+      laps.arcMoves = CutArcs::Fitted;
     }
   }
-  if ((!laps.arcs || ramp) && beside) {
+  if ((!(laps.arcs || laps.arcsTable) || ramp) && beside) {
     laps.pointsTable = besideChordsCurve(cut, *beside);
   } else if (!laps.arcs || ramp) {
     laps.chords = offsetChords(offsetSamples(cut, *offset), ramp);
@@ -567,8 +569,7 @@ std::shared_ptr<const geom::ArcFit> PartLowering::fittedOffsetArcs(const CutStmt
   }
   std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, stand);
   if (const std::string* problem = std::get_if<std::string>(&fitted)) {
-    diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
-                         fmt::format("this cut is printed as G01 chords, not arcs: {}", *problem));
+    reportArcsAsChords(cut, *problem);
     return nullptr;
   }
   return std::make_shared<const geom::ArcFit>(std::get<geom::ArcFit>(std::move(fitted)));

@@ -78,8 +78,10 @@ PartLowering::besideCurve(const CutStmt& cut, const CutCurve& curve,
   return beside;
 }
 
-std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCurve& beside) {
+std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCurve& beside,
+                                              std::optional<ArcsAsked> arcs) {
   CurveTableEntry entry = beside.layout;
+  entry.arcsAsked = arcs;
   chooseSampling(entry, cut, *entry.geometry, offsetChordTolerance(cut));
   entry.pointsAsNumbers = options_.controllerLoops;
   return builder_.addCurve(std::move(entry));
@@ -94,18 +96,6 @@ std::uint32_t PartLowering::chosenPointsCurve(const CutStmt& cut, const BesideCu
   chooseSampling(entry, cut, *entry.geometry, toleranceBudget(cut).forPoints());
   entry.chosenParameters = std::make_shared<const std::vector<double>>(parameters);
   entry.pointsAsNumbers = options_.controllerLoops;
-  return builder_.addCurve(std::move(entry));
-}
-
-// Cut as the arcs fitted to the offset (the fit that decided it), which the
-// fit-arcs legalisation writes out.
-std::uint32_t PartLowering::besideArcsCurve(const CutStmt& cut, const BesideCurve& beside,
-                                            std::shared_ptr<const geom::ArcFit> fit) {
-  CurveTableEntry entry = beside.layout;
-  entry.sampling = CurveSampling::Arcs;
-  entry.amount = toleranceBudget(cut).forArcs();
-  entry.grid = options_.coordinateIncrement;
-  entry.fittedArcs = std::move(fit);
   return builder_.addCurve(std::move(entry));
 }
 

@@ -97,9 +97,8 @@ std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, cons
   try {
     lowering::PartLowering lowering(program, part, diagnostics, options);
     LoweredPart lowered = lowering.run();
-    if (options.expandCurveLaps) {
-      runCurveLegalisation(lowered.function);
-      reportLegalisationWarnings(lowered.function, diagnostics);
+    if (options.expandCurveLaps && !legaliseCurves(lowered.function, diagnostics)) {
+      return std::nullopt;
     }
     if (options.literalSignificantDigits > 0 &&
         !trigonometricLiteralsFit(lowered, diagnostics, options)) {
@@ -157,9 +156,25 @@ void reportLegalisationWarnings(Function& function, DiagnosticEngine& diagnostic
     case LegalisationWarning::Kind::SplineExactStop:
       diagnostics.report(DiagnosticKind::SplineExactStop, warning.span, warning.message);
       break;
+    case LegalisationWarning::Kind::ArcsAsChords:
+      diagnostics.report(DiagnosticKind::ArcsAsChords, warning.span, warning.message);
+      break;
     }
   }
   function.warnings.clear();
+}
+
+bool legaliseCurves(Function& function, DiagnosticEngine& diagnostics,
+                    const AfterPassCallback& afterPass) {
+  try {
+    runCurveLegalisation(function, afterPass);
+  } catch (const CurveLapError& error) {
+    reportLegalisationWarnings(function, diagnostics);
+    reportCurveLapError(error, diagnostics);
+    return false;
+  }
+  reportLegalisationWarnings(function, diagnostics);
+  return true;
 }
 
 PartUnits partUnits(const PartItem& part) {

@@ -300,9 +300,11 @@ private:
   // spacing= that would put more points on the curve than a cut may have.
   void checkSpacing(const frontend::CutStmt& cut, const geom::Curve& curve, double spacing);
   void lowerCurveLaps(const frontend::CutStmt& cut, const CutCurve& curve);
-  CurveTableEntry curveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
+  CurveTableEntry curveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
+                                  std::optional<ArcsAsked> arcs = std::nullopt);
   // How the entry's points are chosen on `curve`: samples=, spacing= or
-  // within `chordTolerance` (checked here as far as an estimate goes).
+  // within `chordTolerance` (checked here as far as an estimate goes, but
+  // for an entry asking for arcs, which may keep what chords cannot).
   void chooseSampling(CurveTableEntry& entry, const frontend::CutStmt& cut,
                       const geom::Curve& curve, double chordTolerance);
   CurveTableEntry wholeCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
@@ -445,11 +447,12 @@ private:
                                                  const CutCurve& curve,
                                                  const std::shared_ptr<const geom::Curve>& offset,
                                                  double distance);
-  std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside);
+  // The offset's points within the cut's budget (on a controller, as
+  // numbers), its level laps asking for `arcs` where given.
+  std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
+                                  std::optional<ArcsAsked> arcs = std::nullopt);
   std::uint32_t chosenPointsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
                                   const std::vector<double>& parameters);
-  std::uint32_t besideArcsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
-                                std::shared_ptr<const geom::ArcFit> fit);
   void emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom, double zTo,
                      ValueId feed, const frontend::CutStmt& cut);
   // The lap with its operands (z from, z to, feed, then a NURBS block's weights).
@@ -491,8 +494,12 @@ private:
                              ValueId z, ValueId feed);
 
   // arc_cuts.cpp
-  bool lowerArcCut(const frontend::CutStmt& cut, const CutCurve& curve);
+  // The arcs the cut asks for in place of its level laps' chords or steps,
+  // which fit-arcs fits; nullopt (with the arcs-as-chords warning where it
+  // asked) when the cut itself stands in the way.
+  std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut);
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
+  void reportArcsAsChords(const frontend::CutStmt& cut, std::string_view problem);
   std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
                                                      const CutCurve& curve);
   // Each piece's curve table entry, its points within the cut's chord
@@ -678,6 +685,8 @@ private:
   // Set while the defaults are only checked, not built into the program.
   bool checkingDefaults_ = false;
   std::optional<RuntimeOffset> runtimeOffset_;
+  // What the cut being lowered asks its level laps for (arcsAskedBy).
+  std::optional<ArcsAsked> arcsAsked_;
 };
 
 // Small helpers shared by the files.

@@ -290,8 +290,9 @@ TEST(OffsetCuts, AConstantRadiusBesideACurveIsALoopOnTheController) {
 }
 
 // What only the compiler's offset gives keeps the host's laps: points as
-// numbers for lead arcs and samples=, the fit for fitted arcs; a path of
-// lines and arcs is its arcs. A ramp is the controller's.
+// numbers for lead arcs and samples=, and with fitted arcs too, asking
+// fit-arcs for them; a path of lines and arcs is its arcs. A ramp is the
+// controller's.
 TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
   LoweringOptions controller;
   controller.controllerLoops = true;
@@ -308,8 +309,8 @@ TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
     ASSERT_TRUE(compiled.part) << modifier;
     for (const CurveTableEntry& entry : compiled.part->function.curves) {
       EXPECT_EQ(entry.sampling == CurveSampling::Steps, ramp) << modifier;
-      EXPECT_EQ(entry.sampling == CurveSampling::Arcs, arcs) << modifier;
-      EXPECT_EQ(entry.pointsAsNumbers, !ramp && !arcs) << modifier;
+      EXPECT_EQ(entry.arcsAsked.has_value(), arcs) << modifier;
+      EXPECT_EQ(entry.pointsAsNumbers, !ramp) << modifier;
     }
   }
   Compiled slot("part p() {\n  tool 1 diameter=4 feed=300\n  safe z=5\n  curve path(line((0, "

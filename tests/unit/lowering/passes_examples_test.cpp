@@ -121,16 +121,26 @@ TEST(PassesExamplesTest, DefaultPipelineKeepsToolPathAndDoesNotGrow) {
 }
 
 // The function's curve.laps cut as `sampling` says (all: nullopt).
-std::size_t curveLapCount(const Function& function,
-                          std::optional<CurveSampling> sampling = std::nullopt) {
+using EntryTest = std::function<bool(const CurveTableEntry&)>;
+
+std::size_t curveLapCount(const Function& function, const EntryTest& counted = nullptr) {
   std::size_t laps = 0;
   for (const Instruction& instruction : function.instructions) {
     laps += instruction.opcode == Opcode::CurveLap &&
-                    (!sampling || function.curves[instruction.index].sampling == *sampling)
+                    (!counted || counted(function.curves[instruction.index]))
                 ? 1
                 : 0;
   }
   return laps;
+}
+
+EntryTest cutBy(CurveSampling sampling) {
+  return [sampling](const CurveTableEntry& entry) { return entry.sampling == sampling; };
+}
+
+// Cut as arcs, or asking for them in place of chords or steps.
+bool arcsWanted(const CurveTableEntry& entry) {
+  return entry.sampling == CurveSampling::Arcs || entry.arcsAsked;
 }
 
 // Calls `check` with each example lowered with `lowering` (its source kept
@@ -153,12 +163,11 @@ void forEveryLoweredExample(const LoweringOptions& lowering,
 // off): interpreting the IR before the legalisations and after them gives
 // the same path to the last bit. The laps cut as `sampling` says (all:
 // nullopt) that the lowering left.
-std::size_t legaliseEveryExample(LoweringOptions lowering,
-                                 std::optional<CurveSampling> sampling = std::nullopt) {
+std::size_t legaliseEveryExample(LoweringOptions lowering, const EntryTest& counted = nullptr) {
   lowering.expandCurveLaps = false;
   std::size_t laps = 0;
   forEveryLoweredExample(lowering, [&](const std::string& name, Function& function) {
-    laps += curveLapCount(function, sampling);
+    laps += curveLapCount(function, counted);
     ToolPath before = interpret(function);
     runCurveLegalisation(function);
     EXPECT_EQ(curveLapCount(function), 0u) << name;
@@ -176,20 +185,37 @@ TEST(PassesExamplesTest, ExpandingCurveLapsKeepsToolPath) {
 }
 
 // The same with --arcs on a target that prints G02/G03 (as gcode's grid):
-// the laps of every planar cut ask for arcs, which fit-arcs writes out as
-// the interpreter ran them.
+// the level laps of every cut ask for arcs, which fit-arcs writes out as
+// the interpreter ran them (or, where no fit keeps them, leaves to the
+// expansion the interpreter ran instead).
 TEST(PassesExamplesTest, FittingArcsKeepsToolPath) {
   LoweringOptions arcs;
   arcs.arcBlocks = true;
   arcs.arcsOnEveryCut = true;
   arcs.coordinateIncrement = 0.0001;
-  EXPECT_GE(legaliseEveryExample(arcs, CurveSampling::Arcs), 10u);
+  EXPECT_GE(legaliseEveryExample(arcs, arcsWanted), 10u);
 }
 
-// Read back from its text, a lap cut as arcs has neither the source's curve
-// nor the lowering's fit: the interpreter fits the curve its regions
-// compute (which may differ from the source's in the last bits), and the
-// arcs, on a grid of 0.001, are the same.
+// And on a target that runs loops: the laps in steps of a cut whose curve
+// is numbers ask for arcs inside the pass loop (its height the loop's); the
+// examples' other curves read parameters (arcs-as-chords).
+TEST(PassesExamplesTest, FittingArcsInControllerLoopsKeepsToolPath) {
+  LoweringOptions arcs;
+  arcs.controllerLoops = true;
+  arcs.arcBlocks = true;
+  arcs.arcsOnEveryCut = true;
+  arcs.coordinateIncrement = 0.0001; // fine enough for the parts in inches
+  EXPECT_GE(legaliseEveryExample(arcs,
+                                 [](const CurveTableEntry& entry) {
+                                   return entry.sampling == CurveSampling::Steps && entry.arcsAsked;
+                                 }),
+            1u);
+}
+
+// Read back from its text, a lap asking for arcs has not the source's
+// curve: the interpreter fits the curve its regions compute (which may
+// differ from the source's in the last bits), and the arcs, on a grid of
+// 0.001, are the same.
 TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
   LoweringOptions arcs;
   arcs.expandCurveLaps = false;
@@ -198,11 +224,10 @@ TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
   arcs.coordinateIncrement = 0.001;
   std::unique_ptr<LoweredExample> lowered = lowerExampleKept("polar_contour.cdl", "", arcs);
   ASSERT_TRUE(lowered->function);
-  ASSERT_GE(curveLapCount(*lowered->function, CurveSampling::Arcs), 1u);
+  ASSERT_GE(curveLapCount(*lowered->function, arcsWanted), 1u);
   ParseError error;
   std::optional<Function> parsed = parseFunction(printFunction(*lowered->function), error);
   ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_FALSE(parsed->curves.front().fittedArcs);
   ToolPath before = interpret(*lowered->function);
   ToolPath after = interpret(*parsed);
   ASSERT_EQ(before.events.size(), after.events.size());
@@ -359,7 +384,7 @@ TEST(PassesExamplesTest, ControllerLegalisationKeepsEveryExamplesToolPath) {
   controller.controllerLoops = true;
   controller.coordinateIncrement = 0.0001; // fine enough for the parts in inches
   // polar_contour's ramp and level laps.
-  EXPECT_GE(legaliseEveryExample(controller, CurveSampling::Steps), 1u);
+  EXPECT_GE(legaliseEveryExample(controller, cutBy(CurveSampling::Steps)), 1u);
 }
 
 // Every example lowered for a target that prints NURBS blocks (Fanuc, M80),
@@ -372,19 +397,19 @@ TEST(PassesExamplesTest, CurveBlocksKeepEveryExamplesToolPath) {
   nurbs.nurbsBlocks = true;
   nurbs.coordinateIncrement = 0.0001;
   // cam_profile's engraved mark, method=nurbs.
-  EXPECT_GE(legaliseEveryExample(nurbs, CurveSampling::NurbsBlocks), 1u);
+  EXPECT_GE(legaliseEveryExample(nurbs, cutBy(CurveSampling::NurbsBlocks)), 1u);
   LoweringOptions splines;
   splines.splineInterpolation = true;
   splines.splineBlocks = true;
   splines.coordinateIncrement = 0.001;
   // rosette_plate's petals (method=cspline) and the other spline cuts: 19 laps.
-  EXPECT_GE(legaliseEveryExample(splines, CurveSampling::SplineBlocks), 19u);
+  EXPECT_GE(legaliseEveryExample(splines, cutBy(CurveSampling::SplineBlocks)), 19u);
   LoweringOptions spans;
   spans.controllerLoops = true;
   spans.arcBlocks = true;
   spans.polynomialBlocks = true;
   spans.coordinateIncrement = 0.0001;
-  EXPECT_GE(legaliseEveryExample(spans, CurveSampling::PolynomialBlocks), 19u);
+  EXPECT_GE(legaliseEveryExample(spans, cutBy(CurveSampling::PolynomialBlocks)), 19u);
 }
 
 // Every example as the macro targets give it to their printer (controller

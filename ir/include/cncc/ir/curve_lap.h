@@ -16,6 +16,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace cncc::ir {
@@ -148,15 +149,24 @@ LapArcs arcMovesOnGrid(const std::vector<geom::ArcSegment>& segments, double gri
 geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, double tolerance,
                                  frontend::SourceSpan cutSpan, frontend::SourceSpan curveSpan);
 
-// The entry's arcs: its fittedArcs, or `curve` fitted within the entry's
+// The arcs of a lap cut as arcs: `curve` fitted within the entry's
 // tolerance (at most maximumArcFitEvaluations points of it). Throws
 // CurveLapError: a curve that leaves its plane or cannot be fitted (at the
 // curve), or a fit past the bound (at the cut).
 LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve);
 
-// `fit-arcs`: every curve.lap whose entry asks for arcs written out as its
-// move.arc and move.feed ops (lapArcs), each lap at its height; the other
-// laps stay. Throws CurveLapError.
+// The arcs an entry asks for in place of its chords or steps (arcsAsked),
+// `curve` fitted within the asked tolerance; or why no fit keeps them (the
+// curve leaves its plane or cannot be fitted, the fit is past its bound).
+std::variant<LapArcs, std::string> askedLapArcs(const CurveTableEntry& entry,
+                                                const geom::Curve& curve);
+
+// `fit-arcs`: every curve.lap cut as arcs written out as its move.arc and
+// move.feed ops (lapArcs), each lap at its height, and so is every lap of
+// an entry that asks for arcs (arcsAsked) where a fit keeps them (the cut
+// then has arcMoves Fitted); where none does, the function gets an
+// arcs-as-chords warning and the entry asks no more, its laps left to
+// their expansion. The other laps stay. Throws CurveLapError.
 bool fitLapArcs(Function& function);
 
 // One point of a lap cut in steps: the region that computes it and its

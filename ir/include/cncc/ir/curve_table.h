@@ -18,7 +18,6 @@
 
 namespace cncc::geom {
 class Curve;
-struct ArcFit;
 } // namespace cncc::geom
 
 namespace cncc::ir {
@@ -126,6 +125,17 @@ struct OffsetStepGrowth {
   double largestRadius = 0;
 };
 
+// Arcs a cut asks for (arcs=true, or --arcs) on a lap cut otherwise in
+// chords or steps: the legalisation fit-arcs fits the lap's curve with
+// tangent-continuous arcs within `tolerance` (the rounding of every end and
+// centre to `grid` already taken off) and writes them out; where no fit
+// keeps them (a curve that leaves its plane, a fit past its bound) it warns
+// (arcs-as-chords) and leaves the lap to its own expansion. Level laps only.
+struct ArcsAsked {
+  double tolerance = 0;
+  double grid = 0;
+};
+
 struct CurveTableEntry {
   std::vector<CurvePieceLayout> pieces;
   // The whole curve's parameter range (the first piece's start to the last
@@ -183,6 +193,8 @@ struct CurveTableEntry {
   bool pointsAsNumbers = false;
   // Steps: counts of an offset that grow with the tool radius (above).
   std::optional<OffsetStepGrowth> offsetGrowth = std::nullopt;
+  // Chords or steps: arcs in their place where a fit keeps them (above).
+  std::optional<ArcsAsked> arcsAsked = std::nullopt;
   // The same curve evaluated from the source, transforms applied (what the
   // regions compute, for choosing the points without interpreting them);
   // null in a function read from text, where the regions are interpreted.
@@ -195,9 +207,6 @@ struct CurveTableEntry {
   // cut (the ramp lap's before them), which samples= or spacing= makes the
   // blocks' own.
   std::shared_ptr<const std::vector<double>> chosenParameters = nullptr;
-  // Arcs: the fit the lowering made to decide the cut is printed as arcs;
-  // null in a function read from text, where the curve is fitted again.
-  std::shared_ptr<const geom::ArcFit> fittedArcs = nullptr;
 
   // A lap cut as the target's NURBS or spline blocks.
   bool isBlocks() const {

@@ -148,9 +148,10 @@ std::string functionTooLargeMessage();
 
 // What a legalisation found that the part's author should hear of, though
 // the program is right (a spline whose transitions make the control stop
-// exactly): the caller reports it at `span` and clears the list.
+// exactly; arcs asked for that no fit keeps, so chords are cut): the caller
+// reports it at `span` and clears the list.
 struct LegalisationWarning {
-  enum class Kind { SplineExactStop };
+  enum class Kind { SplineExactStop, ArcsAsChords };
   Kind kind = Kind::SplineExactStop;
   frontend::SourceSpan span;
   std::string message;

@@ -17,6 +17,7 @@
 #include "cncc/ir/cut_geometry.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/lowering_options.h"
+#include "cncc/ir/passes.h"
 
 #include <memory>
 #include <optional>
@@ -53,6 +54,10 @@ std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
 void reportCurveLapError(const CurveLapError& error, frontend::DiagnosticEngine& diagnostics);
 // Reports the warnings the legalisations left in the function, and clears them.
 void reportLegalisationWarnings(Function& function, frontend::DiagnosticEngine& diagnostics);
+// runCurveLegalisation, its warnings reported; where a pass fails, the
+// warnings of those before it, then its error (false).
+bool legaliseCurves(Function& function, frontend::DiagnosticEngine& diagnostics,
+                    const AfterPassCallback& afterPass = {});
 
 enum class PartUnits { Millimetres, Inches };
 // The `units` statement at the top of the part's body (millimetres without one).
