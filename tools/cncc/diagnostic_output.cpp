@@ -63,15 +63,27 @@ DiagnosticOutput DiagnosticOutput::errorsOnly() const {
 }
 
 void DiagnosticOutput::driverError(std::string_view message) const {
+  driverMessage("error", "1;31", message);
+}
+
+void DiagnosticOutput::driverWarning(std::string_view message) const {
+  if (!errorsOnly_) {
+    driverMessage("warning", "1;35", message);
+  }
+}
+
+void DiagnosticOutput::driverMessage(std::string_view severity, std::string_view colour,
+                                     std::string_view message) const {
   if (format_ == DiagnosticsFormat::Json) {
     fmt::print(stderr,
-               "{{\"severity\":\"error\",\"name\":null,\"message\":{},\"range\":null,"
+               "{{\"severity\":\"{}\",\"name\":null,\"message\":{},\"range\":null,"
                "\"notes\":[]}}\n",
-               jsonString(message));
+               severity, jsonString(message));
   } else if (colour_) {
-    fmt::print(stderr, "\033[1mcncc:\033[0m \033[1;31merror:\033[0m \033[1m{}\033[0m\n", message);
+    fmt::print(stderr, "\033[1mcncc:\033[0m \033[{}m{}:\033[0m \033[1m{}\033[0m\n", colour,
+               severity, message);
   } else {
-    fmt::print(stderr, "cncc: error: {}\n", message);
+    fmt::print(stderr, "cncc: {}: {}\n", severity, message);
   }
 }
 

@@ -26,12 +26,17 @@ public:
   // A problem of the driver itself, with no diagnostic kind ("target 'm80'
   // has no backend in this version"): `cncc: error: message`.
   void driverError(std::string_view message) const;
+  // The same for a warning (`cncc: warning: message`).
+  void driverWarning(std::string_view message) const;
 
   // The same output printing errors only: for a second run of a phase whose
   // warnings were printed already (--stats compiles the part again).
   DiagnosticOutput errorsOnly() const;
 
 private:
+  void driverMessage(std::string_view severity, std::string_view colour,
+                     std::string_view message) const;
+
   DiagnosticsFormat format_;
   bool colour_;
   bool errorsOnly_ = false;

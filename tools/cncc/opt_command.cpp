@@ -103,6 +103,9 @@ int runOptimize(const DriverOptions& options) {
     output.driverError(fmt::format("{}: {}", path, lapError.what()));
     return 1;
   }
+  for (const ir::LegalisationWarning& warning : function->warnings) {
+    output.driverWarning(fmt::format("{}: {}", path, warning.message)); // IR text has no spans
+  }
   std::error_code writeError;
   if (!writeFileAtomically(options.output, ir::printFunction(*function), writeError)) {
     output.driverError(fmt::format("cannot write '{}': {}", options.output, writeError.message()));
