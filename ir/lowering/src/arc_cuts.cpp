@@ -36,7 +36,7 @@ bool PartLowering::asksFittedArcs(const CutStmt& cut) {
 
 // Why the cut cannot be printed as host-fitted arcs, before its curve is
 // built; nullopt when nothing stands in the way.
-std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
+std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut, bool passLoop) {
   if (modifierValue(cut, "samples") != nullptr || modifierValue(cut, "spacing") != nullptr) {
     return "samples= or spacing= chose its points; arcs are fitted within a tolerance=";
   }
@@ -44,8 +44,11 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
     if (rampEntry(cut)) {
       return "its entry=ramp laps are computed on the controller";
     }
-    // A loop variable unrolls the loop: each copy's arcs are fitted.
-    if (std::optional<ParameterUse> use = parameterUse(cut)) {
+    // A loop variable unrolls the loop: each copy's arcs are fitted. In a
+    // pass loop the arcs' height is the loop's: depth= and step= may read
+    // parameters.
+    std::optional<ParameterUse> use = parameterUse(cut);
+    if (use && (!passLoop || use->what == "curve")) {
       return fmt::format("its {} depends on parameter '{}'", use->what, use->parameter);
     }
   } // the host evaluates everything at the values compiled with
@@ -78,11 +81,11 @@ void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view probl
                        fmt::format("this cut is printed as G01 chords, not arcs: {}", problem));
 }
 
-std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut) {
+std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool passLoop) {
   if (!asksFittedArcs(cut)) {
     return std::nullopt;
   }
-  if (std::optional<std::string> problem = arcCutProblem(cut)) {
+  if (std::optional<std::string> problem = arcCutProblem(cut, passLoop)) {
     reportArcsAsChords(cut, *problem);
     return std::nullopt;
   }

@@ -415,7 +415,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   checkCutBounds(cut, *curve.geometry);
   bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
   // Fitted arcs are asked of the laps either way below; fit-arcs decides.
-  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut);
+  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut, true);
   if (!nativeArcs && !arcsAsked_ && lowerSplineCut(cut, curve)) {
     return;
   }

@@ -477,9 +477,10 @@ HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
       laps.arcMoves = CutArcs::Fitted;
     }
   }
-  if ((!(laps.arcs || laps.arcsTable) || ramp) && beside) {
+  bool pointsWanted = !(laps.arcs || laps.arcsTable) || ramp;
+  if (pointsWanted && beside) {
     laps.pointsTable = besideChordsCurve(cut, *beside);
-  } else if (!laps.arcs || ramp) {
+  } else if (pointsWanted) {
     laps.chords = offsetChords(offsetSamples(cut, *offset), ramp);
   }
   return laps;

@@ -497,8 +497,10 @@ private:
   // The arcs the cut asks for in place of its level laps' chords or steps,
   // which fit-arcs fits; nullopt (with the arcs-as-chords warning where it
   // asked) when the cut itself stands in the way.
-  std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut);
-  std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
+  // `passLoop`: on a target that runs loops the cut's passes are a loop
+  // (controller_cuts.cpp), so only its curve must be numbers.
+  std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut, bool passLoop = false);
+  std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut, bool passLoop = false);
   void reportArcsAsChords(const frontend::CutStmt& cut, std::string_view problem);
   std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
                                                      const CutCurve& curve);
