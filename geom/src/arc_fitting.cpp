@@ -44,9 +44,10 @@ Point2 leftNormal(const Point2& t) {
 }
 
 // The move from `start` leaving along unit `tangent` to `end`: the arc tangent to it
-// (at most 180 degrees), or a line where that arc would sag less than kFlatSagitta.
-std::optional<ArcSegment> tangentArc(const Vector& start, const Point2& tangent,
-                                     const Vector& end) {
+// (at most 180 degrees), or a line where that arc would sag less than kFlatSagitta or
+// its radius is over `largestRadius` (the fit's deviation check then decides).
+std::optional<ArcSegment> tangentArc(const Vector& start, const Point2& tangent, const Vector& end,
+                                     double largestRadius) {
   Point2 chord = (end - start).head<2>();
   double length = chord.norm();
   if (!(length > 0.0))
@@ -58,10 +59,11 @@ std::optional<ArcSegment> tangentArc(const Vector& start, const Point2& tangent,
   segment.start = start;
   segment.end = end;
   double sagitta = 0.5 * length * std::tan(0.5 * std::fabs(angle));
-  if (sagitta < kFlatSagitta)
+  double radius = length / (2.0 * std::sin(std::fabs(angle)));
+  if (sagitta < kFlatSagitta || !(radius <= largestRadius))
     return segment; // a line
   segment.kind = ArcSegmentKind::Arc;
-  segment.radius = length / (2.0 * std::sin(std::fabs(angle)));
+  segment.radius = radius;
   segment.direction = angle > 0.0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
   segment.centre =
       start.head<2>() + (angle > 0.0 ? 1.0 : -1.0) * segment.radius * leftNormal(tangent);
@@ -92,7 +94,7 @@ double distanceToSegment(const Vector& p, const ArcSegment& segment) {
 // alpha, beta = ratio * alpha satisfy |(P1 - beta T1) - (P0 + alpha T0)| = alpha + beta;
 // the arcs meet on the middle leg, dividing it as alpha : beta.
 std::optional<std::vector<ArcSegment>> biarc(const Vector& p0, const Point2& t0, const Vector& p1,
-                                             const Point2& t1, double ratio) {
+                                             const Point2& t1, double ratio, double largestRadius) {
   Point2 v = (p1 - p0).head<2>();
   Point2 legSum = t0 + ratio * t1;
   double a = 2.0 * ratio * (t0.dot(t1) - 1.0);
@@ -118,7 +120,7 @@ std::optional<std::vector<ArcSegment>> biarc(const Vector& p0, const Point2& t0,
   std::vector<ArcSegment> pieces;
   double scale = std::max(1.0, v.norm());
   if ((junction - p0).norm() > 1e-12 * scale) {
-    std::optional<ArcSegment> first = tangentArc(p0, t0, junction);
+    std::optional<ArcSegment> first = tangentArc(p0, t0, junction, largestRadius);
     if (!first)
       return std::nullopt;
     pieces.push_back(*first);
@@ -127,7 +129,7 @@ std::optional<std::vector<ArcSegment>> biarc(const Vector& p0, const Point2& t0,
   }
   Vector start = pieces.empty() ? p0 : junction;
   if ((p1 - start).norm() > 1e-12 * scale) {
-    std::optional<ArcSegment> second = tangentArc(start, junctionTangent, p1);
+    std::optional<ArcSegment> second = tangentArc(start, junctionTangent, p1, largestRadius);
     if (!second)
       return std::nullopt;
     pieces.push_back(*second);
@@ -261,7 +263,8 @@ private:
     Vector p0 = curve_.point(ua), p1 = curve_.point(ub);
     Point2 t0 = tangentAt(ua), t1 = endTangent(ub);
     auto devationFor = [&](double logRatio, std::optional<std::vector<ArcSegment>>* out) {
-      std::optional<std::vector<ArcSegment>> candidate = biarc(p0, t0, p1, t1, std::exp(logRatio));
+      std::optional<std::vector<ArcSegment>> candidate =
+          biarc(p0, t0, p1, t1, std::exp(logRatio), options_.largestRadius);
       if (!candidate)
         return std::numeric_limits<double>::infinity();
       double d = deviation(*candidate, ua, ub);

@@ -150,14 +150,14 @@ LapArcs arcMovesOnGrid(const std::vector<geom::ArcSegment>& segments, double gri
   return arcs;
 }
 
-geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, double tolerance,
+geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, const geom::ArcFitOptions& options,
                                  frontend::SourceSpan cutSpan, frontend::SourceSpan curveSpan) {
   if (std::optional<std::string> problem = geom::findArcFittingProblem(curve)) {
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan, *problem);
   }
   try {
     geom::BudgetedCurve budgeted(curve, maximumArcFitEvaluations);
-    return geom::fitArcs(budgeted, {tolerance});
+    return geom::fitArcs(budgeted, options);
   } catch (const geom::EvaluationBudgetExceeded& error) {
     throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, cutSpan,
                         fmt::format("fitting arcs within its tolerance asks more than {} points "
@@ -181,7 +181,7 @@ LapArcs arcsOfFit(const geom::ArcFit& fit, double grid, frontend::SourceSpan cur
 } // namespace
 
 LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve) {
-  return arcsOfFit(fitArcsWithinBudget(curve, entry.amount, entry.cutSpan, entry.curveSpan),
+  return arcsOfFit(fitArcsWithinBudget(curve, {entry.amount}, entry.cutSpan, entry.curveSpan),
                    entry.grid, entry.curveSpan);
 }
 
@@ -189,7 +189,8 @@ std::variant<LapArcs, std::string> askedLapArcs(const CurveTableEntry& entry,
                                                 const geom::Curve& curve) {
   const ArcsAsked& asked = *entry.arcsAsked;
   try {
-    return arcsOfFit(fitArcsWithinBudget(curve, asked.tolerance, entry.cutSpan, entry.curveSpan),
+    geom::ArcFitOptions options{asked.tolerance, asked.largestRadius};
+    return arcsOfFit(fitArcsWithinBudget(curve, options, entry.cutSpan, entry.curveSpan),
                      asked.grid, entry.curveSpan);
   } catch (const CurveLapError& error) {
     return std::string(error.what());

@@ -5,6 +5,7 @@
 #include "cncc/ir/printer.h"
 
 #include <array>
+#include <cmath>
 #include <fmt/format.h>
 #include <memory>
 
@@ -69,14 +70,29 @@ OffsetStepGrowth readOffsetGrowth(std::string_view rest) {
   return {words[0] == "left" ? 1.0 : -1.0, parseNumber(words[2]), parseNumber(words[4])};
 }
 
-// `asks arcs within 0.0098 grid 0.001`: arcs in place of the lap's
-// chords or steps where a fit keeps them.
+// `asks arcs within 0.0098 grid 0.001 [radius 99999.999]`: arcs in place
+// of the lap's chords or steps where a fit keeps them (of a radius up to
+// the last number).
 ArcsAsked readArcsAsked(std::string_view rest) {
   std::vector<std::string_view> words = splitWords(rest);
-  if (words.size() != 5 || words[0] != "arcs" || words[1] != "within" || words[3] != "grid") {
-    throw Failure{"expected 'asks arcs within TOLERANCE grid GRID'"};
+  bool radius = words.size() == 7 && words[5] == "radius";
+  if ((words.size() != 5 && !radius) || words[0] != "arcs" || words[1] != "within" ||
+      words[3] != "grid") {
+    throw Failure{"expected 'asks arcs within TOLERANCE grid GRID [radius LARGEST]'"};
   }
-  return {parseNumber(words[2]), parseNumber(words[4])};
+  ArcsAsked asked{parseNumber(words[2]), parseNumber(words[4])};
+  if (radius) {
+    asked.largestRadius = parseNumber(words[6]);
+  }
+  return asked;
+}
+
+std::string arcsAskedText(const ArcsAsked& asked) {
+  std::string text = fmt::format("    asks arcs within {} grid {}", asked.tolerance, asked.grid);
+  if (std::isfinite(asked.largestRadius)) {
+    text += fmt::format(" radius {}", asked.largestRadius);
+  }
+  return text + "\n";
 }
 
 std::string offsetGrowthText(const OffsetStepGrowth& growth) {
@@ -240,8 +256,7 @@ std::string curveEntryText(std::span<const CurveTableEntry> curves, std::size_t 
     out += offsetGrowthText(*entry.offsetGrowth);
   }
   if (entry.arcsAsked) {
-    out += fmt::format("    asks arcs within {} grid {}\n", entry.arcsAsked->tolerance,
-                       entry.arcsAsked->grid);
+    out += arcsAskedText(*entry.arcsAsked);
   }
   if (!entry.arcRegions.empty()) {
     out += arcRegionsText(entry.arcRegions);

@@ -454,10 +454,10 @@ private:
                           computed ? " the program computes" : ""));
     }
     if (!std::isfinite(asked.tolerance) || !(asked.tolerance > 0) || !std::isfinite(asked.grid) ||
-        asked.grid < 0) {
-      problem(fmt::format("{} asks for arcs within {} on the grid {}, not a positive tolerance and "
-                          "a grid of zero or more",
-                          where, asked.tolerance, asked.grid));
+        asked.grid < 0 || !(asked.largestRadius > 0)) {
+      problem(fmt::format("{} asks for arcs within {} on the grid {} up to the radius {}, not a "
+                          "positive tolerance, a grid of zero or more and a positive radius",
+                          where, asked.tolerance, asked.grid, asked.largestRadius));
     }
   }
 

@@ -10,11 +10,25 @@ namespace cncc::backends {
 
 namespace {
 
+// The controller the program is checked on: Fanuc's reader at the 4
+// decimals the gcode target prints (0.0001 mm).
+ControllerProfile gcodeReaderProfile() {
+  ControllerProfile profile = *findControllerProfile("fanuc");
+  profile.coordinateDecimals = GcodeOptions{}.decimals;
+  profile.leastInputIncrement = std::pow(10.0, -GcodeOptions{}.decimals);
+  return profile;
+}
+
 // The printed coordinates are rounded to the printed decimals: the chords
-// leave that rounding room inside the tolerance.
+// leave that rounding room inside the tolerance. At 4 decimals the reader's
+// significant digits leave 9999.9999 as the largest centre offset of a
+// fitted arc.
 ir::LoweringOptions gcodeLowering(const TargetSettings& settings) {
+  ControllerProfile reader = gcodeReaderProfile();
   ir::LoweringOptions options;
-  options.coordinateIncrement = std::pow(10.0, -GcodeOptions{}.decimals);
+  options.coordinateIncrement = reader.leastInputIncrement;
+  options.largestArcRadius =
+      (std::pow(10.0, reader.significantDigits) - 1) * reader.leastInputIncrement;
   options.arcBlocks = true;
   options.arcsOnEveryCut = settings.arcs;
   return options;
@@ -50,12 +64,9 @@ ExecutedProgram gcodeProgram(const TargetSettings& settings, const ir::ToolPath&
 // Plain G-code on a controller that takes the 4 decimals the gcode target
 // prints (0.0001 mm).
 ProgramExecution runGcode(const ExecutionRequest& request) {
-  ControllerProfile profile = *findControllerProfile("fanuc");
-  profile.coordinateDecimals = 4;
-  profile.leastInputIncrement = 0.0001;
   ExecutionRequest plain = request;
   plain.passing = ParameterPassing::None;
-  return runOnController(plain, profile);
+  return runOnController(plain, gcodeReaderProfile());
 }
 
 } // namespace

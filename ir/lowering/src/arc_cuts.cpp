@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -69,7 +70,8 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
     return *problem;
   }
   try {
-    return fitArcsWithinBudget(*curve.geometry, toleranceBudget(cut).forArcs(), cut.span,
+    return fitArcsWithinBudget(*curve.geometry,
+                               {toleranceBudget(cut).forArcs(), largestArcRadius()}, cut.span,
                                cut.curve->span);
   } catch (const CurveLapError& error) {
     return std::string(error.what());
@@ -81,6 +83,10 @@ void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view probl
                        fmt::format("this cut is printed as G01 chords, not arcs: {}", problem));
 }
 
+double PartLowering::largestArcRadius() const {
+  return std::min(largestNumberInUnits(), options_.largestArcRadius);
+}
+
 std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool passLoop) {
   if (!asksFittedArcs(cut)) {
     return std::nullopt;
@@ -89,7 +95,8 @@ std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool pass
     reportArcsAsChords(cut, *problem);
     return std::nullopt;
   }
-  return ArcsAsked{toleranceBudget(cut).forArcs(), options_.coordinateIncrement};
+  return ArcsAsked{toleranceBudget(cut).forArcs(), options_.coordinateIncrement,
+                   largestArcRadius()};
 }
 
 // One lap of arcs at height z from their start on the grid; returns where

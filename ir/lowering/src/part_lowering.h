@@ -352,6 +352,8 @@ private:
                                         double budget);
   // The target's largest number in the part's units.
   double largestNumberInUnits() const;
+  // A fitted arc's largest radius (LoweringOptions::largestArcRadius).
+  double largestArcRadius() const;
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
   // cut at depth 0, else -depth).

@@ -143,6 +143,28 @@ TEST(ArcFitting, SProfileAtPrintingTolerances) {
   }
 }
 
+// A nearly straight stretch of the S profile is an arc of some 18 m radius,
+// whose centre offsets a reader of 8 digits at 4 decimals cannot take: with
+// a largest radius the fit cuts it as lines, still within the tolerance.
+TEST(ArcFitting, ArcsOverTheLargestRadiusAreLines) {
+  NurbsCurve profile = testing::sProfile({1, 1, 1, 1, 1, 3, 1});
+  double tolerance = 0.01 - 2.2e-4;
+  auto largestRadius = [](const ArcFit& fit) {
+    double largest = 0.0;
+    for (const ArcSegment& segment : fit.segments) {
+      largest = segment.kind == ArcSegmentKind::Arc ? std::max(largest, segment.radius) : largest;
+    }
+    return largest;
+  };
+  ASSERT_GT(largestRadius(fitArcs(profile, {tolerance})), 9999.9999);
+  ArcFit bounded = fitArcs(profile, {tolerance, 9999.9999});
+  EXPECT_LE(largestRadius(bounded), 9999.9999);
+  EXPECT_GT(bounded.lineCount(), 0u);
+  EXPECT_LE(bounded.deviation, tolerance);
+  EXPECT_LE(measureCurveDeviation(bounded.path(), profile, {tolerance * 1e-3}).maxDeviation(),
+            tolerance);
+}
+
 TEST(ArcFitting, RejectsCurvesOutOfPlaneAndBadTolerances) {
   ArcCurve helix({0, 0}, 2.0, 0.0, kPi, 0.0, 3.0);
   EXPECT_TRUE(findArcFittingProblem(helix));

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 namespace cncc::ir {
@@ -89,8 +90,23 @@ TEST(CurveLapAskedArcs, TheRequestPrintsAndParses) {
   ASSERT_TRUE(function.curves[0].arcsAsked);
   EXPECT_EQ(function.curves[0].arcsAsked->tolerance, 0.004);
   EXPECT_EQ(function.curves[0].arcsAsked->grid, 0.001);
+  EXPECT_EQ(function.curves[0].arcsAsked->largestRadius, std::numeric_limits<double>::infinity());
   EXPECT_EQ(printFunction(function), std::string(askingCircleText));
   EXPECT_TRUE(verifyFunction(function).empty());
+
+  std::string bounded =
+      replaced(std::string(askingCircleText), "grid 0.001", "grid 0.001 radius 9999.9999");
+  Function radius = parsed(bounded);
+  EXPECT_EQ(radius.curves[0].arcsAsked->largestRadius, 9999.9999);
+  EXPECT_EQ(printFunction(radius), bounded);
+  // Below the circle's radius the fit is lines, still within the tolerance.
+  Function small =
+      parsed(replaced(std::string(askingCircleText), "grid 0.001", "grid 0.001 radius 4"));
+  ToolPath before = interpret(small);
+  ASSERT_TRUE(fitLapArcs(small));
+  EXPECT_EQ(countOf(small, Opcode::Arc), 0u);
+  EXPECT_GT(countOf(small, Opcode::Feed), 10u);
+  expectSamePath(before, interpret(small));
 }
 
 TEST(CurveLapAskedArcs, TheVerifierKeepsTheRequestToChordsAndStepsWithinATolerance) {

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +39,9 @@ struct ArcSegment {
 struct ArcFitOptions {
   /// Largest allowed distance between the arcs and the curve (mm), > 0.
   double tolerance = 0.01;
+  /// Arcs of a larger radius are lines (a controller reads centre offsets only
+  /// within its number range); the fit keeps the tolerance with them.
+  double largestRadius = std::numeric_limits<double>::infinity();
 };
 
 struct ArcFit {

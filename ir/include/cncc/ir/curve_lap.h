@@ -142,11 +142,12 @@ struct LapArcs {
 // print as one (sagitta under half a grid step, chord under two) is a line.
 LapArcs arcMovesOnGrid(const std::vector<geom::ArcSegment>& segments, double grid);
 
-// Tangent-continuous arcs and lines within `tolerance` of a curve in a
-// plane z = const (geom::fitArcs), asking at most maximumArcFitEvaluations
-// points of it. Throws CurveLapError: a curve that leaves its plane or
-// cannot be fitted (at `curveSpan`), a fit past the bound (at `cutSpan`).
-geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, double tolerance,
+// Tangent-continuous arcs and lines within the options' tolerance of a
+// curve in a plane z = const (geom::fitArcs), asking at most
+// maximumArcFitEvaluations points of it. Throws CurveLapError: a curve that
+// leaves its plane or cannot be fitted (at `curveSpan`), a fit past the
+// bound (at `cutSpan`).
+geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, const geom::ArcFitOptions& options,
                                  frontend::SourceSpan cutSpan, frontend::SourceSpan curveSpan);
 
 // The arcs of a lap cut as arcs: `curve` fitted within the entry's

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -131,9 +132,12 @@ struct OffsetStepGrowth {
 // centre to `grid` already taken off) and writes them out; where no fit
 // keeps them (a curve that leaves its plane, a fit past its bound) it warns
 // (arcs-as-chords) and leaves the lap to its own expansion. Level laps only.
+// An arc of a radius over `largestRadius` (its centre offsets past the
+// target's number range) is a line in the fit.
 struct ArcsAsked {
   double tolerance = 0;
   double grid = 0;
+  double largestRadius = std::numeric_limits<double>::infinity();
 };
 
 struct CurveTableEntry {
