@@ -188,10 +188,10 @@ void chooseCommand(const RawOptions& raw, const CLI::App& app, bool checking,
     throw UsageError("--rapid-rate only sets the time estimate of --stats");
   }
   const backends::TargetInfo* target = backends::findTargetInfo(raw.target);
-  bool printsArcs = target != nullptr && target->fittedArcs;
   // --emit=ir -t TARGET --arcs shows the IR the backend receives.
   bool compiles = options.command == Command::Compile ||
                   (options.command == Command::Emit && options.emit == EmitKind::Ir);
+  bool printsArcs = target != nullptr && target->fittedArcs;
   if (raw.arcs && (!compiles || !printsArcs)) {
     throw UsageError(
         fmt::format("--arcs is for the targets {}: it prints cuts as G02/G03 arcs",

@@ -29,7 +29,6 @@ ir::LoweringOptions gcodeLowering(const TargetSettings& settings) {
   options.coordinateIncrement = reader.leastInputIncrement;
   options.largestArcRadius =
       (std::pow(10.0, reader.significantDigits) - 1) * reader.leastInputIncrement;
-  options.arcBlocks = true;
   options.arcsOnEveryCut = settings.arcs;
   return options;
 }
@@ -77,7 +76,6 @@ const TargetInfo gcodeTarget = {
     .lowering = gcodeLowering,
     .print = printGcode,
     .hostRun = HostRun::Interpreted,
-    .fittedArcs = true,
     .machineSetup = "gcode",
     .cutterCompensation = true,
     .hostProgram = gcodeProgram,

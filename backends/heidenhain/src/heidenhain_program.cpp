@@ -571,7 +571,6 @@ ir::LoweringOptions heidenhainLoweringOptions(const TncProfile& profile, bool in
   ir::LoweringOptions options;
   options.controllerLoops = true;
   options.literalSignificantDigits = profile.significantDigits;
-  options.arcBlocks = true;
   options.polynomialBlocks = true;
   options.coordinateIncrement = std::pow(10.0, -(profile.coordinateDecimals + (inches ? 1 : 0)));
   options.passesBeforePrinting = macroPassesBeforePrinting();

@@ -135,7 +135,6 @@ const TargetInfo heidenhainTarget = {
                    "editable)",
     .lowering = heidenhainLowering,
     .print = printHeidenhainProgram,
-    .fittedArcs = true,
     .tncProfiles = true,
     .cutterCompensation = true,
     .execute = runHeidenhain,

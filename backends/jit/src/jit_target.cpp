@@ -19,6 +19,7 @@ namespace {
 ir::LoweringOptions jitLowering(const TargetSettings&) {
   ir::LoweringOptions options;
   options.coordinateIncrement = std::pow(10.0, -toolPathCsvDecimals);
+  options.fittedArcs = false; // arcs=true: the path is points either way
   return options;
 }
 
@@ -106,6 +107,7 @@ const TargetInfo jitTarget = {
     .lowering = jitLowering,
     .print = printToolPathCsv,
     .hostRun = HostRun::Native,
+    .fittedArcs = false,
     .machineSetup = "gcode",
     .hostProgram = jitProgram,
     .execute = runJit,

@@ -19,12 +19,11 @@ ir::LoweringOptions linuxcncLowering(const TargetSettings& settings) {
   lowering.literalSignificantDigits = linuxcncSignificantDigits;
   // The program's literals have 5 decimals (6 in inches).
   lowering.coordinateIncrement = settings.inches ? 1e-6 : 1e-5;
-  lowering.arcBlocks = true;
-  lowering.arcsOnEveryCut = settings.arcs;
   // LinuxCNC's TOLERANCE_CONCAVE_CORNER: cutter compensation takes corners
   // below it as tangent (seen in rs274's compensated moves).
   lowering.compensationTangentAngle = 0.05;
   lowering.passesBeforePrinting = macroPassesBeforePrinting();
+  lowering.arcsOnEveryCut = settings.arcs;
   return lowering;
 }
 
@@ -65,7 +64,6 @@ const TargetInfo linuxcncTarget = {
     .description = "LinuxCNC program with o-word loops and parameters",
     .lowering = linuxcncLowering,
     .print = printLinuxcncProgram,
-    .fittedArcs = true,
     .machineSetup = "linuxcnc",
     .cutterCompensation = true,
     .execute = runLinuxcnc,

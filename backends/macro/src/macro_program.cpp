@@ -74,7 +74,6 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
   ir::LoweringOptions options;
   options.controllerLoops = true;
   options.literalSignificantDigits = profile.significantDigits;
-  options.arcBlocks = true; // arcs=true, --arcs: host-fitted G02/G03 blocks
   options.coordinateIncrement =
       inches ? profile.leastInputIncrement / 10 : profile.leastInputIncrement;
   options.maximumLoopNesting = std::min(profile.maximumLoopNesting, profile.maximumLoopIdentifier);

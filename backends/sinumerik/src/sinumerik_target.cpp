@@ -28,7 +28,9 @@ ir::SplineEnds splineEndsOf(const std::string& ends) {
 ir::LoweringOptions sinumerikLowering(const TargetSettings& settings) {
   SinumerikOptions sinumerik;
   sinumerik.transitions = splineEndsOf(settings.splineEnds);
-  return sinumerikLoweringOptions(sinumerik);
+  ir::LoweringOptions lowering = sinumerikLoweringOptions(sinumerik);
+  lowering.arcsOnEveryCut = settings.arcs;
+  return lowering;
 }
 
 SinumerikOptions sinumerikOptionsFor(const TargetSettings& settings) {

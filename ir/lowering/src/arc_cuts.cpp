@@ -1,5 +1,5 @@
-// Fitted arcs on a target that prints G02/G03 (LoweringOptions::arcBlocks:
-// gcode, the macro targets and LinuxCNC). A cut that wants arcs (arcs=true,
+// Fitted arcs (LoweringOptions::fittedArcs: every target prints G02/G03
+// or its dialect's circles). A cut that wants arcs (arcs=true,
 // or --arcs without arcs=false) is lowered as any other (host chords, or
 // controller loops), its level laps' entry asking for arcs within its
 // tolerance less the rounding of the printed ends and centres, on the
@@ -32,7 +32,7 @@ bool PartLowering::asksFittedArcs(const CutStmt& cut) {
       arcs != nullptr && arcs->kind == ExprKind::Bool) {
     wanted = as<BoolExpr>(*arcs).value;
   }
-  return options_.arcBlocks && wanted.value_or(options_.arcsOnEveryCut);
+  return options_.fittedArcs && wanted.value_or(options_.arcsOnEveryCut);
 }
 
 // Why the cut cannot be printed as host-fitted arcs, before its curve is

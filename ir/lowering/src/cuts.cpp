@@ -414,11 +414,13 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   CutCurve curve = cutCurve(cut);
   checkCutBounds(cut, *curve.geometry);
   bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
-  // Fitted arcs are asked of the laps either way below; fit-arcs decides.
-  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut, true);
-  if (!nativeArcs && !arcsAsked_ && lowerSplineCut(cut, curve)) {
+  // A method= the target's blocks print is the cut's own choice, before
+  // arcs (as NURBS and SPL blocks above).
+  if (!nativeArcs && lowerSplineCut(cut, curve)) {
     return;
   }
+  // Fitted arcs are asked of the laps either way below; fit-arcs decides.
+  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut, true);
   if (lowerControllerCut(cut, curve)) {
     arcsAsked_.reset();
     return;

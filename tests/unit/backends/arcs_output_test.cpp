@@ -55,7 +55,7 @@ std::unique_ptr<CompiledPart> compileWithArcs(const std::string& name, const std
   backends::GcodeOptions gcode;
   ir::LoweringOptions lowering;
   lowering.coordinateIncrement = std::pow(10.0, -gcode.decimals);
-  lowering.arcBlocks = true;
+  lowering.fittedArcs = true;
   lowering.arcsOnEveryCut = true;
   result->lowered = ir::lowerPartWithCuts(*result->program, *result->program->selectedPart,
                                           result->diagnostics, lowering);

@@ -83,7 +83,7 @@ std::optional<std::string> compileExample(const ProgramCase& test) {
   ir::LoweringOptions lowering; // as the linuxcnc target lowers
   lowering.controllerLoops = true;
   lowering.coordinateIncrement = inches ? 1e-6 : 1e-5;
-  lowering.arcBlocks = true;
+  lowering.fittedArcs = true;
   lowering.passesBeforePrinting = macroPassesBeforePrinting();
   std::optional<ir::LoweredPart> lowered =
       ir::lowerPartWithCuts(*program, part, diagnostics, lowering);

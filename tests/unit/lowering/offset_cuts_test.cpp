@@ -304,7 +304,7 @@ TEST(OffsetCuts, TheHostOffsetStaysWhereTheCutAsksForIt) {
     std::string text = polarPart("right");
     text.insert(text.find("tolerance=0.01") + 14, modifier);
     LoweringOptions options = controller;
-    options.arcBlocks = std::string(modifier) == " arcs=true";
+    options.fittedArcs = std::string(modifier) == " arcs=true";
     Compiled compiled(text, options);
     ASSERT_TRUE(compiled.part) << modifier;
     for (const CurveTableEntry& entry : compiled.part->function.curves) {

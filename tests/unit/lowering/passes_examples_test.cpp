@@ -190,7 +190,7 @@ TEST(PassesExamplesTest, ExpandingCurveLapsKeepsToolPath) {
 // expansion the interpreter ran instead).
 TEST(PassesExamplesTest, FittingArcsKeepsToolPath) {
   LoweringOptions arcs;
-  arcs.arcBlocks = true;
+  arcs.fittedArcs = true;
   arcs.arcsOnEveryCut = true;
   arcs.coordinateIncrement = 0.0001;
   EXPECT_GE(legaliseEveryExample(arcs, arcsWanted), 10u);
@@ -202,7 +202,7 @@ TEST(PassesExamplesTest, FittingArcsKeepsToolPath) {
 TEST(PassesExamplesTest, FittingArcsInControllerLoopsKeepsToolPath) {
   LoweringOptions arcs;
   arcs.controllerLoops = true;
-  arcs.arcBlocks = true;
+  arcs.fittedArcs = true;
   arcs.arcsOnEveryCut = true;
   arcs.coordinateIncrement = 0.0001; // fine enough for the parts in inches
   EXPECT_GE(legaliseEveryExample(arcs,
@@ -219,7 +219,7 @@ TEST(PassesExamplesTest, FittingArcsInControllerLoopsKeepsToolPath) {
 TEST(PassesExamplesTest, ArcsFittedAgainFromTheTextAreTheSame) {
   LoweringOptions arcs;
   arcs.expandCurveLaps = false;
-  arcs.arcBlocks = true;
+  arcs.fittedArcs = true;
   arcs.arcsOnEveryCut = true;
   arcs.coordinateIncrement = 0.001;
   std::unique_ptr<LoweredExample> lowered = lowerExampleKept("polar_contour.cdl", "", arcs);
@@ -406,7 +406,7 @@ TEST(PassesExamplesTest, CurveBlocksKeepEveryExamplesToolPath) {
   EXPECT_GE(legaliseEveryExample(splines, cutBy(CurveSampling::SplineBlocks)), 19u);
   LoweringOptions spans;
   spans.controllerLoops = true;
-  spans.arcBlocks = true;
+  spans.fittedArcs = true;
   spans.polynomialBlocks = true;
   spans.coordinateIncrement = 0.0001;
   EXPECT_GE(legaliseEveryExample(spans, cutBy(CurveSampling::PolynomialBlocks)), 19u);

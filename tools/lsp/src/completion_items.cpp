@@ -137,7 +137,8 @@ const std::vector<ModifierInfo>& modifierInfos() {
       {"feed", "feed=${1:300}", "feed for this cut (default: the tool's)"},
       {"entry", "entry=${1|plunge,ramp|}", "straight plunge, or ramped descent along the curve"},
       {"arcs", "arcs=${1|true,false|}",
-       "gcode: G02/G03 arcs fitted within the tolerance instead of G01 chords (also --arcs)"},
+       "G02/G03 arcs fitted within the tolerance instead of G01 chords (also --arcs; every "
+       "target but jit)"},
       {"side", "side=${1|center,left,right|}",
        "the tool's centre on the curve, or beside it at the tool's radius, left or right of the "
        "curve in the direction of travel"},

@@ -35,10 +35,11 @@ struct LoweringOptions {
   // printed grid (spline_cuts.cpp), their ends as `splineEnds` says.
   bool splineBlocks = false;
   SplineEnds splineEnds = SplineEnds::Automatic;
-  // Targets that print host-fitted G02/G03 arcs: a cut that wants arcs
-  // (arcs=true, or arcsOnEveryCut without arcs=false) is lowered as the
-  // fitted move.arc ops on the printed grid (arc_cuts.cpp).
-  bool arcBlocks = false;
+  // Whether a cut that wants arcs (arcs=true, or arcsOnEveryCut without
+  // arcs=false) asks its laps for arcs fitted on the printed grid, which
+  // fit-arcs writes as move.arc ops (arc_cuts.cpp): every target prints
+  // them; verify's reference of chords does without.
+  bool fittedArcs = true;
   bool arcsOnEveryCut = false; // --arcs
   // Controller-side targets (macro programs): each cut becomes loops the
   // controller runs over uniform parameter steps, a pass loop over the sweep

@@ -98,8 +98,9 @@ struct TargetInfo {
   ir::LoweringOptions (*lowering)(const TargetSettings& settings) = nullptr;
   PrintedProgram (*print)(const PrintInput& input) = nullptr;
   HostRun hostRun = HostRun::None;
-  // Takes --arcs: prints planar curves as fitted G02/G03 arcs.
-  bool fittedArcs = false;
+  // Takes --arcs (arcs=true): prints planar curves as fitted arcs. The jit's
+  // tool path is points, so it does not.
+  bool fittedArcs = true;
   // Takes --subprograms and --spline-ends (the Sinumerik spline options).
   bool splineOptions = false;
   // A program that reads the part parameters from the controller's
