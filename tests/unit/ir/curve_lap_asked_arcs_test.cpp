@@ -22,29 +22,13 @@ using curve_lap_test::expectSamePath;
 using curve_lap_test::parsed;
 using curve_lap_test::replaced;
 
-// The circle of radius r in chords within 0.01, asking for arcs within
-// 0.004 on the grid 0.001, cut 0 of the function's cut table.
-constexpr std::string_view askingCircleText = R"(func @circle(r = 5) {
-  curve @0 chords 0.01 over 0 .. 6.283185307179586 {
-    piece at 0 over 0 .. 6.283185307179586
-    asks arcs within 0.004 grid 0.001
-  }
-  cut @0 tolerance 0.01
-  cut.begin 0
-  %0 = param r
-  %1 = const 500
-  %2 = const -1
-  %3 = const 0
-  move.rapid %0, %3, %3
-  %4 = curve.lap @0, %2, %2, %1 {
-    %5 = cos %4
-    %6 = mul %0, %5
-    %7 = sin %4
-    %8 = mul %0, %7
-    curve.point %6, %8, %3
-  }
+// The circle of radius r in chords within 0.01 (circleText), asking for
+// arcs within 0.004 on the grid 0.001, cut 0 of the function's cut table.
+std::string askingCircleText() {
+  return replaced(curve_lap_test::circleText, "  }\n  %0 = param r\n",
+                  "    asks arcs within 0.004 grid 0.001\n  }\n  cut @0 tolerance 0.01\n"
+                  "  cut.begin 0\n  %0 = param r\n");
 }
-)";
 
 // The same circle in uniform steps (counts the pass measures) at the height
 // -k of each pass k = 1 .. 2 of a loop, as a controller runs it.
@@ -85,23 +69,21 @@ std::size_t arcEvents(const ToolPath& path) {
 }
 
 TEST(CurveLapAskedArcs, TheRequestPrintsAndParses) {
-  Function function = parsed(std::string(askingCircleText));
+  Function function = parsed(askingCircleText());
   ASSERT_EQ(function.curves.size(), 1u);
   ASSERT_TRUE(function.curves[0].arcsAsked);
   EXPECT_EQ(function.curves[0].arcsAsked->tolerance, 0.004);
   EXPECT_EQ(function.curves[0].arcsAsked->grid, 0.001);
   EXPECT_EQ(function.curves[0].arcsAsked->largestRadius, std::numeric_limits<double>::infinity());
-  EXPECT_EQ(printFunction(function), std::string(askingCircleText));
+  EXPECT_EQ(printFunction(function), askingCircleText());
   EXPECT_TRUE(verifyFunction(function).empty());
 
-  std::string bounded =
-      replaced(std::string(askingCircleText), "grid 0.001", "grid 0.001 radius 9999.9999");
+  std::string bounded = replaced(askingCircleText(), "grid 0.001", "grid 0.001 radius 9999.9999");
   Function radius = parsed(bounded);
   EXPECT_EQ(radius.curves[0].arcsAsked->largestRadius, 9999.9999);
   EXPECT_EQ(printFunction(radius), bounded);
   // Below the circle's radius the fit is lines, still within the tolerance.
-  Function small =
-      parsed(replaced(std::string(askingCircleText), "grid 0.001", "grid 0.001 radius 4"));
+  Function small = parsed(replaced(askingCircleText(), "grid 0.001", "grid 0.001 radius 4"));
   ToolPath before = interpret(small);
   ASSERT_TRUE(fitLapArcs(small));
   EXPECT_EQ(countOf(small, Opcode::Arc), 0u);
@@ -110,20 +92,20 @@ TEST(CurveLapAskedArcs, TheRequestPrintsAndParses) {
 }
 
 TEST(CurveLapAskedArcs, TheVerifierKeepsTheRequestToChordsAndStepsWithinATolerance) {
-  Function samples = parsed(replaced(std::string(askingCircleText), "chords 0.01", "samples 50"));
+  Function samples = parsed(replaced(askingCircleText(), "chords 0.01", "samples 50"));
   std::vector<std::string> problems = verifyFunction(samples);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_NE(problems[0].find("asks for arcs but is cut by samples"), std::string::npos)
       << problems[0];
 
-  Function none = parsed(replaced(std::string(askingCircleText), "within 0.004", "within 0"));
+  Function none = parsed(replaced(askingCircleText(), "within 0.004", "within 0"));
   problems = verifyFunction(none);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_NE(problems[0].find("not a positive tolerance"), std::string::npos) << problems[0];
 }
 
 TEST(CurveLapAskedArcs, FitArcsWritesTheArcsTheInterpreterRan) {
-  Function function = parsed(std::string(askingCircleText));
+  Function function = parsed(askingCircleText());
   ToolPath before = interpret(function);
   EXPECT_GE(arcEvents(before), 2u);
   ASSERT_TRUE(fitLapArcs(function));
@@ -156,8 +138,8 @@ TEST(CurveLapAskedArcs, InAPassLoopTheArcsTakeTheLoopsHeight) {
 // it, so the pass warns at the cut, the entry asks no more, and the chords
 // the interpreter ran stay for expand-curve-laps.
 TEST(CurveLapAskedArcs, WhereNoFitKeepsThemTheLapStaysWithAWarning) {
-  Function function = parsed(
-      replaced(std::string(askingCircleText), "curve.point %6, %8, %3", "curve.point %6, %8, %4"));
+  Function function =
+      parsed(replaced(askingCircleText(), "curve.point %6, %8, %3", "curve.point %6, %8, %4"));
   ToolPath before = interpret(function);
   EXPECT_EQ(arcEvents(before), 0u);
   ASSERT_TRUE(fitLapArcs(function));
