@@ -214,10 +214,10 @@ void PartLowering::emitArc(const ArcPath& arc, const ArcHeight& height, ValueId 
 
 std::vector<std::optional<std::uint32_t>>
 PartLowering::pieceCurveTables(const CutStmt& cut, const CutCurve& curve,
-                               const std::vector<RampSegment>& shares, bool skipArcPieces) {
+                               const std::vector<RampSegment>& shares) {
   std::vector<std::optional<std::uint32_t>> tables(curve.pieces.size());
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
-    if (!skipArcPieces || !isArcPiece(curve.pieces[p])) {
+    if (!isArcPiece(curve.pieces[p])) {
       tables[p] = builder_.addCurve(pieceCurveTableEntry(cut, curve, p, shares));
     }
   }
@@ -241,7 +241,7 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<RampSegment> shares = ramp ? rampSegments(curve, cut) : std::vector<RampSegment>{};
 
   // The other pieces' curves.
-  std::vector<std::optional<std::uint32_t>> tables = pieceCurveTables(cut, curve, shares, true);
+  std::vector<std::optional<std::uint32_t>> tables = pieceCurveTables(cut, curve, shares);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   beginCutMoves({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});

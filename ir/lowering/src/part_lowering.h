@@ -352,8 +352,7 @@ private:
                                         double budget);
   // The target's largest number in the part's units.
   double largestNumberInUnits() const;
-  // A fitted arc's largest radius (LoweringOptions::largestArcRadius).
-  double largestArcRadius() const;
+  double largestArcRadius() const; // of a fitted arc (LoweringOptions::largestArcRadius)
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
   // cut at depth 0, else -depth).
@@ -449,8 +448,8 @@ private:
                                                  const CutCurve& curve,
                                                  const std::shared_ptr<const geom::Curve>& offset,
                                                  double distance);
-  // The offset's points within the cut's budget (on a controller, as
-  // numbers), its level laps asking for `arcs` where given.
+  // The offset's points within the cut's budget (as numbers on a
+  // controller), its level laps asking for `arcs` where given.
   std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
                                   std::optional<ArcsAsked> arcs = std::nullopt);
   std::uint32_t chosenPointsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
@@ -496,11 +495,9 @@ private:
                              ValueId z, ValueId feed);
 
   // arc_cuts.cpp
-  // The arcs the cut asks for in place of its level laps' chords or steps,
-  // which fit-arcs fits; nullopt (with the arcs-as-chords warning where it
-  // asked) when the cut itself stands in the way.
-  // `passLoop`: on a target that runs loops the cut's passes are a loop
-  // (controller_cuts.cpp), so only its curve must be numbers.
+  // The arcs (fit-arcs fits them) the cut asks of its level laps; nullopt,
+  // warning arcs-as-chords, where the cut stands in the way. With `passLoop`
+  // (the passes a controller loop) only its curve must be numbers.
   std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut, bool passLoop = false);
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut, bool passLoop = false);
   void reportArcsAsChords(const frontend::CutStmt& cut, std::string_view problem);
@@ -508,11 +505,10 @@ private:
                                                      const CutCurve& curve);
   // Each piece's curve table entry, its points within the cut's chord
   // budget (descending by `shares` when not empty); an arc piece has none
-  // when `skipArcPieces` (it is cut as move.arc).
-  std::vector<std::optional<std::uint32_t>> pieceCurveTables(const frontend::CutStmt& cut,
-                                                             const CutCurve& curve,
-                                                             const std::vector<RampSegment>& shares,
-                                                             bool skipArcPieces);
+  // (it is cut as move.arc).
+  std::vector<std::optional<std::uint32_t>>
+  pieceCurveTables(const frontend::CutStmt& cut, const CutCurve& curve,
+                   const std::vector<RampSegment>& shares);
   Eigen::Vector2d emitArcLap(const std::vector<geom::ArcSegment>& segments, ValueId z,
                              ValueId feed);
 
