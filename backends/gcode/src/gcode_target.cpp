@@ -21,13 +21,13 @@ ControllerProfile gcodeReaderProfile() {
 
 // The printed coordinates are rounded to the printed decimals: the chords
 // leave that rounding room inside the tolerance. At 4 decimals the reader's
-// significant digits leave 9999.9999 as the largest centre offset of a
-// fitted arc.
+// significant digits leave 9999.9999 as the largest coordinate (and centre
+// offset of a fitted arc).
 ir::LoweringOptions gcodeLowering(const TargetSettings& settings) {
   ControllerProfile reader = gcodeReaderProfile();
   ir::LoweringOptions options;
   options.coordinateIncrement = reader.leastInputIncrement;
-  options.largestArcRadius =
+  options.largestCoordinate =
       (std::pow(10.0, reader.significantDigits) - 1) * reader.leastInputIncrement;
   options.arcsOnEveryCut = settings.arcs;
   return options;

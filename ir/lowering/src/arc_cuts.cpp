@@ -71,8 +71,8 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
   }
   try {
     return fitArcsWithinBudget(*curve.geometry,
-                               {toleranceBudget(cut).forArcs(), largestArcRadius()}, cut.span,
-                               cut.curve->span);
+                               {toleranceBudget(cut).forArcs(), largestCoordinateInUnits()},
+                               cut.span, cut.curve->span);
   } catch (const CurveLapError& error) {
     return std::string(error.what());
   }
@@ -81,10 +81,6 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
 void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view problem) {
   diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
                        fmt::format("this cut is printed as G01 chords, not arcs: {}", problem));
-}
-
-double PartLowering::largestArcRadius() const {
-  return std::min(largestNumberInUnits(), options_.largestArcRadius);
 }
 
 std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool passLoop) {
@@ -96,7 +92,7 @@ std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool pass
     return std::nullopt;
   }
   return ArcsAsked{toleranceBudget(cut).forArcs(), options_.coordinateIncrement,
-                   largestArcRadius()};
+                   largestCoordinateInUnits()};
 }
 
 // One lap of arcs at height z from their start on the grid; returns where

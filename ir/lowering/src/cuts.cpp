@@ -194,9 +194,13 @@ double PartLowering::largestNumberInUnits() const {
                                                : options_.largestNumber;
 }
 
+double PartLowering::largestCoordinateInUnits() const {
+  return std::min(largestNumberInUnits(), options_.largestCoordinate);
+}
+
 void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) {
   std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
-  double largest = largestNumberInUnits();
+  double largest = largestCoordinateInUnits();
   if (const Expr* depth = modifierValue(cut, "depth")) {
     Value atDefaults = evaluate(*depth, environment_);
     if (atDefaults.type.kind == TypeKind::Num && !(std::abs(atDefaults.number) <= largest)) {

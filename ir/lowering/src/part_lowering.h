@@ -352,7 +352,7 @@ private:
                                         double budget);
   // The target's largest number in the part's units.
   double largestNumberInUnits() const;
-  double largestArcRadius() const; // of a fitted arc (LoweringOptions::largestArcRadius)
+  double largestCoordinateInUnits() const; // LoweringOptions::largestCoordinate, at most the above
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
   // cut at depth 0, else -depth).

@@ -94,11 +94,12 @@ struct LoweringOptions {
   // feed at the values compiled with goes beyond it is a coordinate-range
   // error.
   double largestNumber = std::numeric_limits<double>::infinity();
-  // The largest radius of a fitted arc, whose centre offsets the target
-  // prints at its increment's decimals within its reader's significant
-  // digits (gcode: 9999.9999); a larger one is cut as lines. At most
-  // largestNumber either way.
-  double largestArcRadius = std::numeric_limits<double>::infinity();
+  // The largest coordinate or arc centre offset the target prints, in the
+  // part's units, where its printed decimals leave less than largestNumber
+  // within its reader's significant digits (gcode: 9999.9999); a curve
+  // beyond it is a coordinate-range error, a fitted arc of a larger radius
+  // is cut as lines. Feeds keep largestNumber.
+  double largestCoordinate = std::numeric_limits<double>::infinity();
   // The passes (passes.h, by name) that make the optimised IR what the
   // target's printer takes, run in order after the optimiser (at -O0 too):
   // fold-finite for the macro programs. The lowering does not run them;
