@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <set>
 #include <variant>
 
 namespace cncc::ir {
@@ -54,11 +53,11 @@ private:
 
   // Each entry that asks for arcs fitted once, at the first of its laps:
   // the fit's moves, or the arcs-as-chords warning and the entry left to
-  // its own expansion, asking no more.
+  // its own expansion, asking no more (so a later lap skips it either way).
   void decideAskedArcs() {
     for (const Instruction& lap : source_.instructions) {
-      if (lap.opcode != Opcode::CurveLap || !source_.curves[lap.index].arcsAsked ||
-          !decided_.insert(lap.index).second) {
+      if (lap.opcode != Opcode::CurveLap || !output_.curves[lap.index].arcsAsked ||
+          arcs_.contains(lap.index)) {
         continue;
       }
       const CurveTableEntry& entry = source_.curves[lap.index];
@@ -69,8 +68,7 @@ private:
       }
       output_.curves[lap.index].arcsAsked.reset();
       output_.warnings.push_back({LegalisationWarning::Kind::ArcsAsChords, entry.cutSpan,
-                                  fmt::format("this cut is printed as G01 chords, not arcs: {}",
-                                              std::get<std::string>(fitted))});
+                                  arcsAsChordsMessage(std::get<std::string>(fitted))});
     }
   }
 
@@ -119,7 +117,6 @@ private:
   }
 
   std::map<std::uint32_t, LapArcs> arcs_;
-  std::set<std::uint32_t> decided_;
 };
 
 } // namespace
@@ -195,6 +192,10 @@ std::variant<LapArcs, std::string> askedLapArcs(const CurveTableEntry& entry,
   } catch (const CurveLapError& error) {
     return std::string(error.what());
   }
+}
+
+std::string arcsAsChordsMessage(std::string_view problem) {
+  return fmt::format("this cut is printed as G01 chords, not arcs: {}", problem);
 }
 
 bool fitLapArcs(Function& function) {

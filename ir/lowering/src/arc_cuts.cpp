@@ -79,8 +79,7 @@ std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& 
 }
 
 void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view problem) {
-  diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span,
-                       fmt::format("this cut is printed as G01 chords, not arcs: {}", problem));
+  diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span, arcsAsChordsMessage(problem));
 }
 
 std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool passLoop) {

@@ -16,6 +16,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -161,6 +162,10 @@ LapArcs lapArcs(const CurveTableEntry& entry, const geom::Curve& curve);
 // curve leaves its plane or cannot be fitted, the fit is past its bound).
 std::variant<LapArcs, std::string> askedLapArcs(const CurveTableEntry& entry,
                                                 const geom::Curve& curve);
+
+// The arcs-as-chords warning's text: why a cut asking for arcs gets chords
+// (the lowering's reasons and fit-arcs' alike).
+std::string arcsAsChordsMessage(std::string_view problem);
 
 // `fit-arcs`: every curve.lap cut as arcs written out as its move.arc and
 // move.feed ops (lapArcs), each lap at its height, and so is every lap of
