@@ -253,6 +253,10 @@ void FunctionBuilder::comment(std::string text) {
   append(std::move(instruction), ValueType::None);
 }
 
+void FunctionBuilder::passBegin(ValueId z) {
+  operation(Opcode::PassBegin, {z});
+}
+
 void FunctionBuilder::alarm(std::string text) {
   Instruction instruction;
   instruction.opcode = Opcode::Alarm;

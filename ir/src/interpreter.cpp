@@ -50,7 +50,9 @@ private:
   void runRegion(const Region& region) {
     for (InstructionId id : region.instructions) {
       countStep();
+      std::size_t first = path_.events.size();
       runInstruction(function_.instructions[id]);
+      numberPassEvents(first);
       if (sink_ != nullptr) {
         passEventsToSink();
       } else if (path_.events.size() > options_.maximumEvents) {
@@ -131,6 +133,7 @@ private:
     case Opcode::Contouring:
     case Opcode::Home:
     case Opcode::Comment:
+    case Opcode::PassBegin:
     case Opcode::CutBegin:
     case Opcode::Compensation:
     case Opcode::CornerArc:
@@ -167,9 +170,22 @@ private:
       runAdvancingLoop(loop, low, high, advance);
       return;
     }
+    SweepPass outer = passTrip_;
     for (double i = low; i <= high; ++i) {
+      if (static_cast<LoopRole>(loop.index) == LoopRole::Passes) {
+        passTrip_ = passTrip(i - low + 1, std::floor(high - low) + 1);
+      }
       values_[loop.result.index] = i;
       runRegion(loop.regions[0]);
+    }
+    passTrip_ = outer;
+  }
+
+  // The events from `first` on, made in a trip of a pass loop, are that
+  // pass's (where their instruction has none of its own).
+  void numberPassEvents(std::size_t first) {
+    for (std::size_t k = first; passTrip_.number != 0 && k < path_.events.size(); ++k) {
+      path_.events[k].pass = passInLoop(path_.events[k].pass, passTrip_.number, passTrip_.count);
     }
   }
 
@@ -527,48 +543,13 @@ private:
   }
 
   void record(const Instruction& instruction) {
-    MachineEvent event;
-    const std::vector<ValueId>& operands = instruction.operands;
-    switch (instruction.opcode) {
-    case Opcode::Rapid:
-    case Opcode::Feed:
-      event.kind = instruction.opcode == Opcode::Rapid ? MachineEvent::Kind::Rapid
-                                                       : MachineEvent::Kind::Feed;
-      event.x = value(operands[0]);
-      event.y = value(operands[1]);
-      event.z = value(operands[2]);
-      event.feed = instruction.opcode == Opcode::Feed ? value(operands[3]) : 0;
+    std::array<double, 4> operands{};
+    for (std::size_t k = 0; k < operands.size() && k < instruction.operands.size(); ++k) {
+      operands[k] = value(instruction.operands[k]);
+    }
+    MachineEvent event = effectEvent(instruction, operands);
+    if (instruction.opcode == Opcode::Rapid || instruction.opcode == Opcode::Feed) {
       position_ = {event.x, event.y, event.z};
-      break;
-    case Opcode::Spindle:
-      event.kind = MachineEvent::Kind::Spindle;
-      event.number = value(operands[0]);
-      break;
-    case Opcode::Tool:
-      event.kind = MachineEvent::Kind::Tool;
-      event.number = instruction.number;
-      event.diameter = value(operands[0]);
-      event.offsetRegister = instruction.index;
-      break;
-    case Opcode::Origin:
-    case Opcode::Coolant:
-    case Opcode::Contouring:
-    case Opcode::Home:
-    case Opcode::Compensation:
-      event = settingEvent(instruction.opcode, instruction.number, instruction.index);
-      break;
-    case Opcode::CutBegin:
-      event.kind = MachineEvent::Kind::CutBegin;
-      event.number = instruction.index;
-      break;
-    case Opcode::CornerArc:
-      event.kind = MachineEvent::Kind::CornerArc;
-      event.x = value(operands[0]);
-      event.y = value(operands[1]);
-      break;
-    default:
-      event = commentEvent(instruction.text);
-      break;
     }
     recordAt(instruction, std::move(event));
   }
@@ -675,6 +656,7 @@ private:
   std::vector<double> parameters_;
   ToolPath path_;
   std::size_t steps_ = 0;
+  SweepPass passTrip_; // the trip of the pass loop being run, if any
   // The point the last curve.point gave.
   std::array<double, 3> lapPoint_{0, 0, 0};
   std::array<double, 2> lapToCentre_{0, 0}; // of an arc region's point

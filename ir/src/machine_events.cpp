@@ -1,5 +1,5 @@
-// The machine events the interpreter records for an arc block and for a
-// setting (interpreter.h).
+// The machine events the interpreter records for an effect op, an arc
+// block and a setting (interpreter.h).
 #include "cncc/ir/interpreter.h"
 
 #include <fmt/format.h>
@@ -37,6 +37,54 @@ MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x,
                                        start[0], start[1], x, y, startRadius, endRadius));
   }
   return event;
+}
+
+MachineEvent effectEvent(const Instruction& instruction, const std::array<double, 4>& operands) {
+  MachineEvent event;
+  switch (instruction.opcode) {
+  case Opcode::Rapid:
+  case Opcode::Feed:
+    event.kind =
+        instruction.opcode == Opcode::Rapid ? MachineEvent::Kind::Rapid : MachineEvent::Kind::Feed;
+    event.x = operands[0];
+    event.y = operands[1];
+    event.z = operands[2];
+    event.feed = instruction.opcode == Opcode::Feed ? operands[3] : 0;
+    return event;
+  case Opcode::Spindle:
+    event.kind = MachineEvent::Kind::Spindle;
+    event.number = operands[0];
+    return event;
+  case Opcode::Tool:
+    event.kind = MachineEvent::Kind::Tool;
+    event.number = instruction.number;
+    event.diameter = operands[0];
+    event.offsetRegister = instruction.index;
+    return event;
+  case Opcode::Origin:
+  case Opcode::Coolant:
+  case Opcode::Contouring:
+  case Opcode::Home:
+  case Opcode::Compensation:
+    return settingEvent(instruction.opcode, instruction.number, instruction.index);
+  case Opcode::CutBegin:
+    event.kind = MachineEvent::Kind::CutBegin;
+    event.number = instruction.index;
+    return event;
+  case Opcode::CornerArc:
+    event.kind = MachineEvent::Kind::CornerArc;
+    event.x = operands[0];
+    event.y = operands[1];
+    return event;
+  case Opcode::PassBegin:
+    event.kind = MachineEvent::Kind::Comment;
+    event.text = passDepthComment(operands[0]);
+    return event;
+  default:
+    event.kind = MachineEvent::Kind::Comment;
+    event.text = instruction.text;
+    return event;
+  }
 }
 
 MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index) {

@@ -52,15 +52,6 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-namespace {
-
-// ceil(depth / step) for the pass count, as round(x + offset): a ratio
-// within 1e-8 above a whole number counts as that number (as cuts.cpp's
-// 1e-9 relative rule does), and the literal fits 8 significant digits.
-constexpr double passCountOffset = 0.49999999;
-
-} // namespace
-
 // The span without the rounding noise of the conversion: a weight that is
 // constant makes the span polynomial (its coordinates divided by it).
 geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span) {
@@ -258,43 +249,19 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     return runtimeOffset_ ? offsetSegmentEnd(curve, segment, atEnd, point) : point;
   };
 
-  // The passes: one at z = 0 without a sweep, else k = 1 .. ceil(depth /
-  // step) at z = -min(k step, depth), computed on the controller.
-  const Expr* depthExpression = modifierValue(cut, "depth");
-  const Expr* stepExpression = modifierValue(cut, "step");
-  bool sweep = depthExpression != nullptr || stepExpression != nullptr;
-  Scalar z = Scalar::of(0);
-  Scalar previousZ = Scalar::of(0); // where a ramp starts: the pass above
+  // The passes, computed on the controller (sweeps.cpp).
   CurvePoint start = endPoint(first, false);
   ValueId startX = arithmetic_.value(start.x);
   ValueId startY = arithmetic_.value(start.y);
-  if (sweep && activatesLengthOffset) {
+  bool passLoop = modifierValue(cut, "depth") != nullptr || modifierValue(cut, "step") != nullptr;
+  if (passLoop && activatesLengthOffset) {
     // The first Z move after a tool change, which activates its length
     // offset, before the pass loop (which might run no times).
     builder_.rapid(startX, startY, safeValue);
   }
-  if (sweep) {
-    // The sweep itself is computed on the controller.
-    checkingDefaults_ = true;
-    std::vector<double> checked = passDepths(cut); // the checks at the defaults
-    checkingDefaults_ = false;
-    (void)checked;
-    Scalar depth = number(*depthExpression);
-    Scalar step = number(*stepExpression);
-    Scalar passes = arithmetic_.unary(
-        Opcode::Round,
-        arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step), Scalar::of(passCountOffset)));
-    ValueId k =
-        builder_.beginLoop(builder_.constant(1), arithmetic_.value(passes), LoopRole::Passes);
-    z = passDepth(Scalar::of(k, ValueType::F64), step, depth);
-    if (ramp) {
-      previousZ =
-          passDepth(arithmetic_.binary(Opcode::Sub, Scalar::of(k, ValueType::F64), Scalar::of(1)),
-                    step, depth);
-    }
-  } else {
-    builder_.comment("cut");
-  }
+  SweepHeights sweep = beginSweep(cut, ramp, true);
+  Scalar z = sweep.z;
+  Scalar previousZ = sweep.previous; // where a ramp starts: the pass above
   builder_.rapid(startX, startY, safeValue);
   builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
                 feedValue);
@@ -318,9 +285,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     finish = start; // after the arc about the corner where the path closes
   }
   builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
-  if (sweep) {
-    builder_.endLoop();
-  }
+  endSweep(sweep);
   return true;
 }
 
@@ -339,16 +304,6 @@ CurvePoint PartLowering::segmentEndPoint(const CutCurve& curve, const Controller
     return nurbsSegmentPoint(curve, segment, local, cut);
   }
   return pointAt(curve, segment.piece, segment.span, local, cut);
-}
-
-// z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one
-// expression where the controller has no min.
-Scalar PartLowering::passDepth(Scalar pass, Scalar step, Scalar depth) {
-  Scalar reached = arithmetic_.multiply(pass, step);
-  Scalar gap = arithmetic_.unary(Opcode::Abs, arithmetic_.binary(Opcode::Sub, reached, depth));
-  return arithmetic_.multiply(
-      Scalar::of(0.5),
-      arithmetic_.binary(Opcode::Sub, arithmetic_.binary(Opcode::Sub, gap, reached), depth));
 }
 
 Scalar PartLowering::stepsOf(const ControllerSegment& segment) {

@@ -442,7 +442,6 @@ void PartLowering::lowerCut(const CutStmt& cut) {
 void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   auto [feed, ramp] = beginHostCut(cut);
   CurveTableEntry entry = curveTableEntry(cut, curve, arcsAsked_);
-  std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
   }
@@ -460,36 +459,32 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
     entry.arcsAsked.reset();
     rampTable = builder_.addCurve(std::move(entry));
   }
-  auto lap = [&](double zFrom, double zTo) {
-    emitCurveLap(curve, zFrom == zTo ? table : rampTable, zFrom, zTo, feedValue, cut);
-  };
-
-  // The lap starts and ends where the curve does.
+  // The lap starts and ends where the curve does; the passes are a loop
+  // (sweeps.cpp), over depth= and step= as the controller computes them on
+  // the targets that run loops (editable there), else over numbers.
   geom::ParameterRange domain = curve.geometry->domain();
   SampleLocation first = locate(curve, domain.t0);
   SampleLocation end = locate(curve, domain.t1);
-  double previous = 0;
-  for (std::size_t k = 0; k < depths.size(); ++k) {
-    PassScope pass(builder_, sweepPass(k, depths.size()));
-    double passZ = beginPass(depths[k], depths.size());
-    double entryZ = ramp ? previous : passZ;
-    CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
-    ValueId startX = arithmetic_.value(start.x);
-    ValueId startY = arithmetic_.value(start.y);
-    builder_.rapid(startX, startY, safeValue);
-    builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(Scalar::of(entryZ), start.z)),
-                  feedValue);
-    if (ramp) {
-      PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
-      builder_.comment("ramp");
-      lap(entryZ, passZ);
-    }
-    lap(passZ, passZ);
-    // The retract: straight up from the end of the curve.
-    CurvePoint finish = pointAt(curve, end.piece, end.span, Scalar::of(end.local), cut);
-    builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
-    previous = passZ;
+  SweepHeights sweep = beginSweep(cut, ramp, options_.controllerLoops);
+  ValueId passZ = arithmetic_.value(sweep.z);
+  ValueId entryZ = ramp ? arithmetic_.value(sweep.previous) : passZ;
+  CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
+  ValueId startX = arithmetic_.value(start.x);
+  ValueId startY = arithmetic_.value(start.y);
+  builder_.rapid(startX, startY, safeValue);
+  builder_.feed(startX, startY,
+                arithmetic_.value(arithmetic_.add(ramp ? sweep.previous : sweep.z, start.z)),
+                feedValue);
+  if (ramp) {
+    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
+    builder_.comment("ramp");
+    emitCurveLap(curve, rampTable, entryZ, passZ, feedValue, cut);
   }
+  emitCurveLap(curve, table, passZ, passZ, feedValue, cut);
+  // The retract: straight up from the end of the curve.
+  CurvePoint finish = pointAt(curve, end.piece, end.span, Scalar::of(end.local), cut);
+  builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
+  endSweep(sweep);
 }
 
 // The cut's curve for the function's curve table: its pieces' parameter
@@ -616,13 +611,19 @@ void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piec
 void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom,
                                 double zTo, ValueId feed, const CutStmt& cut,
                                 std::size_t firstPiece, std::size_t endPiece) {
-  if (curve.beside) {
-    emitBesideLap(*curve.beside, table, zFrom, zTo, feed, cut);
-    return;
-  }
   ValueId to = builder_.constant(zTo);
   ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
-  emitCurveLapAt(curve, table, {from, to, feed}, curvePointOf(curve, cut), firstPiece, endPiece);
+  emitCurveLap(curve, table, from, to, feed, cut, firstPiece, endPiece);
+}
+
+void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, ValueId zFrom,
+                                ValueId zTo, ValueId feed, const CutStmt& cut,
+                                std::size_t firstPiece, std::size_t endPiece) {
+  if (curve.beside) {
+    emitBesideLapAt(*curve.beside, table, {zFrom, zTo, feed}, cut);
+    return;
+  }
+  emitCurveLapAt(curve, table, {zFrom, zTo, feed}, curvePointOf(curve, cut), firstPiece, endPiece);
 }
 
 PartLowering::LapPointOf PartLowering::curvePointOf(const CutCurve& curve, const CutStmt& cut) {

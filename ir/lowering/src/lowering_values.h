@@ -184,4 +184,24 @@ struct BesideRegion {
   std::size_t join = 0;
 };
 
+// A pass's height in a cut's sweep, and the one above it (where a ramp lap
+// starts); `loop`: in a pass loop (else the one pass of a cut without one).
+struct SweepHeights {
+  Scalar z;
+  Scalar previous;
+  bool loop = false;
+};
+
+// A smooth segment of a cut's curve (a piece, or a knot span of a NURBS
+// piece): a ramp lap descends along each segment in proportion to the
+// segment's own parameter, each taking a share of the descent in
+// proportion to its length (`before` and `share` as fractions of the
+// curve's length).
+struct RampSegment {
+  std::size_t piece = 0;
+  std::size_t span = 0;
+  double before = 0;
+  double share = 0;
+};
+
 } // namespace cncc::ir::lowering

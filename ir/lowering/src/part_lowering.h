@@ -120,18 +120,6 @@ private:
 
 struct ControllerSegment; // controller_cuts.cpp
 
-// A smooth segment of a cut's curve (a piece, or a knot span of a NURBS
-// piece): a ramp lap descends along each segment in proportion to the
-// segment's own parameter, each taking a share of the descent in
-// proportion to its length (`before` and `share` as fractions of the
-// curve's length).
-struct RampSegment {
-  std::size_t piece = 0;
-  std::size_t span = 0;
-  double before = 0;
-  double share = 0;
-};
-
 // A translate/rotate/scale chain as controller arithmetic:
 // p -> (linear * p.xy + offset, zScale * p.z), row-major linear.
 struct RuntimeTransform {
@@ -322,6 +310,9 @@ private:
   CurvePieceLayout pieceLayout(const CurvePiece& piece, double start);
   void addPieceLayout(CurveTableEntry& entry, const CurvePiece& piece, double start,
                       const frontend::CutStmt& cut);
+  void emitCurveLap(const CutCurve& curve, std::uint32_t table, ValueId zFrom, ValueId zTo,
+                    ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
+                    std::size_t endPiece = SIZE_MAX);
   void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
                     ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
                     std::size_t endPiece = SIZE_MAX);
@@ -354,6 +345,11 @@ private:
   double largestNumberInUnits() const;
   double largestCoordinateInUnits() const; // LoweringOptions::largestCoordinate, at most the above
   std::vector<double> passDepths(const frontend::CutStmt& cut);
+  // sweeps.cpp: the cut's passes, a pass loop on every target (depth and
+  // step `computed` by the program, else fixed numbers), until endSweep.
+  SweepHeights beginSweep(const frontend::CutStmt& cut, bool ramp, bool computed);
+  void endSweep(const SweepHeights& sweep);
+  Scalar passDepth(Scalar pass, Scalar step, Scalar depth); // -min(pass step, depth)
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
   // cut at depth 0, else -depth).
   double beginPass(double depth, std::size_t passes);
@@ -574,7 +570,6 @@ private:
                          const std::vector<SymbolicPiece>* symbolic,
                          std::optional<int> uniformSteps);
   bool symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces, const CutCurve& curve);
-  Scalar passDepth(Scalar pass, Scalar step, Scalar depth);
   Scalar stepsOf(const ControllerSegment& segment);
   // compiled_values.cpp
   std::optional<double> atCompiledValues(Scalar value);

@@ -40,6 +40,10 @@ constexpr Pass passTable[] = {
     {"unroll-no-larger", "unroll, keeping only unrollings that leave the function no larger",
      unrollWhenNoLarger},
     {"dce", "dead code elimination", eliminateDeadCode},
+    {"drop-pass-depths",
+     "for the targets that print the IR as it stands: each pass.begin removed (a controller's "
+     "pass loop says no depth)",
+     dropPassDepths, false},
     {"fold-finite",
      "for a controller that alarms on a non-finite value: constant folding and x+0, x-0, x*1, "
      "x/1, x*0 as on finite numbers",

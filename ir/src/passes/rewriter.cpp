@@ -130,6 +130,9 @@ ValueId Rewriter::append(Instruction instruction) {
     instruction.span = visiting_;
     instruction.pass = visitingPass_;
   }
+  if (writingTrip_.number != 0) {
+    instruction.pass = passInLoop(instruction.pass, writingTrip_.number, writingTrip_.count);
+  }
   output_.instructions.push_back(std::move(instruction));
   return output_.instructions.back().result;
 }

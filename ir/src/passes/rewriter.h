@@ -77,6 +77,9 @@ protected:
 
   const Function& source_;
   Function output_;
+  // The trip of a pass loop being written out (an unrolled LoopRole::Passes
+  // loop): what is written is that pass's (passInLoop).
+  SweepPass writingTrip_;
 
 private:
   Region& currentRegion();

@@ -47,10 +47,16 @@ private:
       return;
     }
     double index = *passes::constantValue(source_, instruction.operands[0]);
+    bool passes = static_cast<LoopRole>(instruction.index) == LoopRole::Passes;
+    SweepPass outer = writingTrip_;
     for (std::size_t trip = 0; trip < *trips; ++trip, ++index) {
+      if (passes) { // each copy is a pass of the sweep
+        writingTrip_ = passTrip(static_cast<double>(trip + 1), static_cast<double>(*trips));
+      }
       replace(instruction.result, constant(index));
       rewriteRegion(instruction.regions[0]);
     }
+    writingTrip_ = outer;
     markChanged();
   }
 

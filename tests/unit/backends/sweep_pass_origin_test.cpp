@@ -1,6 +1,7 @@
 // Where the lowering says an instruction comes from beyond its statement:
-// the written-out pass of a cut's sweep (Instruction::pass, carried to the
-// machine events and through the optimiser), and what made each loop
+// the pass of a cut's sweep (a trip of its pass loop, or a written-out
+// pass: Instruction::pass, carried to the machine events and through the
+// optimiser), and what made each loop
 // (LoopRole), which source maps give for every program line.
 #include "../lowering/lowered_text.h"
 
@@ -16,6 +17,7 @@
 
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,16 +57,45 @@ std::vector<std::pair<std::uint32_t, bool>> feedPasses(const ToolPath& path) {
   return passes;
 }
 
-TEST(SweepPassOrigin, WrittenOutPassesNumberTheirEventsThroughTheOptimiser) {
+// The plunge of pass k, its ramp lap, then its lap at depth.
+const std::vector<std::pair<std::uint32_t, bool>> threeRampedPasses{
+    {1, false}, {1, true},  {1, false}, {2, false}, {2, true},
+    {2, false}, {3, false}, {3, true},  {3, false}};
+
+TEST(SweepPassOrigin, HostPassLoopNumbersItsEventsByTripThroughTheOptimiser) {
   auto lowered = lower(sweptSquare, false);
   ASSERT_TRUE(lowered->part);
-  // The plunge of pass k, its ramp lap, then its lap at depth.
-  std::vector<std::pair<std::uint32_t, bool>> expected{{1, false}, {1, true}, {1, false},
-                                                       {2, false}, {2, true}, {2, false},
-                                                       {3, false}, {3, true}, {3, false}};
-  EXPECT_EQ(feedPasses(interpret(lowered->part->function)), expected);
+  int passLoops = 0;
+  for (const Instruction& instruction : lowered->part->function.instructions) {
+    passLoops += instruction.opcode == Opcode::Loop &&
+                 static_cast<LoopRole>(instruction.index) == LoopRole::Passes;
+  }
+  EXPECT_EQ(passLoops, 1); // the host's passes are a loop too
+  EXPECT_EQ(feedPasses(interpret(lowered->part->function)), threeRampedPasses);
   runDefaultPipeline(lowered->part->function);
-  EXPECT_EQ(feedPasses(interpret(lowered->part->function)), expected);
+  EXPECT_EQ(feedPasses(interpret(lowered->part->function)), threeRampedPasses);
+}
+
+TEST(SweepPassOrigin, UnrolledPassLoopWritesEachTripsPassOnItsInstructions) {
+  auto lowered = lower(sweptSquare, false);
+  ASSERT_TRUE(lowered->part);
+  Function& function = lowered->part->function;
+  UnrollOptions everything;
+  everything.maximumBodySize = 100'000;
+  ASSERT_TRUE(unrollLoops(function, everything));
+  std::set<std::uint32_t> numbers;
+  for (InstructionId id : function.body.instructions) {
+    const Instruction& instruction = function.instructions[id];
+    EXPECT_FALSE(instruction.opcode == Opcode::Loop &&
+                 static_cast<LoopRole>(instruction.index) == LoopRole::Passes);
+    if (instruction.opcode == Opcode::PassBegin || instruction.opcode == Opcode::Feed) {
+      EXPECT_EQ(instruction.pass.count, 3u);
+      numbers.insert(instruction.pass.number);
+    }
+  }
+  EXPECT_EQ(numbers, (std::set<std::uint32_t>{1, 2, 3}));
+  // The events are numbered so by their instructions alone.
+  EXPECT_EQ(feedPasses(interpret(function)), threeRampedPasses);
 }
 
 TEST(SweepPassOrigin, ControllerPassLoopIsMarkedAndItsLinesHaveNoPassNumber) {

@@ -38,7 +38,7 @@ TEST(PassesPipelineTest, EveryPassHasAStableNameAndIsFound) {
   }
   EXPECT_THAT(names, ElementsAre("write-curve-blocks", "fit-arcs", "expand-controller-loops",
                                  "expand-curve-laps", "fold", "cse", "licm", "unroll",
-                                 "unroll-no-larger", "dce", "fold-finite"));
+                                 "unroll-no-larger", "dce", "drop-pass-depths", "fold-finite"));
   EXPECT_EQ(findPass("inline"), nullptr);
   for (std::string_view name : defaultPipeline()) {
     EXPECT_NE(findPass(name), nullptr) << name;

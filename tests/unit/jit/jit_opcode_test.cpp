@@ -128,6 +128,9 @@ OpcodeCase effectsCase() {
   builder.comment("always");
   builder.rapid(pick, builder.constant(-2), builder.constant(5));
   builder.endIf();
+  ValueId pass = builder.beginLoop(builder.constant(1), builder.constant(3), ir::LoopRole::Passes);
+  builder.passBegin(builder.binary(Opcode::Mul, pass, builder.constant(-0.1)));
+  builder.endLoop();
   builder.cutBegin(3);
   builder.comment("");
   builder.contouring(0);

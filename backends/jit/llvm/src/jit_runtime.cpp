@@ -229,6 +229,16 @@ static std::int32_t cncc_jit_spindle(RunContext* context, double speed) {
   });
 }
 
+// `pass.begin`: the comment the interpreter records for it.
+static std::int32_t cncc_jit_pass_begin(RunContext* context, double z) {
+  return record(context, [&] {
+    ir::MachineEvent event;
+    event.kind = ir::MachineEvent::Kind::Comment;
+    event.text = ir::passDepthComment(z);
+    return event;
+  });
+}
+
 static std::int32_t cncc_jit_corner_arc(RunContext* context, double dx, double dy) {
   return record(context, [&] {
     ir::MachineEvent event;
@@ -325,6 +335,7 @@ const std::vector<RuntimeSymbol>& runtimeSymbols() {
       {"cncc_jit_spline", reinterpret_cast<void*>(&cncc_jit_spline)},
       {"cncc_jit_polynomial", reinterpret_cast<void*>(&cncc_jit_polynomial)},
       {"cncc_jit_spindle", reinterpret_cast<void*>(&cncc_jit_spindle)},
+      {"cncc_jit_pass_begin", reinterpret_cast<void*>(&cncc_jit_pass_begin)},
       {"cncc_jit_corner_arc", reinterpret_cast<void*>(&cncc_jit_corner_arc)},
       {"cncc_jit_tool", reinterpret_cast<void*>(&cncc_jit_tool)},
       {"cncc_jit_setting", reinterpret_cast<void*>(&cncc_jit_setting)},

@@ -219,6 +219,7 @@ private:
     case Opcode::Home:
     case Opcode::Compensation:
     case Opcode::Comment:
+    case Opcode::PassBegin:
     case Opcode::CutBegin:
     case Opcode::CornerArc:
       emitEffect(instruction);
@@ -420,6 +421,9 @@ private:
       break;
     case Opcode::Spindle:
       callback = "cncc_jit_spindle";
+      break;
+    case Opcode::PassBegin:
+      callback = "cncc_jit_pass_begin";
       break;
     case Opcode::CornerArc:
       callback = "cncc_jit_corner_arc";

@@ -76,6 +76,8 @@ public:
   void cornerArc(ValueId dx, ValueId dy);
   void home();
   void comment(std::string text);
+  // `pass.begin %z`: a pass of a sweep starts at height z.
+  void passBegin(ValueId z);
   // `alarm "text"`: the program stops with this message.
   void alarm(std::string text);
   // `cut.begin index`: the moves that follow belong to cut `index`.

@@ -38,6 +38,11 @@ ToolPath interpret(const Function& function, const InterpreterOptions& options =
 void interpret(const Function& function, MachineEventSink& sink,
                const InterpreterOptions& options = {});
 
+// The event of an effect op that records one (a move.rapid or move.feed, a
+// setting, a comment or pass.begin, ...) from its immediates and the values
+// of its first four operands.
+MachineEvent effectEvent(const Instruction& instruction, const std::array<double, 4>& operands);
+
 // The event of a setting op (origin, coolant, contouring, compensation) or move.home from its
 // immediates: what the interpreter records and the JIT's code too.
 MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index);

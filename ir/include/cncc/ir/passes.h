@@ -7,9 +7,10 @@
 // their loop or reordered. Parameters stay parameters: nothing is folded
 // through `param`, so a controller program keeps them editable.
 //
-// The one exception is `fold-finite`, a target's pass rather than the
+// The exceptions are `fold-finite`, a target's pass rather than the
 // optimiser's: it takes every value to be finite, as a controller that
-// alarms on a non-finite value has them (Pass::exact is false for it).
+// alarms on a non-finite value has them, and `drop-pass-depths`, which drops
+// the comments a controller's pass loop cannot print (Pass::exact is false for them).
 //
 // Each pass returns whether it changed the function; its output verifies.
 #pragma once
@@ -60,12 +61,16 @@ bool eliminateDeadCode(Function& function);
 // operation, for the controller to alarm on.
 bool foldAssumingFinite(Function& function);
 
+// `drop-pass-depths`: each pass.begin removed, for the targets that print
+// the IR as it stands (a controller's pass loop says no depth).
+bool dropPassDepths(Function& function);
+
 struct Pass {
   std::string_view name;
   std::string_view description;
   bool (*run)(Function& function);
   // Keeps the interpreter's tool path bit for bit for every input (above);
-  // false for fold-finite.
+  // false for fold-finite, and for drop-pass-depths (a pass loop's comments go).
   bool exact = true;
 };
 

@@ -78,7 +78,8 @@ ir::AllocationOptions macroAllocationOptions(const ControllerProfile& profile,
 ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool inches);
 
 // The passes the macro printers (this one, LinuxCNC's and Heidenhain's) take
-// their IR after, as LoweringOptions::passesBeforePrinting: fold-finite,
+// their IR after, as LoweringOptions::passesBeforePrinting:
+// drop-pass-depths (a pass loop they run says no depth) and fold-finite,
 // since their controllers alarm where a value is not finite.
 std::vector<std::string> macroPassesBeforePrinting();
 

@@ -1,0 +1,75 @@
+// A cut's passes (`depth=D step=S`), the same loop on every target: trip
+// k = 1 .. ceil(D / S) cuts at z = -min(k S, D) and starts with
+// `pass.begin z`. Where the program computes D and S (a controller's
+// editable parameters), so does the loop; elsewhere they are numbers, fixed
+// at their defaults, and the host runs the loop as it prints (its trips
+// are the passes of the source map, sweep_pass.h). A cut without depth=
+// and step= is one pass at z = 0, after the comment "cut"; so is a sweep
+// of one pass at its depth, where that is a number.
+#include "part_lowering.h"
+
+namespace cncc::ir::lowering {
+
+using namespace frontend;
+
+namespace {
+
+// ceil(depth / step) for the pass count, as round(x + offset): a ratio
+// within 1e-8 above a whole number counts as that number (as passDepths'
+// 1e-9 relative rule does), and the literal fits 8 significant digits.
+constexpr double passCountOffset = 0.49999999;
+
+} // namespace
+
+SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool computed) {
+  const Expr* depthExpression = modifierValue(cut, "depth");
+  const Expr* stepExpression = modifierValue(cut, "step");
+  if (depthExpression == nullptr && stepExpression == nullptr) {
+    builder_.comment("cut");
+    return {Scalar::of(0), Scalar::of(0), false};
+  }
+  // The checks (both given, 0 < step <= depth) at the defaults; fixed
+  // numbers where the program does not compute them.
+  checkingDefaults_ = computed;
+  std::size_t passes = passDepths(cut).size();
+  checkingDefaults_ = false;
+  if (!computed && passes == 1) { // one pass at the depth, no loop
+    builder_.comment("cut");
+    return {Scalar::of(-constantNumber(*depthExpression, "the sweep depth")), Scalar::of(0), false};
+  }
+  Scalar depth = computed ? number(*depthExpression)
+                          : Scalar::of(constantNumber(*depthExpression, "the sweep depth"));
+  Scalar step = computed ? number(*stepExpression)
+                         : Scalar::of(constantNumber(*stepExpression, "the sweep step"));
+  Scalar count =
+      computed ? arithmetic_.unary(Opcode::Round,
+                                   arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step),
+                                                   Scalar::of(passCountOffset)))
+               : Scalar::of(static_cast<double>(passes));
+  ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(count), LoopRole::Passes);
+  Scalar pass = Scalar::of(k, ValueType::F64);
+  SweepHeights heights{passDepth(pass, step, depth), Scalar::of(0), true};
+  if (ramp) { // from the pass above
+    heights.previous = passDepth(arithmetic_.binary(Opcode::Sub, pass, Scalar::of(1)), step, depth);
+  }
+  builder_.passBegin(arithmetic_.value(heights.z));
+  return heights;
+}
+
+void PartLowering::endSweep(const SweepHeights& sweep) {
+  if (sweep.loop) {
+    builder_.endLoop();
+  }
+}
+
+// z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one
+// expression where the controller has no min.
+Scalar PartLowering::passDepth(Scalar pass, Scalar step, Scalar depth) {
+  Scalar reached = arithmetic_.multiply(pass, step);
+  Scalar gap = arithmetic_.unary(Opcode::Abs, arithmetic_.binary(Opcode::Sub, reached, depth));
+  return arithmetic_.multiply(
+      Scalar::of(0.5),
+      arithmetic_.binary(Opcode::Sub, arithmetic_.binary(Opcode::Sub, gap, reached), depth));
+}
+
+} // namespace cncc::ir::lowering
