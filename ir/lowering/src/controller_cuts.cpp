@@ -253,13 +253,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   CurvePoint start = endPoint(first, false);
   ValueId startX = arithmetic_.value(start.x);
   ValueId startY = arithmetic_.value(start.y);
-  bool passLoop = modifierValue(cut, "depth") != nullptr || modifierValue(cut, "step") != nullptr;
-  if (passLoop && activatesLengthOffset) {
-    // The first Z move after a tool change, which activates its length
-    // offset, before the pass loop (which might run no times).
-    builder_.rapid(startX, startY, safeValue);
-  }
-  SweepHeights sweep = beginSweep(cut, ramp, true);
+  SweepHeights sweep =
+      beginSweep(cut, ramp, true, {startX, startY, safeValue, activatesLengthOffset});
   Scalar z = sweep.z;
   Scalar previousZ = sweep.previous; // where a ramp starts: the pass above
   builder_.rapid(startX, startY, safeValue);

@@ -449,6 +449,7 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   // Feed and safe height once, visible in every loop of the cut.
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
+  bool activatesLengthOffset = machine_.lengthOffsetPending;
   beginCutMoves({curve.geometry,
                  chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
                  methodOf(cut)});
@@ -465,12 +466,13 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   geom::ParameterRange domain = curve.geometry->domain();
   SampleLocation first = locate(curve, domain.t0);
   SampleLocation end = locate(curve, domain.t1);
-  SweepHeights sweep = beginSweep(cut, ramp, options_.controllerLoops);
-  ValueId passZ = arithmetic_.value(sweep.z);
-  ValueId entryZ = ramp ? arithmetic_.value(sweep.previous) : passZ;
   CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
   ValueId startX = arithmetic_.value(start.x);
   ValueId startY = arithmetic_.value(start.y);
+  SweepHeights sweep = beginSweep(cut, ramp, options_.controllerLoops,
+                                  {startX, startY, safeValue, activatesLengthOffset});
+  ValueId passZ = arithmetic_.value(sweep.z);
+  ValueId entryZ = ramp ? arithmetic_.value(sweep.previous) : passZ;
   builder_.rapid(startX, startY, safeValue);
   builder_.feed(startX, startY,
                 arithmetic_.value(arithmetic_.add(ramp ? sweep.previous : sweep.z, start.z)),

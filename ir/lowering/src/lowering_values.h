@@ -192,6 +192,16 @@ struct SweepHeights {
   bool loop = false;
 };
 
+// Where a cut's passes start (the rapid over the start at the safe height),
+// and whether that rapid is the first Z move after a tool change: then it
+// comes before a pass loop the program computes, which may run no times.
+struct SweepStart {
+  ValueId x;
+  ValueId y;
+  ValueId safe;
+  bool activatesLengthOffset = false;
+};
+
 // A smooth segment of a cut's curve (a piece, or a knot span of a NURBS
 // piece): a ramp lap descends along each segment in proportion to the
 // segment's own parameter, each taking a share of the descent in

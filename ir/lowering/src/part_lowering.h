@@ -347,7 +347,8 @@ private:
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   // sweeps.cpp: the cut's passes, a pass loop on every target (depth and
   // step `computed` by the program, else fixed numbers), until endSweep.
-  SweepHeights beginSweep(const frontend::CutStmt& cut, bool ramp, bool computed);
+  SweepHeights beginSweep(const frontend::CutStmt& cut, bool ramp, bool computed,
+                          const SweepStart& start);
   void endSweep(const SweepHeights& sweep);
   Scalar passDepth(Scalar pass, Scalar step, Scalar depth); // -min(pass step, depth)
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a

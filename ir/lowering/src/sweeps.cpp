@@ -21,12 +21,18 @@ constexpr double passCountOffset = 0.49999999;
 
 } // namespace
 
-SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool computed) {
+SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool computed,
+                                      const SweepStart& start) {
   const Expr* depthExpression = modifierValue(cut, "depth");
   const Expr* stepExpression = modifierValue(cut, "step");
   if (depthExpression == nullptr && stepExpression == nullptr) {
     builder_.comment("cut");
     return {Scalar::of(0), Scalar::of(0), false};
+  }
+  if (computed && start.activatesLengthOffset) {
+    // The first Z move after a tool change, which activates its length
+    // offset, before a pass loop that might run no times.
+    builder_.rapid(start.x, start.y, start.safe);
   }
   // The checks (both given, 0 < step <= depth) at the defaults; fixed
   // numbers where the program does not compute them.
