@@ -467,26 +467,14 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   SampleLocation first = locate(curve, domain.t0);
   SampleLocation end = locate(curve, domain.t1);
   CurvePoint start = pointAt(curve, first.piece, first.span, Scalar::of(first.local), cut);
-  ValueId startX = arithmetic_.value(start.x);
-  ValueId startY = arithmetic_.value(start.y);
-  SweepHeights sweep = beginSweep(cut, ramp, options_.controllerLoops,
-                                  {startX, startY, safeValue, activatesLengthOffset});
-  ValueId passZ = arithmetic_.value(sweep.z);
-  ValueId entryZ = ramp ? arithmetic_.value(sweep.previous) : passZ;
-  builder_.rapid(startX, startY, safeValue);
-  builder_.feed(startX, startY,
-                arithmetic_.value(arithmetic_.add(ramp ? sweep.previous : sweep.z, start.z)),
-                feedValue);
-  if (ramp) {
-    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
-    builder_.comment("ramp");
-    emitCurveLap(curve, rampTable, entryZ, passZ, feedValue, cut);
-  }
-  emitCurveLap(curve, table, passZ, passZ, feedValue, cut);
-  // The retract: straight up from the end of the curve.
   CurvePoint finish = pointAt(curve, end.piece, end.span, Scalar::of(end.local), cut);
-  builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
-  endSweep(sweep);
+  SweepStart from{arithmetic_.value(start.x), arithmetic_.value(start.y), safeValue,
+                  activatesLengthOffset, start.z};
+  emitSweep(cut, ramp, options_.controllerLoops, from,
+            {arithmetic_.value(finish.x), arithmetic_.value(finish.y)}, feedValue,
+            [&](ValueId zFrom, ValueId zTo) {
+              emitCurveLap(curve, zFrom == zTo ? table : rampTable, zFrom, zTo, feedValue, cut);
+            });
 }
 
 // The cut's curve for the function's curve table: its pieces' parameter

@@ -200,6 +200,7 @@ struct SweepStart {
   ValueId y;
   ValueId safe;
   bool activatesLengthOffset = false;
+  Scalar z = Scalar::of(0); // of the curve's start, above the pass's height
 };
 
 // A smooth segment of a cut's curve (a piece, or a knot span of a NURBS

@@ -233,7 +233,6 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   HostCut begun = beginHostCut(cut);
   Scalar feed = begun.feed;
   bool ramp = begun.ramp;
-  std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
   }
@@ -244,10 +243,12 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<std::optional<std::uint32_t>> tables = pieceCurveTables(cut, curve, shares);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
+  bool activatesLengthOffset = machine_.lengthOffsetPending;
   beginCutMoves({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
 
-  // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp does).
-  auto lap = [&](double zFrom, double zTo) {
+  // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp
+  // does); a level lap's two heights are one value.
+  auto lap = [&](ValueId zFrom, ValueId zTo) {
     for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
       if (!isArcPiece(curve.pieces[p])) {
         emitCurveLap(curve, *tables[p], zFrom, zTo, feedValue, cut, p, p + 1);
@@ -255,13 +256,15 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
       }
       RampSegment segment = ramp ? rampSegmentOf(shares, p, 0) : RampSegment{p, 0, 1.0, 0.0};
       ArcHeight height = [&, segment](Scalar fraction) {
+        Scalar to = Scalar::of(zTo, ValueType::F64);
         if (zFrom == zTo) {
-          return Scalar::of(zTo);
+          return to;
         }
+        Scalar from = Scalar::of(zFrom, ValueType::F64);
         Scalar done = arithmetic_.add(Scalar::of(segment.before),
                                       arithmetic_.multiply(Scalar::of(segment.share), fraction));
-        return arithmetic_.add(Scalar::of(zFrom),
-                               arithmetic_.multiply(Scalar::of(zTo - zFrom), done));
+        return arithmetic_.add(
+            from, arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, to, from), done));
       };
       emitArc(constantArcPath(curve, p, cut), height, feedValue, cut);
     }
@@ -269,7 +272,10 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   geom::ParameterRange domain = curve.geometry->domain();
   Eigen::Vector3d start = curve.geometry->point(domain.t0);
   Eigen::Vector3d finish = curve.geometry->point(domain.t1);
-  emitHostPasses(depths, ramp, start, finish, feedValue, safeValue, lap);
+  SweepStart from{builder_.constant(start.x()), builder_.constant(start.y()), safeValue,
+                  activatesLengthOffset, Scalar::of(start.z())};
+  emitSweep(cut, ramp, options_.controllerLoops, from,
+            {builder_.constant(finish.x()), builder_.constant(finish.y())}, feedValue, lap);
 }
 
 } // namespace cncc::ir::lowering

@@ -350,6 +350,12 @@ private:
   SweepHeights beginSweep(const frontend::CutStmt& cut, bool ramp, bool computed,
                           const SweepStart& start);
   void endSweep(const SweepHeights& sweep);
+  // The whole sweep of laps along a curve: each pass a rapid over the
+  // start, a feed down to it (to the pass above with entry=ramp, then the
+  // ramp lap `lap(above, z)`), the lap `lap(z, z)`, a rapid over `finish`.
+  using SweepLap = std::function<void(ValueId zFrom, ValueId zTo)>;
+  void emitSweep(const frontend::CutStmt& cut, bool ramp, bool computed, const SweepStart& start,
+                 std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap);
   Scalar passDepth(Scalar pass, Scalar step, Scalar depth); // -min(pass step, depth)
   // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
   // cut at depth 0, else -depth).

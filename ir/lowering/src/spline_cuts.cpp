@@ -60,7 +60,6 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   }
   auto [feed, ramp] = beginHostCut(cut);
   geom::CurveSamples samples = checkedSamplesFor(cut, *curve.geometry);
-  std::vector<double> depths = passDepths(cut);
   if (ramp) {
     checkRampCloses(curve, cut);
   }
@@ -85,6 +84,7 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
 
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
+  bool activatesLengthOffset = machine_.lengthOffsetPending;
   CutGeometry geometry{curve.geometry,
                        chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                        cut.span, methodOf(cut)};
@@ -97,19 +97,22 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
     entry.chosenParameters = chosen;
     rampTable = builder_.addCurve(std::move(entry));
   }
-  auto lap = [&](double zFrom, double zTo) {
+  auto lap = [&](ValueId zFrom, ValueId zTo) {
     if (zFrom != zTo) {
       emitCurveLap(curve, *rampTable, zFrom, zTo, feedValue, cut);
     } else if (ownTable) {
       builder_.comment(comment);
-      builder_.spline(*ownTable, builder_.constant(zTo), feedValue);
+      builder_.spline(*ownTable, zTo, feedValue);
     } else {
       emitCurveLap(curve, blocksEntry, zTo, zTo, feedValue, cut);
     }
   };
   // The blocks start and end where the curve does, on the printed grid.
   auto [first, last] = curveEndsOnGrid(*curve.geometry, options_.coordinateIncrement);
-  emitHostPasses(depths, ramp, first, last, feedValue, safeValue, lap);
+  SweepStart from{builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
+                  activatesLengthOffset, Scalar::of(first.z())};
+  emitSweep(cut, ramp, options_.controllerLoops, from,
+            {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue, lap);
   return true;
 }
 

@@ -68,6 +68,23 @@ void PartLowering::endSweep(const SweepHeights& sweep) {
   }
 }
 
+void PartLowering::emitSweep(const CutStmt& cut, bool ramp, bool computed, const SweepStart& start,
+                             std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap) {
+  SweepHeights sweep = beginSweep(cut, ramp, computed, start);
+  ValueId z = arithmetic_.value(sweep.z);
+  builder_.rapid(start.x, start.y, start.safe);
+  builder_.feed(start.x, start.y,
+                arithmetic_.value(arithmetic_.add(ramp ? sweep.previous : sweep.z, start.z)), feed);
+  if (ramp) {
+    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
+    builder_.comment("ramp");
+    lap(arithmetic_.value(sweep.previous), z);
+  }
+  lap(z, z);
+  builder_.rapid(finish[0], finish[1], start.safe); // the retract
+  endSweep(sweep);
+}
+
 // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one
 // expression where the controller has no min.
 Scalar PartLowering::passDepth(Scalar pass, Scalar step, Scalar depth) {

@@ -4,6 +4,7 @@
 #include "sinumerik_test_parts.h"
 
 #include "cncc/geom/deviation.h"
+#include "cncc/ir/interpreter.h"
 #include "cncc/ir/spline_move.h"
 
 #include <gtest/gtest.h>
@@ -94,7 +95,13 @@ TEST(SplineCut, IrHasTheBlocksAndTheirComment) {
       EXPECT_EQ(blocks->weights[4], 3); // w6
     }
   }
-  EXPECT_EQ(moves, 3u); // one per pass
+  EXPECT_EQ(moves, 1u); // in the sweep's pass loop, which runs it once a pass
+  std::size_t passes = 0;
+  for (const ir::MachineEvent& event : ir::interpret(part->function).events) {
+    passes +=
+        event.kind == ir::MachineEvent::Kind::Comment && event.text.starts_with("pass at depth");
+  }
+  EXPECT_EQ(passes, 3u);
 }
 
 } // namespace
