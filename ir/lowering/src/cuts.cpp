@@ -598,14 +598,6 @@ void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piec
 // One lap as a curve.lap: a region per piece in [firstPiece, endPiece) (per
 // knot span of a NURBS piece) computing the point at its parameter, z going
 // from zFrom to zTo.
-void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom,
-                                double zTo, ValueId feed, const CutStmt& cut,
-                                std::size_t firstPiece, std::size_t endPiece) {
-  ValueId to = builder_.constant(zTo);
-  ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
-  emitCurveLap(curve, table, from, to, feed, cut, firstPiece, endPiece);
-}
-
 void PartLowering::emitCurveLap(const CutCurve& curve, std::uint32_t table, ValueId zFrom,
                                 ValueId zTo, ValueId feed, const CutStmt& cut,
                                 std::size_t firstPiece, std::size_t endPiece) {

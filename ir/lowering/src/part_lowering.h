@@ -313,9 +313,6 @@ private:
   void emitCurveLap(const CutCurve& curve, std::uint32_t table, ValueId zFrom, ValueId zTo,
                     ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
                     std::size_t endPiece = SIZE_MAX);
-  void emitCurveLap(const CutCurve& curve, std::uint32_t table, double zFrom, double zTo,
-                    ValueId feed, const frontend::CutStmt& cut, std::size_t firstPiece = 0,
-                    std::size_t endPiece = SIZE_MAX);
   // The lap's regions compute `pointOf(piece, span, local)`; the lap takes
   // `operands` (z from, z to, feed, then the ranges and counts of the regions
   // whose steps the program computes).

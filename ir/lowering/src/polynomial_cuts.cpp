@@ -108,7 +108,8 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
     if (spansTable) {
       // The lap at the pass height, which write-curve-blocks writes out as
       // a move.polynomial per span.
-      emitCurveLap(curve, *spansTable, z, z, feedValue, cut);
+      ValueId height = builder_.constant(z);
+      emitCurveLap(curve, *spansTable, height, height, feedValue, cut);
     } else {
       emitPolynomialMoves(*spans, z, feedValue);
     }
