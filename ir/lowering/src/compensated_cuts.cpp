@@ -501,7 +501,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   for (std::size_t k = 0; k < depths.size(); ++k) {
     PassScope pass(builder_, sweepPass(k, depths.size()));
     double depth = depths[k];
-    builder_.comment(depth != 0 ? fmt::format("pass at depth {}", depth) : "cut");
+    builder_.comment(depth != 0 ? passDepthComment(-depth) : "cut");
     double passZ = depth == 0 ? 0.0 : -depth;
     emitCompensatedPass(leads, safe, passZ, feed, [&](ValueId z) {
       if (arcs && cornerArcs) {

@@ -224,15 +224,15 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   Scalar feed = cutFeed(cut);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  bool activatesLengthOffset = machine_.lengthOffsetPending;
   bool arcs = hasArcPiece(curve) && !uniformSteps;
   if (runtimeOffset_) {
     for (const PieceJoin& join : runtimeOffset_->joins) {
       arcs = arcs || join.kind == PieceJoin::CornerArc;
     }
   }
-  beginCutMoves({runtimeOffset_ ? runtimeOffset_->compiled : curve.geometry, tolerance, cut.span,
-                 methodOf(cut), arcs ? CutArcs::Native : CutArcs::None});
+  bool activatesLengthOffset =
+      beginCutMoves({runtimeOffset_ ? runtimeOffset_->compiled : curve.geometry, tolerance,
+                     cut.span, methodOf(cut), arcs ? CutArcs::Native : CutArcs::None});
   if (runtimeOffset_) {
     markCutBeside(curve.geometry, std::fabs(runtimeOffset_->compiledDistance));
   }

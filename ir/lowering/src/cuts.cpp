@@ -264,7 +264,7 @@ SweepPass PartLowering::sweepPass(std::size_t index, std::size_t passes, bool ra
 }
 
 double PartLowering::beginPass(double depth, std::size_t passes) {
-  builder_.comment(passes > 1 ? fmt::format("pass at depth {}", depth) : "cut");
+  builder_.comment(passes > 1 ? passDepthComment(-depth) : "cut");
   return depth == 0 ? 0.0 : -depth;
 }
 
@@ -354,10 +354,11 @@ HostCut PartLowering::beginHostCut(const CutStmt& cut) {
   return {cutFeed(cut), ramp};
 }
 
-void PartLowering::beginCutMoves(CutGeometry geometry) {
+bool PartLowering::beginCutMoves(CutGeometry geometry) {
   ensureOrigin();
   // The cut's first rapid climbs to the safe height: the first Z move, which
-  // activates a new tool's length offset (before a pass loop: controller_cuts.cpp).
+  // activates a new tool's length offset (before a pass loop: sweeps.cpp).
+  bool activatesLengthOffset = machine_.lengthOffsetPending;
   machine_.lengthOffsetPending = false;
   double tolerance = geometry.tolerance;
   if (std::isfinite(tolerance) && tolerance > 0 && machine_.contouring != tolerance) {
@@ -367,6 +368,7 @@ void PartLowering::beginCutMoves(CutGeometry geometry) {
   auto index = static_cast<std::uint32_t>(cuts_.size());
   cuts_.push_back(std::move(geometry));
   builder_.cutBegin(index);
+  return activatesLengthOffset;
 }
 
 void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius) {
@@ -449,10 +451,9 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   // Feed and safe height once, visible in every loop of the cut.
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  bool activatesLengthOffset = machine_.lengthOffsetPending;
-  beginCutMoves({curve.geometry,
-                 chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()), cut.span,
-                 methodOf(cut)});
+  bool activatesLengthOffset = beginCutMoves(
+      {curve.geometry, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+       cut.span, methodOf(cut)});
   // Level laps ask for arcs where the cut does; a ramp lap is chords.
   std::uint32_t table = builder_.addCurve(entry);
   std::uint32_t rampTable = table;

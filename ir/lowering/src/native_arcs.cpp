@@ -243,8 +243,8 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   std::vector<std::optional<std::uint32_t>> tables = pieceCurveTables(cut, curve, shares);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  bool activatesLengthOffset = machine_.lengthOffsetPending;
-  beginCutMoves({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
+  bool activatesLengthOffset =
+      beginCutMoves({curve.geometry, budget.tolerance, cut.span, methodOf(cut), CutArcs::Native});
 
   // One lap from zFrom to zTo (the descent shared by length, as cuts.cpp
   // does); a level lap's two heights are one value.

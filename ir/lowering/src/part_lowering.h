@@ -256,8 +256,9 @@ private:
   // height and a feed required.
   HostCut beginHostCut(const frontend::CutStmt& cut);
   // Enters the cut into the part's cut table and starts its moves: the
-  // controller's contouring mode for its tolerance, then `cut.begin`.
-  void beginCutMoves(CutGeometry geometry);
+  // controller's contouring mode for its tolerance, then `cut.begin`;
+  // returns whether the cut's first Z move activates a tool's length offset.
+  bool beginCutMoves(CutGeometry geometry);
   // The cut just begun runs beside `drawn` at `toolRadius` (side=).
   void markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius);
   // The default work offset (G54) when none has been chosen yet: before

@@ -84,12 +84,11 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
 
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
-  bool activatesLengthOffset = machine_.lengthOffsetPending;
   CutGeometry geometry{curve.geometry,
                        chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                        cut.span, methodOf(cut)};
   geometry.splineBlocks = comment; // blocks the pass fits: written there
-  beginCutMoves(std::move(geometry));
+  bool activatesLengthOffset = beginCutMoves(std::move(geometry));
   // The ramp's lap as chords through the points the blocks are fitted to.
   std::optional<std::uint32_t> rampTable;
   if (ramp) {

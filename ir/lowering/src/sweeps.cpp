@@ -37,21 +37,19 @@ SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool comput
   // The checks (both given, 0 < step <= depth) at the defaults; fixed
   // numbers where the program does not compute them.
   checkingDefaults_ = computed;
-  std::size_t passes = passDepths(cut).size();
+  std::vector<double> depths = passDepths(cut); // S, 2S, .. D
   checkingDefaults_ = false;
-  if (!computed && passes == 1) { // one pass at the depth, no loop
+  if (!computed && depths.size() == 1) { // one pass at the depth, no loop
     builder_.comment("cut");
-    return {Scalar::of(-constantNumber(*depthExpression, "the sweep depth")), Scalar::of(0), false};
+    return {Scalar::of(-depths.back()), Scalar::of(0), false};
   }
-  Scalar depth = computed ? number(*depthExpression)
-                          : Scalar::of(constantNumber(*depthExpression, "the sweep depth"));
-  Scalar step = computed ? number(*stepExpression)
-                         : Scalar::of(constantNumber(*stepExpression, "the sweep step"));
+  Scalar depth = computed ? number(*depthExpression) : Scalar::of(depths.back());
+  Scalar step = computed ? number(*stepExpression) : Scalar::of(depths.front());
   Scalar count =
       computed ? arithmetic_.unary(Opcode::Round,
                                    arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step),
                                                    Scalar::of(passCountOffset)))
-               : Scalar::of(static_cast<double>(passes));
+               : Scalar::of(static_cast<double>(depths.size()));
   ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(count), LoopRole::Passes);
   Scalar pass = Scalar::of(k, ValueType::F64);
   SweepHeights heights{passDepth(pass, step, depth), Scalar::of(0), true};
