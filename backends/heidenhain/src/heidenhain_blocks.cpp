@@ -161,24 +161,21 @@ void TncBlockWriter::jumpUnless(ir::ValueId condition, int label) {
 }
 
 void TncBlockWriter::forget() {
-  literals_.clear();
+  words_.clear();
   feed_.clear();
   z_.reset();
 }
 
 std::string TncBlockWriter::word(char letter, ir::ValueId value, bool coordinate) {
   std::optional<double> literal = formulas_.constantOf(value);
-  std::string text = operand(value, coordinate);
-  auto known = literals_.find(letter);
-  if (literal && known != literals_.end() && known->second == text) {
+  TncWord current{operand(value, coordinate),
+                  literal ? std::nullopt : std::optional<std::uint32_t>(value.index)};
+  auto known = words_.find(letter);
+  if (known != words_.end() && known->second == current) {
     return "";
   }
-  if (literal) {
-    literals_[letter] = text;
-  } else {
-    literals_.erase(letter);
-  }
-  return fmt::format(" {}{}", letter, text);
+  words_[letter] = current;
+  return fmt::format(" {}{}", letter, current.text);
 }
 
 std::string TncBlockWriter::feedWord(ir::ValueId feedRate) {
@@ -258,8 +255,8 @@ void TncBlockWriter::arc(bool clockwise, std::span<const ir::ValueId> operands) 
   std::string centre =
       fmt::format("CC IX{} IY{}", operand(operands[3], true), operand(operands[4], true));
   block(std::move(centre));
-  literals_.erase('X');
-  literals_.erase('Y');
+  words_.erase('X');
+  words_.erase('Y');
   std::string words = word('X', operands[0]) + word('Y', operands[1]);
   ir::ValueId z = operands[2];
   std::optional<double> to = formulas_.constantOf(z);
@@ -281,7 +278,7 @@ void TncBlockWriter::arc(bool clockwise, std::span<const ir::ValueId> operands) 
       rise = "+" + difference;
     }
     words += " IZ" + rise;
-    literals_.erase('Z');
+    words_.erase('Z');
   }
   words += clockwise ? " DR-" : " DR+";
   motion("C" + words + feedWord(operands[5]), z);
@@ -304,7 +301,7 @@ void TncBlockWriter::spline(std::span<const ir::ValueId> operands) {
     }
   }
   for (char letter : {'X', 'Y', 'Z'}) {
-    literals_.erase(letter); // the next block writes its coordinates again
+    words_.erase(letter); // the next block writes its coordinates again
   }
   motion(text + feedWord(operands[12]), operands[2]);
 }

@@ -1,15 +1,16 @@
 // The blocks of a TNC program below the statements: operands of address
 // words and jumps (a number or one parameter; a formula goes to a scratch
 // parameter first), labels and FN 9..12 jumps on IR conditions, and the
-// motion blocks L, CC and C with modal words. A literal word already in
-// force is not written again; anything computed always is, and everything
-// is forgotten where control flow joins (a label).
+// motion blocks L, CC and C with modal words. A word already in force (the
+// same literal, or the same IR value) is not written again; everything is
+// forgotten where control flow joins (a label).
 #pragma once
 
 #include "heidenhain_formulas.h"
 
 #include "cncc/ir/ir.h"
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <span>
@@ -17,6 +18,14 @@
 #include <vector>
 
 namespace cncc::backends {
+
+// A coordinate word in force: a literal, or the IR value whose parameter it
+// printed (SSA: one number while it is used; a label forgets every word).
+struct TncWord {
+  std::string text;
+  std::optional<std::uint32_t> value; // none for a literal
+  friend bool operator==(const TncWord&, const TncWord&) = default;
+};
 
 class TncBlockWriter {
 public:
@@ -78,7 +87,7 @@ private:
   const TncProfile& profile_;
   std::vector<std::string>& lines_;
   std::vector<std::string>& errors_;
-  std::map<char, std::string> literals_;
+  std::map<char, TncWord> words_; // in force since the last label
   std::string feed_;
   std::string pendingWords_;
   std::string pendingRadius_;

@@ -66,7 +66,6 @@ MacroDialect linuxcncDialect(int coordinateDecimals) {
   dialect.control = ControlWords::OWords;
   dialect.firstLabel = 100;
   dialect.keepsWordsThroughLoops = false;
-  dialect.remembersComputedWords = false; // a parameter may have changed
   // `0.5`: it reads better and LinuxCNC accepts both.
   dialect.numbers = {linuxcncSignificantDigits, coordinateDecimals,
                      std::numeric_limits<double>::infinity(), false, false};

@@ -121,7 +121,6 @@ struct MacroDialect {
   // pass), and a value in a variable counts as in force: SSA values do not
   // change while they are used.
   bool keepsWordsThroughLoops = true;
-  bool remembersComputedWords = true;
   // ---- expressions
   MacroNumberFormat numbers;
   MacroBareForms bareForms{};

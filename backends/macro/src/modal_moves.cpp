@@ -22,10 +22,6 @@ std::string ModalMoveWriter::word(char letter, ir::ValueId value, bool isCoordin
   std::string text = !literal       ? expressions_.operand(value)
                      : isCoordinate ? expressions_.coordinateLiteral(*literal)
                                     : expressions_.constant(*literal);
-  if (!literal && !dialect_.remembersComputedWords) {
-    modal_.words.erase(letter);
-    return fmt::format(" {}{}", letter, text);
-  }
   ModalWord current{text, literal ? std::nullopt : std::optional<std::uint32_t>(value.index)};
   auto known = modal_.words.find(letter);
   if (known != modal_.words.end() && known->second == current) {

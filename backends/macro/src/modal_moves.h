@@ -49,8 +49,8 @@ public:
   // move.arc: G2/G3 with X and Y always (a full turn ends where it starts),
   // Z when it changes (a helix), the centre's I J from the start always.
   void arc(bool clockwise, std::span<const ir::ValueId> operands);
-  // " X12.5", or nothing when that word is in force already. A computed
-  // word counts as in force only where the dialect remembers them.
+  // " X12.5", or nothing when that word is in force already (a computed
+  // word too: its SSA value is one number while it is used).
   std::string word(char letter, ir::ValueId value, bool isCoordinate = true);
   // Words the next move with a Z word carries (the length offset after a
   // tool change).
