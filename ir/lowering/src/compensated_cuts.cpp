@@ -467,8 +467,9 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   }
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
-  beginCutMoves({centre, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
-                 cut.span, method, arcs ? CutArcs::Native : CutArcs::None});
+  bool activatesLengthOffset =
+      beginCutMoves({centre, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+                     cut.span, method, arcs ? CutArcs::Native : CutArcs::None});
   markCutBeside(contour, toolRadius);
   // G39 after the chord that ends at each convex corner (its index in
   // chords.ends is the sample's less one).
@@ -497,29 +498,28 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   } else if (!arcs) {
     chords = offsetChords(samples, false); // constants on controllerLoops
   }
-  std::vector<double> depths = passDepths(cut);
-  for (std::size_t k = 0; k < depths.size(); ++k) {
-    PassScope pass(builder_, sweepPass(k, depths.size()));
-    double depth = depths[k];
-    builder_.comment(depth != 0 ? passDepthComment(-depth) : "cut");
-    double passZ = depth == 0 ? 0.0 : -depth;
-    emitCompensatedPass(leads, safe, passZ, feed, [&](ValueId z) {
-      if (arcs && cornerArcs) {
-        emitArcLapWithCorners(*arcs, distance, z, feed);
-      } else if (arcs) {
-        emitArcLap(*arcs, z, feed);
-      } else if (drawn) {
-        for (std::size_t k = 0; k < stretches.size(); ++k) {
-          if (k > 0) {
-            emitCornerArc(chordCorners[k - 1].nextTangent);
-          }
-          emitBesideLap(*drawn, stretches[k], passZ, passZ, feed, cut);
+  // The passes: the controller's loop where it computes depth= and step=.
+  auto [startX, startY] = printedPoint(leads.startUp);
+  SweepHeights sweep = beginSweep(cut, false, options_.controllerLoops,
+                                  {startX, startY, safe, activatesLengthOffset});
+  ValueId passZ = arithmetic_.value(sweep.z);
+  emitCompensatedPass(leads, safe, sweep.z, feed, [&](ValueId z) {
+    if (arcs && cornerArcs) {
+      emitArcLapWithCorners(*arcs, distance, z, feed);
+    } else if (arcs) {
+      emitArcLap(*arcs, z, feed);
+    } else if (drawn) {
+      for (std::size_t k = 0; k < stretches.size(); ++k) {
+        if (k > 0) {
+          emitCornerArc(chordCorners[k - 1].nextTangent);
         }
-      } else {
-        emitChordLap(chords, passZ, passZ, feed, chordCorners);
+        emitBesideLapAt(*drawn, stretches[k], {passZ, passZ, feed}, cut);
       }
-    });
-  }
+    } else {
+      emitChordLap(chords, sweep.z, sweep.z, feed, chordCorners);
+    }
+  });
+  endSweep(sweep);
 }
 
 // The laps of the stretches between the corners (G39 after chord `after`:
@@ -541,33 +541,41 @@ std::vector<std::uint32_t> PartLowering::stretchCurves(const CutStmt& cut, const
 // One pass: down off the part, compensation on with the start-up line, the
 // lead-in arc, the curve, the lead-out arc, compensation off with the
 // cancel line, up.
-void PartLowering::emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ,
+void PartLowering::emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, Scalar passZ,
                                        ValueId feed,
                                        const std::function<void(ValueId z)>& contour) {
-  double increment = options_.coordinateIncrement;
-  double planeZ = leads.leadIn.end.z() + passZ;
-  ValueId z = builder_.constant(onPrintedGrid(planeZ, increment));
-  auto at = [&](const Eigen::Vector3d& point) {
-    return std::pair{builder_.constant(onPrintedGrid(point.x(), increment)),
-                     builder_.constant(onPrintedGrid(point.y(), increment))};
-  };
-  auto [startX, startY] = at(leads.startUp);
+  // A pass's height that is a number is on the printed grid, as the leads'
+  // ends are; the controller rounds one it computes.
+  double planeZ = leads.leadIn.end.z();
+  ValueId z =
+      passZ.isConstant()
+          ? builder_.constant(onPrintedGrid(planeZ + passZ.constant, options_.coordinateIncrement))
+          : arithmetic_.value(arithmetic_.add(Scalar::of(planeZ), passZ));
+  auto [startX, startY] = printedPoint(leads.startUp);
   builder_.rapid(startX, startY, safe);
   builder_.feed(startX, startY, z, feed);
   builder_.compensation(leads.offset, leads.offsetRegister);
-  auto [inX, inY] = at(leads.leadIn.start);
+  auto [inX, inY] = printedPoint(leads.leadIn.start);
   builder_.feed(inX, inY, z, feed);
   emitArcLap({leads.leadIn}, z, feed);
   contour(z);
   if (leads.runOut) {
-    auto [runX, runY] = at(leads.leadOut.start);
+    auto [runX, runY] = printedPoint(leads.leadOut.start);
     builder_.feed(runX, runY, z, feed);
   }
   emitArcLap({leads.leadOut}, z, feed);
   builder_.compensation(0, 0);
-  auto [endX, endY] = at(leads.cancel);
+  auto [endX, endY] = printedPoint(leads.cancel);
   builder_.feed(endX, endY, z, feed);
   builder_.rapid(endX, endY, safe);
+}
+
+// A lead's point (x, y) on the printed grid, so that every target runs the
+// same leads as verify's reference.
+std::array<ValueId, 2> PartLowering::printedPoint(const Eigen::Vector3d& point) {
+  double increment = options_.coordinateIncrement;
+  return {builder_.constant(onPrintedGrid(point.x(), increment)),
+          builder_.constant(onPrintedGrid(point.y(), increment))};
 }
 
 } // namespace cncc::ir::lowering

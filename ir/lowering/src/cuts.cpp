@@ -56,12 +56,13 @@ std::string methodOf(const CutStmt& cut) {
   return method != nullptr && method->value ? wordOf(*method->value) : "";
 }
 
-std::optional<ParameterUse> PartLowering::parameterUse(const CutStmt& cut,
-                                                       const Expr* toolDiameter) {
-  std::pair<const char*, const Expr*> uses[] = {{"curve", cut.curve.get()},
-                                                {"depth", modifierValue(cut, "depth")},
-                                                {"step", modifierValue(cut, "step")},
-                                                {"tool diameter", toolDiameter}};
+std::optional<ParameterUse> PartLowering::parameterUse(const CutStmt& cut, const Expr* toolDiameter,
+                                                       bool passes) {
+  std::pair<const char*, const Expr*> uses[] = {
+      {"curve", cut.curve.get()},
+      {"depth", passes ? modifierValue(cut, "depth") : nullptr},
+      {"step", passes ? modifierValue(cut, "step") : nullptr},
+      {"tool diameter", toolDiameter}};
   for (const auto& [what, expression] : uses) {
     if (expression == nullptr) {
       continue;

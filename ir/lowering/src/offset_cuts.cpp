@@ -161,9 +161,11 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
   }
   // Offsets are computed here: on a controller-side target what they
   // depend on must not be a parameter, but for the tool's diameter when the
-  // controller computes the offset (controller_offset_cuts.cpp).
+  // controller computes the offset (controller_offset_cuts.cpp), and the
+  // passes' depth and step where the controller compensates (its pass loop
+  // computes them).
   if (std::optional<ParameterUse> use =
-          options_.controllerLoops ? parameterUse(cut, toolDiameter_) : std::nullopt) {
+          options_.controllerLoops ? parameterUse(cut, toolDiameter_, !controller) : std::nullopt) {
     if (use->what == "tool diameter" && !controller) {
       double radius = evaluate(*toolDiameter_, environment_).number / 2;
       return wordOf(*side.value) == "left" ? radius : -radius;
@@ -490,15 +492,18 @@ void PartLowering::emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCur
                                      double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
   bool level = zFrom == zTo;
   if (laps.arcsTable && level) {
-    emitBesideLap(*beside, *laps.arcsTable, zTo, zTo, feed, cut);
+    ValueId to = builder_.constant(zTo);
+    emitBesideLapAt(*beside, *laps.arcsTable, {to, to, feed}, cut);
   } else if (laps.arcs && level) {
     double planeZ = laps.arcs->front().start.z();
     emitArcLap(*laps.arcs,
                builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)), feed);
   } else if (laps.pointsTable) {
-    emitBesideLap(*beside, *laps.pointsTable, zFrom, zTo, feed, cut);
+    ValueId to = builder_.constant(zTo);
+    emitBesideLapAt(*beside, *laps.pointsTable, {level ? to : builder_.constant(zFrom), to, feed},
+                    cut);
   } else {
-    emitChordLap(laps.chords, zFrom, zTo, feed);
+    emitChordLap(laps.chords, Scalar::of(zFrom), Scalar::of(zTo), feed);
   }
 }
 
@@ -627,14 +632,32 @@ OffsetChords PartLowering::offsetChords(const geom::CurveSamples& samples, bool 
   return chords;
 }
 
-void PartLowering::emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed,
+namespace {
+
+// A chord end's height: `progress` of the way from zFrom to zTo, above the
+// end's own z. Numbers are added as doubles, as the host's tables are.
+Scalar chordHeight(Arithmetic& arithmetic, Scalar zFrom, Scalar zTo, double progress, double endZ) {
+  if (zFrom.isConstant() && zTo.isConstant()) {
+    return Scalar::of(zFrom.constant + (zTo.constant - zFrom.constant) * progress + endZ);
+  }
+  Scalar z = zTo;
+  if (!zFrom.sameAs(zTo)) {
+    z = arithmetic.add(zFrom, arithmetic.multiply(arithmetic.binary(Opcode::Sub, zTo, zFrom),
+                                                  Scalar::of(progress)));
+  }
+  return arithmetic.add(z, Scalar::of(endZ));
+}
+
+} // namespace
+
+void PartLowering::emitChordLap(const OffsetChords& chords, Scalar zFrom, Scalar zTo, ValueId feed,
                                 std::span<const ChordCorner> corners) {
   if (!chords.tables) {
     auto corner = corners.begin();
     for (std::size_t i = 0; i < chords.ends.size(); ++i) {
       const Eigen::Vector3d& end = chords.ends[i];
-      double z = zFrom + (zTo - zFrom) * chords.progress[i] + end.z();
-      builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()), builder_.constant(z),
+      Scalar z = chordHeight(arithmetic_, zFrom, zTo, chords.progress[i], end.z());
+      builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()), arithmetic_.value(z),
                     feed);
       if (corner != corners.end() && corner->after == i) {
         emitCornerArc(corner->nextTangent);
@@ -645,10 +668,11 @@ void PartLowering::emitChordLap(const OffsetChords& chords, double zFrom, double
   }
   double last = static_cast<double>(chords.ends.size()) - 1;
   ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last), LoopRole::Curve);
-  Scalar z = Scalar::of(zTo);
-  if (zFrom != zTo) {
+  Scalar z = zTo;
+  if (!zFrom.sameAs(zTo)) {
     Scalar progress = Scalar::of(builder_.tableLoad(chords.progressTable, i), ValueType::F64);
-    z = arithmetic_.add(Scalar::of(zFrom), arithmetic_.multiply(Scalar::of(zTo - zFrom), progress));
+    z = arithmetic_.add(
+        zFrom, arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, zTo, zFrom), progress));
   }
   if (!chords.planar) {
     z = arithmetic_.add(z, Scalar::of(builder_.tableLoad(chords.z, i), ValueType::F64));

@@ -99,13 +99,6 @@ std::uint32_t PartLowering::chosenPointsCurve(const CutStmt& cut, const BesideCu
   return builder_.addCurve(std::move(entry));
 }
 
-void PartLowering::emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom,
-                                 double zTo, ValueId feed, const CutStmt& cut) {
-  ValueId to = builder_.constant(zTo);
-  ValueId from = zFrom == zTo ? to : builder_.constant(zFrom);
-  emitBesideLapAt(beside, table, {from, to, feed}, cut);
-}
-
 void PartLowering::emitBesideLapAt(const BesideCurve& beside, std::uint32_t table,
                                    std::vector<ValueId> operands, const CutStmt& cut) {
   emitLapRegions(table, std::move(operands), beside.regions.size(),

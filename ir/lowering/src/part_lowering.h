@@ -274,11 +274,12 @@ private:
   // reference.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);
-  // The first of the cut's curve, depth, step and `toolDiameter` that
-  // depends on a part parameter; nullopt when none does. A controller
-  // loop's variable unrolls the loop instead (NeedsUnrolling).
+  // The first of the cut's curve, depth and step (with `passes`) and
+  // `toolDiameter` that depends on a part parameter; nullopt when none does.
+  // A controller loop's variable unrolls the loop instead (NeedsUnrolling).
   std::optional<ParameterUse> parameterUse(const frontend::CutStmt& cut,
-                                           const frontend::Expr* toolDiameter = nullptr);
+                                           const frontend::Expr* toolDiameter = nullptr,
+                                           bool passes = true);
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
@@ -455,8 +456,6 @@ private:
                                   std::optional<ArcsAsked> arcs = std::nullopt);
   std::uint32_t chosenPointsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
                                   const std::vector<double>& parameters);
-  void emitBesideLap(const BesideCurve& beside, std::uint32_t table, double zFrom, double zTo,
-                     ValueId feed, const frontend::CutStmt& cut);
   // The lap with its operands (z from, z to, feed, then a NURBS block's weights).
   void emitBesideLapAt(const BesideCurve& beside, std::uint32_t table,
                        std::vector<ValueId> operands, const frontend::CutStmt& cut);
@@ -464,7 +463,7 @@ private:
                              Scalar local, const frontend::CutStmt& cut);
   // The chords from zFrom to zTo; `corners` (constant chords only, in
   // order) each get their G39 (compensated_cuts.cpp).
-  void emitChordLap(const OffsetChords& chords, double zFrom, double zTo, ValueId feed,
+  void emitChordLap(const OffsetChords& chords, Scalar zFrom, Scalar zTo, ValueId feed,
                     std::span<const ChordCorner> corners = {});
   void lowerHostOffsetCut(const frontend::CutStmt& cut, double distance);
   HostOffsetLaps hostOffsetLaps(const frontend::CutStmt& cut,
@@ -485,8 +484,9 @@ private:
   // part.
   void checkLeadClearance(const frontend::CutStmt& cut, const CompensatedLeads& centre,
                           const geom::Curve& contour, double toolRadius);
-  void emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, double passZ, ValueId feed,
+  void emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, Scalar passZ, ValueId feed,
                            const std::function<void(ValueId z)>& contour);
+  std::array<ValueId, 2> printedPoint(const Eigen::Vector3d& point);
   // G39 (corner.arc) at convex corners (LoweringOptions::compensationCornerArcs).
   void emitCornerArc(const Eigen::Vector3d& tangent);
   std::vector<std::uint32_t> stretchCurves(const frontend::CutStmt& cut, const BesideCurve& drawn,

@@ -432,6 +432,54 @@ TEST(OffsetCuts, CompensatedChordsWithCornersAreALapPerStretch) {
   curve_lap_test::expectSameMoves(before, interpret(expanded));
 }
 
+// Heights at which compensation is switched on (the start-up line's).
+std::vector<double> compensatedHeights(const ToolPath& path) {
+  std::vector<double> heights;
+  double z = 0;
+  for (const MachineEvent& event : path.events) {
+    if (event.kind == MachineEvent::Kind::Compensation && event.number != 0) {
+      heights.push_back(z);
+    }
+    if (isMove(event)) {
+      z = event.z;
+    }
+  }
+  return heights;
+}
+
+// On a target that runs loops, a compensated cut's passes are one pass loop
+// whose depth and step the program computes: edited, it cuts other heights.
+TEST(OffsetCuts, CompensatedPassesAreTheControllersLoopOfEditableDepth) {
+  LoweringOptions controller;
+  controller.cutterCompensation = true;
+  controller.controllerLoops = true;
+  Compiled compiled("part p(depth = 5, stepdown = 2) {\n  tool 1 diameter=8 feed=300\n"
+                    "  safe z=5\n  curve path(line((0, 0), (40, 0)), arc(center=(40, 10), "
+                    "radius=10, from=-pi/2, to=pi/2), line((40, 20), (0, 20)), arc(center=(0, "
+                    "10), radius=10, from=pi/2, to=3*pi/2)) side=right comp=controller lead=3 "
+                    "sweep depth=depth step=stepdown\n}\n",
+                    controller);
+  ASSERT_TRUE(compiled.part);
+  const Function& function = compiled.part->function;
+  EXPECT_TRUE(verifyFunction(function).empty());
+  std::vector<const Instruction*> passLoops;
+  std::size_t compensations = 0;
+  for (InstructionId id : function.body.instructions) { // the top level
+    const Instruction& instruction = function.instructions[id];
+    if (instruction.opcode == Opcode::Loop &&
+        instruction.index == static_cast<std::uint32_t>(LoopRole::Passes)) {
+      passLoops.push_back(&instruction);
+    }
+    compensations += instruction.opcode == Opcode::Compensation ? 1 : 0;
+  }
+  ASSERT_EQ(passLoops.size(), 1u);
+  EXPECT_EQ(compensations, 0u); // on and off in the pass loop's body
+  EXPECT_EQ(compensatedHeights(interpret(function)), (std::vector<double>{-2, -4, -5}));
+  InterpreterOptions edited;
+  edited.parameters = {{"depth", 7}, {"stepdown", 3}};
+  EXPECT_EQ(compensatedHeights(interpret(function, edited)), (std::vector<double>{-3, -6, -7}));
+}
+
 TEST(OffsetCuts, ATooLargeToolIsRefusedAtTheCut) {
   Compiled compiled(
       polarPart("right").replace(polarPart("right").find("diameter=4"), 10, "diameter=5"), {});
