@@ -190,8 +190,8 @@ std::string MacroProgramPrinter::compensationWords(const ir::Instruction& instru
 }
 
 // move.nurbs: the G06.2 blocks of its table at the pass height; a weight
-// computed on the controller (a part parameter) is printed as its
-// expression, R#3, as the syntax allows.
+// or a height computed on the controller (a part parameter, a pass loop's
+// height) is printed as its expression, R#3 and Z#4, as the syntax allows.
 void MacroProgramPrinter::printNurbs(const ir::Instruction& instruction) {
   if (!dialect_.hasNurbsBlocks) { // lowered only for targets with NURBS blocks
     errors_.push_back(fmt::format("{} has no NURBS blocks of the G06.2 kind (move.nurbs)",
@@ -201,11 +201,12 @@ void MacroProgramPrinter::printNurbs(const ir::Instruction& instruction) {
   std::size_t count = instruction.operands.size() - 2;
   std::optional<ir::NurbsBlockData> data =
       ir::readNurbsMoveTable(function_.tables[instruction.index], count);
-  std::optional<double> z = expressions_.constantOf(instruction.operands[0]);
-  if (!data || !z) {
-    errors_.push_back("G06.2: a NURBS move without its block data or a constant height");
+  if (!data) {
+    errors_.push_back("G06.2: a NURBS move without its block data");
     return;
   }
+  ValueId height = instruction.operands[0];
+  std::optional<double> z = expressions_.constantOf(height);
   std::vector<double> weights;
   NurbsBlockOptions options;
   for (std::size_t k = 0; k < count; ++k) {
@@ -224,9 +225,13 @@ void MacroProgramPrinter::printNurbs(const ir::Instruction& instruction) {
   std::string feed = moves_.word('F', instruction.operands[1], false);
   options.dialect = dialect_.nurbs;
   options.coordinateDecimals = dialect_.numbers.coordinateDecimals + (options_.inches ? 1 : 0);
-  options.z = *z;
+  options.z = z.value_or(0);
+  if (!z) { // the pass loop's height
+    options.zCoordinate = expressions_.coordinate(height);
+    options.zOperand = expressions_.operand(height);
+  }
   options.feedText = feed.empty() ? moves_.state().words['F'].text : feed.substr(2);
-  options.currentPosition = data->points.front() + Eigen::Vector3d(0, 0, *z);
+  options.currentPosition = data->points.front() + Eigen::Vector3d(0, 0, options.z);
   NurbsBlocks blocks = writeNurbsBlocks(*curve, options);
   errors_.insert(errors_.end(), blocks.errors.begin(), blocks.errors.end());
   for (std::string& text : blocks.lines) {

@@ -122,7 +122,8 @@ NurbsBlocks writeNurbsBlocks(const geom::NurbsCurve& curve, const NurbsBlockOpti
   int decimals = options.coordinateDecimals;
   auto number = [&](double value) { return formatGcodeNumber(value, decimals); };
   Eigen::Vector3d first = points.front() + Eigen::Vector3d(0, 0, options.z);
-  for (int axis = 0; axis < 3; ++axis) {
+  bool computedHeight = !options.zCoordinate.empty();
+  for (int axis = 0; axis < (computedHeight ? 2 : 3); ++axis) {
     if (number(first[axis]) != number(options.currentPosition[axis])) {
       result.errors.push_back(fmt::format(
           "G06.2 rule: the first control point ({}, {}, {}) must be the current position "
@@ -157,10 +158,20 @@ NurbsBlocks writeNurbsBlocks(const geom::NurbsCurve& curve, const NurbsBlockOpti
   if (mitsubishi) {
     result.lines.push_back("G05 P10000");
   }
+  auto zWord = [&](const Eigen::Vector3d& point) {
+    if (!computedHeight) {
+      return number(point.z() + options.z);
+    }
+    if (point.z() == 0) {
+      return options.zCoordinate;
+    }
+    return fmt::format("[{}{}{}]", options.zOperand, point.z() < 0 ? "-" : "+",
+                       number(std::fabs(point.z())));
+  };
   for (std::size_t i = 0; i < points.size(); ++i) {
-    Eigen::Vector3d point = points[i] + Eigen::Vector3d(0, 0, options.z);
+    const Eigen::Vector3d& point = points[i];
     std::string block = fmt::format("K{} X{} Y{} Z{} R{}", knotWord(i), number(point.x()),
-                                    number(point.y()), number(point.z()), weightWord(i));
+                                    number(point.y()), zWord(point), weightWord(i));
     if (i == 0) {
       block = fmt::format("G06.2 P{} {} F{}", order, block,
                           options.feedText.empty() ? number(options.feed) : options.feedText);

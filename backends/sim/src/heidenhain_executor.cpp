@@ -351,7 +351,9 @@ private:
     return *feed_;
   }
 
-  void record(ir::MachineEvent event, std::size_t index) {
+  // `further`: another move the same block interpolates (an SPL's), which
+  // does not count as a feed block again.
+  void record(ir::MachineEvent event, std::size_t index, bool further = false) {
     if (!started_) {
       if (!position_.known()) {
         return;
@@ -366,7 +368,7 @@ private:
         return; // the start is this move's end
       }
     }
-    if (event.kind != ir::MachineEvent::Kind::Rapid && inLoop_[index]) {
+    if (event.kind != ir::MachineEvent::Kind::Rapid && inLoop_[index] && !further) {
       ++run_.loopOperations.feedMoves;
     }
     run_.path.events.push_back(event);
@@ -498,8 +500,8 @@ private:
       fail(block, error.what());
     }
     position_ = end;
-    for (const ir::MachineEvent& event : events) {
-      record(event, index);
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      record(events[i], index, i > 0);
     }
   }
 

@@ -1,6 +1,6 @@
 #include "cncc/backends/sim_operation_count.h"
 
-#include <unordered_map>
+#include <unordered_set>
 
 namespace cncc::backends::sim {
 
@@ -103,20 +103,23 @@ OperationCounts countBlockOperations(const Block& block) {
 LoopOperationCounts countLoopOperations(const ProgramText& program,
                                         const SimulationResult& result) {
   LoopOperationCounts counts;
-  std::unordered_map<int, bool> lineInLoop;
+  // A feed block counts once per execution, however many moves the control
+  // interpolates it in (a G06.2 NURBS runs as chords).
+  std::unordered_set<int> feedLines;
+  for (const ExecutedEvent& event : result.path.events) {
+    if (isFeed(event.kind)) {
+      feedLines.insert(event.line);
+    }
+  }
   for (std::size_t i = 0; i < program.blocks.size() && i < result.blockExecutions.size(); ++i) {
     const Block& block = program.blocks[i];
     // A WHILE block's own test runs once per iteration, and once more to leave.
     bool inLoop = !block.loops.empty() || block.kind == Block::Kind::While;
-    lineInLoop[block.line] = !block.loops.empty();
     if (inLoop) {
       addScaled(counts.operations, countBlockOperations(block), result.blockExecutions[i]);
     }
-  }
-  for (const ExecutedEvent& event : result.path.events) {
-    auto found = lineInLoop.find(event.line);
-    if (isFeed(event.kind) && found != lineInLoop.end() && found->second) {
-      ++counts.feedMoves;
+    if (!block.loops.empty() && feedLines.contains(block.line)) {
+      counts.feedMoves += result.blockExecutions[i];
     }
   }
   return counts;

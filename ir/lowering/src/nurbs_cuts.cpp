@@ -1,7 +1,7 @@
 // method=nurbs on a target that prints NURBS blocks (LoweringOptions::
-// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass is a rapid over the
-// block's first control point, a plunge and a curve.lap at the pass height
-// whose entry asks for the block (CurveSampling::NurbsBlocks), which the
+// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass of the sweep's loop is
+// a rapid over the block's first control point, a plunge and a curve.lap at
+// the pass height whose entry asks for the block (CurveSampling::NurbsBlocks), which the
 // legalisation write-curve-blocks writes out as one move.nurbs. A curve that
 // is a NURBS of its own is its block: the lowering puts its data, control
 // points on the printed grid, in a table the entry names, and its weights
@@ -150,25 +150,25 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   geometry.curve = curve.geometry;
   geometry.tolerance = chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN());
   geometry.span = cut.span;
-  beginCutMoves(geometry);
-
-  std::vector<double> depths = passDepths(cut);
-  for (std::size_t k = 0; k < depths.size(); ++k) {
-    PassScope pass(builder_, sweepPass(k, depths.size()));
-    double z = beginPass(depths[k], depths.size());
-    approachPassStart(first, z, safeValue, feedValue);
-    // The lap at the pass height, which write-curve-blocks writes out as the
-    // block (move.nurbs) with its weights.
-    ValueId height = builder_.constant(z);
-    std::vector<ValueId> operands = {height, height, feedValue};
-    operands.insert(operands.end(), weights.begin(), weights.end());
-    if (curve.beside) {
-      emitBesideLapAt(*curve.beside, lapTable, std::move(operands), cut);
-    } else {
-      emitCurveLapAt(curve, lapTable, std::move(operands), curvePointOf(curve, cut));
-    }
-    builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
-  }
+  bool activatesLengthOffset = beginCutMoves(geometry);
+  // The passes (the controller's loop: depth= and step= stay editable), each
+  // a rapid over the block's first control point, the plunge and the lap at
+  // the pass height, which write-curve-blocks writes out as the block
+  // (move.nurbs) with its weights.
+  ValueId firstX = builder_.constant(first.x());
+  ValueId firstY = builder_.constant(first.y());
+  emitSweep(cut, false, options_.controllerLoops,
+            {firstX, firstY, safeValue, activatesLengthOffset, Scalar::of(first.z())},
+            {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue,
+            [&](ValueId zFrom, ValueId zTo) {
+              std::vector<ValueId> operands = {zFrom, zTo, feedValue};
+              operands.insert(operands.end(), weights.begin(), weights.end());
+              if (curve.beside) {
+                emitBesideLapAt(*curve.beside, lapTable, std::move(operands), cut);
+              } else {
+                emitCurveLapAt(curve, lapTable, std::move(operands), curvePointOf(curve, cut));
+              }
+            });
   return true;
 }
 

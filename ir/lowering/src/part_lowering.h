@@ -409,7 +409,7 @@ private:
   bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);
   // polynomial_cuts.cpp
   // `given`: the curve to cut instead of the statement's (an offset's stand-in).
-  void emitPolynomialMoves(const std::vector<PolynomialMove>& spans, double z, ValueId feed);
+  void emitPolynomialMoves(const std::vector<PolynomialMove>& spans, ValueId z, ValueId feed);
   bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   ToleranceBudget polynomialBudget(const frontend::CutStmt& cut);
 

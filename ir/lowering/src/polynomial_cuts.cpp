@@ -1,6 +1,7 @@
 // A spline cut (method=cspline, aspline, bspline or nurbs) on a target
 // with polynomial span blocks (LoweringOptions::polynomialBlocks: the
-// Heidenhain TNC's SPL). Each pass is a rapid over the curve's start on the
+// Heidenhain TNC's SPL). Each pass (a trip of the controller's pass loop,
+// depth= and step= editable) is a rapid over the curve's start on the
 // printed grid, a plunge, and a curve.lap at the pass height whose entry
 // asks for the cubic spans (CurveSampling::PolynomialBlocks) within the
 // tolerance less the rounding of the end points, on the printed grid: the
@@ -44,12 +45,14 @@ ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
   return budget;
 }
 
-// A move.polynomial per span at height z.
-void PartLowering::emitPolynomialMoves(const std::vector<PolynomialMove>& spans, double z,
+// A move.polynomial per span at height z (each span's end above it).
+void PartLowering::emitPolynomialMoves(const std::vector<PolynomialMove>& spans, ValueId z,
                                        ValueId feed) {
   for (const PolynomialMove& span : spans) {
+    ValueId endZ =
+        span.end.z() == 0 ? z : builder_.binary(Opcode::Add, z, builder_.constant(span.end.z()));
     std::vector<ValueId> operands{builder_.constant(span.end.x()), builder_.constant(span.end.y()),
-                                  builder_.constant(z + span.end.z())};
+                                  endZ};
     for (int axis = 0; axis < 3; ++axis) {
       for (const Eigen::Vector3d& coefficient : span.coefficients) {
         operands.push_back(builder_.constant(coefficient[axis]));
@@ -82,7 +85,7 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   geometry.tolerance = chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN());
   geometry.span = cut.span;
   geometry.method = word;
-  beginCutMoves(geometry);
+  bool activatesLengthOffset = beginCutMoves(geometry);
 
   CurveTableEntry entry = blocksTableEntry(cut, curve, CurveSampling::PolynomialBlocks,
                                            std::nullopt, budget.forPoints());
@@ -100,21 +103,20 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
     }
   }
   auto [first, last] = curveEndsOnGrid(*curve.geometry, budget.increment);
-  std::vector<double> depths = passDepths(cut);
-  for (std::size_t k = 0; k < depths.size(); ++k) {
-    PassScope pass(builder_, sweepPass(k, depths.size()));
-    double z = beginPass(depths[k], depths.size());
-    approachPassStart(first, z, safeValue, feedValue);
-    if (spansTable) {
-      // The lap at the pass height, which write-curve-blocks writes out as
-      // a move.polynomial per span.
-      ValueId height = builder_.constant(z);
-      emitCurveLap(curve, *spansTable, height, height, feedValue, cut);
-    } else {
-      emitPolynomialMoves(*spans, z, feedValue);
-    }
-    builder_.rapid(builder_.constant(last.x()), builder_.constant(last.y()), safeValue);
-  }
+  // The passes (the controller's loop: depth= and step= stay editable), each
+  // a lap at the pass height, which write-curve-blocks writes out as a
+  // move.polynomial per span, or the spans fitted here.
+  emitSweep(cut, false, options_.controllerLoops,
+            {builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
+             activatesLengthOffset, Scalar::of(first.z())},
+            {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue,
+            [&](ValueId zFrom, ValueId zTo) {
+              if (spansTable) {
+                emitCurveLap(curve, *spansTable, zFrom, zTo, feedValue, cut);
+              } else {
+                emitPolynomialMoves(*spans, zTo, feedValue);
+              }
+            });
   return true;
 }
 

@@ -1,10 +1,13 @@
 // `drop-pass-depths`, for the targets whose printers print the IR as it
 // stands (the macro programs): each pass.begin goes. Their passes are a
-// loop the controller runs, whose comment could not say the depth (and a
-// loop the optimiser wrote out says none either, as the loop it was).
+// loop the controller runs, whose comment could not say the depth; a pass
+// the optimiser wrote out (an unrolled loop's trip, its depth a number)
+// keeps its comment, `pass at depth D`, as a pass the lowering wrote out.
 #include "cncc/ir/passes.h"
 
 #include "rewriter.h"
+
+#include "cncc/ir/sweep_pass.h"
 
 namespace cncc::ir {
 
@@ -21,6 +24,11 @@ private:
       return;
     }
     markChanged();
+    if (std::optional<double> z = passes::constantValue(source_, instruction.operands[0])) {
+      Instruction comment = instruction;
+      comment.text = passDepthComment(*z);
+      emitAs(comment, Opcode::Comment, {});
+    }
   }
 };
 

@@ -10,6 +10,7 @@
 #include "cncc/backends/controller_profile.h"
 #include "cncc/backends/gcode_writer.h"
 #include "cncc/backends/nurbs_blocks.h"
+#include "cncc/backends/sim_operation_count.h"
 #include "cncc/backends/virtual_controller.h"
 #include "cncc/geom/bspline_fitting.h"
 #include "cncc/geom/deviation.h"
@@ -184,6 +185,56 @@ TEST(NurbsBlocks, SymbolicWeightsStayVariables) {
   NurbsBlocks blocks = writeNurbsBlocks(curve, options);
   ASSERT_TRUE(blocks.errors.empty());
   EXPECT_EQ(blocks.lines[5], "K0.5 X132.467 Y35.115 Z0. R#3");
+}
+
+// A pass loop's height the program computes: Z its variable on every block
+// (above a control point of its own z, their sum), the first point's X and
+// Y still checked against the current position.
+TEST(NurbsBlocks, ComputedHeightStaysItsVariable) {
+  geom::NurbsCurve curve = sProfile();
+  NurbsBlockOptions options = optionsFor(curve, NurbsDialect::Fanuc, 0);
+  options.zCoordinate = "#5";
+  options.zOperand = "#5";
+  NurbsBlocks blocks = writeNurbsBlocks(curve, options);
+  ASSERT_TRUE(blocks.errors.empty()) << blocks.errors.front();
+  EXPECT_EQ(blocks.lines[0], "G06.2 P4 K0. X25. Y50. Z#5 R1. F300.");
+  EXPECT_EQ(blocks.lines[5], "K0.5 X132.467 Y35.115 Z#5 R3.");
+  std::vector<Eigen::Vector3d> raised = curve.controlPoints();
+  raised[1].z() = -1.5;
+  geom::NurbsCurve dipped(curve.knots(), raised, curve.weights());
+  blocks = writeNurbsBlocks(dipped, options);
+  ASSERT_TRUE(blocks.errors.empty()) << blocks.errors.front();
+  EXPECT_EQ(blocks.lines[1], "K0. X42.873 Y24.147 Z[#5-1.5] R1.");
+  options.currentPosition.x() += 1;
+  EXPECT_FALSE(writeNurbsBlocks(curve, options).errors.empty());
+}
+
+// The blocks in a pass loop at its height Z#5, run by the controller: each
+// trip cuts the curve at its own depth, and the loop's cost is counted per
+// feed block (the plunge and the NURBS, not the NURBS's interpolated moves).
+TEST(NurbsBlocks, PassLoopRunsTheBlocksAtEachHeight) {
+  geom::NurbsCurve curve = sProfile();
+  NurbsBlockOptions options = optionsFor(curve, NurbsDialect::Fanuc, 0);
+  options.zCoordinate = "#5";
+  options.zOperand = "#5";
+  NurbsBlocks blocks = writeNurbsBlocks(curve, options);
+  ASSERT_TRUE(blocks.errors.empty()) << blocks.errors.front();
+  std::string text = "%\nO1000\nG21 G17 G90 G40\n#4=1.\nWHILE [#4 LE 3.] DO1\n#5=-#4\n"
+                     "G00 Z5.\nG00 X25. Y50.\nG01 Z#5 F300.\n";
+  for (const std::string& line : blocks.lines) {
+    text += line + "\n";
+  }
+  text += "G00 Z5.\n#4=#4+1.\nEND1\nM30\n%\n";
+  const ControllerProfile& profile = *findControllerProfile("fanuc");
+  sim::SimulationResult result = run(text, "fanuc");
+  for (double z : {-1.0, -2.0, -3.0}) {
+    std::vector<Eigen::Vector3d> points = executedNurbs(result, z);
+    ASSERT_GT(points.size(), 50u) << z;
+    EXPECT_LT(largestPointDistance(points, curve), 1e-3) << z;
+  }
+  sim::LoopOperationCounts counts =
+      sim::countLoopOperations(sim::readProgram(text, profile), result);
+  EXPECT_EQ(counts.feedMoves, 6u);
 }
 
 // The exactness check: nothing to round, so the executed points are on the

@@ -32,12 +32,16 @@ enum class NurbsDialect { Fanuc, Mitsubishi };
 struct NurbsBlockOptions {
   NurbsDialect dialect = NurbsDialect::Fanuc;
   int coordinateDecimals = 3; // IS-B, millimetres
-  // The pass height added to the curve's own z.
+  // The pass height added to the curve's own z: a number, or where the
+  // program computes it its coordinate text (`#4`) and its text as an
+  // operand, for `Z[#4+1.5]` above a control point's own z.
   double z = 0;
+  std::string zCoordinate;
+  std::string zOperand;
   double feed = 0;
   std::string feedText; // printed after F instead of `feed` when not empty (`#9`)
   // Where the machine is when the first block runs (must be the first
-  // control point, at the pass height).
+  // control point, at the pass height; in X and Y where that is computed).
   Eigen::Vector3d currentPosition = Eigen::Vector3d::Zero();
   bool cutterCompensation = false; // G41/G42 in effect
   // Per control point, a variable that holds its weight (`#3`), or empty for

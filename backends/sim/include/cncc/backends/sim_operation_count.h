@@ -22,7 +22,7 @@ struct OperationCounts {
 
 struct LoopOperationCounts {
   OperationCounts operations; // executed by blocks inside loops
-  std::size_t feedMoves = 0;  // G01/G02/G03 moves commanded inside loops
+  std::size_t feedMoves = 0;  // feed blocks executed inside loops (a NURBS or SPL once)
 
   // Each kind per loop feed move (0 without such moves).
   double perFeedMove(std::size_t OperationCounts::*kind) const;
