@@ -544,13 +544,7 @@ std::vector<std::uint32_t> PartLowering::stretchCurves(const CutStmt& cut, const
 void PartLowering::emitCompensatedPass(const CompensatedLeads& leads, ValueId safe, Scalar passZ,
                                        ValueId feed,
                                        const std::function<void(ValueId z)>& contour) {
-  // A pass's height that is a number is on the printed grid, as the leads'
-  // ends are; the controller rounds one it computes.
-  double planeZ = leads.leadIn.end.z();
-  ValueId z =
-      passZ.isConstant()
-          ? builder_.constant(onPrintedGrid(planeZ + passZ.constant, options_.coordinateIncrement))
-          : arithmetic_.value(arithmetic_.add(Scalar::of(planeZ), passZ));
+  ValueId z = planeHeight(leads.leadIn.end.z(), passZ);
   auto [startX, startY] = printedPoint(leads.startUp);
   builder_.rapid(startX, startY, safe);
   builder_.feed(startX, startY, z, feed);

@@ -260,23 +260,6 @@ geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const ge
   }
 }
 
-SweepPass PartLowering::sweepPass(std::size_t index, std::size_t passes, bool ramp) {
-  return {static_cast<std::uint32_t>(index + 1), static_cast<std::uint32_t>(passes), ramp};
-}
-
-double PartLowering::beginPass(double depth, std::size_t passes) {
-  builder_.comment(passes > 1 ? passDepthComment(-depth) : "cut");
-  return depth == 0 ? 0.0 : -depth;
-}
-
-void PartLowering::approachPassStart(const Eigen::Vector3d& start, double z, ValueId safe,
-                                     ValueId feed) {
-  ValueId startX = builder_.constant(start.x());
-  ValueId startY = builder_.constant(start.y());
-  builder_.rapid(startX, startY, safe);
-  builder_.feed(startX, startY, builder_.constant(z + start.z()), feed);
-}
-
 std::vector<double> PartLowering::passDepths(const CutStmt& cut) {
   const Expr* depthExpression = modifierValue(cut, "depth");
   const Expr* stepExpression = modifierValue(cut, "step");
@@ -375,38 +358,6 @@ bool PartLowering::beginCutMoves(CutGeometry geometry) {
 void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius) {
   cuts_.back().drawnCurve = std::move(drawn);
   cuts_.back().toolRadius = toolRadius;
-}
-
-void PartLowering::emitHostPasses(const std::vector<double>& depths, bool ramp,
-                                  const Eigen::Vector3d& start, const Eigen::Vector3d& finish,
-                                  ValueId feed, ValueId safe, const LapEmitter& lap,
-                                  const CompensatedLeads* leads) {
-  // A lead arc at a pass's height (its arcs are in the curve's plane).
-  auto leadArc = [&](const geom::ArcSegment& arc, double passZ) {
-    double z = onPrintedGrid(leads->leadIn.end.z() + passZ, options_.coordinateIncrement);
-    emitArcLap({arc}, builder_.constant(z), feed);
-  };
-  double previous = 0;
-  for (std::size_t k = 0; k < depths.size(); ++k) {
-    PassScope pass(builder_, sweepPass(k, depths.size()));
-    double passZ = beginPass(depths[k], depths.size());
-    double entryZ = ramp ? previous : passZ;
-    approachPassStart(start, entryZ, safe, feed);
-    if (leads != nullptr) {
-      leadArc(leads->leadIn, entryZ);
-    }
-    if (ramp) {
-      PassScope rampLap(builder_, sweepPass(k, depths.size(), true));
-      builder_.comment("ramp");
-      lap(entryZ, passZ);
-    }
-    lap(passZ, passZ);
-    if (leads != nullptr) {
-      leadArc(leads->leadOut, passZ);
-    }
-    builder_.rapid(builder_.constant(finish.x()), builder_.constant(finish.y()), safe);
-    previous = passZ;
-  }
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {

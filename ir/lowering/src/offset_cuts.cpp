@@ -161,11 +161,10 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
   }
   // Offsets are computed here: on a controller-side target what they
   // depend on must not be a parameter, but for the tool's diameter when the
-  // controller computes the offset (controller_offset_cuts.cpp), and the
-  // passes' depth and step where the controller compensates (its pass loop
-  // computes them).
+  // controller computes the offset (controller_offset_cuts.cpp); the
+  // passes' depth and step may be (the sweep's pass loop computes them).
   if (std::optional<ParameterUse> use =
-          options_.controllerLoops ? parameterUse(cut, toolDiameter_, !controller) : std::nullopt) {
+          options_.controllerLoops ? parameterUse(cut, toolDiameter_, false) : std::nullopt) {
     if (use->what == "tool diameter" && !controller) {
       double radius = evaluate(*toolDiameter_, environment_).number / 2;
       return wordOf(*side.value) == "left" ? radius : -radius;
@@ -433,12 +432,10 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
   HostOffsetLaps laps = hostOffsetLaps(cut, offset, beside, begun.ramp);
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
-  beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
-                 cut.span, methodOf(cut), laps.arcMoves});
+  bool activatesLengthOffset =
+      beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
+                     cut.span, methodOf(cut), laps.arcMoves});
   markCutBeside(curve.geometry, std::fabs(distance));
-  auto lap = [&](double zFrom, double zTo) {
-    emitHostOffsetLap(laps, beside.get(), zFrom, zTo, feed, cut);
-  };
   Eigen::Vector3d start = offset->point(domain.t0);
   Eigen::Vector3d finish = offset->point(domain.t1);
   if (laps.arcs) {
@@ -451,8 +448,16 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
     start = onPrintedGrid(leads->leadIn.start, options_.coordinateIncrement);
     finish = onPrintedGrid(leads->leadOut.end, options_.coordinateIncrement);
   }
-  emitHostPasses(passDepths(cut), begun.ramp, start, finish, feed, safe, lap,
-                 leads ? &*leads : nullptr);
+  // The passes: the controller's loop where it computes depth= and step=.
+  emitSweep(
+      cut, begun.ramp, options_.controllerLoops,
+      {builder_.constant(start.x()), builder_.constant(start.y()), safe, activatesLengthOffset,
+       Scalar::of(start.z())},
+      {builder_.constant(finish.x()), builder_.constant(finish.y())}, feed,
+      [&](ValueId zFrom, ValueId zTo) {
+        emitHostOffsetLap(laps, beside.get(), zFrom, zTo, feed, cut);
+      },
+      leads ? &*leads : nullptr);
 }
 
 // The offset's own lines and arcs where it is made of nothing else (moves at
@@ -489,21 +494,16 @@ HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
 }
 
 void PartLowering::emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside,
-                                     double zFrom, double zTo, ValueId feed, const CutStmt& cut) {
-  bool level = zFrom == zTo;
+                                     ValueId zFrom, ValueId zTo, ValueId feed, const CutStmt& cut) {
+  bool level = heightOf(zFrom).sameAs(heightOf(zTo));
   if (laps.arcsTable && level) {
-    ValueId to = builder_.constant(zTo);
-    emitBesideLapAt(*beside, *laps.arcsTable, {to, to, feed}, cut);
+    emitBesideLapAt(*beside, *laps.arcsTable, {zTo, zTo, feed}, cut);
   } else if (laps.arcs && level) {
-    double planeZ = laps.arcs->front().start.z();
-    emitArcLap(*laps.arcs,
-               builder_.constant(onPrintedGrid(planeZ + zTo, options_.coordinateIncrement)), feed);
+    emitArcLap(*laps.arcs, planeHeight(laps.arcs->front().start.z(), heightOf(zTo)), feed);
   } else if (laps.pointsTable) {
-    ValueId to = builder_.constant(zTo);
-    emitBesideLapAt(*beside, *laps.pointsTable, {level ? to : builder_.constant(zFrom), to, feed},
-                    cut);
+    emitBesideLapAt(*beside, *laps.pointsTable, {zFrom, zTo, feed}, cut);
   } else {
-    emitChordLap(laps.chords, Scalar::of(zFrom), Scalar::of(zTo), feed);
+    emitChordLap(laps.chords, heightOf(zFrom), heightOf(zTo), feed);
   }
 }
 

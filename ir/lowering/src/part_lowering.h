@@ -352,33 +352,23 @@ private:
   // The whole sweep of laps along a curve: each pass a rapid over the
   // start, a feed down to it (to the pass above with entry=ramp, then the
   // ramp lap `lap(above, z)`), the lap `lap(z, z)`, a rapid over `finish`.
+  // With `leads` (lead=R beside the curve) the lead-in arc follows the
+  // plunge, at the height a ramp starts from, and the lead-out arc the lap:
+  // `start` and `finish` are then theirs.
   using SweepLap = std::function<void(ValueId zFrom, ValueId zTo)>;
   void emitSweep(const frontend::CutStmt& cut, bool ramp, bool computed, const SweepStart& start,
-                 std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap);
+                 std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap,
+                 const CompensatedLeads* leads = nullptr);
   Scalar passDepth(Scalar pass, Scalar step, Scalar depth); // -min(pass step, depth)
-  // Starts one of `passes` passes: its comment, and the pass's Z (0 for a
-  // cut at depth 0, else -depth).
-  double beginPass(double depth, std::size_t passes);
-  // Pass index + 1 of `passes` (PassScope around each written-out pass).
-  static SweepPass sweepPass(std::size_t index, std::size_t passes, bool ramp = false);
-  // Rapid over `start` at the safe height, then feed down to z + start.z().
-  void approachPassStart(const Eigen::Vector3d& start, double z, ValueId safe, ValueId feed);
+  // The height of a plane at `planeZ` lowered to a pass's z: a number on the
+  // printed grid, or the controller's sum (which it rounds itself).
+  ValueId planeHeight(double planeZ, Scalar passZ);
+  // A height value as a Scalar: the number where it is a constant.
+  Scalar heightOf(ValueId z);
   std::vector<RampSegment> rampSegments(const CutCurve& curve, const frontend::CutStmt& cut);
   static RampSegment rampSegmentOf(const std::vector<RampSegment>& segments, std::size_t piece,
                                    std::size_t span);
   void checkRampCloses(const CutCurve& curve, const frontend::CutStmt& cut);
-  // The passes of a cut whose start and finish are constants: per depth its
-  // comment, a rapid over `start` at the safe height, the plunge (to the
-  // previous pass's height and a ramp lap down with `ramp`), the lap at the
-  // pass height and a rapid up over `finish`. With `leads` (lead=R beside
-  // the curve) the lead-in arc follows the plunge, at the height a ramp
-  // starts from, and the lead-out arc the lap: `start` and `finish` are then
-  // theirs.
-  using LapEmitter = std::function<void(double zFrom, double zTo)>;
-  void emitHostPasses(const std::vector<double>& depths, bool ramp, const Eigen::Vector3d& start,
-                      const Eigen::Vector3d& finish, ValueId feed, ValueId safe,
-                      const LapEmitter& lap, const CompensatedLeads* leads = nullptr);
-
   // native_arcs.cpp
   static bool wantsNativeArcs(const frontend::CutStmt& cut);
   static bool hasArcPiece(const CutCurve& curve);
@@ -469,8 +459,8 @@ private:
   HostOffsetLaps hostOffsetLaps(const frontend::CutStmt& cut,
                                 const std::shared_ptr<const geom::Curve>& offset,
                                 const std::shared_ptr<const BesideCurve>& beside, bool ramp);
-  void emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside, double zFrom,
-                         double zTo, ValueId feed, const frontend::CutStmt& cut);
+  void emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside, ValueId zFrom,
+                         ValueId zTo, ValueId feed, const frontend::CutStmt& cut);
 
   // compensated_cuts.cpp: comp=controller, the curve itself with the
   // controller's cutter radius compensation (G41/G42 D.., G40) and tangent

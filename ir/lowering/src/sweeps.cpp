@@ -8,6 +8,8 @@
 // of one pass at its depth, where that is a number.
 #include "part_lowering.h"
 
+#include "cncc/ir/printed_grid.h"
+
 namespace cncc::ir::lowering {
 
 using namespace frontend;
@@ -67,20 +69,44 @@ void PartLowering::endSweep(const SweepHeights& sweep) {
 }
 
 void PartLowering::emitSweep(const CutStmt& cut, bool ramp, bool computed, const SweepStart& start,
-                             std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap) {
+                             std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap,
+                             const CompensatedLeads* leads) {
+  // A lead arc at a pass's height (its arcs are in the curve's plane).
+  auto leadArc = [&](const geom::ArcSegment& arc, Scalar passZ) {
+    emitArcLap({arc}, planeHeight(leads->leadIn.end.z(), passZ), feed);
+  };
   SweepHeights sweep = beginSweep(cut, ramp, computed, start);
+  Scalar entry = ramp ? sweep.previous : sweep.z;
   ValueId z = arithmetic_.value(sweep.z);
   builder_.rapid(start.x, start.y, start.safe);
-  builder_.feed(start.x, start.y,
-                arithmetic_.value(arithmetic_.add(ramp ? sweep.previous : sweep.z, start.z)), feed);
+  builder_.feed(start.x, start.y, arithmetic_.value(arithmetic_.add(entry, start.z)), feed);
+  if (leads != nullptr) {
+    leadArc(leads->leadIn, entry);
+  }
   if (ramp) {
     PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
     builder_.comment("ramp");
-    lap(arithmetic_.value(sweep.previous), z);
+    lap(arithmetic_.value(entry), z);
   }
   lap(z, z);
+  if (leads != nullptr) {
+    leadArc(leads->leadOut, sweep.z);
+  }
   builder_.rapid(finish[0], finish[1], start.safe); // the retract
   endSweep(sweep);
+}
+
+ValueId PartLowering::planeHeight(double planeZ, Scalar passZ) {
+  if (passZ.isConstant()) {
+    return builder_.constant(onPrintedGrid(planeZ + passZ.constant, options_.coordinateIncrement));
+  }
+  return arithmetic_.value(arithmetic_.add(Scalar::of(planeZ), passZ));
+}
+
+Scalar PartLowering::heightOf(ValueId z) {
+  const Instruction& definition = builder_.function().definition(z);
+  return definition.opcode == Opcode::Const ? Scalar::of(definition.number)
+                                            : Scalar::of(z, ValueType::F64);
 }
 
 // z = -min(k step, depth) = (|k step - depth| - k step - depth) / 2, one

@@ -35,7 +35,9 @@ constexpr Pass passTable[] = {
     {"fold", "constant folding and algebraic simplification", foldConstants},
     {"cse", "common subexpression elimination", eliminateCommonSubexpressions},
     {"licm", "loop-invariant code motion", hoistLoopInvariants},
-    {"unroll", "full unrolling of loops of at most 8 trips and 64 body instructions",
+    {"unroll",
+     "full unrolling of loops of at most 8 trips and 64 body instructions (any body run at most "
+     "once)",
      unrollWithDefaults},
     {"unroll-no-larger", "unroll, keeping only unrollings that leave the function no larger",
      unrollWhenNoLarger},

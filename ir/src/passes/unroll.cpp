@@ -1,7 +1,8 @@
-// Full unrolling of loops with constant bounds and a small trip count: the
-// loop becomes copies of its body, one per iteration, the induction
-// variable a constant in each, counted as the interpreter counts (i = low,
-// then ++i while i <= high). Loops nested in an unrolled body are copied
+// Full unrolling of loops with constant bounds and a small trip count (a
+// small body, or any body that runs at most once): the loop becomes copies
+// of its body, one per iteration, the induction variable a constant in
+// each, counted as the interpreter counts (i = low, then ++i while
+// i <= high). Loops nested in an unrolled body are copied
 // and, when they qualify themselves, unrolled too.
 #include "cncc/ir/passes.h"
 
@@ -21,10 +22,16 @@ std::optional<std::size_t> unrollableTrips(const Function& function, const Instr
   }
   std::optional<double> low = passes::constantValue(function, loop.operands[0]);
   std::optional<double> high = passes::constantValue(function, loop.operands[1]);
-  if (!low || !high || passes::regionSize(function, loop.regions[0]) > options.maximumBodySize) {
+  if (!low || !high) {
     return std::nullopt;
   }
-  return passes::tripCount(*low, *high, options.maximumTripCount);
+  std::optional<std::size_t> trips = passes::tripCount(*low, *high, options.maximumTripCount);
+  // One trip or none never makes the function larger, whatever the body.
+  if (trips && *trips > 1 &&
+      passes::regionSize(function, loop.regions[0]) > options.maximumBodySize) {
+    return std::nullopt;
+  }
+  return trips;
 }
 
 class Unroller : public passes::Rewriter {
