@@ -55,7 +55,7 @@ public:
       : function_(function), allocation_(allocation), dialect_(dialect), options_(options),
         errors_(errors),
         expressions_(function, allocation, dialect, options.parameterNames, errors),
-        moves_(expressions_, dialect, lines_), nextLabel_(dialect.firstLabel) {}
+        moves_(expressions_, lines_), nextLabel_(dialect.firstLabel) {}
 
   PrintedMacroProgram print();
 

@@ -37,9 +37,8 @@ struct ModalState {
 
 class ModalMoveWriter {
 public:
-  ModalMoveWriter(const MacroExpressionWriter& expressions, const MacroDialect& dialect,
-                  std::vector<std::string>& lines)
-      : expressions_(expressions), dialect_(dialect), lines_(lines) {}
+  ModalMoveWriter(const MacroExpressionWriter& expressions, std::vector<std::string>& lines)
+      : expressions_(expressions), lines_(lines) {}
 
   // Up first and down last, so a rapid never moves sideways below where it
   // starts or ends; where the heights are not literals, Z goes first (the
@@ -68,7 +67,6 @@ private:
   void block(std::string_view motion, const std::string& words);
 
   const MacroExpressionWriter& expressions_;
-  const MacroDialect& dialect_;
   std::vector<std::string>& lines_;
   ModalState modal_;
   std::string beforeZ_;
