@@ -187,14 +187,20 @@ TEST(NurbsBlocks, SymbolicWeightsStayVariables) {
   EXPECT_EQ(blocks.lines[5], "K0.5 X132.467 Y35.115 Z0. R#3");
 }
 
+// The Fanuc options for blocks at a pass loop's height held in #5.
+NurbsBlockOptions atVariableHeight(const geom::NurbsCurve& curve) {
+  NurbsBlockOptions options = optionsFor(curve, NurbsDialect::Fanuc, 0);
+  options.zCoordinate = "#5";
+  options.zOperand = "#5";
+  return options;
+}
+
 // A pass loop's height the program computes: Z its variable on every block
 // (above a control point of its own z, their sum), the first point's X and
 // Y still checked against the current position.
 TEST(NurbsBlocks, ComputedHeightStaysItsVariable) {
   geom::NurbsCurve curve = sProfile();
-  NurbsBlockOptions options = optionsFor(curve, NurbsDialect::Fanuc, 0);
-  options.zCoordinate = "#5";
-  options.zOperand = "#5";
+  NurbsBlockOptions options = atVariableHeight(curve);
   NurbsBlocks blocks = writeNurbsBlocks(curve, options);
   ASSERT_TRUE(blocks.errors.empty()) << blocks.errors.front();
   EXPECT_EQ(blocks.lines[0], "G06.2 P4 K0. X25. Y50. Z#5 R1. F300.");
@@ -214,10 +220,7 @@ TEST(NurbsBlocks, ComputedHeightStaysItsVariable) {
 // feed block (the plunge and the NURBS, not the NURBS's interpolated moves).
 TEST(NurbsBlocks, PassLoopRunsTheBlocksAtEachHeight) {
   geom::NurbsCurve curve = sProfile();
-  NurbsBlockOptions options = optionsFor(curve, NurbsDialect::Fanuc, 0);
-  options.zCoordinate = "#5";
-  options.zOperand = "#5";
-  NurbsBlocks blocks = writeNurbsBlocks(curve, options);
+  NurbsBlocks blocks = writeNurbsBlocks(curve, atVariableHeight(curve));
   ASSERT_TRUE(blocks.errors.empty()) << blocks.errors.front();
   std::string text = "%\nO1000\nG21 G17 G90 G40\n#4=1.\nWHILE [#4 LE 3.] DO1\n#5=-#4\n"
                      "G00 Z5.\nG00 X25. Y50.\nG01 Z#5 F300.\n";
