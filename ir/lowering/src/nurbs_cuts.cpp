@@ -1,8 +1,9 @@
 // method=nurbs on a target that prints NURBS blocks (LoweringOptions::
-// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass of the sweep's loop is
-// a rapid over the block's first control point, a plunge and a curve.lap at
-// the pass height whose entry asks for the block (CurveSampling::NurbsBlocks), which the
-// legalisation write-curve-blocks writes out as one move.nurbs. A curve that
+// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass of the sweep's loop
+// is a rapid over the block's first control point, a plunge and a curve.lap
+// at the pass height whose entry asks for the block
+// (CurveSampling::NurbsBlocks), which the legalisation write-curve-blocks
+// writes out as one move.nurbs. A curve that
 // is a NURBS of its own is its block: the lowering puts its data, control
 // points on the printed grid, in a table the entry names, and its weights
 // are operands of the lap, so a weight that is a part parameter stays its

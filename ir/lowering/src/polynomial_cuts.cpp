@@ -49,8 +49,7 @@ ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
 void PartLowering::emitPolynomialMoves(const std::vector<PolynomialMove>& spans, ValueId z,
                                        ValueId feed) {
   for (const PolynomialMove& span : spans) {
-    ValueId endZ =
-        span.end.z() == 0 ? z : builder_.binary(Opcode::Add, z, builder_.constant(span.end.z()));
+    ValueId endZ = arithmetic_.value(arithmetic_.add(heightOf(z), Scalar::of(span.end.z())));
     std::vector<ValueId> operands{builder_.constant(span.end.x()), builder_.constant(span.end.y()),
                                   endZ};
     for (int axis = 0; axis < 3; ++axis) {
