@@ -37,7 +37,7 @@ bool PartLowering::asksFittedArcs(const CutStmt& cut) {
 
 // Why the cut cannot be printed as host-fitted arcs, before its curve is
 // built; nullopt when nothing stands in the way.
-std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut, bool passLoop) {
+std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
   if (modifierValue(cut, "samples") != nullptr || modifierValue(cut, "spacing") != nullptr) {
     return "samples= or spacing= chose its points; arcs are fitted within a tolerance=";
   }
@@ -45,11 +45,10 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut, bool 
     if (rampEntry(cut)) {
       return "its entry=ramp laps are computed on the controller";
     }
-    // A loop variable unrolls the loop: each copy's arcs are fitted. In a
-    // pass loop the arcs' height is the loop's: depth= and step= may read
-    // parameters.
-    std::optional<ParameterUse> use = parameterUse(cut);
-    if (use && (!passLoop || use->what == "curve")) {
+    // A loop variable unrolls the loop: each copy's arcs are fitted. The
+    // arcs' height is the sweep's pass loop's: depth= and step= may read
+    // parameters, the curve not.
+    if (std::optional<ParameterUse> use = parameterUse(cut)) {
       return fmt::format("its {} depends on parameter '{}'", use->what, use->parameter);
     }
   } // the host evaluates everything at the values compiled with
@@ -82,11 +81,11 @@ void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view probl
   diagnostics_->report(DiagnosticKind::ArcsAsChords, cut.span, arcsAsChordsMessage(problem));
 }
 
-std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut, bool passLoop) {
+std::optional<ArcsAsked> PartLowering::arcsAskedBy(const CutStmt& cut) {
   if (!asksFittedArcs(cut)) {
     return std::nullopt;
   }
-  if (std::optional<std::string> problem = arcCutProblem(cut, passLoop)) {
+  if (std::optional<std::string> problem = arcCutProblem(cut)) {
     reportArcsAsChords(cut, *problem);
     return std::nullopt;
   }

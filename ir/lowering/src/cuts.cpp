@@ -56,13 +56,10 @@ std::string methodOf(const CutStmt& cut) {
   return method != nullptr && method->value ? wordOf(*method->value) : "";
 }
 
-std::optional<ParameterUse> PartLowering::parameterUse(const CutStmt& cut, const Expr* toolDiameter,
-                                                       bool passes) {
-  std::pair<const char*, const Expr*> uses[] = {
-      {"curve", cut.curve.get()},
-      {"depth", passes ? modifierValue(cut, "depth") : nullptr},
-      {"step", passes ? modifierValue(cut, "step") : nullptr},
-      {"tool diameter", toolDiameter}};
+std::optional<ParameterUse> PartLowering::parameterUse(const CutStmt& cut,
+                                                       const Expr* toolDiameter) {
+  std::pair<const char*, const Expr*> uses[] = {{"curve", cut.curve.get()},
+                                                {"tool diameter", toolDiameter}};
   for (const auto& [what, expression] : uses) {
     if (expression == nullptr) {
       continue;
@@ -378,7 +375,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     return;
   }
   // Fitted arcs are asked of the laps either way below; fit-arcs decides.
-  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut, true);
+  arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut);
   if (lowerControllerCut(cut, curve)) {
     arcsAsked_.reset();
     return;

@@ -164,7 +164,7 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
   // controller computes the offset (controller_offset_cuts.cpp); the
   // passes' depth and step may be (the sweep's pass loop computes them).
   if (std::optional<ParameterUse> use =
-          options_.controllerLoops ? parameterUse(cut, toolDiameter_, false) : std::nullopt) {
+          options_.controllerLoops ? parameterUse(cut, toolDiameter_) : std::nullopt) {
     if (use->what == "tool diameter" && !controller) {
       double radius = evaluate(*toolDiameter_, environment_).number / 2;
       return wordOf(*side.value) == "left" ? radius : -radius;

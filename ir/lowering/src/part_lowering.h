@@ -274,12 +274,12 @@ private:
   // reference.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut);
-  // The first of the cut's curve, depth and step (with `passes`) and
-  // `toolDiameter` that depends on a part parameter; nullopt when none does.
-  // A controller loop's variable unrolls the loop instead (NeedsUnrolling).
+  // The first of the cut's curve and `toolDiameter` that depends on a part
+  // parameter; nullopt when none does (depth= and step= may: the sweep's
+  // pass loop computes them). A controller loop's variable unrolls the loop
+  // instead (NeedsUnrolling).
   std::optional<ParameterUse> parameterUse(const frontend::CutStmt& cut,
-                                           const frontend::Expr* toolDiameter = nullptr,
-                                           bool passes = true);
+                                           const frontend::Expr* toolDiameter = nullptr);
   bool rampEntry(const frontend::CutStmt& cut);
   Scalar cutFeed(const frontend::CutStmt& cut);
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
@@ -487,10 +487,9 @@ private:
 
   // arc_cuts.cpp
   // The arcs (fit-arcs fits them) the cut asks of its level laps; nullopt,
-  // warning arcs-as-chords, where the cut stands in the way. With `passLoop`
-  // (the passes a controller loop) only its curve must be numbers.
-  std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut, bool passLoop = false);
-  std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut, bool passLoop = false);
+  // warning arcs-as-chords, where the cut stands in the way.
+  std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut);
+  std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
   void reportArcsAsChords(const frontend::CutStmt& cut, std::string_view problem);
   std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
                                                      const CutCurve& curve);
