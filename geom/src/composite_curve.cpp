@@ -2,6 +2,8 @@
 
 #include "cncc/geom/geometry_error.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 namespace cncc::geom {
@@ -20,8 +22,9 @@ CompositeCurve::CompositeCurve(std::vector<std::shared_ptr<const Curve>> pieces,
       ParameterRange previous = pieces_[i - 1]->domain();
       double gap = (pieces_[i]->point(range.t0) - pieces_[i - 1]->point(previous.t1)).norm();
       if (gap > joinTolerance)
-        throw GeometryError("path piece " + std::to_string(i) + " starts " + std::to_string(gap) +
-                            " away from where piece " + std::to_string(i - 1) + " ends");
+        throw GeometryError(fmt::format("path piece {} starts {:.3g} mm away from where piece {} "
+                                        "ends",
+                                        i, gap, i - 1));
     }
     starts_.push_back(starts_.back() + range.length());
   }

@@ -145,14 +145,18 @@ void trimAtCrossing(std::shared_ptr<const Curve>& before, std::shared_ptr<const 
                     corner, 0.0);
 }
 
+// The gap between where `before` ends and `after` starts.
+double gapBetween(const Curve& before, const Curve& after) {
+  return (after.point(after.domain().t0) - before.point(before.domain().t1)).norm();
+}
+
 // Joins `next` (an offset) to the offsets in `joined`: directly where they
-// meet, by an arc about a convex corner, or both trimmed at a concave one.
+// meet as closely as the pieces do, by an arc about a convex corner, or both
+// trimmed at a concave one.
 void joinOffset(std::vector<std::shared_ptr<const Curve>>& joined,
                 std::shared_ptr<const Curve>& next, const Curve& baseBefore, const Curve& baseAfter,
                 double distance) {
-  const Curve& previous = *joined.back();
-  Eigen::Vector3d end = previous.point(previous.domain().t1);
-  if ((next->point(next->domain().t0) - end).norm() <= kTangentJoin) {
+  if (gapBetween(*joined.back(), *next) <= gapBetween(baseBefore, baseAfter) + kTangentJoin) {
     return;
   }
   double turn = cornerTurn(baseBefore, baseAfter);
@@ -241,10 +245,12 @@ std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<co
     throw GeometryError("an offset needs a finite non-zero distance");
   }
   std::vector<std::shared_ptr<const Curve>> joined;
+  double widestGap = 0; // between the pieces: their offsets' join may be as wide
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     std::shared_ptr<const Curve> offset = offsetOfPiece(pieces[i], distance);
     if (i > 0) {
       joinOffset(joined, offset, *pieces[i - 1], *pieces[i], distance);
+      widestGap = std::max(widestGap, gapBetween(*pieces[i - 1], *pieces[i]));
     }
     joined.push_back(std::move(offset));
   }
@@ -261,7 +267,7 @@ std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<co
   if (joined.size() == 1) {
     return joined.front();
   }
-  return std::make_shared<CompositeCurve>(std::move(joined), 10 * kTangentJoin);
+  return std::make_shared<CompositeCurve>(std::move(joined), widestGap + 10 * kTangentJoin);
 }
 
 } // namespace cncc::geom

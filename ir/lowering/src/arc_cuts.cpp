@@ -8,8 +8,7 @@
 // the cut itself stands in the way of is reported here: samples= or
 // spacing=, and on a controller-side target a ramp or a curve that depends
 // on a part parameter (the arcs are the host's numbers), or a tolerance
-// that leaves no room for the grid. A cut beside its curve whose offset
-// the host computes is still fitted here (fittedOffsetArcs).
+// that leaves no room for the grid.
 #include "part_lowering.h"
 
 #include "cncc/geom/arc_fitting.h"
@@ -59,22 +58,6 @@ std::optional<std::string> PartLowering::arcCutProblem(const CutStmt& cut) {
                        budget.tolerance, budget.increment);
   }
   return std::nullopt;
-}
-
-// The cut's curve as arcs within its tolerance less the printed rounding,
-// or why it cannot be.
-std::variant<geom::ArcFit, std::string> PartLowering::fitCutArcs(const CutStmt& cut,
-                                                                 const CutCurve& curve) {
-  if (std::optional<std::string> problem = arcCutProblem(cut)) {
-    return *problem;
-  }
-  try {
-    return fitArcsWithinBudget(*curve.geometry,
-                               {toleranceBudget(cut).forArcs(), largestCoordinateInUnits()},
-                               cut.span, cut.curve->span);
-  } catch (const CurveLapError& error) {
-    return std::string(error.what());
-  }
 }
 
 void PartLowering::reportArcsAsChords(const CutStmt& cut, std::string_view problem) {

@@ -95,31 +95,19 @@ struct RuntimeOffset {
   bool closed = false;
 };
 
-// The chords' ends after the first, each with its share of the lap's
-// length (for a ramp); on a host target also as constant tables.
-struct OffsetChords {
-  std::vector<Eigen::Vector3d> ends;
-  std::vector<double> progress;
-  bool tables = false;
-  std::uint32_t x = 0, y = 0, z = 0, progressTable = 0;
-  bool planar = true; // every z is 0: no z table
-};
-
 // G39 after chord `after` (0-based), towards the next move's direction.
 struct ChordCorner {
   std::size_t after = 0;
   Eigen::Vector3d nextTangent = Eigen::Vector3d::Zero();
 };
 
-// How a host offset's laps are cut: its own arcs or ones fitted here, or
-// level laps asking for fitted arcs (their table), else its points (their
-// lap's table, or chords).
+// How a host offset's laps are cut: its own arcs, or level laps asking for
+// fitted arcs (their table), else its points (their lap's table).
 struct HostOffsetLaps {
   std::optional<std::vector<geom::ArcSegment>> arcs;
   CutArcs arcMoves = CutArcs::None;
   std::optional<std::uint32_t> arcsTable;
   std::optional<std::uint32_t> pointsTable;
-  OffsetChords chords;
 };
 
 // Whether a curve is a line or an arc (geom's LineCurve, ArcCurve).
@@ -128,6 +116,10 @@ bool isArcCurve(const geom::Curve& curve);
 
 // The cut's pieces in part coordinates, lines and arcs kept as such.
 std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curve);
+// The pieces as one curve: the piece itself, or a path of them joined as
+// the cut's curve joins them (pathJoinTolerance).
+std::shared_ptr<const geom::Curve>
+joinedPieces(const std::vector<std::shared_ptr<const geom::Curve>>& pieces);
 // A curve of lines and arcs as line and arc moves; nullopt for other curves.
 std::optional<std::vector<geom::ArcSegment>> exactSegments(const geom::Curve& curve);
 // The drawn curve a tool runs beside, sampled once for the clearance

@@ -409,8 +409,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
                                      method));
   }
   std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
-  std::shared_ptr<const geom::Curve> contour =
-      pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces);
+  std::shared_ptr<const geom::Curve> contour = joinedPieces(pieces);
   geom::ParameterRange domain = contour->domain();
   double increment = options_.coordinateIncrement;
   double toolRadius = std::fabs(distance);
@@ -492,11 +491,8 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   // corners that get a G39.
   std::shared_ptr<const BesideCurve> drawn = arcs ? nullptr : besideCurve(cut, curve, contour, 0);
   std::vector<std::uint32_t> stretches;
-  OffsetChords chords;
   if (drawn) {
     stretches = stretchCurves(cut, *drawn, samples.parameters, chordCorners);
-  } else if (!arcs) {
-    chords = offsetChords(samples, false); // constants on controllerLoops
   }
   // The passes: the controller's loop where it computes depth= and step=.
   auto [startX, startY] = printedPoint(leads.startUp);
@@ -508,15 +504,13 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
       emitArcLapWithCorners(*arcs, distance, z, feed);
     } else if (arcs) {
       emitArcLap(*arcs, z, feed);
-    } else if (drawn) {
+    } else {
       for (std::size_t k = 0; k < stretches.size(); ++k) {
         if (k > 0) {
           emitCornerArc(chordCorners[k - 1].nextTangent);
         }
         emitBesideLapAt(*drawn, stretches[k], {passZ, passZ, feed}, cut);
       }
-    } else {
-      emitChordLap(chords, sweep.z, sweep.z, feed, chordCorners);
     }
   });
   endSweep(sweep);

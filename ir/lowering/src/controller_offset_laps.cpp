@@ -63,8 +63,7 @@ besideGeometry(const CurveTableEntry& entry, const std::shared_ptr<const geom::C
     return pieces.front();
   }
   // As geom::offsetOfPieces joins them (pieces meeting tangentially).
-  constexpr double joinTolerance = 1e-6;
-  return std::make_shared<geom::CompositeCurve>(std::move(pieces), joinTolerance);
+  return std::make_shared<geom::CompositeCurve>(std::move(pieces), pathJoinTolerance);
 }
 
 } // namespace

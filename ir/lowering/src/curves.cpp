@@ -22,10 +22,6 @@ using namespace frontend;
 
 namespace {
 
-// How far apart (mm) the end of one path piece and the start of the next
-// may be: rounding in the pieces' own evaluation, not a gap in the part.
-constexpr double joinTolerance = 1e-6;
-
 // What an analytic curve evaluates its expressions with; shared by the
 // curve's callbacks, so that the curve outlives the lowering (it still
 // needs the checked program).
@@ -195,7 +191,7 @@ void PartLowering::joinPieces(CutCurve& curve, const CutStmt& cut) {
     if (i > 0) {
       Eigen::Vector3d end = moved[i - 1]->point(moved[i - 1]->domain().t1);
       double gap = (moved[i]->point(domain.t0) - end).norm();
-      if (!(gap <= joinTolerance)) {
+      if (!(gap <= pathJoinTolerance)) {
         fail(cut.curve->span,
              fmt::format("the pieces of this path do not join: piece {} starts {:.6g} from "
                          "where piece {} ends at ({:.6g}, {:.6g}, {:.6g})",
@@ -205,7 +201,7 @@ void PartLowering::joinPieces(CutCurve& curve, const CutStmt& cut) {
     }
     curve.pieceStarts.push_back(curve.pieceStarts.back() + domain.length());
   }
-  curve.geometry = std::make_shared<geom::CompositeCurve>(std::move(moved), joinTolerance);
+  curve.geometry = std::make_shared<geom::CompositeCurve>(std::move(moved), pathJoinTolerance);
 }
 
 SampleLocation PartLowering::locate(const CutCurve& curve, double t) const {

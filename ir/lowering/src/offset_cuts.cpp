@@ -75,6 +75,14 @@ std::vector<std::shared_ptr<const geom::Curve>> movedPieces(const CutCurve& curv
   return pieces;
 }
 
+std::shared_ptr<const geom::Curve>
+joinedPieces(const std::vector<std::shared_ptr<const geom::Curve>>& pieces) {
+  if (pieces.size() == 1) {
+    return pieces.front();
+  }
+  return std::make_shared<geom::CompositeCurve>(pieces, pathJoinTolerance);
+}
+
 bool isLineCurve(const geom::Curve& curve) {
   return dynamic_cast<const geom::LineCurve*>(&curve) != nullptr;
 }
@@ -183,7 +191,7 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
 
 DrawnClearance::DrawnClearance(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                                double slack)
-    : drawn(pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces)),
+    : drawn(joinedPieces(pieces)),
       budgeted(std::make_unique<geom::BudgetedCurve>(*drawn, maximumCurveEvaluations)),
       proximity(std::make_unique<geom::CurveProximity>(*budgeted, slack / 4)), slack(slack) {}
 
@@ -429,7 +437,7 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
   if (begun.ramp && (offset->point(domain.t0) - offset->point(domain.t1)).norm() > 1e-6) {
     unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
   }
-  HostOffsetLaps laps = hostOffsetLaps(cut, offset, beside, begun.ramp);
+  HostOffsetLaps laps = hostOffsetLaps(cut, offset, *beside, begun.ramp);
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
   bool activatesLengthOffset =
@@ -454,56 +462,42 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
       {builder_.constant(start.x()), builder_.constant(start.y()), safe, activatesLengthOffset,
        Scalar::of(start.z())},
       {builder_.constant(finish.x()), builder_.constant(finish.y())}, feed,
-      [&](ValueId zFrom, ValueId zTo) {
-        emitHostOffsetLap(laps, beside.get(), zFrom, zTo, feed, cut);
-      },
+      [&](ValueId zFrom, ValueId zTo) { emitHostOffsetLap(laps, *beside, zFrom, zTo, feed, cut); },
       leads ? &*leads : nullptr);
 }
 
 // The offset's own lines and arcs where it is made of nothing else (moves at
 // once), else where the cut asks for fitted arcs level laps that ask for
 // them (fit-arcs decides); the points of the other laps and of a ramp lap:
-// a curve.lap (offset_laps.cpp), or chords where the offset's pieces are
-// joined otherwise than besideCurve follows (and arcs fitted here).
+// a curve.lap (offset_laps.cpp).
 HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
                                             const std::shared_ptr<const geom::Curve>& offset,
-                                            const std::shared_ptr<const BesideCurve>& beside,
-                                            bool ramp) {
+                                            const BesideCurve& beside, bool ramp) {
   HostOffsetLaps laps;
   if (wantsNativeArcs(cut)) {
     laps.arcs = exactSegments(*offset);
     laps.arcMoves = laps.arcs ? CutArcs::Native : CutArcs::None;
   }
-  if (!laps.arcs && beside) {
+  if (!laps.arcs) {
     if (std::optional<ArcsAsked> asked = arcsAskedBy(cut)) {
-      laps.arcsTable = besideChordsCurve(cut, *beside, asked);
-    }
-  } else if (!laps.arcs) {
-    if (std::shared_ptr<const geom::ArcFit> fit = fittedOffsetArcs(cut, *offset)) {
-      laps.arcs = fit->segments;
-      laps.arcMoves = CutArcs::Fitted;
+      laps.arcsTable = besideChordsCurve(cut, beside, asked);
     }
   }
-  bool pointsWanted = !(laps.arcs || laps.arcsTable) || ramp;
-  if (pointsWanted && beside) {
-    laps.pointsTable = besideChordsCurve(cut, *beside);
-  } else if (pointsWanted) {
-    laps.chords = offsetChords(offsetSamples(cut, *offset), ramp);
+  if (!(laps.arcs || laps.arcsTable) || ramp) {
+    laps.pointsTable = besideChordsCurve(cut, beside);
   }
   return laps;
 }
 
-void PartLowering::emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside,
+void PartLowering::emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve& beside,
                                      ValueId zFrom, ValueId zTo, ValueId feed, const CutStmt& cut) {
   bool level = heightOf(zFrom).sameAs(heightOf(zTo));
   if (laps.arcsTable && level) {
-    emitBesideLapAt(*beside, *laps.arcsTable, {zTo, zTo, feed}, cut);
+    emitBesideLapAt(beside, *laps.arcsTable, {zTo, zTo, feed}, cut);
   } else if (laps.arcs && level) {
     emitArcLap(*laps.arcs, planeHeight(laps.arcs->front().start.z(), heightOf(zTo)), feed);
-  } else if (laps.pointsTable) {
-    emitBesideLapAt(*beside, *laps.pointsTable, {zFrom, zTo, feed}, cut);
   } else {
-    emitChordLap(laps.chords, heightOf(zFrom), heightOf(zTo), feed);
+    emitBesideLapAt(beside, *laps.pointsTable, {zFrom, zTo, feed}, cut);
   }
 }
 
@@ -520,10 +514,7 @@ std::optional<CompensatedLeads> PartLowering::hostLeads(const CutStmt& cut, cons
   CompensatedLeads leads =
       tangentLeads(offset, distance, leadRadius(cut, toolRadius), options_.coordinateIncrement);
   leads.offset = distance;
-  std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
-  std::shared_ptr<const geom::Curve> contour =
-      pieces.size() == 1 ? pieces.front() : std::make_shared<geom::CompositeCurve>(pieces);
-  checkLeadClearance(cut, leads, *contour, toolRadius);
+  checkLeadClearance(cut, leads, *joinedPieces(movedPieces(curve)), toolRadius);
   return leads;
 }
 
@@ -543,12 +534,10 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
   CutCurve stand{{}, offset, {}, beside};
   // The spline ways emit their own passes, without lead arcs; a ramp's lap
   // (Sinumerik's: chords through the points the blocks were fitted to) is
-  // the offset's, which needs its regions.
+  // the offset's.
   bool leads = findModifier(cut, "lead") != nullptr;
-  bool rampWithoutLap = rampEntry(cut) && !beside;
-  if (!rampWithoutLap && !leads &&
-      (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand) ||
-       (beside && lowerNurbsCut(cut, &stand)))) {
+  if (!leads && (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand) ||
+                 lowerNurbsCut(cut, &stand))) {
     return true;
   }
   // A target without spline blocks cuts the method as chords anyway (and
@@ -567,20 +556,6 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
   return false;
 }
 
-std::shared_ptr<const geom::ArcFit> PartLowering::fittedOffsetArcs(const CutStmt& cut,
-                                                                   const geom::Curve& offset) {
-  CutCurve stand{{}, std::shared_ptr<const geom::Curve>(&offset, [](const geom::Curve*) {}), {}};
-  if (!asksFittedArcs(cut)) {
-    return nullptr;
-  }
-  std::variant<geom::ArcFit, std::string> fitted = fitCutArcs(cut, stand);
-  if (const std::string* problem = std::get_if<std::string>(&fitted)) {
-    reportArcsAsChords(cut, *problem);
-    return nullptr;
-  }
-  return std::make_shared<const geom::ArcFit>(std::get<geom::ArcFit>(std::move(fitted)));
-}
-
 // The points a controller-side target prints are read back by tools that
 // print fewer digits than the controller keeps (LinuxCNC's rs274: 4
 // decimals): a hundredth of the tolerance is left for them.
@@ -595,91 +570,6 @@ geom::CurveSamples PartLowering::offsetSamples(const CutStmt& cut, const geom::C
     return checkedSamplesFor(cut, offset);
   }
   return chordsWithinBudget(cut, offset, offsetChordTolerance(cut));
-}
-
-OffsetChords PartLowering::offsetChords(const geom::CurveSamples& samples, bool ramp) {
-  OffsetChords chords;
-  double travelled = 0;
-  for (std::size_t i = 1; i < samples.points.size(); ++i) {
-    chords.ends.push_back(samples.points[i]);
-    travelled += (samples.points[i] - samples.points[i - 1]).head<2>().norm();
-    chords.progress.push_back(travelled);
-  }
-  for (double& done : chords.progress) {
-    done = travelled > 0 ? done / travelled : 1.0;
-  }
-  // A controller-side target prints the points as they are: its programs
-  // keep numbers in a few hundred variables, not in tables of thousands.
-  if (options_.controllerLoops || chords.ends.empty()) {
-    return chords;
-  }
-  std::vector<double> x, y, z;
-  for (const Eigen::Vector3d& end : chords.ends) {
-    x.push_back(end.x());
-    y.push_back(end.y());
-    z.push_back(end.z());
-    chords.planar = chords.planar && end.z() == 0;
-  }
-  chords.tables = true;
-  chords.x = builder_.addTable(x);
-  chords.y = builder_.addTable(y);
-  if (!chords.planar) {
-    chords.z = builder_.addTable(z);
-  }
-  if (ramp) {
-    chords.progressTable = builder_.addTable(chords.progress);
-  }
-  return chords;
-}
-
-namespace {
-
-// A chord end's height: `progress` of the way from zFrom to zTo, above the
-// end's own z. Numbers are added as doubles, as the host's tables are.
-Scalar chordHeight(Arithmetic& arithmetic, Scalar zFrom, Scalar zTo, double progress, double endZ) {
-  if (zFrom.isConstant() && zTo.isConstant()) {
-    return Scalar::of(zFrom.constant + (zTo.constant - zFrom.constant) * progress + endZ);
-  }
-  Scalar z = zTo;
-  if (!zFrom.sameAs(zTo)) {
-    z = arithmetic.add(zFrom, arithmetic.multiply(arithmetic.binary(Opcode::Sub, zTo, zFrom),
-                                                  Scalar::of(progress)));
-  }
-  return arithmetic.add(z, Scalar::of(endZ));
-}
-
-} // namespace
-
-void PartLowering::emitChordLap(const OffsetChords& chords, Scalar zFrom, Scalar zTo, ValueId feed,
-                                std::span<const ChordCorner> corners) {
-  if (!chords.tables) {
-    auto corner = corners.begin();
-    for (std::size_t i = 0; i < chords.ends.size(); ++i) {
-      const Eigen::Vector3d& end = chords.ends[i];
-      Scalar z = chordHeight(arithmetic_, zFrom, zTo, chords.progress[i], end.z());
-      builder_.feed(builder_.constant(end.x()), builder_.constant(end.y()), arithmetic_.value(z),
-                    feed);
-      if (corner != corners.end() && corner->after == i) {
-        emitCornerArc(corner->nextTangent);
-        ++corner;
-      }
-    }
-    return;
-  }
-  double last = static_cast<double>(chords.ends.size()) - 1;
-  ValueId i = builder_.beginLoop(builder_.constant(0), builder_.constant(last), LoopRole::Curve);
-  Scalar z = zTo;
-  if (!zFrom.sameAs(zTo)) {
-    Scalar progress = Scalar::of(builder_.tableLoad(chords.progressTable, i), ValueType::F64);
-    z = arithmetic_.add(
-        zFrom, arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, zTo, zFrom), progress));
-  }
-  if (!chords.planar) {
-    z = arithmetic_.add(z, Scalar::of(builder_.tableLoad(chords.z, i), ValueType::F64));
-  }
-  builder_.feed(builder_.tableLoad(chords.x, i), builder_.tableLoad(chords.y, i),
-                arithmetic_.value(z), feed);
-  builder_.endLoop();
 }
 
 } // namespace cncc::ir::lowering

@@ -399,7 +399,6 @@ private:
   bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);
   // polynomial_cuts.cpp
   // `given`: the curve to cut instead of the statement's (an offset's stand-in).
-  void emitPolynomialMoves(const std::vector<PolynomialMove>& spans, ValueId z, ValueId feed);
   bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   ToleranceBudget polynomialBudget(const frontend::CutStmt& cut);
 
@@ -427,15 +426,12 @@ private:
                             const std::shared_ptr<const geom::Curve>& offset);
   // arcs=true, or --arcs on a target that prints arcs, without arcs=false.
   bool asksFittedArcs(const frontend::CutStmt& cut);
-  std::shared_ptr<const geom::ArcFit> fittedOffsetArcs(const frontend::CutStmt& cut,
-                                                       const geom::Curve& offset);
-  OffsetChords offsetChords(const geom::CurveSamples& samples, bool ramp);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
   // The chord tolerance of an offset's points (less a reader's rounding).
   double offsetChordTolerance(const frontend::CutStmt& cut);
-  // offset_laps.cpp: the offset as its laps compute it (null where its
-  // pieces are not the drawn pieces' offsets and corner arcs); its entry cut
-  // as points; a lap of it.
+  // offset_laps.cpp: the offset as its laps compute it, each of its pieces
+  // beside a drawn piece or a corner's arc; its entry cut as points; a lap
+  // of it.
   std::shared_ptr<const BesideCurve> besideCurve(const frontend::CutStmt& cut,
                                                  const CutCurve& curve,
                                                  const std::shared_ptr<const geom::Curve>& offset,
@@ -451,15 +447,11 @@ private:
                        std::vector<ValueId> operands, const frontend::CutStmt& cut);
   LapRegionPoint besidePoint(const BesideCurve& beside, const HostBesideRegion& region,
                              Scalar local, const frontend::CutStmt& cut);
-  // The chords from zFrom to zTo; `corners` (constant chords only, in
-  // order) each get their G39 (compensated_cuts.cpp).
-  void emitChordLap(const OffsetChords& chords, Scalar zFrom, Scalar zTo, ValueId feed,
-                    std::span<const ChordCorner> corners = {});
   void lowerHostOffsetCut(const frontend::CutStmt& cut, double distance);
   HostOffsetLaps hostOffsetLaps(const frontend::CutStmt& cut,
                                 const std::shared_ptr<const geom::Curve>& offset,
-                                const std::shared_ptr<const BesideCurve>& beside, bool ramp);
-  void emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve* beside, ValueId zFrom,
+                                const BesideCurve& beside, bool ramp);
+  void emitHostOffsetLap(const HostOffsetLaps& laps, const BesideCurve& beside, ValueId zFrom,
                          ValueId zTo, ValueId feed, const frontend::CutStmt& cut);
 
   // compensated_cuts.cpp: comp=controller, the curve itself with the
@@ -491,8 +483,6 @@ private:
   std::optional<ArcsAsked> arcsAskedBy(const frontend::CutStmt& cut);
   std::optional<std::string> arcCutProblem(const frontend::CutStmt& cut);
   void reportArcsAsChords(const frontend::CutStmt& cut, std::string_view problem);
-  std::variant<geom::ArcFit, std::string> fitCutArcs(const frontend::CutStmt& cut,
-                                                     const CutCurve& curve);
   // Each piece's curve table entry, its points within the cut's chord
   // budget (descending by `shares` when not empty); an arc piece has none
   // (it is cut as move.arc).

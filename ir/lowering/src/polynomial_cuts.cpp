@@ -45,23 +45,6 @@ ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
   return budget;
 }
 
-// A move.polynomial per span at height z (each span's end above it).
-void PartLowering::emitPolynomialMoves(const std::vector<PolynomialMove>& spans, ValueId z,
-                                       ValueId feed) {
-  for (const PolynomialMove& span : spans) {
-    ValueId endZ = arithmetic_.value(arithmetic_.add(heightOf(z), Scalar::of(span.end.z())));
-    std::vector<ValueId> operands{builder_.constant(span.end.x()), builder_.constant(span.end.y()),
-                                  endZ};
-    for (int axis = 0; axis < 3; ++axis) {
-      for (const Eigen::Vector3d& coefficient : span.coefficients) {
-        operands.push_back(builder_.constant(coefficient[axis]));
-      }
-    }
-    operands.push_back(feed);
-    builder_.operation(Opcode::Polynomial, std::move(operands));
-  }
-}
-
 bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
@@ -89,32 +72,17 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   CurveTableEntry entry = blocksTableEntry(cut, curve, CurveSampling::PolynomialBlocks,
                                            std::nullopt, budget.forPoints());
   entry.grid = budget.increment;
-  // A curve beside the cut's (an offset) computed otherwise than its laps
-  // follow has no regions: its spans, fitted here, are the moves themselves.
-  std::optional<std::vector<PolynomialMove>> spans;
-  std::optional<std::uint32_t> spansTable;
-  if (!curve.pieces.empty() || curve.beside) {
-    spansTable = builder_.addCurve(std::move(entry));
-  } else {
-    spans = lapPolynomialSpans(entry, *curve.geometry);
-    if (std::optional<std::string> stops = splineExactStops(*spans)) {
-      diagnostics_->report(DiagnosticKind::SplineExactStop, cut.span, *stops);
-    }
-  }
+  std::uint32_t spansTable = builder_.addCurve(std::move(entry));
   auto [first, last] = curveEndsOnGrid(*curve.geometry, budget.increment);
   // The passes (the controller's loop: depth= and step= stay editable), each
   // a lap at the pass height, which write-curve-blocks writes out as a
-  // move.polynomial per span, or the spans fitted here.
+  // move.polynomial per span.
   emitSweep(cut, false, options_.controllerLoops,
             {builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
              activatesLengthOffset, Scalar::of(first.z())},
             {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue,
             [&](ValueId zFrom, ValueId zTo) {
-              if (spansTable) {
-                emitCurveLap(curve, *spansTable, zFrom, zTo, feedValue, cut);
-              } else {
-                emitPolynomialMoves(*spans, zTo, feedValue);
-              }
+              emitCurveLap(curve, spansTable, zFrom, zTo, feedValue, cut);
             });
   return true;
 }

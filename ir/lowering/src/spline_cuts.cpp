@@ -71,23 +71,13 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   if (blocks.amount == 0 || ramp) {
     blocks.chosenParameters = chosen; // the points the blocks go through, or the ramp's
   }
-  // A curve beside the cut's (an offset) computed otherwise than its laps
-  // follow has no regions: its blocks, fitted here, are the move itself.
-  std::optional<std::uint32_t> ownTable;
-  std::string comment;
-  if (curve.pieces.empty() && !curve.beside) {
-    FittedSplineBlocks fitted = lapSplineBlocks(blocks, *curve.geometry);
-    ownTable = builder_.addTable(splineMoveTable(fitted.data));
-    comment = splineBlocksComment(fitted);
-  }
-  std::uint32_t blocksEntry = ownTable ? 0 : builder_.addCurve(std::move(blocks));
+  std::uint32_t blocksEntry = builder_.addCurve(std::move(blocks));
 
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   CutGeometry geometry{curve.geometry,
                        chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                        cut.span, methodOf(cut)};
-  geometry.splineBlocks = comment; // blocks the pass fits: written there
   bool activatesLengthOffset = beginCutMoves(std::move(geometry));
   // The ramp's lap as chords through the points the blocks are fitted to.
   std::optional<std::uint32_t> rampTable;
@@ -99,9 +89,6 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   auto lap = [&](ValueId zFrom, ValueId zTo) {
     if (zFrom != zTo) {
       emitCurveLap(curve, *rampTable, zFrom, zTo, feedValue, cut);
-    } else if (ownTable) {
-      builder_.comment(comment);
-      builder_.spline(*ownTable, zTo, feedValue);
     } else {
       emitCurveLap(curve, blocksEntry, zTo, zTo, feedValue, cut);
     }

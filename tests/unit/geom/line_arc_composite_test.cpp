@@ -84,5 +84,17 @@ TEST(CompositeCurve, RejectsGapsBetweenPieces) {
   EXPECT_THROW(CompositeCurve({}), GeometryError);
 }
 
+TEST(CompositeCurve, NamesAGapTooSmallForSixDecimals) {
+  try {
+    CompositeCurve({line({0, 0, 0}, {1, 0, 0}), line({1, 5e-7, 0}, {2, 0, 0})});
+    FAIL() << "a gap of 5e-7 past the default 1e-9 is refused";
+  } catch (const GeometryError& error) {
+    EXPECT_STREQ(error.what(), "path piece 1 starts 5e-07 mm away from where piece 0 ends");
+  }
+  // Within the tolerance asked for, the same pieces join.
+  EXPECT_NO_THROW(
+      CompositeCurve({line({0, 0, 0}, {1, 0, 0}), line({1, 5e-7, 0}, {2, 0, 0})}, 1e-6));
+}
+
 } // namespace
 } // namespace cncc::geom

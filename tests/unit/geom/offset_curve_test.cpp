@@ -148,6 +148,21 @@ TEST(OffsetCurve, ConcaveCornerOfALineAndAnArcIsTrimmedExactly) {
   EXPECT_NEAR((meeting.head<2>() - Eigen::Vector2d(10, 5)).norm(), 4.0, 1e-10);
 }
 
+// Pieces half a micrometre apart that turn by 3e-8 rad where they meet (as a
+// path's pieces may, within its join tolerance): on either side the offsets
+// join as the pieces do, without a corner arc or a crossing to search for.
+TEST(OffsetCurve, TangentPiecesWithASmallGapJoinAsTheyAre) {
+  std::vector<std::shared_ptr<const Curve>> pieces = {
+      std::make_shared<LineCurve>(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 0, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(10, 5e-7, 0), Eigen::Vector3d(20, 8e-7, 0))};
+  for (double distance : {3.0, -3.0}) {
+    auto offset = std::dynamic_pointer_cast<const CompositeCurve>(offsetOfPieces(pieces, distance));
+    ASSERT_TRUE(offset);
+    ASSERT_EQ(offset->pieceCount(), 2u) << "distance " << distance;
+    EXPECT_NEAR(offset->point(offset->domain().t1).y(), distance + 8e-7, 1e-9);
+  }
+}
+
 // REFERENCE-CASES.md case 3 (counter-clockwise): outside (right) its tightest
 // concave radius is 2.3314 mm, its tightest convex 2.659 mm at t = 0; inside
 // the two swap.

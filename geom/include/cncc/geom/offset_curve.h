@@ -66,7 +66,9 @@ public:
 /// The offset at signed distance d (as OffsetCurve) of a curve made of pieces, each
 /// smooth, joined end to start: a LineCurve stays a line and an ArcCurve an arc of
 /// radius R - d (counter-clockwise) or R + d (clockwise); other pieces become
-/// OffsetCurves. Where two pieces meet at a corner on the side away from the offset
+/// OffsetCurves. Offsets that meet as closely as their pieces do (within 1e-7 mm
+/// more: a tangent join, even across the pieces' own small gap) are joined as they
+/// are. Where two pieces meet at a corner on the side away from the offset
 /// (convex) an arc of radius |d| about the corner joins their offsets; at a corner on
 /// the offset's side (concave) both offsets are cut back to where they cross (a line
 /// or an arc stays one). A path whose end meets its start is joined there too.
