@@ -226,7 +226,8 @@ private:
       }
       return;
     }
-    index_ = beginLapLoop(lap, constant(1), valueOf(steps.count));
+    ValueId count = valueOf(steps.count);
+    index_ = beginLapLoop(lap, constant(1), count);
     Operand index{index_, 0};
     Operand step = stepOf(steps);
     Operand start =
@@ -241,7 +242,8 @@ private:
   // region computes at u, a feed to its point at min(u + step, end), which
   // is the loop's next u (loop.next).
   void emitWalk(const Instruction& lap, std::size_t region, const RegionSteps& steps) {
-    ValueId u = beginLapLoop(lap, valueOf(steps.from), valueOf(steps.to));
+    ValueId to = valueOf(steps.to);
+    ValueId u = beginLapLoop(lap, valueOf(steps.from), to);
     rewriteRegionFor(lap, region, u, {3});
     Operand next = minimum(add({u, 0}, operandOf(regionEnd_[3])), steps.to);
     rewriteRegionFor(lap, region, valueOf(next), {0, 1, 2});

@@ -218,13 +218,18 @@ void TncBlockWriter::rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z) {
       motion("L" + words + " R0 FMAX", height);
     }
   };
+  // A word may first write the block that computes it: one at a time.
+  auto plane = [&] {
+    std::string yWord = word('Y', y);
+    return word('X', x) + yWord;
+  };
   if (descending) {
     ir::ValueId before = *z_;
-    line(word('X', x) + word('Y', y), before);
+    line(plane(), before);
     line(word('Z', z), z);
   } else {
     line(word('Z', z), z);
-    line(word('X', x) + word('Y', y), z);
+    line(plane(), z);
   }
   feed_.clear(); // FMAX is not modal, but the F before it is: written again to be plain
 }
@@ -252,12 +257,14 @@ void TncBlockWriter::arc(bool clockwise, std::span<const ir::ValueId> operands) 
                                   pendingRadius_));
     pendingRadius_.clear();
   }
-  std::string centre =
-      fmt::format("CC IX{} IY{}", operand(operands[3], true), operand(operands[4], true));
-  block(std::move(centre));
+  // Each operand may first write the block that computes it: one at a time.
+  std::string centreY = operand(operands[4], true);
+  std::string centreX = operand(operands[3], true);
+  block(fmt::format("CC IX{} IY{}", centreX, centreY));
   words_.erase('X');
   words_.erase('Y');
-  std::string words = word('X', operands[0]) + word('Y', operands[1]);
+  std::string yWord = word('Y', operands[1]);
+  std::string words = word('X', operands[0]) + yWord;
   ir::ValueId z = operands[2];
   std::optional<double> to = formulas_.constantOf(z);
   std::optional<double> from = z_ ? formulas_.constantOf(*z_) : std::nullopt;

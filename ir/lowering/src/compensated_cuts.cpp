@@ -343,8 +343,9 @@ void PartLowering::checkLeadClearance(const CutStmt& cut, const CompensatedLeads
 // true to 0.003 degrees on a 0.001 mm grid.
 void PartLowering::emitCornerArc(const Eigen::Vector3d& tangent) {
   double increment = options_.coordinateIncrement;
-  builder_.cornerArc(builder_.constant(onPrintedGrid(10 * tangent.x(), increment)),
-                     builder_.constant(onPrintedGrid(10 * tangent.y(), increment)));
+  ValueId y = builder_.constant(onPrintedGrid(10 * tangent.y(), increment));
+  ValueId x = builder_.constant(onPrintedGrid(10 * tangent.x(), increment));
+  builder_.cornerArc(x, y);
 }
 
 // The curve's arcs and lines, with G39 at each convex corner between them.

@@ -279,7 +279,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
       runtimeOffset_->joins.back().kind == PieceJoin::CornerArc) {
     finish = start; // after the arc about the corner where the path closes
   }
-  builder_.rapid(arithmetic_.value(finish.x), arithmetic_.value(finish.y), safeValue);
+  ValueId finishY = arithmetic_.value(finish.y);
+  builder_.rapid(arithmetic_.value(finish.x), finishY, safeValue);
   endSweep(sweep);
   return true;
 }

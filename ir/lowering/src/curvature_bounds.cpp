@@ -210,8 +210,9 @@ std::optional<Scalar> PartLowering::polarStepCount(const SymbolicPiece& piece,
   Scalar r0 = lowerAt(low);
   Scalar r1 = lowerAt(high);
   auto square = [&](Scalar value) { return arithmetic_.multiply(value, value); };
-  Scalar sum = arithmetic_.add(arithmetic_.add(square(r0), square(r1)),
-                               arithmetic_.multiply(Scalar::of(4), square(*slope)));
+  Scalar slopeTerm = arithmetic_.multiply(Scalar::of(4), square(*slope));
+  Scalar r1Squared = square(r1);
+  Scalar sum = arithmetic_.add(arithmetic_.add(square(r0), r1Squared), slopeTerm);
   Scalar bound = times(piece.transform.norm, arithmetic_.unary(Opcode::Sqrt, sum));
   // N >= (t1 - t0) sqrt(M / (8 budget)).
   Scalar length = magnitude(arithmetic_.binary(Opcode::Sub, high, low));

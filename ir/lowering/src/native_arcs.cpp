@@ -149,7 +149,8 @@ void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count,
     }
     return;
   }
-  ValueId j = builder_.beginLoop(builder_.constant(1), arithmetic_.value(count), LoopRole::Curve);
+  ValueId blocks = arithmetic_.value(count);
+  ValueId j = builder_.beginLoop(builder_.constant(1), blocks, LoopRole::Curve);
   Scalar index = Scalar::of(j, ValueType::F64);
   Scalar step = count.isConstant() ? Scalar::of(1 / count.constant)
                                    : arithmetic_.binary(Opcode::Div, Scalar::of(1), count);

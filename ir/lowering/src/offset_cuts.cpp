@@ -457,11 +457,11 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
     finish = onPrintedGrid(leads->leadOut.end, options_.coordinateIncrement);
   }
   // The passes: the controller's loop where it computes depth= and step=.
+  std::array<ValueId, 2> end{builder_.constant(finish.x()), builder_.constant(finish.y())};
+  SweepStart from{builder_.constant(start.x()), builder_.constant(start.y()), safe,
+                  activatesLengthOffset, Scalar::of(start.z())};
   emitSweep(
-      cut, begun.ramp, options_.controllerLoops,
-      {builder_.constant(start.x()), builder_.constant(start.y()), safe, activatesLengthOffset,
-       Scalar::of(start.z())},
-      {builder_.constant(finish.x()), builder_.constant(finish.y())}, feed,
+      cut, begun.ramp, options_.controllerLoops, from, end, feed,
       [&](ValueId zFrom, ValueId zTo) { emitHostOffsetLap(laps, *beside, zFrom, zTo, feed, cut); },
       leads ? &*leads : nullptr);
 }

@@ -77,10 +77,10 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   // The passes (the controller's loop: depth= and step= stay editable), each
   // a lap at the pass height, which write-curve-blocks writes out as a
   // move.polynomial per span.
-  emitSweep(cut, false, options_.controllerLoops,
-            {builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
-             activatesLengthOffset, Scalar::of(first.z())},
-            {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue,
+  std::array<ValueId, 2> finish{builder_.constant(last.x()), builder_.constant(last.y())};
+  SweepStart from{builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
+                  activatesLengthOffset, Scalar::of(first.z())};
+  emitSweep(cut, false, options_.controllerLoops, from, finish, feedValue,
             [&](ValueId zFrom, ValueId zTo) {
               emitCurveLap(curve, spansTable, zFrom, zTo, feedValue, cut);
             });

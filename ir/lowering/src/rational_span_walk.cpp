@@ -145,10 +145,12 @@ Scalar PartLowering::rationalSpanStep(const ControllerSegment& segment, Scalar u
   Scalar highValue = f(high);
   for (int refinement = 0; refinement < rootRefinements; ++refinement) {
     Scalar lowValue = f(low);
-    low = sub(low, div(math.multiply(lowValue, sub(high, low)), sub(highValue, lowValue)));
+    Scalar rise = sub(highValue, lowValue);
+    low = sub(low, div(math.multiply(lowValue, sub(high, low)), rise));
   }
   // Inline extremes: a rounding here is harmless.
-  return math.larger(math.smaller(low, high), div(Scalar::of(1), stepsOf(segment)));
+  Scalar fewestSteps = div(Scalar::of(1), stepsOf(segment));
+  return math.larger(math.smaller(low, high), fewestSteps);
 }
 
 } // namespace cncc::ir::lowering

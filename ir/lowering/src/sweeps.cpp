@@ -52,7 +52,8 @@ SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool comput
                                    arithmetic_.add(arithmetic_.binary(Opcode::Div, depth, step),
                                                    Scalar::of(passCountOffset)))
                : Scalar::of(static_cast<double>(depths.size()));
-  ValueId k = builder_.beginLoop(builder_.constant(1), arithmetic_.value(count), LoopRole::Passes);
+  ValueId trips = arithmetic_.value(count);
+  ValueId k = builder_.beginLoop(builder_.constant(1), trips, LoopRole::Passes);
   Scalar pass = Scalar::of(k, ValueType::F64);
   SweepHeights heights{passDepth(pass, step, depth), Scalar::of(0), true};
   if (ramp) { // from the pass above

@@ -278,7 +278,11 @@ CurvePoint PartLowering::pointBetween(const CurvePoint& from, const CurvePoint& 
                                       Scalar fraction) {
   Scalar rest = arithmetic_.binary(Opcode::Sub, Scalar::of(1), fraction);
   auto between = [&](const Scalar& a, const Scalar& b) {
-    return a.sameAs(b) ? a : arithmetic_.add(times(a, rest), times(b, fraction));
+    if (a.sameAs(b)) {
+      return a;
+    }
+    Scalar towards = times(b, fraction);
+    return arithmetic_.add(times(a, rest), towards);
   };
   return {between(from.x, to.x), between(from.y, to.y), between(from.z, to.z)};
 }
