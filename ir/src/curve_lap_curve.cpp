@@ -315,10 +315,6 @@ void checkComposedLayout(const CurveTableEntry& entry) {
   }
 }
 
-// How far apart adjacent pieces may start and end: the regions' arithmetic
-// is not the source's, and may differ from it in the last bits.
-constexpr double joinTolerance = 1e-6;
-
 } // namespace
 
 LapRegionEvaluator::LapRegionEvaluator(const Function& function, const Instruction& lap,
@@ -362,7 +358,7 @@ std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Inst
   }
   checkComposedLayout(entry);
   try {
-    return std::make_shared<geom::CompositeCurve>(std::move(pieces), joinTolerance);
+    return std::make_shared<geom::CompositeCurve>(std::move(pieces), pathJoinTolerance);
   } catch (const geom::GeometryError& error) {
     degenerate(entry, fmt::format("the curve's pieces do not join: {}", error.what()));
   }

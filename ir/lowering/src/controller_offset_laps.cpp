@@ -59,11 +59,7 @@ besideGeometry(const CurveTableEntry& entry, const std::shared_ptr<const geom::C
           return part->point(own.t0 + (t - from) * scale);
         }));
   }
-  if (pieces.size() == 1) {
-    return pieces.front();
-  }
-  // As geom::offsetOfPieces joins them (pieces meeting tangentially).
-  return std::make_shared<geom::CompositeCurve>(std::move(pieces), pathJoinTolerance);
+  return joinedPieces(pieces);
 }
 
 } // namespace

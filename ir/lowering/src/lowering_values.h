@@ -119,9 +119,8 @@ using ir::maximumStepSearchEvaluations;
 using geom::EvaluationsCharged;
 using ir::maximumOffsetStepEvaluations;
 
-// How far apart (mm) the end of one path piece and the start of the next
-// may be: rounding in the pieces' own evaluation, not a gap in the part.
-inline constexpr double pathJoinTolerance = 1e-6;
+// How far apart the pieces of a path may end and start (curve_lap.h).
+using ir::pathJoinTolerance;
 
 // An arc piece as native_arcs.cpp moves on it: its point at a fraction (0
 // to 1) of the piece, transformed, the helix's own z included; the way from

@@ -82,6 +82,11 @@ std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Inst
 // points a choice may ask (a curve that turns faster than any sampling
 // resolves makes every chord cost thousands).
 inline constexpr std::size_t maximumChordsPerCut = 100'000;
+
+// How far apart (mm) the end of one piece of a path and the start of the
+// next may be: rounding in the pieces' own evaluation (and in a lap's
+// regions, whose arithmetic is not the source's), not a gap in the part.
+inline constexpr double pathJoinTolerance = 1e-6;
 inline constexpr std::size_t maximumCurveEvaluations = 20'000'000;
 // The points one cut's arc fit may ask of its curve.
 inline constexpr std::size_t maximumArcFitEvaluations = 5'000'000;
