@@ -249,39 +249,25 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
     return runtimeOffset_ ? offsetSegmentEnd(curve, segment, atEnd, point) : point;
   };
 
-  // The passes, computed on the controller (sweeps.cpp).
+  // The passes, computed on the controller (sweeps.cpp). Each lap a
+  // curve.lap, which expand-controller-loops writes out; beside the curve,
+  // never a ramp (controller_offset_laps.cpp).
   CurvePoint start = endPoint(first, false);
-  ValueId startX = arithmetic_.value(start.x);
-  ValueId startY = arithmetic_.value(start.y);
-  SweepHeights sweep =
-      beginSweep(cut, ramp, true, {startX, startY, safeValue, activatesLengthOffset});
-  Scalar z = sweep.z;
-  Scalar previousZ = sweep.previous; // where a ramp starts: the pass above
-  builder_.rapid(startX, startY, safeValue);
-  builder_.feed(startX, startY, arithmetic_.value(arithmetic_.add(ramp ? previousZ : z, start.z)),
-                feedValue);
-  // Each lap a curve.lap, which expand-controller-loops writes out; beside
-  // the curve, never a ramp (controller_offset_laps.cpp).
-  SteppedLap lap = runtimeOffset_ ? besideSteppedLap(cut, curve, *planned, budget)
-                                  : steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
-  if (ramp) {
-    // Descending from the pass above, in the pass loop: its lines have
-    // no pass number of their own.
-    PassScope rampLap(builder_, {.number = 0, .count = 0, .ramp = true});
-    builder_.comment("ramp");
-    emitSteppedLap(curve, lap, *planned, arithmetic_.value(previousZ), arithmetic_.value(z),
-                   feedValue, cut);
-  }
-  ValueId height = arithmetic_.value(z);
-  emitSteppedLap(curve, lap, *planned, height, height, feedValue, cut);
   CurvePoint finish = endPoint(last, true);
   if (runtimeOffset_ && runtimeOffset_->closed &&
       runtimeOffset_->joins.back().kind == PieceJoin::CornerArc) {
     finish = start; // after the arc about the corner where the path closes
   }
+  SteppedLap lap = runtimeOffset_ ? besideSteppedLap(cut, curve, *planned, budget)
+                                  : steppedLap(cut, curve, *planned, uniformSteps ? 0.0 : budget);
+  ValueId startX = arithmetic_.value(start.x);
+  ValueId startY = arithmetic_.value(start.y);
   ValueId finishY = arithmetic_.value(finish.y);
-  builder_.rapid(arithmetic_.value(finish.x), finishY, safeValue);
-  endSweep(sweep);
+  ValueId finishX = arithmetic_.value(finish.x);
+  emitSweep(cut, ramp, true, {startX, startY, safeValue, activatesLengthOffset, start.z},
+            {finishX, finishY}, feedValue, [&](ValueId zFrom, ValueId zTo) {
+              emitSteppedLap(curve, lap, *planned, zFrom, zTo, feedValue, cut);
+            });
   return true;
 }
 
