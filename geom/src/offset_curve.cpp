@@ -151,9 +151,10 @@ double gapBetween(const Curve& before, const Curve& after) {
 }
 
 // Joins `next` (an offset) to the offsets in `joined`: directly where they
-// meet as closely as the pieces do, by an arc about a convex corner, or both
-// trimmed at a concave one.
+// meet as closely as the pieces do, by an arc about a convex corner (its
+// origin nullopt in `origins`), or both trimmed at a concave one.
 void joinOffset(std::vector<std::shared_ptr<const Curve>>& joined,
+                std::vector<std::optional<std::size_t>>& origins,
                 std::shared_ptr<const Curve>& next, const Curve& baseBefore, const Curve& baseAfter,
                 double distance) {
   if (gapBetween(*joined.back(), *next) <= gapBetween(baseBefore, baseAfter) + kTangentJoin) {
@@ -163,6 +164,7 @@ void joinOffset(std::vector<std::shared_ptr<const Curve>>& joined,
   // The tool is outside a turn away from its side: d > 0 (left) at a right turn.
   if (distance * turn < 0) {
     joined.push_back(cornerArc(baseBefore, turn, distance));
+    origins.emplace_back(std::nullopt);
     return;
   }
   trimAtCrossing(joined.back(), next, baseBefore.point(baseBefore.domain().t1));
@@ -238,6 +240,11 @@ CurveDerivatives OffsetCurve::derivatives(double t) const {
 
 std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<const Curve>>& pieces,
                                             double distance) {
+  return offsetOfPiecesWithOrigins(pieces, distance).curve;
+}
+
+PiecesOffset offsetOfPiecesWithOrigins(const std::vector<std::shared_ptr<const Curve>>& pieces,
+                                       double distance) {
   if (pieces.empty()) {
     throw GeometryError("an offset needs a curve");
   }
@@ -245,14 +252,16 @@ std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<co
     throw GeometryError("an offset needs a finite non-zero distance");
   }
   std::vector<std::shared_ptr<const Curve>> joined;
+  std::vector<std::optional<std::size_t>> origins;
   double widestGap = 0; // between the pieces: their offsets' join may be as wide
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     std::shared_ptr<const Curve> offset = offsetOfPiece(pieces[i], distance);
     if (i > 0) {
-      joinOffset(joined, offset, *pieces[i - 1], *pieces[i], distance);
+      joinOffset(joined, origins, offset, *pieces[i - 1], *pieces[i], distance);
       widestGap = std::max(widestGap, gapBetween(*pieces[i - 1], *pieces[i]));
     }
     joined.push_back(std::move(offset));
+    origins.emplace_back(i);
   }
   // A closed path's end meets its start: a corner there is joined too (a
   // single closed piece is taken as smooth where it closes).
@@ -261,13 +270,14 @@ std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<co
   if (pieces.size() > 1 &&
       (last.point(last.domain().t1) - first.point(first.domain().t0)).norm() <= 1e-9) {
     std::shared_ptr<const Curve> start = joined.front();
-    joinOffset(joined, start, last, first, distance);
+    joinOffset(joined, origins, start, last, first, distance);
     joined.front() = start;
   }
   if (joined.size() == 1) {
-    return joined.front();
+    return {joined.front(), std::move(origins)};
   }
-  return std::make_shared<CompositeCurve>(std::move(joined), widestGap + 10 * kTangentJoin);
+  return {std::make_shared<CompositeCurve>(std::move(joined), widestGap + 10 * kTangentJoin),
+          std::move(origins)};
 }
 
 } // namespace cncc::geom

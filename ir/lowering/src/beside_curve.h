@@ -11,6 +11,7 @@
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/deviation.h"
 #include "cncc/geom/evaluation_budget.h"
+#include "cncc/geom/offset_curve.h"
 #include "cncc/ir/cut_geometry.h"
 
 #include <Eigen/Core>
@@ -135,10 +136,11 @@ struct DrawnClearance {
   double slack = 0;
 };
 
-// The offset of the pieces at `distance` (geom::offsetOfPieces), or why the
-// tool cannot run there (offset_cuts.cpp); with `drawn`, also where the
-// tool centre comes nearer than its radius to the curve.
-std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
+// The offset of the pieces at `distance` and where each of its parts comes
+// from (geom::offsetOfPiecesWithOrigins), or why the tool cannot run there
+// (offset_cuts.cpp); with `drawn`, also where the tool centre comes nearer
+// than its radius to the curve.
+std::variant<geom::PiecesOffset, OffsetTrouble>
 offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance,
                 const DrawnClearance* drawn = nullptr);
 // Tangent lead arcs of `radius` onto the start of `path` and off its end

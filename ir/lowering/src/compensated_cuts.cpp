@@ -490,7 +490,11 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   // The contour's points: laps of the drawn curve itself (beside it at
   // distance 0) at the points chosen here, one per stretch between the
   // corners that get a G39.
-  std::shared_ptr<const BesideCurve> drawn = arcs ? nullptr : besideCurve(cut, curve, contour, 0);
+  geom::PiecesOffset itself{contour, {}}; // each part the drawn piece
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    itself.partOrigins.emplace_back(p);
+  }
+  std::shared_ptr<const BesideCurve> drawn = arcs ? nullptr : besideCurve(cut, curve, itself, 0);
   std::vector<std::uint32_t> stretches;
   if (drawn) {
     stretches = stretchCurves(cut, *drawn, samples.parameters, chordCorners);

@@ -48,6 +48,21 @@ Eigen::Vector2d leftNormal(const Eigen::Vector3d& tangent) {
   return geom::leftNormalOf(tangent).head<2>();
 }
 
+// The parts of an offset whose pieces join as `joins` says
+// (geom::PiecesOffset::partOrigins): each piece's offset, then the arc about
+// its end where that corner is convex (the last join closes the path).
+std::vector<std::optional<std::size_t>> partOriginsOfJoins(std::size_t pieces,
+                                                           const std::vector<PieceJoin>& joins) {
+  std::vector<std::optional<std::size_t>> origins;
+  for (std::size_t p = 0; p < pieces; ++p) {
+    origins.emplace_back(p);
+    if (p < joins.size() && joins[p].kind == PieceJoin::CornerArc) {
+      origins.emplace_back(std::nullopt);
+    }
+  }
+  return origins;
+}
+
 } // namespace
 
 double
@@ -55,7 +70,7 @@ PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom:
                                    double compiledDistance, const DrawnClearance& drawn) {
   double side = compiledDistance > 0 ? 1 : -1;
   auto fits = [&](double radius) {
-    return std::holds_alternative<std::shared_ptr<const geom::Curve>>(
+    return std::holds_alternative<geom::PiecesOffset>(
         offsetOrTrouble(pieces, side * radius, &drawn));
   };
   // The tightest bend the tool runs inside bounds the radius; without one
@@ -128,7 +143,8 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   RuntimeOffset offset;
   offset.compiledDistance = compiledDistance;
   DrawnClearance drawn = drawnClearance(cut, movedPieces(curve));
-  offset.compiled = checkedOffset(cut, curve, compiledDistance, &drawn);
+  geom::PiecesOffset compiled = checkedOffset(cut, curve, compiledDistance, &drawn);
+  offset.compiled = compiled.curve;
   checkCutBounds(cut, *offset.compiled);
   offset.pieces = movedPieces(curve);
   const auto& pieces = offset.pieces;
@@ -142,12 +158,9 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     }
   }
   offset.joins = pieceJoins(pieces, compiledDistance, offset.closed);
-  // The laps follow geom's offset: its pieces and a corner arc per convex join.
-  std::size_t cornerArcs = 0;
-  for (const PieceJoin& join : offset.joins) {
-    cornerArcs += join.kind == PieceJoin::CornerArc ? 1 : 0;
-  }
-  if (geom::piecesOf(*offset.compiled).size() != pieces.size() + cornerArcs) {
+  // The laps follow geom's offset: its pieces and a corner arc per convex
+  // join, as the joins at the compiled radius say.
+  if (compiled.partOrigins != partOriginsOfJoins(pieces.size(), offset.joins)) {
     if (!runtime) {
       return false;
     }

@@ -195,7 +195,7 @@ DrawnClearance::DrawnClearance(const std::vector<std::shared_ptr<const geom::Cur
       budgeted(std::make_unique<geom::BudgetedCurve>(*drawn, maximumCurveEvaluations)),
       proximity(std::make_unique<geom::CurveProximity>(*budgeted, slack / 4)), slack(slack) {}
 
-std::variant<std::shared_ptr<const geom::Curve>, OffsetTrouble>
+std::variant<geom::PiecesOffset, OffsetTrouble>
 offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, double distance,
                 const DrawnClearance* drawn) {
   double radius = std::fabs(distance);
@@ -209,9 +209,9 @@ offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, d
       return OffsetTrouble{OffsetTrouble::Bend, concave.point, concave.radius, "", 0};
     }
   }
-  std::shared_ptr<const geom::Curve> offset;
+  geom::PiecesOffset parts;
   try {
-    offset = geom::offsetOfPieces(pieces, distance);
+    parts = geom::offsetOfPiecesWithOrigins(pieces, distance);
   } catch (const geom::OffsetError& error) {
     return OffsetTrouble{error.radius > 0 ? OffsetTrouble::InsideArc : OffsetTrouble::Corner,
                          error.place, error.radius, error.what(), 0};
@@ -219,19 +219,19 @@ offsetOrTrouble(const std::vector<std::shared_ptr<const geom::Curve>>& pieces, d
     return OffsetTrouble{OffsetTrouble::Degenerate, {}, 0, error.what(), 0};
   }
   try {
-    if (std::optional<Eigen::Vector3d> crossing = geom::offsetSelfCrossing(*offset)) {
+    if (std::optional<Eigen::Vector3d> crossing = geom::offsetSelfCrossing(*parts.curve)) {
       return OffsetTrouble{OffsetTrouble::SelfCrossing, *crossing, 0, "", 0};
     }
     if (drawn != nullptr) {
-      if (std::optional<geom::ClearanceViolation> near =
-              geom::offsetClearanceViolation(*offset, *drawn->proximity, radius, drawn->slack)) {
+      if (std::optional<geom::ClearanceViolation> near = geom::offsetClearanceViolation(
+              *parts.curve, *drawn->proximity, radius, drawn->slack)) {
         return OffsetTrouble{OffsetTrouble::TooNear, near->centre, near->distance, "", 0};
       }
     }
   } catch (const geom::EvaluationBudgetExceeded& error) {
     return OffsetTrouble{OffsetTrouble::TooMuchWork, {}, 0, "", error.limit};
   }
-  return offset;
+  return parts;
 }
 
 namespace {
@@ -304,10 +304,8 @@ std::string besidePieces(const std::vector<std::shared_ptr<const geom::Curve>>& 
 
 } // namespace
 
-std::shared_ptr<const geom::Curve> PartLowering::checkedOffset(const CutStmt& cut,
-                                                               const CutCurve& curve,
-                                                               double distance,
-                                                               const DrawnClearance* drawn) {
+geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve,
+                                               double distance, const DrawnClearance* drawn) {
   std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
   std::optional<DrawnClearance> own;
   if (drawn == nullptr) {
@@ -315,7 +313,7 @@ std::shared_ptr<const geom::Curve> PartLowering::checkedOffset(const CutStmt& cu
     drawn = &*own;
   }
   auto result = offsetOrTrouble(pieces, distance, drawn);
-  if (auto* offset = std::get_if<std::shared_ptr<const geom::Curve>>(&result)) {
+  if (auto* offset = std::get_if<geom::PiecesOffset>(&result)) {
     return *offset;
   }
   const OffsetTrouble& trouble = std::get<OffsetTrouble>(result);
@@ -415,7 +413,8 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
 // or points (hostOffsetLaps), with lead arcs where lead= asks.
 void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
   CutCurve curve = cutCurve(cut);
-  std::shared_ptr<const geom::Curve> offset = checkedOffset(cut, curve, distance);
+  geom::PiecesOffset parts = checkedOffset(cut, curve, distance);
+  std::shared_ptr<const geom::Curve> offset = parts.curve;
   std::optional<CompensatedLeads> leads = hostLeads(cut, curve, *offset, distance);
   // With leads the cut's path, which verify measures, runs on their arcs
   // too; they meet the offset at its ends on the printed grid.
@@ -427,7 +426,7 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
         std::max(1e-9, options_.coordinateIncrement));
   }
   checkCutBounds(cut, *path);
-  std::shared_ptr<const BesideCurve> beside = besideCurve(cut, curve, offset, distance);
+  std::shared_ptr<const BesideCurve> beside = besideCurve(cut, curve, parts, distance);
   if (lowerOffsetSplineCut(cut, beside, offset)) {
     markCutBeside(curve.geometry, std::fabs(distance));
     return;

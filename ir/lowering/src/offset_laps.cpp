@@ -30,64 +30,23 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-namespace {
-
-// Whether `part` is the arc geom puts about the convex corner where `before`
-// ends: of the tool's radius, centred on the corner.
-bool isCornerArc(const geom::Curve& part, const geom::Curve& before, double distance) {
-  const auto* arc = dynamic_cast<const geom::ArcCurve*>(&part);
-  if (arc == nullptr || distance == 0) {
-    return false;
-  }
-  Eigen::Vector3d corner = before.point(before.domain().t1);
-  return std::fabs(arc->radius() - std::fabs(distance)) <= 1e-12 * std::fabs(distance) &&
-         (arc->centre() - corner.head<2>()).norm() <= 1e-9;
-}
-
-// The drawn piece each of the offset's parts lies beside, read from the
-// parts geom::offsetOfPieces made (nullopt: a convex corner's arc): each
-// drawn piece gives one part, in order (cut back at a concave corner), and
-// a corner's arc follows the piece it ends. Nullopt when the parts are not
-// laid out so.
-std::optional<std::vector<std::optional<std::size_t>>>
-offsetPartOrigins(const std::vector<std::shared_ptr<const geom::Curve>>& drawn,
-                  const std::vector<const geom::Curve*>& parts, double distance) {
-  std::vector<std::optional<std::size_t>> origins;
-  std::size_t next = 0;
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    bool partsToSpare = parts.size() - k > drawn.size() - next;
-    if (next > 0 && partsToSpare && isCornerArc(*parts[k], *drawn[next - 1], distance)) {
-      origins.emplace_back(std::nullopt);
-    } else if (next < drawn.size()) {
-      origins.emplace_back(next++);
-    } else {
-      return std::nullopt;
-    }
-  }
-  if (next != drawn.size()) {
-    return std::nullopt;
-  }
-  return origins;
-}
-
-} // namespace
-
-std::shared_ptr<const BesideCurve>
-PartLowering::besideCurve(const CutStmt& cut, const CutCurve& curve,
-                          const std::shared_ptr<const geom::Curve>& offset, double distance) {
-  std::vector<const geom::Curve*> parts = geom::piecesOf(*offset);
-  std::optional<std::vector<std::optional<std::size_t>>> found =
-      offsetPartOrigins(movedPieces(curve), parts, distance);
-  if (!found) {
+std::shared_ptr<const BesideCurve> PartLowering::besideCurve(const CutStmt& cut,
+                                                             const CutCurve& curve,
+                                                             const geom::PiecesOffset& offset,
+                                                             double distance) {
+  std::vector<const geom::Curve*> parts = geom::piecesOf(*offset.curve);
+  // geom says which drawn piece each part lies beside (nullopt: a convex
+  // corner's arc).
+  const std::vector<std::optional<std::size_t>>& origins = offset.partOrigins;
+  if (origins.size() != parts.size()) {
     fail(cut.span,
          fmt::format("the offset of this curve has {} pieces that do not follow its {} pieces "
                      "one by one",
                      parts.size(), curve.pieces.size()),
          DiagnosticKind::UnsupportedConstruct);
   }
-  const std::vector<std::optional<std::size_t>>& origins = *found;
   auto beside = std::make_shared<BesideCurve>();
-  beside->layout = curveTableEntryOn(cut, offset);
+  beside->layout = curveTableEntryOn(cut, offset.curve);
   beside->drawn = curve;
   beside->distance = distance;
   double start = 0;

@@ -411,9 +411,8 @@ private:
   // The exact offset of the cut's curve, or tool-too-large at the cut.
   // With `drawn`, the drawn curve sampled for the clearance check (else
   // sampled here).
-  std::shared_ptr<const geom::Curve> checkedOffset(const frontend::CutStmt& cut,
-                                                   const CutCurve& curve, double distance,
-                                                   const DrawnClearance* drawn = nullptr);
+  geom::PiecesOffset checkedOffset(const frontend::CutStmt& cut, const CutCurve& curve,
+                                   double distance, const DrawnClearance* drawn = nullptr);
   // The cut's drawn pieces sampled for clearance checks within its
   // tolerance; program-too-large at the cut past the sampling's limit.
   DrawnClearance drawnClearance(const frontend::CutStmt& cut,
@@ -434,8 +433,7 @@ private:
   // of it.
   std::shared_ptr<const BesideCurve> besideCurve(const frontend::CutStmt& cut,
                                                  const CutCurve& curve,
-                                                 const std::shared_ptr<const geom::Curve>& offset,
-                                                 double distance);
+                                                 const geom::PiecesOffset& offset, double distance);
   // The offset's points within the cut's budget (as numbers on a
   // controller), its level laps asking for `arcs` where given.
   std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,

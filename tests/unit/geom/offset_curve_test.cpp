@@ -112,6 +112,35 @@ TEST(OffsetCurve, ConvexCornersGetArcsConcaveOnesAreTrimmed) {
   EXPECT_NEAR((inside->point(inside->domain().t1) - Eigen::Vector3d(2, 2, 0)).norm(), 0.0, 1e-12);
 }
 
+// Each part of the offset says which drawn piece it lies beside; a convex
+// corner's arc follows the piece ending there, the arc where a closed path
+// closes comes last, and a concave corner adds no part.
+TEST(OffsetCurve, EachPartNamesThePieceItLiesBeside) {
+  using Origins = std::vector<std::optional<std::size_t>>;
+  std::vector<Eigen::Vector3d> corners = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
+  std::vector<std::shared_ptr<const Curve>> sides;
+  for (std::size_t i = 0; i < 4; ++i) {
+    sides.push_back(std::make_shared<LineCurve>(corners[i], corners[(i + 1) % 4]));
+  }
+  PiecesOffset outside = offsetOfPiecesWithOrigins(sides, -2.0);
+  EXPECT_EQ(outside.partOrigins,
+            (Origins{0, std::nullopt, 1, std::nullopt, 2, std::nullopt, 3, std::nullopt}));
+  ASSERT_EQ(piecesOf(*outside.curve).size(), outside.partOrigins.size());
+  EXPECT_NE(dynamic_cast<const ArcCurve*>(piecesOf(*outside.curve)[7]), nullptr);
+  EXPECT_EQ(offsetOfPiecesWithOrigins(sides, 2.0).partOrigins, (Origins{0, 1, 2, 3}));
+
+  // Open: a right turn then a left turn, the tool on the left (convex at the
+  // first corner, concave at the second); one piece alone is its own part.
+  std::vector<std::shared_ptr<const Curve>> steps = {
+      std::make_shared<LineCurve>(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 0, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(10, -10, 0)),
+      std::make_shared<LineCurve>(Eigen::Vector3d(10, -10, 0), Eigen::Vector3d(20, -10, 0))};
+  PiecesOffset open = offsetOfPiecesWithOrigins(steps, 1.0);
+  EXPECT_EQ(open.partOrigins, (Origins{0, std::nullopt, 1, 2}));
+  EXPECT_EQ(piecesOf(*open.curve).size(), 4u);
+  EXPECT_EQ(offsetOfPiecesWithOrigins({steps[0]}, 1.0).partOrigins, (Origins{0}));
+}
+
 // A concave corner next to a piece shorter than the tool's radius: the
 // offsets do not cross within the pieces.
 TEST(OffsetCurve, ConcaveCornerOfAShortPieceIsRefused) {

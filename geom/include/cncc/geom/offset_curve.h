@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace cncc::geom {
@@ -78,5 +79,17 @@ public:
 /// alone; several a CompositeCurve.
 std::shared_ptr<const Curve> offsetOfPieces(const std::vector<std::shared_ptr<const Curve>>& pieces,
                                             double distance);
+
+/// The offset of pieces as offsetOfPieces builds it, and where each of its parts
+/// (piecesOf(*curve), in order) comes from: the index of the drawn piece it lies
+/// beside (cut back at a concave corner), or nullopt for the arc about a convex
+/// corner, which follows the piece ending there (the arc where a closed path
+/// closes comes last).
+struct PiecesOffset {
+  std::shared_ptr<const Curve> curve;
+  std::vector<std::optional<std::size_t>> partOrigins;
+};
+PiecesOffset offsetOfPiecesWithOrigins(const std::vector<std::shared_ptr<const Curve>>& pieces,
+                                       double distance);
 
 } // namespace cncc::geom
