@@ -334,7 +334,12 @@ std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Inst
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, lap.span,
                         "a curve.lap names no entry of the curve table");
   }
-  const CurveTableEntry& entry = function.curves[lap.index];
+  return lapCurve(function, lap, function.curves[lap.index], outside);
+}
+
+std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
+                                            const CurveTableEntry& entry,
+                                            const OutsideValue& outside) {
   if (entry.geometry) {
     return entry.geometry;
   }

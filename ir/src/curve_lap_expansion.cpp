@@ -173,10 +173,11 @@ private:
     return &*run.host;
   }
 
-  // The run's points computed here, a feed move to each as numbers.
+  // The run's points computed here, a feed move to each as numbers (at the
+  // compiled values: what the regions read is fixed, bound-controller-steps).
   void emitRunAsNumbers(const Instruction& lap, const Run& run, bool ramp) {
-    auto constantOnly = [&](ValueId value) { return passes::constantValue(source_, value); };
-    LapRegionEvaluator region(source_, lap, run.region, constantOnly);
+    auto compiled = [&](ValueId value) { return outsideValue(value); };
+    LapRegionEvaluator region(source_, lap, run.region, compiled);
     for (std::size_t i = 0; i < run.locals.size(); ++i) {
       Eigen::Vector3d point = region(run.locals[i]);
       Operand progress{ValueId{}, ramp ? run.progress[i] : 1.0};

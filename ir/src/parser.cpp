@@ -35,6 +35,9 @@ public:
     }
     Function function = builder_->finish();
     function.cuts = std::move(cuts_);
+    for (std::uint32_t index : fixed_) {
+      function.parameters[index].fixed = true;
+    }
     return function;
   }
 
@@ -122,7 +125,16 @@ private:
         throw Failure{"a parameter needs a default: 'name = value'"};
       }
       std::string name(trim(parameter.substr(0, equals)));
-      parameters_[name] = builder_->addParameter(name, parseNumber(parameter.substr(equals + 1)));
+      // `r = 5 fixed`: its default was read as a constant (Parameter::fixed).
+      std::string_view value = trim(parameter.substr(equals + 1));
+      bool fixed = value.ends_with(" fixed");
+      if (fixed) {
+        value.remove_suffix(6);
+      }
+      parameters_[name] = builder_->addParameter(name, parseNumber(value));
+      if (fixed) {
+        fixed_.push_back(parameters_[name]);
+      }
     }
   }
 
@@ -466,6 +478,7 @@ private:
 
   std::optional<FunctionBuilder> builder_;
   std::map<std::string, std::uint32_t> parameters_;
+  std::vector<std::uint32_t> fixed_; // the parameters marked `fixed`
   std::map<std::string, ValueId> values_;
   std::vector<OpenRegions> open_; // innermost last
   // A `curve @c ... {` block being read.

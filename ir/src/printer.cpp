@@ -44,7 +44,8 @@ public:
     out_ += fmt::format("func @{}(", function_.name);
     for (std::size_t i = 0; i < function_.parameters.size(); ++i) {
       const Parameter& parameter = function_.parameters[i];
-      out_ += fmt::format("{}{} = {}", i == 0 ? "" : ", ", parameter.name, parameter.defaultValue);
+      out_ += fmt::format("{}{} = {}{}", i == 0 ? "" : ", ", parameter.name, parameter.defaultValue,
+                          parameter.fixed ? " fixed" : "");
     }
     out_ += ") {\n";
     for (std::size_t i = 0; i < function_.tables.size(); ++i) {

@@ -31,7 +31,9 @@
 // this mode cannot treat (spacing=, samples= over several pieces, a curve
 // whose dependence on parameters the bounds do not follow, a ramp whose
 // shares would change with the parameters) is lowered by the table-driven
-// lowering of cuts.cpp, and what it reads is fixed.
+// lowering of cuts.cpp, and what it reads is fixed. A count the program
+// would compute past a piece's limit at the compiled values is the
+// legalisation's (bound-controller-steps: points chosen when compiling).
 #include "controller_segment.h"
 
 #include "cncc/geom/deviation.h"
@@ -204,12 +206,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   if (!planned) {
     return false;
   }
-  if (runtimeOffset_) {
-    if (!planOffsetSteps(curve, *planned, budget)) {
-      return false;
-    }
-  } else if (!stepsFitAtCompiledValues(*planned)) {
-    return false; // the tables, bounded, with what the curve reads fixed
+  if (runtimeOffset_ && !planOffsetSteps(curve, *planned, budget)) {
+    return false;
   }
   if (ramp && planned->size() > 1) {
     // The shares of the descent are lengths at the defaults: with pieces

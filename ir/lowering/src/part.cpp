@@ -159,6 +159,9 @@ void reportLegalisationWarnings(Function& function, DiagnosticEngine& diagnostic
     case LegalisationWarning::Kind::ArcsAsChords:
       diagnostics.report(DiagnosticKind::ArcsAsChords, warning.span, warning.message);
       break;
+    case LegalisationWarning::Kind::ParameterFixed:
+      diagnostics.report(DiagnosticKind::ParameterFixed, warning.span, warning.message);
+      break;
     }
   }
   function.warnings.clear();

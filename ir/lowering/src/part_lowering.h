@@ -553,9 +553,6 @@ private:
                          std::optional<int> uniformSteps);
   bool symbolicPiecesUsable(const std::vector<SymbolicPiece>& pieces, const CutCurve& curve);
   Scalar stepsOf(const ControllerSegment& segment);
-  // compiled_values.cpp
-  std::optional<double> atCompiledValues(Scalar value);
-  bool stepsFitAtCompiledValues(const std::vector<ControllerSegment>& segments);
   std::optional<std::vector<std::optional<Lowered>>> symbolicList(const frontend::Expr& expression);
   std::optional<std::vector<std::optional<Lowered>>>
   symbolicList(const frontend::Expr& expression, const Bindings& bindings,

@@ -20,6 +20,10 @@ bool unrollWhenNoLarger(Function& function) {
 }
 
 constexpr Pass passTable[] = {
+    {"bound-controller-steps",
+     "legalisation: each curve.lap cut in steps whose counts at the compiled values are past a "
+     "region's limit cut at points chosen on the host, what its regions read fixed",
+     boundControllerSteps},
     {"write-curve-blocks",
      "legalisation: each curve.lap cut as NURBS or spline blocks as the move.nurbs or move.spline "
      "of its table",
@@ -114,8 +118,8 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 }
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
-  for (std::string_view name :
-       {"write-curve-blocks", "fit-arcs", "expand-controller-loops", "expand-curve-laps"}) {
+  for (std::string_view name : {"bound-controller-steps", "write-curve-blocks", "fit-arcs",
+                                "expand-controller-loops", "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

@@ -65,6 +65,22 @@ TEST(IrTest, PrintParsePrintIsStable) {
   EXPECT_THAT(text, HasSubstr("comment \"square \\\"passes\\\"\""));
 }
 
+// A parameter whose default was read as a constant says so in the text: the
+// printed program checks it.
+TEST(IrTest, AFixedParameterKeepsItsMarkThroughTheText) {
+  Function function = squarePasses();
+  function.parameters[1].fixed = true;
+  std::string text = printFunction(function);
+  EXPECT_THAT(text, HasSubstr("func @square(side = 10, passes = 2 fixed) {"));
+  ParseError error;
+  std::optional<Function> parsed = parseFunction(text, error);
+  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
+  EXPECT_FALSE(parsed->parameters[0].fixed);
+  EXPECT_TRUE(parsed->parameters[1].fixed);
+  EXPECT_EQ(parsed->parameters[1].defaultValue, 2);
+  EXPECT_EQ(printFunction(*parsed), text);
+}
+
 TEST(IrTest, InterpreterRunsLoopsTablesAndBranches) {
   ToolPath path = interpret(squarePasses());
   ASSERT_EQ(path.events.size(), 3u + 2 * 6);

@@ -75,6 +75,11 @@ private:
 // arithmetic, or the pieces do not join as the entry lays them out.
 std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
                                             const OutsideValue& outside);
+// The same for `entry` in place of the lap's own (the entry a legalisation
+// gives the lap: bound-controller-steps').
+std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,
+                                            const CurveTableEntry& entry,
+                                            const OutsideValue& outside);
 
 // The bounds of one cut's points: the chords a tolerance may choose (the
 // farthest-reach walk costs tens of microseconds a chord, and a program of
@@ -224,6 +229,18 @@ void forEachRegionStep(std::size_t region, const StepRange& range, const Visit& 
     visit(LapStep{region, range.from + i * step, i / range.count});
   }
 }
+
+// `bound-controller-steps`: every curve.lap cut in steps whose counts, at
+// the values the part is compiled with, come past maximumStepsPerRegion
+// cut at points chosen on the host within its tolerance instead: a chord
+// entry of a piece per region, each over the range it had (a walk's end a
+// curve.point), its regions the same; the parameters they read fixed (a
+// parameter-fixed warning each). The other laps stay.
+bool boundControllerSteps(Function& function);
+// The chord entry bound-controller-steps gives the lap (its geometry the
+// lap's over the ranges its regions had), or nullopt where the lap stays:
+// what the interpreter runs too.
+std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap);
 
 // `expand-controller-loops`: every curve.lap cut in steps written out as a
 // loop per region (its arithmetic at the loop's parameter, a feed move to

@@ -14,8 +14,9 @@ namespace cncc::ir {
 
 struct LoweringOptions {
   // Whether the lowering writes each lap along a curve out for the target
-  // (runCurveLegalisation: write-curve-blocks, fit-arcs, expand-controller-loops,
-  // expand-curve-laps) or leaves it a curve.lap: the
+  // (runCurveLegalisation: bound-controller-steps, write-curve-blocks,
+  // fit-arcs, expand-controller-loops, expand-curve-laps) or leaves it a
+  // curve.lap: the
   // target-neutral IR, which `--emit=ir` shows before the target's passes.
   bool expandCurveLaps = true;
   // The chord tolerance of a cut without tolerance=, samples= or spacing=.

@@ -95,8 +95,9 @@ bool runPasses(Function& function, std::span<const std::string> names,
 void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass = {},
                         int maximumRounds = 4);
 
-// The legalisation of curve.laps for a target: write-curve-blocks, fit-arcs,
-// expand-controller-loops, then expand-curve-laps (curve_lap.h). Throws
+// The legalisation of curve.laps for a target: bound-controller-steps,
+// write-curve-blocks, fit-arcs, expand-controller-loops, then
+// expand-curve-laps (curve_lap.h). Throws
 // CurveLapError.
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass = {});
 

@@ -1,0 +1,235 @@
+// `bound-controller-steps`: a curve.lap cut in steps whose counts the
+// program computes (a piece whose shape depends on part parameters) and
+// that come, at the values the part is compiled with, past the limit of one
+// region (maximumStepsPerRegion: a weight of 1e9 typed for 1 asks the
+// controller for a loop of a hundred million steps) is cut at points the
+// host chooses within its tolerance instead. Its regions stay what they
+// are, each over the range it had at those values (a walked span's end a
+// curve.point), laid out one piece per region in a chord-tolerance entry
+// that expand-curve-laps writes as tables; the parameters its regions read
+// are fixed at their values, which the printed program checks.
+#include "cncc/ir/curve_lap.h"
+
+#include "compiled_values.h"
+
+#include "cncc/geom/composite_curve.h"
+#include "cncc/geom/function_curve.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace cncc::ir {
+
+namespace {
+
+// Each region's parameter range at the compiled values when some computed
+// count there is past the limit; nullopt when none is (or a range is not
+// known there, which leaves the lap to the program's own counts).
+std::optional<std::vector<std::pair<double, double>>>
+rangesPastTheLimit(const Instruction& lap, const CurveTableEntry& entry, CompiledValues& compiled) {
+  std::vector<std::pair<double, double>> ranges;
+  std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
+  bool pastTheLimit = false;
+  std::size_t computed = 0;
+  for (std::size_t region = 0; region < places.size(); ++region) {
+    int count = region < entry.regionSteps.size() ? entry.regionSteps[region] : 0;
+    if (count != 0) {
+      ranges.push_back(entry.regionRange(places[region]));
+      continue;
+    }
+    std::size_t first = 3 + 3 * computed++;
+    if (first + 2 >= lap.operands.size()) {
+      return std::nullopt; // the verifier's problem
+    }
+    std::optional<double> from = compiled(lap.operands[first]);
+    std::optional<double> to = compiled(lap.operands[first + 1]);
+    std::optional<double> steps = compiled(lap.operands[first + 2]);
+    if (!from || !to || !steps || !(*to > *from)) {
+      return std::nullopt;
+    }
+    pastTheLimit = pastTheLimit || !(*steps <= maximumStepsPerRegion);
+    ranges.emplace_back(*from, *to);
+  }
+  return pastTheLimit ? std::optional(std::move(ranges)) : std::nullopt;
+}
+
+// The stepped entry's curve in the chord entry's parameter: each region's
+// range at the compiled values mapped linearly onto the part of the curve
+// the region cut (a walked span's u, a counted span's 0 .. N, a piece's own
+// range); null without the curve (a function read from text: its regions
+// are interpreted).
+std::shared_ptr<const geom::Curve>
+curveOverRanges(const CurveTableEntry& stepped,
+                const std::vector<std::pair<double, double>>& ranges) {
+  if (!stepped.geometry) {
+    return nullptr;
+  }
+  std::shared_ptr<const geom::Curve> drawn = stepped.geometry;
+  std::vector<CurveTableEntry::RegionPlace> places = stepped.regionPlaces();
+  std::vector<std::shared_ptr<const geom::Curve>> pieces;
+  for (std::size_t region = 0; region < ranges.size(); ++region) {
+    auto [ownFrom, ownTo] = stepped.regionRange(places[region]);
+    double wholeFrom = stepped.wholeParameter(places[region], ownFrom);
+    double wholeTo = stepped.wholeParameter(places[region], ownTo);
+    auto [from, to] = ranges[region];
+    double scale = (wholeTo - wholeFrom) / (to - from);
+    auto whole = [=](double local) { return wholeFrom + (local - from) * scale; };
+    pieces.push_back(std::make_shared<geom::FunctionCurve>(
+        geom::ParameterRange{from, to},
+        [drawn, whole](double local) { return drawn->point(whole(local)); },
+        [drawn, whole, scale](double local) {
+          return Eigen::Vector3d(drawn->derivative(whole(local)) * scale);
+        },
+        [drawn, whole, scale](double local) {
+          return Eigen::Vector3d(drawn->secondDerivative(whole(local)) * scale * scale);
+        }));
+  }
+  if (pieces.size() == 1) {
+    return pieces.front();
+  }
+  return std::make_shared<geom::CompositeCurve>(std::move(pieces), pathJoinTolerance);
+}
+
+// The entry of the lap's points chosen on the host: one piece per region,
+// over the range the region had.
+CurveTableEntry chordEntry(const CurveTableEntry& stepped,
+                           const std::vector<std::pair<double, double>>& ranges) {
+  CurveTableEntry entry = stepped;
+  entry.sampling = CurveSampling::ChordTolerance;
+  entry.regionSteps.clear();
+  entry.walkRegions.clear();
+  entry.stepReading.reset();
+  entry.geometry = curveOverRanges(stepped, ranges);
+  // Numbers: regions whose counts run that far compute with numbers the
+  // controller's digits may not hold (a weight of 1e9).
+  entry.pointsAsNumbers = true;
+  entry.chosenParameters = nullptr;
+  entry.pieces.clear();
+  double start = 0;
+  for (auto [from, to] : ranges) {
+    entry.pieces.push_back({ranges.size() == 1 ? from : start, from, to, {}});
+    start += to - from;
+  }
+  entry.from = entry.pieces.front().start;
+  entry.to = ranges.size() == 1 ? ranges.front().second : start;
+  return entry;
+}
+
+// The parameters the lap's regions read, inside the lap or before it.
+std::set<std::uint32_t> parametersRead(const Function& function, const Instruction& lap) {
+  std::set<std::uint32_t> parameters;
+  std::set<std::uint32_t> seen;
+  std::vector<ValueId> work;
+  for (const Region& region : lap.regions) {
+    for (InstructionId id : region.instructions) {
+      const Instruction& instruction = function.instructions[id];
+      work.insert(work.end(), instruction.operands.begin(), instruction.operands.end());
+    }
+  }
+  while (!work.empty()) {
+    ValueId value = work.back();
+    work.pop_back();
+    if (!value.valid() || !seen.insert(value.index).second) {
+      continue;
+    }
+    const Instruction& definition = function.definition(value);
+    if (definition.opcode == Opcode::Param) {
+      parameters.insert(definition.index);
+    } else if (definition.opcode != Opcode::CurveLap && definition.opcode != Opcode::Loop) {
+      work.insert(work.end(), definition.operands.begin(), definition.operands.end());
+    }
+  }
+  return parameters;
+}
+
+void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry) {
+  for (std::uint32_t index : parametersRead(function, lap)) {
+    Parameter& parameter = function.parameters[index];
+    if (parameter.fixed) {
+      continue;
+    }
+    parameter.fixed = true;
+    function.warnings.push_back(
+        {LegalisationWarning::Kind::ParameterFixed, entry.curveSpan,
+         fmt::format("'{}' is fixed at its value {:g} in this program: at that value the "
+                     "controller would cut this curve in more than {} steps of one piece, so "
+                     "its points are chosen when compiling; the program raises an alarm if "
+                     "it is changed",
+                     parameter.name, parameter.defaultValue, maximumStepsPerRegion)});
+  }
+}
+
+// The lap reads the chord entry: its three operands, each walk's end a point.
+void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
+                const CurveTableEntry& stepped) {
+  lap.index = chords;
+  lap.operands.resize(3);
+  for (std::size_t region : stepped.walkRegions) {
+    if (region < lap.regions.size() && !lap.regions[region].instructions.empty()) {
+      Instruction& end = function.instructions[lap.regions[region].instructions.back()];
+      if (end.opcode == Opcode::CurveWalk) {
+        end.opcode = Opcode::CurvePoint;
+        end.operands.resize(3);
+      }
+    }
+  }
+}
+
+// The chord entry of a lap whose computed counts are past the limit.
+std::optional<CurveTableEntry> boundedEntry(const Function& function, const Instruction& lap,
+                                            CompiledValues& compiled) {
+  if (lap.index >= function.curves.size()) {
+    return std::nullopt; // the verifier's problem
+  }
+  const CurveTableEntry& stepped = function.curves[lap.index];
+  if (stepped.sampling != CurveSampling::Steps || stepped.offsetGrowth ||
+      !stepped.arcRegions.empty()) {
+    return std::nullopt;
+  }
+  std::optional<std::vector<std::pair<double, double>>> ranges =
+      rangesPastTheLimit(lap, stepped, compiled);
+  if (!ranges) {
+    return std::nullopt;
+  }
+  return chordEntry(stepped, *ranges);
+}
+
+} // namespace
+
+std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap) {
+  CompiledValues compiled(function);
+  return boundedEntry(function, lap, compiled);
+}
+
+bool boundControllerSteps(Function& function) {
+  CompiledValues compiled(function);
+  std::map<std::uint32_t, std::uint32_t> chordEntries; // by the stepped entry
+  bool changed = false;
+  for (InstructionId id = 0; id < function.instructions.size(); ++id) {
+    if (function.instructions[id].opcode != Opcode::CurveLap) {
+      continue;
+    }
+    std::optional<CurveTableEntry> chords =
+        boundedEntry(function, function.instructions[id], compiled);
+    if (!chords) {
+      continue;
+    }
+    std::uint32_t index = function.instructions[id].index;
+    auto known = chordEntries.find(index);
+    if (known == chordEntries.end()) {
+      function.curves.push_back(std::move(*chords));
+      auto added = static_cast<std::uint32_t>(function.curves.size() - 1);
+      known = chordEntries.emplace(index, added).first;
+    }
+    CurveTableEntry stepped = function.curves[index];
+    fixParametersRead(function, function.instructions[id], stepped);
+    rewriteLap(function, function.instructions[id], known->second, stepped);
+    changed = true;
+  }
+  return changed;
+}
+
+} // namespace cncc::ir

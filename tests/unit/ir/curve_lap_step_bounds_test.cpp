@@ -1,0 +1,93 @@
+// bound-controller-steps: a lap cut in steps whose count the program
+// computes, past the limit of one region at the values compiled with, is
+// cut at points chosen on the host instead, the parameters its regions read
+// fixed; the interpreter runs the lap so before the pass too.
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/verifier.h"
+#include "curve_lap_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace cncc::ir {
+namespace {
+
+using curve_lap_test::countOf;
+using curve_lap_test::feedMoves;
+using curve_lap_test::onlyLap;
+using curve_lap_test::parsed;
+using curve_lap_test::replaced;
+
+// A circle of radius r in `k r` steps the program computes (k = 100000), its
+// range 0 .. 2 pi; the height h is a parameter the regions do not read.
+constexpr std::string_view countedCircleText = R"(func @ring(r = 5, h = 1) {
+  curve @0 steps 0.01 over 0 .. 6.283185307179586 {
+    piece at 0 over 0 .. 6.283185307179586
+    counts 0
+  }
+  %0 = param r
+  %1 = param h
+  %2 = const 500
+  %3 = const 0
+  %4 = const 100000
+  %5 = mul %0, %4
+  %6 = const 6.283185307179586
+  %7 = neg %1
+  move.rapid %0, %3, %3
+  %8 = curve.lap @0, %7, %7, %2, %3, %6, %5 {
+    %9 = cos %8
+    %10 = mul %0, %9
+    %11 = sin %8
+    %12 = mul %0, %11
+    curve.point %10, %12, %3
+  }
+}
+)";
+
+TEST(BoundControllerSteps, ACountPastTheLimitIsCutAtPointsChosenOnTheHost) {
+  Function function = parsed(countedCircleText);
+  ASSERT_TRUE(verifyFunction(function).empty());
+  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function)));
+  ToolPath before = interpret(function); // as the pass will cut it
+  ASSERT_TRUE(boundControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  const CurveTableEntry& entry = function.curves.back();
+  EXPECT_EQ(entry.sampling, CurveSampling::ChordTolerance);
+  EXPECT_TRUE(entry.pointsAsNumbers);
+  EXPECT_TRUE(entry.regionSteps.empty());
+  EXPECT_TRUE(function.parameters[0].fixed);  // r: the circle's points read it
+  EXPECT_FALSE(function.parameters[1].fixed); // h: the lap's height only
+  ASSERT_EQ(function.warnings.size(), 1u);
+  EXPECT_EQ(function.warnings[0].kind, LegalisationWarning::Kind::ParameterFixed);
+  EXPECT_NE(function.warnings[0].message.find("'r' is fixed at its value 5"), std::string::npos);
+  curve_lap_test::expectSamePath(before, interpret(function));
+
+  ASSERT_TRUE(expandCurveLaps(function));
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  EXPECT_EQ(countOf(function, Opcode::Loop), 0u); // numbers, no table loop
+  std::vector<MachineEvent> moves = feedMoves(interpret(function));
+  // Chords of a circle of radius 5 within 0.01: about 2 pi / sqrt(8 0.01 / 5).
+  EXPECT_GT(moves.size(), 40u);
+  EXPECT_LT(moves.size(), 80u);
+  for (const MachineEvent& move : moves) {
+    EXPECT_NEAR(std::hypot(move.x, move.y), 5, 1e-9);
+    EXPECT_EQ(move.z, -1);
+  }
+  EXPECT_NEAR(moves.back().x, 5, 1e-9);
+  EXPECT_NEAR(moves.back().y, 0, 1e-9);
+}
+
+TEST(BoundControllerSteps, ACountWithinTheLimitStaysTheProgramsCount) {
+  Function function = parsed(replaced(countedCircleText, "r = 5", "r = 0.5"));
+  EXPECT_FALSE(boundedStepsEntry(function, onlyLap(function)));
+  EXPECT_FALSE(boundControllerSteps(function));
+  EXPECT_FALSE(function.parameters[0].fixed);
+  EXPECT_TRUE(function.warnings.empty());
+  ASSERT_TRUE(expandControllerLoops(function));
+  EXPECT_EQ(countOf(function, Opcode::Loop), 1u); // 50000 steps the controller counts
+}
+
+} // namespace
+} // namespace cncc::ir
