@@ -6,8 +6,8 @@
 // host chooses within its tolerance instead. Its regions stay what they
 // are, each over the range it had at those values (a walked span's end a
 // curve.point), laid out one piece per region in a chord-tolerance entry
-// that expand-curve-laps writes as tables; the parameters its regions read
-// are fixed at their values, which the printed program checks.
+// whose points expand-curve-laps prints as numbers; the parameters its
+// regions read are fixed at their values, which the printed program checks.
 #include "cncc/ir/curve_lap.h"
 
 #include "compiled_values.h"
@@ -74,7 +74,8 @@ curveOverRanges(const CurveTableEntry& stepped,
     auto [ownFrom, ownTo] = stepped.regionRange(places[region]);
     double wholeFrom = stepped.wholeParameter(places[region], ownFrom);
     double wholeTo = stepped.wholeParameter(places[region], ownTo);
-    auto [from, to] = ranges[region];
+    double from = ranges[region].first; // a lambda captures no structured binding (clang 14)
+    double to = ranges[region].second;
     double scale = (wholeTo - wholeFrom) / (to - from);
     auto whole = [=](double local) { return wholeFrom + (local - from) * scale; };
     pieces.push_back(std::make_shared<geom::FunctionCurve>(
