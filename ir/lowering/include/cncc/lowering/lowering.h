@@ -35,7 +35,9 @@ struct FixedParameter {
 
 struct LoweredPart {
   Function function;
-  // In the order first fixed; each also has Parameter::fixed set.
+  // In the order first fixed; each also has Parameter::fixed set. Those the
+  // lowering fixed: the legalisation bound-controller-steps may fix more
+  // (Parameter::fixed and a parameter-fixed warning, no entry here).
   std::vector<FixedParameter> fixedParameters;
 };
 
