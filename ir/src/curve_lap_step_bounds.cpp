@@ -38,6 +38,9 @@ rangesPastTheLimit(const Instruction& lap, const CurveTableEntry& entry, Compile
     int count = region < entry.regionSteps.size() ? entry.regionSteps[region] : 0;
     if (count != 0) {
       ranges.push_back(entry.regionRange(places[region]));
+      if (!(ranges.back().second > ranges.back().first)) {
+        return std::nullopt; // no piece of its own to lay out
+      }
       continue;
     }
     std::size_t first = 3 + 3 * computed++;
