@@ -14,6 +14,7 @@
 
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/function_curve.h"
+#include "cncc/geom/geometry_error.h"
 
 #include <fmt/format.h>
 
@@ -94,7 +95,11 @@ curveOverRanges(const CurveTableEntry& stepped,
   if (pieces.size() == 1) {
     return pieces.front();
   }
-  return std::make_shared<geom::CompositeCurve>(std::move(pieces), pathJoinTolerance);
+  try {
+    return std::make_shared<geom::CompositeCurve>(std::move(pieces), pathJoinTolerance);
+  } catch (const geom::GeometryError&) {
+    return nullptr; // the regions interpreted, which report where they part
+  }
 }
 
 // The entry of the lap's points chosen on the host: one piece per region,
