@@ -188,9 +188,11 @@ void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
 }
 
 // The chord entry of a lap whose computed counts are past the limit.
-std::optional<CurveTableEntry> boundedEntry(const Function& function, const Instruction& lap,
-                                            CompiledValues& compiled) {
-  if (lap.index >= function.curves.size()) {
+// The ranges of a lap cut in steps whose computed counts are past the
+// limit at the compiled values; nullopt for any other lap.
+std::optional<std::vector<std::pair<double, double>>>
+boundedLapRanges(const Function& function, const Instruction& lap, CompiledValues& compiled) {
+  if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size()) {
     return std::nullopt; // the verifier's problem
   }
   const CurveTableEntry& stepped = function.curves[lap.index];
@@ -198,44 +200,43 @@ std::optional<CurveTableEntry> boundedEntry(const Function& function, const Inst
       !stepped.arcRegions.empty()) {
     return std::nullopt;
   }
-  std::optional<std::vector<std::pair<double, double>>> ranges =
-      rangesPastTheLimit(lap, stepped, compiled);
-  if (!ranges) {
-    return std::nullopt;
-  }
-  return chordEntry(stepped, *ranges);
+  return rangesPastTheLimit(lap, stepped, compiled);
 }
 
 } // namespace
 
 std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap) {
   CompiledValues compiled(function);
-  return boundedEntry(function, lap, compiled);
+  std::optional<std::vector<std::pair<double, double>>> ranges =
+      boundedLapRanges(function, lap, compiled);
+  if (!ranges) {
+    return std::nullopt;
+  }
+  return chordEntry(function.curves[lap.index], *ranges);
 }
 
 bool boundControllerSteps(Function& function) {
   CompiledValues compiled(function);
-  std::map<std::uint32_t, std::uint32_t> chordEntries; // by the stepped entry
+  // By the stepped entry: its chord entry, made once for all its laps (a
+  // ramp lap and the level laps share one).
+  std::map<std::uint32_t, std::uint32_t> chordEntries;
   bool changed = false;
   for (InstructionId id = 0; id < function.instructions.size(); ++id) {
-    if (function.instructions[id].opcode != Opcode::CurveLap) {
+    Instruction& lap = function.instructions[id];
+    std::optional<std::vector<std::pair<double, double>>> ranges =
+        boundedLapRanges(function, lap, compiled);
+    if (!ranges) {
       continue;
     }
-    std::optional<CurveTableEntry> chords =
-        boundedEntry(function, function.instructions[id], compiled);
-    if (!chords) {
-      continue;
-    }
-    std::uint32_t index = function.instructions[id].index;
-    auto known = chordEntries.find(index);
+    auto known = chordEntries.find(lap.index);
     if (known == chordEntries.end()) {
-      function.curves.push_back(std::move(*chords));
+      function.curves.push_back(chordEntry(function.curves[lap.index], *ranges));
       auto added = static_cast<std::uint32_t>(function.curves.size() - 1);
-      known = chordEntries.emplace(index, added).first;
+      known = chordEntries.emplace(lap.index, added).first;
     }
-    CurveTableEntry stepped = function.curves[index];
-    fixParametersRead(function, function.instructions[id], stepped);
-    rewriteLap(function, function.instructions[id], known->second, stepped);
+    const CurveTableEntry& stepped = function.curves[lap.index]; // no entry is added below
+    fixParametersRead(function, lap, stepped);
+    rewriteLap(function, lap, known->second, stepped);
     changed = true;
   }
   return changed;
