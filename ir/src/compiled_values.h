@@ -40,6 +40,19 @@ public:
         known_[next.index] = std::nullopt;
         continue;
       }
+      if (definition.opcode == Opcode::Select) {
+        // The branch the condition chooses: the other may read what is not
+        // known (a loop's variable) or fail at these values.
+        if (std::optional<ValueId> chosen = chosenBranch(next, definition, work)) {
+          auto found = known_.find(chosen->index);
+          if (found == known_.end()) {
+            work.push_back(*chosen);
+          } else {
+            known_[next.index] = found->second;
+          }
+        }
+        continue;
+      }
       std::vector<double> operands;
       bool ready = true;
       for (ValueId operand : definition.operands) {
@@ -63,6 +76,24 @@ public:
   }
 
 private:
+  // The operand a select's known condition chooses; nullopt while the
+  // condition waits on the work list, or when it is not known (the select
+  // is then not known either).
+  std::optional<ValueId> chosenBranch(ValueId select, const Instruction& definition,
+                                      std::vector<ValueId>& work) {
+    ValueId condition = definition.operands[0];
+    auto found = known_.find(condition.index);
+    if (found == known_.end()) {
+      work.push_back(condition);
+      return std::nullopt;
+    }
+    if (!found->second) {
+      known_[select.index] = std::nullopt;
+      return std::nullopt;
+    }
+    return *found->second != 0 ? definition.operands[1] : definition.operands[2];
+  }
+
   const Function& function_;
   std::map<std::uint32_t, std::optional<double>> known_;
 };

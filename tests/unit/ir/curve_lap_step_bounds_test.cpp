@@ -89,5 +89,45 @@ TEST(BoundControllerSteps, ACountWithinTheLimitStaysTheProgramsCount) {
   EXPECT_EQ(countOf(function, Opcode::Loop), 1u); // 50000 steps the controller counts
 }
 
+// The count through an `if` of the source: a select whose branch not taken
+// at the compiled values reads the pass loop's variable, which is not known
+// when compiling. The branch taken decides, as the program would.
+TEST(BoundControllerSteps, ACountThroughASelectIsReadOnTheBranchTaken) {
+  Function function = parsed(R"(func @ring(r = 5, h = 1) {
+  curve @0 steps 0.01 over 0 .. 6.283185307179586 {
+    piece at 0 over 0 .. 6.283185307179586
+    counts 0
+  }
+  %0 = param r
+  %1 = param h
+  %2 = const 500
+  %3 = const 0
+  %4 = const 100000
+  %5 = const 1
+  %6 = const 2
+  %7 = const 6.283185307179586
+  %8 = gt %0, %3
+  %9 = neg %1
+  move.rapid %0, %3, %3
+  %10 = loop %5, %6 {
+    %11 = mul %0, %4
+    %12 = mul %10, %4
+    %13 = select %8, %11, %12
+    %14 = curve.lap @0, %9, %9, %2, %3, %7, %13 {
+      %15 = cos %14
+      %16 = mul %0, %15
+      %17 = sin %14
+      %18 = mul %0, %17
+      curve.point %16, %18, %3
+    }
+  }
+}
+)");
+  ASSERT_TRUE(verifyFunction(function).empty());
+  ASSERT_TRUE(boundControllerSteps(function)); // 500000 steps: past the limit
+  EXPECT_TRUE(function.parameters[0].fixed);
+  EXPECT_EQ(function.curves.back().sampling, CurveSampling::ChordTolerance);
+}
+
 } // namespace
 } // namespace cncc::ir
