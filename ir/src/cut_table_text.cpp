@@ -16,6 +16,12 @@ constexpr std::string_view arcMovesNames[] = {"none", "native", "fitted"};
 
 std::string cutEntryText(std::size_t index, const CutGeometry& cut) {
   std::string line = fmt::format("  cut @{} tolerance {}", index, cut.tolerance);
+  if (cut.increment != 0) {
+    line += fmt::format(" increment {}", cut.increment);
+  }
+  if (cut.controllerDigits) {
+    line += fmt::format(" controller {}", *cut.controllerDigits);
+  }
   if (!cut.method.empty()) {
     line += fmt::format(" method {}", cut.method);
   }
@@ -40,8 +46,8 @@ CutGeometry readCutEntry(std::string_view line, std::size_t index) {
   }
   std::vector<std::string_view> parts = splitWords(words);
   if (parts.size() < 4 || parts.size() % 2 != 0 || parts[2] != "tolerance") {
-    throw Failure{"expected 'cut @n tolerance T [method M] [arcs native|fitted] [beside R] "
-                  "[blocks \"...\"]'"};
+    throw Failure{"expected 'cut @n tolerance T [increment I] [controller D] [method M] "
+                  "[arcs native|fitted] [beside R] [blocks \"...\"]'"};
   }
   if (parseWholeNumber(parts[1].substr(1)) != index) {
     throw Failure{fmt::format("expected cut @{} next", index)};
@@ -49,7 +55,11 @@ CutGeometry readCutEntry(std::string_view line, std::size_t index) {
   CutGeometry cut;
   cut.tolerance = parseNumber(parts[3]);
   for (std::size_t k = 4; k + 1 < parts.size(); k += 2) {
-    if (parts[k] == "method") {
+    if (parts[k] == "increment") {
+      cut.increment = parseNumber(parts[k + 1]);
+    } else if (parts[k] == "controller") {
+      cut.controllerDigits = static_cast<int>(parseWholeNumber(parts[k + 1]));
+    } else if (parts[k] == "method") {
       cut.method = parts[k + 1];
     } else if (parts[k] == "arcs") {
       cut.arcMoves = static_cast<CutArcs>(
@@ -58,7 +68,9 @@ CutGeometry readCutEntry(std::string_view line, std::size_t index) {
       cut.toolRadius = parseNumber(parts[k + 1]);
     } else {
       throw Failure{
-          fmt::format("expected 'method', 'arcs', 'beside' or 'blocks', found '{}'", parts[k])};
+          fmt::format("expected 'increment', 'controller', 'method', 'arcs', 'beside' or 'blocks', "
+                      "found '{}'",
+                      parts[k])};
     }
   }
   if (!blocks.empty()) {

@@ -10,6 +10,7 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/spline_move.h"
 
+#include "legalised_entries.h"
 #include "passes/rewriter.h"
 
 #include <algorithm>
@@ -223,7 +224,7 @@ private:
   // A feed move to each point after the first, the region that holds it
   // run at its own parameter, raised by the lap's height there.
   void runCurveLap(const Instruction& lap) {
-    const CurveTableEntry& entry = lapEntry(lap);
+    const CurveTableEntry& entry = legalisedEntries_.of(lap);
     double zFrom = value(lap.operands[0]);
     double zTo = value(lap.operands[1]);
     double feed = value(lap.operands[2]);
@@ -498,21 +499,6 @@ private:
     }
   }
 
-  // The lap's entry as the legalisation leaves it: a lap cut in steps past
-  // the limit at the compiled values at the points bound-controller-steps
-  // chooses, any other its own.
-  const CurveTableEntry& lapEntry(const Instruction& lap) {
-    const CurveTableEntry& own = function_.curves[lap.index];
-    if (own.sampling != CurveSampling::Steps) {
-      return own;
-    }
-    auto known = boundedEntries_.find(&lap);
-    if (known == boundedEntries_.end()) {
-      known = boundedEntries_.emplace(&lap, boundedStepsEntry(function_, lap)).first;
-    }
-    return known->second ? *known->second : own;
-  }
-
   const LapPoints& lapPoints(const Instruction& lap, const CurveTableEntry& entry, bool ramp) {
     LapPoints fresh;
     try {
@@ -679,7 +665,7 @@ private:
   // The curves a lap kept, the latest last.
   static constexpr std::size_t maximumCurvesPerLap = 8;
   std::map<const Instruction*, std::vector<LapPoints>> lapPoints_;
-  std::map<const Instruction*, std::optional<CurveTableEntry>> boundedEntries_;
+  LegalisedEntries legalisedEntries_{function_};
   std::map<std::uint32_t, std::vector<OffsetRegionGrowth>> offsetGrowth_; // by curve
 };
 

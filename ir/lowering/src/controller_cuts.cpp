@@ -188,6 +188,10 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
                      tolerance, rounding, options_.coordinateIncrement),
          DiagnosticKind::InvalidTolerance);
   }
+  if (chordsTheLegalisationSteps(cut, curve, uniformSteps.has_value(), tolerances)) {
+    stepsLeftToTheLegalisation_ = true;
+    return false; // chords, cut in steps by choose-controller-steps
+  }
   if (ramp) {
     checkRampCloses(curve, cut);
   }
@@ -266,6 +270,26 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
             {finishX, finishY}, feedValue, [&](ValueId zFrom, ValueId zTo) {
               emitSteppedLap(curve, lap, *planned, zFrom, zTo, feedValue, cut);
             });
+  return true;
+}
+
+// A curve of constants within a tolerance (no parameter or loop variable
+// read, no NURBS knot spans, no arc, on its own curve), whose chords keep
+// within it after the rounding of three axes: its lap is the chords every
+// target's lowering gives it, which choose-controller-steps cuts in steps
+// the controller counts.
+bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve& curve,
+                                              bool uniformSteps,
+                                              const ToleranceBudget& tolerances) {
+  if (uniformSteps || runtimeOffset_ || curve.beside || hasArcPiece(curve) ||
+      !(tolerances.forPoints() > 0) || !parametersOf(*cut.curve).empty()) {
+    return false;
+  }
+  for (const CurvePiece& piece : curve.pieces) {
+    if (piece.value->kind == CurveKind::Nurbs) {
+      return false;
+    }
+  }
   return true;
 }
 

@@ -17,8 +17,6 @@ namespace cncc::ir::lowering {
 using Polynomial = std::vector<double>; // ascending powers of u
 
 inline constexpr int maximumStepsPerPiece = maximumStepsPerRegion;
-// The share of the increment kept for the rounding of printed literals.
-inline constexpr double literalShare = 0.02;
 
 // The span without the rounding noise of the conversion: a weight that is
 // constant makes the span polynomial (its coordinates divided by it).

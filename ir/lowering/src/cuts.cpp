@@ -346,6 +346,10 @@ bool PartLowering::beginCutMoves(CutGeometry geometry) {
     builder_.contouring(tolerance);
     machine_.contouring = tolerance;
   }
+  geometry.increment = options_.coordinateIncrement;
+  if (options_.controllerLoops) {
+    geometry.controllerDigits = std::max(options_.literalSignificantDigits, 0);
+  }
   auto index = static_cast<std::uint32_t>(cuts_.size());
   cuts_.push_back(std::move(geometry));
   builder_.cutBegin(index);
@@ -358,6 +362,7 @@ void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, doubl
 }
 
 void PartLowering::lowerCut(const CutStmt& cut) {
+  stepsLeftToTheLegalisation_ = false; // whatever the cut before left
   if (lowerOffsetCut(cut)) {
     return;
   }
@@ -453,7 +458,9 @@ void PartLowering::chooseSampling(CurveTableEntry& entry, const CutStmt& cut,
     checkSpacing(cut, curve, entry.amount);
   } else {
     entry.amount = chordTolerance;
-    if (!entry.arcsAsked) { // arcs may keep a curve that chords cannot (fit-arcs)
+    // Arcs may keep a curve that chords cannot (fit-arcs), and the
+    // controller's steps have bounds of their own.
+    if (!entry.arcsAsked && !stepsLeftToTheLegalisation_) {
       checkChordCount(cut, curve, entry.amount);
     }
   }

@@ -492,6 +492,8 @@ private:
 
   // controller_cuts.cpp
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
+  bool chordsTheLegalisationSteps(const frontend::CutStmt& cut, const CutCurve& curve,
+                                  bool uniformSteps, const ToleranceBudget& tolerances);
   // A lap cut in steps: its curve table entry and the ranges and counts of
   // its regions whose steps the program computes.
   struct SteppedLap {
@@ -661,6 +663,9 @@ private:
   std::optional<RuntimeOffset> runtimeOffset_;
   // What the cut being lowered asks its level laps for (arcsAskedBy).
   std::optional<ArcsAsked> arcsAsked_;
+  // The cut being lowered is chords choose-controller-steps cuts in steps:
+  // its counts are bounded there, not by an estimate of its chords.
+  bool stepsLeftToTheLegalisation_ = false;
 };
 
 // Small helpers shared by the files.

@@ -20,6 +20,10 @@ bool unrollWhenNoLarger(Function& function) {
 }
 
 constexpr Pass passTable[] = {
+    {"choose-controller-steps",
+     "legalisation: on a target whose controller computes, each curve.lap within a chord "
+     "tolerance along a curve of constants cut in uniform steps the controller counts",
+     chooseControllerSteps},
     {"bound-controller-steps",
      "legalisation: each curve.lap cut in steps whose counts at the compiled values are past a "
      "region's limit cut at points chosen on the host, what its regions read fixed",
@@ -118,8 +122,9 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 }
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
-  for (std::string_view name : {"bound-controller-steps", "write-curve-blocks", "fit-arcs",
-                                "expand-controller-loops", "expand-curve-laps"}) {
+  for (std::string_view name :
+       {"choose-controller-steps", "bound-controller-steps", "write-curve-blocks", "fit-arcs",
+        "expand-controller-loops", "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

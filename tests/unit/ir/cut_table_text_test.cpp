@@ -1,5 +1,6 @@
-// The cut table as IR text: each cut's tolerance, method, arcs, tool radius
-// beside the curve and spline blocks' summary print and parse back; its
+// The cut table as IR text: each cut's tolerance, the target's increment
+// and controller digits, method, arcs, tool radius beside the curve and
+// spline blocks' summary print and parse back; its
 // curves and spans are not text. A cut.begin names a cut of the table.
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
@@ -17,7 +18,7 @@ using curve_lap_test::parsed;
 using curve_lap_test::replaced;
 
 constexpr std::string_view twoCutsText = R"(func @two() {
-  cut @0 tolerance 0.01 method bspline blocks "6 BSPLINE control points, \"the NURBS\""
+  cut @0 tolerance 0.01 increment 0.001 controller 8 method bspline blocks "6 BSPLINE control points, \"the NURBS\""
   cut @1 tolerance nan arcs fitted beside 2.5
   %0 = const 0
   %1 = const 100
@@ -35,12 +36,16 @@ TEST(CutTableText, EveryFieldPrintsAndParsesBack) {
   ASSERT_EQ(function.cuts.size(), 2u);
   const CutGeometry& first = function.cuts[0];
   EXPECT_EQ(first.tolerance, 0.01);
+  EXPECT_EQ(first.increment, 0.001);
+  EXPECT_EQ(first.controllerDigits, 8);
   EXPECT_EQ(first.method, "bspline");
   EXPECT_EQ(first.arcMoves, CutArcs::None);
   EXPECT_EQ(first.splineBlocks, "6 BSPLINE control points, \"the NURBS\"");
   EXPECT_EQ(first.curve, nullptr); // not text
   const CutGeometry& second = function.cuts[1];
   EXPECT_TRUE(std::isnan(second.tolerance)); // samples= chose the points
+  EXPECT_EQ(second.increment, 0);
+  EXPECT_FALSE(second.controllerDigits); // the host computes its numbers
   EXPECT_EQ(second.method, "");
   EXPECT_EQ(second.arcMoves, CutArcs::Fitted);
   EXPECT_EQ(second.toolRadius, 2.5);
@@ -51,10 +56,11 @@ TEST(CutTableText, BadLinesAreRefusedWithTheirLine) {
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "arcs fitted", "arcs always")),
             "3: expected 'arcs' with native or fitted, found 'always'");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "beside 2.5", "side 2.5")),
-            "3: expected 'method', 'arcs', 'beside' or 'blocks', found 'side'");
+            "3: expected 'increment', 'controller', 'method', 'arcs', 'beside' or 'blocks', "
+            "found 'side'");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "tolerance nan arcs", "nan arcs")),
-            "3: expected 'cut @n tolerance T [method M] [arcs native|fitted] [beside R] "
-            "[blocks \"...\"]'");
+            "3: expected 'cut @n tolerance T [increment I] [controller D] [method M] "
+            "[arcs native|fitted] [beside R] [blocks \"...\"]'");
 }
 
 TEST(CutTableText, ACutBeginNamesACutOfTheTable) {

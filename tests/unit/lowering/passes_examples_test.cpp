@@ -266,9 +266,10 @@ void expectLoopsKeepPath(Function& function, const std::string& name) {
   expectSamePath(before, interpret(function), name);
 }
 
-// On a target that runs loops, a cut of constant pieces is a curve.lap
-// whose entry gives each piece's steps; expand-controller-loops writes the
-// loops, which run the points the interpreter ran the lap with.
+// On a target that runs loops, a cut of constant pieces is the chords every
+// target's lowering gives it, which choose-controller-steps cuts in steps,
+// their counts left to expand-controller-loops; its loops run the points
+// the interpreter ran the lap with, before either pass.
 TEST(PassesExamplesTest, ControllerLoopsKeepToolPath) {
   LoweringOptions controller = controllerLoopOptions();
   std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
@@ -283,15 +284,21 @@ part ring(depth = 4) {
   ASSERT_TRUE(lowered->part);
   Function& function = lowered->part->function;
   ASSERT_EQ(function.curves.size(), 1u);
+  EXPECT_EQ(function.curves.front().sampling, CurveSampling::ChordTolerance);
+  ASSERT_TRUE(function.cuts.front().controllerDigits);
+  ToolPath beforeThePass = interpret(function);
+  ASSERT_TRUE(chooseControllerSteps(function));
   const CurveTableEntry& entry = function.curves.front();
   EXPECT_EQ(entry.sampling, CurveSampling::Steps);
-  ASSERT_EQ(entry.regionSteps.size(), 3u);
-  EXPECT_EQ(entry.regionSteps[0], 1); // the lines
-  EXPECT_EQ(entry.regionSteps[1], 1);
-  // The polar curve's count the legalisation chooses, within 0.01 less the
-  // rounding (the lines' are theirs).
-  EXPECT_EQ(entry.regionSteps[2], stepsChosenByLegalisation);
-  EXPECT_GT(withChosenSteps(entry, *entry.geometry).regionSteps[2], 50);
+  // Within 0.01 less the rounding of two axes (a plane) and the literals'.
+  EXPECT_NEAR(entry.amount, 0.01 - std::sqrt(2.0) * 0.0005 - 0.02 * 0.001, 1e-15);
+  EXPECT_EQ(entry.regionSteps, std::vector<int>(3, stepsChosenByLegalisation));
+  // A step for each line, many for the polar curve.
+  std::vector<int> chosen = withChosenSteps(entry, *entry.geometry).regionSteps;
+  EXPECT_EQ(chosen[0], 1);
+  EXPECT_EQ(chosen[1], 1);
+  EXPECT_GT(chosen[2], 50);
+  expectSamePath(beforeThePass, interpret(function), "ring, stepped");
   expectLoopsKeepPath(function, "ring");
 }
 

@@ -11,6 +11,7 @@
 #include "cncc/ir/ir.h"
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -229,6 +230,19 @@ void forEachRegionStep(std::size_t region, const StepRange& range, const Visit& 
     visit(LapStep{region, range.from + i * step, i / range.count});
   }
 }
+
+// `choose-controller-steps`: on a target whose controller computes the
+// program's numbers (the cut's controllerDigits), every curve.lap cut within a
+// chord tolerance whose pieces have no knot spans, whose points are the
+// regions' (not numbers, host regions or chosen parameters) and whose
+// regions read only constants is cut in steps instead: each region's count
+// left to expand-controller-loops, within the cut's tolerance less the
+// rounding of two axes (a curve in the plane z = 0) or three and the
+// literals' share. The other laps stay.
+bool chooseControllerSteps(Function& function);
+// The entries choose-controller-steps gives, by their index in the curve
+// table: what the interpreter runs their laps with too.
+std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& function);
 
 // `bound-controller-steps`: every curve.lap cut in steps whose counts, at
 // the values the part is compiled with, come past maximumStepsPerRegion

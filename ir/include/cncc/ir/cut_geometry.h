@@ -1,12 +1,15 @@
 // The part's cut table: for each `cut.begin n` of a function, the cut's true
-// curve, its tolerance and how its moves use arcs. What verify measures
-// the executed path against, and what plots draw.
+// curve, its tolerance budget and how its moves use arcs. What verify
+// measures the executed path against, what plots draw, and what the
+// legalisations read of the cut's tolerance and of the target's rounding.
 #pragma once
 
 #include "cncc/frontend/source_span.h"
 #include "cncc/geom/curve.h"
+#include "cncc/ir/tolerance_budget.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace cncc::ir {
@@ -35,6 +38,15 @@ struct CutGeometry {
   // leaves is measured against it. Null (radius 0) for a cut on its curve.
   std::shared_ptr<const geom::Curve> drawnCurve = nullptr;
   double toolRadius = 0;
+  // The target's printed grid (its least input increment; 0: none), and
+  // where the controller computes the program's numbers (a target that runs
+  // loops), the significant digits it reads their literals with (0: as
+  // exactly as the host); nullopt where the host computes every number the
+  // program prints. The lowering sets them for every cut.
+  double increment = 0;
+  std::optional<int> controllerDigits = std::nullopt;
+
+  ToleranceBudget budget() const { return {tolerance, increment}; }
 };
 
 } // namespace cncc::ir

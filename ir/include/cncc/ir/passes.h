@@ -95,7 +95,8 @@ bool runPasses(Function& function, std::span<const std::string> names,
 void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass = {},
                         int maximumRounds = 4);
 
-// The legalisation of curve.laps for a target: bound-controller-steps,
+// The legalisation of curve.laps for a target: choose-controller-steps,
+// bound-controller-steps,
 // write-curve-blocks, fit-arcs, expand-controller-loops, then
 // expand-curve-laps (curve_lap.h). Throws
 // CurveLapError.

@@ -9,6 +9,11 @@
 
 namespace cncc::ir {
 
+// The share of the increment kept for the rounding of a controller's printed
+// literals: 8 significant digits move a step's points a few micrometres at
+// most.
+inline constexpr double literalShare = 0.02;
+
 struct ToleranceBudget {
   // The cut's promise; NaN when samples= or spacing= chose its points.
   double tolerance = std::numeric_limits<double>::quiet_NaN();
@@ -23,6 +28,13 @@ struct ToleranceBudget {
 
   // What is left for the chords between rounded points, and for arcs.
   double forPoints(int axes = 3) const { return tolerance - pointRounding(axes); }
+  // What is left for the chords of uniform steps the controller counts: for
+  // points, less a share of the increment for the rounding of the printed
+  // literals (coefficients, the step); 0 when nothing is left.
+  double forControllerSteps(int axes) const {
+    double points = forPoints(axes);
+    return points > 0 ? points - increment * literalShare : 0.0;
+  }
   double forArcs() const { return tolerance - arcRounding(); }
 
   // The spline model's error (spline_fitting.cpp): how accurately the

@@ -1,0 +1,167 @@
+// `choose-controller-steps`: on a target whose controller computes the
+// program's numbers (its cuts' controllerDigits), a lap cut within a chord
+// tolerance along a curve that reads nothing but constants is cut in
+// uniform steps the controller counts instead: the same regions, its
+// points the loop's (expand-controller-loops measures each region's count
+// on the curve), not a table of parameters chosen on the host. What the
+// lowering emits for such a curve is the same on every target; this is
+// where a controller target's program takes its loops.
+//
+// Left as they are: laps of NURBS pieces (their knot spans' regions are
+// not the arithmetic a stepped span computes), laps whose points the host
+// computes (pointsAsNumbers, host regions, chosen parameters) and laps
+// whose regions read a parameter or a loop's variable (the lowering cuts
+// those in steps it plans itself, or fixes what they read).
+#include "cncc/ir/curve_lap.h"
+
+#include <map>
+#include <set>
+
+namespace cncc::ir {
+
+namespace {
+
+// The lowering's test of a cut in a plane: z exactly 0 at five probes.
+bool liesInThePlaneZero(const geom::Curve& curve) {
+  geom::ParameterRange domain = curve.domain();
+  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    if (curve.point(domain.t0 + t * domain.length()).z() != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Whether the entry is chords the controller could step: pieces without
+// knot spans, its points the regions' and nothing chosen for it, a lap of
+// its own (not a share of a longer lap's descent).
+bool steppableEntry(const CurveTableEntry& entry) {
+  if (entry.sampling != CurveSampling::ChordTolerance || entry.pointsAsNumbers ||
+      !entry.hostPointRegions.empty() || entry.chosenParameters || entry.offsetGrowth ||
+      entry.progressFrom != 0 || entry.progressShare != 1) {
+    return false;
+  }
+  for (const CurvePieceLayout& piece : entry.pieces) {
+    if (!piece.spans.empty()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Whether everything the lap's regions read from outside them is a constant.
+bool regionsReadOnlyConstants(const Function& function, InstructionId lapId) {
+  const Instruction& lap = function.instructions[lapId];
+  std::set<InstructionId> inside = {lapId};
+  for (const Region& region : lap.regions) {
+    inside.insert(region.instructions.begin(), region.instructions.end());
+  }
+  for (const Region& region : lap.regions) {
+    for (InstructionId id : region.instructions) {
+      for (ValueId operand : function.instructions[id].operands) {
+        InstructionId definition = function.definitions[operand.index];
+        if (!inside.contains(definition) &&
+            function.instructions[definition].opcode != Opcode::Const) {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+// The laps by entry, each with the cut it belongs to (the cut.begin before
+// it in the program's order).
+struct LapOfCut {
+  InstructionId lap = 0;
+  std::uint32_t cut = 0;
+};
+constexpr std::uint32_t noCut = ~std::uint32_t{0}; // a lap before any cut.begin
+
+void collectLaps(const Function& function, const Region& region, std::optional<std::uint32_t>& cut,
+                 std::map<std::uint32_t, std::vector<LapOfCut>>& laps) {
+  for (InstructionId id : region.instructions) {
+    const Instruction& instruction = function.instructions[id];
+    if (instruction.opcode == Opcode::CutBegin) {
+      cut = instruction.index;
+    } else if (instruction.opcode == Opcode::CurveLap) {
+      laps[instruction.index].push_back({id, cut.value_or(noCut)});
+      continue; // its regions are arithmetic
+    }
+    for (const Region& inner : instruction.regions) {
+      collectLaps(function, inner, cut, laps);
+    }
+  }
+}
+
+// The cut every one of the entry's laps belongs to, where each can be cut
+// in steps; nullopt otherwise.
+std::optional<std::uint32_t> steppingCut(const Function& function,
+                                         const std::vector<LapOfCut>& laps) {
+  std::uint32_t cut = laps.front().cut;
+  if (cut >= function.cuts.size() || !function.cuts[cut].controllerDigits) {
+    return std::nullopt;
+  }
+  for (const LapOfCut& lap : laps) {
+    if (lap.cut != cut || !regionsReadOnlyConstants(function, lap.lap)) {
+      return std::nullopt;
+    }
+  }
+  return cut;
+}
+
+// The amount of the chords entry's steps: the cut's tolerance less the
+// rounding of two axes (a curve in the plane z = 0) or three, and less the
+// literals' share.
+double stepsAmount(const CutGeometry& cut, const geom::Curve& curve) {
+  return cut.budget().forControllerSteps(liesInThePlaneZero(curve) ? 2 : 3);
+}
+
+// The chords entry as steps, each region's count left to
+// expand-controller-loops.
+CurveTableEntry cutInSteps(CurveTableEntry entry, const CutGeometry& cut, double amount) {
+  entry.sampling = CurveSampling::Steps;
+  entry.amount = amount;
+  entry.regionSteps.assign(entry.regionCount(), stepsChosenByLegalisation);
+  if (*cut.controllerDigits > 0) {
+    entry.stepReading = StepReading{*cut.controllerDigits, cut.tolerance};
+  }
+  return entry;
+}
+
+} // namespace
+
+std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& function) {
+  std::map<std::uint32_t, std::vector<LapOfCut>> laps;
+  std::optional<std::uint32_t> cut;
+  collectLaps(function, function.body, cut, laps);
+  std::map<std::uint32_t, CurveTableEntry> stepped;
+  for (const auto& [index, ofEntry] : laps) {
+    if (index >= function.curves.size() || !steppableEntry(function.curves[index])) {
+      continue;
+    }
+    std::optional<std::uint32_t> stepping = steppingCut(function, ofEntry);
+    if (!stepping) {
+      continue;
+    }
+    const CutGeometry& cutOfLaps = function.cuts[*stepping];
+    auto constantsOnly = [](ValueId) { return std::optional<double>(); };
+    std::shared_ptr<const geom::Curve> curve =
+        lapCurve(function, function.instructions[ofEntry.front().lap], constantsOnly);
+    double amount = stepsAmount(cutOfLaps, *curve);
+    if (amount > 0) { // else nothing is left of the tolerance: the lowering's error, or chords
+      stepped.emplace(index, cutInSteps(function.curves[index], cutOfLaps, amount));
+    }
+  }
+  return stepped;
+}
+
+bool chooseControllerSteps(Function& function) {
+  std::map<std::uint32_t, CurveTableEntry> stepped = controllerStepsEntries(function);
+  for (auto& [index, entry] : stepped) {
+    function.curves[index] = std::move(entry);
+  }
+  return !stepped.empty();
+}
+
+} // namespace cncc::ir

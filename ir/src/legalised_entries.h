@@ -1,0 +1,32 @@
+// The curve table entry each lap has once the legalisations that give laps
+// other entries have run: chords of constants a controller counts in steps
+// (choose-controller-steps), steps whose counts at the compiled values are
+// past a region's limit cut at points chosen on the host
+// (bound-controller-steps). The interpreter runs laps with these, so the
+// IR before those passes runs the path after them.
+#pragma once
+
+#include "cncc/ir/ir.h"
+
+#include <cstdint>
+#include <map>
+#include <optional>
+
+namespace cncc::ir {
+
+class LegalisedEntries {
+public:
+  explicit LegalisedEntries(const Function& function) : function_(function) {}
+
+  // The lap's entry as the legalisations leave it (its own where they keep
+  // it). Throws InterpreterError where the lap's curve cannot be read.
+  const CurveTableEntry& of(const Instruction& lap);
+
+private:
+  const Function& function_;
+  // Found once for the function: the steps of every entry at once.
+  std::optional<std::map<std::uint32_t, CurveTableEntry>> stepped_;
+  std::map<const Instruction*, std::optional<CurveTableEntry>> bounded_;
+};
+
+} // namespace cncc::ir

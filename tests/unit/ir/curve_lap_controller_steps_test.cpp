@@ -1,0 +1,98 @@
+// choose-controller-steps: on a target whose controller computes, a lap of
+// chords along a curve of constants is cut in steps the controller counts
+// (the same regions, its counts measured by expand-controller-loops); a lap
+// on the host, or one whose regions read a parameter, stays chords. The
+// interpreter runs such a lap stepped before the pass too.
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/verifier.h"
+#include "curve_lap_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace cncc::ir {
+namespace {
+
+using curve_lap_test::circleText;
+using curve_lap_test::countOf;
+using curve_lap_test::expandedPath;
+using curve_lap_test::expectSamePath;
+using curve_lap_test::feedMoves;
+using curve_lap_test::parsed;
+using curve_lap_test::replaced;
+
+// circleText's circle of radius 5 as a constant, in cut 0 of a controller
+// target that computes with 8 digits on a grid of 0.001.
+std::string constantCircle(std::string_view cutLine) {
+  std::string text = replaced(circleText, "func @circle(r = 5) {", "func @circle() {");
+  text = replaced(text, "  %0 = param r\n", std::string(cutLine) + "  %0 = const 5\n");
+  return replaced(text, "  %4 = curve.lap", "  cut.begin 0\n  %4 = curve.lap");
+}
+constexpr std::string_view controllerCut = "  cut @0 tolerance 0.01 increment 0.001 controller 8\n";
+
+TEST(ChooseControllerSteps, ChordsOfConstantsAreCutInStepsTheControllerCounts) {
+  Function function = parsed(constantCircle(controllerCut));
+  ASSERT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function); // stepped already, as the pass will cut it
+  ASSERT_TRUE(chooseControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  const CurveTableEntry& entry = function.curves[0];
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  // 0.01 less half an increment on two axes (the circle lies in z = 0) and
+  // the literals' share of the increment.
+  EXPECT_NEAR(entry.amount, 0.01 - std::sqrt(2.0) * 0.0005 - 0.02 * 0.001, 1e-15);
+  EXPECT_EQ(entry.regionSteps, std::vector<int>{stepsChosenByLegalisation});
+  ASSERT_TRUE(entry.stepReading);
+  EXPECT_EQ(entry.stepReading->digits, 8);
+  EXPECT_EQ(entry.stepReading->tolerance, 0.01);
+  expectSamePath(before, interpret(function));
+
+  ToolPath after = expandedPath(function);
+  EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
+  EXPECT_EQ(function.tables.size(), 0u); // the loop computes its parameter
+  // Within 0.00927 of a circle of radius 5: 2 pi / (2 acos(1 - 0.00927 / 5)).
+  EXPECT_EQ(feedMoves(after).size(), 52u);
+  expectSamePath(before, after);
+}
+
+TEST(ChooseControllerSteps, ChordsOnTheHostStay) {
+  Function function =
+      parsed(constantCircle("  cut @0 tolerance 0.01 increment 0.001\n")); // no controller
+  EXPECT_FALSE(chooseControllerSteps(function));
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
+}
+
+TEST(ChooseControllerSteps, ChordsReadingAParameterStay) {
+  // The radius a parameter the regions read: the lowering plans the steps
+  // of such a curve itself, or fixes what it reads.
+  std::string text =
+      replaced(circleText, "  %0 = param r\n", std::string(controllerCut) + "  %0 = param r\n");
+  Function function = parsed(replaced(text, "  %4 = curve.lap", "  cut.begin 0\n  %4 = curve.lap"));
+  ASSERT_TRUE(verifyFunction(function).empty());
+  EXPECT_FALSE(chooseControllerSteps(function));
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
+}
+
+TEST(ChooseControllerSteps, ChordsWhosePointsTheHostComputesOrThatShareADescentStay) {
+  // Points printed as numbers (a cut beside its curve on a controller), a
+  // lap over a part of a longer ramp (between arcs cut as arcs).
+  for (std::string_view line : {"    numbers\n", "    progress 0.25 share 0.5\n"}) {
+    std::string text =
+        replaced(constantCircle(controllerCut), "    piece at 0 over 0 .. 6.283185307179586\n",
+                 "    piece at 0 over 0 .. 6.283185307179586\n" + std::string(line));
+    Function function = parsed(text);
+    ASSERT_TRUE(verifyFunction(function).empty()) << line;
+    EXPECT_FALSE(chooseControllerSteps(function)) << line;
+  }
+}
+
+TEST(ChooseControllerSteps, NothingLeftOfTheToleranceStaysChords) {
+  // 0.0007 less the rounding of two axes on a grid of 0.001 (0.000707).
+  Function function =
+      parsed(constantCircle("  cut @0 tolerance 0.0007 increment 0.001 controller 8\n"));
+  EXPECT_FALSE(chooseControllerSteps(function));
+}
+
+} // namespace
+} // namespace cncc::ir
