@@ -7,11 +7,13 @@
 // lowering emits for such a curve is the same on every target; this is
 // where a controller target's program takes its loops.
 //
-// Left as they are: laps of NURBS pieces (their knot spans' regions are
-// not the arithmetic a stepped span computes), laps whose points the host
-// computes (pointsAsNumbers, host regions, chosen parameters) and laps
-// whose regions read a parameter or a loop's variable (the lowering cuts
-// those in steps it plans itself, or fixes what they read).
+// A knot span's region is its polynomial in u either way (the lowering's
+// spanPointAt of the cleaned span). Left as they are: laps whose points the
+// host computes (pointsAsNumbers, host regions: a span whose literals the
+// controller's digits cannot hold, chosen parameters), laps over a share
+// of a longer ramp, and laps whose regions read a parameter or a loop's
+// variable (the lowering cuts those in steps it plans itself, or fixes what
+// they read).
 #include "cncc/ir/curve_lap.h"
 
 #include <map>
@@ -32,21 +34,14 @@ bool liesInThePlaneZero(const geom::Curve& curve) {
   return true;
 }
 
-// Whether the entry is chords the controller could step: pieces without
-// knot spans, its points the regions' and nothing chosen for it, a lap of
-// its own (not a share of a longer lap's descent).
+// Whether the entry is chords the controller could step: its points the
+// regions' (no knot span whose literals the controller's digits cannot
+// hold, host regions) and nothing chosen for it, a lap of its own (not a
+// share of a longer lap's descent).
 bool steppableEntry(const CurveTableEntry& entry) {
-  if (entry.sampling != CurveSampling::ChordTolerance || entry.pointsAsNumbers ||
-      !entry.hostPointRegions.empty() || entry.chosenParameters || entry.offsetGrowth ||
-      entry.progressFrom != 0 || entry.progressShare != 1) {
-    return false;
-  }
-  for (const CurvePieceLayout& piece : entry.pieces) {
-    if (!piece.spans.empty()) {
-      return false;
-    }
-  }
-  return true;
+  return entry.sampling == CurveSampling::ChordTolerance && !entry.pointsAsNumbers &&
+         entry.hostPointRegions.empty() && !entry.chosenParameters && !entry.offsetGrowth &&
+         entry.progressFrom == 0 && entry.progressShare == 1;
 }
 
 // Whether everything the lap's regions read from outside them is a constant.

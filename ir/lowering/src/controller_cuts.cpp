@@ -190,6 +190,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   }
   if (chordsTheLegalisationSteps(cut, curve, uniformSteps.has_value(), tolerances)) {
     stepsLeftToTheLegalisation_ = true;
+    singleStepsLeftToTheLegalisation_ = cutInSingleSteps(curve, budget);
     return false; // chords, cut in steps by choose-controller-steps
   }
   if (ramp) {
@@ -274,20 +275,44 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
 }
 
 // A curve of constants within a tolerance (no parameter or loop variable
-// read, no NURBS knot spans, no arc, on its own curve), whose chords keep
-// within it after the rounding of three axes: its lap is the chords every
-// target's lowering gives it, which choose-controller-steps cuts in steps
-// the controller counts.
+// read, no arc, on its own curve), whose chords keep within it after the
+// rounding of three axes: its lap is the chords every target's lowering
+// gives it (a knot span's region its polynomial in u, as a stepped span's),
+// which choose-controller-steps cuts in steps the controller counts.
 bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve& curve,
                                               bool uniformSteps,
                                               const ToleranceBudget& tolerances) {
-  if (uniformSteps || runtimeOffset_ || curve.beside || hasArcPiece(curve) ||
-      !(tolerances.forPoints() > 0) || !parametersOf(*cut.curve).empty()) {
-    return false;
-  }
+  return !uniformSteps && !runtimeOffset_ && !curve.beside && !hasArcPiece(curve) &&
+         tolerances.forPoints() > 0 && parametersOf(*cut.curve).empty();
+}
+
+// Whether one step keeps every piece (every knot span) of a curve of
+// constants within the budget, as expand-controller-loops will measure it:
+// its laps then print no loop, which the nesting of the program's loops
+// does not count (runtime_control.cpp).
+bool PartLowering::cutInSingleSteps(const CutCurve& curve, double budget) {
+  auto fits = [&](const geom::Curve& geometry, double from, double to) {
+    geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations);
+    try {
+      return uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
+    } catch (const std::exception&) {
+      return false; // counted as a loop; the legalisation reports it
+    }
+  };
   for (const CurvePiece& piece : curve.pieces) {
-    if (piece.value->kind == CurveKind::Nurbs) {
-      return false;
+    if (piece.spans.empty()) {
+      geom::ParameterRange domain = piece.geometry->domain();
+      if (!fits(TransformedCurve(piece.geometry, piece.transform), domain.t0, domain.t1)) {
+        return false;
+      }
+      continue;
+    }
+    for (const geom::PolynomialSpan& span : piece.spans) {
+      auto own =
+          std::make_shared<geom::PiecewisePolynomialCurve>(std::vector<geom::PolynomialSpan>{span});
+      if (!fits(TransformedCurve(own, piece.transform), span.t0, span.t1)) {
+        return false;
+      }
     }
   }
   return true;

@@ -2,7 +2,7 @@
 // translate/rotate/scale composed into one transform per piece), the whole
 // as one geom curve for choosing the points, and each piece's point in IR
 // arithmetic at a parameter the IR loads from a table.
-#include "part_lowering.h"
+#include "controller_segment.h"
 
 #include "cncc/frontend/compiled_number.h"
 #include "cncc/geom/composite_curve.h"
@@ -295,7 +295,7 @@ CurvePoint PartLowering::untransformedPointAt(const CurvePiece& piece, std::size
                       local);
   }
   case CurveKind::Nurbs:
-    return spanPointAt(piece.spans[span], local);
+    return spanPointAt(cleanedSpan(piece.spans[span]), local);
   default:
     unsupported(cut.curve->span, fmt::format("a '{}' curve", curve.constructor));
   }

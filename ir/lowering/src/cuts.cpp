@@ -3,7 +3,7 @@
 // tables (one per piece and NURBS span), and for each pass a rapid over the
 // start, a plunge (or a ramp lap), loops that evaluate the curve at the
 // tabled parameters, and a rapid retract.
-#include "part_lowering.h"
+#include "controller_segment.h"
 
 #include "cncc/geom/arc_length.h"
 #include "cncc/geom/evaluation_budget.h"
@@ -389,7 +389,13 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     lowerHostArcCut(cut, curve);
     return;
   }
+  std::size_t firstEntry = builder_.function().curves.size();
   lowerCurveLaps(cut, curve);
+  if (stepsLeftToTheLegalisation_ && singleStepsLeftToTheLegalisation_) {
+    for (std::size_t entry = firstEntry; entry < builder_.function().curves.size(); ++entry) {
+      singleStepCurves_.insert(static_cast<std::uint32_t>(entry));
+    }
+  }
   arcsAsked_.reset();
 }
 
@@ -545,7 +551,7 @@ void PartLowering::addPieceLayout(CurveTableEntry& entry, const CurvePiece& piec
   std::size_t firstRegion = piece.spans.empty() ? 0 : entry.regionCount();
   for (std::size_t s = 0; s < piece.spans.size(); ++s) {
     if (piece.value->kind == CurveKind::Nurbs &&
-        !spanLiteralsFit(piece.spans[s], cut, piece.transform.stretch())) {
+        !spanLiteralsFit(cleanedSpan(piece.spans[s]), cut, piece.transform.stretch())) {
       entry.hostPointRegions.push_back(firstRegion + s);
     }
   }

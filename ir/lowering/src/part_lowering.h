@@ -494,6 +494,7 @@ private:
   bool lowerControllerCut(const frontend::CutStmt& cut, const CutCurve& curve);
   bool chordsTheLegalisationSteps(const frontend::CutStmt& cut, const CutCurve& curve,
                                   bool uniformSteps, const ToleranceBudget& tolerances);
+  bool cutInSingleSteps(const CutCurve& curve, double budget);
   // A lap cut in steps: its curve table entry and the ranges and counts of
   // its regions whose steps the program computes.
   struct SteppedLap {
@@ -664,8 +665,13 @@ private:
   // What the cut being lowered asks its level laps for (arcsAskedBy).
   std::optional<ArcsAsked> arcsAsked_;
   // The cut being lowered is chords choose-controller-steps cuts in steps:
-  // its counts are bounded there, not by an estimate of its chords.
+  // its counts are bounded there, not by an estimate of its chords; and
+  // whether it cuts each of its pieces in one step.
   bool stepsLeftToTheLegalisation_ = false;
+  bool singleStepsLeftToTheLegalisation_ = false;
+  // The curve table entries of such cuts cut in single steps: their laps
+  // print no loop (runtime_control.cpp's nesting).
+  std::set<std::uint32_t> singleStepCurves_;
 };
 
 // Small helpers shared by the files.

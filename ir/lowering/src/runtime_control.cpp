@@ -45,10 +45,15 @@ constexpr std::string_view markerPrefix = "for-variable ";
 
 // Whether the instruction is a loop in the printed program: a loop, or a
 // curve.lap, which its legalisation writes out as loops (one deep), unless
-// it is cut in single steps.
-bool printsAsLoop(const Function& function, const Instruction& instruction) {
+// it is cut in single steps (its entry's, or chords choose-controller-steps
+// cuts so: `singleSteps`).
+bool printsAsLoop(const Function& function, const Instruction& instruction,
+                  const std::set<std::uint32_t>& singleSteps) {
   if (instruction.opcode != Opcode::CurveLap) {
     return instruction.opcode == Opcode::Loop;
+  }
+  if (singleSteps.contains(instruction.index)) {
+    return false;
   }
   const CurveTableEntry& entry = function.curves[instruction.index];
   return entry.sampling != CurveSampling::Steps ||
@@ -56,12 +61,14 @@ bool printsAsLoop(const Function& function, const Instruction& instruction) {
                      [](int steps) { return steps != 1; });
 }
 
-int loopNesting(const Function& function, const Region& region) {
+int loopNesting(const Function& function, const Region& region,
+                const std::set<std::uint32_t>& singleSteps) {
   int deepest = 0;
   for (InstructionId id : region.instructions) {
     const Instruction& instruction = function.instructions[id];
     for (const Region& inner : instruction.regions) {
-      int own = loopNesting(function, inner) + (printsAsLoop(function, instruction) ? 1 : 0);
+      int own = loopNesting(function, inner, singleSteps) +
+                (printsAsLoop(function, instruction, singleSteps) ? 1 : 0);
       deepest = std::max(deepest, own);
     }
   }
@@ -109,6 +116,9 @@ void PartLowering::restoreState(LoweringState& state) {
   letValues_ = std::move(state.letValues);
   fixedParameters_ = std::move(state.fixedParameters);
   diagnostics_ = state.diagnostics;
+  // The entries the attempt added are gone, and so are its marks.
+  auto kept = static_cast<std::uint32_t>(builder_.function().curves.size());
+  singleStepCurves_.erase(singleStepCurves_.lower_bound(kept), singleStepCurves_.end());
 }
 
 // Runs `lowering` as an attempt: its diagnostics are held, and when it
@@ -156,7 +166,8 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
     builder_.endLoop();
     machine_.forgetModes();
     if (options_.maximumLoopNesting > 0 &&
-        loopNesting(builder_.function(), builder_.function().body) > options_.maximumLoopNesting) {
+        loopNesting(builder_.function(), builder_.function().body, singleStepCurves_) >
+            options_.maximumLoopNesting) {
       throw NeedsUnrolling{};
     }
   });

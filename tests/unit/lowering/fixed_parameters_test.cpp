@@ -215,6 +215,34 @@ TEST(ControllerControlFlow, LoopsDeeperThanTheControllerNestsAreUnrolled) {
   EXPECT_EQ(cells.size(), 9u);
 }
 
+// A curve of constants cut in single steps (lines: one move each) prints no
+// loop of its own, though choose-controller-steps, not the lowering, cuts
+// it in steps: two loops and a pass loop nest three deep, as a Fanuc can.
+// A polar curve's steps are a loop: the inner for is unrolled.
+TEST(ControllerControlFlow, LapsOfSingleStepsAreNoLoopToNest) {
+  const std::string grid = R"(part grid(rows = 2, columns = 3, depth = 2) {
+  tool 1 diameter=6 feed=200
+  safe z=5
+  for i in 1 .. rows {
+    for j in 1 .. columns {
+      curve CURVE sweep depth=depth*j step=1
+    }
+  }
+}
+)";
+  auto withCurve = [&](const std::string& curve) {
+    std::string text = grid;
+    return text.replace(text.find("CURVE"), 5, curve);
+  };
+  std::unique_ptr<Lowered> lines =
+      lower(withCurve("path(line(from=(0,0), to=(5,0)), line(from=(5,0), to=(5,5)))"), true, 3);
+  ASSERT_TRUE(lines->part);
+  EXPECT_TRUE(fixedNames(*lines->part).empty());
+  std::unique_ptr<Lowered> polar = lower(withCurve("polar(r = 3, t = 0 .. pi)"), true, 3);
+  ASSERT_TRUE(polar->part);
+  EXPECT_EQ(fixedNames(*polar->part), std::vector<std::string>{"columns"});
+}
+
 // A list of points computed from a parameter: an element at a known index
 // lowers to its own expression; what the lowering cannot follow (a length
 // of a list stays a number) fixes nothing it does not read.

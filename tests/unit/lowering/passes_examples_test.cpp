@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -196,20 +197,17 @@ TEST(PassesExamplesTest, FittingArcsKeepsToolPath) {
   EXPECT_GE(legaliseEveryExample(arcs, arcsWanted), 10u);
 }
 
-// And on a target that runs loops: the laps in steps of a cut whose curve
-// is numbers ask for arcs inside the pass loop (its height the loop's); the
-// examples' other curves read parameters (arcs-as-chords).
+// And on a target that runs loops: the laps of a cut whose curve is
+// numbers (chords choose-controller-steps cuts in steps) ask for arcs
+// inside the pass loop (its height the loop's); the examples' other curves
+// read parameters (arcs-as-chords).
 TEST(PassesExamplesTest, FittingArcsInControllerLoopsKeepsToolPath) {
   LoweringOptions arcs;
   arcs.controllerLoops = true;
   arcs.fittedArcs = true;
   arcs.arcsOnEveryCut = true;
   arcs.coordinateIncrement = 0.0001; // fine enough for the parts in inches
-  EXPECT_GE(legaliseEveryExample(arcs,
-                                 [](const CurveTableEntry& entry) {
-                                   return entry.sampling == CurveSampling::Steps && entry.arcsAsked;
-                                 }),
-            1u);
+  EXPECT_GE(legaliseEveryExample(arcs, arcsWanted), 1u);
 }
 
 // Read back from its text, a lap asking for arcs has not the source's
@@ -302,9 +300,8 @@ part ring(depth = 4) {
   expectLoopsKeepPath(function, "ring");
 }
 
-// A span one chord cuts is one step, as the lowering says (no loop for the
-// nesting of the program's loops to count); the legalisation chooses only
-// counts of more.
+// A span one chord cuts is one step (no loop for the nesting of the
+// program's loops to count), as the legalisation measures it.
 TEST(PassesExamplesTest, ASpanOneChordCutsIsOneStep) {
   LoweringOptions controller = controllerLoopOptions();
   std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
@@ -315,13 +312,20 @@ part square() {
 })",
                                                                                controller);
   ASSERT_TRUE(lowered->part);
-  const CurveTableEntry& entry = lowered->part->function.curves.front();
-  EXPECT_EQ(entry.regionSteps, (std::vector<int>{1, 1, 1}));
+  Function& function = lowered->part->function;
+  ASSERT_TRUE(chooseControllerSteps(function));
+  const CurveTableEntry& entry = function.curves.front();
+  EXPECT_EQ(withChosenSteps(entry, *entry.geometry).regionSteps, (std::vector<int>{1, 1, 1}));
+  expectLoopsKeepPath(function, "square");
+  auto loops = std::count_if(function.instructions.begin(), function.instructions.end(),
+                             [](const Instruction& op) { return op.opcode == Opcode::Loop; });
+  EXPECT_EQ(loops, 1); // the passes'
 }
 
 // A B-spline's knot spans are regions of u in 0 .. 1, each in its own
-// count of steps, the program computing each point from the span's
-// polynomial: the loops run the points the lap ran, on the ramp too.
+// count of steps (the chords' regions, cut in steps by
+// choose-controller-steps), the program computing each point from the
+// span's polynomial: the loops run the points the lap ran, on the ramp too.
 TEST(PassesExamplesTest, KnotSpansAreRegionsOfTheirOwnSteps) {
   LoweringOptions controller = controllerLoopOptions();
   std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(R"(
@@ -335,6 +339,7 @@ part hook() {
   ASSERT_TRUE(lowered->part);
   Function& function = lowered->part->function;
   ASSERT_EQ(function.curves.size(), 1u);
+  ASSERT_TRUE(chooseControllerSteps(function));
   const CurveTableEntry& entry = function.curves.front();
   EXPECT_EQ(entry.sampling, CurveSampling::Steps);
   ASSERT_EQ(entry.pieces.size(), 1u);

@@ -232,10 +232,10 @@ void forEachRegionStep(std::size_t region, const StepRange& range, const Visit& 
 }
 
 // `choose-controller-steps`: on a target whose controller computes the
-// program's numbers (the cut's controllerDigits), every curve.lap cut within a
-// chord tolerance whose pieces have no knot spans, whose points are the
-// regions' (not numbers, host regions or chosen parameters) and whose
-// regions read only constants is cut in steps instead: each region's count
+// program's numbers (the cut's controllerDigits), every curve.lap of its
+// own cut within a chord tolerance whose points are the regions' (not
+// numbers, host regions or chosen parameters) and whose regions read only
+// constants is cut in steps instead: each region's count
 // left to expand-controller-loops, within the cut's tolerance less the
 // rounding of two axes (a curve in the plane z = 0) or three and the
 // literals' share. The other laps stay.
