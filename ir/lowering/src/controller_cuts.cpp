@@ -291,8 +291,10 @@ bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve
 // its laps then print no loop, which the nesting of the program's loops
 // does not count (runtime_control.cpp).
 bool PartLowering::cutInSingleSteps(const CutCurve& curve, double budget) {
+  std::size_t evaluated = 0; // over the pieces, as the step searches
   auto fits = [&](const geom::Curve& geometry, double from, double to) {
-    geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations);
+    geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
+    EvaluationsCharged charged{evaluated, counted};
     try {
       return uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
     } catch (const std::exception&) {
