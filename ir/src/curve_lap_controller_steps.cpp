@@ -23,17 +23,6 @@ namespace cncc::ir {
 
 namespace {
 
-// The lowering's test of a cut in a plane: z exactly 0 at five probes.
-bool liesInThePlaneZero(const geom::Curve& curve) {
-  geom::ParameterRange domain = curve.domain();
-  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    if (curve.point(domain.t0 + t * domain.length()).z() != 0) {
-      return false;
-    }
-  }
-  return true;
-}
-
 // Whether the entry is chords the controller could step: its points the
 // regions' (no knot span whose literals the controller's digits cannot
 // hold, host regions) and nothing chosen for it, a lap of its own (not a
@@ -125,6 +114,16 @@ CurveTableEntry cutInSteps(CurveTableEntry entry, const CutGeometry& cut, double
 }
 
 } // namespace
+
+bool liesInThePlaneZero(const geom::Curve& curve) {
+  geom::ParameterRange domain = curve.domain();
+  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    if (curve.point(domain.t0 + t * domain.length()).z() != 0) {
+      return false;
+    }
+  }
+  return true;
+}
 
 std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& function) {
   std::map<std::uint32_t, std::vector<LapOfCut>> laps;

@@ -174,11 +174,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   }
   ToleranceBudget tolerances = toleranceBudget(cut);
   double tolerance = tolerances.tolerance;
-  bool planar = true;
-  for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    geom::ParameterRange domain = curve.geometry->domain();
-    planar = planar && curve.geometry->point(domain.t0 + t * domain.length()).z() == 0;
-  }
+  bool planar = liesInThePlaneZero(*curve.geometry);
   double rounding = tolerances.pointRounding(planar ? 2 : 3);
   double budget = tolerances.forPoints(planar ? 2 : 3);
   if (!uniformSteps && !(budget > 0)) {

@@ -240,6 +240,10 @@ void forEachRegionStep(std::size_t region, const StepRange& range, const Visit& 
 // rounding of two axes (a curve in the plane z = 0) or three and the
 // literals' share. The other laps stay.
 bool chooseControllerSteps(Function& function);
+// Whether a curve lies in the plane z = 0 (z exactly 0 at five probes): a
+// lap cut in steps along it is rounded on two axes, not three (the
+// lowering's steps and choose-controller-steps' alike).
+bool liesInThePlaneZero(const geom::Curve& curve);
 // The entries choose-controller-steps gives, by their index in the curve
 // table: what the interpreter runs their laps with too.
 std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& function);
