@@ -187,7 +187,6 @@ void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
   }
 }
 
-// The chord entry of a lap whose computed counts are past the limit.
 // The ranges of a lap cut in steps whose computed counts are past the
 // limit at the compiled values; nullopt for any other lap.
 std::optional<std::vector<std::pair<double, double>>>

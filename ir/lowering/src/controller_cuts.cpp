@@ -282,6 +282,18 @@ bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve
          tolerances.forPoints() > 0 && parametersOf(*cut.curve).empty();
 }
 
+// Whether one uniform step over [from, to] keeps the curve within the
+// budget less the literals' share (8 significant digits of coefficients
+// and the step move its points a few micrometres at most), its points
+// charged to `evaluated` (bounded by maximumStepSearchEvaluations over a
+// cut). Throws as geom's budget and uniformStepsFit do.
+bool PartLowering::oneStepKeeps(const geom::Curve& geometry, double from, double to, double budget,
+                                std::size_t& evaluated) {
+  geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
+  EvaluationsCharged charged{evaluated, counted};
+  return uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
+}
+
 // Whether one step keeps every piece (every knot span) of a curve of
 // constants within the budget, as expand-controller-loops will measure it:
 // its laps then print no loop, which the nesting of the program's loops
@@ -289,10 +301,8 @@ bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve
 bool PartLowering::cutInSingleSteps(const CutCurve& curve, double budget) {
   std::size_t evaluated = 0; // over the pieces, as the step searches
   auto fits = [&](const geom::Curve& geometry, double from, double to) {
-    geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
-    EvaluationsCharged charged{evaluated, counted};
     try {
-      return uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
+      return oneStepKeeps(geometry, from, to, budget, evaluated);
     } catch (const std::exception&) {
       return false; // counted as a loop; the legalisation reports it
     }
@@ -371,13 +381,8 @@ PartLowering::planControllerSegments(const CutCurve& curve, const CutStmt& cut, 
     if (runtimeOffset_) {
       return stepsChosenByLegalisation; // the offset's (planOffsetSteps)
     }
-    geom::BudgetedCurve counted(geometry, maximumStepSearchEvaluations - evaluated);
-    EvaluationsCharged charged{evaluated, counted};
-    // Less a fiftieth of an increment for the literals' 8 significant
-    // digits (coefficients, the step), a few micrometres at most.
     auto search = [&] {
-      bool single = uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
-      return single ? 1 : stepsChosenByLegalisation;
+      return oneStepKeeps(geometry, from, to, budget, evaluated) ? 1 : stepsChosenByLegalisation;
     };
     try {
       return searchedSteps(search, cut.span, cut.curve->span);

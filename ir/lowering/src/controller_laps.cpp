@@ -17,7 +17,7 @@ namespace cncc::ir::lowering {
 using namespace frontend;
 
 double PartLowering::measuredBudget(double budget) const {
-  return budget > 0 ? budget - options_.coordinateIncrement * literalShare : 0.0;
+  return lessLiteralShare(budget, options_.coordinateIncrement);
 }
 
 std::optional<StepReading> PartLowering::stepReading(const CutStmt& cut) {
@@ -166,13 +166,13 @@ LapRegionPoint PartLowering::steppedRegionPoint(const CutCurve& curve,
     }
     return applied(*segment.moved, spanPointAt(cleanedSpan(own.spans[segment.span]), u));
   }
-  // A constant span of more than one step: its polynomial in u.
-  if (segment.isNurbs && (segment.steps > 1 || segment.steps == stepsChosenByLegalisation)) {
-    CurvePoint point = spanPointAt(cleanedSpan(own.spans[segment.span]), local);
-    return segment.moved != nullptr ? applied(*segment.moved, point)
-                                    : transformed(own.transform, point);
+  // A constant span of more than one step: its polynomial in u, moved as
+  // the program computes it, or as pointAt gives it (the cleaned span's).
+  bool manySteps = segment.steps > 1 || segment.steps == stepsChosenByLegalisation;
+  if (segment.isNurbs && manySteps && segment.moved != nullptr) {
+    return applied(*segment.moved, spanPointAt(cleanedSpan(own.spans[segment.span]), local));
   }
-  if (segment.isNurbs) {
+  if (segment.isNurbs && !manySteps) {
     return nurbsSegmentPoint(curve, segment, local, cut);
   }
   return pointAt(curve, segment.piece, segment.span, local, cut);

@@ -495,6 +495,8 @@ private:
   bool chordsTheLegalisationSteps(const frontend::CutStmt& cut, const CutCurve& curve,
                                   bool uniformSteps, const ToleranceBudget& tolerances);
   bool cutInSingleSteps(const CutCurve& curve, double budget);
+  bool oneStepKeeps(const geom::Curve& geometry, double from, double to, double budget,
+                    std::size_t& evaluated);
   // A lap cut in steps: its curve table entry and the ranges and counts of
   // its regions whose steps the program computes.
   struct SteppedLap {

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <string_view>
 
 namespace cncc::ir {
 namespace {
@@ -93,17 +95,9 @@ TEST(BoundControllerSteps, ACountWithinTheLimitStaysTheProgramsCount) {
 // at the compiled values reads the pass loop's variable, which is not known
 // when compiling. The branch taken decides, as the program would.
 TEST(BoundControllerSteps, ACountThroughASelectIsReadOnTheBranchTaken) {
-  Function function = parsed(R"(func @ring(r = 5, h = 1) {
-  curve @0 steps 0.01 over 0 .. 6.283185307179586 {
-    piece at 0 over 0 .. 6.283185307179586
-    counts 0
-  }
-  %0 = param r
-  %1 = param h
-  %2 = const 500
-  %3 = const 0
-  %4 = const 100000
-  %5 = const 1
+  // countedCircleText's circle, its parameters and constants up to %4.
+  std::string_view head = countedCircleText.substr(0, countedCircleText.find("  %5 = mul"));
+  Function function = parsed(std::string(head) + R"(  %5 = const 1
   %6 = const 2
   %7 = const 6.283185307179586
   %8 = gt %0, %3

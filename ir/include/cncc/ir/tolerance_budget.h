@@ -14,6 +14,12 @@ namespace cncc::ir {
 // most.
 inline constexpr double literalShare = 0.02;
 
+// `points` (what a tolerance leaves for points on a grid of `increment`)
+// less that share; 0 when nothing is left.
+inline double lessLiteralShare(double points, double increment) {
+  return points > 0 ? points - increment * literalShare : 0.0;
+}
+
 struct ToleranceBudget {
   // The cut's promise; NaN when samples= or spacing= chose its points.
   double tolerance = std::numeric_limits<double>::quiet_NaN();
@@ -31,10 +37,7 @@ struct ToleranceBudget {
   // What is left for the chords of uniform steps the controller counts: for
   // points, less a share of the increment for the rounding of the printed
   // literals (coefficients, the step); 0 when nothing is left.
-  double forControllerSteps(int axes) const {
-    double points = forPoints(axes);
-    return points > 0 ? points - increment * literalShare : 0.0;
-  }
+  double forControllerSteps(int axes) const { return lessLiteralShare(forPoints(axes), increment); }
   double forArcs() const { return tolerance - arcRounding(); }
 
   // The spline model's error (spline_fitting.cpp): how accurately the
