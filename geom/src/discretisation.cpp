@@ -2,6 +2,7 @@
 
 #include "cncc/geom/arc_length.h"
 #include "cncc/geom/geometry_error.h"
+#include "cncc/geom/offset_curve.h"
 #include "scalar_optimisation.h"
 #include "vector_math.h"
 
@@ -169,6 +170,16 @@ CurveSamples samplesAt(const Curve& curve, std::vector<double> parameters) {
   return samples;
 }
 
+// The chords per unit of the parameter at a sample: sqrt(k / (8 tolerance))
+// times the speed, of the curve, or of its offset by `offset` in XY, whose
+// curvature is k / (1 - offset k) and speed |C'| |1 - offset k| (k signed).
+double chordDensity(const CurveDerivatives& d, double tolerance, double offset) {
+  if (offset == 0.0)
+    return std::sqrt(curvatureOf(d) / (8.0 * tolerance)) * d.first.norm();
+  double k = signedCurvatureOf(d);
+  return std::sqrt(std::fabs(k * (1.0 - offset * k)) / (8.0 * tolerance)) * d.first.norm();
+}
+
 } // namespace
 
 double chordDeviation(const Curve& curve, double ta, double tb) {
@@ -201,7 +212,7 @@ CurveSamples discretiseByChordTolerance(const Curve& curve, double tolerance,
   return samplesAt(curve, std::move(parameters));
 }
 
-DiscretisationEstimate estimateDiscretisation(const Curve& curve, double tolerance) {
+DiscretisationEstimate estimateDiscretisation(const Curve& curve, double tolerance, double offset) {
   std::vector<double> breaks = curve.breakpoints();
   std::size_t pieces = breaks.size() < 2 ? 1 : breaks.size() - 1;
   if (breaks.size() < 2)
@@ -221,7 +232,7 @@ DiscretisationEstimate estimateDiscretisation(const Curve& curve, double toleran
         estimate.largestCoordinate = std::numeric_limits<double>::infinity();
       // The midpoint rule: each sample stands for one step of the parameter.
       if (counting && i < perPiece)
-        estimate.chords += std::sqrt(curvatureOf(d) / (8.0 * tolerance)) * d.first.norm() * step;
+        estimate.chords += chordDensity(d, tolerance, offset) * step;
     }
   }
   return estimate;

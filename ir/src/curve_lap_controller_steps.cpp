@@ -3,7 +3,8 @@
 // tolerance along a curve that reads nothing but constants is cut in
 // uniform steps the controller counts instead: the same regions, its
 // points the loop's (expand-controller-loops measures each region's count
-// on the curve), not a table of parameters chosen on the host. What the
+// on the curve), not a table of parameters chosen on the host; a lap of
+// samples= over one region, in its samples' steps. What the
 // lowering emits for such a curve is the same on every target; this is
 // where a controller target's program takes its loops.
 //
@@ -28,9 +29,11 @@ namespace {
 // hold, host regions) and nothing chosen for it, a lap of its own (not a
 // share of a longer lap's descent).
 bool steppableEntry(const CurveTableEntry& entry) {
-  return entry.sampling == CurveSampling::ChordTolerance && !entry.pointsAsNumbers &&
-         entry.hostPointRegions.empty() && !entry.chosenParameters && !entry.offsetGrowth &&
-         entry.progressFrom == 0 && entry.progressShare == 1;
+  bool stepped = entry.sampling == CurveSampling::ChordTolerance ||
+                 (entry.sampling == CurveSampling::Samples && entry.regionCount() == 1);
+  return stepped && !entry.pointsAsNumbers && entry.hostPointRegions.empty() &&
+         !entry.chosenParameters && !entry.offsetGrowth && entry.progressFrom == 0 &&
+         entry.progressShare == 1;
 }
 
 // Whether everything the lap's regions read from outside them is a constant.
@@ -101,14 +104,20 @@ double stepsAmount(const CutGeometry& cut, const geom::Curve& curve) {
   return cut.budget().forControllerSteps(liesInThePlaneZero(curve) ? 2 : 3);
 }
 
-// The chords entry as steps, each region's count left to
-// expand-controller-loops.
+// The entry as steps: a chords entry's within `amount`, each region's count
+// left to expand-controller-loops; a samples entry's one region in as many
+// steps as it has chords.
 CurveTableEntry cutInSteps(CurveTableEntry entry, const CutGeometry& cut, double amount) {
+  if (entry.sampling == CurveSampling::Samples) {
+    entry.regionSteps.assign(1, static_cast<int>(entry.amount) - 1);
+    entry.amount = 0;
+  } else {
+    entry.regionSteps.assign(entry.regionCount(), stepsChosenByLegalisation);
+    entry.amount = amount;
+  }
   entry.sampling = CurveSampling::Steps;
-  entry.amount = amount;
-  entry.regionSteps.assign(entry.regionCount(), stepsChosenByLegalisation);
   if (*cut.controllerDigits > 0) {
-    entry.stepReading = StepReading{*cut.controllerDigits, cut.tolerance};
+    entry.stepReading = StepReading{*cut.controllerDigits, cut.budget().toleranceOrDefault()};
   }
   return entry;
 }
@@ -139,12 +148,17 @@ std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& 
       continue;
     }
     const CutGeometry& cutOfLaps = function.cuts[*stepping];
+    const CurveTableEntry& entry = function.curves[index];
+    if (entry.sampling == CurveSampling::Samples) {
+      stepped.emplace(index, cutInSteps(entry, cutOfLaps, 0.0));
+      continue;
+    }
     auto constantsOnly = [](ValueId) { return std::optional<double>(); };
     std::shared_ptr<const geom::Curve> curve =
         lapCurve(function, function.instructions[ofEntry.front().lap], constantsOnly);
     double amount = stepsAmount(cutOfLaps, *curve);
     if (amount > 0) { // else nothing is left of the tolerance: the lowering's error, or chords
-      stepped.emplace(index, cutInSteps(function.curves[index], cutOfLaps, amount));
+      stepped.emplace(index, cutInSteps(entry, cutOfLaps, amount));
     }
   }
   return stepped;

@@ -7,7 +7,7 @@ namespace cncc::ir {
 
 const CurveTableEntry& LegalisedEntries::of(const Instruction& lap) {
   const CurveTableEntry& own = function_.curves[lap.index];
-  if (own.sampling == CurveSampling::ChordTolerance) {
+  if (own.sampling == CurveSampling::ChordTolerance || own.sampling == CurveSampling::Samples) {
     if (!stepped_) {
       try {
         stepped_ = controllerStepsEntries(function_);

@@ -1,5 +1,5 @@
 // The curve table entry each lap has once the legalisations that give laps
-// other entries have run: chords of constants a controller counts in steps
+// other entries have run: chords or samples of constants a controller counts in steps
 // (choose-controller-steps), steps whose counts at the compiled values are
 // past a region's limit cut at points chosen on the host
 // (bound-controller-steps). The interpreter runs laps with these, so the

@@ -130,7 +130,7 @@ double linuxcncBlendTolerance(const std::vector<ir::CutGeometry>& cuts) {
       smallest = std::min(smallest.value_or(cut.tolerance), cut.tolerance);
     }
   }
-  return smallest.value_or(ir::LoweringOptions().defaultTolerance);
+  return smallest.value_or(ir::defaultTolerance);
 }
 
 LinuxcncProgram writeLinuxcncProgram(const ir::Function& function,

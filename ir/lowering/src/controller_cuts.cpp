@@ -186,7 +186,8 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   }
   if (chordsTheLegalisationSteps(cut, curve, uniformSteps.has_value(), tolerances)) {
     stepsLeftToTheLegalisation_ = true;
-    singleStepsLeftToTheLegalisation_ = cutInSingleSteps(curve, budget);
+    singleStepsLeftToTheLegalisation_ =
+        uniformSteps ? *uniformSteps == 1 : cutInSingleSteps(curve, budget);
     return false; // chords, cut in steps by choose-controller-steps
   }
   if (ramp) {
@@ -270,16 +271,23 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   return true;
 }
 
-// A curve of constants within a tolerance (no parameter or loop variable
-// read, no arc, on its own curve), whose chords keep within it after the
-// rounding of three axes: its lap is the chords every target's lowering
-// gives it (a knot span's region its polynomial in u, as a stepped span's),
-// which choose-controller-steps cuts in steps the controller counts.
+// A curve of constants (no parameter or loop variable read, no arc, on its
+// own curve) cut within a tolerance whose chords keep within it after the
+// rounding of three axes, or in samples= over one piece that is no NURBS
+// (whose knot spans the samples would cross): its lap is the chords or the
+// samples every target's lowering gives it (a knot span's region its
+// polynomial in u, as a stepped span's), which choose-controller-steps
+// cuts in steps the controller counts.
 bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve& curve,
                                               bool uniformSteps,
                                               const ToleranceBudget& tolerances) {
-  return !uniformSteps && !runtimeOffset_ && !curve.beside && !hasArcPiece(curve) &&
-         tolerances.forPoints() > 0 && parametersOf(*cut.curve).empty();
+  if (runtimeOffset_ || curve.beside || hasArcPiece(curve) || !parametersOf(*cut.curve).empty()) {
+    return false;
+  }
+  if (uniformSteps) {
+    return curve.pieces.size() == 1 && curve.pieces.front().value->kind != CurveKind::Nurbs;
+  }
+  return tolerances.forPoints() > 0;
 }
 
 // Whether one uniform step over [from, to] keeps the curve within the

@@ -25,7 +25,7 @@ std::optional<StepReading> PartLowering::stepReading(const CutStmt& cut) {
   if (digits <= 0) {
     return std::nullopt;
   }
-  return StepReading{digits, chordTolerance(cut).value_or(options_.defaultTolerance)};
+  return StepReading{digits, chordTolerance(cut).value_or(defaultTolerance)};
 }
 
 // The curve table entry cutting each piece (or knot span) as planned for

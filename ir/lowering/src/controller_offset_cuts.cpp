@@ -142,6 +142,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   }
   RuntimeOffset offset;
   offset.compiledDistance = compiledDistance;
+  checkOffsetChordCount(cut, movedPieces(curve), compiledDistance);
   DrawnClearance drawn = drawnClearance(cut, movedPieces(curve));
   geom::PiecesOffset compiled = checkedOffset(cut, curve, compiledDistance, &drawn);
   offset.compiled = compiled.curve;

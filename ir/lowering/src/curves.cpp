@@ -372,7 +372,7 @@ bool PartLowering::spanLiteralsFit(const geom::PolynomialSpan& span, const CutSt
   if (options_.literalSignificantDigits <= 0) {
     return true;
   }
-  double tolerance = chordTolerance(cut).value_or(options_.defaultTolerance);
+  double tolerance = chordTolerance(cut).value_or(defaultTolerance);
   return stretch * literalRoundingError(span, options_.literalSignificantDigits) <= tolerance / 4;
 }
 

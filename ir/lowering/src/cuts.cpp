@@ -121,8 +121,7 @@ std::optional<double> PartLowering::chordTolerance(const CutStmt& cut) {
     return std::nullopt;
   }
   const Expr* expression = modifierValue(cut, "tolerance");
-  return expression == nullptr ? options_.defaultTolerance
-                               : constantNumber(*expression, "this tolerance");
+  return expression == nullptr ? defaultTolerance : constantNumber(*expression, "this tolerance");
 }
 
 ToleranceBudget PartLowering::toleranceBudget(const CutStmt& cut) {

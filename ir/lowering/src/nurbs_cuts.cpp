@@ -55,7 +55,7 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
 ToleranceBudget PartLowering::nurbsBlockBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
   if (std::isnan(budget.tolerance)) {
-    budget.tolerance = options_.defaultTolerance;
+    budget.tolerance = defaultTolerance;
   }
   double rounding = budget.pointRounding();
   if (!(budget.tolerance > 2 * rounding)) {

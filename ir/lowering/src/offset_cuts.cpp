@@ -15,6 +15,7 @@
 
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/composite_curve.h"
+#include "cncc/geom/discretisation.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/offset_clearance.h"
 #include "cncc/geom/offset_curve.h"
@@ -304,9 +305,35 @@ std::string besidePieces(const std::vector<std::shared_ptr<const geom::Curve>>& 
 
 } // namespace
 
+// The offset's chords estimated from the drawn curve, before the work that
+// grows with them (the offset, its checks): an offset far past the limit of
+// one cut (a polar range of 1e300) is refused at once, not after seconds.
+// Past twice the limit, as an estimate; the offset's own chords are checked
+// where it is cut.
+void PartLowering::checkOffsetChordCount(
+    const CutStmt& cut, const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+    double distance) {
+  double tolerance = chordTolerance(cut).value_or(defaultTolerance);
+  double chords = 0;
+  try {
+    chords = geom::estimateDiscretisation(*joinedPieces(pieces), tolerance, distance).chords;
+  } catch (const geom::GeometryError&) {
+    return; // the offset itself reports what the estimate could not take
+  }
+  if (chords > 2.0 * static_cast<double>(maximumChordsPerCut)) {
+    std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
+    fail(cut.span,
+         fmt::format("the tool's path beside this curve needs about {:.3g} chords to keep within "
+                     "{:.3g} {} of it; the limit of one cut is {}",
+                     chords, tolerance, unit, maximumChordsPerCut),
+         DiagnosticKind::ProgramTooLarge);
+  }
+}
+
 geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve,
                                                double distance, const DrawnClearance* drawn) {
   std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
+  checkOffsetChordCount(cut, pieces, distance);
   std::optional<DrawnClearance> own;
   if (drawn == nullptr) {
     own.emplace(drawnClearance(cut, pieces));
@@ -369,7 +396,7 @@ PartLowering::drawnClearance(const CutStmt& cut,
                              const std::vector<std::shared_ptr<const geom::Curve>>& pieces) {
   // The cut may leave its tolerance unreported past the curve (as verify
   // does); a cut without one (samples=) the default.
-  double slack = chordTolerance(cut).value_or(options_.defaultTolerance);
+  double slack = chordTolerance(cut).value_or(defaultTolerance);
   try {
     return DrawnClearance(pieces, slack);
   } catch (const geom::EvaluationBudgetExceeded& error) {

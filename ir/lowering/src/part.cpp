@@ -38,10 +38,10 @@ std::string roundedNumber(const Function& function, const Instruction& source, i
 }
 
 // The cut's tolerance, the default where samples= or spacing= chose its points.
-double cutTolerance(const LoweredPart& lowered, std::uint32_t cut, const LoweringOptions& options) {
-  double tolerance =
-      cut < lowered.function.cuts.size() ? lowered.function.cuts[cut].tolerance : std::nan("");
-  return std::isnan(tolerance) ? options.defaultTolerance : tolerance;
+double cutTolerance(const LoweredPart& lowered, std::uint32_t cut) {
+  return cut < lowered.function.cuts.size()
+             ? lowered.function.cuts[cut].budget().toleranceOrDefault()
+             : defaultTolerance;
 }
 
 // Refuses a program whose rounded numbers move a cut's points, through sin,
@@ -55,7 +55,7 @@ bool trigonometricLiteralsFit(const LoweredPart& lowered, DiagnosticEngine& diag
   std::vector<lowering::LiteralRoundingMove> refused;
   for (const lowering::LiteralRoundingMove& move :
        lowering::trigonometricRoundingMoves(function, digits)) {
-    double tolerance = cutTolerance(lowered, move.cut, options);
+    double tolerance = cutTolerance(lowered, move.cut);
     if (move.movement <= tolerance / 4) {
       continue;
     }
@@ -64,8 +64,7 @@ bool trigonometricLiteralsFit(const LoweredPart& lowered, DiagnosticEngine& diag
     });
     if (same == refused.end()) {
       refused.push_back(move);
-    } else if (move.movement / tolerance >
-               same->movement / cutTolerance(lowered, same->cut, options)) {
+    } else if (move.movement / tolerance > same->movement / cutTolerance(lowered, same->cut)) {
       *same = move;
     }
   }
@@ -80,7 +79,7 @@ bool trigonometricLiteralsFit(const LoweredPart& lowered, DiagnosticEngine& diag
                     "points of a cut by up to {:.3g} mm, more than a quarter of its tolerance "
                     "{:g} mm",
                     controller, digits, roundedNumber(function, source, digits), move.movement,
-                    cutTolerance(lowered, move.cut, options)));
+                    cutTolerance(lowered, move.cut)));
     if (move.cut < lowered.function.cuts.size() &&
         !(lowered.function.cuts[move.cut].span == source.span)) {
       diagnostics.addNote(diagnostic, lowered.function.cuts[move.cut].span, "the cut");

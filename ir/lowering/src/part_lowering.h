@@ -411,6 +411,9 @@ private:
   // The exact offset of the cut's curve, or tool-too-large at the cut.
   // With `drawn`, the drawn curve sampled for the clearance check (else
   // sampled here).
+  void checkOffsetChordCount(const frontend::CutStmt& cut,
+                             const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                             double distance);
   geom::PiecesOffset checkedOffset(const frontend::CutStmt& cut, const CutCurve& curve,
                                    double distance, const DrawnClearance* drawn = nullptr);
   // The cut's drawn pieces sampled for clearance checks within its

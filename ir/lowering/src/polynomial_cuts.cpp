@@ -31,7 +31,7 @@ using namespace frontend;
 ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
   if (std::isnan(budget.tolerance)) {
-    budget.tolerance = options_.defaultTolerance;
+    budget.tolerance = defaultTolerance;
   }
   double rounding = budget.pointRounding();
   if (!(budget.tolerance > 2 * rounding)) {

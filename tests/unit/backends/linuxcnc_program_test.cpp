@@ -236,7 +236,7 @@ TEST(LinuxcncProgram, BlendToleranceIsTheSmallestCutTolerance) {
   cuts[1].tolerance = std::nan("");
   cuts[2].tolerance = 0.005;
   EXPECT_EQ(linuxcncBlendTolerance(cuts), 0.005);
-  EXPECT_EQ(linuxcncBlendTolerance({}), ir::LoweringOptions().defaultTolerance);
+  EXPECT_EQ(linuxcncBlendTolerance({}), ir::defaultTolerance);
 }
 
 } // namespace

@@ -30,6 +30,20 @@ TEST(EstimateDiscretisation, IsNearTheWalksChordCount) {
   EXPECT_EQ(estimateDiscretisation(circle, std::nan("")).chords, 0.0);
 }
 
+TEST(EstimateDiscretisation, OfAnOffsetIsTheOffsetCirclesEstimate) {
+  // A counter-clockwise circle of radius 10: its offset 4 to the left is the
+  // circle of radius 6, 4 to the right the circle of radius 14.
+  ArcCurve circle({1, 2}, 10.0, 0.0, 2 * pi);
+  for (double offset : {4.0, -4.0}) {
+    ArcCurve offsetCircle({1, 2}, 10.0 - offset, 0.0, 2 * pi);
+    EXPECT_NEAR(estimateDiscretisation(circle, 0.01, offset).chords,
+                estimateDiscretisation(offsetCircle, 0.01).chords, 1e-6)
+        << offset;
+  }
+  EXPECT_NEAR(estimateDiscretisation(circle, 0.01, 0.0).chords,
+              estimateDiscretisation(circle, 0.01).chords, 1e-12);
+}
+
 TEST(EstimateDiscretisation, SeesAHugeCurveCheaply) {
   ArcCurve huge({0, 0}, 1e9, 0.0, 2 * pi);
   auto start = std::chrono::steady_clock::now();

@@ -56,6 +56,48 @@ TEST(ChooseControllerSteps, ChordsOfConstantsAreCutInStepsTheControllerCounts) {
   expectSamePath(before, after);
 }
 
+TEST(ChooseControllerSteps, SamplesOfOneRegionAreItsStepsReadWithinTheDefaultTolerance) {
+  // samples=13 on the circle: 12 equal steps of the parameter, as the host's
+  // 13 points, read within the default tolerance (the cut has none).
+  std::string text =
+      replaced(constantCircle("  cut @0 tolerance nan increment 0.001 controller 8\n"),
+               "curve @0 chords 0.01", "curve @0 samples 13");
+  Function function = parsed(text);
+  ASSERT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(chooseControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  const CurveTableEntry& entry = function.curves[0];
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  EXPECT_EQ(entry.regionSteps, std::vector<int>{12});
+  ASSERT_TRUE(entry.stepReading);
+  EXPECT_EQ(entry.stepReading->tolerance, defaultTolerance);
+  expectSamePath(before, interpret(function));
+
+  ToolPath after = expandedPath(function);
+  EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
+  EXPECT_EQ(function.tables.size(), 0u);
+  EXPECT_EQ(feedMoves(after).size(), 12u);
+  expectSamePath(before, after);
+}
+
+TEST(ChooseControllerSteps, SamplesOverSeveralRegionsStay) {
+  // samples= over two pieces: the samples do not fall on the pieces' ends.
+  std::string text =
+      replaced(constantCircle(controllerCut), "curve @0 chords 0.01", "curve @0 samples 13");
+  text = replaced(text, "    piece at 0 over 0 .. 6.283185307179586\n",
+                  "    piece at 0 over 0 .. 3.141592653589793\n"
+                  "    piece at 3.141592653589793 over 3.141592653589793 .. 6.283185307179586\n");
+  text = replaced(text, "    curve.point %6, %8, %3\n  }\n",
+                  "    curve.point %6, %8, %3\n  } piece {\n"
+                  "    %9 = cos %4\n    %10 = mul %0, %9\n    %11 = sin %4\n"
+                  "    %12 = mul %0, %11\n    curve.point %10, %12, %3\n  }\n");
+  Function function = parsed(text);
+  ASSERT_TRUE(verifyFunction(function).empty());
+  EXPECT_FALSE(chooseControllerSteps(function));
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::Samples);
+}
+
 TEST(ChooseControllerSteps, ChordsOnTheHostStay) {
   Function function =
       parsed(constantCircle("  cut @0 tolerance 0.01 increment 0.001\n")); // no controller

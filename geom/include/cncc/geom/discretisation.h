@@ -63,7 +63,11 @@ struct DiscretisationEstimate {
   /// The largest |x|, |y| or |z| of the samples.
   double largestCoordinate = 0.0;
 };
-DiscretisationEstimate estimateDiscretisation(const Curve& curve, double tolerance);
+/// With `offset`, the chords of the curve's offset by that distance in XY (> 0
+/// to the left, as OffsetCurve), from the curve's own derivatives (the
+/// coordinates are still the curve's, the arcs around corners not counted).
+DiscretisationEstimate estimateDiscretisation(const Curve& curve, double tolerance,
+                                              double offset = 0.0);
 
 /// `count` >= 2 samples at equal parameter steps from t0 to t1 inclusive.
 CurveSamples sampleUniformParameter(const Curve& curve, std::size_t count);

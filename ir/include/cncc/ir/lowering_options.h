@@ -19,8 +19,6 @@ struct LoweringOptions {
   // curve.lap: the
   // target-neutral IR, which `--emit=ir` shows before the target's passes.
   bool expandCurveLaps = true;
-  // The chord tolerance of a cut without tolerance=, samples= or spacing=.
-  double defaultTolerance = 0.01;
   // Whether the target interpolates splines (method=cspline, aspline,
   // bspline, nurbs) itself. Without it such a cut is cut as straight feed
   // moves within its tolerance, with a spline-as-chords warning.

@@ -20,6 +20,11 @@ inline double lessLiteralShare(double points, double increment) {
   return points > 0 ? points - increment * literalShare : 0.0;
 }
 
+// The tolerance of a cut without tolerance=: the chords' where no samples=
+// or spacing= chose its points, and where they did, the one its numbers are
+// read within.
+inline constexpr double defaultTolerance = 0.01;
+
 struct ToleranceBudget {
   // The cut's promise; NaN when samples= or spacing= chose its points.
   double tolerance = std::numeric_limits<double>::quiet_NaN();
@@ -32,6 +37,8 @@ struct ToleranceBudget {
   // increment in X and Y.
   double arcRounding() const { return 3.0 * std::sqrt(2.0) * increment / 2; }
 
+  // The tolerance the cut's numbers are read within: its own, or the default.
+  double toleranceOrDefault() const { return std::isnan(tolerance) ? defaultTolerance : tolerance; }
   // What is left for the chords between rounded points, and for arcs.
   double forPoints(int axes = 3) const { return tolerance - pointRounding(axes); }
   // What is left for the chords of uniform steps the controller counts: for
