@@ -8,6 +8,7 @@
 #include "cncc/ir/printed_grid.h"
 
 #include "cncc/geom/arc_fitting.h"
+#include "cncc/geom/discretisation.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 
@@ -153,6 +154,13 @@ geom::ArcFit fitArcsWithinBudget(const geom::Curve& curve, const geom::ArcFitOpt
     throw CurveLapError(CurveLapError::Kind::DegenerateCurve, curveSpan, *problem);
   }
   try {
+    // The fit measures the curve at least as densely as chords within the
+    // tolerance: a curve whose chords are well past the budget (a polar
+    // range of 1e300) is refused at once, not after the budget's seconds.
+    double chords = geom::estimateDiscretisation(curve, options.tolerance).chords;
+    if (chords > 2.0 * static_cast<double>(maximumArcFitEvaluations)) {
+      throw geom::EvaluationBudgetExceeded(maximumArcFitEvaluations);
+    }
     geom::BudgetedCurve budgeted(curve, maximumArcFitEvaluations);
     return geom::fitArcs(budgeted, options);
   } catch (const geom::EvaluationBudgetExceeded& error) {

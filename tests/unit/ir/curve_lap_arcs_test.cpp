@@ -7,6 +7,9 @@
 #include "cncc/ir/verifier.h"
 #include "curve_lap_fixtures.h"
 
+#include "cncc/geom/evaluation_budget.h"
+#include "cncc/geom/line_arc_curves.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -123,6 +126,20 @@ TEST(CurveLapArcs, ACurveThatLeavesItsPlaneIsNotFitted) {
     EXPECT_EQ(error.kind, CurveLapError::Kind::DegenerateCurve);
     EXPECT_NE(std::string(error.what()).find("z = const"), std::string::npos) << error.what();
   }
+}
+
+TEST(CurveLapArcs, AFitFarPastItsBudgetIsRefusedFromTheChordsEstimate) {
+  // A circle of radius 10 turning 1e9 radians: about 1e10 chords within 0.01,
+  // so the fit would spend its whole budget of points before giving up.
+  geom::ArcCurve turns({0, 0}, 10.0, 0.0, 1e9);
+  geom::BudgetedCurve counted(turns, 100 * maximumArcFitEvaluations);
+  try {
+    fitArcsWithinBudget(counted, {0.01}, {}, {});
+    FAIL() << "arcs were fitted to a billion radians";
+  } catch (const CurveLapError& error) {
+    EXPECT_EQ(error.kind, CurveLapError::Kind::ProgramTooLarge) << error.what();
+  }
+  EXPECT_LT(counted.used(), 10'000u); // the estimate's samples, not the fit's
 }
 
 TEST(CurveLapArcs, ArcMovesOnTheGridDropWhatRoundsToNothing) {
