@@ -4,17 +4,18 @@
 // uniform steps the controller counts instead: the same regions, its
 // points the loop's (expand-controller-loops measures each region's count
 // on the curve), not a table of parameters chosen on the host; a lap of
-// samples= over one region, in its samples' steps. What the
-// lowering emits for such a curve is the same on every target; this is
-// where a controller target's program takes its loops.
+// samples= over one region, in its samples' steps; a lap over a share of a
+// longer descent (a piece between arcs, which are move.arc blocks) keeps
+// its share (descentShares). What the lowering emits for such a curve is
+// the same on every target; this is where a controller target's program
+// takes its loops.
 //
 // A knot span's region is its polynomial in u either way (the lowering's
 // spanPointAt of the cleaned span). Left as they are: laps whose points the
 // host computes (pointsAsNumbers, host regions: a span whose literals the
-// controller's digits cannot hold, chosen parameters), laps over a share
-// of a longer ramp, and laps whose regions read a parameter or a loop's
-// variable (the lowering cuts those in steps it plans itself, or fixes what
-// they read).
+// controller's digits cannot hold, chosen parameters), and laps whose
+// regions read a parameter or a loop's variable (the lowering cuts those in
+// steps it plans itself, or fixes what they read).
 #include "cncc/ir/curve_lap.h"
 
 #include <map>
@@ -26,14 +27,13 @@ namespace {
 
 // Whether the entry is chords the controller could step: its points the
 // regions' (no knot span whose literals the controller's digits cannot
-// hold, host regions) and nothing chosen for it, a lap of its own (not a
-// share of a longer lap's descent).
+// hold, host regions) and nothing chosen for it. A lap over a share of a
+// longer descent (a piece between arcs) keeps its share in steps.
 bool steppableEntry(const CurveTableEntry& entry) {
   bool stepped = entry.sampling == CurveSampling::ChordTolerance ||
                  (entry.sampling == CurveSampling::Samples && entry.regionCount() == 1);
   return stepped && !entry.pointsAsNumbers && entry.hostPointRegions.empty() &&
-         !entry.chosenParameters && !entry.offsetGrowth && entry.progressFrom == 0 &&
-         entry.progressShare == 1;
+         !entry.chosenParameters && !entry.offsetGrowth;
 }
 
 // Whether everything the lap's regions read from outside them is a constant.

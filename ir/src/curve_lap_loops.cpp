@@ -154,7 +154,7 @@ private:
     auto known = entryShares_.find(lap.index);
     if (known == entryShares_.end()) {
       known =
-          entryShares_.emplace(lap.index, lapRegionShares(source_.curves[lap.index], *curveOf(lap)))
+          entryShares_.emplace(lap.index, descentShares(source_.curves[lap.index], *curveOf(lap)))
               .first;
     }
     return known->second;

@@ -171,6 +171,17 @@ std::vector<LapRegionShare> lapRegionShares(const CurveTableEntry& entry,
   return shares;
 }
 
+std::vector<LapRegionShare> descentShares(const CurveTableEntry& entry, const geom::Curve& curve) {
+  std::vector<LapRegionShare> shares = lapRegionShares(entry, curve);
+  if (entry.progressFrom != 0 || entry.progressShare != 1) {
+    for (LapRegionShare& share : shares) {
+      share = {entry.progressFrom + entry.progressShare * share.before,
+               entry.progressShare * share.share};
+    }
+  }
+  return shares;
+}
+
 std::vector<double> lapProgress(const CurveTableEntry& entry, const geom::Curve& curve,
                                 const std::vector<double>& parameters) {
   std::vector<LapRegionShare> shares = lapRegionShares(entry, curve);

@@ -532,7 +532,7 @@ private:
       }
       if (ramp && entry.sampling == CurveSampling::Steps) {
         if (same->shares.empty()) {
-          same->shares = lapRegionShares(entry, *same->curve);
+          same->shares = descentShares(entry, *same->curve);
         }
       } else if (ramp && entry.sampling != CurveSampling::Arcs && same->progress.empty()) {
         same->progress = lapProgress(entry, *same->curve, same->parameters);

@@ -379,12 +379,14 @@ private:
     verifyArcs(where, entry);
     verifyArcsAsked(where, entry);
     verifySteps(where, entry);
-    bool notPoints = entry.sampling == CurveSampling::Arcs ||
-                     entry.sampling == CurveSampling::Steps || entry.isBlocks();
+    bool level = entry.sampling == CurveSampling::Arcs || entry.isBlocks();
+    bool notPoints = level || entry.sampling == CurveSampling::Steps;
     // Spline blocks the legalisation fits go through (or after) chosen points.
     bool chosenAllowed = !notPoints || entry.splineFit;
+    // A lap in steps may be a share of a longer descent (its regions'
+    // heights are descentShares'); arcs and blocks are level.
     if ((entry.chosenParameters && !chosenAllowed) ||
-        (notPoints && (entry.progressFrom != 0 || entry.progressShare != 1))) {
+        (level && (entry.progressFrom != 0 || entry.progressShare != 1))) {
       problem(fmt::format("{} is cut by {} but has chosen points or a share of a descent", where,
                           curveSamplingName(entry.sampling)));
     }

@@ -271,21 +271,23 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   return true;
 }
 
-// A curve of constants (no parameter or loop variable read, no arc, on its
-// own curve) cut within a tolerance whose chords keep within it after the
+// A curve of constants (no parameter or loop variable read, on its own
+// curve) cut within a tolerance whose chords keep within it after the
 // rounding of three axes, or in samples= over one piece that is no NURBS
-// (whose knot spans the samples would cross): its lap is the chords or the
-// samples every target's lowering gives it (a knot span's region its
-// polynomial in u, as a stepped span's), which choose-controller-steps
-// cuts in steps the controller counts.
+// (whose knot spans the samples would cross) and no arc: its laps are the
+// chords or the samples every target's lowering gives it (a knot span's
+// region its polynomial in u, as a stepped span's; with arc pieces, the
+// host's arc cut: move.arc blocks between a lap for each other piece),
+// which choose-controller-steps cuts in steps the controller counts.
 bool PartLowering::chordsTheLegalisationSteps(const CutStmt& cut, const CutCurve& curve,
                                               bool uniformSteps,
                                               const ToleranceBudget& tolerances) {
-  if (runtimeOffset_ || curve.beside || hasArcPiece(curve) || !parametersOf(*cut.curve).empty()) {
+  if (runtimeOffset_ || curve.beside || !parametersOf(*cut.curve).empty()) {
     return false;
   }
   if (uniformSteps) {
-    return curve.pieces.size() == 1 && curve.pieces.front().value->kind != CurveKind::Nurbs;
+    return curve.pieces.size() == 1 && curve.pieces.front().value->kind != CurveKind::Nurbs &&
+           curve.pieces.front().value->kind != CurveKind::Arc;
   }
   return tolerances.forPoints() > 0;
 }
@@ -302,8 +304,9 @@ bool PartLowering::oneStepKeeps(const geom::Curve& geometry, double from, double
   return uniformStepsFit(counted, from, to, 1, measuredBudget(budget));
 }
 
-// Whether one step keeps every piece (every knot span) of a curve of
-// constants within the budget, as expand-controller-loops will measure it:
+// Whether one step keeps every piece (every knot span) but the arcs of a
+// curve of constants within the budget, as expand-controller-loops will
+// measure it:
 // its laps then print no loop, which the nesting of the program's loops
 // does not count (runtime_control.cpp).
 bool PartLowering::cutInSingleSteps(const CutCurve& curve, double budget) {
@@ -316,6 +319,9 @@ bool PartLowering::cutInSingleSteps(const CutCurve& curve, double budget) {
     }
   };
   for (const CurvePiece& piece : curve.pieces) {
+    if (piece.value->kind == CurveKind::Arc) {
+      continue; // move.arc blocks, no lap (lowerHostArcCut)
+    }
     if (piece.spans.empty()) {
       geom::ParameterRange domain = piece.geometry->domain();
       if (!fits(TransformedCurve(piece.geometry, piece.transform), domain.t0, domain.t1)) {

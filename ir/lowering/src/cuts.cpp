@@ -384,12 +384,12 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     arcsAsked_.reset();
     return;
   }
+  std::size_t firstEntry = builder_.function().curves.size();
   if (nativeArcs) {
     lowerHostArcCut(cut, curve);
-    return;
+  } else {
+    lowerCurveLaps(cut, curve);
   }
-  std::size_t firstEntry = builder_.function().curves.size();
-  lowerCurveLaps(cut, curve);
   if (stepsLeftToTheLegalisation_ && singleStepsLeftToTheLegalisation_) {
     for (std::size_t entry = firstEntry; entry < builder_.function().curves.size(); ++entry) {
       singleStepCurves_.insert(static_cast<std::uint32_t>(entry));
@@ -521,7 +521,9 @@ CurveTableEntry PartLowering::pieceCurveTableEntry(const CutStmt& cut, const Cut
       curveTableEntryOn(cut, std::make_shared<TransformedCurve>(own.geometry, own.transform));
   addPieceLayout(entry, own, entry.from, cut);
   entry.amount = toleranceBudget(cut).forPoints();
-  checkChordCount(cut, *entry.geometry, entry.amount);
+  if (!stepsLeftToTheLegalisation_) { // the controller's steps have bounds of their own
+    checkChordCount(cut, *entry.geometry, entry.amount);
+  }
   if (!shares.empty()) {
     entry.progressFrom = rampSegmentOf(shares, piece, 0).before;
     entry.progressShare = 0;

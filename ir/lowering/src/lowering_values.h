@@ -130,6 +130,12 @@ struct ArcPath {
   std::function<CurvePoint(Scalar fraction)> pointAt;
   // From the point at a fraction to the centre, transformed (z: 0).
   std::function<CurvePoint(Scalar fraction)> toCentre;
+  // A constant arc's own parameter, 0 to its length (as its lap region's),
+  // which the loop of its blocks steps, one literal a step: the same two
+  // at a parameter. 0 (and none) for an arc the program computes.
+  double parameterLength = 0;
+  std::function<CurvePoint(Scalar parameter)> pointAtParameter;
+  std::function<CurvePoint(Scalar parameter)> toCentreAtParameter;
   Scalar sweep;
   // The radius the controller moves on, transformed (a constant when known).
   Scalar radius;

@@ -75,13 +75,23 @@ ArcPath PartLowering::constantArcPath(const CutCurve& curve, std::size_t piece,
   path.turnsCounterClockwise = value.endAngle > value.startAngle;
   path.radius =
       Scalar::of(value.arcRadius * std::sqrt(std::abs(own.transform.linear.determinant())));
-  path.toCentre = [this, &own, &value, sweep = path.sweep](Scalar fraction) {
+  auto toCentre = [this, &own, &value](Scalar sweep, Scalar fraction) {
     Affine direction = own.transform;
     direction.offset = Eigen::Vector2d::Zero();
     return transformed(direction,
                        radiusTowardsCentre(Scalar::of(value.arcRadius),
                                            Scalar::of(value.startAngle), sweep, fraction));
   };
+  path.toCentre = [toCentre, sweep = path.sweep](Scalar fraction) {
+    return toCentre(sweep, fraction);
+  };
+  path.parameterLength = length;
+  path.pointAtParameter = [this, &curve, piece, &cut](Scalar parameter) {
+    return pointAt(curve, piece, 0, parameter, cut);
+  };
+  path.toCentreAtParameter =
+      [toCentre, turnPerLength = Scalar::of((value.endAngle - value.startAngle) / length)](
+          Scalar parameter) { return toCentre(turnPerLength, parameter); };
   return path;
 }
 
@@ -123,17 +133,21 @@ CurvePoint PartLowering::radiusTowardsCentre(Scalar radius, Scalar from, Scalar 
 
 // A full turn starts and ends where the arc starts: every one of them the
 // same values, so that no rounding of a computed angle leaves a sliver.
+// `from` and `to` are fractions of the arc, or with `done` (the fraction
+// done at `to`) its own parameter.
 void PartLowering::emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, Scalar to,
-                                bool fullTurn, const ArcHeight& height, ValueId feed) {
-  CurvePoint end = arc.pointAt(to);
+                                bool fullTurn, const ArcHeight& height, ValueId feed,
+                                std::optional<Scalar> done) {
+  const auto& pointAt = done ? arc.pointAtParameter : arc.pointAt;
+  CurvePoint end = pointAt(to);
   if (fullTurn) {
     from = Scalar::of(0);
-    CurvePoint start = arc.pointAt(from);
+    CurvePoint start = pointAt(from);
     end.x = start.x;
     end.y = start.y;
   }
-  CurvePoint centre = arc.toCentre(from);
-  Scalar z = arithmetic_.add(height(to), end.z);
+  CurvePoint centre = done ? arc.toCentreAtParameter(from) : arc.toCentre(from);
+  Scalar z = arithmetic_.add(height(done.value_or(to)), end.z);
   builder_.arc(turn, arithmetic_.value(end.x), arithmetic_.value(end.y), arithmetic_.value(z),
                arithmetic_.value(centre.x), arithmetic_.value(centre.y), feed);
 }
@@ -152,6 +166,17 @@ void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count,
   ValueId blocks = arithmetic_.value(count);
   ValueId j = builder_.beginLoop(builder_.constant(1), blocks, LoopRole::Curve);
   Scalar index = Scalar::of(j, ValueType::F64);
+  if (arc.parameterLength > 0 && count.isConstant()) {
+    // Block j ends at j (length / count) of the arc's own parameter, as a
+    // lap region's arc blocks do, the fraction done j / count.
+    Scalar step = Scalar::of(arc.parameterLength / count.constant);
+    Scalar from = arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, index, Scalar::of(1)), step);
+    Scalar to = arithmetic_.multiply(index, step);
+    Scalar done = arithmetic_.binary(Opcode::Div, index, count);
+    emitArcBlock(arc, turn, from, to, fullTurns, height, feed, done);
+    builder_.endLoop();
+    return;
+  }
   Scalar step = count.isConstant() ? Scalar::of(1 / count.constant)
                                    : arithmetic_.binary(Opcode::Div, Scalar::of(1), count);
   Scalar from = arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, index, Scalar::of(1)), step);
@@ -257,10 +282,13 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
       }
       RampSegment segment = ramp ? rampSegmentOf(shares, p, 0) : RampSegment{p, 0, 1.0, 0.0};
       ArcHeight height = [&, segment](Scalar fraction) {
-        Scalar to = Scalar::of(zTo, ValueType::F64);
         if (zFrom == zTo) {
-          return to;
+          // A height that is a number adds to the arc's z as a lap's does.
+          const Instruction& level = builder_.function().definition(zTo);
+          return level.opcode == Opcode::Const ? Scalar::of(level.number)
+                                               : Scalar::of(zTo, ValueType::F64);
         }
+        Scalar to = Scalar::of(zTo, ValueType::F64);
         Scalar from = Scalar::of(zFrom, ValueType::F64);
         Scalar done = arithmetic_.add(Scalar::of(segment.before),
                                       arithmetic_.multiply(Scalar::of(segment.share), fraction));

@@ -384,7 +384,7 @@ private:
   void emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count, bool fullTurns,
                      const ArcHeight& height, ValueId feed);
   void emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, Scalar to, bool fullTurn,
-                    const ArcHeight& height, ValueId feed);
+                    const ArcHeight& height, ValueId feed, std::optional<Scalar> done = {});
   CurvePoint radiusTowardsCentre(Scalar radius, Scalar from, Scalar sweep, Scalar fraction);
 
   // nurbs_cuts.cpp

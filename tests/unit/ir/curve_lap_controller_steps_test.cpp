@@ -116,17 +116,41 @@ TEST(ChooseControllerSteps, ChordsReadingAParameterStay) {
   EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
 }
 
-TEST(ChooseControllerSteps, ChordsWhosePointsTheHostComputesOrThatShareADescentStay) {
-  // Points printed as numbers (a cut beside its curve on a controller), a
-  // lap over a part of a longer ramp (between arcs cut as arcs).
-  for (std::string_view line : {"    numbers\n", "    progress 0.25 share 0.5\n"}) {
-    std::string text =
-        replaced(constantCircle(controllerCut), "    piece at 0 over 0 .. 6.283185307179586\n",
-                 "    piece at 0 over 0 .. 6.283185307179586\n" + std::string(line));
-    Function function = parsed(text);
-    ASSERT_TRUE(verifyFunction(function).empty()) << line;
-    EXPECT_FALSE(chooseControllerSteps(function)) << line;
-  }
+TEST(ChooseControllerSteps, ChordsWhosePointsTheHostComputesStay) {
+  // Points printed as numbers (a cut beside its curve on a controller).
+  std::string text =
+      replaced(constantCircle(controllerCut), "    piece at 0 over 0 .. 6.283185307179586\n",
+               "    piece at 0 over 0 .. 6.283185307179586\n    numbers\n");
+  Function function = parsed(text);
+  ASSERT_TRUE(verifyFunction(function).empty());
+  EXPECT_FALSE(chooseControllerSteps(function));
+}
+
+TEST(ChooseControllerSteps, AShareOfALongerDescentDescendsByItInSteps) {
+  // A ramp lap from z = 0 to -1 over the second quarter of a longer
+  // descent (a piece between arcs cut as arcs): in steps it keeps its share.
+  std::string text =
+      replaced(constantCircle(controllerCut), "    piece at 0 over 0 .. 6.283185307179586\n",
+               "    piece at 0 over 0 .. 6.283185307179586\n    progress 0.25 share 0.25\n");
+  Function function =
+      parsed(replaced(text, "curve.lap @0, %2, %2, %1", "curve.lap @0, %3, %2, %1"));
+  ASSERT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function);
+  ASSERT_TRUE(chooseControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  const CurveTableEntry& entry = function.curves[0];
+  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  EXPECT_EQ(entry.progressFrom, 0.25);
+  EXPECT_EQ(entry.progressShare, 0.25);
+  expectSamePath(before, interpret(function));
+  ToolPath after = expandedPath(function);
+  std::vector<MachineEvent> moves = feedMoves(after);
+  ASSERT_FALSE(moves.empty());
+  // From a quarter of the way down to half of it.
+  EXPECT_NEAR(moves.back().z, -0.5, 1e-12);
+  EXPECT_GT(moves.front().z, -0.5);
+  EXPECT_LT(moves.front().z, -0.25);
+  expectSamePath(before, after);
 }
 
 TEST(ChooseControllerSteps, NothingLeftOfTheToleranceStaysChords) {

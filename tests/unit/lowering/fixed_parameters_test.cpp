@@ -238,6 +238,13 @@ TEST(ControllerControlFlow, LapsOfSingleStepsAreNoLoopToNest) {
       lower(withCurve("path(line(from=(0,0), to=(5,0)), line(from=(5,0), to=(5,5)))"), true, 3);
   ASSERT_TRUE(lines->part);
   EXPECT_TRUE(fixedNames(*lines->part).empty());
+  // Arc pieces are move.arc blocks between the lines' laps, no loop either.
+  std::unique_ptr<Lowered> withArc =
+      lower(withCurve("path(line(from=(0,0), to=(5,0)), arc(center=(5,2), radius=2, from=-pi/2, "
+                      "to=pi/2))"),
+            true, 3);
+  ASSERT_TRUE(withArc->part);
+  EXPECT_TRUE(fixedNames(*withArc->part).empty());
   std::unique_ptr<Lowered> polar = lower(withCurve("polar(r = 3, t = 0 .. pi)"), true, 3);
   ASSERT_TRUE(polar->part);
   EXPECT_EQ(fixedNames(*polar->part), std::vector<std::string>{"columns"});

@@ -125,6 +125,10 @@ struct LapRegionShare {
 // Each region's share, from the lengths of the regions on `curve`. Throws
 // CurveLapError (a curve that cannot be measured).
 std::vector<LapRegionShare> lapRegionShares(const CurveTableEntry& entry, const geom::Curve& curve);
+// Each region's share of the descent a lap in steps makes: its share of the
+// lap, within the lap's own share of a longer descent (progressFrom,
+// progressShare: a piece between arcs).
+std::vector<LapRegionShare> descentShares(const CurveTableEntry& entry, const geom::Curve& curve);
 
 // For each of `parameters`, the share of the lap's length done there
 // (0 at the start, 1 at the end): each piece or knot span takes a share of

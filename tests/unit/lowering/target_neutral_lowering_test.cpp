@@ -1,0 +1,85 @@
+// A curve that reads no parameter is lowered the same for a target whose
+// controller computes the program as for one whose host computes every
+// number: the same curve table (its laps' points chosen by the
+// legalisations, choose-controller-steps on the first), the same laps and
+// arcs. (The sweep's pass count and the part's comment still differ.)
+#include "cncc/ir/printer.h"
+#include "lowered_text.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+namespace cncc::ir {
+namespace {
+
+// The part lowered to its IR before the legalisations: its curve table's
+// text, and how many laps and arcs it moves on.
+struct CurveMotion {
+  std::string curveTable;
+  int laps = 0;
+  int arcs = 0;
+};
+
+CurveMotion curveMotion(const std::string& text, bool controllerComputes) {
+  LoweringOptions lowering;
+  lowering.expandCurveLaps = false;
+  lowering.coordinateIncrement = 0.001;
+  lowering.controllerLoops = controllerComputes;
+  lowering.literalSignificantDigits = controllerComputes ? 8 : 0;
+  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(text, lowering);
+  CurveMotion motion;
+  if (!lowered->part) {
+    return motion;
+  }
+  std::istringstream printed(printFunction(lowered->part->function));
+  bool table = true;
+  for (std::string line; std::getline(printed, line);) {
+    table = table && (line.starts_with("func") || line.starts_with("  curve @") ||
+                      line.starts_with("    ") || line == "  }");
+    motion.curveTable += table ? line + "\n" : "";
+    motion.laps += line.find("= curve.lap @") != std::string::npos ? 1 : 0;
+    motion.arcs += line.find("move.arc") != std::string::npos ? 1 : 0;
+  }
+  return motion;
+}
+
+void expectSameOnEveryTarget(const std::string& curve, int arcs) {
+  std::string text =
+      "part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve " + curve + "\n}\n";
+  CurveMotion host = curveMotion(text, false);
+  CurveMotion controller = curveMotion(text, true);
+  EXPECT_NE(host.curveTable.find("curve @0"), std::string::npos) << curve;
+  EXPECT_EQ(host.curveTable, controller.curveTable) << curve;
+  EXPECT_GT(host.laps, 0) << curve;
+  EXPECT_EQ(host.laps, controller.laps) << curve;
+  EXPECT_EQ(host.arcs, arcs) << curve;
+  EXPECT_EQ(controller.arcs, arcs) << curve;
+}
+
+TEST(TargetNeutralLowering, APathOfConstantsWithArcsOnARamp) {
+  expectSameOnEveryTarget("path(line((0, 0), (20, 0)), arc(center=(20, 5), radius=5, "
+                          "from=-pi/2, to=pi/2), line((20, 10), (0, 10)), arc(center=(0, 5), "
+                          "radius=5, from=pi/2, to=3*pi/2)) entry=ramp sweep depth=2 step=1",
+                          4); // two on the ramp, two on the level lap
+}
+
+TEST(TargetNeutralLowering, AHelixOfConstantsBetweenLines) {
+  expectSameOnEveryTarget("path(line((0, 0), (20, 0)), arc(center=(20, 5), radius=5, "
+                          "from=-pi/2, to=3*pi/2 + 12*pi, z = 0 .. -3))",
+                          1); // seven turns, a loop of one block
+}
+
+TEST(TargetNeutralLowering, SamplesOfOnePiece) {
+  expectSameOnEveryTarget("polar(r = 10 + cos(3*t), t = 0 .. 2*pi) samples=37", 0);
+}
+
+TEST(TargetNeutralLowering, ChordsOfAParamCurve) {
+  expectSameOnEveryTarget("param(x = t, y = t*t/10, t = 0 .. 10) tolerance=0.005 sweep "
+                          "depth=1 step=0.5",
+                          0);
+}
+
+} // namespace
+} // namespace cncc::ir
