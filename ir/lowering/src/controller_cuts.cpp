@@ -54,25 +54,6 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-// The span without the rounding noise of the conversion: a weight that is
-// constant makes the span polynomial (its coordinates divided by it).
-geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span) {
-  bool constantWeight = true;
-  for (std::size_t k = 1; k < span.coefficients.size(); ++k) {
-    constantWeight = constantWeight && std::abs(span.coefficients[k].w()) <=
-                                           1e-12 * std::abs(span.coefficients[0].w());
-  }
-  if (constantWeight && span.coefficients[0].w() != 0) {
-    double weight = span.coefficients[0].w();
-    for (geom::HomogeneousPoint& coefficient : span.coefficients) {
-      coefficient /= weight;
-      coefficient.w() = 0;
-    }
-    span.coefficients[0].w() = 1;
-  }
-  return span;
-}
-
 Polynomial derivativeOf(const Polynomial& polynomial) {
   Polynomial derivative;
   for (std::size_t k = 1; k < polynomial.size(); ++k) {

@@ -18,10 +18,6 @@ using Polynomial = std::vector<double>; // ascending powers of u
 
 inline constexpr int maximumStepsPerPiece = maximumStepsPerRegion;
 
-// The span without the rounding noise of the conversion: a weight that is
-// constant makes the span polynomial (its coordinates divided by it).
-geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span);
-
 Polynomial derivativeOf(const Polynomial& polynomial);
 // The coefficients of p in the Bernstein basis of its degree on [0, 1].
 Polynomial bernsteinCoefficients(const Polynomial& polynomial);

@@ -2,7 +2,7 @@
 // translate/rotate/scale composed into one transform per piece), the whole
 // as one geom curve for choosing the points, and each piece's point in IR
 // arithmetic at a parameter the IR loads from a table.
-#include "controller_segment.h"
+#include "part_lowering.h"
 
 #include "cncc/frontend/compiled_number.h"
 #include "cncc/geom/composite_curve.h"
@@ -413,6 +413,23 @@ CurvePoint PartLowering::spanPointAt(const geom::PolynomialSpan& span, Scalar u)
     }
   }
   return point;
+}
+
+geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span) {
+  bool constantWeight = true;
+  for (std::size_t k = 1; k < span.coefficients.size(); ++k) {
+    constantWeight = constantWeight && std::abs(span.coefficients[k].w()) <=
+                                           1e-12 * std::abs(span.coefficients[0].w());
+  }
+  if (constantWeight && span.coefficients[0].w() != 0) {
+    double weight = span.coefficients[0].w();
+    for (geom::HomogeneousPoint& coefficient : span.coefficients) {
+      coefficient /= weight;
+      coefficient.w() = 0;
+    }
+    span.coefficients[0].w() = 1;
+  }
+  return span;
 }
 
 } // namespace cncc::ir::lowering

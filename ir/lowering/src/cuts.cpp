@@ -3,7 +3,7 @@
 // tables (one per piece and NURBS span), and for each pass a rapid over the
 // start, a plunge (or a ramp lap), loops that evaluate the curve at the
 // tabled parameters, and a rapid retract.
-#include "controller_segment.h"
+#include "part_lowering.h"
 
 #include "cncc/geom/arc_length.h"
 #include "cncc/geom/evaluation_budget.h"

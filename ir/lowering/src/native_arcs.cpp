@@ -148,8 +148,13 @@ void PartLowering::emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, S
   }
   CurvePoint centre = done ? arc.toCentreAtParameter(from) : arc.toCentre(from);
   Scalar z = arithmetic_.add(height(done.value_or(to)), end.z);
-  builder_.arc(turn, arithmetic_.value(end.x), arithmetic_.value(end.y), arithmetic_.value(z),
-               arithmetic_.value(centre.x), arithmetic_.value(centre.y), feed);
+  // One emitting call a statement (README "Emitting in order").
+  ValueId x = arithmetic_.value(end.x);
+  ValueId y = arithmetic_.value(end.y);
+  ValueId zValue = arithmetic_.value(z);
+  ValueId centreX = arithmetic_.value(centre.x);
+  ValueId centreY = arithmetic_.value(centre.y);
+  builder_.arc(turn, x, y, zValue, centreX, centreY, feed);
 }
 
 // `count` blocks of equal turn: block j from (j - 1) / count to j / count.

@@ -685,5 +685,8 @@ const frontend::Expr* modifierValue(const frontend::CutStmt& cut, std::string_vi
 std::string wordOf(const frontend::Expr& expression);
 // The cut's method= word, empty without one.
 std::string methodOf(const frontend::CutStmt& cut);
+// A knot span without the rounding noise of the conversion: a weight that is
+// constant makes the span polynomial (its coordinates divided by it).
+geom::PolynomialSpan cleanedSpan(geom::PolynomialSpan span);
 
 } // namespace cncc::ir::lowering
