@@ -236,13 +236,18 @@ void PartLowering::checkChordCount(const CutStmt& cut, const geom::Curve& curve,
          DiagnosticKind::DegenerateCurve);
   }
   if (!(chords <= static_cast<double>(maximumChordsPerCut))) {
-    std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
-    fail(cut.span,
-         fmt::format("this curve needs about {:.3g} chords to keep within {:.3g} {} of it; the "
-                     "limit of one cut is {}",
-                     chords, tolerance, unit, maximumChordsPerCut),
-         DiagnosticKind::ProgramTooLarge);
+    tooManyChords(cut, "this curve", chords, tolerance);
   }
+}
+
+void PartLowering::tooManyChords(const CutStmt& cut, std::string_view path, double chords,
+                                 double tolerance) {
+  std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
+  fail(cut.span,
+       fmt::format("{} needs about {:.3g} chords to keep within {:.3g} {} of it; the limit of "
+                   "one cut is {}",
+                   path, chords, tolerance, unit, maximumChordsPerCut),
+       DiagnosticKind::ProgramTooLarge);
 }
 
 geom::CurveSamples PartLowering::chordsWithinBudget(const CutStmt& cut, const geom::Curve& curve,

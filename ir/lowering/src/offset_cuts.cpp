@@ -321,12 +321,7 @@ void PartLowering::checkOffsetChordCount(
     return; // the offset itself reports what the estimate could not take
   }
   if (chords > 2.0 * static_cast<double>(maximumChordsPerCut)) {
-    std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
-    fail(cut.span,
-         fmt::format("the tool's path beside this curve needs about {:.3g} chords to keep within "
-                     "{:.3g} {} of it; the limit of one cut is {}",
-                     chords, tolerance, unit, maximumChordsPerCut),
-         DiagnosticKind::ProgramTooLarge);
+    tooManyChords(cut, "the tool's path beside this curve", chords, tolerance);
   }
 }
 

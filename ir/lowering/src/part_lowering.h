@@ -336,6 +336,8 @@ private:
   void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before the chords are chosen: no more than a cut may have.
   void checkChordCount(const frontend::CutStmt& cut, const geom::Curve& curve, double tolerance);
+  [[noreturn]] void tooManyChords(const frontend::CutStmt& cut, std::string_view path,
+                                  double chords, double tolerance);
   // The chords of `curve` within `budget`, checked and bounded as above; an
   // error at the cut when they cannot be found.
   geom::CurveSamples chordsWithinBudget(const frontend::CutStmt& cut, const geom::Curve& curve,

@@ -31,14 +31,28 @@ std::string constantCircle(std::string_view cutLine) {
 }
 constexpr std::string_view controllerCut = "  cut @0 tolerance 0.01 increment 0.001 controller 8\n";
 
+// The function's path before the pass (its laps stepped already, as the
+// pass will cut them), and its entry 0 after it; the pass must cut that
+// entry in steps and leave a function that verifies and runs the same path.
+struct Stepped {
+  ToolPath before;
+  CurveTableEntry entry;
+};
+
+Stepped steppedByThePass(Function& function) {
+  EXPECT_TRUE(verifyFunction(function).empty());
+  Stepped stepped{interpret(function), {}};
+  EXPECT_TRUE(chooseControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  stepped.entry = function.curves[0];
+  EXPECT_EQ(stepped.entry.sampling, CurveSampling::Steps);
+  expectSamePath(stepped.before, interpret(function));
+  return stepped;
+}
+
 TEST(ChooseControllerSteps, ChordsOfConstantsAreCutInStepsTheControllerCounts) {
   Function function = parsed(constantCircle(controllerCut));
-  ASSERT_TRUE(verifyFunction(function).empty());
-  ToolPath before = interpret(function); // stepped already, as the pass will cut it
-  ASSERT_TRUE(chooseControllerSteps(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  const CurveTableEntry& entry = function.curves[0];
-  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  auto [before, entry] = steppedByThePass(function);
   // 0.01 less half an increment on two axes (the circle lies in z = 0) and
   // the literals' share of the increment.
   EXPECT_NEAR(entry.amount, 0.01 - std::sqrt(2.0) * 0.0005 - 0.02 * 0.001, 1e-15);
@@ -46,7 +60,6 @@ TEST(ChooseControllerSteps, ChordsOfConstantsAreCutInStepsTheControllerCounts) {
   ASSERT_TRUE(entry.stepReading);
   EXPECT_EQ(entry.stepReading->digits, 8);
   EXPECT_EQ(entry.stepReading->tolerance, 0.01);
-  expectSamePath(before, interpret(function));
 
   ToolPath after = expandedPath(function);
   EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
@@ -63,16 +76,10 @@ TEST(ChooseControllerSteps, SamplesOfOneRegionAreItsStepsReadWithinTheDefaultTol
       replaced(constantCircle("  cut @0 tolerance nan increment 0.001 controller 8\n"),
                "curve @0 chords 0.01", "curve @0 samples 13");
   Function function = parsed(text);
-  ASSERT_TRUE(verifyFunction(function).empty());
-  ToolPath before = interpret(function);
-  ASSERT_TRUE(chooseControllerSteps(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  const CurveTableEntry& entry = function.curves[0];
-  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  auto [before, entry] = steppedByThePass(function);
   EXPECT_EQ(entry.regionSteps, std::vector<int>{12});
   ASSERT_TRUE(entry.stepReading);
   EXPECT_EQ(entry.stepReading->tolerance, defaultTolerance);
-  expectSamePath(before, interpret(function));
 
   ToolPath after = expandedPath(function);
   EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
@@ -134,15 +141,9 @@ TEST(ChooseControllerSteps, AShareOfALongerDescentDescendsByItInSteps) {
                "    piece at 0 over 0 .. 6.283185307179586\n    progress 0.25 share 0.25\n");
   Function function =
       parsed(replaced(text, "curve.lap @0, %2, %2, %1", "curve.lap @0, %3, %2, %1"));
-  ASSERT_TRUE(verifyFunction(function).empty());
-  ToolPath before = interpret(function);
-  ASSERT_TRUE(chooseControllerSteps(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
-  const CurveTableEntry& entry = function.curves[0];
-  EXPECT_EQ(entry.sampling, CurveSampling::Steps);
+  auto [before, entry] = steppedByThePass(function);
   EXPECT_EQ(entry.progressFrom, 0.25);
   EXPECT_EQ(entry.progressShare, 0.25);
-  expectSamePath(before, interpret(function));
   ToolPath after = expandedPath(function);
   std::vector<MachineEvent> moves = feedMoves(after);
   ASSERT_FALSE(moves.empty());
