@@ -1,6 +1,7 @@
 #include "cncc/ir/curve_blocks.h"
 
 #include "cncc/geom/bspline_fitting.h"
+#include "cncc/geom/discretisation.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
 #include "cncc/ir/curve_lap.h"
@@ -34,7 +35,14 @@ bool nonRationalCubic(const geom::Curve& curve) {
 // derivatives too, each some ten points' work), past which it throws
 // geom::EvaluationBudgetExceeded.
 geom::NurbsCurve fittedCubic(const geom::Curve& curve, double tolerance) {
-  geom::BudgetedCurve budgeted(curve, maximumCurveEvaluations / 8);
+  // The fit measures the curve at least as densely as chords within the
+  // tolerance: a curve whose chords are well past the budget is refused at
+  // once, not after the budget's seconds.
+  constexpr std::size_t budget = maximumCurveEvaluations / 8;
+  if (geom::estimateDiscretisation(curve, tolerance).chords > 2.0 * static_cast<double>(budget)) {
+    throw geom::EvaluationBudgetExceeded(budget);
+  }
+  geom::BudgetedCurve budgeted(curve, budget);
   geom::BSplineFitOptions fit;
   fit.degree = 3;
   fit.tolerance = tolerance;

@@ -5,8 +5,10 @@
 // that is a parameter still one). An entry of SPL spans or of a NURBS block
 // that names no table has its blocks fitted by write-curve-blocks, and the
 // interpreter runs the lap as they are fitted.
+#include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/line_arc_curves.h"
 #include "cncc/geom/nurbs_curve.h"
+#include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/verifier.h"
@@ -256,6 +258,23 @@ TEST(CurveLapBlocks, AFitPastItsBoundIsAnErrorNamingIt) {
   EXPECT_NE(std::string(error.what()).find("asked more than 2500000 points of the curve"),
             std::string::npos)
       << error.what();
+}
+
+TEST(CurveLapBlocks, AFitFarPastItsBoundIsRefusedFromTheChordsEstimate) {
+  // A circle of radius 10 turning 1e9 radians: about 1e10 chords within
+  // 0.01, so the fit would spend its whole budget of points first.
+  geom::ArcCurve turns({0, 0}, 10.0, 0.0, 1e9);
+  geom::BudgetedCurve counted(turns, 100 * maximumCurveEvaluations);
+  CurveTableEntry entry;
+  entry.sampling = CurveSampling::NurbsBlocks;
+  entry.amount = 0.01;
+  try {
+    lapFittedNurbs(entry, counted);
+    FAIL() << "a B-spline was fitted to a billion radians";
+  } catch (const CurveLapError& error) {
+    EXPECT_NE(std::string(error.what()).find("asked more than"), std::string::npos) << error.what();
+  }
+  EXPECT_LT(counted.used(), 10'000u); // the estimate's samples, not the fit's
 }
 
 // An L of two pieces, (0, 0) to (10, 0) to (10, 10), cut at z = -1 and
