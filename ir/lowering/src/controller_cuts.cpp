@@ -287,9 +287,8 @@ bool PartLowering::oneStepKeeps(const geom::Curve& geometry, double from, double
 
 // Whether one step keeps every piece (every knot span) but the arcs of a
 // curve of constants within the budget, as expand-controller-loops will
-// measure it:
-// its laps then print no loop, which the nesting of the program's loops
-// does not count (runtime_control.cpp).
+// measure it: its laps then print no loop, which the nesting of the
+// program's loops does not count (runtime_control.cpp).
 bool PartLowering::cutInSingleSteps(const CutCurve& curve, double budget) {
   std::size_t evaluated = 0; // over the pieces, as the step searches
   auto fits = [&](const geom::Curve& geometry, double from, double to) {
