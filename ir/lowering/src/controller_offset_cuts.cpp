@@ -142,10 +142,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   }
   RuntimeOffset offset;
   offset.compiledDistance = compiledDistance;
-  // Before the clearance, the work the estimate spares (checkedOffset's own
-  // estimate comes after it here).
-  checkOffsetChordCount(cut, movedPieces(curve), compiledDistance);
-  DrawnClearance drawn = drawnClearance(cut, movedPieces(curve));
+  DrawnClearance drawn = drawnClearance(cut, movedPieces(curve), compiledDistance);
   geom::PiecesOffset compiled = checkedOffset(cut, curve, compiledDistance, &drawn);
   offset.compiled = compiled.curve;
   checkCutBounds(cut, *offset.compiled);

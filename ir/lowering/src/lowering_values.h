@@ -131,8 +131,9 @@ struct ArcPath {
   // From the point at a fraction to the centre, transformed (z: 0).
   std::function<CurvePoint(Scalar fraction)> toCentre;
   // A constant arc's own parameter, 0 to its length (as its lap region's),
-  // which the loop of its blocks steps, one literal a step: the same two
-  // at a parameter. 0 (and none) for an arc the program computes.
+  // which the loop of its blocks steps (emitArcBlocks), one literal a step:
+  // the same two at a parameter. 0 (and none) for an arc the program
+  // computes, whose blocks are a lap region's (controller_cuts.cpp).
   double parameterLength = 0;
   std::function<CurvePoint(Scalar parameter)> pointAtParameter;
   std::function<CurvePoint(Scalar parameter)> toCentreAtParameter;

@@ -157,7 +157,8 @@ void PartLowering::emitArcBlock(const ArcPath& arc, ArcTurn turn, Scalar from, S
   builder_.arc(turn, x, y, zValue, centreX, centreY, feed);
 }
 
-// `count` blocks of equal turn: block j from (j - 1) / count to j / count.
+// `count` blocks of equal turn of a constant arc (lowerHostArcCut's):
+// block j from (j - 1) / count to j / count of it.
 void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count, bool fullTurns,
                                  const ArcHeight& height, ValueId feed) {
   if (count.isConstant() && count.constant <= largestUnrolledArc) {
@@ -171,21 +172,13 @@ void PartLowering::emitArcBlocks(const ArcPath& arc, ArcTurn turn, Scalar count,
   ValueId blocks = arithmetic_.value(count);
   ValueId j = builder_.beginLoop(builder_.constant(1), blocks, LoopRole::Curve);
   Scalar index = Scalar::of(j, ValueType::F64);
-  if (arc.parameterLength > 0 && count.isConstant()) {
-    // Block j ends at j (length / count) of the arc's own parameter, as a
-    // lap region's arc blocks do, the fraction done j / count.
-    Scalar step = Scalar::of(arc.parameterLength / count.constant);
-    Scalar from = arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, index, Scalar::of(1)), step);
-    Scalar to = arithmetic_.multiply(index, step);
-    Scalar done = arithmetic_.binary(Opcode::Div, index, count);
-    emitArcBlock(arc, turn, from, to, fullTurns, height, feed, done);
-    builder_.endLoop();
-    return;
-  }
-  Scalar step = count.isConstant() ? Scalar::of(1 / count.constant)
-                                   : arithmetic_.binary(Opcode::Div, Scalar::of(1), count);
+  // In a loop, block j ends at j (length / count) of the arc's own
+  // parameter, as a lap region's arc blocks do, the fraction done j / count.
+  Scalar step = arithmetic_.binary(Opcode::Div, Scalar::of(arc.parameterLength), count);
   Scalar from = arithmetic_.multiply(arithmetic_.binary(Opcode::Sub, index, Scalar::of(1)), step);
-  emitArcBlock(arc, turn, from, arithmetic_.multiply(index, step), fullTurns, height, feed);
+  Scalar to = arithmetic_.multiply(index, step);
+  Scalar done = arithmetic_.binary(Opcode::Div, index, count);
+  emitArcBlock(arc, turn, from, to, fullTurns, height, feed, done);
   builder_.endLoop();
 }
 

@@ -54,9 +54,7 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
 // rounding of the control points.
 ToleranceBudget PartLowering::nurbsBlockBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
-  if (std::isnan(budget.tolerance)) {
-    budget.tolerance = defaultTolerance;
-  }
+  budget.tolerance = budget.toleranceOrDefault();
   double rounding = budget.pointRounding();
   if (!(budget.tolerance > 2 * rounding)) {
     const Expr* written = modifierValue(cut, "tolerance");

@@ -305,15 +305,14 @@ std::string besidePieces(const std::vector<std::shared_ptr<const geom::Curve>>& 
 
 } // namespace
 
-// The offset's chords estimated from the drawn curve, before the work that
-// grows with them (the offset, its checks): an offset far past the limit of
-// one cut (a polar range of 1e300) is refused at once, not after seconds.
-// Past twice the limit, as an estimate; the offset's own chords are checked
-// where it is cut.
+// The offset's chords within `tolerance` estimated from the drawn curve,
+// before the work that grows with them (the clearance, the offset, its
+// checks): an offset far past the limit of one cut (a polar range of 1e300)
+// is refused at once, not after seconds. Past twice the limit, as an
+// estimate; the offset's own chords are checked where it is cut.
 void PartLowering::checkOffsetChordCount(
     const CutStmt& cut, const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
-    double distance) {
-  double tolerance = chordTolerance(cut).value_or(defaultTolerance);
+    double distance, double tolerance) {
   double chords = 0;
   try {
     chords = geom::estimateDiscretisation(*joinedPieces(pieces), tolerance, distance).chords;
@@ -328,10 +327,9 @@ void PartLowering::checkOffsetChordCount(
 geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve,
                                                double distance, const DrawnClearance* drawn) {
   std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
-  checkOffsetChordCount(cut, pieces, distance);
   std::optional<DrawnClearance> own;
   if (drawn == nullptr) {
-    own.emplace(drawnClearance(cut, pieces));
+    own.emplace(drawnClearance(cut, pieces, distance));
     drawn = &*own;
   }
   auto result = offsetOrTrouble(pieces, distance, drawn);
@@ -388,10 +386,12 @@ geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurv
 
 DrawnClearance
 PartLowering::drawnClearance(const CutStmt& cut,
-                             const std::vector<std::shared_ptr<const geom::Curve>>& pieces) {
+                             const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                             double distance) {
   // The cut may leave its tolerance unreported past the curve (as verify
   // does); a cut without one (samples=) the default.
   double slack = chordTolerance(cut).value_or(defaultTolerance);
+  checkOffsetChordCount(cut, pieces, distance, slack);
   try {
     return DrawnClearance(pieces, slack);
   } catch (const geom::EvaluationBudgetExceeded& error) {

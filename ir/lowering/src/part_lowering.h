@@ -413,15 +413,17 @@ private:
   // The exact offset of the cut's curve, or tool-too-large at the cut.
   // With `drawn`, the drawn curve sampled for the clearance check (else
   // sampled here).
-  void checkOffsetChordCount(const frontend::CutStmt& cut,
-                             const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
-                             double distance);
   geom::PiecesOffset checkedOffset(const frontend::CutStmt& cut, const CutCurve& curve,
                                    double distance, const DrawnClearance* drawn = nullptr);
   // The cut's drawn pieces sampled for clearance checks within its
-  // tolerance; program-too-large at the cut past the sampling's limit.
+  // tolerance, once the chords of their offset by `distance` are estimated
+  // within the limit; program-too-large at the cut past either.
   DrawnClearance drawnClearance(const frontend::CutStmt& cut,
-                                const std::vector<std::shared_ptr<const geom::Curve>>& pieces);
+                                const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                                double distance);
+  void checkOffsetChordCount(const frontend::CutStmt& cut,
+                             const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
+                             double distance, double tolerance);
   [[noreturn]] void offsetCheckTooLarge(const frontend::CutStmt& cut, std::size_t limit);
   std::optional<CompensatedLeads> hostLeads(const frontend::CutStmt& cut, const CutCurve& curve,
                                             const geom::Curve& offset, double distance);

@@ -30,9 +30,7 @@ using namespace frontend;
 // rounding their ends is an error.
 ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
-  if (std::isnan(budget.tolerance)) {
-    budget.tolerance = defaultTolerance;
-  }
+  budget.tolerance = budget.toleranceOrDefault();
   double rounding = budget.pointRounding();
   if (!(budget.tolerance > 2 * rounding)) {
     const Expr* written = modifierValue(cut, "tolerance");
