@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <array>
+#include <optional>
+
 namespace cncc::backends {
 
 std::string formatCsvNumber(double value) {
@@ -22,11 +25,17 @@ std::string writeToolPathCsv(const ir::ToolPath& path, double arcSagitta) {
                                        maximumToolPathCsvRows, arcSagitta));
   }
   std::string out = "x,y,z,feed,rapid\n";
+  std::optional<std::array<double, 3>> at; // where the last move ended
   for (const ir::MachineEvent& event : ir::flattenArcs(path, arcSagitta).events) {
     bool rapid = event.kind == ir::MachineEvent::Kind::Rapid;
     if (!rapid && event.kind != ir::MachineEvent::Kind::Feed) {
       continue;
     }
+    std::array<double, 3> target{event.x, event.y, event.z};
+    if (rapid && at == target) {
+      continue; // a rapid to where the tool is (as the G-code printer leaves it out)
+    }
+    at = target;
     out += fmt::format("{},{},{},{},{}\n", formatCsvNumber(event.x), formatCsvNumber(event.y),
                        formatCsvNumber(event.z), formatCsvNumber(rapid ? 0.0 : event.feed),
                        rapid ? 1 : 0);

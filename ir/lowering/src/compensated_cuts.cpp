@@ -501,8 +501,7 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   }
   // The passes: the controller's loop where it computes depth= and step=.
   auto [startX, startY] = printedPoint(leads.startUp);
-  SweepHeights sweep = beginSweep(cut, false, options_.controllerLoops,
-                                  {startX, startY, safe, activatesLengthOffset});
+  SweepHeights sweep = beginSweep(cut, false, {startX, startY, safe, activatesLengthOffset});
   ValueId passZ = arithmetic_.value(sweep.z);
   emitCompensatedPass(leads, safe, sweep.z, feed, [&](ValueId z) {
     if (arcs && cornerArcs) {

@@ -245,7 +245,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   ValueId startY = arithmetic_.value(start.y);
   ValueId finishY = arithmetic_.value(finish.y);
   ValueId finishX = arithmetic_.value(finish.x);
-  emitSweep(cut, ramp, true, {startX, startY, safeValue, activatesLengthOffset, start.z},
+  emitSweep(cut, ramp, {startX, startY, safeValue, activatesLengthOffset, start.z},
             {finishX, finishY}, feedValue, [&](ValueId zFrom, ValueId zTo) {
               emitSteppedLap(curve, lap, *planned, zFrom, zTo, feedValue, cut);
             });

@@ -435,8 +435,7 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   CurvePoint finish = pointAt(curve, end.piece, end.span, Scalar::of(end.local), cut);
   SweepStart from{arithmetic_.value(start.x), arithmetic_.value(start.y), safeValue,
                   activatesLengthOffset, start.z};
-  emitSweep(cut, ramp, options_.controllerLoops, from,
-            {arithmetic_.value(finish.x), arithmetic_.value(finish.y)}, feedValue,
+  emitSweep(cut, ramp, from, {arithmetic_.value(finish.x), arithmetic_.value(finish.y)}, feedValue,
             [&](ValueId zFrom, ValueId zTo) {
               emitCurveLap(curve, zFrom == zTo ? table : rampTable, zFrom, zTo, feedValue, cut);
             });

@@ -301,8 +301,8 @@ void PartLowering::lowerHostArcCut(const CutStmt& cut, const CutCurve& curve) {
   Eigen::Vector3d finish = curve.geometry->point(domain.t1);
   SweepStart from{builder_.constant(start.x()), builder_.constant(start.y()), safeValue,
                   activatesLengthOffset, Scalar::of(start.z())};
-  emitSweep(cut, ramp, options_.controllerLoops, from,
-            {builder_.constant(finish.x()), builder_.constant(finish.y())}, feedValue, lap);
+  emitSweep(cut, ramp, from, {builder_.constant(finish.x()), builder_.constant(finish.y())},
+            feedValue, lap);
 }
 
 } // namespace cncc::ir::lowering

@@ -156,8 +156,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   // (move.nurbs) with its weights.
   ValueId firstX = builder_.constant(first.x());
   ValueId firstY = builder_.constant(first.y());
-  emitSweep(cut, false, options_.controllerLoops,
-            {firstX, firstY, safeValue, activatesLengthOffset, Scalar::of(first.z())},
+  emitSweep(cut, false, {firstX, firstY, safeValue, activatesLengthOffset, Scalar::of(first.z())},
             {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue,
             [&](ValueId zFrom, ValueId zTo) {
               std::vector<ValueId> operands = {zFrom, zTo, feedValue};

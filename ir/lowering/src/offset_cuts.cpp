@@ -482,7 +482,7 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
   SweepStart from{builder_.constant(start.x()), builder_.constant(start.y()), safe,
                   activatesLengthOffset, Scalar::of(start.z())};
   emitSweep(
-      cut, begun.ramp, options_.controllerLoops, from, end, feed,
+      cut, begun.ramp, from, end, feed,
       [&](ValueId zFrom, ValueId zTo) { emitHostOffsetLap(laps, *beside, zFrom, zTo, feed, cut); },
       leads ? &*leads : nullptr);
 }

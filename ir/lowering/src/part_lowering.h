@@ -347,9 +347,12 @@ private:
   double largestCoordinateInUnits() const; // LoweringOptions::largestCoordinate, at most the above
   std::vector<double> passDepths(const frontend::CutStmt& cut);
   // sweeps.cpp: the cut's passes, a pass loop on every target (depth and
-  // step `computed` by the program, else fixed numbers), until endSweep.
-  SweepHeights beginSweep(const frontend::CutStmt& cut, bool ramp, bool computed,
-                          const SweepStart& start);
+  // step computed by the program where they read parameters, else fixed
+  // numbers), until endSweep.
+  SweepHeights beginSweep(const frontend::CutStmt& cut, bool ramp, const SweepStart& start);
+  // Whether the expression reads a part parameter or a value the program
+  // computes (a controller loop's variable); false for none.
+  bool readsRunTimeValues(const frontend::Expr* expression) const;
   void endSweep(const SweepHeights& sweep);
   // The whole sweep of laps along a curve: each pass a rapid over the
   // start, a feed down to it (to the pass above with entry=ramp, then the
@@ -358,7 +361,7 @@ private:
   // plunge, at the height a ramp starts from, and the lead-out arc the lap:
   // `start` and `finish` are then theirs.
   using SweepLap = std::function<void(ValueId zFrom, ValueId zTo)>;
-  void emitSweep(const frontend::CutStmt& cut, bool ramp, bool computed, const SweepStart& start,
+  void emitSweep(const frontend::CutStmt& cut, bool ramp, const SweepStart& start,
                  std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap,
                  const CompensatedLeads* leads = nullptr);
   Scalar passDepth(Scalar pass, Scalar step, Scalar depth); // -min(pass step, depth)

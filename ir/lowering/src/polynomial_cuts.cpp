@@ -78,10 +78,9 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   std::array<ValueId, 2> finish{builder_.constant(last.x()), builder_.constant(last.y())};
   SweepStart from{builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
                   activatesLengthOffset, Scalar::of(first.z())};
-  emitSweep(cut, false, options_.controllerLoops, from, finish, feedValue,
-            [&](ValueId zFrom, ValueId zTo) {
-              emitCurveLap(curve, spansTable, zFrom, zTo, feedValue, cut);
-            });
+  emitSweep(cut, false, from, finish, feedValue, [&](ValueId zFrom, ValueId zTo) {
+    emitCurveLap(curve, spansTable, zFrom, zTo, feedValue, cut);
+  });
   return true;
 }
 

@@ -97,8 +97,8 @@ bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
   auto [first, last] = curveEndsOnGrid(*curve.geometry, options_.coordinateIncrement);
   SweepStart from{builder_.constant(first.x()), builder_.constant(first.y()), safeValue,
                   activatesLengthOffset, Scalar::of(first.z())};
-  emitSweep(cut, ramp, options_.controllerLoops, from,
-            {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue, lap);
+  emitSweep(cut, ramp, from, {builder_.constant(last.x()), builder_.constant(last.y())}, feedValue,
+            lap);
   return true;
 }
 

@@ -32,9 +32,6 @@ LoweredPart PartLowering::run() {
   // statement and at the end) comes from the part itself.
   builder_.setSpan(part_.nameSpan);
   lowerParameters();
-  if (!options_.controllerLoops) { // the macro programs' header names the part
-    builder_.comment(fmt::format("part {}", part_.name));
-  }
   lowerBlock(part_.body);
   endMachineSettings();
   Function function = builder_.finish();

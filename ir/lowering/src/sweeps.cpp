@@ -1,11 +1,12 @@
 // A cut's passes (`depth=D step=S`), the same loop on every target: trip
 // k = 1 .. ceil(D / S) cuts at z = -min(k S, D) and starts with
-// `pass.begin z`. Where the program computes D and S (a controller's
-// editable parameters), so does the loop; elsewhere they are numbers, fixed
-// at their defaults, and the host runs the loop as it prints (its trips
-// are the passes of the source map, sweep_pass.h). A cut without depth=
-// and step= is one pass at z = 0, after the comment "cut"; so is a sweep
-// of one pass at its depth, where that is a number.
+// `pass.begin z`. Where D or S reads a part parameter the program computes
+// the count, round(D / S + 0.49999999) (a controller's editable
+// parameters; the host's interpreter runs the same IR); elsewhere they are
+// numbers and so is the count. The host runs the loop as it prints (its
+// trips are the passes of the source map, sweep_pass.h). A cut without
+// depth= and step= is one pass at z = 0, after the comment "cut"; so is a
+// sweep of one pass at its depth, where that is a number.
 #include "part_lowering.h"
 
 #include "cncc/ir/printed_grid.h"
@@ -23,19 +24,21 @@ constexpr double passCountOffset = 0.49999999;
 
 } // namespace
 
-SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool computed,
-                                      const SweepStart& start) {
+bool PartLowering::readsRunTimeValues(const Expr* expression) const {
+  return expression != nullptr &&
+         (dependsOn(*expression, bindings_) || !parametersOf(*expression).empty());
+}
+
+SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, const SweepStart& start) {
   const Expr* depthExpression = modifierValue(cut, "depth");
   const Expr* stepExpression = modifierValue(cut, "step");
   if (depthExpression == nullptr && stepExpression == nullptr) {
     builder_.comment("cut");
     return {Scalar::of(0), Scalar::of(0), false};
   }
-  if (computed && start.activatesLengthOffset) {
-    // The first Z move after a tool change, which activates its length
-    // offset, before a pass loop that might run no times.
-    builder_.rapid(start.x, start.y, start.safe);
-  }
+  // Computed by the program where they read parameters, on every target
+  // (the host's interpreter runs the same loop).
+  bool computed = readsRunTimeValues(depthExpression) || readsRunTimeValues(stepExpression);
   // The checks (both given, 0 < step <= depth) at the defaults; fixed
   // numbers where the program does not compute them.
   checkingDefaults_ = computed;
@@ -44,6 +47,13 @@ SweepHeights PartLowering::beginSweep(const CutStmt& cut, bool ramp, bool comput
   if (!computed && depths.size() == 1) { // one pass at the depth, no loop
     builder_.comment("cut");
     return {Scalar::of(-depths.back()), Scalar::of(0), false};
+  }
+  if (start.activatesLengthOffset) {
+    // The first Z move after a tool change, which activates its length
+    // offset, before the pass loop: where the controller runs the loop, its
+    // first pass would activate it again at every pass (and a loop whose
+    // count the program computes might run no times).
+    builder_.rapid(start.x, start.y, start.safe);
   }
   Scalar depth = computed ? number(*depthExpression) : Scalar::of(depths.back());
   Scalar step = computed ? number(*stepExpression) : Scalar::of(depths.front());
@@ -69,14 +79,14 @@ void PartLowering::endSweep(const SweepHeights& sweep) {
   }
 }
 
-void PartLowering::emitSweep(const CutStmt& cut, bool ramp, bool computed, const SweepStart& start,
+void PartLowering::emitSweep(const CutStmt& cut, bool ramp, const SweepStart& start,
                              std::array<ValueId, 2> finish, ValueId feed, const SweepLap& lap,
                              const CompensatedLeads* leads) {
   // A lead arc at a pass's height (its arcs are in the curve's plane).
   auto leadArc = [&](const geom::ArcSegment& arc, Scalar passZ) {
     emitArcLap({arc}, planeHeight(leads->leadIn.end.z(), passZ), feed);
   };
-  SweepHeights sweep = beginSweep(cut, ramp, computed, start);
+  SweepHeights sweep = beginSweep(cut, ramp, start);
   Scalar entry = ramp ? sweep.previous : sweep.z;
   ValueId z = arithmetic_.value(sweep.z);
   builder_.rapid(start.x, start.y, start.safe);

@@ -95,5 +95,24 @@ TEST(Gcode, CoordinatesAndFeedAreModal) {
                                     "3,4.5,5,0,1\n");
 }
 
+// The tool path's rows leave out a rapid to where the tool already is (a
+// sweep's rapid over its start before the pass loop, then the first pass's);
+// a feed is a row even where it does not move.
+TEST(ToolPathCsv, LeavesOutARapidToWhereTheToolIs) {
+  using Kind = ir::MachineEvent::Kind;
+  ir::ToolPath path;
+  path.events.push_back(move(Kind::Rapid, 1, 2, 5));
+  path.events.push_back(move(Kind::Rapid, 1, 2, 5));
+  path.events.push_back(move(Kind::Feed, 1, 2, -1, 300));
+  path.events.push_back(move(Kind::Feed, 1, 2, -1, 300));
+  path.events.push_back(move(Kind::Rapid, 1, 2, -1));
+  path.events.push_back(move(Kind::Rapid, 1, 2, 5));
+  EXPECT_EQ(writeToolPathCsv(path), "x,y,z,feed,rapid\n"
+                                    "1,2,5,0,1\n"
+                                    "1,2,-1,300,0\n"
+                                    "1,2,-1,300,0\n"
+                                    "1,2,5,0,1\n");
+}
+
 } // namespace
 } // namespace cncc::backends

@@ -88,9 +88,13 @@ TEST(FixedParameters, LoopBoundAndSampledCurveFixTheirParametersOnController) {
 TEST(FixedParameters, HostTargetsRecordButDoNotWarn) {
   std::unique_ptr<Lowered> result = lower(loopAndPolar, false);
   ASSERT_TRUE(result->part);
-  // Without controller loops the sweep's passes are computed here too.
+  // The sweep's passes are computed from depth as on the controller; the
+  // loop's bound and the sampled curve are numbers here.
   std::vector<std::string> names = fixedNames(*result->part);
-  EXPECT_NE(std::find(names.begin(), names.end(), "depth"), names.end());
+  EXPECT_EQ(std::find(names.begin(), names.end(), "depth"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "count"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "radius"), names.end());
+  EXPECT_FALSE(parameterFlagged(*result->part, "depth"));
   EXPECT_EQ(warningsOfKind(result->diagnostics), 0u);
 }
 

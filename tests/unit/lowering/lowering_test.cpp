@@ -66,9 +66,10 @@ TEST(Lowering, PolarCircleLiesOnTheCurveAndFollowsItsParameter) {
   for (const MachineEvent& move : feeds(interpret(*lowered->function, options))) {
     EXPECT_NEAR(std::hypot(move.x, move.y), 12.0, 1e-9);
   }
-  // Rapid to the safe height last, then contouring off and Z to the
-  // machine's reference.
-  EXPECT_EQ(path.events.front().kind, MachineEvent::Kind::Comment);
+  // The work offset first (the program's header names the part), a rapid
+  // to the safe height last, then contouring off and Z to the machine's
+  // reference.
+  EXPECT_EQ(path.events.front().kind, MachineEvent::Kind::Origin);
   ASSERT_GE(path.events.size(), 3u);
   const MachineEvent& lastMove = path.events[path.events.size() - 3];
   EXPECT_EQ(lastMove.kind, MachineEvent::Kind::Rapid);

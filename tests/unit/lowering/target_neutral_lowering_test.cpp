@@ -1,8 +1,8 @@
-// A curve that reads no parameter is lowered the same for a target whose
+// A part that reads no parameter is lowered the same for a target whose
 // controller computes the program as for one whose host computes every
-// number: the same curve table (its laps' points chosen by the
-// legalisations, choose-controller-steps on the first), the same laps and
-// arcs. (The sweep's pass count and the part's comment still differ.)
+// number: the same function (its curve table's points chosen by the
+// legalisations, choose-controller-steps on the first; its sweeps' passes
+// the same loop), but the cut table's line of what the target rounds.
 #include "cncc/ir/printer.h"
 #include "lowered_text.h"
 
@@ -14,31 +14,28 @@
 namespace cncc::ir {
 namespace {
 
-// The part lowered to its IR before the legalisations: its curve table's
-// text, and how many laps and arcs it moves on.
-struct CurveMotion {
-  std::string curveTable;
+// The part lowered to its IR before the legalisations: its text without
+// the cut table's lines, and how many laps and arcs it moves on.
+struct LoweredMotion {
+  std::string text;
   int laps = 0;
   int arcs = 0;
 };
 
-CurveMotion curveMotion(const std::string& text, bool controllerComputes) {
+LoweredMotion loweredMotion(const std::string& source, bool controllerComputes) {
   LoweringOptions lowering;
   lowering.expandCurveLaps = false;
   lowering.coordinateIncrement = 0.001;
   lowering.controllerLoops = controllerComputes;
   lowering.literalSignificantDigits = controllerComputes ? 8 : 0;
-  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(text, lowering);
-  CurveMotion motion;
+  std::unique_ptr<test_support::LoweredText> lowered = test_support::lowerText(source, lowering);
+  LoweredMotion motion;
   if (!lowered->part) {
     return motion;
   }
   std::istringstream printed(printFunction(lowered->part->function));
-  bool table = true;
   for (std::string line; std::getline(printed, line);) {
-    table = table && (line.starts_with("func") || line.starts_with("  curve @") ||
-                      line.starts_with("    ") || line == "  }");
-    motion.curveTable += table ? line + "\n" : "";
+    motion.text += line.starts_with("  cut @") ? "" : line + "\n";
     motion.laps += line.find("= curve.lap @") != std::string::npos ? 1 : 0;
     motion.arcs += line.find("move.arc") != std::string::npos ? 1 : 0;
   }
@@ -46,12 +43,12 @@ CurveMotion curveMotion(const std::string& text, bool controllerComputes) {
 }
 
 void expectSameOnEveryTarget(const std::string& curve, int arcs) {
-  std::string text =
+  std::string source =
       "part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve " + curve + "\n}\n";
-  CurveMotion host = curveMotion(text, false);
-  CurveMotion controller = curveMotion(text, true);
-  EXPECT_NE(host.curveTable.find("curve @0"), std::string::npos) << curve;
-  EXPECT_EQ(host.curveTable, controller.curveTable) << curve;
+  LoweredMotion host = loweredMotion(source, false);
+  LoweredMotion controller = loweredMotion(source, true);
+  EXPECT_NE(host.text.find("curve @0"), std::string::npos) << curve;
+  EXPECT_EQ(host.text, controller.text) << curve;
   EXPECT_GT(host.laps, 0) << curve;
   EXPECT_EQ(host.laps, controller.laps) << curve;
   EXPECT_EQ(host.arcs, arcs) << curve;
@@ -79,6 +76,25 @@ TEST(TargetNeutralLowering, ChordsOfAParamCurve) {
   expectSameOnEveryTarget("param(x = t, y = t*t/10, t = 0 .. 10) tolerance=0.005 sweep "
                           "depth=1 step=0.5",
                           0);
+}
+
+TEST(TargetNeutralLowering, ASweepOfOnePass) {
+  expectSameOnEveryTarget("line((0, 0), (5, 0)) sweep depth=1 step=1", 0);
+}
+
+// The length offset is activated before the pass loop on every target,
+// and the passes are the same loop whether or not the controller could
+// compute them: its count a number, not round(depth / step + ...).
+TEST(TargetNeutralLowering, APassLoopAfterAToolChange) {
+  std::string source = "part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve "
+                       "line((0, 0), (5, 0)) sweep depth=2 step=0.5\n}\n";
+  for (bool controllerComputes : {false, true}) {
+    std::string text = loweredMotion(source, controllerComputes).text;
+    std::size_t loop = text.find("= loop");
+    ASSERT_NE(loop, std::string::npos) << text;
+    EXPECT_NE(text.rfind("move.rapid", loop), std::string::npos) << text;
+    EXPECT_EQ(text.find("round"), std::string::npos) << text;
+  }
 }
 
 } // namespace
