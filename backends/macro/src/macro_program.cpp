@@ -84,7 +84,7 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
 }
 
 std::vector<std::string> macroPassesBeforePrinting() {
-  return {"drop-pass-depths", "fold-finite"};
+  return {"drop-pass-depths", "expand-whole-powers", "fold-finite"};
 }
 
 MacroProgram writeMacroProgram(const ir::Function& function, const ControllerProfile& profile,

@@ -9,9 +9,10 @@
 // - a polar r(t) affine in t has the tight bound of polarStepCount;
 // - any other polar or param curve gets bounds of |f|, |f'| and |f''| for
 //   every IR value f of its coordinates, propagated through sums,
-//   products, quotients by t-free values, sin and cos (the rules of
-//   differentiation with each term bounded by its size). Other functions
-//   of t are not bounded, and such a piece keeps the compile-time tables.
+//   products, quotients by t-free values, whole constant powers, exp, sin
+//   and cos (the rules of differentiation with each term bounded by its
+//   size). Other functions of t (sqrt, a quotient by a t-dependent value)
+//   are not bounded, and such a piece keeps the compile-time tables.
 // A transform multiplies M by its stretch.
 #include "forward_derivative.h"
 #include "part_lowering.h"
@@ -29,6 +30,10 @@ namespace {
 
 // Added before rounding: round(x + 0.5) >= ceil(x), and >= 1 for x >= 0.
 constexpr double roundUpOffset = 0.5;
+
+// The largest whole exponent of t-dependent powers bounded (as
+// expand-whole-powers writes them out).
+constexpr double largestBoundedExponent = 64;
 
 // Bounds over the piece's range of |f|, |f'| and |f''| for one value f.
 struct DerivativeBounds {
@@ -101,6 +106,33 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
 
   ValueDependence varies(builder_.function(), probe);
 
+  // g^n for a whole constant n >= 0: (g^n)' = n g^(n-1) g',
+  // (g^n)'' = n (n-1) g^(n-2) g'^2 + n g^(n-1) g''.
+  auto wholePowerBounds = [&](const DerivativeBounds& g,
+                              ValueId exponent) -> std::optional<DerivativeBounds> {
+    const Instruction& definition = builder_.function().definition(exponent);
+    double n = definition.opcode == Opcode::Const ? definition.number : -1;
+    if (!(n >= 0 && n <= largestBoundedExponent && std::trunc(n) == n)) {
+      return std::nullopt;
+    }
+    auto power = [&](double k) {
+      return k == 0   ? Scalar::of(1)
+             : k == 1 ? g.value
+                      : math.binary(Opcode::Pow, g.value, Scalar::of(k));
+    };
+    if (n == 0) {
+      return DerivativeBounds{Scalar::of(1), Scalar::of(0), Scalar::of(0)};
+    }
+    Scalar below = power(n - 1);
+    Scalar slope = times(Scalar::of(n), times(below, g.slope));
+    Scalar bent = times(Scalar::of(n), times(below, g.curvature));
+    if (n >= 2) {
+      Scalar turned = times(Scalar::of(n * (n - 1)), times(power(n - 2), times(g.slope, g.slope)));
+      bent = math.add(turned, bent);
+    }
+    return DerivativeBounds{power(n), slope, bent};
+  };
+
   std::map<std::uint32_t, std::optional<DerivativeBounds>> memo;
   std::function<std::optional<DerivativeBounds>(Scalar)> bounds =
       [&](Scalar scalar) -> std::optional<DerivativeBounds> {
@@ -154,6 +186,17 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
                   divided(operands[0].curvature)};
       }
       break;
+    case Opcode::Pow:
+      result = wholePowerBounds(operands[0], instruction.operands[1]);
+      break;
+    case Opcode::Exp: {
+      // (e^g)' = e^g g', (e^g)'' = e^g (g'' + g'^2), and e^g <= e^|g|.
+      const DerivativeBounds& g = operands[0];
+      Scalar size = math.unary(Opcode::Exp, g.value);
+      result = {size, times(size, g.slope),
+                times(size, math.add(g.curvature, times(g.slope, g.slope)))};
+      break;
+    }
     case Opcode::Sin:
     case Opcode::Cos: {
       // (sin g)'' = cos(g) g'' - sin(g) g'^2.

@@ -54,6 +54,10 @@ constexpr Pass passTable[] = {
      "for the targets that print the IR as it stands: each pass.begin removed (a controller's "
      "pass loop says no depth)",
      dropPassDepths, false},
+    {"expand-whole-powers",
+     "for the macro programs: a ^ n with a whole constant n (|n| <= 64) as multiplications, "
+     "defined for a negative a where EXP[LN[a]*n] is not",
+     expandWholePowers, false},
     {"fold-finite",
      "for a controller that alarms on a non-finite value: constant folding and x+0, x-0, x*1, "
      "x/1, x*0 as on finite numbers",

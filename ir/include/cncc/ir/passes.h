@@ -9,8 +9,10 @@
 //
 // The exceptions are `fold-finite`, a target's pass rather than the
 // optimiser's: it takes every value to be finite, as a controller that
-// alarms on a non-finite value has them, and `drop-pass-depths`, which drops
-// the comments a controller's pass loop cannot print (Pass::exact is false for them).
+// alarms on a non-finite value has them, `expand-whole-powers`, whose
+// products round otherwise than pow, and `drop-pass-depths`, which drops
+// the comments a controller's pass loop cannot print (Pass::exact is false
+// for them).
 //
 // Each pass returns whether it changed the function; its output verifies.
 #pragma once
@@ -61,6 +63,13 @@ bool eliminateDeadCode(Function& function);
 // operation, for the controller to alarm on.
 bool foldAssumingFinite(Function& function);
 
+// `expand-whole-powers`: a ^ n with a whole constant n, |n| <= 64, as
+// multiplications (1 / the product for n < 0, 1 for n = 0): defined for
+// every a, where a controller's EXP[LN[a]*n] alarms for a <= 0. For the
+// macro programs, before fold-finite (whole_powers.cpp); not exact (the
+// product rounds otherwise than pow).
+bool expandWholePowers(Function& function);
+
 // `drop-pass-depths`: each pass.begin removed, for the targets that print
 // the IR as it stands (a controller's pass loop says no depth).
 bool dropPassDepths(Function& function);
@@ -70,7 +79,8 @@ struct Pass {
   std::string_view description;
   bool (*run)(Function& function);
   // Keeps the interpreter's tool path bit for bit for every input (above);
-  // false for fold-finite, and for drop-pass-depths (a pass loop's comments go).
+  // false for fold-finite and expand-whole-powers, and for drop-pass-depths
+  // (a pass loop's comments go).
   bool exact = true;
 };
 

@@ -79,8 +79,9 @@ ir::LoweringOptions macroLoweringOptions(const ControllerProfile& profile, bool 
 
 // The passes the macro printers (this one, LinuxCNC's and Heidenhain's) take
 // their IR after, as LoweringOptions::passesBeforePrinting:
-// drop-pass-depths (a pass loop they run says no depth) and fold-finite,
-// since their controllers alarm where a value is not finite.
+// drop-pass-depths (a pass loop they run says no depth), expand-whole-powers
+// (a ^ 2 as a * a: their EXP[LN[a]*2] or power function alarms for a <= 0)
+// and fold-finite, since their controllers alarm where a value is not finite.
 std::vector<std::string> macroPassesBeforePrinting();
 
 // Prints the function as it is: whatever is folded was folded by the passes
