@@ -18,6 +18,11 @@ constexpr double kMaxTurnBetweenSamples = 0.1;
 constexpr int kMaxSamplesPerSegment = 1 << 16;
 constexpr int kNewtonIterations = 8;
 constexpr double kNewtonStepResolution = 1e-9;
+// Samples per block of smallestRadiusBetween's block minima.
+constexpr std::size_t kRadiusBlock = 256;
+// Times a polyline segment is sampled again for a tighter bend its samples
+// found near them, before it takes the curve's tightest.
+constexpr int kResamplings = 3;
 
 bool isLocalMaximum(const std::vector<double>& values, std::size_t i) {
   bool aboveLeft = i == 0 || values[i] >= values[i - 1];
@@ -83,15 +88,41 @@ CurveProximity::CurveProximity(const Curve& curve, double accuracy) : curve_(cur
   detail::visitSamples(curve, rule, [&](const detail::CurveSample& s) {
     parameters_.push_back(s.t);
     points.push_back(s.d.point);
-    largestCurvature = std::max(largestCurvature, curvatureOf(s.d));
+    double curvature = curvatureOf(s.d);
+    largestCurvature = std::max(largestCurvature, curvature);
+    radii_.push_back(curvature > 0.0 ? 1.0 / curvature : std::numeric_limits<double>::infinity());
   });
   smallestRadius_ =
       largestCurvature > 0.0 ? 1.0 / largestCurvature : std::numeric_limits<double>::infinity();
+  for (std::size_t first = 0; first < radii_.size(); first += kRadiusBlock) {
+    auto end = radii_.begin() + std::ptrdiff_t(std::min(first + kRadiusBlock, radii_.size()));
+    blockRadii_.push_back(*std::min_element(radii_.begin() + std::ptrdiff_t(first), end));
+  }
   // The tree keeps the points (a curve gives at least two samples), no copy.
   index_ = std::make_unique<Index>(Index{SegmentTree::throughVertices(std::move(points))});
 }
 
 CurveProximity::~CurveProximity() = default;
+
+double CurveProximity::smallestRadiusBetween(std::size_t first, std::size_t last) const {
+  if (first > last) {
+    std::swap(first, last);
+  }
+  // Segment s joins samples s and s + 1; the segments beside: s - 1 and s + 2.
+  std::size_t low = first == 0 ? 0 : first - 1;
+  std::size_t high = std::min(last + 2, radii_.size() - 1);
+  double smallest = std::numeric_limits<double>::infinity();
+  while (low <= high) {
+    if (low % kRadiusBlock == 0 && low + kRadiusBlock - 1 <= high) {
+      smallest = std::min(smallest, blockRadii_[low / kRadiusBlock]);
+      low += kRadiusBlock;
+    } else {
+      smallest = std::min(smallest, radii_[low]);
+      ++low;
+    }
+  }
+  return smallest;
+}
 
 double CurveProximity::sampledDistance(const Eigen::Vector3d& p) const {
   return index_->tree.nearest(p).distance;
@@ -226,41 +257,64 @@ DeviationWitness curveToPolyline(const Curve& curve, const CurveProximity& proxi
 DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
                                  const CurveProximity& proximity, double accuracy,
                                  const WorkBudget& budget) {
-  // Steps along each segment such that a sampled maximum misses the true one by about
-  // `accuracy` where the distance bends like the curve (sagitta of the tightest radius).
-  double radius = std::min(proximity.smallestSampledRadius(), 1e12);
-  double step = std::sqrt(8.0 * accuracy * radius);
   std::size_t segments = polyline.size() > 1 ? polyline.size() - 1 : 1;
   auto pointOn = [&](std::size_t j, double u) {
     const Eigen::Vector3d& a = polyline[j];
     const Eigen::Vector3d& b = polyline[std::min(j + 1, polyline.size() - 1)];
     return Eigen::Vector3d(a + u * (b - a));
   };
-  // The distances in order along the whole polyline, a vertex once (a peak
-  // of the distance is refined once, not once per segment that ends at it):
-  // segment j's samples k = 1 .. intervals[j] (and k = 0 for the first) are
+  // Steps along segment j such that a sampled maximum misses the true one by
+  // about `accuracy` where the distance bends like the curve (the sagitta of
+  // the radius): the tightest radius near the segment, not the curve's
+  // tightest anywhere (a cusp would make every segment take the most samples).
+  auto intervalsFor = [&](std::size_t j, double radius) {
+    double step = std::sqrt(8.0 * accuracy * std::min(radius, 1e12));
+    double length = (pointOn(j, 1.0) - pointOn(j, 0.0)).norm();
+    return static_cast<std::size_t>(
+        std::clamp(std::ceil(length / step), 1.0, double(kMaxSamplesPerSegment)));
+  };
+  // The distance to the curve's sample polyline, within `accuracy` of the
+  // distance to the curve: the maxima worth it are refined on the curve.
+  // In order along the whole polyline, a vertex once (a peak of the distance
+  // is refined once, not once per segment that ends at it): segment j's
+  // samples k = 1 .. intervals[j] (and k = 0 for the first) are
   // along[firsts[j] + k - 1] (along[k] for the first).
   std::vector<std::size_t> intervals(segments);
   std::vector<std::size_t> firsts(segments);
-  std::size_t total = 1;
-  for (std::size_t j = 0; j < segments; ++j) {
-    double length = (pointOn(j, 1.0) - pointOn(j, 0.0)).norm();
-    double wanted = std::ceil(length / step);
-    intervals[j] = static_cast<std::size_t>(std::clamp(wanted, 1.0, double(kMaxSamplesPerSegment)));
-    firsts[j] = total;
-    total += intervals[j];
-  }
-  // The distance to the curve's sample polyline, within `accuracy` of the
-  // distance to the curve: the maxima worth it are refined on the curve.
   std::vector<double> along;
-  along.reserve(total);
-  std::size_t hint = 0;
+  std::vector<double> segmentAlong;
+  std::size_t hint = 0; // the sample segment nearest the last point measured
+  along.push_back(proximity.sampledDistance(pointOn(0, 0.0), hint));
   for (std::size_t j = 0; j < segments; ++j) {
-    double n = double(intervals[j]);
-    for (std::size_t k = j == 0 ? 0 : 1; k <= intervals[j]; ++k) {
-      along.push_back(proximity.sampledDistance(pointOn(j, double(k) / n), hint));
+    // The radius near the samples nearest the segment's ends, then near
+    // those nearest its points, until they find no tighter bend (a path that
+    // passes another part of the curve), at last the curve's tightest.
+    std::size_t startHint = hint;
+    std::size_t endHint = hint;
+    proximity.sampledDistance(pointOn(j, 1.0), endHint);
+    double radius = proximity.smallestRadiusBetween(startHint, endHint);
+    for (int round = 1;; ++round) {
+      intervals[j] = intervalsFor(j, radius);
+      double n = double(intervals[j]);
+      std::size_t near = startHint;
+      std::size_t low = startHint;
+      std::size_t high = startHint;
+      segmentAlong.clear();
+      for (std::size_t k = 1; k <= intervals[j]; ++k) {
+        segmentAlong.push_back(proximity.sampledDistance(pointOn(j, double(k) / n), near));
+        low = std::min(low, near);
+        high = std::max(high, near);
+      }
+      budget.check();
+      double seen = proximity.smallestRadiusBetween(low, high);
+      if (intervalsFor(j, seen) <= intervals[j] || radius <= proximity.smallestSampledRadius()) {
+        hint = near;
+        break;
+      }
+      radius = round < kResamplings ? seen : proximity.smallestSampledRadius();
     }
-    budget.check();
+    firsts[j] = along.size();
+    along.insert(along.end(), segmentAlong.begin(), segmentAlong.end());
   }
   // Sample i of `along`: its segment and its k there.
   auto sampleAt = [&](std::size_t i) {

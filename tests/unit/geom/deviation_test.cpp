@@ -82,6 +82,53 @@ TEST(Deviation, OfHelixChordsIsTheirTolerance) {
   EXPECT_GT(report.maxDeviation(), 0.999 * tolerance);
 }
 
+// An astroid's four cusps bend it without limit; uniform steps of its
+// parameter (as a controller runs them) are measured with the bend near each
+// chord, not the cusps' everywhere: within a work the curve's tightest radius
+// for every chord would pass many times over, and to the accuracy of a
+// measurement on dense chords.
+TEST(Deviation, OfUniformStepsAlongACurveWithCuspsTakesTheBendNearEachChord) {
+  FunctionCurve astroid({0.0, 2 * pi}, [](double t) {
+    return Eigen::Vector3d(20 * std::pow(std::cos(t), 3), 20 * std::pow(std::sin(t), 3), 0.0);
+  });
+  std::vector<Eigen::Vector3d> steps;
+  for (int k = 0; k <= 300; ++k) {
+    steps.push_back(astroid.point(2 * pi * k / 300));
+  }
+  DeviationOptions bounded;
+  bounded.accuracy = 1e-6;
+  bounded.maximumWork = 5e6;
+  DeviationReport report = measureDeviation(steps, astroid, bounded);
+  // The chords' own sagitta, from many points on each.
+  double sagitta = 0;
+  for (std::size_t k = 0; k + 1 < steps.size(); ++k) {
+    for (int i = 1; i < 200; ++i) {
+      double t = 2 * pi * (double(k) + i / 200.0) / 300;
+      Eigen::Vector3d a = steps[k];
+      Eigen::Vector3d b = steps[k + 1];
+      Eigen::Vector3d c = astroid.point(t);
+      double along = std::clamp((c - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      sagitta = std::max(sagitta, (a + along * (b - a) - c).norm());
+    }
+  }
+  EXPECT_NEAR(report.maxDeviation(), sagitta, 1e-5);
+}
+
+TEST(CurveProximity, SmallestRadiusBetweenSampleSegmentsIsTheBendThere) {
+  // A stadium: two half circles of radius 1 and 4 joined by lines.
+  CompositeCurve stadium(
+      {std::make_shared<ArcCurve>(Eigen::Vector2d{0, 0}, 1.0, pi / 2, pi),
+       std::make_shared<LineCurve>(Eigen::Vector3d{0, -1, 0}, Eigen::Vector3d{10, -1, 0}),
+       std::make_shared<ArcCurve>(Eigen::Vector2d{10, 3}, 4.0, -pi / 2, pi)});
+  CurveProximity proximity(stadium, 1e-6);
+  std::size_t last = proximity.samplePoints().size() - 2;
+  EXPECT_NEAR(proximity.smallestRadiusBetween(0, last), 1.0, 1e-9);
+  EXPECT_NEAR(proximity.smallestRadiusBetween(last, last), 4.0, 1e-9);
+  std::size_t hint = 0;
+  proximity.sampledDistance({5, -1, 0}, hint); // the line's middle
+  EXPECT_TRUE(std::isinf(proximity.smallestRadiusBetween(hint, hint)));
+}
+
 TEST(CurveProximity, ClosestPointOnACircle) {
   NurbsCurve circle = testing::unitCircle();
   CurveProximity proximity(circle, 1e-6);

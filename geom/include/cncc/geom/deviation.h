@@ -97,6 +97,10 @@ public:
   const std::vector<Eigen::Vector3d>& samplePoints() const;
   /// Smallest radius of curvature seen at the samples (for choosing step sizes).
   double smallestSampledRadius() const { return smallestRadius_; }
+  /// The smallest radius of curvature at the samples of sample segments
+  /// `first` .. `last` (either order) and of the segment beside each: the
+  /// tightest bend near points whose nearest samples are there.
+  double smallestRadiusBetween(std::size_t first, std::size_t last) const;
 
 private:
   struct Index;
@@ -105,6 +109,8 @@ private:
 
   const Curve& curve_;
   std::vector<double> parameters_;
+  std::vector<double> radii_;      // of curvature, at each sample
+  std::vector<double> blockRadii_; // the smallest of each block of radiusBlock samples
   double smallestRadius_;
   std::unique_ptr<Index> index_;
 };
