@@ -9,10 +9,12 @@
 // - a polar r(t) affine in t has the tight bound of polarStepCount;
 // - any other polar or param curve gets bounds of |f|, |f'| and |f''| for
 //   every IR value f of its coordinates, propagated through sums,
-//   products, quotients by t-free values, whole constant powers, exp, sin
-//   and cos (the rules of differentiation with each term bounded by its
-//   size). Other functions of t (sqrt, a quotient by a t-dependent value)
-//   are not bounded, and such a piece keeps the compile-time tables.
+//   products, quotients, whole constant powers, sqrt, exp, sin and cos
+//   (the rules of differentiation with each term bounded by its size). A
+//   quotient by a value of t and a root need a number its size stays above
+//   (1 + 0.5 cos t stays above 0.5: a polar conic r = p / (1 + e cos t)
+//   with e a number); without one, and for other functions of t, a piece
+//   is not bounded and keeps the compile-time tables.
 // A transform multiplies M by its stretch.
 #include "forward_derivative.h"
 #include "part_lowering.h"
@@ -35,10 +37,24 @@ constexpr double roundUpOffset = 0.5;
 // expand-whole-powers writes them out).
 constexpr double largestBoundedExponent = 64;
 
-// Bounds over the piece's range of |f|, |f'| and |f''| for one value f.
+// Bounds over the piece's range of |f|, |f'| and |f''| for one value f,
+// and a number |f| stays above (0: none known).
 struct DerivativeBounds {
   Scalar value, slope, curvature;
+  double floor = 0;
 };
+
+// |a + b| and |a - b| stay above |a| - |b|, where |b|'s bound is a number.
+double floorOfSum(const DerivativeBounds& a, const DerivativeBounds& b) {
+  double above = 0;
+  if (b.value.isConstant()) {
+    above = std::max(above, a.floor - b.value.constant);
+  }
+  if (a.value.isConstant()) {
+    above = std::max(above, b.floor - a.value.constant);
+  }
+  return above;
+}
 
 bool isZero(const Scalar& scalar) {
   return scalar.isConstant() && scalar.constant == 0;
@@ -130,14 +146,55 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
       Scalar turned = times(Scalar::of(n * (n - 1)), times(power(n - 2), times(g.slope, g.slope)));
       bent = math.add(turned, bent);
     }
-    return DerivativeBounds{power(n), slope, bent};
+    return DerivativeBounds{power(n), slope, bent, std::pow(g.floor, n)};
+  };
+
+  // (ab)' = a'b + ab', (ab)'' = a''b + 2a'b' + ab''.
+  auto productBounds = [&](const DerivativeBounds& a, const DerivativeBounds& b) {
+    return DerivativeBounds{times(a.value, b.value),
+                            math.add(times(a.slope, b.value), times(a.value, b.slope)),
+                            math.add(math.add(times(a.curvature, b.value),
+                                              times(Scalar::of(2), times(a.slope, b.slope))),
+                                     times(a.value, b.curvature)),
+                            a.floor * b.floor};
+  };
+  // 1/g where |g| >= L > 0: (1/g)' = -g'/g^2, (1/g)'' = 2g'^2/g^3 - g''/g^2.
+  auto reciprocalBounds = [&](const DerivativeBounds& g) -> std::optional<DerivativeBounds> {
+    double low = g.floor;
+    if (!(low > 0)) {
+      return std::nullopt; // g may vanish: no bound
+    }
+    Scalar slope = times(g.slope, Scalar::of(1 / (low * low)));
+    Scalar bent = math.add(times(g.curvature, Scalar::of(1 / (low * low))),
+                           times(times(g.slope, g.slope), Scalar::of(2 / (low * low * low))));
+    double above = g.value.isConstant() && g.value.constant > 0 ? 1 / g.value.constant : 0;
+    return DerivativeBounds{Scalar::of(1 / low), slope, bent, above};
+  };
+  // sqrt(g) where g >= L > 0: (sqrt g)' = g'/(2 sqrt g),
+  // (sqrt g)'' = g''/(2 sqrt g) - g'^2/(4 g sqrt g).
+  auto rootBounds = [&](const DerivativeBounds& g) -> std::optional<DerivativeBounds> {
+    double low = g.floor;
+    if (!(low > 0)) {
+      return std::nullopt; // the root's slope has no bound near 0
+    }
+    double root = std::sqrt(low);
+    Scalar slope = times(g.slope, Scalar::of(1 / (2 * root)));
+    Scalar bent = math.add(times(g.curvature, Scalar::of(1 / (2 * root))),
+                           times(times(g.slope, g.slope), Scalar::of(1 / (4 * low * root))));
+    return DerivativeBounds{math.unary(Opcode::Sqrt, g.value), slope, bent, root};
   };
 
   std::map<std::uint32_t, std::optional<DerivativeBounds>> memo;
   std::function<std::optional<DerivativeBounds>(Scalar)> bounds =
       [&](Scalar scalar) -> std::optional<DerivativeBounds> {
+    // A const instruction as its number (the probe t is one too: not it).
+    if (!scalar.isConstant() && scalar.value != probe &&
+        builder_.function().definition(scalar.value).opcode == Opcode::Const) {
+      scalar = Scalar::of(builder_.function().definition(scalar.value).number);
+    }
     if (scalar.isConstant() || !varies(scalar.value)) {
-      return DerivativeBounds{magnitude(scalar), Scalar::of(0), Scalar::of(0)};
+      return DerivativeBounds{magnitude(scalar), Scalar::of(0), Scalar::of(0),
+                              scalar.isConstant() ? std::abs(scalar.constant) : 0};
     }
     if (scalar.value == probe) {
       return DerivativeBounds{reach, Scalar::of(1), Scalar::of(0)};
@@ -161,30 +218,31 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
     case Opcode::Sub:
       result = {math.add(operands[0].value, operands[1].value),
                 math.add(operands[0].slope, operands[1].slope),
-                math.add(operands[0].curvature, operands[1].curvature)};
+                math.add(operands[0].curvature, operands[1].curvature),
+                floorOfSum(operands[0], operands[1])};
       break;
     case Opcode::Neg:
       result = operands[0];
       break;
-    case Opcode::Mul: {
-      const DerivativeBounds& a = operands[0];
-      const DerivativeBounds& b = operands[1];
-      // (ab)' = a'b + ab', (ab)'' = a''b + 2a'b' + ab''.
-      result = {times(a.value, b.value), math.add(times(a.slope, b.value), times(a.value, b.slope)),
-                math.add(math.add(times(a.curvature, b.value),
-                                  times(Scalar::of(2), times(a.slope, b.slope))),
-                         times(a.value, b.curvature))};
+    case Opcode::Mul:
+      result = productBounds(operands[0], operands[1]);
       break;
-    }
     case Opcode::Div:
       if (!varies(instruction.operands[1])) {
         Scalar divisor = magnitude(Scalar::of(instruction.operands[1], ValueType::F64));
         auto divided = [&](Scalar bound) {
           return isZero(bound) ? bound : math.binary(Opcode::Div, bound, divisor);
         };
-        result = {divided(operands[0].value), divided(operands[0].slope),
-                  divided(operands[0].curvature)};
+        result = {
+            divided(operands[0].value), divided(operands[0].slope), divided(operands[0].curvature),
+            divisor.isConstant() && divisor.constant > 0 ? operands[0].floor / divisor.constant
+                                                         : 0};
+      } else if (std::optional<DerivativeBounds> inverse = reciprocalBounds(operands[1])) {
+        result = productBounds(operands[0], *inverse);
       }
+      break;
+    case Opcode::Sqrt:
+      result = rootBounds(operands[0]);
       break;
     case Opcode::Pow:
       result = wholePowerBounds(operands[0], instruction.operands[1]);

@@ -1,5 +1,6 @@
-// Curves whose points are whole powers or exponentials of t and depend on
-// part parameters stay editable on the controller: the program computes
+// Curves whose points are whole powers, exponentials, quotients or roots
+// of t (a denominator or root's argument that stays above a number) and
+// depend on part parameters stay editable on the controller: the program computes
 // each piece's step count from a bound on |C''| (curvature_bounds.cpp), and
 // for parameter values other than the defaults the chords it runs stay
 // within the tolerance less the increment rounding, measured on the true
@@ -53,9 +54,9 @@ std::vector<Eigen::Vector3d> pointsAt(const Function& function, double a, double
   return points;
 }
 
-class EditablePowers : public ::testing::TestWithParam<EditableCurve> {};
+class EditableCurveBounds : public ::testing::TestWithParam<EditableCurve> {};
 
-TEST_P(EditablePowers, ChordsStayWithinTheBudgetForTheValuesItRunsWith) {
+TEST_P(EditableCurveBounds, ChordsStayWithinTheBudgetForTheValuesItRunsWith) {
   const EditableCurve& shape = GetParam();
   std::string source = "part p(a = 20, b = 10) {\n  tool 1 diameter=6 feed=300\n  safe z=5\n"
                        "  curve " +
@@ -90,7 +91,7 @@ TEST_P(EditablePowers, ChordsStayWithinTheBudgetForTheValuesItRunsWith) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Curves, EditablePowers,
+    Curves, EditableCurveBounds,
     ::testing::Values(EditableCurve{"param(x = t, y = a*t^2/100, t = -5 .. 5)", -5, 5,
                                     [](double t, double, double) { return t; },
                                     [](double t, double a, double) { return a * t * t / 100; }},
@@ -108,6 +109,18 @@ INSTANTIATE_TEST_SUITE_P(
                                     [](double t, double a, double b) {
                                       return (a * std::pow(1 + std::cos(t), 2) / 4 + b) *
                                              std::sin(t);
+                                    }},
+                      EditableCurve{"polar(r = a/(1 + 0.5*cos(t)) + b, t = 0 .. 2*pi)", 0, 2 * M_PI,
+                                    [](double t, double a, double b) {
+                                      return (a / (1 + 0.5 * std::cos(t)) + b) * std::cos(t);
+                                    },
+                                    [](double t, double a, double b) {
+                                      return (a / (1 + 0.5 * std::cos(t)) + b) * std::sin(t);
+                                    }},
+                      EditableCurve{"param(x = t, y = a*sqrt(4 + sin(b*t/5)), t = 0 .. 10)", 0, 10,
+                                    [](double t, double, double) { return t; },
+                                    [](double t, double a, double b) {
+                                      return a * std::sqrt(4 + std::sin(b * t / 5));
                                     }}));
 
 } // namespace

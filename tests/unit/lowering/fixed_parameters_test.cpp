@@ -62,12 +62,13 @@ const char* const loopAndPolar = R"(part p(count = 3, radius = 10, depth = 2, un
   for i in 1 .. count {
     curve line(from=(i, 0), to=(i, 5)) sweep depth=depth step=1 tolerance=0.01*i
   }
-  curve polar(r = radius + sqrt(2 + cos(3*t)), t = 0 .. 2*pi) tolerance=0.05
+  curve polar(r = radius + sqrt(1 + cos(3*t)), t = 0 .. 2*pi) tolerance=0.05
 }
 )";
 
 // The loop's body needs its variable as a number (a tolerance), so the
-// loop is unrolled; sqrt of t is beyond the bounds the controller computes.
+// loop is unrolled; the root of 1 + cos(3t), which comes to 0, is beyond the
+// bounds the controller computes.
 TEST(FixedParameters, LoopBoundAndSampledCurveFixTheirParametersOnController) {
   std::unique_ptr<Lowered> result = lower(loopAndPolar, true);
   ASSERT_TRUE(result->part);
