@@ -1,4 +1,4 @@
-#include "part_lowering.h"
+#include "arithmetic.h"
 
 #include <algorithm>
 #include <cmath>

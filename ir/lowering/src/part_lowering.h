@@ -1,11 +1,12 @@
 // The lowering's private parts: one PartLowering per part, its members
 // implemented by concern in statements.cpp, expressions.cpp, curves.cpp and
 // cuts.cpp of this folder (and the others it names); the values it computes
-// with are in lowering_values.h, the plans of cuts beside their curves in
-// beside_curve.h.
+// with are in lowering_values.h and arithmetic.h, the plans of cuts beside
+// their curves in beside_curve.h.
 #pragma once
 
 #include "affine.h"
+#include "arithmetic.h"
 #include "beside_curve.h"
 #include "cncc/ir/tolerance_budget.h"
 #include "lowering_values.h"
@@ -66,36 +67,6 @@ struct ParameterUse {
 struct HostCut {
   Scalar feed;
   bool ramp = false;
-};
-
-// Arithmetic on scalars through the builder: folds constant operands and
-// the identities x + 0, x - 0, x * 1, x / 1.
-class Arithmetic {
-public:
-  // `reduceAngles`: the constants the controller reads are rounded, so the
-  // constant terms of sin, cos and tan's angles are taken modulo a turn.
-  Arithmetic(FunctionBuilder& builder, bool reduceAngles)
-      : builder_(builder), reduceAngles_(reduceAngles) {}
-
-  // The scalar as an IR value (a constant is written here).
-  ValueId value(Scalar scalar);
-  Scalar unary(Opcode opcode, Scalar operand);
-  Scalar binary(Opcode opcode, Scalar left, Scalar right);
-  Scalar add(Scalar left, Scalar right) { return binary(Opcode::Add, left, right); }
-  Scalar multiply(Scalar left, Scalar right) { return binary(Opcode::Mul, left, right); }
-  Scalar select(Scalar condition, Scalar yes, Scalar no);
-  // max(a, b) = (a + b + |a - b|) / 2, min likewise: one inline expression
-  // (the exact Min and Max are blocks of their own on the macro
-  // controllers); two constants give the exact result.
-  Scalar larger(Scalar a, Scalar b) { return extreme(a, b, Opcode::Add); }
-  Scalar smaller(Scalar a, Scalar b) { return extreme(a, b, Opcode::Sub); }
-
-private:
-  Scalar extreme(Scalar a, Scalar b, Opcode gap);
-  ValueId angleModuloTurns(ValueId angle, int depth);
-
-  FunctionBuilder& builder_;
-  bool reduceAngles_ = false;
 };
 
 // The frontend's evaluator, renewed every so many evaluations: each
