@@ -289,26 +289,28 @@ DeviationWitness polylineToCurve(const std::vector<Eigen::Vector3d>& polyline,
     // The radius near the samples nearest the segment's ends, then near
     // those nearest its points, until they find no tighter bend (a path that
     // passes another part of the curve), at last the curve's tightest.
+    // The segment's end is measured once, its last sample in every round.
     std::size_t startHint = hint;
     std::size_t endHint = hint;
-    proximity.sampledDistance(pointOn(j, 1.0), endHint);
+    double endDistance = proximity.sampledDistance(pointOn(j, 1.0), endHint);
     double radius = proximity.smallestRadiusBetween(startHint, endHint);
     for (int round = 1;; ++round) {
       intervals[j] = intervalsFor(j, radius);
       double n = double(intervals[j]);
       std::size_t near = startHint;
-      std::size_t low = startHint;
-      std::size_t high = startHint;
+      std::size_t low = std::min(startHint, endHint);
+      std::size_t high = std::max(startHint, endHint);
       segmentAlong.clear();
-      for (std::size_t k = 1; k <= intervals[j]; ++k) {
+      for (std::size_t k = 1; k < intervals[j]; ++k) {
         segmentAlong.push_back(proximity.sampledDistance(pointOn(j, double(k) / n), near));
         low = std::min(low, near);
         high = std::max(high, near);
       }
+      segmentAlong.push_back(endDistance);
       budget.check();
       double seen = proximity.smallestRadiusBetween(low, high);
       if (intervalsFor(j, seen) <= intervals[j] || radius <= proximity.smallestSampledRadius()) {
-        hint = near;
+        hint = endHint;
         break;
       }
       radius = round < kResamplings ? seen : proximity.smallestSampledRadius();

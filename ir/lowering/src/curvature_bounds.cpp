@@ -33,10 +33,6 @@ namespace {
 // Added before rounding: round(x + 0.5) >= ceil(x), and >= 1 for x >= 0.
 constexpr double roundUpOffset = 0.5;
 
-// The largest whole exponent of t-dependent powers bounded (as
-// expand-whole-powers writes them out).
-constexpr double largestBoundedExponent = 64;
-
 // Bounds over the piece's range of |f|, |f'| and |f''| for one value f,
 // and a number |f| stays above (0: none known).
 struct DerivativeBounds {
@@ -122,13 +118,14 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
 
   ValueDependence varies(builder_.function(), probe);
 
-  // g^n for a whole constant n >= 0: (g^n)' = n g^(n-1) g',
+  // g^n for a whole constant n >= 0 that expand-whole-powers writes out
+  // (the controller's EXP[LN[g]*n] stops for g <= 0): (g^n)' = n g^(n-1) g',
   // (g^n)'' = n (n-1) g^(n-2) g'^2 + n g^(n-1) g''.
   auto wholePowerBounds = [&](const DerivativeBounds& g,
                               ValueId exponent) -> std::optional<DerivativeBounds> {
     const Instruction& definition = builder_.function().definition(exponent);
     double n = definition.opcode == Opcode::Const ? definition.number : -1;
-    if (!(n >= 0 && n <= largestBoundedExponent && std::trunc(n) == n)) {
+    if (!(n >= 0 && n <= largestExpandedExponent && std::trunc(n) == n)) {
       return std::nullopt;
     }
     auto power = [&](double k) {

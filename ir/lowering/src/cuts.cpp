@@ -131,6 +131,21 @@ ToleranceBudget PartLowering::toleranceBudget(const CutStmt& cut) {
   return budget;
 }
 
+ToleranceBudget PartLowering::blocksBudget(const CutStmt& cut, std::string_view roundedPoints) {
+  ToleranceBudget budget = toleranceBudget(cut);
+  budget.tolerance = budget.toleranceOrDefault();
+  double rounding = budget.pointRounding();
+  if (!(budget.tolerance > 2 * rounding)) {
+    const Expr* written = modifierValue(cut, "tolerance");
+    fail(written != nullptr ? written->span : cut.span,
+         fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
+                     "{} ({:.6g})",
+                     budget.tolerance, roundedPoints, rounding),
+         DiagnosticKind::InvalidTolerance);
+  }
+  return budget;
+}
+
 std::size_t PartLowering::sampleCount(const CutStmt& cut) {
   const Expr* expression = modifierValue(cut, "samples");
   double samples = constantNumber(*expression, "samples=");

@@ -49,24 +49,6 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
   return weights;
 }
 
-// The budget of the NURBS blocks: samples= or spacing= choose no points of
-// them, so they keep the default tolerance, which must leave room for the
-// rounding of the control points.
-ToleranceBudget PartLowering::nurbsBlockBudget(const CutStmt& cut) {
-  ToleranceBudget budget = toleranceBudget(cut);
-  budget.tolerance = budget.toleranceOrDefault();
-  double rounding = budget.pointRounding();
-  if (!(budget.tolerance > 2 * rounding)) {
-    const Expr* written = modifierValue(cut, "tolerance");
-    fail(written != nullptr ? written->span : cut.span,
-         fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
-                     "NURBS control points ({:.6g})",
-                     budget.tolerance, rounding),
-         DiagnosticKind::InvalidTolerance);
-  }
-  return budget;
-}
-
 namespace {
 
 // A NURBS's own block: its control points on the printed grid.
@@ -118,7 +100,7 @@ bool PartLowering::lowerNurbsCut(const CutStmt& cut, const CutCurve* given) {
   checkCutBounds(cut, *curve.geometry);
   std::vector<std::optional<ValueId>> parameters = parameterWeights(cut, curve);
   fixNurbsBlockParameters(cut);
-  ToleranceBudget budget = nurbsBlockBudget(cut);
+  ToleranceBudget budget = blocksBudget(cut, "NURBS control points");
   CurveTableEntry entry =
       blocksTableEntry(cut, curve, CurveSampling::NurbsBlocks, std::nullopt, budget.forPoints());
   // A NURBS of its own is its block (its weights operands of the lap, a

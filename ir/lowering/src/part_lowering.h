@@ -256,6 +256,10 @@ private:
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
   // The cut's tolerance and the printed grid's share of it (computed here only).
   ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
+  // The budget of blocks the controller interpolates (NURBS, SPL spans):
+  // samples= or spacing= choose no points of them, so they keep the default
+  // tolerance, which must leave room for the rounding of `roundedPoints`.
+  ToleranceBudget blocksBudget(const frontend::CutStmt& cut, std::string_view roundedPoints);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // spacing= that would put more points on the curve than a cut may have.
@@ -368,7 +372,6 @@ private:
   bool lowerNurbsCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
   std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
                                                        const CutCurve& curve);
-  ToleranceBudget nurbsBlockBudget(const frontend::CutStmt& cut);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
 
   // spline_cuts.cpp
@@ -376,7 +379,6 @@ private:
   // polynomial_cuts.cpp
   // `given`: the curve to cut instead of the statement's (an offset's stand-in).
   bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
-  ToleranceBudget polynomialBudget(const frontend::CutStmt& cut);
 
   // offset_cuts.cpp: cuts beside the curve (side=left|right).
   bool lowerOffsetCut(const frontend::CutStmt& cut);

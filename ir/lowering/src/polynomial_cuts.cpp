@@ -25,24 +25,6 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-// The budget of the spans: samples= or spacing= choose no points of them,
-// so they keep the default tolerance; a tolerance that leaves no room for
-// rounding their ends is an error.
-ToleranceBudget PartLowering::polynomialBudget(const CutStmt& cut) {
-  ToleranceBudget budget = toleranceBudget(cut);
-  budget.tolerance = budget.toleranceOrDefault();
-  double rounding = budget.pointRounding();
-  if (!(budget.tolerance > 2 * rounding)) {
-    const Expr* written = modifierValue(cut, "tolerance");
-    fail(written != nullptr ? written->span : cut.span,
-         fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
-                     "spline end points ({:.6g})",
-                     budget.tolerance, rounding),
-         DiagnosticKind::InvalidTolerance);
-  }
-  return budget;
-}
-
 bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given) {
   const Modifier* method = findModifier(cut, "method");
   std::string word = method != nullptr && method->value ? wordOf(*method->value) : "";
@@ -57,7 +39,7 @@ bool PartLowering::lowerPolynomialCut(const CutStmt& cut, const CutCurve* given)
   Scalar feed = cutFeed(cut);
   CutCurve curve = given != nullptr ? *given : cutCurve(cut);
   fixParameters(*cut.curve, cut.curve->span, "this curve's points");
-  ToleranceBudget budget = polynomialBudget(cut);
+  ToleranceBudget budget = blocksBudget(cut, "spline end points");
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
   CutGeometry geometry;

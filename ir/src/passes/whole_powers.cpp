@@ -23,9 +23,6 @@ namespace cncc::ir {
 
 namespace {
 
-// At most this many multiplications by squaring: a ^ 64 takes six.
-constexpr double largestExpandedExponent = 64;
-
 class WholePowerExpander : public passes::Rewriter {
 public:
   using Rewriter::Rewriter;

@@ -69,6 +69,9 @@ bool foldAssumingFinite(Function& function);
 // macro programs, before fold-finite (whole_powers.cpp); not exact (the
 // product rounds otherwise than pow).
 bool expandWholePowers(Function& function);
+// The largest |n| expand-whole-powers writes out (a ^ 64 takes six
+// multiplications); a larger power keeps the controller's own.
+constexpr double largestExpandedExponent = 64;
 
 // `drop-pass-depths`: each pass.begin removed, for the targets that print
 // the IR as it stands (a controller's pass loop says no depth).
