@@ -18,6 +18,8 @@
 // steps it plans itself, or fixes what they read).
 #include "cncc/ir/curve_lap.h"
 
+#include "lap_cuts.h"
+
 #include <map>
 #include <set>
 
@@ -57,30 +59,6 @@ bool regionsReadOnlyConstants(const Function& function, InstructionId lapId) {
   return true;
 }
 
-// The laps by entry, each with the cut it belongs to (the cut.begin before
-// it in the program's order).
-struct LapOfCut {
-  InstructionId lap = 0;
-  std::uint32_t cut = 0;
-};
-constexpr std::uint32_t noCut = ~std::uint32_t{0}; // a lap before any cut.begin
-
-void collectLaps(const Function& function, const Region& region, std::optional<std::uint32_t>& cut,
-                 std::map<std::uint32_t, std::vector<LapOfCut>>& laps) {
-  for (InstructionId id : region.instructions) {
-    const Instruction& instruction = function.instructions[id];
-    if (instruction.opcode == Opcode::CutBegin) {
-      cut = instruction.index;
-    } else if (instruction.opcode == Opcode::CurveLap) {
-      laps[instruction.index].push_back({id, cut.value_or(noCut)});
-      continue; // its regions are arithmetic
-    }
-    for (const Region& inner : instruction.regions) {
-      collectLaps(function, inner, cut, laps);
-    }
-  }
-}
-
 // The cut every one of the entry's laps belongs to, where each can be cut
 // in steps; nullopt otherwise.
 std::optional<std::uint32_t> steppingCut(const Function& function,
@@ -106,8 +84,9 @@ double stepsAmount(const CutGeometry& cut, const geom::Curve& curve) {
 
 // The entry as steps: a chords entry's within `amount`, each region's count
 // left to expand-controller-loops; a samples entry's one region in as many
-// steps as it has chords.
-CurveTableEntry cutInSteps(CurveTableEntry entry, const CutGeometry& cut, double amount) {
+// steps as it has chords (the controller of the cut reads them:
+// expand-controller-loops checks their drift).
+CurveTableEntry cutInSteps(CurveTableEntry entry, double amount) {
   if (entry.sampling == CurveSampling::Samples) {
     entry.regionSteps.assign(1, static_cast<int>(entry.amount) - 1);
     entry.amount = 0;
@@ -116,9 +95,6 @@ CurveTableEntry cutInSteps(CurveTableEntry entry, const CutGeometry& cut, double
     entry.amount = amount;
   }
   entry.sampling = CurveSampling::Steps;
-  if (*cut.controllerDigits > 0) {
-    entry.stepReading = StepReading{*cut.controllerDigits, cut.budget().toleranceOrDefault()};
-  }
   return entry;
 }
 
@@ -135,9 +111,7 @@ bool liesInThePlaneZero(const geom::Curve& curve) {
 }
 
 std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& function) {
-  std::map<std::uint32_t, std::vector<LapOfCut>> laps;
-  std::optional<std::uint32_t> cut;
-  collectLaps(function, function.body, cut, laps);
+  std::map<std::uint32_t, std::vector<LapOfCut>> laps = lapsByEntry(function);
   std::map<std::uint32_t, CurveTableEntry> stepped;
   for (const auto& [index, ofEntry] : laps) {
     if (index >= function.curves.size() || !steppableEntry(function.curves[index])) {
@@ -150,7 +124,7 @@ std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& 
     const CutGeometry& cutOfLaps = function.cuts[*stepping];
     const CurveTableEntry& entry = function.curves[index];
     if (entry.sampling == CurveSampling::Samples) {
-      stepped.emplace(index, cutInSteps(entry, cutOfLaps, 0.0));
+      stepped.emplace(index, cutInSteps(entry, 0.0));
       continue;
     }
     auto constantsOnly = [](ValueId) { return std::optional<double>(); };
@@ -158,7 +132,7 @@ std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& 
         lapCurve(function, function.instructions[ofEntry.front().lap], constantsOnly);
     double amount = stepsAmount(cutOfLaps, *curve);
     if (amount > 0) { // else nothing is left of the tolerance: the lowering's error, or chords
-      stepped.emplace(index, cutInSteps(entry, cutOfLaps, amount));
+      stepped.emplace(index, cutInSteps(entry, amount));
     }
   }
   return stepped;

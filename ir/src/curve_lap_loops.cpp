@@ -124,20 +124,35 @@ private:
     return {emit(instruction, {operand.value}), 0};
   }
 
+  // How the controller of the lap's cut reads its steps: literals of the
+  // cut's controller digits (none: exactly), within its tolerance.
+  std::optional<StepReading> stepReading() const {
+    std::optional<std::uint32_t> cut = currentCut();
+    if (!cut || *cut >= source_.cuts.size()) {
+      return std::nullopt;
+    }
+    const CutGeometry& geometry = source_.cuts[*cut];
+    if (!geometry.controllerDigits || *geometry.controllerDigits <= 0) {
+      return std::nullopt;
+    }
+    return StepReading{*geometry.controllerDigits, geometry.budget().toleranceOrDefault()};
+  }
+
   // The lap's entry with the counts it leaves to the legalisation chosen
   // (curve_lap_steps.h), once per entry, and checked against the
   // controller's reading of their steps; the output's entry says them.
   const CurveTableEntry& countedEntry(const Instruction& lap) {
     const CurveTableEntry& entry = source_.curves[lap.index];
-    if (!hasChosenSteps(entry) && !entry.stepReading) {
+    std::optional<StepReading> reading = stepReading();
+    if (!hasChosenSteps(entry) && !reading) {
       return entry;
     }
     auto known = counted_.find(lap.index);
     if (known == counted_.end()) {
       std::shared_ptr<const geom::Curve> curve = curveOf(lap);
       CurveTableEntry counted = withChosenSteps(entry, *curve);
-      if (entry.stepReading) {
-        checkStepDrift(counted, *curve, entry.stepReading->digits, entry.stepReading->tolerance);
+      if (reading) {
+        checkStepDrift(counted, *curve, reading->digits, reading->tolerance);
       }
       if (lap.index < output_.curves.size()) {
         // As written: an offset's count that grows with the radius, the program's.

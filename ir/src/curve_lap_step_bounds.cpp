@@ -1,16 +1,21 @@
 // `bound-controller-steps`: a curve.lap cut in steps whose counts the
-// program computes (a piece whose shape depends on part parameters) and
-// that come, at the values the part is compiled with, past the limit of one
-// region (maximumStepsPerRegion: a weight of 1e9 typed for 1 asks the
-// controller for a loop of a hundred million steps) is cut at points the
-// host chooses within its tolerance instead. Its regions stay what they
-// are, each over the range it had at those values (a walked span's end a
-// curve.point), laid out one piece per region in a chord-tolerance entry
-// whose points expand-curve-laps prints as numbers; the parameters its
-// regions read are fixed at their values, which the printed program checks.
+// program computes (a piece whose shape depends on part parameters) is cut
+// at points the host chooses within its tolerance instead where the host
+// computes the cut's numbers (gcode, sinumerik, jit: the lowering gives
+// every target the same steps, and the host's chords are fewer), or where
+// the counts come, at the values the part is compiled with, past the limit
+// of one region (maximumStepsPerRegion: a weight of 1e9 typed for 1 asks
+// the controller for a loop of a hundred million steps). Its regions stay
+// what they are, each over the range it had at those values (a walked
+// span's end a curve.point), laid out one piece per region in a
+// chord-tolerance entry; the parameters its regions read are fixed at
+// their values, which a controller's program checks (a warning there; the
+// host's program has no parameters to edit). A controller's chords are
+// printed as numbers, which its digits hold.
 #include "cncc/ir/curve_lap.h"
 
 #include "compiled_values.h"
+#include "lap_cuts.h"
 
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/function_curve.h"
@@ -26,11 +31,14 @@ namespace cncc::ir {
 
 namespace {
 
-// Each region's parameter range at the compiled values when some computed
-// count there is past the limit; nullopt when none is (or a range is not
-// known there, which leaves the lap to the program's own counts).
-std::optional<std::vector<std::pair<double, double>>>
-rangesPastTheLimit(const Instruction& lap, const CurveTableEntry& entry, CompiledValues& compiled) {
+// Each region's parameter range at the compiled values when the host
+// chooses the points, or some computed count there is past the limit;
+// nullopt otherwise (or when a range is not known there, which leaves the
+// lap to the program's own counts).
+std::optional<std::vector<std::pair<double, double>>> chordRanges(const Instruction& lap,
+                                                                  const CurveTableEntry& entry,
+                                                                  CompiledValues& compiled,
+                                                                  bool hostChooses) {
   std::vector<std::pair<double, double>> ranges;
   std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
   bool pastTheLimit = false;
@@ -57,7 +65,7 @@ rangesPastTheLimit(const Instruction& lap, const CurveTableEntry& entry, Compile
     pastTheLimit = pastTheLimit || !(*steps <= maximumStepsPerRegion);
     ranges.emplace_back(*from, *to);
   }
-  return pastTheLimit ? std::optional(std::move(ranges)) : std::nullopt;
+  return hostChooses || pastTheLimit ? std::optional(std::move(ranges)) : std::nullopt;
 }
 
 // The stepped entry's curve in the chord entry's parameter: each region's
@@ -102,20 +110,42 @@ curveOverRanges(const CurveTableEntry& stepped,
   }
 }
 
+// Whether each region's range is its own in the entry's layout (a knot
+// span's u from 0 to 1, a piece's own range at the compiled values).
+bool rangesAsLaidOut(const CurveTableEntry& stepped,
+                     const std::vector<std::pair<double, double>>& ranges) {
+  std::vector<CurveTableEntry::RegionPlace> places = stepped.regionPlaces();
+  for (std::size_t region = 0; region < ranges.size(); ++region) {
+    if (stepped.regionRange(places[region]) != ranges[region]) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The entry of the lap's points chosen on the host: one piece per region,
-// over the range the region had.
+// over the range the region had; for a cut the host computes (`hostCut`),
+// within its tolerance less the rounding of three axes, as the lowering
+// chooses chords, and over the whole curve where the ranges are as laid
+// out (no point at each region's end).
 CurveTableEntry chordEntry(const CurveTableEntry& stepped,
-                           const std::vector<std::pair<double, double>>& ranges) {
+                           const std::vector<std::pair<double, double>>& ranges,
+                           const CutGeometry* hostCut) {
   CurveTableEntry entry = stepped;
   entry.sampling = CurveSampling::ChordTolerance;
   entry.regionSteps.clear();
   entry.walkRegions.clear();
-  entry.stepReading.reset();
-  entry.geometry = curveOverRanges(stepped, ranges);
-  // Numbers: regions whose counts run that far compute with numbers the
-  // controller's digits may not hold (a weight of 1e9).
-  entry.pointsAsNumbers = true;
   entry.chosenParameters = nullptr;
+  if (hostCut != nullptr) {
+    entry.amount = hostCut->budget().forPoints();
+    if (rangesAsLaidOut(stepped, ranges)) {
+      return entry;
+    }
+  }
+  entry.geometry = curveOverRanges(stepped, ranges);
+  // A controller's as numbers: regions whose counts run that far compute
+  // with numbers its digits may not hold (a weight of 1e9).
+  entry.pointsAsNumbers = hostCut == nullptr;
   entry.pieces.clear();
   double start = 0;
   for (auto [from, to] : ranges) {
@@ -154,13 +184,17 @@ std::set<std::uint32_t> parametersRead(const Function& function, const Instructi
   return parameters;
 }
 
-void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry) {
+void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry,
+                       const CutGeometry* hostCut) {
   for (std::uint32_t index : parametersRead(function, lap)) {
     Parameter& parameter = function.parameters[index];
     if (parameter.fixed) {
       continue;
     }
     parameter.fixed = true;
+    if (hostCut != nullptr) {
+      continue; // the host's program has no parameters to edit
+    }
     function.warnings.push_back(
         {LegalisationWarning::Kind::ParameterFixed, entry.curveSpan,
          fmt::format("'{}' is fixed at its value {:g} in this program: at that value the "
@@ -187,10 +221,13 @@ void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
   }
 }
 
-// The ranges of a lap cut in steps whose computed counts are past the
-// limit at the compiled values; nullopt for any other lap.
-std::optional<std::vector<std::pair<double, double>>>
-boundedLapRanges(const Function& function, const Instruction& lap, CompiledValues& compiled) {
+// The ranges of a lap cut in steps within a tolerance whose points the
+// host chooses, or whose computed counts are past the limit at the compiled
+// values; nullopt for any other lap (samples=, arcs, an offset's growth).
+std::optional<std::vector<std::pair<double, double>>> boundedLapRanges(const Function& function,
+                                                                       const Instruction& lap,
+                                                                       CompiledValues& compiled,
+                                                                       const CutGeometry* hostCut) {
   if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size()) {
     return std::nullopt; // the verifier's problem
   }
@@ -199,19 +236,21 @@ boundedLapRanges(const Function& function, const Instruction& lap, CompiledValue
       !stepped.arcRegions.empty()) {
     return std::nullopt;
   }
-  return rangesPastTheLimit(lap, stepped, compiled);
+  return chordRanges(lap, stepped, compiled, hostCut != nullptr && stepped.amount > 0);
 }
 
 } // namespace
 
-std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap) {
+std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
+                                                 std::uint32_t cut) {
   CompiledValues compiled(function);
+  const CutGeometry* hostCut = hostComputesCut(function, cut) ? &function.cuts[cut] : nullptr;
   std::optional<std::vector<std::pair<double, double>>> ranges =
-      boundedLapRanges(function, lap, compiled);
+      boundedLapRanges(function, lap, compiled, hostCut);
   if (!ranges) {
     return std::nullopt;
   }
-  return chordEntry(function.curves[lap.index], *ranges);
+  return chordEntry(function.curves[lap.index], *ranges, hostCut);
 }
 
 bool boundControllerSteps(Function& function) {
@@ -220,23 +259,27 @@ bool boundControllerSteps(Function& function) {
   // ramp lap and the level laps share one).
   std::map<std::uint32_t, std::uint32_t> chordEntries;
   bool changed = false;
-  for (InstructionId id = 0; id < function.instructions.size(); ++id) {
-    Instruction& lap = function.instructions[id];
-    std::optional<std::vector<std::pair<double, double>>> ranges =
-        boundedLapRanges(function, lap, compiled);
-    if (!ranges) {
-      continue;
+  for (const auto& [index, laps] : lapsByEntry(function)) {
+    for (const LapOfCut& ofCut : laps) {
+      Instruction& lap = function.instructions[ofCut.lap];
+      const CutGeometry* hostCut =
+          hostComputesCut(function, ofCut.cut) ? &function.cuts[ofCut.cut] : nullptr;
+      std::optional<std::vector<std::pair<double, double>>> ranges =
+          boundedLapRanges(function, lap, compiled, hostCut);
+      if (!ranges) {
+        continue;
+      }
+      auto known = chordEntries.find(index);
+      if (known == chordEntries.end()) {
+        function.curves.push_back(chordEntry(function.curves[index], *ranges, hostCut));
+        auto added = static_cast<std::uint32_t>(function.curves.size() - 1);
+        known = chordEntries.emplace(index, added).first;
+      }
+      const CurveTableEntry& stepped = function.curves[index]; // no entry is added below
+      fixParametersRead(function, lap, stepped, hostCut);
+      rewriteLap(function, lap, known->second, stepped);
+      changed = true;
     }
-    auto known = chordEntries.find(lap.index);
-    if (known == chordEntries.end()) {
-      function.curves.push_back(chordEntry(function.curves[lap.index], *ranges));
-      auto added = static_cast<std::uint32_t>(function.curves.size() - 1);
-      known = chordEntries.emplace(lap.index, added).first;
-    }
-    const CurveTableEntry& stepped = function.curves[lap.index]; // no entry is added below
-    fixParametersRead(function, lap, stepped);
-    rewriteLap(function, lap, known->second, stepped);
-    changed = true;
   }
   return changed;
 }

@@ -50,15 +50,6 @@ int readCount(std::string_view word) {
   return word == "?" ? stepsChosenByLegalisation : static_cast<int>(parseWholeNumber(word));
 }
 
-// `reading 8 digits within 0.01`
-StepReading readStepReading(std::string_view rest) {
-  std::vector<std::string_view> words = splitWords(rest);
-  if (words.size() != 4 || words[1] != "digits" || words[2] != "within") {
-    throw Failure{"expected 'reading N digits within TOLERANCE'"};
-  }
-  return {static_cast<int>(parseWholeNumber(words[0])), parseNumber(words[3])};
-}
-
 // `left radius 1.5 largest 6.2`: an offset's counts that grow with the
 // tool radius (side left: +1, right: -1).
 OffsetStepGrowth readOffsetGrowth(std::string_view rest) {
@@ -195,8 +186,6 @@ bool readSetting(std::string_view line, CurveTableEntry& entry,
     entry.chosenParameters = std::make_shared<const std::vector<double>>(std::move(parameters));
   } else if (keyword == "counts") {
     readList(rest, entry.regionSteps, readCount);
-  } else if (keyword == "reading") {
-    entry.stepReading = readStepReading(rest);
   } else if (keyword == "offset") {
     entry.offsetGrowth = readOffsetGrowth(rest);
   } else if (keyword == "asks") {
@@ -247,10 +236,6 @@ std::string curveEntryText(std::span<const CurveTableEntry> curves, std::size_t 
   }
   if (!entry.regionSteps.empty()) {
     out += countsText(entry.regionSteps);
-  }
-  if (entry.stepReading) {
-    out += fmt::format("    reading {} digits within {}\n", entry.stepReading->digits,
-                       entry.stepReading->tolerance);
   }
   if (entry.offsetGrowth) {
     out += offsetGrowthText(*entry.offsetGrowth);
@@ -309,7 +294,7 @@ bool readCurveEntryLine(std::string_view line, CurveTableEntry& entry,
     entry.pieces.push_back(readPiece(line));
   } else if (!readSetting(line, entry, earlier)) {
     throw Failure{"expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', "
-                  "'counts', 'reading', 'offset', 'asks', 'arcs', 'walks', 'progress', 'host', "
+                  "'counts', 'offset', 'asks', 'arcs', 'walks', 'progress', 'host', "
                   "'numbers', 'chosen' or '}'"};
   }
   return false;

@@ -3,6 +3,8 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 
+#include "lap_cuts.h"
+
 namespace cncc::ir {
 
 const CurveTableEntry& LegalisedEntries::of(const Instruction& lap) {
@@ -21,9 +23,17 @@ const CurveTableEntry& LegalisedEntries::of(const Instruction& lap) {
   if (own.sampling != CurveSampling::Steps) {
     return own;
   }
+  if (!cuts_) {
+    cuts_.emplace();
+    for (const auto& [index, laps] : lapsByEntry(function_)) {
+      (*cuts_)[index] = laps.front().cut;
+    }
+  }
   auto known = bounded_.find(&lap);
   if (known == bounded_.end()) {
-    known = bounded_.emplace(&lap, boundedStepsEntry(function_, lap)).first;
+    auto cut = cuts_->find(lap.index);
+    std::uint32_t cutOfLap = cut != cuts_->end() ? cut->second : noCut;
+    known = bounded_.emplace(&lap, boundedStepsEntry(function_, lap, cutOfLap)).first;
   }
   return known->second ? *known->second : own;
 }

@@ -2,7 +2,8 @@
 // other entries have run: chords or samples of constants a controller counts in steps
 // (choose-controller-steps), steps whose counts at the compiled values are
 // past a region's limit cut at points chosen on the host
-// (bound-controller-steps). The interpreter runs laps with these, so the
+// (bound-controller-steps), and steps of a cut the host computes chosen as
+// its chords (bound-controller-steps too). The interpreter runs laps with these, so the
 // IR before those passes runs the path after them.
 #pragma once
 
@@ -26,6 +27,8 @@ private:
   const Function& function_;
   // Found once for the function: the steps of every entry at once.
   std::optional<std::map<std::uint32_t, CurveTableEntry>> stepped_;
+  // Each entry's cut (its first lap's).
+  std::optional<std::map<std::uint32_t, std::uint32_t>> cuts_;
   std::map<const Instruction*, std::optional<CurveTableEntry>> bounded_;
 };
 

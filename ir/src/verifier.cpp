@@ -480,9 +480,9 @@ private:
   void verifySteps(const std::string& where, const CurveTableEntry& entry) {
     if (entry.sampling != CurveSampling::Steps) {
       if (!entry.regionSteps.empty() || !entry.arcRegions.empty() || !entry.walkRegions.empty() ||
-          entry.stepReading || entry.offsetGrowth) {
-        problem(fmt::format("{} has step counts, arcs, walks, a reading of its steps or an "
-                            "offset's growth but is not cut in steps",
+          entry.offsetGrowth) {
+        problem(fmt::format("{} has step counts, arcs, walks or an offset's growth but is not "
+                            "cut in steps",
                             where));
       }
       return;
@@ -495,11 +495,6 @@ private:
                             "{}, not a side of 1 or -1 and a positive radius below the largest",
                             where, growth.side, growth.compiledRadius, growth.largestRadius));
       }
-    }
-    if (entry.stepReading && !(entry.stepReading->digits > 0 && entry.stepReading->tolerance > 0)) {
-      problem(fmt::format("{} reads its steps with {} digits within {}, not a positive number of "
-                          "each",
-                          where, entry.stepReading->digits, entry.stepReading->tolerance));
     }
     std::vector<std::size_t> arcs;
     for (const ArcRegion& arc : entry.arcRegions) {

@@ -1,8 +1,11 @@
-// A `curve` statement for controllers that run the curve loop themselves
+// A `curve` statement whose curve reads part parameters (on every target),
+// or any curve on a controller that runs the curve loop itself
 // (LoweringOptions::controllerLoops, the macro targets): no constant
 // tables. Each smooth piece (each knot span of a NURBS) is cut in uniform
 // parameter steps by a loop the controller runs, and the sweep's passes are
-// a loop too, so part parameters stay editable at the machine.
+// a loop too, so part parameters stay editable at the machine. Where the
+// host computes the program, bound-controller-steps chooses chords on the
+// same laps at the compiled values instead (the lowering is the same).
 //
 // The tolerance promise holds for the values the program runs with. The
 // controller rounds every coordinate to its least input increment, so the
@@ -140,7 +143,11 @@ PartLowering::symbolicList(const Expr& expression, const Bindings& bindings,
 }
 
 bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve) {
-  if (!options_.controllerLoops || modifierValue(cut, "spacing") != nullptr) {
+  // A curve that reads parameters is planned so on every target (the
+  // host's bound-controller-steps chooses chords at the compiled values);
+  // but for arcs, which the host prints as its whole turns (lowerHostArcCut).
+  bool hostPlans = !parametersOf(*cut.curve).empty() && !hasArcPiece(curve);
+  if ((!options_.controllerLoops && !hostPlans) || modifierValue(cut, "spacing") != nullptr) {
     return false;
   }
   bool ramp = rampEntry(cut);

@@ -20,14 +20,6 @@ double PartLowering::measuredBudget(double budget) const {
   return lessLiteralShare(budget, options_.coordinateIncrement);
 }
 
-std::optional<StepReading> PartLowering::stepReading(const CutStmt& cut) {
-  int digits = options_.literalSignificantDigits;
-  if (digits <= 0) {
-    return std::nullopt;
-  }
-  return StepReading{digits, chordTolerance(cut).value_or(defaultTolerance)};
-}
-
 // The curve table entry cutting each piece (or knot span) as planned for
 // it: uniform steps, a count chosen here or the range and count the
 // program computes of a piece that depends on parameters (its symbolic
@@ -41,7 +33,6 @@ PartLowering::SteppedLap PartLowering::steppedLap(const CutStmt& cut, const CutC
   CurveTableEntry entry = wholeCurveTableEntry(cut, curve); // a region per segment
   entry.sampling = CurveSampling::Steps;
   entry.amount = measuredBudget(budget);
-  entry.stepReading = stepReading(cut);
   SteppedLap lap;
   for (const ControllerSegment& segment : segments) {
     if (segment.isArc) {

@@ -114,7 +114,6 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
     entry.to = start;
   }
   entry.geometry = besideGeometry(entry, offset.compiled);
-  entry.stepReading = stepReading(cut);
   if (!offset.radius.isConstant() && hasChosenSteps(entry)) {
     // The counts grow with the radius: the lap reads the distance last.
     entry.offsetGrowth = OffsetStepGrowth{offset.compiledDistance > 0 ? 1.0 : -1.0,

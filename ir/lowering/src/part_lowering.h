@@ -500,9 +500,6 @@ private:
   // The chord tolerance uniform steps are measured within: `budget` less
   // the literals' share of the increment (0: counts samples= gave).
   double measuredBudget(double budget) const;
-  // How the controller reads the cut's steps (its literals' digits), for
-  // the legalisation's check of their drift; nullopt when exact.
-  std::optional<StepReading> stepReading(const frontend::CutStmt& cut);
   SteppedLap steppedLap(const frontend::CutStmt& cut, const CutCurve& curve,
                         const std::vector<ControllerSegment>& segments, double budget);
   void emitSteppedLap(const CutCurve& curve, const SteppedLap& lap,

@@ -113,8 +113,8 @@ TEST(CurveLapArcRegions, TheVerifierKeepsCurveArcToTheArcRegions) {
               Contains(HasSubstr("an arc region 2 that is not a later region of it")));
   EXPECT_THAT(verifyFunction(parsed(
                   replaced(replaced(slotText, "steps 0", "chords 0.01"), "    counts 1, 1\n", ""))),
-              Contains(HasSubstr("has step counts, arcs, walks, a reading of its steps or an "
-                                 "offset's growth but is not cut in steps")));
+              Contains(HasSubstr("has step counts, arcs, walks or an offset's growth but is not "
+                                 "cut in steps")));
 }
 
 TEST(CurveLapArcRegions, AnArcRegionRunsAsTheControllersCircle) {

@@ -1,9 +1,9 @@
 // Counts of a lap cut in steps that the lowering leaves to the legalisation
 // (`counts ?`): expand-controller-loops measures the fewest uniform steps
 // within the entry's amount on the lap's curve, once per entry, and writes
-// its loop; the interpreter runs the lap with the same count. A controller
-// that reads the step rounded (`reading N digits within T`) has counts whose
-// drift moves the last point too far refused.
+// its loop; the interpreter runs the lap with the same count. The lap's cut
+// on a controller that reads the step rounded (`cut @n tolerance T
+// controller N`) has counts whose drift moves the last point too far refused.
 #include "cncc/geom/discretisation.h"
 #include "cncc/geom/function_curve.h"
 #include "cncc/geom/line_arc_curves.h"
@@ -122,9 +122,12 @@ TEST(CurveLapChosenSteps, AStepTheControllerReadsRoundedMayDriftTooFar) {
   std::string half = replaced(curve_lap_test::circleText, "6.283185307179586", "3.141592653589793");
   half = replaced(half, "6.283185307179586", "3.141592653589793");
   half = replaced(half, "chords 0.01", "steps 0.01");
-  std::string within = replaced(half, "    piece at 0 over 0 .. 3.141592653589793\n",
-                                "    piece at 0 over 0 .. 3.141592653589793\n    counts 6\n"
-                                "    reading 8 digits within 1e-07\n");
+  half = replaced(half, "    piece at 0 over 0 .. 3.141592653589793\n",
+                  "    piece at 0 over 0 .. 3.141592653589793\n    counts 6\n");
+  half = replaced(half, "  move.rapid", "  cut.begin 0\n  move.rapid");
+  // The lap's cut: a controller of 8 digits, its tolerance 1e-7.
+  std::string within =
+      replaced(half, "  %0 = param r\n", "  cut @0 tolerance 1e-07 controller 8\n  %0 = param r\n");
   CurveLapError error = curve_lap_test::passError(within, expandControllerLoops);
   EXPECT_EQ(error.kind, CurveLapError::Kind::LiteralRounding);
   EXPECT_NE(std::string(error.what())
@@ -134,9 +137,9 @@ TEST(CurveLapChosenSteps, AStepTheControllerReadsRoundedMayDriftTooFar) {
             std::string::npos)
       << error.what();
   // Within 1e-6, or read exactly, it stands.
-  Function coarser = parsed(replaced(within, "within 1e-07", "within 1e-06"));
+  Function coarser = parsed(replaced(within, "tolerance 1e-07", "tolerance 1e-06"));
   EXPECT_TRUE(expandControllerLoops(coarser));
-  Function exact = parsed(replaced(within, "    reading 8 digits within 1e-07\n", ""));
+  Function exact = parsed(replaced(within, " controller 8", ""));
   EXPECT_TRUE(expandControllerLoops(exact));
 }
 
@@ -151,12 +154,6 @@ TEST(CurveLapChosenSteps, TheVerifierKeepsChosenCountsToUniformSteps) {
   ASSERT_FALSE(problems.empty());
   EXPECT_NE(problems[0].find("leaves the count of region 0 to the legalisation"), std::string::npos)
       << problems[0];
-  // A reading needs digits.
-  problems = verifyFunction(parsed(circleInSteps("0.01", "    reading 0 digits within 0.01\n")));
-  ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].find("reads its steps with 0 digits"), std::string::npos) << problems[0];
-  EXPECT_EQ(curve_lap_test::parseComplaint(circleInSteps("0.01", "    reading 8 within 0.01\n")),
-            "5: expected 'reading N digits within TOLERANCE'");
 }
 
 } // namespace

@@ -57,9 +57,6 @@ TEST(ChooseControllerSteps, ChordsOfConstantsAreCutInStepsTheControllerCounts) {
   // the literals' share of the increment.
   EXPECT_NEAR(entry.amount, 0.01 - std::sqrt(2.0) * 0.0005 - 0.02 * 0.001, 1e-15);
   EXPECT_EQ(entry.regionSteps, std::vector<int>{stepsChosenByLegalisation});
-  ASSERT_TRUE(entry.stepReading);
-  EXPECT_EQ(entry.stepReading->digits, 8);
-  EXPECT_EQ(entry.stepReading->tolerance, 0.01);
 
   ToolPath after = expandedPath(function);
   EXPECT_EQ(countOf(function, Opcode::Loop), 1u);
@@ -78,8 +75,6 @@ TEST(ChooseControllerSteps, SamplesOfOneRegionAreItsStepsReadWithinTheDefaultTol
   Function function = parsed(text);
   auto [before, entry] = steppedByThePass(function);
   EXPECT_EQ(entry.regionSteps, std::vector<int>{12});
-  ASSERT_TRUE(entry.stepReading);
-  EXPECT_EQ(entry.stepReading->tolerance, defaultTolerance);
 
   ToolPath after = expandedPath(function);
   EXPECT_EQ(countOf(function, Opcode::Loop), 1u);

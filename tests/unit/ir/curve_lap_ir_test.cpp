@@ -112,8 +112,7 @@ TEST(IrCurveLapText, ParserRefusesLapsThatDoNotFitTheirCurve) {
             "5: expected a knot span 'from .. to'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "  }\n  %0", "  }}\n  %0")),
             "4: expected 'piece at start over from .. to', 'grid', 'blocks', 'spline', 'counts', "
-            "'reading', 'offset', 'asks', 'arcs', 'walks', 'progress', 'host', 'numbers', 'chosen' "
-            "or '}'");
+            "'offset', 'asks', 'arcs', 'walks', 'progress', 'host', 'numbers', 'chosen' or '}'");
   EXPECT_EQ(parseComplaint(replaced(circleText, "  %4 = curve.lap", "  curve.lap")),
             "10: this operation has a result; write '%name = ...'");
 }

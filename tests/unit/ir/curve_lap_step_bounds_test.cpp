@@ -1,7 +1,8 @@
 // bound-controller-steps: a lap cut in steps whose count the program
-// computes, past the limit of one region at the values compiled with, is
-// cut at points chosen on the host instead, the parameters its regions read
-// fixed; the interpreter runs the lap so before the pass too.
+// computes, past the limit of one region at the values compiled with or in
+// a cut the host computes, is cut at points chosen on the host instead, the
+// parameters its regions read fixed; the interpreter runs the lap so before
+// the pass too.
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/verifier.h"
@@ -51,7 +52,7 @@ constexpr std::string_view countedCircleText = R"(func @ring(r = 5, h = 1) {
 TEST(BoundControllerSteps, ACountPastTheLimitIsCutAtPointsChosenOnTheHost) {
   Function function = parsed(countedCircleText);
   ASSERT_TRUE(verifyFunction(function).empty());
-  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function)));
+  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function), noCut));
   ToolPath before = interpret(function); // as the pass will cut it
   ASSERT_TRUE(boundControllerSteps(function));
   EXPECT_TRUE(verifyFunction(function).empty());
@@ -83,7 +84,7 @@ TEST(BoundControllerSteps, ACountPastTheLimitIsCutAtPointsChosenOnTheHost) {
 
 TEST(BoundControllerSteps, ACountWithinTheLimitStaysTheProgramsCount) {
   Function function = parsed(replaced(countedCircleText, "r = 5", "r = 0.5"));
-  EXPECT_FALSE(boundedStepsEntry(function, onlyLap(function)));
+  EXPECT_FALSE(boundedStepsEntry(function, onlyLap(function), noCut));
   EXPECT_FALSE(boundControllerSteps(function));
   EXPECT_FALSE(function.parameters[0].fixed);
   EXPECT_TRUE(function.warnings.empty());
@@ -121,6 +122,58 @@ TEST(BoundControllerSteps, ACountThroughASelectIsReadOnTheBranchTaken) {
   ASSERT_TRUE(boundControllerSteps(function)); // 500000 steps: past the limit
   EXPECT_TRUE(function.parameters[0].fixed);
   EXPECT_EQ(function.curves.back().sampling, CurveSampling::ChordTolerance);
+}
+
+// countedCircleText's lap within the limit (r = 0.5: 50000 steps), in a
+// cut whose numbers the host computes (no controller digits) or a
+// controller does.
+std::string circleInACut(std::string_view cutLine) {
+  std::string text = replaced(countedCircleText, "r = 5", "r = 0.5");
+  text = replaced(text, "  %0 = param r\n", std::string(cutLine) + "  %0 = param r\n");
+  return replaced(text, "  move.rapid %0, %3, %3\n", "  cut.begin 0\n  move.rapid %0, %3, %3\n");
+}
+
+TEST(BoundControllerSteps, StepsOfACutTheHostComputesAreItsChords) {
+  Function function = parsed(circleInACut("  cut @0 tolerance 0.01 increment 0.001\n"));
+  ASSERT_TRUE(verifyFunction(function).empty());
+  std::uint32_t cut = 0;
+  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function), cut));
+  ToolPath before = interpret(function); // as the pass will cut it
+  ASSERT_TRUE(boundControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  const CurveTableEntry& entry = function.curves.back();
+  EXPECT_EQ(entry.sampling, CurveSampling::ChordTolerance);
+  // The chords the host's lowering chose: within the tolerance less the
+  // rounding of three axes, over the curve as laid out, a table of the
+  // region's parameters (no numbers: the host computes every one anyway).
+  EXPECT_DOUBLE_EQ(entry.amount, 0.01 - 0.0005 * std::sqrt(3.0));
+  EXPECT_FALSE(entry.pointsAsNumbers);
+  ASSERT_EQ(entry.pieces.size(), 1u);
+  EXPECT_DOUBLE_EQ(entry.to, 6.283185307179586);
+  EXPECT_TRUE(function.parameters[0].fixed);  // r: the circle's points read it
+  EXPECT_FALSE(function.parameters[1].fixed); // h: the lap's height only
+  EXPECT_TRUE(function.warnings.empty());     // the host's program has no parameters
+  curve_lap_test::expectSamePath(before, interpret(function));
+
+  ASSERT_TRUE(expandCurveLaps(function));
+  EXPECT_EQ(countOf(function, Opcode::CurveLap), 0u);
+  std::vector<MachineEvent> moves = feedMoves(interpret(function));
+  // Chords of a circle of radius 0.5 within 0.0091: about 2 pi / sqrt(8 0.0091 / 0.5),
+  // not the program's 50000 steps.
+  EXPECT_GT(moves.size(), 12u);
+  EXPECT_LT(moves.size(), 30u);
+  for (const MachineEvent& move : moves) {
+    EXPECT_NEAR(std::hypot(move.x, move.y), 0.5, 1e-9);
+  }
+}
+
+TEST(BoundControllerSteps, StepsOfACutTheControllerComputesStayItsCount) {
+  Function function =
+      parsed(circleInACut("  cut @0 tolerance 0.01 increment 0.001 controller 8\n"));
+  ASSERT_TRUE(verifyFunction(function).empty());
+  EXPECT_FALSE(boundedStepsEntry(function, onlyLap(function), 0));
+  EXPECT_FALSE(boundControllerSteps(function));
+  EXPECT_FALSE(function.parameters[0].fixed);
 }
 
 } // namespace

@@ -1,8 +1,10 @@
-// A part that reads no parameter is lowered the same for a target whose
-// controller computes the program as for one whose host computes every
-// number: the same function (its curve table's points chosen by the
-// legalisations, choose-controller-steps on the first; its sweeps' passes
-// the same loop), but the cut table's line of what the target rounds.
+// A part is lowered the same for a target whose controller computes the
+// program as for one whose host computes every number: the same function
+// (its curve table's points chosen by the legalisations: a curve of
+// constants in steps by choose-controller-steps on the first; a curve that
+// reads parameters in steps the program computes, whose chords
+// bound-controller-steps chooses on the second; its sweeps' passes the
+// same loop), but the cut table's line of what the target rounds.
 #include "cncc/ir/printer.h"
 #include "lowered_text.h"
 
@@ -42,9 +44,10 @@ LoweredMotion loweredMotion(const std::string& source, bool controllerComputes) 
   return motion;
 }
 
-void expectSameOnEveryTarget(const std::string& curve, int arcs) {
-  std::string source =
-      "part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve " + curve + "\n}\n";
+void expectSameOnEveryTarget(const std::string& curve, int arcs,
+                             const std::string& parameters = "") {
+  std::string source = "part p(" + parameters +
+                       ") {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve " + curve + "\n}\n";
   LoweredMotion host = loweredMotion(source, false);
   LoweredMotion controller = loweredMotion(source, true);
   EXPECT_NE(host.text.find("curve @0"), std::string::npos) << curve;
@@ -76,6 +79,15 @@ TEST(TargetNeutralLowering, ChordsOfAParamCurve) {
   expectSameOnEveryTarget("param(x = t, y = t*t/10, t = 0 .. 10) tolerance=0.005 sweep "
                           "depth=1 step=0.5",
                           0);
+}
+
+TEST(TargetNeutralLowering, ACurveThatReadsParameters) {
+  std::string polar = "polar(r = a + cos(3*t), t = 0 .. 2*pi) tolerance=0.01 sweep depth=d step=1";
+  expectSameOnEveryTarget(polar, 0, "a = 10, d = 2");
+  std::string bezier = "bezier(points=[(0, 0), (10, h), (20, 0)]) sweep depth=2 step=1";
+  expectSameOnEveryTarget(bezier, 0, "h = 5");
+  std::string ring = "polar(r = a, t = 0 .. 2*pi) entry=ramp";
+  expectSameOnEveryTarget(ring, 0, "a = 12");
 }
 
 TEST(TargetNeutralLowering, ASweepOfOnePass) {

@@ -252,17 +252,23 @@ bool liesInThePlaneZero(const geom::Curve& curve);
 // table: what the interpreter runs their laps with too.
 std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& function);
 
-// `bound-controller-steps`: every curve.lap cut in steps whose counts, at
-// the values the part is compiled with, come past maximumStepsPerRegion
-// cut at points chosen on the host within its tolerance instead: a chord
-// entry of a piece per region, each over the range it had (a walk's end a
-// curve.point), its regions the same; the parameters they read fixed (a
-// parameter-fixed warning each). The other laps stay.
+// `bound-controller-steps`: every curve.lap cut in steps within a
+// tolerance whose cut the host computes (no controllerDigits: the host
+// chooses chords, fewer than the uniform steps), and every one whose
+// counts, at the values the part is compiled with, come past
+// maximumStepsPerRegion, cut at points chosen on the host within its
+// tolerance instead: a chord entry of a piece per region, each over the
+// range it had (a walk's end a curve.point), its regions the same; the
+// parameters they read fixed (on a controller a parameter-fixed warning
+// each). The other laps stay (samples=, arc regions, an offset's growth).
 bool boundControllerSteps(Function& function);
-// The chord entry bound-controller-steps gives the lap (its geometry the
-// lap's over the ranges its regions had), or nullopt where the lap stays:
-// what the interpreter runs too.
-std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap);
+// The cut of a lap before any cut.begin.
+inline constexpr std::uint32_t noCut = ~std::uint32_t{0};
+// The chord entry bound-controller-steps gives the lap, of the function's
+// cut `cut` (or noCut; its geometry the lap's over the ranges its regions had), or
+// nullopt where the lap stays: what the interpreter runs too.
+std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
+                                                 std::uint32_t cut);
 
 // `expand-controller-loops`: every curve.lap cut in steps written out as a
 // loop per region (its arithmetic at the loop's parameter, a feed move to

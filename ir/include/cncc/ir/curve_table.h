@@ -82,9 +82,9 @@ inline constexpr int maximumStepsPerRegion = 100'000;
 inline constexpr int stepsChosenByLegalisation = -1;
 
 // How a controller reads a lap's parameter steps: literals of `digits`
-// significant digits; the counts whose rounded step moves the lap's last
-// point past a quarter of the cut's `tolerance` are refused
-// (checkStepDrift, curve_lap_steps.h).
+// significant digits (its cut's controllerDigits); the counts whose rounded
+// step moves the lap's last point past a quarter of the cut's `tolerance`
+// are refused (checkStepDrift, curve_lap_steps.h).
 struct StepReading {
   int digits = 0;
   double tolerance = 0;
@@ -169,8 +169,6 @@ struct CurveTableEntry {
   // operands of the lap (start, end, count after the lap's three);
   // stepsChosenByLegalisation where the legalisation measures them.
   std::vector<int> regionSteps = {};
-  // Steps: how the controller reads the steps, if its literals are rounded.
-  std::optional<StepReading> stepReading = std::nullopt;
   // Steps: the regions cut as arcs of a circle, in order of region.
   std::vector<ArcRegion> arcRegions = {};
   // Steps: the regions walked from their start by a step computed at each
