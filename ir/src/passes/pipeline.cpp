@@ -56,7 +56,8 @@ constexpr Pass passTable[] = {
      dropPassDepths, false},
     {"expand-whole-powers",
      "for the macro programs: a ^ n with a whole constant n (|n| <= 64) as multiplications, "
-     "defined for a negative a where EXP[LN[a]*n] is not",
+     "defined for a negative a where EXP[LN[a]*n] is not, and a ^ (n + 1/2) times sqrt(a), "
+     "defined at a = 0",
      expandWholePowers, false},
     {"fold-finite",
      "for a controller that alarms on a non-finite value: constant folding and x+0, x-0, x*1, "

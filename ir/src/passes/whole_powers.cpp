@@ -1,16 +1,19 @@
 // `expand-whole-powers`: a ^ n with a whole constant n as multiplications
-// (1 / the product for a negative n, 1 for n = 0), for the macro targets.
+// (1 / the product for a negative n, 1 for n = 0), and a ^ (n + 1/2) as
+// that product times sqrt(a), for the macro targets.
 //
 // Why: a controller without a power function computes a ^ b as
 // EXP[LN[a]*b] (Fanuc, Mitsubishi), which stops with an alarm for any a <= 0
 // (the parabola y = t^2 over t = -5 .. 5 halts at its first negative t),
 // and a power function or operator may refuse a negative base too. a ^ n
 // for a whole n is defined for every a (0 ^ n is 0 for n > 0), and its
-// multiplications are what every controller computes. The product differs
-// from the host's pow by rounding in the last bits, so this is a target's
-// pass (passes.h, Pass::exact), run with fold-finite before printing.
-// A power of a larger or fractional exponent, or one the program computes,
-// stays as it is.
+// multiplications are what every controller computes; a ^ 1.5 is defined
+// from a = 0 on, where the host's pow gives 0 and LN[0] would stop the
+// program (t ^ 1.5 from t = 0), and SQRT[a] is defined there too. The
+// product differs from the host's pow by rounding in the last bits, so this
+// is a target's pass (passes.h, Pass::exact), run with fold-finite before
+// printing. A power of a larger or other fractional exponent, or one the
+// program computes, stays as it is.
 #include "cncc/ir/passes.h"
 
 #include "rewriter.h"
@@ -32,14 +35,23 @@ private:
     std::optional<double> exponent = instruction.opcode == Opcode::Pow
                                          ? passes::constantValue(source_, instruction.operands[1])
                                          : std::nullopt;
-    if (!exponent || std::trunc(*exponent) != *exponent ||
+    // Whole or half: twice the exponent is whole.
+    if (!exponent || std::trunc(2 * *exponent) != 2 * *exponent ||
         !(std::abs(*exponent) <= largestExpandedExponent)) {
       copy(instruction);
       return;
     }
     ValueId base = mapped(instruction.operands[0]);
-    auto whole = static_cast<std::uint32_t>(std::abs(*exponent));
-    ValueId power = whole == 0 ? constant(1) : product(instruction, base, whole);
+    double magnitude = std::abs(*exponent);
+    auto whole = static_cast<std::uint32_t>(std::trunc(magnitude));
+    ValueId power = whole == 0 ? ValueId{} : product(instruction, base, whole);
+    if (magnitude != whole) {
+      ValueId root = emitAs(instruction, Opcode::Sqrt, {base});
+      power = power.valid() ? emitAs(instruction, Opcode::Mul, {power, root}) : root;
+    }
+    if (!power.valid()) {
+      power = constant(1);
+    }
     if (*exponent < 0) {
       ValueId one = constant(1);
       power = emitAs(instruction, Opcode::Div, {one, power});

@@ -1,6 +1,7 @@
 // expand-whole-powers: a ^ n with a whole constant n as multiplications,
-// the same value for a negative base (where EXP[LN[a]*n] alarms), and what
-// it leaves alone.
+// the same value for a negative base (where EXP[LN[a]*n] alarms); a half
+// power as the product times a square root, the same value from a = 0 on;
+// and what it leaves alone.
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/printer.h"
@@ -72,8 +73,30 @@ TEST(PassesWholePowersTest, ACubeTakesTwoMultiplications) {
   EXPECT_EQ(multiplications, 2u) << text;
 }
 
-TEST(PassesWholePowersTest, FractionalLargeAndComputedExponentsStay) {
-  for (std::string_view exponent : {"2.5", "0.5", "65", "-65"}) {
+// t ^ 1.5 from t = 0: pow gives 0 there, where a controller's
+// EXP[LN[0]*1.5] stops the program.
+TEST(PassesWholePowersTest, AHalfPowerIsAProductAndASquareRootFromZeroOn) {
+  for (std::string_view exponent : {"0.5", "1.5", "2.5", "-1.5", "63.5"}) {
+    Function function = powerOfX(exponent);
+    ASSERT_TRUE(expandWholePowers(function)) << exponent;
+    EXPECT_TRUE(verifyFunction(function).empty()) << exponent;
+    std::string text = printFunction(function);
+    EXPECT_THAT(text, Not(HasSubstr("pow"))) << exponent;
+    EXPECT_THAT(text, HasSubstr("sqrt")) << exponent;
+    double n = std::stod(std::string(exponent));
+    for (double x : {0.0, 0.25, 1.5, 2.0}) {
+      if (n < 0 && x == 0) {
+        continue;
+      }
+      double expected = std::pow(x, n);
+      EXPECT_NEAR(firstX(function, x), expected, 1e-12 * std::max(1.0, std::abs(expected)))
+          << "x = " << x << ", n = " << exponent;
+    }
+  }
+}
+
+TEST(PassesWholePowersTest, OtherFractionalLargeAndComputedExponentsStay) {
+  for (std::string_view exponent : {"2.25", "0.1", "65", "-65", "64.5"}) {
     Function function = powerOfX(exponent);
     EXPECT_FALSE(expandWholePowers(function)) << exponent;
     EXPECT_THAT(printFunction(function), HasSubstr("pow")) << exponent;

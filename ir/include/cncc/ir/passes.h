@@ -65,8 +65,9 @@ bool foldAssumingFinite(Function& function);
 
 // `expand-whole-powers`: a ^ n with a whole constant n, |n| <= 64, as
 // multiplications (1 / the product for n < 0, 1 for n = 0): defined for
-// every a, where a controller's EXP[LN[a]*n] alarms for a <= 0. For the
-// macro programs, before fold-finite (whole_powers.cpp); not exact (the
+// every a, where a controller's EXP[LN[a]*n] alarms for a <= 0; and
+// a ^ (n + 1/2) as the product times sqrt(a), defined from a = 0 on. For
+// the macro programs, before fold-finite (whole_powers.cpp); not exact (the
 // product rounds otherwise than pow).
 bool expandWholePowers(Function& function);
 // The largest |n| expand-whole-powers writes out (a ^ 64 takes six
