@@ -49,15 +49,28 @@ constexpr std::string_view countedCircleText = R"(func @ring(r = 5, h = 1) {
 }
 )";
 
-TEST(BoundControllerSteps, ACountPastTheLimitIsCutAtPointsChosenOnTheHost) {
-  Function function = parsed(countedCircleText);
-  ASSERT_TRUE(verifyFunction(function).empty());
-  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function), noCut));
-  ToolPath before = interpret(function); // as the pass will cut it
-  ASSERT_TRUE(boundControllerSteps(function));
+// The function of `text` through bound-controller-steps, which must change
+// its lap (of cut `cut`) to chords, and the path interpreted before it.
+struct Bounded {
+  Function function;
+  ToolPath before;
+};
+
+Bounded boundedByThePass(std::string_view text, std::uint32_t cut) {
+  Bounded bounded{parsed(text), {}};
+  Function& function = bounded.function;
   EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function), cut));
+  bounded.before = interpret(function); // as the pass will cut it
+  EXPECT_TRUE(boundControllerSteps(function));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(function.curves.back().sampling, CurveSampling::ChordTolerance);
+  return bounded;
+}
+
+TEST(BoundControllerSteps, ACountPastTheLimitIsCutAtPointsChosenOnTheHost) {
+  auto [function, before] = boundedByThePass(countedCircleText, noCut);
   const CurveTableEntry& entry = function.curves.back();
-  EXPECT_EQ(entry.sampling, CurveSampling::ChordTolerance);
   EXPECT_TRUE(entry.pointsAsNumbers);
   EXPECT_TRUE(entry.regionSteps.empty());
   EXPECT_TRUE(function.parameters[0].fixed);  // r: the circle's points read it
@@ -134,15 +147,9 @@ std::string circleInACut(std::string_view cutLine) {
 }
 
 TEST(BoundControllerSteps, StepsOfACutTheHostComputesAreItsChords) {
-  Function function = parsed(circleInACut("  cut @0 tolerance 0.01 increment 0.001\n"));
-  ASSERT_TRUE(verifyFunction(function).empty());
-  std::uint32_t cut = 0;
-  EXPECT_TRUE(boundedStepsEntry(function, onlyLap(function), cut));
-  ToolPath before = interpret(function); // as the pass will cut it
-  ASSERT_TRUE(boundControllerSteps(function));
-  EXPECT_TRUE(verifyFunction(function).empty());
+  auto [function, before] =
+      boundedByThePass(circleInACut("  cut @0 tolerance 0.01 increment 0.001\n"), 0);
   const CurveTableEntry& entry = function.curves.back();
-  EXPECT_EQ(entry.sampling, CurveSampling::ChordTolerance);
   // The chords the host's lowering chose: within the tolerance less the
   // rounding of three axes, over the curve as laid out, a table of the
   // region's parameters (no numbers: the host computes every one anyway).
