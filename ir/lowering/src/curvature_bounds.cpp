@@ -111,10 +111,10 @@ std::optional<Scalar> PartLowering::analyticCurvatureBound(const SymbolicPiece& 
   untransformed.transform = RuntimeTransform{};
   CurvePoint point = symbolicPointAt(untransformed, value, Scalar::of(probe, ValueType::F64));
   auto [low, high] = symbolicRange(piece);
-  // |t| over the range, at most |t0| + |t1|.
+  // |t| over the range: the larger of |t0| and |t1| (|t| is convex).
   Scalar reach = isZero(low)    ? magnitude(high)
                  : isZero(high) ? magnitude(low)
-                                : math.add(magnitude(low), magnitude(high));
+                                : math.larger(magnitude(low), magnitude(high));
 
   ValueDependence varies(builder_.function(), probe);
 
