@@ -22,6 +22,20 @@ CurveLapError degenerate(const CurveTableEntry& entry, const geom::GeometryError
                        fmt::format("cannot discretise this curve: {}", error.what()));
 }
 
+// A curve whose chords the estimate puts well past the bound of one cut
+// (a polar of 1e9 turns whose steps a legalisation turned into chords) is
+// refused at once, not after the chord walk's budget of seconds; the walk
+// decides nearer the bound.
+void checkChordEstimate(const CurveTableEntry& entry, const geom::Curve& curve) {
+  double chords = geom::estimateDiscretisation(curve, entry.amount).chords;
+  if (chords > 2.0 * static_cast<double>(maximumChordsPerCut)) {
+    throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, entry.cutSpan,
+                        fmt::format("this curve needs about {:.3g} chords within its tolerance "
+                                    "{:.3g}; the limit of one cut is {}",
+                                    chords, entry.amount, maximumChordsPerCut));
+  }
+}
+
 geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& curve) {
   switch (entry.sampling) {
   case CurveSampling::Samples:
@@ -29,6 +43,8 @@ geom::CurveSamples samplesOf(const CurveTableEntry& entry, const geom::Curve& cu
   case CurveSampling::Spacing:
     return geom::sampleEqualArcLength(curve, entry.amount);
   case CurveSampling::ChordTolerance:
+    checkChordEstimate(entry, curve);
+    break;
   case CurveSampling::Arcs:  // points within the arcs' tolerance, where points are asked
   case CurveSampling::Steps: // lapParameters gives the steps' own
     break;

@@ -157,7 +157,8 @@ CurveTableEntry chordEntry(const CurveTableEntry& stepped,
   return entry;
 }
 
-// The parameters the lap's regions read, inside the lap or before it.
+// The parameters the lap's regions and its computed ranges read, inside the lap
+// or before it.
 std::set<std::uint32_t> parametersRead(const Function& function, const Instruction& lap) {
   std::set<std::uint32_t> parameters;
   std::set<std::uint32_t> seen;
@@ -167,6 +168,12 @@ std::set<std::uint32_t> parametersRead(const Function& function, const Instructi
       const Instruction& instruction = function.instructions[id];
       work.insert(work.end(), instruction.operands.begin(), instruction.operands.end());
     }
+  }
+  // The ranges of the regions whose steps the program computes: the chords
+  // are chosen over their values too (not the counts, which they replace).
+  for (std::size_t first = 3; first + 1 < lap.operands.size(); first += 3) {
+    work.push_back(lap.operands[first]);
+    work.push_back(lap.operands[first + 1]);
   }
   while (!work.empty()) {
     ValueId value = work.back();

@@ -137,6 +137,23 @@ TEST(BoundControllerSteps, ACountThroughASelectIsReadOnTheBranchTaken) {
   EXPECT_EQ(function.curves.back().sampling, CurveSampling::ChordTolerance);
 }
 
+// The chords are chosen over the ranges at the compiled values: a parameter
+// only a computed range reads is fixed too (an edit would not move them).
+TEST(BoundControllerSteps, AParameterTheRangeReadsIsFixedToo) {
+  std::string text = replaced(countedCircleText, "(r = 5, h = 1)", "(r = 5, h = 1, turns = 1)");
+  text = replaced(text, "  %1 = param h\n", "  %1 = param h\n  %turns = param turns\n");
+  text = replaced(text, "  %7 = neg %1\n", "  %7 = neg %1\n  %range = mul %6, %turns\n");
+  text = replaced(text, "%3, %6, %5 {", "%3, %range, %5 {");
+  auto [function, before] = boundedByThePass(text, noCut);
+  EXPECT_TRUE(function.parameters[0].fixed);  // r: the circle's points
+  EXPECT_FALSE(function.parameters[1].fixed); // h: the lap's height
+  EXPECT_TRUE(function.parameters[2].fixed);  // turns: the range
+  ASSERT_EQ(function.warnings.size(), 2u);
+  EXPECT_NE(function.warnings[1].message.find("'turns' is fixed at its value 1"),
+            std::string::npos);
+  curve_lap_test::expectSamePath(before, interpret(function));
+}
+
 // countedCircleText's lap within the limit (r = 0.5: 50000 steps), in a
 // cut whose numbers the host computes (no controller digits) or a
 // controller does.
