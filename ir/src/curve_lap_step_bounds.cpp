@@ -137,7 +137,8 @@ CurveTableEntry chordEntry(const CurveTableEntry& stepped,
   entry.walkRegions.clear();
   entry.chosenParameters = nullptr;
   if (hostCut != nullptr) {
-    entry.amount = hostCut->budget().forPoints();
+    double points = hostCut->budget().forPoints();
+    entry.amount = points > 0 ? points : entry.amount; // else the lowering's error
     if (rangesAsLaidOut(stepped, ranges)) {
       return entry;
     }
