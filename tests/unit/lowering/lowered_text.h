@@ -22,15 +22,18 @@ struct LoweredText {
 };
 
 // `text` checked as `name` (the standard library on the import path; it
-// must check without errors) and its part lowered with `lowering`.
+// must check without errors) and its part (or the one named `partName`)
+// lowered with `lowering`.
 inline std::unique_ptr<LoweredText> lowerText(const std::string& text,
                                               const LoweringOptions& lowering,
-                                              const std::string& name = "test.cdl") {
+                                              const std::string& name = "test.cdl",
+                                              const std::string& partName = "") {
   auto result = std::make_unique<LoweredText>();
   frontend::FileId id = result->sources.addFile(name, text);
   frontend::CheckOptions options;
   options.importPaths = {CNCC_STDLIB_DIR};
   options.requirePart = true;
+  options.partName = partName;
   result->program = frontend::checkProgram(result->sources, id, options, result->diagnostics);
   EXPECT_FALSE(result->diagnostics.hasErrors());
   if (result->program && result->program->selectedPart != nullptr) {
