@@ -252,7 +252,7 @@ std::optional<std::vector<std::pair<double, double>>> boundedLapRanges(const Fun
 std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
                                                  std::uint32_t cut) {
   CompiledValues compiled(function);
-  const CutGeometry* hostCut = hostComputesCut(function, cut) ? &function.cuts[cut] : nullptr;
+  const CutGeometry* hostCut = hostComputedCut(function, cut);
   std::optional<std::vector<std::pair<double, double>>> ranges =
       boundedLapRanges(function, lap, compiled, hostCut);
   if (!ranges) {
@@ -270,8 +270,7 @@ bool boundControllerSteps(Function& function) {
   for (const auto& [index, laps] : lapsByEntry(function)) {
     for (const LapOfCut& ofCut : laps) {
       Instruction& lap = function.instructions[ofCut.lap];
-      const CutGeometry* hostCut =
-          hostComputesCut(function, ofCut.cut) ? &function.cuts[ofCut.cut] : nullptr;
+      const CutGeometry* hostCut = hostComputedCut(function, ofCut.cut);
       std::optional<std::vector<std::pair<double, double>>> ranges =
           boundedLapRanges(function, lap, compiled, hostCut);
       if (!ranges) {

@@ -31,8 +31,9 @@ std::map<std::uint32_t, std::vector<LapOfCut>> lapsByEntry(const Function& funct
   return laps;
 }
 
-bool hostComputesCut(const Function& function, std::uint32_t cut) {
-  return cut < function.cuts.size() && !function.cuts[cut].controllerDigits;
+const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut) {
+  bool host = cut < function.cuts.size() && !function.cuts[cut].controllerDigits;
+  return host ? &function.cuts[cut] : nullptr;
 }
 
 } // namespace cncc::ir

@@ -20,8 +20,9 @@ struct LapOfCut {
 // Every curve.lap, by the index of its entry in the curve table.
 std::map<std::uint32_t, std::vector<LapOfCut>> lapsByEntry(const Function& function);
 
-// Whether the host computes the cut's numbers: a cut of the function's
-// table without the controller's digits (CutGeometry::controllerDigits).
-bool hostComputesCut(const Function& function, std::uint32_t cut);
+// The function's cut `cut` where the host computes its numbers (no
+// controller digits, CutGeometry::controllerDigits); null where a
+// controller does, or for noCut.
+const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut);
 
 } // namespace cncc::ir
