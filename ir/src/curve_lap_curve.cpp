@@ -33,10 +33,12 @@ struct Step {
   std::vector<StepOperand> operands = {};
 };
 
-// One region as steps, and the curve.point's operands.
+// One region as steps, and the curve.point's operands (and a curve.arc's
+// offset to the centre).
 struct RegionProgram {
   std::vector<Step> steps;
   std::array<StepOperand, 3> point;
+  std::array<StepOperand, 2> toCentre;
   // The tables its table.loads read, at their indices (evaluate() reads them).
   std::shared_ptr<const Function> tables;
   frontend::SourceSpan curveSpan;
@@ -78,6 +80,9 @@ public:
       case Opcode::CurveWalk: // its point; the step is the walk's
         for (std::size_t k = 0; k < 3; ++k) {
           program->point[k] = operand(instruction.operands[k], known);
+        }
+        for (std::size_t k = 0; k < 2 && instruction.opcode == Opcode::CurveArc; ++k) {
+          program->toCentre[k] = operand(instruction.operands[3 + k], known);
         }
         pointRead = true;
         continue;
@@ -191,9 +196,9 @@ std::optional<double> plainArithmetic(const Step& step, const std::vector<double
   }
 }
 
-// The region's point at its parameter, computed as the interpreter does.
-Eigen::Vector3d evaluateRegion(const RegionProgram& program, double parameter) {
-  // Kept between calls: a search asks millions of points.
+// The region's steps at its parameter, computed as the interpreter does;
+// their results (kept between calls: a search asks millions of points).
+const std::vector<double>& runRegionSteps(const RegionProgram& program, double parameter) {
   thread_local std::vector<double> results;
   thread_local std::vector<double> operands;
   results.assign(program.steps.size(), 0.0);
@@ -216,6 +221,12 @@ Eigen::Vector3d evaluateRegion(const RegionProgram& program, double parameter) {
     }
     results[k] = result.value_or(NAN); // the interpreter's value for no fixed result
   }
+  return results;
+}
+
+// The region's point at its parameter.
+Eigen::Vector3d evaluateRegion(const RegionProgram& program, double parameter) {
+  const std::vector<double>& results = runRegionSteps(program, parameter);
   return {operandValue(program.point[0], results, parameter),
           operandValue(program.point[1], results, parameter),
           operandValue(program.point[2], results, parameter)};
@@ -326,6 +337,12 @@ LapRegionEvaluator::LapRegionEvaluator(const Function& function, const Instructi
 
 Eigen::Vector3d LapRegionEvaluator::operator()(double t) const {
   return evaluateRegion(*program_, t);
+}
+
+Eigen::Vector2d LapRegionEvaluator::toCentre(double t) const {
+  const std::vector<double>& results = runRegionSteps(*program_, t);
+  return {operandValue(program_->toCentre[0], results, t),
+          operandValue(program_->toCentre[1], results, t)};
 }
 
 std::shared_ptr<const geom::Curve> lapCurve(const Function& function, const Instruction& lap,

@@ -68,6 +68,37 @@ std::optional<std::vector<std::pair<double, double>>> chordRanges(const Instruct
   return hostChooses || pastTheLimit ? std::optional(std::move(ranges)) : std::nullopt;
 }
 
+} // namespace
+
+std::shared_ptr<const geom::Curve> linearlyMappedCurve(std::shared_ptr<const geom::Curve> drawn,
+                                                       std::pair<double, double> range,
+                                                       std::pair<double, double> whole) {
+  double from = range.first; // a lambda captures no structured binding (clang 14)
+  double wholeFrom = whole.first;
+  double scale = (whole.second - whole.first) / (range.second - range.first);
+  auto wholeAt = [=](double local) { return wholeFrom + (local - from) * scale; };
+  return std::make_shared<geom::FunctionCurve>(
+      geom::ParameterRange{range.first, range.second},
+      [drawn, wholeAt](double local) { return drawn->point(wholeAt(local)); },
+      [drawn, wholeAt, scale](double local) {
+        return Eigen::Vector3d(drawn->derivative(wholeAt(local)) * scale);
+      },
+      [drawn, wholeAt, scale](double local) {
+        return Eigen::Vector3d(drawn->secondDerivative(wholeAt(local)) * scale * scale);
+      });
+}
+
+std::shared_ptr<const geom::Curve> regionCurveOver(const CurveTableEntry& stepped,
+                                                   const CurveTableEntry::RegionPlace& place,
+                                                   std::pair<double, double> range) {
+  auto [ownFrom, ownTo] = stepped.regionRange(place);
+  return linearlyMappedCurve(
+      stepped.geometry, range,
+      {stepped.wholeParameter(place, ownFrom), stepped.wholeParameter(place, ownTo)});
+}
+
+namespace {
+
 // The stepped entry's curve in the chord entry's parameter: each region's
 // range at the compiled values mapped linearly onto the part of the curve
 // the region cut (a walked span's u, a counted span's 0 .. N, a piece's own
@@ -79,26 +110,10 @@ curveOverRanges(const CurveTableEntry& stepped,
   if (!stepped.geometry) {
     return nullptr;
   }
-  std::shared_ptr<const geom::Curve> drawn = stepped.geometry;
   std::vector<CurveTableEntry::RegionPlace> places = stepped.regionPlaces();
   std::vector<std::shared_ptr<const geom::Curve>> pieces;
   for (std::size_t region = 0; region < ranges.size(); ++region) {
-    auto [ownFrom, ownTo] = stepped.regionRange(places[region]);
-    double wholeFrom = stepped.wholeParameter(places[region], ownFrom);
-    double wholeTo = stepped.wholeParameter(places[region], ownTo);
-    double from = ranges[region].first; // a lambda captures no structured binding (clang 14)
-    double to = ranges[region].second;
-    double scale = (wholeTo - wholeFrom) / (to - from);
-    auto whole = [=](double local) { return wholeFrom + (local - from) * scale; };
-    pieces.push_back(std::make_shared<geom::FunctionCurve>(
-        geom::ParameterRange{from, to},
-        [drawn, whole](double local) { return drawn->point(whole(local)); },
-        [drawn, whole, scale](double local) {
-          return Eigen::Vector3d(drawn->derivative(whole(local)) * scale);
-        },
-        [drawn, whole, scale](double local) {
-          return Eigen::Vector3d(drawn->secondDerivative(whole(local)) * scale * scale);
-        }));
+    pieces.push_back(regionCurveOver(stepped, places[region], ranges[region]));
   }
   if (pieces.size() == 1) {
     return pieces.front();
@@ -158,8 +173,8 @@ CurveTableEntry chordEntry(const CurveTableEntry& stepped,
   return entry;
 }
 
-// The parameters the lap's regions and its computed ranges read, inside the lap
-// or before it.
+} // namespace
+
 std::set<std::uint32_t> parametersRead(const Function& function, const Instruction& lap) {
   std::set<std::uint32_t> parameters;
   std::set<std::uint32_t> seen;
@@ -191,6 +206,8 @@ std::set<std::uint32_t> parametersRead(const Function& function, const Instructi
   }
   return parameters;
 }
+
+namespace {
 
 void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry,
                        const CutGeometry* hostCut) {
@@ -248,6 +265,18 @@ std::optional<std::vector<std::pair<double, double>>> boundedLapRanges(const Fun
 }
 
 } // namespace
+
+std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
+                                              const CurveTableEntry& stepped,
+                                              CompiledValues& compiled,
+                                              const CutGeometry& hostCut) {
+  std::optional<std::vector<std::pair<double, double>>> ranges =
+      chordRanges(lap, stepped, compiled, stepped.amount > 0);
+  if (!ranges) {
+    return std::nullopt;
+  }
+  return chordEntry(stepped, *ranges, &hostCut);
+}
 
 std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
                                                  std::uint32_t cut) {

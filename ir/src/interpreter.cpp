@@ -221,10 +221,21 @@ private:
     std::vector<LapRegionShare> shares;     // a ramp lap cut in steps: each region's
   };
 
+  // The lap as its entry after the legalisations says (a lap split at its
+  // arcs: each part in turn).
+  void runCurveLap(const Instruction& lap) {
+    if (const LegalisedEntries::SplitLap* split = legalisedEntries_.splitOf(lap)) {
+      for (std::size_t part = 0; part < split->laps.size(); ++part) {
+        runCurveLap(split->laps[part], split->parts[part].entry);
+      }
+      return;
+    }
+    runCurveLap(lap, legalisedEntries_.of(lap));
+  }
+
   // A feed move to each point after the first, the region that holds it
   // run at its own parameter, raised by the lap's height there.
-  void runCurveLap(const Instruction& lap) {
-    const CurveTableEntry& entry = legalisedEntries_.of(lap);
+  void runCurveLap(const Instruction& lap, const CurveTableEntry& entry) {
     double zFrom = value(lap.operands[0]);
     double zTo = value(lap.operands[1]);
     double feed = value(lap.operands[2]);

@@ -6,8 +6,14 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/ir.h"
 
+#include "compiled_values.h"
+
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace cncc::ir {
@@ -24,5 +30,48 @@ std::map<std::uint32_t, std::vector<LapOfCut>> lapsByEntry(const Function& funct
 // controller digits, CutGeometry::controllerDigits); null where a
 // controller does, or for noCut.
 const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut);
+
+// What bound-controller-steps and split-arc-laps share (curve_lap_step_bounds.cpp).
+
+// The chord entry of a lap in steps of a cut the host computes: `stepped`
+// is the lap's entry, or a piece of it split from its arcs, whose computed
+// regions' ranges (and counts) are `lap`'s operands after its three; the
+// points chosen over each region's range at the compiled values. nullopt
+// where a range is not known there.
+std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
+                                              const CurveTableEntry& stepped,
+                                              CompiledValues& compiled, const CutGeometry& hostCut);
+// `drawn` from `whole.first` to `whole.second` in the parameter `range`,
+// mapped linearly onto it.
+std::shared_ptr<const geom::Curve> linearlyMappedCurve(std::shared_ptr<const geom::Curve> drawn,
+                                                       std::pair<double, double> range,
+                                                       std::pair<double, double> whole);
+// The part of `stepped`'s curve (its geometry, not null) that the region at
+// `place` cuts, over the parameter `range` mapped linearly onto it.
+std::shared_ptr<const geom::Curve> regionCurveOver(const CurveTableEntry& stepped,
+                                                   const CurveTableEntry::RegionPlace& place,
+                                                   std::pair<double, double> range);
+// The parameters the lap's regions and its computed ranges read, inside
+// the lap or before it.
+std::set<std::uint32_t> parametersRead(const Function& function, const Instruction& lap);
+
+// A piece of a lap split at its arcs (split-arc-laps): the lap's regions
+// [firstRegion, firstRegion + regionCount), cut as `entry` says.
+struct LapPart {
+  std::size_t firstRegion = 0;
+  std::size_t regionCount = 0;
+  CurveTableEntry entry;
+};
+
+// The pieces of a lap in steps with arc regions of the function's cut `cut`
+// where the host computes it (curve_lap_arc_split.cpp); nullopt for any other
+// lap, or where its ranges are not known at the compiled values. Throws
+// CurveLapError (an arc of more turns than maximumArcBlocks).
+std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
+                                                    const Instruction& lap, std::uint32_t cut);
+// A part's lap: the lap's regions of the part and its three operands (the
+// heights and the feed; a part's entry computes no range), its result and
+// span the lap's.
+Instruction partLap(const Instruction& lap, const LapPart& part);
 
 } // namespace cncc::ir

@@ -23,19 +23,48 @@ const CurveTableEntry& LegalisedEntries::of(const Instruction& lap) {
   if (own.sampling != CurveSampling::Steps) {
     return own;
   }
+  auto known = bounded_.find(&lap);
+  if (known == bounded_.end()) {
+    known = bounded_.emplace(&lap, boundedStepsEntry(function_, lap, cutOf(lap))).first;
+  }
+  return known->second ? *known->second : own;
+}
+
+const LegalisedEntries::SplitLap* LegalisedEntries::splitOf(const Instruction& lap) {
+  const CurveTableEntry& own = function_.curves[lap.index];
+  if (own.sampling != CurveSampling::Steps || own.arcRegions.empty()) {
+    return nullptr;
+  }
+  auto known = split_.find(&lap);
+  if (known == split_.end()) {
+    std::optional<std::vector<LapPart>> parts;
+    try {
+      parts = hostArcLapParts(function_, lap, cutOf(lap));
+    } catch (const CurveLapError& error) {
+      throw InterpreterError(error.what());
+    }
+    std::optional<SplitLap> split;
+    if (parts) {
+      split.emplace();
+      for (const LapPart& part : *parts) {
+        split->laps.push_back(partLap(lap, part));
+      }
+      split->parts = std::move(*parts);
+    }
+    known = split_.emplace(&lap, std::move(split)).first;
+  }
+  return known->second ? &*known->second : nullptr;
+}
+
+std::uint32_t LegalisedEntries::cutOf(const Instruction& lap) {
   if (!cuts_) {
     cuts_.emplace();
     for (const auto& [index, laps] : lapsByEntry(function_)) {
       (*cuts_)[index] = laps.front().cut;
     }
   }
-  auto known = bounded_.find(&lap);
-  if (known == bounded_.end()) {
-    auto cut = cuts_->find(lap.index);
-    std::uint32_t cutOfLap = cut != cuts_->end() ? cut->second : noCut;
-    known = bounded_.emplace(&lap, boundedStepsEntry(function_, lap, cutOfLap)).first;
-  }
-  return known->second ? *known->second : own;
+  auto cut = cuts_->find(lap.index);
+  return cut != cuts_->end() ? cut->second : noCut;
 }
 
 } // namespace cncc::ir

@@ -143,10 +143,10 @@ PartLowering::symbolicList(const Expr& expression, const Bindings& bindings,
 }
 
 bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve) {
-  // A curve that reads parameters is planned so on every target (the
-  // host's bound-controller-steps chooses chords at the compiled values);
-  // but for arcs, which the host prints as its whole turns (lowerHostArcCut).
-  bool hostPlans = !parametersOf(*cut.curve).empty() && !hasArcPiece(curve);
+  // A curve that reads parameters is planned so on every target: the
+  // host's split-arc-laps and bound-controller-steps cut it in whole turns
+  // of its arcs and chords of its other pieces at the compiled values.
+  bool hostPlans = !parametersOf(*cut.curve).empty();
   if ((!options_.controllerLoops && !hostPlans) || modifierValue(cut, "spacing") != nullptr) {
     return false;
   }
@@ -165,7 +165,11 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   bool planar = liesInThePlaneZero(*curve.geometry);
   double rounding = tolerances.pointRounding(planar ? 2 : 3);
   double budget = tolerances.forPoints(planar ? 2 : 3);
-  if (!uniformSteps && !(budget > 0)) {
+  // Arcs are exact: a curve of arcs alone spends no tolerance on its points.
+  bool arcsAlone =
+      std::all_of(curve.pieces.begin(), curve.pieces.end(),
+                  [](const CurvePiece& piece) { return piece.value->kind == CurveKind::Arc; });
+  if (!uniformSteps && !arcsAlone && !(budget > 0)) {
     fail(modifierValue(cut, "tolerance") ? modifierValue(cut, "tolerance")->span : cut.span,
          fmt::format("tolerance={:g} is not larger than the controller's rounding of the "
                      "coordinates ({:.6g}, half its increment {:g} on each axis)",

@@ -19,6 +19,7 @@
 #include "part_lowering.h"
 
 #include "cncc/geom/line_arc_curves.h"
+#include "cncc/ir/arc_blocks.h"
 
 #include <Eigen/LU>
 
@@ -33,11 +34,6 @@ using namespace frontend;
 
 namespace {
 
-constexpr double fullTurn = 2 * std::numbers::pi;
-// The most a block short of a full turn turns (radians).
-constexpr double largestPartialBlock = fullTurn - 0.01;
-// More blocks than this for one arc: the program would be absurd.
-constexpr double maximumArcBlocks = 100'000;
 // Blocks written out one after the other; more go in a loop.
 constexpr int largestUnrolledArc = 4;
 // ceil(x) as round(x + offset), a whole x staying itself (see controller_cuts.cpp).
@@ -209,17 +205,11 @@ void PartLowering::guardArc(const ArcPath& arc) {
 ArcBlocks PartLowering::arcBlocks(const ArcPath& arc, const CutStmt& cut) {
   if (arc.sweep.isConstant()) {
     double sweep = arc.sweep.constant;
-    double turns = std::abs(sweep) / fullTurn;
-    double whole = std::round(turns);
-    bool fullTurns = whole >= 1 && std::abs(turns - whole) <= 1e-9 * turns;
-    double blocks = fullTurns ? whole : std::ceil(std::abs(sweep) / largestPartialBlock);
-    if (!(blocks <= maximumArcBlocks)) {
-      fail(cut.curve->span,
-           fmt::format("this arc turns {:g} times; the limit is {:g} turns", turns,
-                       maximumArcBlocks),
-           DiagnosticKind::ProgramTooLarge);
+    ArcBlockCount count = arcBlockCount(sweep);
+    if (!(count.blocks <= maximumArcBlocks)) {
+      fail(cut.curve->span, arcTurnsPastTheLimit(count), DiagnosticKind::ProgramTooLarge);
     }
-    return {Scalar::of(blocks), sweep > 0, fullTurns};
+    return {Scalar::of(count.blocks), sweep > 0, count.wholeTurns};
   }
   // Half turns at most, as many as the turn the program runs with needs.
   Scalar count = arithmetic_.unary(

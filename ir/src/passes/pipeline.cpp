@@ -24,6 +24,10 @@ constexpr Pass passTable[] = {
      "legalisation: on a target whose controller computes, each curve.lap within a chord "
      "tolerance along a curve of constants cut in uniform steps the controller counts",
      chooseControllerSteps},
+    {"split-arc-laps",
+     "legalisation: on a target that computes on the host, each curve.lap cut in steps with arcs "
+     "as a lap per piece: the arcs' blocks at the compiled values, chords for the other pieces",
+     splitArcLaps},
     {"bound-controller-steps",
      "legalisation: each curve.lap cut in steps whose counts at the compiled values are past a "
      "region's limit cut at points chosen on the host, what its regions read fixed",
@@ -128,8 +132,8 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
   for (std::string_view name :
-       {"choose-controller-steps", "bound-controller-steps", "write-curve-blocks", "fit-arcs",
-        "expand-controller-loops", "expand-curve-laps"}) {
+       {"choose-controller-steps", "split-arc-laps", "bound-controller-steps", "write-curve-blocks",
+        "fit-arcs", "expand-controller-loops", "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

@@ -59,6 +59,8 @@ public:
   LapRegionEvaluator(const Function& function, const Instruction& lap, std::size_t region,
                      const OutsideValue& outside);
   Eigen::Vector3d operator()(double t) const;
+  // A region that ends in curve.arc: the offset from its point to the centre.
+  Eigen::Vector2d toCentre(double t) const;
 
 private:
   std::shared_ptr<const detail::RegionProgram> program_;
@@ -262,6 +264,12 @@ std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& 
 // parameters they read fixed (on a controller a parameter-fixed warning
 // each). The other laps stay (samples=, arc regions, an offset's growth).
 bool boundControllerSteps(Function& function);
+// `split-arc-laps`: on a cut the host computes, each curve.lap in steps with
+// arc regions written as a lap per piece: an arc in its blocks at the
+// compiled values (whole turns where it turns whole turns), each other
+// piece in chords within the cut's tolerance; what the lap reads fixed.
+// The other laps stay (a controller's, an offset's growth, a walk).
+bool splitArcLaps(Function& function);
 // The cut of a lap before any cut.begin.
 inline constexpr std::uint32_t noCut = ~std::uint32_t{0};
 // The chord entry bound-controller-steps gives the lap, of the function's
