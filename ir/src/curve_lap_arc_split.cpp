@@ -172,7 +172,7 @@ std::optional<CurveTableEntry> arcPartEntry(const Function& function, const Inst
 
 // Each region's share of a ramp lap's descent (none for a level lap).
 std::vector<LapRegionShare> rampShares(const Function& function, const Instruction& lap,
-                                       CompiledValues& compiled) {
+                                       const CurveTableEntry& stepped, CompiledValues& compiled) {
   ValueId from = lap.operands[0];
   ValueId to = lap.operands[1];
   std::optional<double> a = passes::constantValue(function, from);
@@ -181,21 +181,22 @@ std::vector<LapRegionShare> rampShares(const Function& function, const Instructi
     return {};
   }
   std::shared_ptr<const geom::Curve> curve =
-      lapCurve(function, lap, [&](ValueId value) { return compiled(value); });
-  return descentShares(function.curves[lap.index], *curve);
+      lapCurve(function, lap, stepped, [&](ValueId value) { return compiled(value); });
+  return descentShares(stepped, *curve);
 }
 
 } // namespace
 
 std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
                                                     const Instruction& lap, std::uint32_t cut) {
-  if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size()) {
+  const CutGeometry* hostCut = hostComputedCut(function, cut);
+  if (hostCut == nullptr || lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size() ||
+      readsALoopVariable(function, lap)) {
     return std::nullopt;
   }
   const CurveTableEntry& stepped = function.curves[lap.index];
-  const CutGeometry* hostCut = hostComputedCut(function, cut);
-  if (hostCut == nullptr || stepped.sampling != CurveSampling::Steps ||
-      stepped.arcRegions.empty() || !stepped.walkRegions.empty() || stepped.offsetGrowth ||
+  if (stepped.sampling != CurveSampling::Steps || stepped.arcRegions.empty() ||
+      !stepped.walkRegions.empty() || stepped.offsetGrowth ||
       lap.regions.size() != stepped.regionCount()) {
     return std::nullopt;
   }
@@ -204,7 +205,7 @@ std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
   if (!regions) {
     return std::nullopt;
   }
-  std::vector<LapRegionShare> shares = rampShares(function, lap, compiled);
+  std::vector<LapRegionShare> shares = rampShares(function, lap, stepped, compiled);
   std::vector<LapPart> parts;
   std::size_t first = 0;
   for (std::size_t piece = 0; piece < stepped.pieces.size(); ++piece) {
@@ -260,7 +261,7 @@ private:
       copy(lap);
       return;
     }
-    for (std::uint32_t parameter : parametersRead(source_, lap)) {
+    for (std::uint32_t parameter : lapInputs(source_, lap).parameters) {
       output_.parameters[parameter].fixed = true;
     }
     for (LapPart& part : *parts) {

@@ -175,43 +175,11 @@ CurveTableEntry chordEntry(const CurveTableEntry& stepped,
 
 } // namespace
 
-std::set<std::uint32_t> parametersRead(const Function& function, const Instruction& lap) {
-  std::set<std::uint32_t> parameters;
-  std::set<std::uint32_t> seen;
-  std::vector<ValueId> work;
-  for (const Region& region : lap.regions) {
-    for (InstructionId id : region.instructions) {
-      const Instruction& instruction = function.instructions[id];
-      work.insert(work.end(), instruction.operands.begin(), instruction.operands.end());
-    }
-  }
-  // The ranges of the regions whose steps the program computes: the chords
-  // are chosen over their values too (not the counts, which they replace).
-  for (std::size_t first = 3; first + 1 < lap.operands.size(); first += 3) {
-    work.push_back(lap.operands[first]);
-    work.push_back(lap.operands[first + 1]);
-  }
-  while (!work.empty()) {
-    ValueId value = work.back();
-    work.pop_back();
-    if (!value.valid() || !seen.insert(value.index).second) {
-      continue;
-    }
-    const Instruction& definition = function.definition(value);
-    if (definition.opcode == Opcode::Param) {
-      parameters.insert(definition.index);
-    } else if (definition.opcode != Opcode::CurveLap && definition.opcode != Opcode::Loop) {
-      work.insert(work.end(), definition.operands.begin(), definition.operands.end());
-    }
-  }
-  return parameters;
-}
-
 namespace {
 
 void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry,
                        const CutGeometry* hostCut) {
-  for (std::uint32_t index : parametersRead(function, lap)) {
+  for (std::uint32_t index : lapInputs(function, lap).parameters) {
     Parameter& parameter = function.parameters[index];
     if (parameter.fixed) {
       continue;
@@ -249,14 +217,9 @@ void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
 // The ranges of a lap cut in steps within a tolerance whose points the
 // host chooses, or whose computed counts are past the limit at the compiled
 // values; nullopt for any other lap (samples=, arcs, an offset's growth).
-std::optional<std::vector<std::pair<double, double>>> boundedLapRanges(const Function& function,
-                                                                       const Instruction& lap,
-                                                                       CompiledValues& compiled,
-                                                                       const CutGeometry* hostCut) {
-  if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size()) {
-    return std::nullopt; // the verifier's problem
-  }
-  const CurveTableEntry& stepped = function.curves[lap.index];
+std::optional<std::vector<std::pair<double, double>>>
+boundedLapRanges(const Instruction& lap, const CurveTableEntry& stepped, CompiledValues& compiled,
+                 const CutGeometry* hostCut) {
   if (stepped.sampling != CurveSampling::Steps || stepped.offsetGrowth ||
       !stepped.arcRegions.empty()) {
     return std::nullopt;
@@ -280,14 +243,19 @@ std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
 
 std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
                                                  std::uint32_t cut) {
+  if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size() ||
+      readsALoopVariable(function, lap)) {
+    return std::nullopt;
+  }
   CompiledValues compiled(function);
+  const CurveTableEntry& stepped = function.curves[lap.index];
   const CutGeometry* hostCut = hostComputedCut(function, cut);
   std::optional<std::vector<std::pair<double, double>>> ranges =
-      boundedLapRanges(function, lap, compiled, hostCut);
+      boundedLapRanges(lap, stepped, compiled, hostCut);
   if (!ranges) {
     return std::nullopt;
   }
-  return chordEntry(function.curves[lap.index], *ranges, hostCut);
+  return chordEntry(stepped, *ranges, hostCut);
 }
 
 bool boundControllerSteps(Function& function) {
@@ -300,8 +268,11 @@ bool boundControllerSteps(Function& function) {
     for (const LapOfCut& ofCut : laps) {
       Instruction& lap = function.instructions[ofCut.lap];
       const CutGeometry* hostCut = hostComputedCut(function, ofCut.cut);
+      if (readsALoopVariable(function, lap)) {
+        continue;
+      }
       std::optional<std::vector<std::pair<double, double>>> ranges =
-          boundedLapRanges(function, lap, compiled, hostCut);
+          boundedLapRanges(lap, function.curves[index], compiled, hostCut);
       if (!ranges) {
         continue;
       }

@@ -1,6 +1,8 @@
 #include "lap_cuts.h"
 
 #include <optional>
+#include <set>
+#include <vector>
 
 namespace cncc::ir {
 
@@ -34,6 +36,44 @@ std::map<std::uint32_t, std::vector<LapOfCut>> lapsByEntry(const Function& funct
 const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut) {
   bool host = cut < function.cuts.size() && !function.cuts[cut].controllerDigits;
   return host ? &function.cuts[cut] : nullptr;
+}
+
+LapInputs lapInputs(const Function& function, const Instruction& lap) {
+  LapInputs inputs;
+  std::set<std::uint32_t> seen;
+  std::vector<ValueId> work;
+  for (const Region& region : lap.regions) {
+    for (InstructionId id : region.instructions) {
+      const Instruction& instruction = function.instructions[id];
+      work.insert(work.end(), instruction.operands.begin(), instruction.operands.end());
+    }
+  }
+  // The ranges of the regions whose steps the program computes: the chords
+  // are chosen over their values too (not the counts, which they replace).
+  for (std::size_t first = 3; first + 1 < lap.operands.size(); first += 3) {
+    work.push_back(lap.operands[first]);
+    work.push_back(lap.operands[first + 1]);
+  }
+  while (!work.empty()) {
+    ValueId value = work.back();
+    work.pop_back();
+    if (!value.valid() || !seen.insert(value.index).second) {
+      continue;
+    }
+    const Instruction& definition = function.definition(value);
+    if (definition.opcode == Opcode::Param) {
+      inputs.parameters.insert(definition.index);
+    } else if (definition.opcode == Opcode::Loop) {
+      inputs.loopVariables.insert(value.index);
+    } else if (definition.opcode != Opcode::CurveLap) {
+      work.insert(work.end(), definition.operands.begin(), definition.operands.end());
+    }
+  }
+  return inputs;
+}
+
+bool readsALoopVariable(const Function& function, const Instruction& lap) {
+  return !lapInputs(function, lap).loopVariables.empty();
 }
 
 } // namespace cncc::ir

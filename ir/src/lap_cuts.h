@@ -51,9 +51,19 @@ std::shared_ptr<const geom::Curve> linearlyMappedCurve(std::shared_ptr<const geo
 std::shared_ptr<const geom::Curve> regionCurveOver(const CurveTableEntry& stepped,
                                                    const CurveTableEntry::RegionPlace& place,
                                                    std::pair<double, double> range);
-// The parameters the lap's regions and its computed ranges read, inside
-// the lap or before it.
-std::set<std::uint32_t> parametersRead(const Function& function, const Instruction& lap);
+// What the lap's regions and its computed ranges read from before the lap:
+// the parameters (by index) and the variables of the loops around it (by
+// value index).
+struct LapInputs {
+  std::set<std::uint32_t> parameters;
+  std::set<std::uint32_t> loopVariables;
+};
+LapInputs lapInputs(const Function& function, const Instruction& lap);
+// Whether the lap's curve reads the variable of a loop around it (a loop
+// the program runs): the variable has no one value at the compiled values,
+// and the entry's geometry is the curve at the loop's first trip, so a
+// legalisation at the compiled values leaves the lap.
+bool readsALoopVariable(const Function& function, const Instruction& lap);
 
 // A piece of a lap split at its arcs (split-arc-laps): the lap's regions
 // [firstRegion, firstRegion + regionCount), cut as `entry` says.

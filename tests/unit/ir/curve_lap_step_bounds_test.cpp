@@ -200,5 +200,48 @@ TEST(BoundControllerSteps, StepsOfACutTheControllerComputesStayItsCount) {
   EXPECT_FALSE(function.parameters[0].fixed);
 }
 
+// Three circles of radius r i, i = 1 .. 3, in 100 steps each, in a loop
+// the program runs, in a cut the host computes: the lap's range and count
+// are numbers, but its curve has no one value at the compiled values (and
+// a lowered entry's geometry is the loop's first trip), so the pass leaves
+// its steps, which the interpreter runs at each trip's radius.
+TEST(BoundControllerSteps, ALapThatReadsALoopsVariableStaysItsSteps) {
+  Function function = parsed(R"(func @rings(r = 0.5) {
+  curve @0 steps 0.01 over 0 .. 6.283185307179586 {
+    piece at 0 over 0 .. 6.283185307179586
+    counts 0
+  }
+  cut @0 tolerance 0.01 increment 0.001
+  %0 = param r
+  %1 = const 500
+  %2 = const 0
+  %3 = const 100
+  %4 = const 6.283185307179586
+  %5 = const 1
+  %6 = const 3
+  %7 = const -1
+  cut.begin 0
+  %8 = loop %5, %6 {
+    %9 = mul %0, %8
+    move.rapid %9, %2, %2
+    %10 = curve.lap @0, %7, %7, %1, %2, %4, %3 {
+      %11 = cos %10
+      %12 = mul %9, %11
+      %13 = sin %10
+      %14 = mul %9, %13
+      curve.point %12, %14, %2
+    }
+  }
+}
+)");
+  ASSERT_TRUE(verifyFunction(function).empty());
+  EXPECT_FALSE(boundedStepsEntry(function, onlyLap(function), 0));
+  EXPECT_FALSE(boundControllerSteps(function));
+  EXPECT_FALSE(function.parameters[0].fixed);
+  std::vector<MachineEvent> moves = feedMoves(interpret(function));
+  ASSERT_EQ(moves.size(), 300u); // 100 steps a circle
+  EXPECT_NEAR(std::hypot(moves.back().x, moves.back().y), 1.5, 1e-9);
+}
+
 } // namespace
 } // namespace cncc::ir

@@ -110,9 +110,8 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass =
                         int maximumRounds = 4);
 
 // The legalisation of curve.laps for a target: choose-controller-steps,
-// bound-controller-steps,
-// write-curve-blocks, fit-arcs, expand-controller-loops, then
-// expand-curve-laps (curve_lap.h). Throws
+// split-arc-laps, bound-controller-steps, write-curve-blocks, fit-arcs,
+// expand-controller-loops, then expand-curve-laps (curve_lap.h). Throws
 // CurveLapError.
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass = {});
 
