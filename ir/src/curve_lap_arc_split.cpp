@@ -22,42 +22,6 @@ namespace cncc::ir {
 
 namespace {
 
-struct RegionAtCompiled {
-  double from = 0;
-  double to = 0;
-  double count = 0;
-};
-
-// Each region's range and count at the compiled values: the entry's, or the
-// lap's operands; nullopt where one is not known there.
-std::optional<std::vector<RegionAtCompiled>> regionsAtCompiled(const Instruction& lap,
-                                                               const CurveTableEntry& stepped,
-                                                               CompiledValues& compiled) {
-  std::vector<RegionAtCompiled> regions;
-  std::vector<CurveTableEntry::RegionPlace> places = stepped.regionPlaces();
-  std::size_t computed = 0;
-  for (std::size_t region = 0; region < places.size(); ++region) {
-    int count = region < stepped.regionSteps.size() ? stepped.regionSteps[region] : 0;
-    if (count != 0) {
-      auto [from, to] = stepped.regionRange(places[region]);
-      regions.push_back({from, to, static_cast<double>(count)});
-      continue;
-    }
-    std::size_t first = 3 + 3 * computed++;
-    if (first + 2 >= lap.operands.size()) {
-      return std::nullopt; // the verifier's problem
-    }
-    std::optional<double> from = compiled(lap.operands[first]);
-    std::optional<double> to = compiled(lap.operands[first + 1]);
-    std::optional<double> steps = compiled(lap.operands[first + 2]);
-    if (!from || !to || !steps) {
-      return std::nullopt;
-    }
-    regions.push_back({*from, *to, *steps});
-  }
-  return regions;
-}
-
 // The lap of regions [first, first + count): their regions, the lap's three
 // operands and the ranges and counts of the computed ones among them.
 Instruction regionsLap(const Instruction& lap, const CurveTableEntry& stepped, std::size_t first,
@@ -142,6 +106,9 @@ std::optional<CurveTableEntry> arcPartEntry(const Function& function, const Inst
   ArcRegion own{0, arc.counterClockwise, arc.wholeTurns};
   double blocks = at.count;
   if (stepped.regionSteps[region] == 0) { // half turns the program counts
+    if (std::isnan(at.count)) {
+      return std::nullopt; // the program's alarm (a radius of none)
+    }
     if (!(at.count <= 2 * maximumArcBlocks + 2)) {
       throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, stepped.curveSpan,
                           arcTurnsPastTheLimit({at.count, false, at.count / 2}));

@@ -29,6 +29,34 @@
 
 namespace cncc::ir {
 
+std::optional<std::vector<RegionAtCompiled>> regionsAtCompiled(const Instruction& lap,
+                                                               const CurveTableEntry& stepped,
+                                                               CompiledValues& compiled) {
+  std::vector<RegionAtCompiled> regions;
+  std::vector<CurveTableEntry::RegionPlace> places = stepped.regionPlaces();
+  std::size_t computed = 0;
+  for (std::size_t region = 0; region < places.size(); ++region) {
+    int count = region < stepped.regionSteps.size() ? stepped.regionSteps[region] : 0;
+    if (count != 0) {
+      auto [from, to] = stepped.regionRange(places[region]);
+      regions.push_back({from, to, static_cast<double>(count)});
+      continue;
+    }
+    std::size_t first = 3 + 3 * computed++;
+    if (first + 2 >= lap.operands.size()) {
+      return std::nullopt; // the verifier's problem
+    }
+    std::optional<double> from = compiled(lap.operands[first]);
+    std::optional<double> to = compiled(lap.operands[first + 1]);
+    std::optional<double> steps = compiled(lap.operands[first + 2]);
+    if (!from || !to || !steps) {
+      return std::nullopt;
+    }
+    regions.push_back({*from, *to, *steps});
+  }
+  return regions;
+}
+
 namespace {
 
 // Each region's parameter range at the compiled values when the host
@@ -39,31 +67,18 @@ std::optional<std::vector<std::pair<double, double>>> chordRanges(const Instruct
                                                                   const CurveTableEntry& entry,
                                                                   CompiledValues& compiled,
                                                                   bool hostChooses) {
+  std::optional<std::vector<RegionAtCompiled>> regions = regionsAtCompiled(lap, entry, compiled);
+  if (!regions) {
+    return std::nullopt;
+  }
   std::vector<std::pair<double, double>> ranges;
-  std::vector<CurveTableEntry::RegionPlace> places = entry.regionPlaces();
   bool pastTheLimit = false;
-  std::size_t computed = 0;
-  for (std::size_t region = 0; region < places.size(); ++region) {
-    int count = region < entry.regionSteps.size() ? entry.regionSteps[region] : 0;
-    if (count != 0) {
-      ranges.push_back(entry.regionRange(places[region]));
-      if (!(ranges.back().second > ranges.back().first)) {
-        return std::nullopt; // no piece of its own to lay out
-      }
-      continue;
+  for (const RegionAtCompiled& region : *regions) {
+    if (!(region.to > region.from)) {
+      return std::nullopt; // no piece of its own to lay out
     }
-    std::size_t first = 3 + 3 * computed++;
-    if (first + 2 >= lap.operands.size()) {
-      return std::nullopt; // the verifier's problem
-    }
-    std::optional<double> from = compiled(lap.operands[first]);
-    std::optional<double> to = compiled(lap.operands[first + 1]);
-    std::optional<double> steps = compiled(lap.operands[first + 2]);
-    if (!from || !to || !steps || !(*to > *from)) {
-      return std::nullopt;
-    }
-    pastTheLimit = pastTheLimit || !(*steps <= maximumStepsPerRegion);
-    ranges.emplace_back(*from, *to);
+    pastTheLimit = pastTheLimit || !(region.count <= maximumStepsPerRegion);
+    ranges.emplace_back(region.from, region.to);
   }
   return hostChooses || pastTheLimit ? std::optional(std::move(ranges)) : std::nullopt;
 }

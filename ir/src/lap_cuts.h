@@ -33,6 +33,16 @@ const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut);
 
 // What bound-controller-steps and split-arc-laps share (curve_lap_step_bounds.cpp).
 
+// A region of a lap in steps at the compiled values: its range and count.
+struct RegionAtCompiled {
+  double from = 0;
+  double to = 0;
+  double count = 0;
+};
+// Each region's range and count at the compiled values: the entry's, or the
+// lap's operands; nullopt where one is not known there.
+std::optional<std::vector<RegionAtCompiled>>
+regionsAtCompiled(const Instruction& lap, const CurveTableEntry& stepped, CompiledValues& compiled);
 // The chord entry of a lap in steps of a cut the host computes: `stepped`
 // is the lap's entry, or a piece of it split from its arcs, whose computed
 // regions' ranges (and counts) are `lap`'s operands after its three; the
