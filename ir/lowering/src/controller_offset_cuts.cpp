@@ -137,6 +137,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     }
   }
   CutCurve curve = cutCurve(cut);
+  checkCutBounds(cut, *curve.geometry, std::fabs(compiledDistance));
   if (!runtime && !offsetOnControllerWanted(cut, curve)) {
     return false;
   }

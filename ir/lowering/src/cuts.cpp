@@ -210,7 +210,7 @@ double PartLowering::largestCoordinateInUnits() const {
   return std::min(largestNumberInUnits(), options_.largestCoordinate);
 }
 
-void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) {
+void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve, double margin) {
   std::string_view unit = partUnits(part_) == PartUnits::Inches ? "inch" : "mm";
   double largest = largestCoordinateInUnits();
   if (const Expr* depth = modifierValue(cut, "depth")) {
@@ -233,7 +233,7 @@ void PartLowering::checkCutBounds(const CutStmt& cut, const geom::Curve& curve) 
     fail(cut.curve->span, "this curve has a point that is not a finite number",
          DiagnosticKind::NonFiniteValue);
   }
-  if (estimate.largestCoordinate > largest) {
+  if (estimate.largestCoordinate - margin > largest) {
     fail(cut.curve->span,
          fmt::format("this curve reaches a coordinate of {:g} {} at the values compiled with; "
                      "this target's number range is +-{} {}",

@@ -326,6 +326,7 @@ void PartLowering::checkOffsetChordCount(
 
 geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve,
                                                double distance, const DrawnClearance* drawn) {
+  checkCutBounds(cut, *curve.geometry, std::fabs(distance));
   std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
   std::optional<DrawnClearance> own;
   if (drawn == nullptr) {

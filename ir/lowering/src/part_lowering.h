@@ -307,8 +307,10 @@ private:
   // The same, every point finite and at least two of them (else an error).
   geom::CurveSamples checkedSamplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // Before any point is computed: the curve and the depth within the
-  // target's number range.
-  void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve);
+  // target's number range. With a `margin` (a cut beside the curve at that
+  // distance), only a curve past the range by more than it: the offset
+  // then is too, and is refused before its clearance is checked.
+  void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve, double margin = 0);
   // Before the chords are chosen: no more than a cut may have.
   void checkChordCount(const frontend::CutStmt& cut, const geom::Curve& curve, double tolerance);
   [[noreturn]] void tooManyChords(const frontend::CutStmt& cut, std::string_view path,
