@@ -137,13 +137,12 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     }
   }
   CutCurve curve = cutCurve(cut);
-  checkCutBounds(cut, *curve.geometry, std::fabs(compiledDistance));
   if (!runtime && !offsetOnControllerWanted(cut, curve)) {
     return false;
   }
   RuntimeOffset offset;
   offset.compiledDistance = compiledDistance;
-  DrawnClearance drawn = drawnClearance(cut, movedPieces(curve), compiledDistance);
+  DrawnClearance drawn = drawnClearance(cut, curve, movedPieces(curve), compiledDistance);
   geom::PiecesOffset compiled = checkedOffset(cut, curve, compiledDistance, &drawn);
   offset.compiled = compiled.curve;
   checkCutBounds(cut, *offset.compiled);

@@ -326,11 +326,10 @@ void PartLowering::checkOffsetChordCount(
 
 geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurve& curve,
                                                double distance, const DrawnClearance* drawn) {
-  checkCutBounds(cut, *curve.geometry, std::fabs(distance));
   std::vector<std::shared_ptr<const geom::Curve>> pieces = movedPieces(curve);
   std::optional<DrawnClearance> own;
   if (drawn == nullptr) {
-    own.emplace(drawnClearance(cut, pieces, distance));
+    own.emplace(drawnClearance(cut, curve, pieces, distance));
     drawn = &*own;
   }
   auto result = offsetOrTrouble(pieces, distance, drawn);
@@ -386,9 +385,12 @@ geom::PiecesOffset PartLowering::checkedOffset(const CutStmt& cut, const CutCurv
 }
 
 DrawnClearance
-PartLowering::drawnClearance(const CutStmt& cut,
+PartLowering::drawnClearance(const CutStmt& cut, const CutCurve& curve,
                              const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                              double distance) {
+  // A curve past the number range by more than the distance: its offset is
+  // too, refused before the work below (which its size would run to the bound).
+  checkCutBounds(cut, *curve.geometry, std::fabs(distance));
   // The cut may leave its tolerance unreported past the curve (as verify
   // does); a cut without one (samples=) the default.
   double slack = chordTolerance(cut).value_or(defaultTolerance);

@@ -309,7 +309,7 @@ private:
   // Before any point is computed: the curve and the depth within the
   // target's number range. With a `margin` (a cut beside the curve at that
   // distance), only a curve past the range by more than it: the offset
-  // then is too, and is refused before its clearance is checked.
+  // then is too (drawnClearance, before its clearance is checked).
   void checkCutBounds(const frontend::CutStmt& cut, const geom::Curve& curve, double margin = 0);
   // Before the chords are chosen: no more than a cut may have.
   void checkChordCount(const frontend::CutStmt& cut, const geom::Curve& curve, double tolerance);
@@ -393,10 +393,12 @@ private:
   // sampled here).
   geom::PiecesOffset checkedOffset(const frontend::CutStmt& cut, const CutCurve& curve,
                                    double distance, const DrawnClearance* drawn = nullptr);
-  // The cut's drawn pieces sampled for clearance checks within its
-  // tolerance, once the chords of their offset by `distance` are estimated
-  // within the limit; program-too-large at the cut past either.
-  DrawnClearance drawnClearance(const frontend::CutStmt& cut,
+  // The cut's drawn pieces (of `curve`) sampled for clearance checks within
+  // its tolerance, once the curve is within the number range (less
+  // `distance`) and the chords of their offset by `distance` are estimated
+  // within the limit; coordinate-range or program-too-large at the cut past
+  // either.
+  DrawnClearance drawnClearance(const frontend::CutStmt& cut, const CutCurve& curve,
                                 const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                                 double distance);
   void checkOffsetChordCount(const frontend::CutStmt& cut,
