@@ -164,6 +164,10 @@ void FunctionBuilder::rapid(ValueId x, ValueId y, ValueId z) {
   operation(Opcode::Rapid, {x, y, z});
 }
 
+void FunctionBuilder::climb(ValueId z) {
+  operation(Opcode::Climb, {z});
+}
+
 void FunctionBuilder::feed(ValueId x, ValueId y, ValueId z, ValueId feedRate) {
   operation(Opcode::Feed, {x, y, z, feedRate});
 }

@@ -126,6 +126,7 @@ private:
     case Opcode::Alarm:
       throw InterpreterError("alarm: " + instruction.text);
     case Opcode::Rapid:
+    case Opcode::Climb:
     case Opcode::Feed:
     case Opcode::Spindle:
     case Opcode::Tool:
@@ -559,8 +560,9 @@ private:
     for (std::size_t k = 0; k < operands.size() && k < instruction.operands.size(); ++k) {
       operands[k] = value(instruction.operands[k]);
     }
-    MachineEvent event = effectEvent(instruction, operands);
-    if (instruction.opcode == Opcode::Rapid || instruction.opcode == Opcode::Feed) {
+    MachineEvent event = instruction.opcode == Opcode::Climb ? climbEvent(position_, operands[0])
+                                                             : effectEvent(instruction, operands);
+    if (isMove(event)) {
       position_ = {event.x, event.y, event.z};
     }
     recordAt(instruction, std::move(event));

@@ -39,6 +39,16 @@ MachineEvent arcMove(const std::array<double, 3>& start, ArcTurn turn, double x,
   return event;
 }
 
+MachineEvent climbEvent(const std::array<double, 3>& from, double z) {
+  MachineEvent event;
+  event.kind = MachineEvent::Kind::Rapid;
+  event.x = from[0];
+  event.y = from[1];
+  event.z = z;
+  event.alongZ = true;
+  return event;
+}
+
 MachineEvent effectEvent(const Instruction& instruction, const std::array<double, 4>& operands) {
   MachineEvent event;
   switch (instruction.opcode) {

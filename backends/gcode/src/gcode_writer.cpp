@@ -94,6 +94,9 @@ public:
     block(false, x, y, z, feed);
   }
 
+  // A rapid along Z alone (move.climb): X and Y stay, printed or not.
+  void climb(double z) { block(true, std::nullopt, std::nullopt, z, 0); }
+
   // An arc (move.arc, native or fitted): X and Y always (a full turn ends
   // where it starts), Z when it climbs or descends (a helix), I J from the
   // start as printed.
@@ -210,6 +213,10 @@ GcodeProgram writeGcodeProgram(const ir::ToolPath& path, const GcodeOptions& opt
     switch (event.kind) {
     case ir::MachineEvent::Kind::Rapid:
     case ir::MachineEvent::Kind::Feed:
+      if (event.alongZ) {
+        writer.climb(event.z);
+        break;
+      }
       writer.move(event.kind == ir::MachineEvent::Kind::Rapid, event.x, event.y, event.z,
                   event.feed);
       break;

@@ -234,6 +234,14 @@ void TncBlockWriter::rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z) {
   feed_.clear(); // FMAX is not modal, but the F before it is: written again to be plain
 }
 
+void TncBlockWriter::climb(ir::ValueId z) {
+  std::string words = word('Z', z);
+  if (!words.empty()) {
+    motion("L" + words + " R0 FMAX", z);
+  }
+  feed_.clear();
+}
+
 void TncBlockWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate) {
   // Z, Y, X: the order their scratch parameters have always been assigned in.
   std::string zWord = word('Z', z);

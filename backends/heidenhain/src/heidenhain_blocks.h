@@ -55,6 +55,8 @@ public:
   // Up first and down last: a rapid never moves sideways below where it
   // starts or ends; where the heights are not literals, Z goes first.
   void rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z);
+  // move.climb: `L Z.. R0 FMAX`, X and Y where they are.
+  void climb(ir::ValueId z);
   void feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate);
   // move.arc: `CC IX.. IY..` (the centre from the start), then `C X.. Y..
   // DR-|DR+`, a helix with `IZ` the rise from the Z before it.

@@ -170,6 +170,10 @@ private:
       flushTool();
       blocks_.rapid(operands[0], operands[1], operands[2]);
       return;
+    case Opcode::Climb:
+      flushTool();
+      blocks_.climb(operands[0]);
+      return;
     case Opcode::Feed:
       flushTool();
       blocks_.feed(operands[0], operands[1], operands[2], operands[3]);

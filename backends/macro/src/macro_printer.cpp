@@ -178,6 +178,9 @@ void MacroProgramPrinter::printInstruction(const ir::Instruction& instruction) {
   case Opcode::Rapid:
     moves_.rapid(instruction.operands[0], instruction.operands[1], instruction.operands[2]);
     return;
+  case Opcode::Climb:
+    moves_.climb(instruction.operands[0]);
+    return;
   case Opcode::Feed:
     moves_.feed(instruction.operands[0], instruction.operands[1], instruction.operands[2],
                 instruction.operands[3]);

@@ -62,6 +62,11 @@ void ModalMoveWriter::rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z) {
   modal_.z = target;
 }
 
+void ModalMoveWriter::climb(ir::ValueId z) {
+  block("G0", zWord(z));
+  modal_.z = expressions_.constantOf(z);
+}
+
 void ModalMoveWriter::feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate) {
   std::string plane = word('X', x) + word('Y', y);
   std::string words = plane + zWord(z);

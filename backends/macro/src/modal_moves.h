@@ -44,6 +44,8 @@ public:
   // starts or ends; where the heights are not literals, Z goes first (the
   // lowering's rapids climb to the safe height).
   void rapid(ir::ValueId x, ir::ValueId y, ir::ValueId z);
+  // move.climb: `G0 Z..`, X and Y where they are.
+  void climb(ir::ValueId z);
   void feed(ir::ValueId x, ir::ValueId y, ir::ValueId z, ir::ValueId feedRate);
   // move.arc: G2/G3 with X and Y always (a full turn ends where it starts),
   // Z when it changes (a helix), the centre's I J from the start always.

@@ -261,6 +261,11 @@ private:
     }
     feedsInPass_ = 0;
     Eigen::Vector3d target = roundPoint({e.x, e.y, e.z});
+    if (e.alongZ) { // X and Y stay, printed or not
+      move("G0", std::nullopt, std::nullopt, target.z(), std::nullopt);
+      position_ = target;
+      return;
+    }
     bool rising = !position_ || target.z() > position_->z() + 1e-12;
     if (rising) {
       move("G0", std::nullopt, std::nullopt, target.z(), std::nullopt);

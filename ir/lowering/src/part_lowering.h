@@ -41,8 +41,9 @@ namespace cncc::ir::lowering {
 struct LoweringState;
 
 // The modal machine settings the lowering has emitted so far, as far as it
-// knows: after a controller loop or branch they are unknown (nullopt), and
-// the next cut or the part's end sets them again.
+// knows: where a controller loop or branch may leave a mode one way or
+// another, it is unknown (nullopt), and the next cut or the part's end sets
+// it again.
 struct MachineSettings {
   bool originChosen = false;
   // A tool change whose length offset no Z move has activated yet: the next
@@ -51,10 +52,24 @@ struct MachineSettings {
   std::optional<double> contouring = 0.0; // its tolerance; 0: off
   std::optional<CoolantMode> coolant = CoolantMode::Off;
 
-  void forgetModes() {
-    contouring.reset();
-    coolant.reset();
+  // The modes known both here and in `other` (where control flow joins).
+  void keepModesAgreedWith(const MachineSettings& other) {
+    if (contouring != other.contouring) {
+      contouring.reset();
+    }
+    if (coolant != other.coolant) {
+      coolant.reset();
+    }
   }
+  bool sameModes(const MachineSettings& other) const {
+    return contouring == other.contouring && coolant == other.coolant;
+  }
+};
+
+// Thrown by a controller loop's first lowering whose trip leaves a mode
+// other than it found it: the modes to lower the body for again.
+struct TripChangesModes {
+  MachineSettings atHead;
 };
 
 // What of a cut depends on a part parameter (cuts.cpp, parameterUse).
@@ -638,6 +653,8 @@ private:
   // The current tool's radius offset register (radius=, default its number).
   std::uint32_t radiusRegister_ = 0;
   MachineSettings machine_;
+  // Set by an attempt that a loop's trip changing modes ended (attempt()).
+  std::optional<MachineSettings> modesAtLoopHead_;
   std::vector<CutGeometry> cuts_;
   std::size_t unrolledIterations_ = 0;
   // The parameters each parameter or let declaration reads, and each let's

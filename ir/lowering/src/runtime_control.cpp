@@ -136,6 +136,10 @@ bool PartLowering::attempt(const std::function<void(LoweringState&)>& lowering) 
   } catch (const LoweringFailed&) {
     restoreState(state);
     return false;
+  } catch (const TripChangesModes& changed) {
+    restoreState(state);
+    modesAtLoopHead_ = changed.atHead;
+    return false;
   }
   diagnostics_ = state.diagnostics;
   replay(state.held, *diagnostics_);
@@ -155,26 +159,42 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
   }
   ensureOrigin(); // before the loop, which may run no times
   activateLengthOffset();
-  bool lowered = attempt([&](LoweringState&) {
-    Scalar low = number(*range.low);
-    Scalar high = number(*range.high);
-    ValueId variable = builder_.beginLoop(arithmetic_.value(low), arithmetic_.value(high));
-    bindings_[loop.declaration] = {TypeKind::Num, {Scalar::of(variable, ValueType::F64)}};
-    environment_[loop.declaration] = Value::ofNumber(defaults.low);
-    parameterNames_[loop.declaration] = {loopVariableMarker(loop.declaration)};
-    lowerBlock(loop.body);
-    builder_.endLoop();
-    machine_.forgetModes();
-    if (options_.maximumLoopNesting > 0 &&
-        loopNesting(builder_.function(), builder_.function().body, singleStepCurves_) >
-            options_.maximumLoopNesting) {
-      throw NeedsUnrolling{};
+  // The body is lowered for the modes in force when each trip starts: those
+  // before the loop that a trip leaves as it found them. A mode a trip
+  // changes is unknown there (a second trip starts with the first's), and
+  // the body is lowered again: a cut then sets its contouring every trip.
+  for (int round = 0;; ++round) {
+    MachineSettings atHead = machine_;
+    bool lowered = attempt([&](LoweringState&) {
+      Scalar low = number(*range.low);
+      Scalar high = number(*range.high);
+      ValueId variable = builder_.beginLoop(arithmetic_.value(low), arithmetic_.value(high));
+      bindings_[loop.declaration] = {TypeKind::Num, {Scalar::of(variable, ValueType::F64)}};
+      environment_[loop.declaration] = Value::ofNumber(defaults.low);
+      parameterNames_[loop.declaration] = {loopVariableMarker(loop.declaration)};
+      lowerBlock(loop.body);
+      builder_.endLoop();
+      if (!machine_.sameModes(atHead) && round == 0) {
+        atHead.keepModesAgreedWith(machine_);
+        throw TripChangesModes{atHead};
+      }
+      machine_.keepModesAgreedWith(atHead); // after no trip, or after some
+      if (options_.maximumLoopNesting > 0 &&
+          loopNesting(builder_.function(), builder_.function().body, singleStepCurves_) >
+              options_.maximumLoopNesting) {
+        throw NeedsUnrolling{};
+      }
+    });
+    if (lowered) {
+      bindings_.erase(loop.declaration);
+      return true;
     }
-  });
-  if (lowered) {
-    bindings_.erase(loop.declaration);
+    if (!modesAtLoopHead_) {
+      return false;
+    }
+    machine_ = *modesAtLoopHead_;
+    modesAtLoopHead_.reset();
   }
-  return lowered;
 }
 
 bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
@@ -191,14 +211,19 @@ bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
   return attempt([&](LoweringState& before) {
     Scalar test = condition->values.front();
     builder_.beginIf(arithmetic_.value(test));
+    MachineSettings atEntry = machine_;
     lowerBlock(conditional.thenBlock);
     std::optional<Scalar> thenFeed = feed_, thenSafe = safe_;
+    MachineSettings afterThen = machine_;
     feed_ = before.feed;
     safe_ = before.safe;
+    machine_ = atEntry; // the else branch starts where the then branch did
     builder_.beginElse();
     lowerBlock(conditional.elseBlock);
     builder_.endIf();
-    machine_.forgetModes();
+    machine_.keepModesAgreedWith(afterThen);
+    // A length offset one branch activated may be pending after the other.
+    machine_.lengthOffsetPending = machine_.lengthOffsetPending || afterThen.lengthOffsetPending;
     // A feed or safe height set in a branch holds after the if: chosen by
     // the condition when both are numbers, else the branch is decided here.
     auto merged = [&](const std::optional<Scalar>& fromThen,

@@ -193,7 +193,8 @@ void PartLowering::lowerCoolant(const CoolantStmt& coolant) {
 
 void PartLowering::activateLengthOffset() {
   if (machine_.lengthOffsetPending && safe_) {
-    builder_.rapid(builder_.constant(0), builder_.constant(0), arithmetic_.value(*safe_));
+    // Z alone: X and Y are where the tool change left them.
+    builder_.climb(arithmetic_.value(*safe_));
     machine_.lengthOffsetPending = false;
   }
 }

@@ -128,6 +128,7 @@ OpcodeCase effectsCase() {
   builder.comment("always");
   builder.rapid(pick, builder.constant(-2), builder.constant(5));
   builder.endIf();
+  builder.climb(builder.parameter(diameter)); // Z alone, from (1, -2)
   ValueId pass = builder.beginLoop(builder.constant(1), builder.constant(3), ir::LoopRole::Passes);
   builder.passBegin(builder.binary(Opcode::Mul, pass, builder.constant(-0.1)));
   builder.endLoop();

@@ -42,7 +42,7 @@ inline ::testing::AssertionResult samePaths(const ir::ToolPath& expected,
                 sameNumber(a.z, b.z) && sameNumber(a.feed, b.feed) &&
                 sameNumber(a.number, b.number) && sameNumber(a.diameter, b.diameter) &&
                 sameNumber(a.centreX, b.centreX) && sameNumber(a.centreY, b.centreY) &&
-                a.clockwise == b.clockwise && a.text == b.text &&
+                a.clockwise == b.clockwise && a.alongZ == b.alongZ && a.text == b.text &&
                 a.offsetRegister == b.offsetRegister;
     if (!same) {
       return ::testing::AssertionFailure()

@@ -152,6 +152,10 @@ static std::int32_t cncc_jit_rapid(RunContext* context, double x, double y, doub
   });
 }
 
+static std::int32_t cncc_jit_climb(RunContext* context, double z) {
+  return record(context, [&] { return ir::climbEvent(context->position, z); });
+}
+
 static std::int32_t cncc_jit_feed(RunContext* context, double x, double y, double z, double feed) {
   if (context->events == nullptr) {
     return streamFeed(*context, x, y, z, feed);
@@ -328,6 +332,7 @@ using Binary = double (*)(double, double);
 const std::vector<RuntimeSymbol>& runtimeSymbols() {
   static const std::vector<RuntimeSymbol> symbols = {
       {"cncc_jit_rapid", reinterpret_cast<void*>(&cncc_jit_rapid)},
+      {"cncc_jit_climb", reinterpret_cast<void*>(&cncc_jit_climb)},
       {"cncc_jit_feed", reinterpret_cast<void*>(&cncc_jit_feed)},
       {"cncc_jit_arc", reinterpret_cast<void*>(&cncc_jit_arc)},
       {"cncc_jit_nurbs_weight", reinterpret_cast<void*>(&cncc_jit_nurbs_weight)},

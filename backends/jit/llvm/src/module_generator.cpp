@@ -205,6 +205,7 @@ private:
       throw backends::JitError(
           "a curve.lap must be expanded (expand-curve-laps) before the JIT compiles it");
     case Opcode::Rapid:
+    case Opcode::Climb:
     case Opcode::Feed:
     case Opcode::Arc:
     case Opcode::Nurbs:
@@ -396,6 +397,9 @@ private:
     }
     const char* callback = "cncc_jit_rapid";
     switch (instruction.opcode) {
+    case Opcode::Climb:
+      callback = "cncc_jit_climb";
+      break;
     case Opcode::Feed:
       callback = "cncc_jit_feed";
       break;

@@ -52,6 +52,8 @@ public:
   void curveWalk(ValueId x, ValueId y, ValueId z, ValueId step);
 
   void rapid(ValueId x, ValueId y, ValueId z);
+  // `move.climb %z`: a rapid along Z alone, X and Y where they are.
+  void climb(ValueId z);
   void feed(ValueId x, ValueId y, ValueId z, ValueId feedRate);
   // `move.arc`: to (x, y, z) about the centre at (i, j) from the current
   // position, turning `turn`; a full turn when it ends where it starts.

@@ -47,6 +47,11 @@ MachineEvent effectEvent(const Instruction& instruction, const std::array<double
 // immediates: what the interpreter records and the JIT's code too.
 MachineEvent settingEvent(Opcode opcode, double number, std::uint32_t index);
 
+// The event `move.climb %z` records when the machine is at `from`: a rapid
+// to z, x and y staying (MachineEvent::alongZ). The interpreter and the JIT
+// both record it so.
+MachineEvent climbEvent(const std::array<double, 3>& from, double z);
+
 // The event `move.arc` records when the machine is at `start`: centre at
 // (i, j) from it. Throws InterpreterError, as a controller alarms, for an
 // arc without a radius or whose end lies off its circle (by more than 0.005

@@ -30,7 +30,10 @@ struct MachineEvent {
   };
   Kind kind = Kind::Rapid;
   double x = 0, y = 0, z = 0; // Rapid, Feed, Arc: the target
-  double feed = 0;            // Feed, Arc: mm/min
+  // Rapid: along Z alone (move.climb): x and y are where the tool was, which
+  // a program need not know (after a tool change), so it writes Z only.
+  bool alongZ = false;
+  double feed = 0; // Feed, Arc: mm/min
   // Arc: the centre (absolute, in the XY plane) and the turning direction.
   // It starts where the move before it ended; ending there too, it is one
   // full turn. z goes linearly with the angle turned (a helix).
