@@ -160,9 +160,11 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
   ensureOrigin(); // before the loop, which may run no times
   activateLengthOffset();
   // The body is lowered for the modes in force when each trip starts: those
-  // before the loop that a trip leaves as it found them. A mode a trip
-  // changes is unknown there (a second trip starts with the first's), and
-  // the body is lowered again: a cut then sets its contouring every trip.
+  // before the loop that a trip leaves as it found them. Where a trip
+  // changes one, the body is lowered again: for the contouring a trip ends
+  // in, set before the loop (a trip's cuts then set only what differs, as
+  // a programmer sets G05 P10000 once before the WHILE), and for the coolant
+  // unknown (a second trip starts with the first's).
   for (int round = 0;; ++round) {
     MachineSettings atHead = machine_;
     bool lowered = attempt([&](LoweringState&) {
@@ -175,7 +177,9 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
       lowerBlock(loop.body);
       builder_.endLoop();
       if (!machine_.sameModes(atHead) && round == 0) {
+        std::optional<double> endsIn = machine_.contouring;
         atHead.keepModesAgreedWith(machine_);
+        atHead.contouring = endsIn;
         throw TripChangesModes{atHead};
       }
       machine_.keepModesAgreedWith(atHead); // after no trip, or after some
@@ -191,6 +195,9 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
     }
     if (!modesAtLoopHead_) {
       return false;
+    }
+    if (modesAtLoopHead_->contouring && machine_.contouring != modesAtLoopHead_->contouring) {
+      builder_.contouring(*modesAtLoopHead_->contouring);
     }
     machine_ = *modesAtLoopHead_;
     modesAtLoopHead_.reset();

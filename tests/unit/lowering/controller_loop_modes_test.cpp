@@ -1,9 +1,10 @@
 // The modes in force in a `for` or `if` the controller runs: each trip and
 // each branch starts with the modes the lowering assumed for it, so every
 // cut runs in its own contouring tolerance whichever way the program went;
-// a mode no trip or branch changes stays known after it (no M9 for a
-// coolant never switched on), and a new tool's length offset is activated
-// before the loop by a climb along Z alone.
+// the contouring a trip ends in is set once before the loop; a mode no trip
+// or branch changes stays known after it (no M9 for a coolant never
+// switched on), and a new tool's length offset is activated before the loop
+// by a climb along Z alone.
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/ir.h"
 #include "cncc/ir/printer.h"
@@ -79,6 +80,31 @@ TEST(ControllerLoopModes, EveryTripCutsInItsOwnContouringTolerance) {
   EXPECT_EQ(contouringAtEachCut(function, {{"n", 3}}),
             (std::vector<double>{0.01, 0.01, 0.02, 0.01, 0.02, 0.01, 0.02}));
   EXPECT_EQ(contouringAtEachCut(function, {{"n", 1}}), (std::vector<double>{0.01, 0.01, 0.02}));
+}
+
+TEST(ControllerLoopModes, TheContouringEveryTripEndsInIsSetOnceBeforeTheLoop) {
+  constexpr const char* holes = R"(part holes(n = 4) {
+  units mm
+  tool 1 diameter=4 spindle=9000 feed=400
+  safe z=5
+  for k in 0 .. n - 1 {
+    curve line((k*5, 0), (k*5, 10)) sweep depth=1 step=1 tolerance=0.01
+  }
+}
+)";
+  auto lowered = lowerText(holes, controllerOptions());
+  ASSERT_TRUE(lowered->part);
+  const Function& function = lowered->part->function;
+  ASSERT_TRUE(hasLoop(function));
+  std::vector<double> set; // the contouring ops outside the loop, in order
+  for (InstructionId id : function.body.instructions) {
+    if (function.instructions[id].opcode == Opcode::Contouring) {
+      set.push_back(function.instructions[id].number);
+    }
+  }
+  EXPECT_EQ(set, (std::vector<double>{0.01, 0})) << printFunction(function); // on, off at the end
+  EXPECT_EQ(countOf(function, Opcode::Contouring), 2u);
+  EXPECT_EQ(contouringAtEachCut(function, {{"n", 3}}), (std::vector<double>{0.01, 0.01, 0.01}));
 }
 
 TEST(ControllerLoopModes, ACoolantNoTripChangesNeedsNoM9AtTheEnd) {
