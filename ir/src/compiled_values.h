@@ -1,7 +1,8 @@
 // A value at the values the program was compiled with, for the
 // legalisations that measure a lap's curve from its regions: a parameter at
 // its default, pure arithmetic on such values folded as the interpreter
-// computes it; nullopt for anything else (a loop's variable, an effect).
+// computes it; nullopt for anything else (a loop's variable, an effect),
+// unless told its value (a loop's variable in the trip the interpreter runs).
 #pragma once
 
 #include "cncc/ir/ir.h"
@@ -18,6 +19,9 @@ namespace cncc::ir {
 class CompiledValues {
 public:
   explicit CompiledValues(const Function& function) : function_(function) {}
+
+  // `value` is `number` (told before anything that reads it is asked).
+  void know(ValueId value, double number) { known_[value.index] = number; }
 
   std::optional<double> operator()(ValueId value) {
     std::vector<ValueId> work{value};

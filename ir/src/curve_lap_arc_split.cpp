@@ -155,19 +155,20 @@ std::vector<LapRegionShare> rampShares(const Function& function, const Instructi
 } // namespace
 
 std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
-                                                    const Instruction& lap, std::uint32_t cut) {
+                                                    const Instruction& lap, std::uint32_t cut,
+                                                    const LoopTrip* trip) {
   const CutGeometry* hostCut = hostComputedCut(function, cut);
-  if (hostCut == nullptr || lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size() ||
-      readsALoopVariable(function, lap)) {
+  CompiledValues compiled(function);
+  std::optional<CurveTableEntry> measured = entryToMeasure(function, lap, compiled, trip);
+  if (hostCut == nullptr || !measured) {
     return std::nullopt;
   }
-  const CurveTableEntry& stepped = function.curves[lap.index];
+  const CurveTableEntry& stepped = *measured;
   if (stepped.sampling != CurveSampling::Steps || stepped.arcRegions.empty() ||
       !stepped.walkRegions.empty() || stepped.offsetGrowth ||
       lap.regions.size() != stepped.regionCount()) {
     return std::nullopt;
   }
-  CompiledValues compiled(function);
   std::optional<std::vector<RegionAtCompiled>> regions = regionsAtCompiled(lap, stepped, compiled);
   if (!regions) {
     return std::nullopt;

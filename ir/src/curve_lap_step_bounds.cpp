@@ -257,20 +257,19 @@ std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
 }
 
 std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
-                                                 std::uint32_t cut) {
-  if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size() ||
-      readsALoopVariable(function, lap)) {
+                                                 std::uint32_t cut, const LoopTrip* trip) {
+  CompiledValues compiled(function);
+  std::optional<CurveTableEntry> stepped = entryToMeasure(function, lap, compiled, trip);
+  if (!stepped) {
     return std::nullopt;
   }
-  CompiledValues compiled(function);
-  const CurveTableEntry& stepped = function.curves[lap.index];
   const CutGeometry* hostCut = hostComputedCut(function, cut);
   std::optional<std::vector<std::pair<double, double>>> ranges =
-      boundedLapRanges(lap, stepped, compiled, hostCut);
+      boundedLapRanges(lap, *stepped, compiled, hostCut);
   if (!ranges) {
     return std::nullopt;
   }
-  return chordEntry(stepped, *ranges, hostCut);
+  return chordEntry(*stepped, *ranges, hostCut);
 }
 
 bool boundControllerSteps(Function& function) {
@@ -283,8 +282,8 @@ bool boundControllerSteps(Function& function) {
     for (const LapOfCut& ofCut : laps) {
       Instruction& lap = function.instructions[ofCut.lap];
       const CutGeometry* hostCut = hostComputedCut(function, ofCut.cut);
-      if (readsALoopVariable(function, lap)) {
-        continue;
+      if (!entryToMeasure(function, lap, compiled)) {
+        continue; // it reads a loop's variable
       }
       std::optional<std::vector<std::pair<double, double>>> ranges =
           boundedLapRanges(lap, function.curves[index], compiled, hostCut);

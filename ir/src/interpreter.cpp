@@ -678,7 +678,7 @@ private:
   // The curves a lap kept, the latest last.
   static constexpr std::size_t maximumCurvesPerLap = 8;
   std::map<const Instruction*, std::vector<LapPoints>> lapPoints_;
-  LegalisedEntries legalisedEntries_{function_};
+  LegalisedEntries legalisedEntries_{function_, [this](ValueId id) { return value(id); }};
   std::map<std::uint32_t, std::vector<OffsetRegionGrowth>> offsetGrowth_; // by curve
 };
 

@@ -72,8 +72,22 @@ LapInputs lapInputs(const Function& function, const Instruction& lap) {
   return inputs;
 }
 
-bool readsALoopVariable(const Function& function, const Instruction& lap) {
-  return !lapInputs(function, lap).loopVariables.empty();
+std::optional<CurveTableEntry> entryToMeasure(const Function& function, const Instruction& lap,
+                                              CompiledValues& compiled, const LoopTrip* trip) {
+  if (lap.opcode != Opcode::CurveLap || lap.index >= function.curves.size()) {
+    return std::nullopt; // the verifier's problem
+  }
+  std::set<std::uint32_t> variables = lapInputs(function, lap).loopVariables;
+  CurveTableEntry entry = function.curves[lap.index];
+  for (std::uint32_t variable : variables) {
+    auto value = trip != nullptr ? trip->find(variable) : LoopTrip::const_iterator{};
+    if (trip == nullptr || value == trip->end()) {
+      return std::nullopt;
+    }
+    compiled.know(ValueId{variable}, value->second);
+    entry.geometry = nullptr;
+  }
+  return entry;
 }
 
 } // namespace cncc::ir

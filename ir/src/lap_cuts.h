@@ -69,11 +69,19 @@ struct LapInputs {
   std::set<std::uint32_t> loopVariables;
 };
 LapInputs lapInputs(const Function& function, const Instruction& lap);
-// Whether the lap's curve reads the variable of a loop around it (a loop
-// the program runs): the variable has no one value at the compiled values,
-// and the entry's geometry is the curve at the loop's first trip, so a
-// legalisation at the compiled values leaves the lap.
-bool readsALoopVariable(const Function& function, const Instruction& lap);
+// The values of the variables of the loops around a lap in the trip being
+// run (by the variable's value index): what the interpreter knows of a lap
+// before unroll-host-control writes its loop out.
+using LoopTrip = std::map<std::uint32_t, double>;
+// The lap's entry as a legalisation measures it at the compiled values
+// (`compiled`): its own; where its curve reads the variable of a loop
+// around it, the variable has no one value there, so nullopt (a
+// legalisation leaves the lap) unless `trip` gives it, and then `compiled`
+// is told it and the entry is without the lowering's geometry (the curve
+// at the loop's first trip: the regions at the trip's value are the curve).
+std::optional<CurveTableEntry> entryToMeasure(const Function& function, const Instruction& lap,
+                                              CompiledValues& compiled,
+                                              const LoopTrip* trip = nullptr);
 
 // A piece of a lap split at its arcs (split-arc-laps): the lap's regions
 // [firstRegion, firstRegion + regionCount), cut as `entry` says.
@@ -88,7 +96,8 @@ struct LapPart {
 // lap, or where its ranges are not known at the compiled values. Throws
 // CurveLapError (an arc of more turns than maximumArcBlocks).
 std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
-                                                    const Instruction& lap, std::uint32_t cut);
+                                                    const Instruction& lap, std::uint32_t cut,
+                                                    const LoopTrip* trip = nullptr);
 // A part's lap: the lap's regions of the part and its three operands (the
 // heights and the feed; a part's entry computes no range), its result and
 // span the lap's.

@@ -3,9 +3,16 @@
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/interpreter.h"
 
-#include "lap_cuts.h"
+#include <set>
 
 namespace cncc::ir {
+
+namespace {
+
+// The trips of one lap kept at once (a loop of many trips runs each once).
+constexpr std::size_t keptTrips = 64;
+
+} // namespace
 
 const CurveTableEntry& LegalisedEntries::of(const Instruction& lap) {
   const CurveTableEntry& own = function_.curves[lap.index];
@@ -23,11 +30,11 @@ const CurveTableEntry& LegalisedEntries::of(const Instruction& lap) {
   if (own.sampling != CurveSampling::Steps) {
     return own;
   }
-  auto known = bounded_.find(&lap);
-  if (known == bounded_.end()) {
-    known = bounded_.emplace(&lap, boundedStepsEntry(function_, lap, cutOf(lap))).first;
-  }
-  return known->second ? *known->second : own;
+  const LapFacts& facts = factsOf(lap);
+  LoopTrip trip = tripOf(facts);
+  const std::optional<CurveTableEntry>& bounded = remembered(
+      bounded_[&lap], trip, [&] { return boundedStepsEntry(function_, lap, facts.cut, &trip); });
+  return bounded ? *bounded : own;
 }
 
 const LegalisedEntries::SplitLap* LegalisedEntries::splitOf(const Instruction& lap) {
@@ -35,36 +42,68 @@ const LegalisedEntries::SplitLap* LegalisedEntries::splitOf(const Instruction& l
   if (own.sampling != CurveSampling::Steps || own.arcRegions.empty()) {
     return nullptr;
   }
-  auto known = split_.find(&lap);
-  if (known == split_.end()) {
+  const LapFacts& facts = factsOf(lap);
+  LoopTrip trip = tripOf(facts);
+  const std::optional<SplitLap>& split = remembered(split_[&lap], trip, [&] {
     std::optional<std::vector<LapPart>> parts;
     try {
-      parts = hostArcLapParts(function_, lap, cutOf(lap));
+      parts = hostArcLapParts(function_, lap, facts.cut, &trip);
     } catch (const CurveLapError& error) {
       throw InterpreterError(error.what());
     }
-    std::optional<SplitLap> split;
+    std::optional<SplitLap> made;
     if (parts) {
-      split.emplace();
+      made.emplace();
       for (const LapPart& part : *parts) {
-        split->laps.push_back(partLap(lap, part));
+        made->laps.push_back(partLap(lap, part));
       }
-      split->parts = std::move(*parts);
+      made->parts = std::move(*parts);
     }
-    known = split_.emplace(&lap, std::move(split)).first;
-  }
-  return known->second ? &*known->second : nullptr;
+    return made;
+  });
+  return split ? &*split : nullptr;
 }
 
-std::uint32_t LegalisedEntries::cutOf(const Instruction& lap) {
+const LegalisedEntries::LapFacts& LegalisedEntries::factsOf(const Instruction& lap) {
+  auto known = facts_.find(&lap);
+  if (known != facts_.end()) {
+    return known->second;
+  }
   if (!cuts_) {
     cuts_.emplace();
     for (const auto& [index, laps] : lapsByEntry(function_)) {
       (*cuts_)[index] = laps.front().cut;
     }
   }
+  LapFacts facts;
   auto cut = cuts_->find(lap.index);
-  return cut != cuts_->end() ? cut->second : noCut;
+  facts.cut = cut != cuts_->end() ? cut->second : noCut;
+  if (hostComputedCut(function_, facts.cut) != nullptr) {
+    std::set<std::uint32_t> variables = lapInputs(function_, lap).loopVariables;
+    facts.loopVariables.assign(variables.begin(), variables.end());
+  }
+  return facts_.emplace(&lap, std::move(facts)).first->second;
+}
+
+LoopTrip LegalisedEntries::tripOf(const LapFacts& facts) const {
+  LoopTrip trip;
+  for (std::uint32_t variable : facts.loopVariables) {
+    trip[variable] = current_(ValueId{variable});
+  }
+  return trip;
+}
+
+template <class Value, class Make>
+const Value& LegalisedEntries::remembered(std::map<LoopTrip, Value>& cache, const LoopTrip& trip,
+                                          const Make& make) {
+  auto known = cache.find(trip);
+  if (known == cache.end()) {
+    if (cache.size() >= keptTrips) {
+      cache.clear();
+    }
+    known = cache.emplace(trip, make()).first;
+  }
+  return known->second;
 }
 
 } // namespace cncc::ir

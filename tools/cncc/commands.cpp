@@ -50,6 +50,7 @@ std::string emittedIr(const DriverOptions& options, SourceManager& sources,
   ir::LoweringOptions lowering =
       target != nullptr ? targetLoweringOptions(*target, part, options) : ir::LoweringOptions{};
   lowering.expandCurveLaps = false; // shown as the first of the target's passes
+  lowering.keepLoops = true;        // the same IR for every target
   std::optional<ir::Function> function = ir::lowerPart(*program, part, diagnostics, lowering);
   if (!function) {
     return "";

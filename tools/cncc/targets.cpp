@@ -138,6 +138,33 @@ std::optional<ir::LoweredPart> lowerForTarget(const BackendRequest& request) {
   return lowered;
 }
 
+namespace {
+
+// The cut table to measure the part's path against: where the target keeps
+// a `for` as a loop (whose trips unroll-host-control gives cuts of their own,
+// without the curve the front end evaluates for each), the table of the
+// lowering that writes the loops out, each trip's cut with its curve; the
+// same cuts in the same order.
+std::vector<ir::CutGeometry> measuredCuts(const BackendRequest& request,
+                                          std::vector<ir::CutGeometry> lowered) {
+  const frontend::PartItem& part = *request.program.selectedPart;
+  ir::LoweringOptions options =
+      targetLoweringOptions(optionsTarget(request.options), part, request.options);
+  if (!options.keepLoops || options.controllerLoops) {
+    return lowered;
+  }
+  options.keepLoops = false;
+  frontend::DiagnosticEngine diagnostics(1);
+  std::optional<ir::LoweredPart> writtenOut =
+      ir::lowerPartWithCuts(request.program, part, diagnostics, options);
+  if (!writtenOut || writtenOut->function.cuts.size() != lowered.size()) {
+    return lowered;
+  }
+  return std::move(writtenOut->function.cuts);
+}
+
+} // namespace
+
 std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool native,
                                          std::vector<ir::CutGeometry>* cuts) {
   std::optional<ir::LoweredPart> lowered = lowerForTarget(request);
@@ -145,7 +172,7 @@ std::optional<ir::ToolPath> hostToolPath(const BackendRequest& request, bool nat
     return std::nullopt;
   }
   if (cuts != nullptr) {
-    *cuts = std::move(lowered->function.cuts);
+    *cuts = measuredCuts(request, std::move(lowered->function.cuts));
   }
   return runOnHost(request, lowered->function, native);
 }

@@ -30,6 +30,7 @@ ir::LoweringOptions gcodeLowering(const TargetSettings& settings) {
   options.largestCoordinate =
       (std::pow(10.0, reader.significantDigits) - 1) * reader.leastInputIncrement;
   options.arcsOnEveryCut = settings.arcs;
+  options.keepLoops = true; // written out by unroll-host-control
   return options;
 }
 

@@ -20,6 +20,7 @@ ir::LoweringOptions jitLowering(const TargetSettings&) {
   ir::LoweringOptions options;
   options.coordinateIncrement = std::pow(10.0, -toolPathCsvDecimals);
   options.fittedArcs = false; // arcs=true: the path is points either way
+  options.keepLoops = true;   // written out by unroll-host-control
   return options;
 }
 

@@ -235,11 +235,13 @@ public:
   }
 
 private:
+  // Where the event ends (a climb along Z alone: at its height, X and Y
+  // where they were, printed or not).
   bool isAt(const MachineEvent& event) const {
     auto same = [&](const std::optional<double>& axis, double target) {
       return axis && formatGcodeNumber(*axis, decimals_) == formatGcodeNumber(target, decimals_);
     };
-    return same(position_[0], event.x) && same(position_[1], event.y) &&
+    return (event.alongZ || (same(position_[0], event.x) && same(position_[1], event.y))) &&
            same(position_[2], event.z);
   }
 
@@ -299,6 +301,9 @@ ExecutedPath executedPathOfToolPath(const ir::ToolPath& toolPath, double arcSagi
       continue;
     }
     Eigen::Vector3d target(event.x, event.y, event.z);
+    if (!started && event.alongZ) {
+      continue; // a climb from where the tool change left X and Y: not known
+    }
     if (!started) {
       path.start = target;
       started = true;

@@ -30,6 +30,7 @@ ir::LoweringOptions sinumerikLowering(const TargetSettings& settings) {
   sinumerik.transitions = splineEndsOf(settings.splineEnds);
   ir::LoweringOptions lowering = sinumerikLoweringOptions(sinumerik);
   lowering.arcsOnEveryCut = settings.arcs;
+  lowering.keepLoops = true; // written out by unroll-host-control
   return lowering;
 }
 

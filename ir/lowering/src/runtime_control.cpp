@@ -1,6 +1,9 @@
-// `for` and `if` for controllers that run loops themselves, when the bounds
-// or the condition depend on part parameters: a WHILE over the range and an
-// IF over the branches, so that the operator's edit reaches the part.
+// `for` and `if` when the bounds or the condition depend on part
+// parameters: the loop and the branches a controller runs (a WHILE over the
+// range and an IF over the branches, so that the operator's edit reaches
+// the part), on every target (LoweringOptions::controllerLoops, or
+// keepLoops on the host's, whose legalisation unroll-host-control writes
+// them out).
 //
 // The body is lowered once with the loop variable an IR value (and, for
 // the compile-time checks and the planning that needs numbers, its first
@@ -8,7 +11,7 @@
 // compile time (the points of a curve built from it that the controller
 // cannot compute, a tolerance, a tool number), NeedsUnrolling abandons the
 // attempt: the lowering goes back to its state before the loop and unrolls
-// it, fixing what the bounds read, as on the host targets. A branch is
+// it, fixing what the bounds read, as the references do. A branch is
 // likewise tried and, when either branch cannot be lowered, chosen at
 // compile time. Diagnostics of an attempt are held until it succeeds.
 #include "part_lowering.h"
@@ -147,8 +150,9 @@ bool PartLowering::attempt(const std::function<void(LoweringState&)>& lowering) 
 }
 
 bool PartLowering::lowerControllerFor(const ForStmt& loop) {
-  if (!options_.controllerLoops || checkingDefaults_ || loop.declaration == nullptr ||
-      loop.range->kind != ExprKind::Range || parametersOf(*loop.range).empty()) {
+  if (!(options_.controllerLoops || options_.keepLoops) || checkingDefaults_ ||
+      loop.declaration == nullptr || loop.range->kind != ExprKind::Range ||
+      parametersOf(*loop.range).empty()) {
     return false;
   }
   const auto& range = as<RangeExpr>(*loop.range);
@@ -205,7 +209,7 @@ bool PartLowering::lowerControllerFor(const ForStmt& loop) {
 }
 
 bool PartLowering::lowerControllerIf(const IfStmt& conditional) {
-  if (!options_.controllerLoops || checkingDefaults_ ||
+  if (!(options_.controllerLoops || options_.keepLoops) || checkingDefaults_ ||
       parametersOf(*conditional.condition).empty()) {
     return false;
   }

@@ -20,6 +20,11 @@ bool unrollWhenNoLarger(Function& function) {
 }
 
 constexpr Pass passTable[] = {
+    {"unroll-host-control",
+     "legalisation: on a target that computes on the host, each for loop written out trip by "
+     "trip at its bounds' compiled values, each trip's cut its own, and each if that cuts as its "
+     "branch taken there",
+     unrollHostControl},
     {"choose-controller-steps",
      "legalisation: on a target whose controller computes, each curve.lap within a chord "
      "tolerance along a curve of constants cut in uniform steps the controller counts",
@@ -131,9 +136,9 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 }
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
-  for (std::string_view name :
-       {"choose-controller-steps", "split-arc-laps", "bound-controller-steps", "write-curve-blocks",
-        "fit-arcs", "expand-controller-loops", "expand-curve-laps"}) {
+  for (std::string_view name : {"unroll-host-control", "choose-controller-steps", "split-arc-laps",
+                                "bound-controller-steps", "write-curve-blocks", "fit-arcs",
+                                "expand-controller-loops", "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

@@ -35,6 +35,7 @@ LoweredMotion loweredMotion(const std::string& source, bool controllerComputes,
   lowering.expandCurveLaps = false;
   lowering.coordinateIncrement = 0.0001; // an inch part's tolerances too
   lowering.controllerLoops = controllerComputes;
+  lowering.keepLoops = true; // as every target lowers a `for`
   lowering.literalSignificantDigits = controllerComputes ? 8 : 0;
   lowering.cutterCompensation = true; // for comp=controller: both print it
   std::unique_ptr<test_support::LoweredText> lowered =
@@ -130,18 +131,16 @@ std::vector<std::string> partNames(const std::string& source) {
 }
 
 // Every example's parts are lowered the same for both but those whose
-// target-shaped constructs ir/lowering/README.md lists as next steps: a
-// `for` the controller runs (the host unrolls it), an offset (of
-// `side=`, or `comp=controller`'s drawn curve) whose points a controller
-// reads as numbers or computes. (A curve with arcs that reads parameters is
-// the same since split-arc-laps: cam_profile, bore_plate_mm and _inch.)
+// target-shaped constructs ir/lowering/README.md lists as next steps: an
+// offset (of `side=`, or `comp=controller`'s drawn curve) whose points a
+// controller reads as numbers or computes. (A curve with arcs that reads
+// parameters is the same since split-arc-laps: cam_profile, bore_plate_mm
+// and _inch; a `for` or `if` on parameters since unroll-host-control:
+// bolt_circle, rosette_plate and flange.)
 // A change that makes one the same, or another one differ, shows here
 // (CNCC_SHOW_DIFF=1 writes both to /tmp/PART.host and .controller).
 TEST(TargetNeutralLowering, TheExamplesButTheirLoopsAndOffsets) {
   const std::set<std::string> targetShaped = {
-      "bolt_circle",          // a for over the holes
-      "rosette_plate",        // a for over the petals
-      "flange",               // a for over the slots
       "offset_contours",      // offsets beside curves
       "worn_cutter",          // an offset of a parameter's tool
       "compensated_contours", // comp=controller's curves: numbers on a controller

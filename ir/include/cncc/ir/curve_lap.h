@@ -264,6 +264,15 @@ std::map<std::uint32_t, CurveTableEntry> controllerStepsEntries(const Function& 
 // parameters they read fixed (on a controller a parameter-fixed warning
 // each). The other laps stay (samples=, arc regions, an offset's growth).
 bool boundControllerSteps(Function& function);
+// `unroll-host-control`: where the host computes the program (no cut has
+// controller digits), each `for` loop written out trip by trip at its
+// bounds' compiled values and each `if` whose branches cut replaced by the
+// branch taken there, what they read fixed; each trip's cut its own (the
+// cut table in the program's order, a cut of a branch not taken dropped)
+// and each trip's curve.lap that reads the loop's variable an entry of its
+// own without geometry. Throws CurveLapError past 100000 trips in
+// all.
+bool unrollHostControl(Function& function);
 // `split-arc-laps`: on a cut the host computes, each curve.lap in steps with
 // arc regions written as a lap per piece: an arc in its blocks at the
 // compiled values (whole turns where it turns whole turns), each other
@@ -274,9 +283,12 @@ bool splitArcLaps(Function& function);
 inline constexpr std::uint32_t noCut = ~std::uint32_t{0};
 // The chord entry bound-controller-steps gives the lap, of the function's
 // cut `cut` (or noCut; its geometry the lap's over the ranges its regions had), or
-// nullopt where the lap stays: what the interpreter runs too.
-std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
-                                                 std::uint32_t cut);
+// nullopt where the lap stays: what the interpreter runs too. `trip`: the
+// values of the loop variables the lap reads in the trip being run, as
+// unroll-host-control writes it out (map of value index to value).
+std::optional<CurveTableEntry>
+boundedStepsEntry(const Function& function, const Instruction& lap, std::uint32_t cut,
+                  const std::map<std::uint32_t, double>* trip = nullptr);
 
 // `expand-controller-loops`: every curve.lap cut in steps written out as a
 // loop per region (its arithmetic at the loop's parameter, a feed move to

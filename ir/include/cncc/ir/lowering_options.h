@@ -45,6 +45,15 @@ struct LoweringOptions {
   // and no constant tables; what depends on part parameters (step counts
   // included) is computed on the controller. See controller_cuts.cpp.
   bool controllerLoops = false;
+  // A `for` whose bounds read parameters lowered as the loop a controller
+  // runs, and an `if` whose condition does as its branches, on a target
+  // whose host computes the program too (the IR is then the same for every
+  // target; the legalisation unroll-host-control writes them out). Without
+  // it or controllerLoops, the lowering writes the loop out itself, each
+  // trip's cut with the curve the front end evaluates for that trip, and
+  // lowers the branch taken: the references that measure a program (verify,
+  // --stats and the tests), which tell each trip's cut apart.
+  bool keepLoops = false;
   // The significant digits of the constants the controller reads (0: the
   // target folds every number on the host). A NURBS span evaluated on the
   // controller from power-basis coefficients whose rounding to these digits
