@@ -50,21 +50,8 @@ bool hostComputesTheProgram(const Function& function) {
 
 // The parameters `value` reads (through pure arithmetic).
 void collectParameters(const Function& function, ValueId value, std::set<std::uint32_t>& into) {
-  std::vector<ValueId> work{value};
-  std::set<std::uint32_t> seen;
-  while (!work.empty()) {
-    ValueId next = work.back();
-    work.pop_back();
-    if (!next.valid() || !seen.insert(next.index).second) {
-      continue;
-    }
-    const Instruction& definition = function.definition(next);
-    if (definition.opcode == Opcode::Param) {
-      into.insert(definition.index);
-    } else if (definition.opcode != Opcode::Loop && definition.opcode != Opcode::CurveLap) {
-      work.insert(work.end(), definition.operands.begin(), definition.operands.end());
-    }
-  }
+  std::set<std::uint32_t> read = valueInputs(function, {value}).parameters;
+  into.insert(read.begin(), read.end());
 }
 
 class HostLoopUnroller : public passes::Rewriter {

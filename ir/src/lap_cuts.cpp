@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <set>
+#include <utility>
 #include <vector>
 
 namespace cncc::ir {
@@ -38,22 +39,9 @@ const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut) 
   return host ? &function.cuts[cut] : nullptr;
 }
 
-LapInputs lapInputs(const Function& function, const Instruction& lap) {
+LapInputs valueInputs(const Function& function, std::vector<ValueId> work) {
   LapInputs inputs;
   std::set<std::uint32_t> seen;
-  std::vector<ValueId> work;
-  for (const Region& region : lap.regions) {
-    for (InstructionId id : region.instructions) {
-      const Instruction& instruction = function.instructions[id];
-      work.insert(work.end(), instruction.operands.begin(), instruction.operands.end());
-    }
-  }
-  // The ranges of the regions whose steps the program computes: the chords
-  // are chosen over their values too (not the counts, which they replace).
-  for (std::size_t first = 3; first + 1 < lap.operands.size(); first += 3) {
-    work.push_back(lap.operands[first]);
-    work.push_back(lap.operands[first + 1]);
-  }
   while (!work.empty()) {
     ValueId value = work.back();
     work.pop_back();
@@ -70,6 +58,23 @@ LapInputs lapInputs(const Function& function, const Instruction& lap) {
     }
   }
   return inputs;
+}
+
+LapInputs lapInputs(const Function& function, const Instruction& lap) {
+  std::vector<ValueId> work;
+  for (const Region& region : lap.regions) {
+    for (InstructionId id : region.instructions) {
+      const Instruction& instruction = function.instructions[id];
+      work.insert(work.end(), instruction.operands.begin(), instruction.operands.end());
+    }
+  }
+  // The ranges of the regions whose steps the program computes: the chords
+  // are chosen over their values too (not the counts, which they replace).
+  for (std::size_t first = 3; first + 1 < lap.operands.size(); first += 3) {
+    work.push_back(lap.operands[first]);
+    work.push_back(lap.operands[first + 1]);
+  }
+  return valueInputs(function, std::move(work));
 }
 
 std::optional<CurveTableEntry> entryToMeasure(const Function& function, const Instruction& lap,

@@ -69,6 +69,8 @@ struct LapInputs {
   std::set<std::uint32_t> loopVariables;
 };
 LapInputs lapInputs(const Function& function, const Instruction& lap);
+// What the values read, through pure arithmetic, from before them.
+LapInputs valueInputs(const Function& function, std::vector<ValueId> values);
 // The values of the variables of the loops around a lap in the trip being
 // run (by the variable's value index): what the interpreter knows of a lap
 // before unroll-host-control writes its loop out.
