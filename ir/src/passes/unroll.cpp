@@ -103,9 +103,16 @@ void collectCandidates(const Function& function, const Region& region, const Unr
   }
 }
 
+// A trial costs a cleaned-up copy of the whole function: the instructions
+// the trials of one run may copy in all (a part of thousands of cuts has
+// thousands of pass loops).
+constexpr std::size_t maximumTrialInstructions = 1'000'000;
+
 // Tries each qualifying loop alone and keeps the ones after which the
 // cleaned-up function is no larger; then all of them together, if that
-// is no larger either.
+// is no larger either. Where a trial each would copy more than
+// maximumTrialInstructions, the loops are tried in groups of neighbours,
+// each kept or not as a whole.
 bool unrollWhenNoLarger(Function& function, const UnrollOptions& options) {
   std::vector<InstructionId> candidates;
   collectCandidates(function, function.body, options, candidates);
@@ -113,13 +120,16 @@ bool unrollWhenNoLarger(Function& function, const UnrollOptions& options) {
     return false;
   }
   std::size_t baseline = cleanedUpSize(function);
+  std::size_t group = candidates.size() * baseline / maximumTrialInstructions + 1;
   std::set<InstructionId> accepted;
-  for (InstructionId candidate : candidates) {
-    std::set<InstructionId> only{candidate};
+  for (std::size_t first = 0; first < candidates.size(); first += group) {
+    std::size_t last = std::min(candidates.size(), first + group);
+    std::set<InstructionId> only(candidates.begin() + static_cast<std::ptrdiff_t>(first),
+                                 candidates.begin() + static_cast<std::ptrdiff_t>(last));
     bool changed = false;
     Function trial = unrolled(function, options, &only, changed);
     if (changed && cleanedUpSize(std::move(trial)) <= baseline) {
-      accepted.insert(candidate);
+      accepted.insert(only.begin(), only.end());
     }
   }
   bool changed = false;
