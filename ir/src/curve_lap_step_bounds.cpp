@@ -282,8 +282,8 @@ bool boundControllerSteps(Function& function) {
     for (const LapOfCut& ofCut : laps) {
       Instruction& lap = function.instructions[ofCut.lap];
       const CutGeometry* hostCut = hostComputedCut(function, ofCut.cut);
-      if (!entryToMeasure(function, lap, compiled)) {
-        continue; // it reads a loop's variable
+      if (!lapInputs(function, lap).loopVariables.empty()) {
+        continue; // no one value at the compiled values: entryToMeasure
       }
       std::optional<std::vector<std::pair<double, double>>> ranges =
           boundedLapRanges(lap, function.curves[index], compiled, hostCut);
