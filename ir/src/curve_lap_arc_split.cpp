@@ -158,9 +158,12 @@ std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
                                                     const Instruction& lap, std::uint32_t cut,
                                                     const LoopTrip* trip) {
   const CutGeometry* hostCut = hostComputedCut(function, cut);
+  if (hostCut == nullptr) {
+    return std::nullopt;
+  }
   CompiledValues compiled(function);
   std::optional<CurveTableEntry> measured = entryToMeasure(function, lap, compiled, trip);
-  if (hostCut == nullptr || !measured) {
+  if (!measured) {
     return std::nullopt;
   }
   const CurveTableEntry& stepped = *measured;

@@ -67,7 +67,7 @@ private:
   void visit(const Instruction& instruction) override {
     if (instruction.opcode == Opcode::Loop &&
         static_cast<LoopRole>(instruction.index) == LoopRole::Statement) {
-      if (std::optional<std::size_t> trips = tripsOf(instruction)) {
+      if (std::optional<Trips> trips = tripsOf(instruction)) {
         unroll(instruction, *trips);
         return;
       }
@@ -91,10 +91,16 @@ private:
     copy(instruction);
   }
 
+  // A loop's first value and how many trips it runs.
+  struct Trips {
+    double first = 0;
+    std::size_t count = 0;
+  };
+
   // The loop's trips, counted against the bound; nullopt where its bounds
   // are not known at the compiled values (a loop around it not yet written
   // out) or it advances by a step it computes.
-  std::optional<std::size_t> tripsOf(const Instruction& loop) {
+  std::optional<Trips> tripsOf(const Instruction& loop) {
     if (loopAdvance(source_, loop).valid()) {
       return std::nullopt;
     }
@@ -112,15 +118,14 @@ private:
                                       maximumUnrolledTrips));
     }
     tripsSoFar_ += *trips;
-    first_[loop.result.index] = *low;
     collectParameters(source_, loop.operands[0], boundParameters_);
     collectParameters(source_, loop.operands[1], boundParameters_);
-    return trips;
+    return Trips{*low, *trips};
   }
 
-  void unroll(const Instruction& loop, std::size_t trips) {
-    double index = first_[loop.result.index];
-    for (std::size_t trip = 0; trip < trips; ++trip, ++index) {
+  void unroll(const Instruction& loop, Trips trips) {
+    double index = trips.first;
+    for (std::size_t trip = 0; trip < trips.count; ++trip, ++index) {
       unrolling_[loop.result.index] = trip;
       replace(loop.result, constant(index));
       rewriteRegion(loop.regions[0]);
@@ -212,7 +217,6 @@ private:
 
   std::size_t& tripsSoFar_;
   CompiledValues compiled_{source_};
-  std::map<std::uint32_t, double> first_;          // a loop's first value, by its variable
   std::map<std::uint32_t, std::size_t> unrolling_; // the variables written out: their trip
   std::map<std::pair<std::uint32_t, std::vector<std::uint32_t>>, std::uint32_t> tripEntries_;
   std::set<std::uint32_t> boundParameters_;

@@ -83,13 +83,15 @@ std::optional<CurveTableEntry> entryToMeasure(const Function& function, const In
     return std::nullopt; // the verifier's problem
   }
   std::set<std::uint32_t> variables = lapInputs(function, lap).loopVariables;
-  CurveTableEntry entry = function.curves[lap.index];
   for (std::uint32_t variable : variables) {
     auto value = trip != nullptr ? trip->find(variable) : LoopTrip::const_iterator{};
     if (trip == nullptr || value == trip->end()) {
       return std::nullopt;
     }
     compiled.know(ValueId{variable}, value->second);
+  }
+  CurveTableEntry entry = function.curves[lap.index];
+  if (!variables.empty()) {
     entry.geometry = nullptr;
   }
   return entry;

@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace cncc::driver {
@@ -140,19 +141,20 @@ std::optional<ir::LoweredPart> lowerForTarget(const BackendRequest& request) {
 
 namespace {
 
-// The cut table to measure the part's path against: where the target keeps
-// a `for` as a loop (whose trips unroll-host-control gives cuts of their own,
-// without the curve the front end evaluates for each), the table of the
-// lowering that writes the loops out, each trip's cut with its curve; the
-// same cuts in the same order.
+// The cut table to measure the part's path against: where some cut has no
+// curve (a trip of a `for` unroll-host-control wrote out: the curve the
+// front end evaluates for it is not in the IR), the table of the lowering
+// that writes the loops out, each trip's cut with its curve; the same cuts
+// in the same order.
 std::vector<ir::CutGeometry> measuredCuts(const BackendRequest& request,
                                           std::vector<ir::CutGeometry> lowered) {
+  if (std::all_of(lowered.begin(), lowered.end(),
+                  [](const ir::CutGeometry& cut) { return cut.curve != nullptr; })) {
+    return lowered;
+  }
   const frontend::PartItem& part = *request.program.selectedPart;
   ir::LoweringOptions options =
       targetLoweringOptions(optionsTarget(request.options), part, request.options);
-  if (!options.keepLoops || options.controllerLoops) {
-    return lowered;
-  }
   options.keepLoops = false;
   frontend::DiagnosticEngine diagnostics(1);
   std::optional<ir::LoweredPart> writtenOut =
