@@ -5,6 +5,7 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/tool_path.h"
 #include "cncc/ir/verifier.h"
+#include "text_round_trip.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -40,10 +41,8 @@ TEST(ArcIrTest, PrintsParsesAndVerifies) {
   std::string text = printFunction(function);
   EXPECT_THAT(text, HasSubstr("move.arc cw %"));
   EXPECT_THAT(text, HasSubstr("move.arc ccw %"));
-  ParseError error;
-  std::optional<Function> parsed = parseFunction(text, error);
-  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_EQ(printFunction(*parsed), text);
+  std::optional<Function> parsed = test_support::parsedBack(text);
+  ASSERT_TRUE(parsed);
   EXPECT_THAT(verifyFunction(*parsed), IsEmpty());
 }
 

@@ -5,6 +5,7 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/tool_path.h"
 #include "cncc/ir/verifier.h"
+#include "text_round_trip.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -30,10 +31,8 @@ TEST(ClimbIrTest, PrintsParsesAndVerifies) {
   EXPECT_THAT(verifyFunction(function), IsEmpty());
   std::string text = printFunction(function);
   EXPECT_THAT(text, HasSubstr("move.climb %0\n"));
-  ParseError error;
-  std::optional<Function> parsed = parseFunction(text, error);
-  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_EQ(printFunction(*parsed), text);
+  std::optional<Function> parsed = test_support::parsedBack(text);
+  ASSERT_TRUE(parsed);
   ParseError wrong;
   EXPECT_FALSE(parseFunction("func @bad() {\n  %0 = const 1\n  move.climb %0, %0\n}\n", wrong));
 }

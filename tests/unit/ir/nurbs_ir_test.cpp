@@ -6,6 +6,7 @@
 #include "cncc/ir/nurbs_move.h"
 #include "cncc/ir/printer.h"
 #include "cncc/ir/verifier.h"
+#include "text_round_trip.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -44,10 +45,8 @@ TEST(NurbsIrTest, PrintsParsesAndVerifies) {
   EXPECT_THAT(verifyFunction(function), IsEmpty());
   std::string text = printFunction(function);
   EXPECT_THAT(text, HasSubstr("move.nurbs @0, %"));
-  ParseError error;
-  std::optional<Function> parsed = parseFunction(text, error);
-  ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-  EXPECT_EQ(printFunction(*parsed), text);
+  std::optional<Function> parsed = test_support::parsedBack(text);
+  ASSERT_TRUE(parsed);
   EXPECT_THAT(verifyFunction(*parsed), IsEmpty());
 }
 

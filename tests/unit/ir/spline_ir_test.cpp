@@ -9,6 +9,7 @@
 #include "cncc/ir/printer.h"
 #include "cncc/ir/spline_move.h"
 #include "cncc/ir/verifier.h"
+#include "text_round_trip.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -59,10 +60,8 @@ TEST(SplineIrTest, PrintsParsesAndVerifies) {
     EXPECT_THAT(verifyFunction(function), IsEmpty());
     std::string text = printFunction(function);
     EXPECT_THAT(text, HasSubstr("move.spline @0, %"));
-    ParseError error;
-    std::optional<Function> parsed = parseFunction(text, error);
-    ASSERT_TRUE(parsed) << error.line << ": " << error.message;
-    EXPECT_EQ(printFunction(*parsed), text);
+    std::optional<Function> parsed = test_support::parsedBack(text);
+    ASSERT_TRUE(parsed);
     EXPECT_THAT(verifyFunction(*parsed), IsEmpty());
     std::optional<SplineBlockData> read = readSplineMoveTable(parsed->tables[0]);
     ASSERT_TRUE(read);
