@@ -189,8 +189,12 @@ private:
   // share it), the first trip's too, so that every trip is measured on the
   // curve its regions compute, as the interpreter measures it before.
   void copyLapOfTrip(const Instruction& lap) {
+    auto read = lapVariables_.find(&lap);
+    if (read == lapVariables_.end()) { // the same lap in every trip: walked once
+      read = lapVariables_.emplace(&lap, lapInputs(source_, lap).loopVariables).first;
+    }
     bool readsAVariableWrittenOut = false;
-    for (std::uint32_t variable : lapInputs(source_, lap).loopVariables) {
+    for (std::uint32_t variable : read->second) {
       readsAVariableWrittenOut = readsAVariableWrittenOut || unrolling_.contains(variable);
     }
     if (!readsAVariableWrittenOut || lap.index >= output_.curves.size()) {
@@ -220,6 +224,7 @@ private:
   std::map<std::uint32_t, std::size_t> unrolling_; // the variables written out: their trip
   std::map<std::pair<std::uint32_t, std::vector<std::uint32_t>>, std::uint32_t> tripEntries_;
   std::set<std::uint32_t> boundParameters_;
+  std::map<const Instruction*, std::set<std::uint32_t>> lapVariables_; // by source lap
 };
 
 void collectCutOrder(const Function& function, const Region& region,
