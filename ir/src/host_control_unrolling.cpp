@@ -129,6 +129,10 @@ private:
       unrolling_[loop.result.index] = trip;
       replace(loop.result, constant(index));
       rewriteRegion(loop.regions[0]);
+      if (output_.instructions.size() > maximumInstructions) {
+        throw CurveLapError(CurveLapError::Kind::ProgramTooLarge, loop.span,
+                            functionTooLargeMessage());
+      }
     }
     unrolling_.erase(loop.result.index);
     markChanged();

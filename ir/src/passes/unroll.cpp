@@ -90,38 +90,42 @@ std::size_t cleanedUpSize(Function function) {
   return instructionCount(function);
 }
 
+// The loops that qualify: those of one trip or none in `atMostOnce` (their
+// copy of the body is never larger than the loop), the others in `candidates`.
 void collectCandidates(const Function& function, const Region& region, const UnrollOptions& options,
-                       std::vector<InstructionId>& candidates) {
+                       std::vector<InstructionId>& candidates,
+                       std::set<InstructionId>& atMostOnce) {
   for (InstructionId id : region.instructions) {
     const Instruction& instruction = function.instructions[id];
-    if (instruction.opcode == Opcode::Loop && unrollableTrips(function, instruction, options)) {
+    std::optional<std::size_t> trips;
+    if (instruction.opcode == Opcode::Loop) {
+      trips = unrollableTrips(function, instruction, options);
+    }
+    if (trips && *trips <= 1) {
+      atMostOnce.insert(id);
+    } else if (trips) {
       candidates.push_back(id);
     }
     for (const Region& nested : instruction.regions) {
-      collectCandidates(function, nested, options, candidates);
+      collectCandidates(function, nested, options, candidates, atMostOnce);
     }
   }
 }
 
-// A trial costs a cleaned-up copy of the whole function: the instructions
-// the trials of one run may copy in all (a part of thousands of cuts has
-// thousands of pass loops).
-constexpr std::size_t maximumTrialInstructions = 1'000'000;
-
 // Tries each qualifying loop alone and keeps the ones after which the
 // cleaned-up function is no larger; then all of them together, if that
 // is no larger either. Where a trial each would copy more than
-// maximumTrialInstructions, the loops are tried in groups of neighbours,
+// options.maximumTrialInstructions, the loops are tried in groups of neighbours,
 // each kept or not as a whole.
 bool unrollWhenNoLarger(Function& function, const UnrollOptions& options) {
   std::vector<InstructionId> candidates;
-  collectCandidates(function, function.body, options, candidates);
-  if (candidates.empty()) {
+  std::set<InstructionId> accepted; // a loop of one trip or none: no trial needed
+  collectCandidates(function, function.body, options, candidates, accepted);
+  if (candidates.empty() && accepted.empty()) {
     return false;
   }
   std::size_t baseline = cleanedUpSize(function);
-  std::size_t group = candidates.size() * baseline / maximumTrialInstructions + 1;
-  std::set<InstructionId> accepted;
+  std::size_t group = candidates.size() * baseline / options.maximumTrialInstructions + 1;
   for (std::size_t first = 0; first < candidates.size(); first += group) {
     std::size_t last = std::min(candidates.size(), first + group);
     std::set<InstructionId> only(candidates.begin() + static_cast<std::ptrdiff_t>(first),

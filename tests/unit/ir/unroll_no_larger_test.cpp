@@ -11,17 +11,19 @@
 namespace cncc::ir {
 namespace {
 
-// `loops` loops of one trip (unrolling one leaves the function smaller),
-// each with a feed move that reads a parameter, every tenth of eight trips.
-Function manyLoops(std::size_t loops) {
+// `loops` loops: every tenth of eight trips, its feed move reading the
+// index and a parameter (unrolling it makes the function larger), the
+// others of `trips` trips, a feed move at a fixed point.
+Function manyLoops(std::size_t loops, double trips) {
   FunctionBuilder builder("many");
   ValueId scale = builder.parameter(builder.addParameter("scale", 2));
   ValueId zero = builder.constant(0);
   ValueId feed = builder.constant(300);
   for (std::size_t k = 0; k < loops; ++k) {
-    ValueId last = builder.constant(k % 10 == 0 ? 8 : 1);
+    bool long_ = k % 10 == 0;
+    ValueId last = builder.constant(long_ ? 8 : trips);
     ValueId index = builder.beginLoop(builder.constant(1), last);
-    ValueId x = builder.binary(Opcode::Mul, index, scale);
+    ValueId x = long_ ? builder.binary(Opcode::Mul, index, scale) : scale;
     builder.feed(x, builder.constant(static_cast<double>(k)), zero, feed);
     builder.endLoop();
   }
@@ -44,9 +46,37 @@ std::size_t loopCount(const Function& function) {
   return count;
 }
 
+void expectSamePath(const ToolPath& before, const ToolPath& after) {
+  ASSERT_EQ(before.events.size(), after.events.size());
+  for (std::size_t k = 0; k < before.events.size(); ++k) {
+    EXPECT_EQ(before.events[k].x, after.events[k].x) << k;
+    EXPECT_EQ(before.events[k].y, after.events[k].y) << k;
+  }
+}
+
+// 300 loops of two trips: trials in groups (300 times the function's size is
+// past the 100,000 instructions the trials may copy here); the groups holding
+// a loop of eight trips are not kept, the others are.
 TEST(UnrollNoLarger, ManyLoopsAreTriedInGroupsAndStayNoLarger) {
-  Function function = manyLoops(800);
+  Function function = manyLoops(300, 2);
   ASSERT_TRUE(verifyFunction(function).empty());
+  ToolPath before = interpret(function);
+  std::size_t sizeBefore = cleanedUpSize(function);
+  UnrollOptions options;
+  options.onlyWhenNoLarger = true;
+  options.maximumTrialInstructions = 100'000;
+  EXPECT_TRUE(unrollLoops(function, options));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_LE(cleanedUpSize(function), sizeBefore);
+  EXPECT_LT(loopCount(function), 300u);
+  EXPECT_GE(loopCount(function), 30u); // every loop of eight trips stays
+  expectSamePath(before, interpret(function));
+}
+
+// A loop of one trip is never larger written out: each is, beside loops of
+// eight trips that stay.
+TEST(UnrollNoLarger, LoopsOfOneTripAreWrittenOut) {
+  Function function = manyLoops(300, 1);
   ToolPath before = interpret(function);
   std::size_t sizeBefore = cleanedUpSize(function);
   UnrollOptions options;
@@ -54,13 +84,8 @@ TEST(UnrollNoLarger, ManyLoopsAreTriedInGroupsAndStayNoLarger) {
   EXPECT_TRUE(unrollLoops(function, options));
   EXPECT_TRUE(verifyFunction(function).empty());
   EXPECT_LE(cleanedUpSize(function), sizeBefore);
-  EXPECT_LT(loopCount(function), 800u);
-  ToolPath after = interpret(function);
-  ASSERT_EQ(before.events.size(), after.events.size());
-  for (std::size_t k = 0; k < before.events.size(); ++k) {
-    EXPECT_EQ(before.events[k].x, after.events[k].x) << k;
-    EXPECT_EQ(before.events[k].y, after.events[k].y) << k;
-  }
+  EXPECT_EQ(loopCount(function), 30u);
+  expectSamePath(before, interpret(function));
 }
 
 } // namespace

@@ -46,6 +46,10 @@ struct UnrollOptions {
   // Keep an unrolled loop only when fold, cse and dce then leave the
   // function no larger than they leave it with the loop.
   bool onlyWhenNoLarger = false;
+  // A trial costs a cleaned-up copy of the whole function: the instructions
+  // the trials of one run may copy in all (a part of thousands of cuts has
+  // thousands of pass loops). Past it the loops are tried in groups.
+  std::size_t maximumTrialInstructions = 1'000'000;
 };
 // `unroll` (options as given) and `unroll-no-larger` (onlyWhenNoLarger):
 // a loop with constant bounds that runs at most maximumTripCount times is
