@@ -5,6 +5,7 @@
 // progress) whose body is the region's arithmetic and a feed move. A region
 // the entry marks, whose points need no parameter, is tabled as points.
 #include "curve_lap_rewriter.h"
+#include "lap_cuts.h"
 
 #include <array>
 #include <map>
@@ -45,6 +46,14 @@ private:
     feedToPoint(lap, point);
   }
 
+  // The entry's points as numbers, a feed move each: where it asks for them
+  // and a controller computes the program (the host's program is its
+  // points either way; tables keep its IR small).
+  bool asNumbers(const CurveTableEntry& entry) const {
+    std::optional<std::uint32_t> cut = currentCut();
+    return entry.pointsAsNumbers && !(cut && hostComputedCut(source_, *cut) != nullptr);
+  }
+
   // An entry's points, chosen once, and their runs.
   struct EntryPoints {
     std::shared_ptr<const geom::Curve> curve;
@@ -73,7 +82,7 @@ private:
     if (ramp) {
       fillProgress(points, entry);
     }
-    if (entry.pointsAsNumbers) {
+    if (asNumbers(entry)) {
       return runs; // written as numbers: neither table
     }
     // Each run's progress table follows its parameters' table.
@@ -104,7 +113,7 @@ private:
     if (!ramp || points.runs.empty() || points.runs.front().progressTable) {
       return;
     }
-    if (entry.pointsAsNumbers) {
+    if (asNumbers(entry)) {
       if (points.runs.front().progress.empty()) {
         fillProgress(points, entry);
       }
@@ -189,7 +198,7 @@ private:
   }
 
   void emitRun(const Instruction& lap, Run& run, bool ramp) {
-    if (source_.curves[lap.index].pointsAsNumbers) {
+    if (asNumbers(source_.curves[lap.index])) {
       emitRunAsNumbers(lap, run, ramp);
       return;
     }

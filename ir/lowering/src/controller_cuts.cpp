@@ -146,7 +146,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   // A curve that reads parameters is planned so on every target: the
   // host's split-arc-laps and bound-controller-steps cut it in whole turns
   // of its arcs and chords of its other pieces at the compiled values.
-  bool hostPlans = !parametersOf(*cut.curve).empty();
+  bool hostPlans = !parametersOf(*cut.curve).empty() || runtimeOffset_;
   if ((!options_.controllerLoops && !hostPlans) || modifierValue(cut, "spacing") != nullptr) {
     return false;
   }

@@ -424,11 +424,11 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     lowerCompensatedCut(cut, *comp, distance);
     return true;
   }
-  if (options_.controllerLoops) {
-    bool runtime = !parametersOf(*toolDiameter_).empty();
-    if (lowerControllerOffsetCut(cut, distance, runtime)) {
-      return true;
-    }
+  // A radius that is a number: the same laps on every target (the host's
+  // legalisations choose their chords). A parameter: the controller's.
+  bool runtime = !parametersOf(*toolDiameter_).empty();
+  if ((options_.controllerLoops || !runtime) && lowerControllerOffsetCut(cut, distance, runtime)) {
+    return true;
   }
   lowerHostOffsetCut(cut, distance);
   return true;
@@ -580,17 +580,17 @@ bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
   return false;
 }
 
-// The points a controller-side target prints are read back by tools that
-// print fewer digits than the controller keeps (LinuxCNC's rs274: 4
-// decimals): a hundredth of the tolerance is left for them.
+// The points of an offset a controller-side target prints are read back by
+// tools that print fewer digits than the controller keeps (LinuxCNC's
+// rs274: 4 decimals): a hundredth of the tolerance is left for them, on
+// every target (the lowering is the same for all).
 double PartLowering::offsetChordTolerance(const CutStmt& cut) {
   ToleranceBudget budget = toleranceBudget(cut);
-  bool readBack = options_.controllerLoops && chordTolerance(cut);
-  return budget.forPoints() - (readBack ? budget.tolerance / 100 : 0);
+  return budget.forPoints() - (chordTolerance(cut) ? budget.tolerance / 100 : 0);
 }
 
 geom::CurveSamples PartLowering::offsetSamples(const CutStmt& cut, const geom::Curve& offset) {
-  if (!options_.controllerLoops || !chordTolerance(cut)) {
+  if (!chordTolerance(cut)) {
     return checkedSamplesFor(cut, offset);
   }
   return chordsWithinBudget(cut, offset, offsetChordTolerance(cut));

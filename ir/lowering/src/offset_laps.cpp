@@ -11,12 +11,12 @@
 //   (forward_derivative.h), over the range left of it at concave corners.
 // The points are chosen by the target's legalisation (expand-curve-laps)
 // within the cut's tolerance of the offset, as samples= or spacing= ask;
-// on a target that runs loops they are printed as numbers (the entry's
-// pointsAsNumbers), a controller keeping its numbers in a few hundred
-// variables. Fitted arcs and the spline, SPL and NURBS blocks fitted to the
-// offset are laps of the same regions (the stand-in CutCurve whose `beside`
-// this is). At distance 0 the regions are the drawn curve itself:
-// comp=controller's chords (compensated_cuts.cpp).
+// where a controller computes the program they are printed as numbers (the
+// entry's pointsAsNumbers, on every target), a controller keeping its
+// numbers in a few hundred variables. Fitted arcs and the spline, SPL and NURBS blocks fitted to
+// the offset are laps of the same regions (the stand-in CutCurve whose `beside` this is). At
+// distance 0 the regions are the drawn curve itself: comp=controller's chords
+// (compensated_cuts.cpp).
 #include "forward_derivative.h"
 
 #include "cncc/geom/composite_curve.h"
@@ -82,7 +82,7 @@ std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCu
   CurveTableEntry entry = beside.layout;
   entry.arcsAsked = arcs;
   chooseSampling(entry, cut, *entry.geometry, offsetChordTolerance(cut));
-  entry.pointsAsNumbers = options_.controllerLoops;
+  entry.pointsAsNumbers = true;
   return builder_.addCurve(std::move(entry));
 }
 
@@ -94,7 +94,7 @@ std::uint32_t PartLowering::chosenPointsCurve(const CutStmt& cut, const BesideCu
   // How the points would be chosen again (IR read from text keeps them).
   chooseSampling(entry, cut, *entry.geometry, toleranceBudget(cut).forPoints());
   entry.chosenParameters = std::make_shared<const std::vector<double>>(parameters);
-  entry.pointsAsNumbers = options_.controllerLoops;
+  entry.pointsAsNumbers = true;
   return builder_.addCurve(std::move(entry));
 }
 

@@ -189,9 +189,10 @@ struct CurveTableEntry {
   // into tables even on a target that evaluates the curve in the program:
   // a NURBS span whose coefficients the controller would read too coarsely.
   std::vector<std::size_t> hostPointRegions = {};
-  // Every point the host computes, printed as numbers, a feed move each (a
-  // cut beside its curve whose offset the host computes, on a controller
-  // that keeps its numbers in a few hundred variables, not in tables).
+  // Every point the host computes, printed as numbers, a feed move each,
+  // where a controller computes the program (a cut beside its curve whose
+  // offset the host computes: a controller keeps its numbers in a few
+  // hundred variables, not in tables); on a host target, tables as others.
   bool pointsAsNumbers = false;
   // Steps: counts of an offset that grow with the tool radius (above).
   std::optional<OffsetStepGrowth> offsetGrowth = std::nullopt;
