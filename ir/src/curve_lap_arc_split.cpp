@@ -73,6 +73,7 @@ CurveTableEntry pieceEntry(const CurveTableEntry& stepped, std::size_t piece, st
   }
   entry.chosenParameters = nullptr;
   entry.arcsAsked.reset();
+  entry.offsetGrowth.reset(); // cut at the compiled radius: no distance read
   return entry;
 }
 
@@ -168,8 +169,7 @@ std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
   }
   const CurveTableEntry& stepped = *measured;
   if (stepped.sampling != CurveSampling::Steps || stepped.arcRegions.empty() ||
-      !stepped.walkRegions.empty() || stepped.offsetGrowth ||
-      lap.regions.size() != stepped.regionCount()) {
+      !stepped.walkRegions.empty() || lap.regions.size() != stepped.regionCount()) {
     return std::nullopt;
   }
   std::optional<std::vector<RegionAtCompiled>> regions = regionsAtCompiled(lap, stepped, compiled);

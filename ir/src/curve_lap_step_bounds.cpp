@@ -166,6 +166,7 @@ CurveTableEntry chordEntry(const CurveTableEntry& stepped,
   entry.regionSteps.clear();
   entry.walkRegions.clear();
   entry.chosenParameters = nullptr;
+  entry.offsetGrowth.reset(); // the chords of the offset at the compiled radius
   if (hostCut != nullptr) {
     double points = hostCut->budget().forPoints();
     entry.amount = points > 0 ? points : entry.amount; // else the lowering's error
@@ -230,12 +231,14 @@ void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
 }
 
 // The ranges of a lap cut in steps within a tolerance whose points the
-// host chooses, or whose computed counts are past the limit at the compiled
-// values; nullopt for any other lap (samples=, arcs, an offset's growth).
+// host chooses (an offset's whose counts grow with the radius too: chords at
+// the compiled radius), or whose computed counts are past the limit at the
+// compiled values; nullopt for any other lap (samples=, arcs, a
+// controller's offset growth).
 std::optional<std::vector<std::pair<double, double>>>
 boundedLapRanges(const Instruction& lap, const CurveTableEntry& stepped, CompiledValues& compiled,
                  const CutGeometry* hostCut) {
-  if (stepped.sampling != CurveSampling::Steps || stepped.offsetGrowth ||
+  if (stepped.sampling != CurveSampling::Steps || (stepped.offsetGrowth && hostCut == nullptr) ||
       !stepped.arcRegions.empty()) {
     return std::nullopt;
   }

@@ -127,13 +127,16 @@ bool PartLowering::offsetOnControllerWanted(const CutStmt& cut, const CutCurve& 
 
 // With `runtime` the tool's radius is a parameter; without, a number, and
 // the cut is lowered here only where offsetOnControllerWanted says so and
-// the controller's offset can follow the path (false otherwise).
+// the controller's offset can follow the path (false otherwise). The same
+// on every target: a host's legalisations choose the chords at the
+// compiled radius (bound-controller-steps, split-arc-laps).
 bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledDistance,
                                             bool runtime) {
   for (std::string_view name : {"lead", "samples", "spacing"}) {
     if (const Modifier* modifier = findModifier(cut, name); runtime && modifier != nullptr) {
-      unsupported(modifier->span(),
-                  fmt::format("{}= beside a curve whose tool diameter is a parameter", name));
+      return runtimeOffsetRefused(
+          modifier->span(),
+          fmt::format("{}= beside a curve whose tool diameter is a parameter", name));
     }
   }
   CutCurve curve = cutCurve(cut);
@@ -153,8 +156,9 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
       if (!runtime) {
         return false;
       }
-      unsupported(cut.span, "an arc moved by a map that is not a rotation and a scale, beside a "
-                            "curve whose tool diameter is a parameter");
+      return runtimeOffsetRefused(cut.span, "an arc moved by a map that is not a rotation and a "
+                                            "scale, beside a curve whose tool diameter is a "
+                                            "parameter");
     }
   }
   offset.joins = pieceJoins(pieces, compiledDistance, offset.closed);
@@ -164,8 +168,8 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     if (!runtime) {
       return false;
     }
-    unsupported(cut.span, "a path whose offset's pieces join otherwise than its own, beside a "
-                          "curve whose tool diameter is a parameter");
+    return runtimeOffsetRefused(cut.span, "a path whose offset's pieces join otherwise than its "
+                                          "own, beside a curve whose tool diameter is a parameter");
   }
   for (std::size_t j = 0; j < offset.joins.size(); ++j) {
     std::size_t after = (j + 1) % pieces.size();
@@ -174,8 +178,8 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
       if (!runtime) {
         return false;
       }
-      unsupported(cut.span, "a concave corner at a piece that is not a line, beside a curve "
-                            "whose tool diameter is a parameter");
+      return runtimeOffsetRefused(cut.span, "a concave corner at a piece that is not a line, "
+                                            "beside a curve whose tool diameter is a parameter");
     }
   }
   if (runtime) {
@@ -196,9 +200,20 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   } unset{runtimeOffset_};
   bool lowered = lowerControllerCut(cut, curve);
   if (!lowered && runtime) {
-    unsupported(cut.span, "this cut beside its curve with a tool diameter that is a parameter");
+    return runtimeOffsetRefused(
+        cut.span, "this cut beside its curve with a tool diameter that is a parameter");
   }
   return lowered;
+}
+
+// Where the controller's laps cannot follow a radius that is a parameter:
+// refused where a controller computes the program; a host computes the
+// offset at the compiled radius instead (false).
+bool PartLowering::runtimeOffsetRefused(SourceSpan span, std::string_view what) {
+  if (options_.controllerLoops) {
+    unsupported(span, what);
+  }
+  return false;
 }
 
 // Before the cut: an alarm for a radius that is not positive, or not below

@@ -170,14 +170,16 @@ double PartLowering::offsetDistance(const CutStmt& cut, const Modifier& side, bo
   }
   // Offsets are computed here: on a controller-side target what they
   // depend on must not be a parameter, but for the tool's diameter when the
-  // controller computes the offset (controller_offset_cuts.cpp); the
-  // passes' depth and step may be (the sweep's pass loop computes them).
-  if (std::optional<ParameterUse> use =
-          options_.controllerLoops ? parameterUse(cut, toolDiameter_) : std::nullopt) {
-    if (use->what == "tool diameter" && !controller) {
-      double radius = evaluate(*toolDiameter_, environment_).number / 2;
-      return wordOf(*side.value) == "left" ? radius : -radius;
-    }
+  // controller computes the offset (controller_offset_cuts.cpp), as its laps
+  // do on every target (a host's legalisation fixes it, or lowerOffsetCut
+  // where they cannot follow); the passes' depth and step may be (the
+  // sweep's pass loop computes them).
+  std::optional<ParameterUse> use = parameterUse(cut, toolDiameter_);
+  if (use && use->what == "tool diameter" && !controller) {
+    double radius = evaluate(*toolDiameter_, environment_).number / 2;
+    return wordOf(*side.value) == "left" ? radius : -radius;
+  }
+  if (use && options_.controllerLoops) {
     fail(cut.span,
          fmt::format("this cut beside the curve (side=) has its {} depend on parameter '{}': on "
                      "this target the offset path is computed by the compiler, which needs its "
@@ -424,11 +426,15 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     lowerCompensatedCut(cut, *comp, distance);
     return true;
   }
-  // A radius that is a number: the same laps on every target (the host's
-  // legalisations choose their chords). A parameter: the controller's.
+  // The same laps on every target (a host's legalisations choose their
+  // chords), but where a host fixes the curve's parameters.
   bool runtime = !parametersOf(*toolDiameter_).empty();
-  if ((options_.controllerLoops || !runtime) && lowerControllerOffsetCut(cut, distance, runtime)) {
+  bool curveReads = !parametersOf(*cut.curve).empty();
+  if (!(runtime && curveReads) && lowerControllerOffsetCut(cut, distance, runtime)) {
     return true;
+  }
+  if (runtime) { // the host's offset at the compiled radius
+    fixParameters(*toolDiameter_, toolDiameter_->span, "the tool diameter");
   }
   lowerHostOffsetCut(cut, distance);
   return true;

@@ -194,6 +194,54 @@ TEST(OffsetCuts, ControllerOffsetsCheckTheRadiusAndGrowTheirSteps) {
   EXPECT_GT(static_cast<double>(wide), 1.2 * static_cast<double>(thin));
 }
 
+// A tool diameter that is a parameter on a host target: the lowering gives
+// it the controller's laps (the regions read the parameter, the counts grow
+// with it); the host's legalisations cut the circle's offset as arcs and
+// the polar curve's as chords of the exact offset at the compiled radius,
+// with the parameter fixed. Without them the host computed the offset
+// itself (the circle in chords).
+TEST(OffsetCuts, AParameterRadiusOnAHostIsTheControllersLapsCutAtTheCompiledRadius) {
+  LoweringOptions host;
+  host.expandCurveLaps = false;
+  Compiled compiled("part p(dia = 4) {\n  tool 1 diameter=dia feed=300\n  safe z=5\n"
+                    "  curve arc(center=(0, 0), radius=20, from=0, to=2*pi) side=right\n"
+                    "  curve polar(r = 18 + 4*cos(2*t)*cos(6*t), t = 0 .. 2*pi) side=right "
+                    "tolerance=0.01\n}\n",
+                    host);
+  ASSERT_TRUE(compiled.part);
+  Function& function = compiled.part->function;
+  ASSERT_EQ(function.parameters.size(), 1u);
+  EXPECT_FALSE(function.parameters.front().fixed);
+  bool grows = false;
+  for (const CurveTableEntry& entry : function.curves) {
+    grows = grows || entry.offsetGrowth.has_value();
+  }
+  EXPECT_TRUE(grows);
+  ToolPath before = interpret(function);
+  Function legalised = function;
+  frontend::DiagnosticEngine diagnostics;
+  ASSERT_TRUE(legaliseCurves(legalised, diagnostics));
+  EXPECT_TRUE(verifyFunction(legalised).empty());
+  EXPECT_TRUE(legalised.parameters.front().fixed);
+  std::size_t arcs = 0;
+  for (const Instruction& instruction : legalised.instructions) {
+    arcs += instruction.opcode == Opcode::Arc ? 1 : 0;
+    EXPECT_NE(instruction.opcode, Opcode::CurveLap);
+  }
+  EXPECT_GE(arcs, 1u);
+  ToolPath after = interpret(legalised);
+  curve_lap_test::expectSameMoves(before, after);
+  const geom::Curve& offset = *function.cuts.back().curve;
+  geom::CurveProximity near(offset, 1e-7);
+  std::size_t checked = 0;
+  for (const MachineEvent& event : after.events) {
+    if (event.kind == MachineEvent::Kind::Feed && event.x < 25 && std::fabs(event.x) > 0.5) {
+      checked += near.closestPoint({event.x, event.y, 0}).distance < 1e-6 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(checked, 50u); // the polar contour's chords end on its exact offset
+}
+
 // The cut's feeds at z = 0 (the plunge's end first).
 std::vector<Eigen::Vector3d> levelFeeds(const ToolPath& path) {
   std::vector<Eigen::Vector3d> points;

@@ -130,22 +130,16 @@ std::vector<std::string> partNames(const std::string& source) {
   return names;
 }
 
-// Every example's parts are lowered the same for both but those whose
-// target-shaped constructs ir/lowering/README.md lists as next steps: an
-// offset whose tool diameter is a parameter, which a controller computes.
-// (A curve with arcs that reads parameters is the same since
-// split-arc-laps: cam_profile, bore_plate_mm and _inch; a `for` or `if` on
-// parameters since unroll-host-control: bolt_circle, rosette_plate and
-// flange; an offset of a number's radius since the host chooses the chords
-// of the controller's laps: offset_contours; comp=controller's chords and a
-// host's offset, numbers where a controller computes the program:
-// compensated_contours.)
-// A change that makes one the same, or another one differ, shows here
+// Every example's parts are lowered the same for both. (A curve with arcs
+// that reads parameters since split-arc-laps: cam_profile, bore_plate_mm
+// and _inch; a `for` or `if` on parameters since unroll-host-control:
+// bolt_circle, rosette_plate and flange; an offset since the host chooses
+// the chords of the controller's laps, at the compiled radius where it is a
+// parameter: offset_contours and worn_cutter; comp=controller's chords and
+// a host's offset, numbers where a controller computes the program:
+// compensated_contours.) A change that makes one differ shows here
 // (CNCC_SHOW_DIFF=1 writes both to /tmp/PART.host and .controller).
-TEST(TargetNeutralLowering, TheExamplesButTheirLoopsAndOffsets) {
-  const std::set<std::string> targetShaped = {
-      "worn_cutter", // an offset of a parameter's tool
-  };
+TEST(TargetNeutralLowering, EveryExamplesParts) {
   std::set<std::string> differ;
   std::size_t same = 0;
   for (const auto& entry :
@@ -173,12 +167,8 @@ TEST(TargetNeutralLowering, TheExamplesButTheirLoopsAndOffsets) {
       }
     }
   }
-  EXPECT_EQ(differ, targetShaped);
-  // archimedean_spiral, polar_contour, s_profile, plate, the parameter arcs
-  // of cam_profile, bore_plate_mm and bore_plate_inch, the loops of
-  // bolt_circle, rosette_plate and flange, and the offsets of
-  // offset_contours and compensated_contours.
-  EXPECT_GE(same, 12u);
+  EXPECT_EQ(differ, std::set<std::string>{});
+  EXPECT_GE(same, 13u);
 }
 
 } // namespace
