@@ -124,6 +124,11 @@ bool unrollWhenNoLarger(Function& function, const UnrollOptions& options) {
   if (candidates.empty() && accepted.empty()) {
     return false;
   }
+  if (candidates.empty()) { // nothing to measure: no copy of a body is larger
+    bool changed = false;
+    function = unrolled(function, options, &accepted, changed);
+    return changed;
+  }
   std::size_t baseline = cleanedUpSize(function);
   std::size_t group = candidates.size() * baseline / options.maximumTrialInstructions + 1;
   for (std::size_t first = 0; first < candidates.size(); first += group) {

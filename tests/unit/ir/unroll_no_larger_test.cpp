@@ -88,5 +88,25 @@ TEST(UnrollNoLarger, LoopsOfOneTripAreWrittenOut) {
   expectSamePath(before, interpret(function));
 }
 
+// Only loops of one trip: written out without a trial.
+TEST(UnrollNoLarger, OnlyLoopsOfOneTrip) {
+  FunctionBuilder builder("once");
+  ValueId zero = builder.constant(0);
+  ValueId feed = builder.constant(300);
+  for (int k = 0; k < 5; ++k) {
+    ValueId index = builder.beginLoop(builder.constant(k), builder.constant(k));
+    builder.feed(index, zero, zero, feed);
+    builder.endLoop();
+  }
+  Function function = builder.finish();
+  ToolPath before = interpret(function);
+  UnrollOptions options;
+  options.onlyWhenNoLarger = true;
+  EXPECT_TRUE(unrollLoops(function, options));
+  EXPECT_TRUE(verifyFunction(function).empty());
+  EXPECT_EQ(loopCount(function), 0u);
+  expectSamePath(before, interpret(function));
+}
+
 } // namespace
 } // namespace cncc::ir
