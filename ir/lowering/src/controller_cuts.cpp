@@ -212,6 +212,9 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
       }
     }
   }
+  if (runtimeOffset_ && !runtimeOffset_->radius.isConstant()) {
+    guardRuntimeRadius(*runtimeOffset_);
+  }
   checkMethod(cut);
   Scalar feed = cutFeed(cut);
   ValueId feedValue = arithmetic_.value(feed);

@@ -187,7 +187,6 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     offset.distance =
         compiledDistance > 0 ? offset.radius : arithmetic_.unary(Opcode::Neg, offset.radius);
     offset.largestRadius = largestFittingRadius(pieces, compiledDistance, drawn);
-    guardRuntimeRadius(offset);
   } else {
     offset.radius = Scalar::of(std::fabs(compiledDistance));
     offset.distance = Scalar::of(compiledDistance);
@@ -216,8 +215,9 @@ bool PartLowering::runtimeOffsetRefused(SourceSpan span, std::string_view what) 
   return false;
 }
 
-// Before the cut: an alarm for a radius that is not positive, or not below
-// the largest the tool fits the curve with.
+// Before the cut (lowerControllerCut, once it knows it cuts it): an alarm
+// for a radius that is not positive, or not below the largest the tool
+// fits the curve with.
 void PartLowering::guardRuntimeRadius(const RuntimeOffset& offset) {
   alarmWhen(arithmetic_.binary(Opcode::Le, offset.radius, Scalar::of(0)),
             "the tool diameter is not positive");

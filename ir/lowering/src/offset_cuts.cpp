@@ -426,8 +426,10 @@ bool PartLowering::lowerOffsetCut(const CutStmt& cut) {
     lowerCompensatedCut(cut, *comp, distance);
     return true;
   }
-  // The same laps on every target (a host's legalisations choose their
-  // chords), but where a host fixes the curve's parameters.
+  // The controller's laps on every target where they can follow the offset
+  // (a host's legalisations cut them at the compiled radius); a host's own
+  // offset where the curve reads parameters too (a controller refused
+  // that in offsetDistance) or where they cannot follow.
   bool runtime = !parametersOf(*toolDiameter_).empty();
   bool curveReads = !parametersOf(*cut.curve).empty();
   if (!(runtime && curveReads) && lowerControllerOffsetCut(cut, distance, runtime)) {

@@ -13,10 +13,10 @@
 // within the cut's tolerance of the offset, as samples= or spacing= ask;
 // where a controller computes the program they are printed as numbers (the
 // entry's pointsAsNumbers, on every target), a controller keeping its
-// numbers in a few hundred variables. Fitted arcs and the spline, SPL and NURBS blocks fitted to
-// the offset are laps of the same regions (the stand-in CutCurve whose `beside` this is). At
-// distance 0 the regions are the drawn curve itself: comp=controller's chords
-// (compensated_cuts.cpp).
+// numbers in a few hundred variables. Fitted arcs and the spline, SPL and
+// NURBS blocks fitted to the offset are laps of the same regions (the
+// stand-in CutCurve whose `beside` this is). At distance 0 the regions are
+// the drawn curve itself: comp=controller's chords (compensated_cuts.cpp).
 #include "forward_derivative.h"
 
 #include "cncc/geom/composite_curve.h"
