@@ -12,7 +12,8 @@
 // trip, without the lowering's geometry (the curve at the first trip): its
 // regions, at the trip's number, are the curve, which
 // split-arc-laps and bound-controller-steps then cut at the compiled
-// values. A loop within whose bounds read the variable is written out in
+// values; an entry no lap names any more is dropped from the table (the
+// curves renumbered in order). A loop within whose bounds read the variable is written out in
 // the next round. Past maximumUnrolledTrips trips in all, an error at the
 // loop naming the bound.
 #include "cncc/ir/curve_lap.h"
@@ -268,6 +269,28 @@ void numberCutsInProgramOrder(Function& function) {
   }
 }
 
+// The curve table without the entries no lap names any more (a loop's
+// entry whose trips each have their own, an untaken branch's), in order.
+void dropCurvesNoLapNames(Function& function) {
+  std::map<std::uint32_t, std::uint32_t> renumbered;
+  for (const Instruction& instruction : function.instructions) {
+    if (instruction.opcode == Opcode::CurveLap) {
+      renumbered.emplace(instruction.index, 0);
+    }
+  }
+  std::vector<CurveTableEntry> curves;
+  for (auto& [old, now] : renumbered) {
+    now = static_cast<std::uint32_t>(curves.size());
+    curves.push_back(old < function.curves.size() ? function.curves[old] : CurveTableEntry{});
+  }
+  function.curves = std::move(curves);
+  for (Instruction& instruction : function.instructions) {
+    if (instruction.opcode == Opcode::CurveLap) {
+      instruction.index = renumbered.at(instruction.index);
+    }
+  }
+}
+
 } // namespace
 
 bool unrollHostControl(Function& function) {
@@ -290,6 +313,7 @@ bool unrollHostControl(Function& function) {
   }
   if (changed) {
     numberCutsInProgramOrder(function);
+    dropCurvesNoLapNames(function);
   }
   return changed;
 }
