@@ -94,6 +94,10 @@ struct RuntimeOffset {
   // last is its end to its start.
   std::vector<PieceJoin> joins;
   bool closed = false;
+  // A number's radius: the part of the compiled offset beside each drawn
+  // piece (null for none), whose range (in the piece's own parameter, cut
+  // back at concave corners) and ends the laps keep.
+  std::vector<const geom::Curve*> keptParts;
 };
 
 // G39 after chord `after` (0-based), towards the next move's direction.

@@ -12,6 +12,9 @@
 //   the tool's radius, a convex corner of a path gets an arc of that radius
 //   about it and a concave corner between two lines their offsets'
 //   crossing, c + d (n1 + n2) / (1 + n1.n2), as geom::offsetOfPieces does;
+//   with a number's radius, a concave corner at a polar or param piece cuts
+//   the piece back where geom's compiled offset does (its range and the
+//   crossing, constants: RuntimeOffset::keptParts);
 // - the step counts are the legalisation's (curve_lap_offset_steps.h): with
 //   a radius the program reads, N(r) = N0 sqrt(1 + q r), which the program
 //   computes; with a number, the fewest on the exact offset;
@@ -175,11 +178,26 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     std::size_t after = (j + 1) % pieces.size();
     if (offset.joins[j].kind == PieceJoin::Crossing &&
         !(isLineCurve(*pieces[j]) && isLineCurve(*pieces[after]))) {
+      // A number's radius: the pieces cut back where the compiled offset
+      // is (a knot span's would need its spans cut back too).
       if (!runtime) {
-        return false;
+        if (!curve.pieces[j].spans.empty() || !curve.pieces[after].spans.empty() ||
+            isArcCurve(*pieces[j]) || isArcCurve(*pieces[after])) {
+          return false;
+        }
+        continue;
       }
       return runtimeOffsetRefused(cut.span, "a concave corner at a piece that is not a line, "
                                             "beside a curve whose tool diameter is a parameter");
+    }
+  }
+  if (!runtime) {
+    offset.keptParts.assign(pieces.size(), nullptr);
+    std::vector<const geom::Curve*> parts = geom::piecesOf(*compiled.curve);
+    for (std::size_t k = 0; k < parts.size() && k < compiled.partOrigins.size(); ++k) {
+      if (compiled.partOrigins[k]) {
+        offset.keptParts[*compiled.partOrigins[k]] = parts[k];
+      }
     }
   }
   if (runtime) {
@@ -247,6 +265,15 @@ bool PartLowering::planOffsetSteps(const CutCurve& curve, std::vector<Controller
     if (segment.isArc || piece.value->kind == CurveKind::Line) {
       continue;
     }
+    if (!segment.isNurbs && !offset.keptParts.empty()) {
+      if (offset.keptParts[segment.piece] == nullptr) {
+        return false;
+      }
+      // Cut back at its concave corners, as the compiled offset is.
+      geom::ParameterRange kept = offset.keptParts[segment.piece]->domain();
+      segment.from = kept.t0;
+      segment.to = kept.t1;
+    }
     segment.steps = stepsChosenByLegalisation;
     segment.stepCount.reset();
     if (!offset.radius.isConstant()) {
@@ -305,11 +332,25 @@ CurvePoint PartLowering::offsetSegmentEnd(const CutCurve& curve, const Controlle
     join = &offset.joins.back();
   }
   if (join != nullptr && join->kind == PieceJoin::Crossing) {
+    std::size_t count = offset.pieces.size();
+    std::size_t other = atEnd ? (segment.piece + 1) % count : (segment.piece + count - 1) % count;
+    const geom::Curve* kept = offset.keptParts.empty() ? nullptr : offset.keptParts[segment.piece];
+    if (kept != nullptr &&
+        !(isLineCurve(*offset.pieces[segment.piece]) && isLineCurve(*offset.pieces[other]))) {
+      // A number's radius beside a curved piece: where the compiled
+      // offsets cross.
+      geom::ParameterRange range = kept->domain();
+      Eigen::Vector3d crossing = kept->point(atEnd ? range.t1 : range.t0);
+      return {Scalar::of(crossing.x()), Scalar::of(crossing.y()), point.z};
+    }
     Eigen::Vector2d shift = (join->before + join->after) / (1 + join->before.dot(join->after));
     return besideAt({Scalar::of(join->corner.x()), Scalar::of(join->corner.y()), point.z}, shift);
   }
   const geom::Curve& drawn = *offset.pieces[segment.piece];
   double t = atEnd ? drawn.domain().t1 : drawn.domain().t0;
+  if (!segment.isNurbs && !segment.isArc && !isLineCurve(drawn)) {
+    t = atEnd ? segment.to : segment.from; // cut back at a concave corner
+  }
   if (segment.isNurbs) {
     const geom::PolynomialSpan& span = piece.spans[segment.span];
     t = atEnd ? span.t1 : span.t0;

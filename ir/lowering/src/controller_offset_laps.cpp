@@ -83,7 +83,12 @@ PartLowering::besideSteppedLap(const CutStmt& cut, const CutCurve& curve,
     const CurvePiece& piece = curve.pieces[segment.piece];
     bool line = isLineSegment(segment, piece);
     if (startsItsPiece(segment)) {
-      addPiece(line ? CurvePieceLayout{0, 0, 1} : pieceLayout(piece, 0));
+      CurvePieceLayout layout = line ? CurvePieceLayout{0, 0, 1} : pieceLayout(piece, 0);
+      if (!line && !segment.isArc && !segment.isNurbs) {
+        layout.from = segment.from; // cut back at a concave corner
+        layout.to = segment.to;
+      }
+      addPiece(std::move(layout));
     }
     lap.besideRegions.push_back({s, 0});
     if (segment.isArc) {
