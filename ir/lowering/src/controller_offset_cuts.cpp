@@ -328,8 +328,10 @@ CurvePoint PartLowering::offsetSegmentEnd(const CutCurve& curve, const Controlle
   const PieceJoin* join = nullptr;
   if (atEnd && endsItsPiece(segment, piece) && (segment.piece < lastPiece || offset.closed)) {
     join = &offset.joins[segment.piece];
-  } else if (!atEnd && startsItsPiece(segment) && segment.piece == 0 && offset.closed) {
-    join = &offset.joins.back();
+  } else if (!atEnd && startsItsPiece(segment) && (segment.piece > 0 || offset.closed)) {
+    // The join before the piece: a line's region starts at the crossing too
+    // (a host that samples the region at its start reads it).
+    join = &offset.joins[segment.piece > 0 ? segment.piece - 1 : offset.joins.size() - 1];
   }
   if (join != nullptr && join->kind == PieceJoin::Crossing) {
     std::size_t count = offset.pieces.size();
