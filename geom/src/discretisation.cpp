@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace cncc::geom {
 
@@ -63,8 +64,11 @@ void sampleArcDistances(const Curve& curve, double ta, double tb, const Eigen::V
 
 // chordDeviation, except that it may return early with any sampled distance beyond
 // `limit` (a lower bound of the deviation, enough to reject the chord).
+// `breaks`: the curve's breakpoints, sorted; a corner among them inside the
+// chord is measured where it is (its peak can lie between two samples that
+// turn too little to be sampled more finely, near the chord's end).
 double chordDeviationBeyond(const Curve& curve, double ta, double tb, double limit,
-                            ArcSamples& samples) {
+                            ArcSamples& samples, std::span<const double> breaks) {
   if (ta == tb)
     return 0.0;
   if (ta > tb)
@@ -72,6 +76,9 @@ double chordDeviationBeyond(const Curve& curve, double ta, double tb, double lim
   Eigen::Vector3d a = curve.point(ta), b = curve.point(tb);
   sampleArcDistances(curve, ta, tb, a, b, limit, samples);
   double largest = *std::max_element(samples.distance.begin(), samples.distance.end());
+  for (auto it = std::upper_bound(breaks.begin(), breaks.end(), ta);
+       it != breaks.end() && *it < tb && largest <= limit; ++it)
+    largest = std::max(largest, detail::distanceToSegment(curve.point(*it), a, b));
   if (largest > limit)
     return largest;
   auto distance = [&](double t) { return detail::distanceToSegment(curve.point(t), a, b); };
@@ -97,18 +104,20 @@ constexpr double kRoundingMarginUlps = 64.0;
 // Whether the chord from `from` to `to` meets the tolerance.
 class ChordFeasibility {
 public:
-  ChordFeasibility(const Curve& curve, double tolerance) : curve_(curve), tolerance_(tolerance) {}
+  ChordFeasibility(const Curve& curve, double tolerance)
+      : curve_(curve), tolerance_(tolerance), breaks_(curve.breakpoints()) {}
   bool operator()(double from, double to) const {
     double magnitude = std::max(curve_.point(from).lpNorm<Eigen::Infinity>(),
                                 curve_.point(to).lpNorm<Eigen::Infinity>());
     double margin = kRoundingMarginUlps * std::numeric_limits<double>::epsilon() * magnitude;
     double allowed = tolerance_ - margin;
-    return chordDeviationBeyond(curve_, from, to, allowed, samples_) <= allowed;
+    return chordDeviationBeyond(curve_, from, to, allowed, samples_, breaks_) <= allowed;
   }
 
 private:
   const Curve& curve_;
   double tolerance_;
+  std::vector<double> breaks_;
   mutable ArcSamples samples_;
 };
 
@@ -184,7 +193,9 @@ double chordDensity(const CurveDerivatives& d, double tolerance, double offset) 
 
 double chordDeviation(const Curve& curve, double ta, double tb) {
   ArcSamples samples;
-  return chordDeviationBeyond(curve, ta, tb, std::numeric_limits<double>::infinity(), samples);
+  std::vector<double> breaks = curve.breakpoints();
+  return chordDeviationBeyond(curve, ta, tb, std::numeric_limits<double>::infinity(), samples,
+                              breaks);
 }
 
 ChordLimitExceeded::ChordLimitExceeded(std::size_t limit)
