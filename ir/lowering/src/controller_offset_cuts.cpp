@@ -164,6 +164,19 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
                                             "parameter");
     }
   }
+  // A ramp descends along one closed lap: an offset that does not close (a
+  // corner where the path closes, which geom's offset leaves open) has
+  // none.
+  geom::ParameterRange whole = compiled.curve->domain();
+  if (rampEntry(cut) &&
+      (compiled.curve->point(whole.t0) - compiled.curve->point(whole.t1)).norm() > 1e-6) {
+    if (!runtime) {
+      return false; // the host's offset, which says so
+    }
+    return runtimeOffsetRefused(findModifier(cut, "entry")->span(),
+                                "entry=ramp beside a path whose offset does not close (a corner "
+                                "where the path closes)");
+  }
   offset.joins = pieceJoins(pieces, compiledDistance, offset.closed);
   // The laps follow geom's offset: its pieces and a corner arc per convex
   // join, as the joins at the compiled radius say.
