@@ -192,8 +192,12 @@ double chordDensity(const CurveDerivatives& d, double tolerance, double offset) 
 } // namespace
 
 double chordDeviation(const Curve& curve, double ta, double tb) {
-  ArcSamples samples;
   std::vector<double> breaks = curve.breakpoints();
+  return chordDeviation(curve, ta, tb, breaks);
+}
+
+double chordDeviation(const Curve& curve, double ta, double tb, std::span<const double> breaks) {
+  ArcSamples samples;
   return chordDeviationBeyond(curve, ta, tb, std::numeric_limits<double>::infinity(), samples,
                               breaks);
 }

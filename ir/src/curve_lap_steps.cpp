@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace cncc::ir {
 
@@ -25,8 +26,8 @@ struct UniformChords {
   double failingAt = 0;
 };
 
-UniformChords measureUniformChords(const geom::Curve& curve, double from, double to, int steps,
-                                   double budget, double first) {
+UniformChords measureUniformChords(const geom::Curve& curve, std::span<const double> breaks,
+                                   double from, double to, int steps, double budget, double first) {
   auto chordStart = [&](int j) { return j == 0 ? from : from + (to - from) * j / steps; };
   auto chordEnd = [&](int j) { return j + 1 == steps ? to : from + (to - from) * (j + 1) / steps; };
   int firstChord =
@@ -34,7 +35,7 @@ UniformChords measureUniformChords(const geom::Curve& curve, double from, double
   UniformChords chords;
   for (int k = 0; k < steps; ++k) {
     int j = k == 0 ? firstChord : (k <= firstChord ? k - 1 : k);
-    double deviation = geom::chordDeviation(curve, chordStart(j), chordEnd(j));
+    double deviation = geom::chordDeviation(curve, chordStart(j), chordEnd(j), breaks);
     if (!(deviation <= budget)) {
       return {false, deviation, chordStart(j)};
     }
@@ -46,14 +47,16 @@ UniformChords measureUniformChords(const geom::Curve& curve, double from, double
 } // namespace
 
 bool uniformStepsFit(const geom::Curve& curve, double from, double to, int steps, double budget) {
-  return measureUniformChords(curve, from, to, steps, budget, from).fit;
+  std::vector<double> breaks = curve.breakpoints();
+  return measureUniformChords(curve, breaks, from, to, steps, budget, from).fit;
 }
 
 int fewestUniformSteps(const geom::Curve& curve, double from, double to, double budget) {
   constexpr int maximumPredictedProbes = 4;
   double failingAt = from;
+  std::vector<double> breaks = curve.breakpoints(); // once for every count measured
   auto measure = [&](int steps) {
-    UniformChords chords = measureUniformChords(curve, from, to, steps, budget, failingAt);
+    UniformChords chords = measureUniformChords(curve, breaks, from, to, steps, budget, failingAt);
     if (!chords.fit) {
       failingAt = chords.failingAt;
     }

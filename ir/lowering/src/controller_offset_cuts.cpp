@@ -108,17 +108,13 @@ PartLowering::largestFittingRadius(const std::vector<std::shared_ptr<const geom:
 // Whether a cut beside its curve whose tool radius is a number is cut with
 // the offset the controller computes: where that makes the program shorter
 // (a piece that is neither a line nor an arc, which the host cuts as
-// chords) and nothing asks for what only the host's offset gives (lead
-// arcs, samples= or spacing=, spline blocks, fitted arcs).
+// chords) and nothing asks for what only the host's offset gives (spline
+// blocks, fitted arcs; lead arcs, samples= and spacing= lowerControllerOffsetCut
+// turns away first).
 bool PartLowering::offsetOnControllerWanted(const CutStmt& cut, const CutCurve& curve) {
   std::string method = methodOf(cut);
   if (asksFittedArcs(cut) || !(method.empty() || method == "linear")) {
     return false;
-  }
-  for (std::string_view name : {"lead", "samples", "spacing"}) {
-    if (findModifier(cut, name) != nullptr) {
-      return false;
-    }
   }
   for (const CurvePiece& piece : curve.pieces) {
     if (piece.value->kind != CurveKind::Line && piece.value->kind != CurveKind::Arc) {
@@ -136,9 +132,9 @@ bool PartLowering::offsetOnControllerWanted(const CutStmt& cut, const CutCurve& 
 bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledDistance,
                                             bool runtime) {
   for (std::string_view name : {"lead", "samples", "spacing"}) {
-    if (const Modifier* modifier = findModifier(cut, name); runtime && modifier != nullptr) {
+    if (const Modifier* modifier = findModifier(cut, name)) { // only the host's offset
       return runtimeOffsetRefused(
-          modifier->span(),
+          runtime, modifier->span(),
           fmt::format("{}= beside a curve whose tool diameter is a parameter", name));
     }
   }
@@ -156,12 +152,9 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   const auto& pieces = offset.pieces;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     if (curve.pieces[p].value->kind == CurveKind::Arc && !isArcCurve(*pieces[p])) {
-      if (!runtime) {
-        return false;
-      }
-      return runtimeOffsetRefused(cut.span, "an arc moved by a map that is not a rotation and a "
-                                            "scale, beside a curve whose tool diameter is a "
-                                            "parameter");
+      return runtimeOffsetRefused(runtime, cut.span,
+                                  "an arc moved by a map that is not a rotation and a scale, "
+                                  "beside a curve whose tool diameter is a parameter");
     }
   }
   // A ramp descends along one closed lap: an offset that does not close (a
@@ -170,10 +163,7 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   geom::ParameterRange whole = compiled.curve->domain();
   if (rampEntry(cut) &&
       (compiled.curve->point(whole.t0) - compiled.curve->point(whole.t1)).norm() > 1e-6) {
-    if (!runtime) {
-      return false; // the host's offset, which says so
-    }
-    return runtimeOffsetRefused(findModifier(cut, "entry")->span(),
+    return runtimeOffsetRefused(runtime, findModifier(cut, "entry")->span(),
                                 "entry=ramp beside a path whose offset does not close (a corner "
                                 "where the path closes)");
   }
@@ -181,11 +171,9 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
   // The laps follow geom's offset: its pieces and a corner arc per convex
   // join, as the joins at the compiled radius say.
   if (compiled.partOrigins != partOriginsOfJoins(pieces.size(), offset.joins)) {
-    if (!runtime) {
-      return false;
-    }
-    return runtimeOffsetRefused(cut.span, "a path whose offset's pieces join otherwise than its "
-                                          "own, beside a curve whose tool diameter is a parameter");
+    return runtimeOffsetRefused(runtime, cut.span,
+                                "a path whose offset's pieces join otherwise than its own, "
+                                "beside a curve whose tool diameter is a parameter");
   }
   for (std::size_t j = 0; j < offset.joins.size(); ++j) {
     std::size_t after = (j + 1) % pieces.size();
@@ -200,8 +188,9 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
         }
         continue;
       }
-      return runtimeOffsetRefused(cut.span, "a concave corner at a piece that is not a line, "
-                                            "beside a curve whose tool diameter is a parameter");
+      return runtimeOffsetRefused(runtime, cut.span,
+                                  "a concave corner at a piece that is not a line, "
+                                  "beside a curve whose tool diameter is a parameter");
     }
   }
   if (!runtime) {
@@ -229,18 +218,18 @@ bool PartLowering::lowerControllerOffsetCut(const CutStmt& cut, double compiledD
     ~Unset() { offset.reset(); }
   } unset{runtimeOffset_};
   bool lowered = lowerControllerCut(cut, curve);
-  if (!lowered && runtime) {
+  if (!lowered) {
     return runtimeOffsetRefused(
-        cut.span, "this cut beside its curve with a tool diameter that is a parameter");
+        runtime, cut.span, "this cut beside its curve with a tool diameter that is a parameter");
   }
-  return lowered;
+  return true;
 }
 
-// Where the controller's laps cannot follow a radius that is a parameter:
-// refused where a controller computes the program; a host computes the
-// offset at the compiled radius instead (false).
-bool PartLowering::runtimeOffsetRefused(SourceSpan span, std::string_view what) {
-  if (options_.controllerLoops) {
+// Where the controller's laps cannot follow the offset: false, the host's
+// offset at the compiled radius instead, but for a radius that is a
+// parameter where a controller computes the program (refused).
+bool PartLowering::runtimeOffsetRefused(bool runtime, SourceSpan span, std::string_view what) {
+  if (runtime && options_.controllerLoops) {
     unsupported(span, what);
   }
   return false;

@@ -528,7 +528,7 @@ private:
   bool lowerControllerOffsetCut(const frontend::CutStmt& cut, double compiledDistance,
                                 bool runtime);
   void guardRuntimeRadius(const RuntimeOffset& offset);
-  bool runtimeOffsetRefused(frontend::SourceSpan span, std::string_view what);
+  bool runtimeOffsetRefused(bool runtime, frontend::SourceSpan span, std::string_view what);
   double largestFittingRadius(const std::vector<std::shared_ptr<const geom::Curve>>& pieces,
                               double compiledDistance, const DrawnClearance& drawn);
   bool planOffsetSteps(const CutCurve& curve, std::vector<ControllerSegment>& segments,

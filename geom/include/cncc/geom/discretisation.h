@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace cncc::geom {
@@ -23,9 +24,14 @@ struct CurveSamples {
 /// Largest distance from the curve arc C([ta, tb]) to the chord segment C(ta)C(tb).
 /// Sampled at 16 equal parameter steps (four times as many, repeatedly, while
 /// neighbouring sample chords turn by more than 0.2 rad), and every sampled local
-/// maximum refined by Brent's method, so the value is the arc's true largest distance
-/// up to the rounding of the point evaluation (a few ulp of the coordinates).
+/// maximum refined by Brent's method, and at each of the curve's breakpoints inside
+/// (a corner's peak can lie between two samples), so the value is the arc's true
+/// largest distance up to the rounding of the point evaluation (a few ulp of the
+/// coordinates).
 double chordDeviation(const Curve& curve, double ta, double tb);
+/// The same with the curve's breakpoints (curve.breakpoints(), sorted) given, for a
+/// caller that measures many chords of one curve.
+double chordDeviation(const Curve& curve, double ta, double tb, std::span<const double> breaks);
 
 /// The fewest chords with vertices on the curve such that every chord deviates at
 /// most `tolerance` from the arc it replaces (chordDeviation <= tolerance, with a
