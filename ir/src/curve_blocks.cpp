@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cncc::ir {
@@ -98,6 +99,33 @@ std::string_view splineKindName(SplineKind kind) {
 
 } // namespace
 
+std::optional<SplineKind> splineKindOfMethod(std::string_view method) {
+  if (method == "bspline" || method == "nurbs") {
+    return SplineKind::BSpline;
+  }
+  if (method == "cspline") {
+    return SplineKind::CSpline;
+  }
+  if (method == "aspline") {
+    return SplineKind::ASpline;
+  }
+  return std::nullopt;
+}
+
+bool liesInPlane(const geom::Curve& curve) {
+  constexpr double sameZ = 1e-9;
+  constexpr int probes = 16;
+  geom::ParameterRange domain = curve.domain();
+  double z = curve.point(domain.t0).z();
+  for (int k = 1; k <= probes; ++k) {
+    double t = domain.t0 + domain.length() * k / probes;
+    if (std::abs(curve.point(t).z() - z) > sameZ) {
+      return false;
+    }
+  }
+  return true;
+}
+
 std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
                                                const geom::Curve& curve) {
   std::vector<PolynomialMove> spans;
@@ -125,7 +153,9 @@ std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
 FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve) {
   std::optional<geom::NurbsCurve> nurbs;
   try {
-    nurbs = fittedCubic(curve, entry.amount);
+    // A NURBS of its own is its block; any other curve a cubic B-spline.
+    const auto* own = dynamic_cast<const geom::NurbsCurve*>(&curve);
+    nurbs = own != nullptr ? *own : fittedCubic(curve, entry.amount);
   } catch (const geom::GeometryError& error) {
     throw CurveLapError(CurveLapError::Kind::InvalidTolerance, entry.cutSpan,
                         fmt::format("no B-spline fits this curve within {:g} for the NURBS "

@@ -198,6 +198,8 @@ bool readSetting(std::string_view line, CurveTableEntry& entry,
     }
   } else if (keyword == "grid") {
     entry.grid = parseNumber(rest);
+  } else if (keyword == "blocks" && rest == "asked") {
+    entry.blocksAsked = true;
   } else if (keyword == "blocks" && startsWith(rest, "@")) {
     entry.blockTable = parseWholeNumber(rest.substr(1));
   } else if (keyword == "spline") {
@@ -230,6 +232,9 @@ std::string curveEntryText(std::span<const CurveTableEntry> curves, std::size_t 
   }
   if (entry.blockTable) {
     out += fmt::format("    blocks @{}\n", *entry.blockTable);
+  }
+  if (entry.blocksAsked) {
+    out += "    blocks asked\n";
   }
   if (entry.splineFit) {
     out += splineFitText(*entry.splineFit);

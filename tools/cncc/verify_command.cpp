@@ -97,6 +97,7 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
   // target's own compile has already warned about spline methods it lacks.
   ir::LoweringOptions reference;
   reference.splineInterpolation = true;
+  reference.reportSplineAsChords = false;
   reference.fittedArcs = false;
   // Nor does it refuse the machine settings the target's compile accepted.
   reference.maximumExtendedWorkOffset = std::numeric_limits<int>::max();

@@ -5,6 +5,8 @@
 // tabled parameters, and a rapid retract.
 #include "part_lowering.h"
 
+#include "cncc/ir/curve_blocks.h"
+
 #include "cncc/geom/arc_length.h"
 #include "cncc/geom/evaluation_budget.h"
 #include "cncc/geom/geometry_error.h"
@@ -73,7 +75,7 @@ std::optional<ParameterUse> PartLowering::parameterUse(const CutStmt& cut,
   return std::nullopt;
 }
 
-void PartLowering::checkMethod(const CutStmt& cut) {
+void PartLowering::checkMethod(const CutStmt& cut, bool blocksAsked) {
   const Modifier* method = findModifier(cut, "method");
   if (method == nullptr) {
     return;
@@ -85,8 +87,16 @@ void PartLowering::checkMethod(const CutStmt& cut) {
   if (word != "cspline" && word != "aspline" && word != "bspline" && word != "nurbs") {
     unsupported(method->span(), fmt::format("method={}", word));
   }
-  // The IR has no spline moves yet: a spline target gets the same chords.
-  if (!options_.splineInterpolation) {
+  if (!options_.reportSplineAsChords) {
+    return;
+  }
+  if (nativeArcs_) {
+    diagnostics_->report(DiagnosticKind::SplineAsChords, method->span(),
+                         fmt::format("this curve's arcs are cut as the controller's arcs: "
+                                     "method={} is cut as arcs and straight feed moves within the "
+                                     "cut's tolerance",
+                                     word));
+  } else if (!options_.splineInterpolation && !blocksAsked) {
     diagnostics_->report(DiagnosticKind::SplineAsChords, method->span(),
                          fmt::format("this target has no spline interpolation: method={} is cut "
                                      "as straight feed moves within the cut's tolerance",
@@ -342,10 +352,10 @@ void PartLowering::checkRampCloses(const CutCurve& curve, const CutStmt& cut) {
   }
 }
 
-HostCut PartLowering::beginHostCut(const CutStmt& cut) {
+HostCut PartLowering::beginHostCut(const CutStmt& cut, bool blocksAsked) {
   // The curve's points are chosen at its defaults, whatever IR evaluates it.
   fixParameters(*cut.curve, cut.curve->span, "this curve's points");
-  checkMethod(cut);
+  checkMethod(cut, blocksAsked);
   bool ramp = rampEntry(cut);
   if (!safe_) {
     fail(cut.span, "this cut has no safe height; write 'safe z=Z' before it",
@@ -369,6 +379,13 @@ bool PartLowering::beginCutMoves(CutGeometry geometry) {
   if (options_.controllerLoops) {
     geometry.controllerDigits = std::max(options_.literalSignificantDigits, 0);
   }
+  if (splineKindOfMethod(geometry.method)) { // what choose-curve-blocks reads
+    geometry.printedBlocks = options_.nurbsBlocks        ? PrintedBlocks::Nurbs
+                             : options_.polynomialBlocks ? PrintedBlocks::Polynomial
+                             : options_.splineBlocks     ? PrintedBlocks::Spline
+                                                         : PrintedBlocks::None;
+    geometry.splineEnds = options_.splineEnds;
+  }
   auto index = static_cast<std::uint32_t>(cuts_.size());
   cuts_.push_back(std::move(geometry));
   builder_.cutBegin(index);
@@ -382,10 +399,16 @@ void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, doubl
 
 void PartLowering::lowerCut(const CutStmt& cut) {
   stepsLeftToTheLegalisation_ = false; // whatever the cut before left
+  nativeArcs_ = false;
   if (lowerOffsetCut(cut)) {
     return;
   }
-  if (lowerNurbsCut(cut) || lowerPolynomialCut(cut)) {
+  // A method= the target's blocks print is the cut's own choice, before
+  // arcs. Of a curve of constants, choose-curve-blocks makes its chords the
+  // blocks (blocksAsked); of one that reads parameters, the lowering does,
+  // fixing them (the controller's laps cannot be blocks).
+  bool readsParameters = !parametersOf(*cut.curve).empty();
+  if (readsParameters && (lowerNurbsCut(cut) || lowerPolynomialCut(cut))) {
     return;
   }
   // The curve is built once for whichever way lowers the cut. Arc pieces
@@ -393,15 +416,15 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   CutCurve curve = cutCurve(cut);
   checkCutBounds(cut, *curve.geometry);
   bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
-  // A method= the target's blocks print is the cut's own choice, before
-  // arcs (as NURBS and SPL blocks above).
-  if (!nativeArcs && lowerSplineCut(cut, curve)) {
+  nativeArcs_ = nativeArcs; // checkMethod says so
+  if (readsParameters && !nativeArcs && lowerSplineCut(cut, curve)) {
     return;
   }
   // Fitted arcs are asked of the laps either way below; fit-arcs decides.
   arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut);
   if (lowerControllerCut(cut, curve)) {
     arcsAsked_.reset();
+    nativeArcs_ = false;
     return;
   }
   std::size_t firstEntry = builder_.function().curves.size();
@@ -416,13 +439,16 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     }
   }
   arcsAsked_.reset();
+  nativeArcs_ = false;
 }
 
 // The cut's passes, each lap along the curve a curve.lap whose points the
 // target's legalisation chooses (expand-curve-laps).
 void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
-  auto [feed, ramp] = beginHostCut(cut);
+  bool blocksAsked = splineKindOfMethod(methodOf(cut)).has_value();
+  auto [feed, ramp] = beginHostCut(cut, blocksAsked);
   CurveTableEntry entry = curveTableEntry(cut, curve, arcsAsked_);
+  entry.blocksAsked = blocksAsked;
   if (ramp) {
     checkRampCloses(curve, cut);
   }
@@ -433,6 +459,9 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   bool activatesLengthOffset = beginCutMoves(
       {curve.geometry, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
        cut.span, methodOf(cut)});
+  if (const Modifier* method = findModifier(cut, "method")) {
+    cuts_.back().methodSpan = method->span();
+  }
   // Level laps ask for arcs where the cut does; a ramp lap is chords.
   std::uint32_t table = builder_.addCurve(entry);
   std::uint32_t rampTable = table;

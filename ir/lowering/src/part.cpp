@@ -96,7 +96,8 @@ std::optional<LoweredPart> lowerPartWithCuts(const CheckedProgram& program, cons
   try {
     lowering::PartLowering lowering(program, part, diagnostics, options);
     LoweredPart lowered = lowering.run();
-    if (options.expandCurveLaps && !legaliseCurves(lowered.function, diagnostics)) {
+    if (options.expandCurveLaps &&
+        !legaliseCurves(lowered.function, diagnostics, {}, options.reportSplineAsChords)) {
       return std::nullopt;
     }
     if (options.literalSignificantDigits > 0 &&
@@ -149,7 +150,8 @@ void reportCurveLapError(const CurveLapError& error, DiagnosticEngine& diagnosti
   diagnostics.report(kind, error.span, error.what());
 }
 
-void reportLegalisationWarnings(Function& function, DiagnosticEngine& diagnostics) {
+void reportLegalisationWarnings(Function& function, DiagnosticEngine& diagnostics,
+                                bool reportSplineAsChords) {
   for (const LegalisationWarning& warning : function.warnings) {
     switch (warning.kind) {
     case LegalisationWarning::Kind::SplineExactStop:
@@ -161,21 +163,26 @@ void reportLegalisationWarnings(Function& function, DiagnosticEngine& diagnostic
     case LegalisationWarning::Kind::ParameterFixed:
       diagnostics.report(DiagnosticKind::ParameterFixed, warning.span, warning.message);
       break;
+    case LegalisationWarning::Kind::SplineAsChords:
+      if (reportSplineAsChords) {
+        diagnostics.report(DiagnosticKind::SplineAsChords, warning.span, warning.message);
+      }
+      break;
     }
   }
   function.warnings.clear();
 }
 
 bool legaliseCurves(Function& function, DiagnosticEngine& diagnostics,
-                    const AfterPassCallback& afterPass) {
+                    const AfterPassCallback& afterPass, bool reportSplineAsChords) {
   try {
     runCurveLegalisation(function, afterPass);
   } catch (const CurveLapError& error) {
-    reportLegalisationWarnings(function, diagnostics);
+    reportLegalisationWarnings(function, diagnostics, reportSplineAsChords);
     reportCurveLapError(error, diagnostics);
     return false;
   }
-  reportLegalisationWarnings(function, diagnostics);
+  reportLegalisationWarnings(function, diagnostics, reportSplineAsChords);
   return true;
 }
 

@@ -240,7 +240,8 @@ private:
   void lowerCut(const frontend::CutStmt& cut);
   // Its points fixed at the defaults, its method and entry checked, a safe
   // height and a feed required.
-  HostCut beginHostCut(const frontend::CutStmt& cut);
+  // `blocksAsked`: choose-curve-blocks says where the method= is chords.
+  HostCut beginHostCut(const frontend::CutStmt& cut, bool blocksAsked = false);
   // Enters the cut into the part's cut table and starts its moves: the
   // controller's contouring mode for its tolerance, then `cut.begin`;
   // returns whether the cut's first Z move activates a tool's length offset.
@@ -259,7 +260,7 @@ private:
   // At the end of the part: contouring and coolant off, Z to the machine's
   // reference.
   void endMachineSettings();
-  void checkMethod(const frontend::CutStmt& cut);
+  void checkMethod(const frontend::CutStmt& cut, bool blocksAsked = false);
   // The first of the cut's curve and `toolDiameter` that depends on a part
   // parameter; nullopt when none does (depth= and step= may: the sweep's
   // pass loop computes them). A controller loop's variable unrolls the loop
@@ -668,6 +669,7 @@ private:
   std::optional<RuntimeOffset> runtimeOffset_;
   // What the cut being lowered asks its level laps for (arcsAskedBy).
   std::optional<ArcsAsked> arcsAsked_;
+  bool nativeArcs_ = false; // the cut being lowered prints its arcs as arcs
   // The cut being lowered is chords choose-controller-steps cuts in steps:
   // its counts are bounded there, not by an estimate of its chords; and
   // whether it cuts each of its pieces in one step.

@@ -20,42 +20,9 @@ namespace cncc::ir::lowering {
 
 using namespace frontend;
 
-namespace {
-
-constexpr double kSameZ = 1e-9;
-constexpr int kPlanarityProbes = 16;
-
-std::optional<SplineKind> splineKindOf(const std::string& method) {
-  if (method == "bspline" || method == "nurbs") {
-    return SplineKind::BSpline;
-  }
-  if (method == "cspline") {
-    return SplineKind::CSpline;
-  }
-  if (method == "aspline") {
-    return SplineKind::ASpline;
-  }
-  return std::nullopt;
-}
-
-// Whether the curve lies in a plane z = constant.
-bool isPlanar(const geom::Curve& curve) {
-  geom::ParameterRange domain = curve.domain();
-  double z = curve.point(domain.t0).z();
-  for (int k = 1; k <= kPlanarityProbes; ++k) {
-    double t = domain.t0 + domain.length() * k / kPlanarityProbes;
-    if (std::abs(curve.point(t).z() - z) > kSameZ) {
-      return false;
-    }
-  }
-  return true;
-}
-
-} // namespace
-
 bool PartLowering::lowerSplineCut(const CutStmt& cut, const CutCurve& curve) {
-  std::optional<SplineKind> kind = splineKindOf(methodOf(cut));
-  if (!options_.splineBlocks || !kind || !isPlanar(*curve.geometry)) {
+  std::optional<SplineKind> kind = splineKindOfMethod(methodOf(cut));
+  if (!options_.splineBlocks || !kind || !liesInPlane(*curve.geometry)) {
     return false;
   }
   auto [feed, ramp] = beginHostCut(cut);

@@ -25,6 +25,10 @@ constexpr Pass passTable[] = {
      "trip at its bounds' compiled values, each trip's cut its own, and each if that cuts as its "
      "branch taken there",
      unrollHostControl},
+    {"choose-curve-blocks",
+     "legalisation: each curve.lap of constants whose cut's method= asks for curve blocks cut as "
+     "the NURBS, SPL or spline blocks its target prints, where they can follow it",
+     chooseCurveBlocks},
     {"choose-controller-steps",
      "legalisation: on a target whose controller computes, each curve.lap within a chord "
      "tolerance along a curve of constants cut in uniform steps the controller counts",
@@ -136,9 +140,10 @@ void runDefaultPipeline(Function& function, const AfterPassCallback& afterPass, 
 }
 
 void runCurveLegalisation(Function& function, const AfterPassCallback& afterPass) {
-  for (std::string_view name : {"unroll-host-control", "choose-controller-steps", "split-arc-laps",
-                                "bound-controller-steps", "write-curve-blocks", "fit-arcs",
-                                "expand-controller-loops", "expand-curve-laps"}) {
+  for (std::string_view name :
+       {"unroll-host-control", "choose-curve-blocks", "choose-controller-steps", "split-arc-laps",
+        "bound-controller-steps", "write-curve-blocks", "fit-arcs", "expand-controller-loops",
+        "expand-curve-laps"}) {
     const Pass* pass = findPass(name);
     pass->run(function);
     if (afterPass) {

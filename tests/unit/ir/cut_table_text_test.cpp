@@ -18,7 +18,7 @@ using curve_lap_test::parsed;
 using curve_lap_test::replaced;
 
 constexpr std::string_view twoCutsText = R"(func @two() {
-  cut @0 tolerance 0.01 increment 0.001 controller 8 method bspline blocks "6 BSPLINE control points, \"the NURBS\""
+  cut @0 tolerance 0.01 increment 0.001 controller 8 method bspline prints spline-natural blocks "6 BSPLINE control points, \"the NURBS\""
   cut @1 tolerance nan arcs fitted beside 2.5
   %0 = const 0
   %1 = const 100
@@ -39,6 +39,8 @@ TEST(CutTableText, EveryFieldPrintsAndParsesBack) {
   EXPECT_EQ(first.increment, 0.001);
   EXPECT_EQ(first.controllerDigits, 8);
   EXPECT_EQ(first.method, "bspline");
+  EXPECT_EQ(first.printedBlocks, PrintedBlocks::Spline);
+  EXPECT_EQ(first.splineEnds, SplineEnds::Natural);
   EXPECT_EQ(first.arcMoves, CutArcs::None);
   EXPECT_EQ(first.splineBlocks, "6 BSPLINE control points, \"the NURBS\"");
   EXPECT_EQ(first.curve, nullptr); // not text
@@ -47,8 +49,20 @@ TEST(CutTableText, EveryFieldPrintsAndParsesBack) {
   EXPECT_EQ(second.increment, 0);
   EXPECT_FALSE(second.controllerDigits); // the host computes its numbers
   EXPECT_EQ(second.method, "");
+  EXPECT_EQ(second.printedBlocks, PrintedBlocks::None);
   EXPECT_EQ(second.arcMoves, CutArcs::Fitted);
   EXPECT_EQ(second.toolRadius, 2.5);
+}
+
+TEST(CutTableText, EveryPrintedBlocksPrintsAndParsesBack) {
+  for (std::string_view blocks :
+       {"nurbs", "polynomial", "spline-automatic", "spline-natural", "spline-auto"}) {
+    std::string text = replaced(twoCutsText, "spline-natural", blocks);
+    EXPECT_EQ(printFunction(parsed(text)), text) << blocks;
+  }
+  EXPECT_EQ(parseComplaint(replaced(twoCutsText, "prints spline-natural", "prints arcs")),
+            "2: expected 'prints' with nurbs, polynomial or spline-automatic|natural|auto, found "
+            "'arcs'");
 }
 
 TEST(CutTableText, BadLinesAreRefusedWithTheirLine) {
@@ -56,11 +70,11 @@ TEST(CutTableText, BadLinesAreRefusedWithTheirLine) {
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "arcs fitted", "arcs always")),
             "3: expected 'arcs' with native or fitted, found 'always'");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "beside 2.5", "side 2.5")),
-            "3: expected 'increment', 'controller', 'method', 'arcs', 'beside' or 'blocks', "
-            "found 'side'");
+            "3: expected 'increment', 'controller', 'method', 'prints', 'arcs', 'beside' or "
+            "'blocks', found 'side'");
   EXPECT_EQ(parseComplaint(replaced(twoCutsText, "tolerance nan arcs", "nan arcs")),
             "3: expected 'cut @n tolerance T [increment I] [controller D] [method M] "
-            "[arcs native|fitted] [beside R] [blocks \"...\"]'");
+            "[prints BLOCKS] [arcs native|fitted] [beside R] [blocks \"...\"]'");
 }
 
 TEST(CutTableText, ACutBeginNamesACutOfTheTable) {

@@ -36,11 +36,12 @@ TEST(PassesPipelineTest, EveryPassHasAStableNameAndIsFound) {
     EXPECT_EQ(findPass(pass.name), &pass);
     EXPECT_FALSE(pass.description.empty());
   }
-  EXPECT_THAT(names, ElementsAre("unroll-host-control", "choose-controller-steps", "split-arc-laps",
-                                 "bound-controller-steps", "write-curve-blocks", "fit-arcs",
-                                 "expand-controller-loops", "expand-curve-laps", "fold", "cse",
-                                 "licm", "unroll", "unroll-no-larger", "dce", "drop-pass-depths",
-                                 "expand-whole-powers", "fold-finite"));
+  EXPECT_THAT(names,
+              ElementsAre("unroll-host-control", "choose-curve-blocks", "choose-controller-steps",
+                          "split-arc-laps", "bound-controller-steps", "write-curve-blocks",
+                          "fit-arcs", "expand-controller-loops", "expand-curve-laps", "fold", "cse",
+                          "licm", "unroll", "unroll-no-larger", "dce", "drop-pass-depths",
+                          "expand-whole-powers", "fold-finite"));
   EXPECT_EQ(findPass("inline"), nullptr);
   for (std::string_view name : defaultPipeline()) {
     EXPECT_NE(findPass(name), nullptr) << name;

@@ -171,13 +171,15 @@ void forEveryLoweredExample(const LoweringOptions& lowering,
 }
 
 // Every example lowered with `lowering`, its laps left (expandCurveLaps
-// off): interpreting the IR before the legalisations and after them gives
-// the same path to the last bit. The laps cut as `sampling` says (all:
-// nullopt) that the lowering left.
+// off): interpreting the IR after choose-curve-blocks (where the target's
+// blocks take the place of the chords the lowering gives every target) and
+// after the legalisations gives the same path to the last bit. The laps
+// cut as `sampling` says (all: nullopt) there.
 std::size_t legaliseEveryExample(LoweringOptions lowering, const EntryTest& counted = nullptr) {
   lowering.expandCurveLaps = false;
   std::size_t laps = 0;
   forEveryLoweredExample(lowering, [&](const std::string& name, Function& function) {
+    chooseCurveBlocks(function);
     laps += curveLapCount(function, counted);
     ToolPath before = interpret(function);
     runCurveLegalisation(function);

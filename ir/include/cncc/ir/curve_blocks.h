@@ -1,10 +1,10 @@
 // The target's own curve blocks for a lap's curve, fitted where the
 // legalisation write-curve-blocks writes a lap that names no table of them
 // (and where the interpreter runs such a lap): the cubic spans of Heidenhain
-// SPL blocks, the G06.2 block of a curve that is not a NURBS of its own, and
-// Sinumerik spline blocks. The lowering only says how (CurveSampling, the
-// tolerance the blocks keep in `amount`, the printed grid in `grid`, a
-// spline's kind and ends in `splineFit`).
+// SPL blocks, the G06.2 block, and Sinumerik spline blocks. The lowering or
+// choose-curve-blocks only says how (CurveSampling, the tolerance the blocks
+// keep in `amount`, the printed grid in `grid`, a spline's kind and ends in
+// `splineFit`).
 #pragma once
 
 #include "cncc/geom/nurbs_curve.h"
@@ -14,6 +14,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cncc::ir {
@@ -26,10 +27,17 @@ namespace cncc::ir {
 std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
                                                const geom::Curve& curve);
 
-// The NURBS block of a lap cut as NurbsBlocks that names no table: a cubic
-// B-spline fitted within the entry's amount, its control points on the
-// entry's grid, as move.nurbs's table and weight operands. Throws
-// CurveLapError at the cut when none fits.
+// The Sinumerik spline a method= word asks for (bspline and nurbs a B
+// spline); nullopt for a word that is not a spline's (linear).
+std::optional<SplineKind> splineKindOfMethod(std::string_view method);
+
+// Whether the curve lies in a plane z = constant (spline blocks' X and Y).
+bool liesInPlane(const geom::Curve& curve);
+
+// The NURBS block of a lap cut as NurbsBlocks that names no table: the
+// curve itself where it is a NURBS of its own, else a cubic B-spline fitted
+// within the entry's amount; its control points on the entry's grid, as move.nurbs's table and
+// weight operands. Throws CurveLapError at the cut when none fits.
 struct FittedNurbsBlock {
   std::vector<double> table;   // nurbsMoveTable's
   std::vector<double> weights; // one per control point

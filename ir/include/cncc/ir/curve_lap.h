@@ -297,6 +297,16 @@ boundedStepsEntry(const Function& function, const Instruction& lap, std::uint32_
 // to the steps done; the other laps stay. Throws CurveLapError.
 bool expandControllerLoops(Function& function);
 
+// `choose-curve-blocks`: every curve.lap of constants whose entry asks for
+// curve blocks (blocksAsked: a cut's method= of a spline) given the entry
+// of the blocks its cut prints (CutGeometry::printedBlocks) where they can
+// follow it: Sinumerik spline blocks of a curve in a plane z = constant (a
+// ramp lap chords through the points they are fitted to), Heidenhain SPL
+// spans and G06.2 NURBS blocks (method=nurbs) of a cut without a ramp; the
+// other laps stay chords. Throws CurveLapError where the tolerance leaves
+// nothing past the rounding of the blocks' points.
+bool chooseCurveBlocks(Function& function);
+
 // `write-curve-blocks`: every curve.lap cut as the target's NURBS or spline
 // blocks written out as the move.nurbs or move.spline of its entry's table,
 // at its height and feed (a NURBS block's weights the lap's operands after

@@ -210,6 +210,10 @@ struct CurveTableEntry {
   // cut (the ramp lap's before them), which samples= or spacing= makes the
   // blocks' own.
   std::shared_ptr<const std::vector<double>> chosenParameters = nullptr;
+  // Chords the cut's method= (a spline) asks to be the target's curve
+  // blocks: choose-curve-blocks makes them the blocks its cut prints
+  // (CutGeometry::printedBlocks), where they can follow the lap.
+  bool blocksAsked = false;
 
   // A lap cut as the target's NURBS or spline blocks.
   bool isBlocks() const {

@@ -6,6 +6,7 @@
 
 #include "cncc/frontend/source_span.h"
 #include "cncc/geom/curve.h"
+#include "cncc/ir/spline_blocks_kind.h"
 #include "cncc/ir/tolerance_budget.h"
 
 #include <memory>
@@ -15,6 +16,11 @@
 namespace cncc::ir {
 
 enum class CutArcs { None, Native, Fitted };
+
+// The curve blocks a cut's target prints where its method= asks for them
+// (choose-curve-blocks): none, Fanuc/Mitsubishi G06.2 NURBS blocks,
+// Heidenhain SPL cubic spans, or Sinumerik spline blocks.
+enum class PrintedBlocks { None, Nurbs, Polynomial, Spline };
 
 // One cut of the part: what `cut.begin index` refers to.
 struct CutGeometry {
@@ -45,6 +51,12 @@ struct CutGeometry {
   // program prints. The lowering sets them for every cut.
   double increment = 0;
   std::optional<int> controllerDigits = std::nullopt;
+  // The blocks the target prints, and how its A and C splines begin and end.
+  PrintedBlocks printedBlocks = PrintedBlocks::None;
+  SplineEnds splineEnds = SplineEnds::Automatic;
+  // Where the method= is written (where choose-curve-blocks warns that it
+  // cuts chords); not in the IR's text, as `span`.
+  frontend::SourceSpan methodSpan = {};
 
   ToleranceBudget budget() const { return {tolerance, increment}; }
 };

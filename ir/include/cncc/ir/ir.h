@@ -151,7 +151,7 @@ std::string functionTooLargeMessage();
 // exactly; arcs asked for that no fit keeps, so chords are cut): the caller
 // reports it at `span` and clears the list.
 struct LegalisationWarning {
-  enum class Kind { SplineExactStop, ArcsAsChords, ParameterFixed };
+  enum class Kind { SplineExactStop, ArcsAsChords, ParameterFixed, SplineAsChords };
   Kind kind = Kind::SplineExactStop;
   frontend::SourceSpan span;
   std::string message;

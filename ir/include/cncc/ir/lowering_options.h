@@ -23,6 +23,10 @@ struct LoweringOptions {
   // bspline, nurbs) itself. Without it such a cut is cut as straight feed
   // moves within its tolerance, with a spline-as-chords warning.
   bool splineInterpolation = false;
+  // Whether a spline method= cut as chords is reported (spline-as-chords,
+  // by the lowering or choose-curve-blocks): not by verify's reference,
+  // whose target's own compile has said so.
+  bool reportSplineAsChords = true;
   // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
   // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
   bool nurbsBlocks = false;

@@ -54,12 +54,14 @@ std::optional<Function> lowerPart(const frontend::CheckedProgram& program,
 
 // A lap's points that could not be chosen, as a diagnostic at its source.
 void reportCurveLapError(const CurveLapError& error, frontend::DiagnosticEngine& diagnostics);
-// Reports the warnings the legalisations left in the function, and clears them.
-void reportLegalisationWarnings(Function& function, frontend::DiagnosticEngine& diagnostics);
+// Reports the warnings the legalisations left in the function (spline-as-
+// chords only where `reportSplineAsChords`), and clears them.
+void reportLegalisationWarnings(Function& function, frontend::DiagnosticEngine& diagnostics,
+                                bool reportSplineAsChords = true);
 // runCurveLegalisation, its warnings reported; where a pass fails, the
 // warnings of those before it, then its error (false).
 bool legaliseCurves(Function& function, frontend::DiagnosticEngine& diagnostics,
-                    const AfterPassCallback& afterPass = {});
+                    const AfterPassCallback& afterPass = {}, bool reportSplineAsChords = true);
 
 enum class PartUnits { Millimetres, Inches };
 // The `units` statement at the top of the part's body (millimetres without one).

@@ -1,0 +1,235 @@
+// `choose-curve-blocks`: the laps whose entry asks for curve blocks (a cut
+// whose method= is a spline: CurveTableEntry::blocksAsked, chords as the
+// lowering gives every target) cut as the blocks their cut's target prints
+// (CutGeometry::printedBlocks), where those can follow the lap:
+// - Sinumerik spline blocks, for any of the four methods, of a curve in a
+//   plane z = constant: the cut's whole tolerance, which the fit shares
+//   with the rounding; a ramp lap stays chords, through the points the
+//   blocks are then fitted to (an automatic start continues its last one);
+// - Heidenhain SPL spans and G06.2 NURBS blocks (method=nurbs only), level
+//   laps only: the tolerance less the rounding of their ends or control
+//   points on the printed grid, an error where that leaves nothing.
+// write-curve-blocks fits them. A cut whose blocks cannot follow it stays
+// chords (the lowering warned where the target has no spline interpolation).
+#include "cncc/ir/curve_blocks.h"
+#include "cncc/ir/curve_lap.h"
+
+#include "lap_cuts.h"
+#include "passes/rewriter.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace cncc::ir {
+
+namespace {
+
+// Whether the lap climbs or descends: its two heights not one value.
+bool isRampLap(const Function& function, const Instruction& lap) {
+  if (lap.operands[0] == lap.operands[1]) {
+    return false;
+  }
+  std::optional<double> from = passes::constantValue(function, lap.operands[0]);
+  std::optional<double> to = passes::constantValue(function, lap.operands[1]);
+  return !(from && to && *from == *to);
+}
+
+// The blocks a cut's method= asks of the blocks its target prints; nullopt
+// where they are not the method's (G06.2 prints only method=nurbs).
+std::optional<CurveSampling> askedSampling(const CutGeometry& cut) {
+  const std::string& method = cut.method;
+  if (!splineKindOfMethod(method)) {
+    return std::nullopt;
+  }
+  switch (cut.printedBlocks) {
+  case PrintedBlocks::Nurbs:
+    return method == "nurbs" ? std::optional(CurveSampling::NurbsBlocks) : std::nullopt;
+  case PrintedBlocks::Polynomial:
+    return CurveSampling::PolynomialBlocks;
+  case PrintedBlocks::Spline:
+    return CurveSampling::SplineBlocks;
+  case PrintedBlocks::None:
+    break;
+  }
+  return std::nullopt;
+}
+
+// What SPL spans and NURBS blocks keep: the tolerance less the rounding of
+// the points they are printed through. Throws where nothing is left.
+double blocksTolerance(const CutGeometry& cut, const CurveTableEntry& entry,
+                       std::string_view roundedPoints) {
+  ToleranceBudget budget = cut.budget();
+  budget.tolerance = budget.toleranceOrDefault();
+  double rounding = budget.pointRounding();
+  if (!(budget.tolerance > 2 * rounding)) {
+    throw CurveLapError(
+        CurveLapError::Kind::InvalidTolerance, entry.cutSpan,
+        fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
+                    "{} ({:.6g})",
+                    budget.tolerance, roundedPoints, rounding));
+  }
+  return budget.forPoints();
+}
+
+// The chords entry as blocks of `sampling` keeping `amount` on the cut's grid.
+CurveTableEntry blocksEntry(const CurveTableEntry& chords, CurveSampling sampling, double amount,
+                            double grid) {
+  CurveTableEntry entry = chords;
+  entry.sampling = sampling;
+  entry.amount = amount;
+  entry.grid = grid;
+  entry.blocksAsked = false;
+  entry.arcsAsked.reset();
+  entry.hostPointRegions.clear(); // the regions are the curve, not points to print
+  entry.chosenParameters = nullptr;
+  return entry;
+}
+
+// How one entry's laps are cut: the entry of its level laps and of its ramp
+// laps (the chords', or nullopt where they stay as they are); without a
+// level entry, why the cut stays chords.
+struct EntryChoice {
+  std::optional<CurveTableEntry> level;
+  std::optional<CurveTableEntry> ramp;
+  std::string chordsBecause;
+};
+
+EntryChoice chords(std::string because) {
+  return {std::nullopt, std::nullopt, std::move(because)};
+}
+
+EntryChoice chooseEntry(const Function& function, const CurveTableEntry& chordsEntry,
+                        const CutGeometry& cut, const Instruction& lap, bool cutRamps) {
+  std::optional<CurveSampling> sampling = askedSampling(cut);
+  if (!sampling) {
+    return chords("this target has no spline interpolation");
+  }
+  if (cutRamps && *sampling != CurveSampling::SplineBlocks) {
+    return chords(fmt::format("{} blocks cannot descend an entry=ramp",
+                              *sampling == CurveSampling::NurbsBlocks ? "G06.2 NURBS" : "SPL"));
+  }
+  CompiledValues compiled(function);
+  std::shared_ptr<const geom::Curve> curve =
+      lapCurve(function, lap, [&](ValueId value) { return compiled(value); });
+  if (*sampling != CurveSampling::SplineBlocks) {
+    bool nurbs = *sampling == CurveSampling::NurbsBlocks;
+    double amount =
+        blocksTolerance(cut, chordsEntry, nurbs ? "NURBS control points" : "spline end points");
+    return {blocksEntry(chordsEntry, *sampling, amount, cut.increment), std::nullopt, {}};
+  }
+  if (!liesInPlane(*curve)) {
+    return chords("spline blocks move in X and Y, and this curve leaves its plane z = constant");
+  }
+  double amount = std::isfinite(cut.tolerance) ? cut.tolerance : 0;
+  EntryChoice choice{blocksEntry(chordsEntry, *sampling, amount, cut.increment), std::nullopt, {}};
+  choice.level->splineFit =
+      SplineBlocksFit{*splineKindOfMethod(cut.method), cut.splineEnds, cutRamps};
+  if (amount == 0 || cutRamps) {
+    // The points the blocks go through (samples=, spacing=), or the ramp's.
+    CurveTableEntry points = chordsEntry;
+    points.arcsAsked.reset();
+    auto chosen = std::make_shared<const std::vector<double>>(lapParameters(points, *curve));
+    choice.level->chosenParameters = chosen;
+    if (cutRamps) {
+      points.blocksAsked = false;
+      points.chosenParameters = chosen;
+      choice.ramp = std::move(points);
+    }
+  }
+  return choice;
+}
+
+// The cuts with a ramp lap along a curve that asks for blocks.
+std::set<std::uint32_t>
+rampingCuts(const Function& function,
+            const std::map<std::uint32_t, std::vector<LapOfCut>>& lapsOfEntries) {
+  std::set<std::uint32_t> cuts;
+  for (const auto& [index, laps] : lapsOfEntries) {
+    for (const LapOfCut& ofCut : laps) {
+      if (function.curves[index].blocksAsked &&
+          isRampLap(function, function.instructions[ofCut.lap])) {
+        cuts.insert(ofCut.cut);
+      }
+    }
+  }
+  return cuts;
+}
+
+// Once per cut: its method= is cut as chords, and why.
+void warnChords(Function& function, const CutGeometry& cut, const CurveTableEntry& entry,
+                const std::string& because, std::vector<frontend::SourceSpan>& warned) {
+  frontend::SourceSpan span = cut.methodSpan.valid() ? cut.methodSpan : entry.cutSpan;
+  if (std::find(warned.begin(), warned.end(), span) != warned.end()) {
+    return;
+  }
+  warned.push_back(span);
+  function.warnings.push_back(
+      {LegalisationWarning::Kind::SplineAsChords, span,
+       fmt::format("{}: method={} is cut as straight feed moves within the cut's tolerance",
+                   because, cut.method)});
+}
+
+// The entry's laps cut as chosen: the entry itself becomes its level laps'
+// blocks (or, where it has none, its ramp laps' chords: a ramp lap with
+// arcs asked has an entry of its own); a ramp lap beside level laps gets an
+// entry of its own.
+void applyChoice(Function& function, std::uint32_t index, const std::vector<LapOfCut>& laps,
+                 EntryChoice& choice) {
+  bool levelLaps = false;
+  std::vector<InstructionId> rampLaps;
+  for (const LapOfCut& ofCut : laps) {
+    if (isRampLap(function, function.instructions[ofCut.lap])) {
+      rampLaps.push_back(ofCut.lap);
+    } else {
+      levelLaps = true;
+    }
+  }
+  if (!levelLaps) {
+    function.curves[index] = std::move(*choice.ramp);
+    return;
+  }
+  function.curves[index] = std::move(*choice.level);
+  if (!rampLaps.empty()) {
+    function.curves.push_back(std::move(*choice.ramp));
+    for (InstructionId lap : rampLaps) {
+      function.instructions[lap].index = static_cast<std::uint32_t>(function.curves.size() - 1);
+    }
+  }
+}
+
+} // namespace
+
+bool chooseCurveBlocks(Function& function) {
+  std::map<std::uint32_t, std::vector<LapOfCut>> lapsOfEntries = lapsByEntry(function);
+  std::set<std::uint32_t> ramping = rampingCuts(function, lapsOfEntries);
+  std::vector<frontend::SourceSpan> warned; // where the method= is written
+  bool changed = false;
+  for (const auto& [index, laps] : lapsOfEntries) {
+    if (!function.curves[index].blocksAsked || laps.empty() || laps.front().cut == noCut) {
+      continue;
+    }
+    // Every lap of an entry is one cut's, or a copy's of a trip written out.
+    const CutGeometry& cut = function.cuts[laps.front().cut];
+    const Instruction& first = function.instructions[laps.front().lap];
+    LapInputs inputs = lapInputs(function, first);
+    EntryChoice choice = !inputs.parameters.empty() || !inputs.loopVariables.empty()
+                             ? chords("this curve changes with the program's values")
+                             : chooseEntry(function, function.curves[index], cut, first,
+                                           ramping.contains(laps.front().cut));
+    if (!choice.level) {
+      warnChords(function, cut, function.curves[index], choice.chordsBecause, warned);
+      function.curves[index].blocksAsked = false; // answered: chords
+      changed = true;
+      continue;
+    }
+    applyChoice(function, index, laps, choice);
+    changed = true;
+  }
+  return changed;
+}
+
+} // namespace cncc::ir

@@ -1,0 +1,172 @@
+// choose-curve-blocks: the chords a cut's method= asks to be curve blocks
+// (blocksAsked) become the blocks its target prints (the cut table's
+// `prints`) where they can follow the lap, and stay chords with a
+// spline-as-chords warning where they cannot; the answer is given once.
+#include "cncc/ir/curve_lap.h"
+#include "cncc/ir/passes.h"
+#include "cncc/ir/printer.h"
+#include "cncc/ir/verifier.h"
+#include "curve_lap_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace cncc::ir {
+namespace {
+
+using curve_lap_test::countOf;
+using curve_lap_test::parsed;
+using curve_lap_test::replaced;
+
+// A parabola from (0, 0) to (20, 5), x = 20 t, y = 5 t^2, in one pass at
+// z = -1, cut as chords its method= asks to be SPL spans.
+constexpr std::string_view parabolaText = R"(func @parabola() {
+  curve @0 chords 0.009 over 0 .. 1 {
+    piece at 0 over 0 .. 1
+    blocks asked
+  }
+  cut @0 tolerance 0.01 increment 0.001 method bspline prints polynomial
+  %0 = const 0
+  %1 = const -1
+  %2 = const 300
+  %3 = const 20
+  %4 = const 5
+  cut.begin 0
+  move.rapid %0, %0, %1
+  %5 = curve.lap @0, %1, %1, %2 {
+    %6 = mul %3, %5
+    %7 = mul %5, %5
+    %8 = mul %4, %7
+    curve.point %6, %8, %0
+  }
+}
+)";
+
+// The same parabola with a lap ramping from z = 0 down to -1 too.
+std::string rampedParabola(std::string_view prints) {
+  std::string text = replaced(parabolaText, "prints polynomial", prints);
+  return replaced(text, "    curve.point %6, %8, %0\n  }\n", R"(    curve.point %6, %8, %0
+  }
+  %9 = curve.lap @0, %0, %1, %2 {
+    %10 = mul %3, %9
+    %11 = mul %9, %9
+    %12 = mul %4, %11
+    curve.point %10, %12, %0
+  }
+)");
+}
+
+std::vector<std::string> warningsOf(const Function& function) {
+  std::vector<std::string> messages;
+  for (const LegalisationWarning& warning : function.warnings) {
+    EXPECT_EQ(warning.kind, LegalisationWarning::Kind::SplineAsChords);
+    messages.push_back(warning.message);
+  }
+  return messages;
+}
+
+TEST(CurveBlockChoice, AskedChordsPrintAndParseBack) {
+  Function function = parsed(parabolaText);
+  EXPECT_TRUE(function.curves[0].blocksAsked);
+  EXPECT_EQ(function.cuts[0].printedBlocks, PrintedBlocks::Polynomial);
+  EXPECT_EQ(printFunction(function), parabolaText);
+}
+
+TEST(CurveBlockChoice, SplSpansKeepTheToleranceLessTheRoundingOfTheirEnds) {
+  Function function = parsed(parabolaText);
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  ASSERT_EQ(function.curves.size(), 1u); // the entry itself becomes the blocks
+  const CurveTableEntry& entry = function.curves[0];
+  EXPECT_EQ(entry.sampling, CurveSampling::PolynomialBlocks);
+  EXPECT_NEAR(entry.amount, 0.01 - 0.0005 * std::sqrt(3.0), 1e-12);
+  EXPECT_EQ(entry.grid, 0.001);
+  EXPECT_FALSE(entry.blocksAsked);
+  EXPECT_TRUE(function.warnings.empty());
+  EXPECT_TRUE(verifyFunction(function).empty());
+  runCurveLegalisation(function);
+  EXPECT_EQ(countOf(function, Opcode::Polynomial), 1u); // a parabola is one cubic span
+  EXPECT_EQ(countOf(function, Opcode::Feed), 0u);
+}
+
+TEST(CurveBlockChoice, ANurbsBlockOnlyForMethodNurbs) {
+  Function nurbs = parsed(replaced(replaced(parabolaText, "prints polynomial", "prints nurbs"),
+                                   "method bspline", "method nurbs"));
+  EXPECT_TRUE(chooseCurveBlocks(nurbs));
+  EXPECT_EQ(nurbs.curves[0].sampling, CurveSampling::NurbsBlocks);
+  runCurveLegalisation(nurbs);
+  EXPECT_EQ(countOf(nurbs, Opcode::Nurbs), 1u);
+
+  Function cspline = parsed(replaced(replaced(parabolaText, "prints polynomial", "prints nurbs"),
+                                     "method bspline", "method cspline"));
+  EXPECT_TRUE(chooseCurveBlocks(cspline));
+  EXPECT_EQ(cspline.curves[0].sampling, CurveSampling::ChordTolerance);
+  EXPECT_FALSE(cspline.curves[0].blocksAsked); // answered once
+  EXPECT_EQ(warningsOf(cspline),
+            std::vector<std::string>{"this target has no spline interpolation: method=cspline is "
+                                     "cut as straight feed moves within the cut's tolerance"});
+  EXPECT_FALSE(chooseCurveBlocks(cspline));
+  EXPECT_EQ(cspline.warnings.size(), 1u);
+}
+
+TEST(CurveBlockChoice, ATargetWithoutBlocksKeepsTheChordsAndSaysSo) {
+  Function function = parsed(replaced(parabolaText, " prints polynomial", ""));
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
+  EXPECT_EQ(warningsOf(function).size(), 1u);
+}
+
+TEST(CurveBlockChoice, AnEntryThatAsksNothingIsLeft) {
+  Function function = parsed(replaced(parabolaText, "    blocks asked\n", ""));
+  EXPECT_FALSE(chooseCurveBlocks(function));
+  EXPECT_EQ(printFunction(function), replaced(parabolaText, "    blocks asked\n", ""));
+}
+
+TEST(CurveBlockChoice, SplineBlocksAfterARampThroughTheRampsPoints) {
+  Function function = parsed(rampedParabola("prints spline-automatic"));
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  ASSERT_EQ(function.curves.size(), 2u);
+  const CurveTableEntry& level = function.curves[0];
+  const CurveTableEntry& ramp = function.curves[1];
+  EXPECT_EQ(level.sampling, CurveSampling::SplineBlocks);
+  EXPECT_EQ(level.amount, 0.01); // the whole tolerance: the fit shares it with the rounding
+  ASSERT_TRUE(level.splineFit);
+  EXPECT_EQ(level.splineFit->kind, SplineKind::BSpline);
+  EXPECT_TRUE(level.splineFit->afterRamp);
+  EXPECT_EQ(ramp.sampling, CurveSampling::ChordTolerance);
+  ASSERT_NE(ramp.chosenParameters, nullptr);
+  EXPECT_EQ(ramp.chosenParameters, level.chosenParameters); // the same points
+  EXPECT_TRUE(verifyFunction(function).empty());
+  runCurveLegalisation(function);
+  EXPECT_EQ(countOf(function, Opcode::Spline), 1u);
+  EXPECT_GT(countOf(function, Opcode::Feed), 0u); // the ramp's chords
+}
+
+TEST(CurveBlockChoice, SplAndNurbsBlocksCannotDescendARamp) {
+  Function function = parsed(rampedParabola("prints polynomial"));
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  EXPECT_EQ(function.curves.size(), 1u);
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
+  EXPECT_EQ(warningsOf(function),
+            std::vector<std::string>{"SPL blocks cannot descend an entry=ramp: method=bspline is "
+                                     "cut as straight feed moves within the cut's tolerance"});
+}
+
+TEST(CurveBlockChoice, SplineBlocksOnlyInAPlane) {
+  std::string text = replaced(parabolaText, "prints polynomial", "prints spline-automatic");
+  Function function = parsed(replaced(text, "curve.point %6, %8, %0", "curve.point %6, %8, %8"));
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
+  ASSERT_EQ(function.warnings.size(), 1u);
+  EXPECT_NE(function.warnings[0].message.find("leaves its plane"), std::string::npos);
+}
+
+TEST(CurveBlockChoice, AToleranceTheRoundingTakesIsAnError) {
+  std::string text = replaced(parabolaText, "tolerance 0.01", "tolerance 0.0015");
+  CurveLapError error = curve_lap_test::passError(text, chooseCurveBlocks);
+  EXPECT_EQ(error.kind, CurveLapError::Kind::InvalidTolerance);
+  EXPECT_NE(std::string(error.what()).find("rounding of the spline end points"), std::string::npos);
+}
+
+} // namespace
+} // namespace cncc::ir
