@@ -1,5 +1,8 @@
 // method=nurbs on a target that prints NURBS blocks (LoweringOptions::
-// nurbsBlocks: Fanuc and Mitsubishi G06.2). Each pass of the sweep's loop
+// nurbsBlocks: Fanuc and Mitsubishi G06.2), for a curve that reads
+// parameters and for an offset the host computes (offset_cuts.cpp); a curve
+// of constants is chords that ask for the blocks, made the block by the
+// legalisation choose-curve-blocks. Each pass of the sweep's loop
 // is a rapid over the block's first control point, a plunge and a curve.lap
 // at the pass height whose entry asks for the block
 // (CurveSampling::NurbsBlocks), which the legalisation write-curve-blocks

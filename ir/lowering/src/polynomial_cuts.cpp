@@ -1,15 +1,17 @@
 // A spline cut (method=cspline, aspline, bspline or nurbs) on a target
 // with polynomial span blocks (LoweringOptions::polynomialBlocks: the
-// Heidenhain TNC's SPL). Each pass (a trip of the controller's pass loop,
-// depth= and step= editable) is a rapid over the curve's start on the
-// printed grid, a plunge, and a curve.lap at the pass height whose entry
-// asks for the cubic spans (CurveSampling::PolynomialBlocks) within the
-// tolerance less the rounding of the end points, on the printed grid: the
-// legalisation write-curve-blocks fits them (curve_blocks.h: exactly, one
-// per knot span, for a non-rational NURBS of degree 3 or less; else from a
-// cubic B-spline), writes a move.polynomial per span and warns of
-// transitions that turn by more than the TNC's 0.1 degree, where the
-// control stops exactly.
+// Heidenhain TNC's SPL), of a curve that reads parameters or an offset the
+// host computes (a curve of constants: choose-curve-blocks). Each pass (a
+// trip of the controller's pass loop, depth= and step= editable) is a rapid
+// over the curve's start on the printed grid, a plunge, and a curve.lap at
+// the pass height whose entry asks for the cubic spans
+// (CurveSampling::PolynomialBlocks) within the tolerance less the rounding
+// of the end points, on the printed grid: the legalisation
+// write-curve-blocks fits them (curve_blocks.h: exactly, one per knot span,
+// for a non-rational NURBS of degree 3 or less; else from a cubic
+// B-spline), writes a move.polynomial per span and warns of transitions
+// that turn by more than the TNC's 0.1 degree, where the control stops
+// exactly.
 #include "part_lowering.h"
 
 #include "cncc/ir/curve_blocks.h"

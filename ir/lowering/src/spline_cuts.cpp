@@ -1,5 +1,7 @@
 // method=bspline, nurbs, cspline or aspline on a target that prints
-// Sinumerik spline blocks (LoweringOptions::splineBlocks). Each pass is a
+// Sinumerik spline blocks (LoweringOptions::splineBlocks), of a curve that
+// reads parameters or an offset the host computes (a curve of constants:
+// choose-curve-blocks). Each pass is a
 // rapid over the curve's start, a plunge (and the ramp lap's chords with
 // entry=ramp) and a curve.lap at the pass height whose entry asks for the
 // blocks (CurveSampling::SplineBlocks: their kind and ends, the cut's
