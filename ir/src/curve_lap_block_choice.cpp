@@ -112,6 +112,10 @@ EntryChoice chooseEntry(const Function& function, const CurveTableEntry& chordsE
     return chords(fmt::format("{} blocks cannot descend an entry=ramp",
                               *sampling == CurveSampling::NurbsBlocks ? "G06.2 NURBS" : "SPL"));
   }
+  LapInputs inputs = lapInputs(function, lap);
+  if (!inputs.parameters.empty() || !inputs.loopVariables.empty()) {
+    return chords("this curve changes with the values the program computes");
+  }
   CompiledValues compiled(function);
   std::shared_ptr<const geom::Curve> curve =
       lapCurve(function, lap, [&](ValueId value) { return compiled(value); });
@@ -215,11 +219,8 @@ bool chooseCurveBlocks(Function& function) {
     // Every lap of an entry is one cut's, or a copy's of a trip written out.
     const CutGeometry& cut = function.cuts[laps.front().cut];
     const Instruction& first = function.instructions[laps.front().lap];
-    LapInputs inputs = lapInputs(function, first);
-    EntryChoice choice = !inputs.parameters.empty() || !inputs.loopVariables.empty()
-                             ? chords("this curve changes with the program's values")
-                             : chooseEntry(function, function.curves[index], cut, first,
-                                           ramping.contains(laps.front().cut));
+    EntryChoice choice = chooseEntry(function, function.curves[index], cut, first,
+                                     ramping.contains(laps.front().cut));
     if (!choice.level) {
       warnChords(function, cut, function.curves[index], choice.chordsBecause, warned);
       function.curves[index].blocksAsked = false; // answered: chords

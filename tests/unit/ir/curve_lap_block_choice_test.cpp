@@ -161,6 +161,21 @@ TEST(CurveBlockChoice, SplineBlocksOnlyInAPlane) {
   EXPECT_NE(function.warnings[0].message.find("leaves its plane"), std::string::npos);
 }
 
+// Blocks are numbers the host computes: a lap whose points read what the
+// program computes (here a parameter) stays the controller's chords.
+TEST(CurveBlockChoice, ALapThatReadsAParameterStaysChords) {
+  std::string text = replaced(parabolaText, "func @parabola() {", "func @parabola(h = 5) {");
+  text = replaced(text, "  %4 = const 5\n", "  %4 = param h\n");
+  Function function = parsed(text);
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
+  EXPECT_FALSE(function.parameters[0].fixed);
+  EXPECT_EQ(warningsOf(function),
+            std::vector<std::string>{"this curve changes with the values the program computes: "
+                                     "method=bspline is cut as straight feed moves within the "
+                                     "cut's tolerance"});
+}
+
 TEST(CurveBlockChoice, AToleranceTheRoundingTakesIsAnError) {
   std::string text = replaced(parabolaText, "tolerance 0.01", "tolerance 0.0015");
   CurveLapError error = curve_lap_test::passError(text, chooseCurveBlocks);
