@@ -23,6 +23,8 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
+#include <string_view>
 
 namespace cncc::ir {
 
@@ -75,18 +77,47 @@ double blocksTolerance(const CutGeometry& cut, const CurveTableEntry& entry,
   return budget.forPoints();
 }
 
-// The chords entry as blocks of `sampling` keeping `amount` on the cut's grid.
-CurveTableEntry blocksEntry(const CurveTableEntry& chords, CurveSampling sampling, double amount,
+// The lap's entry as plain chords: no arcs, steps or blocks asked.
+CurveTableEntry asChords(const CurveTableEntry& measured) {
+  CurveTableEntry entry = measured;
+  entry.blocksAsked = false;
+  entry.arcsAsked.reset();
+  entry.arcRegions.clear();
+  entry.regionSteps.clear();
+  entry.walkRegions.clear();
+  entry.offsetGrowth.reset();
+  entry.chosenParameters = nullptr;
+  return entry;
+}
+
+// The lap's entry as blocks of `sampling` keeping `amount` on the cut's grid.
+CurveTableEntry blocksEntry(const CurveTableEntry& measured, CurveSampling sampling, double amount,
                             double grid) {
-  CurveTableEntry entry = chords;
+  CurveTableEntry entry = asChords(measured);
   entry.sampling = sampling;
   entry.amount = amount;
   entry.grid = grid;
-  entry.blocksAsked = false;
-  entry.arcsAsked.reset();
   entry.hostPointRegions.clear(); // the regions are the curve, not points to print
-  entry.chosenParameters = nullptr;
+  entry.pointsAsNumbers = false;
   return entry;
+}
+
+// The lap's entry as the blocks are fitted to its curve: its own, or where
+// the program computes its regions' ranges (a controller's steps along a
+// curve that reads parameters), laid out at the compiled values; nullopt
+// where it reads a loop's variable (each trip its own curve: on a host,
+// unroll-host-control has written the loop out) or a range is not known.
+std::optional<CurveTableEntry> measuredEntry(const Function& function, const Instruction& lap,
+                                             const CutGeometry& cut) {
+  const CurveTableEntry& own = function.curves[lap.index];
+  if (!lapInputs(function, lap).loopVariables.empty()) {
+    return std::nullopt;
+  }
+  if (own.sampling != CurveSampling::Steps) {
+    return own;
+  }
+  CompiledValues compiled(function);
+  return compiledRangesEntry(lap, own, compiled, cut);
 }
 
 // How one entry's laps are cut: the entry of its level laps and of its ramp
@@ -102,8 +133,8 @@ EntryChoice chords(std::string because) {
   return {std::nullopt, std::nullopt, std::move(because)};
 }
 
-EntryChoice chooseEntry(const Function& function, const CurveTableEntry& chordsEntry,
-                        const CutGeometry& cut, const Instruction& lap, bool cutRamps) {
+EntryChoice chooseEntry(const Function& function, const CutGeometry& cut, const Instruction& lap,
+                        bool cutRamps) {
   std::optional<CurveSampling> sampling = askedSampling(cut);
   if (!sampling) {
     return chords("this target has no spline interpolation");
@@ -112,34 +143,32 @@ EntryChoice chooseEntry(const Function& function, const CurveTableEntry& chordsE
     return chords(fmt::format("{} blocks cannot descend an entry=ramp",
                               *sampling == CurveSampling::NurbsBlocks ? "G06.2 NURBS" : "SPL"));
   }
-  LapInputs inputs = lapInputs(function, lap);
-  if (!inputs.parameters.empty() || !inputs.loopVariables.empty()) {
-    return chords("this curve changes with the values the program computes");
+  std::optional<CurveTableEntry> measured = measuredEntry(function, lap, cut);
+  if (!measured) {
+    return chords("this curve changes with a loop the program runs");
   }
   CompiledValues compiled(function);
   std::shared_ptr<const geom::Curve> curve =
-      lapCurve(function, lap, [&](ValueId value) { return compiled(value); });
+      lapCurve(function, lap, *measured, [&](ValueId value) { return compiled(value); });
   if (*sampling != CurveSampling::SplineBlocks) {
     bool nurbs = *sampling == CurveSampling::NurbsBlocks;
     double amount =
-        blocksTolerance(cut, chordsEntry, nurbs ? "NURBS control points" : "spline end points");
-    return {blocksEntry(chordsEntry, *sampling, amount, cut.increment), std::nullopt, {}};
+        blocksTolerance(cut, *measured, nurbs ? "NURBS control points" : "spline end points");
+    return {blocksEntry(*measured, *sampling, amount, cut.increment), std::nullopt, {}};
   }
   if (!liesInPlane(*curve)) {
     return chords("spline blocks move in X and Y, and this curve leaves its plane z = constant");
   }
   double amount = std::isfinite(cut.tolerance) ? cut.tolerance : 0;
-  EntryChoice choice{blocksEntry(chordsEntry, *sampling, amount, cut.increment), std::nullopt, {}};
+  EntryChoice choice{blocksEntry(*measured, *sampling, amount, cut.increment), std::nullopt, {}};
   choice.level->splineFit =
       SplineBlocksFit{*splineKindOfMethod(cut.method), cut.splineEnds, cutRamps};
   if (amount == 0 || cutRamps) {
     // The points the blocks go through (samples=, spacing=), or the ramp's.
-    CurveTableEntry points = chordsEntry;
-    points.arcsAsked.reset();
+    CurveTableEntry points = asChords(*measured);
     auto chosen = std::make_shared<const std::vector<double>>(lapParameters(points, *curve));
     choice.level->chosenParameters = chosen;
     if (cutRamps) {
-      points.blocksAsked = false;
       points.chosenParameters = chosen;
       choice.ramp = std::move(points);
     }
@@ -183,25 +212,51 @@ void warnChords(Function& function, const CutGeometry& cut, const CurveTableEntr
 // entry of its own.
 void applyChoice(Function& function, std::uint32_t index, const std::vector<LapOfCut>& laps,
                  EntryChoice& choice) {
+  const CurveTableEntry own = function.curves[index]; // the layout the laps' operands follow
   bool levelLaps = false;
-  std::vector<InstructionId> rampLaps;
+  bool rampLaps = false;
   for (const LapOfCut& ofCut : laps) {
-    if (isRampLap(function, function.instructions[ofCut.lap])) {
-      rampLaps.push_back(ofCut.lap);
-    } else {
-      levelLaps = true;
-    }
+    (isRampLap(function, function.instructions[ofCut.lap]) ? rampLaps : levelLaps) = true;
   }
-  if (!levelLaps) {
-    function.curves[index] = std::move(*choice.ramp);
-    return;
-  }
-  function.curves[index] = std::move(*choice.level);
-  if (!rampLaps.empty()) {
+  std::uint32_t level = index;
+  std::uint32_t ramp = index;
+  function.curves[index] = std::move(levelLaps ? *choice.level : *choice.ramp);
+  if (levelLaps && rampLaps) {
     function.curves.push_back(std::move(*choice.ramp));
-    for (InstructionId lap : rampLaps) {
-      function.instructions[lap].index = static_cast<std::uint32_t>(function.curves.size() - 1);
+    ramp = static_cast<std::uint32_t>(function.curves.size() - 1);
+  }
+  for (const LapOfCut& ofCut : laps) {
+    Instruction& lap = function.instructions[ofCut.lap];
+    std::uint32_t entry = isRampLap(function, lap) ? ramp : level;
+    if (own.sampling == CurveSampling::Steps) {
+      readChordEntry(function, lap, entry, own); // no computed ranges now
+    } else {
+      lap.index = entry;
     }
+  }
+}
+
+std::string_view blocksName(CurveSampling sampling) {
+  return sampling == CurveSampling::NurbsBlocks    ? "G06.2 NURBS blocks"
+         : sampling == CurveSampling::SplineBlocks ? "spline blocks"
+                                                   : "SPL blocks";
+}
+
+// What the laps read is fixed (a controller's program checks it: a warning
+// there), but the parameters a NURBS block keeps as its weights.
+void fixWhatTheLapsRead(Function& function, const std::vector<LapOfCut>& laps,
+                        const CurveTableEntry& entry, CurveSampling sampling) {
+  std::set<std::uint32_t> kept;
+  if (sampling == CurveSampling::NurbsBlocks) {
+    for (const CurveTableEntry::ParameterWeight& weight : entry.parameterWeights) {
+      kept.insert(weight.parameter);
+    }
+  }
+  std::string because =
+      fmt::format("this curve's {} are computed when compiling", blocksName(sampling));
+  for (const LapOfCut& ofCut : laps) {
+    fixParametersRead(function, function.instructions[ofCut.lap], entry,
+                      hostComputedCut(function, ofCut.cut), because, kept);
   }
 }
 
@@ -219,14 +274,15 @@ bool chooseCurveBlocks(Function& function) {
     // Every lap of an entry is one cut's, or a copy's of a trip written out.
     const CutGeometry& cut = function.cuts[laps.front().cut];
     const Instruction& first = function.instructions[laps.front().lap];
-    EntryChoice choice = chooseEntry(function, function.curves[index], cut, first,
-                                     ramping.contains(laps.front().cut));
+    EntryChoice choice = chooseEntry(function, cut, first, ramping.contains(laps.front().cut));
     if (!choice.level) {
       warnChords(function, cut, function.curves[index], choice.chordsBecause, warned);
       function.curves[index].blocksAsked = false; // answered: chords
       changed = true;
       continue;
     }
+    CurveSampling sampling = choice.level->sampling;
+    fixWhatTheLapsRead(function, laps, function.curves[index], sampling);
     applyChoice(function, index, laps, choice);
     changed = true;
   }

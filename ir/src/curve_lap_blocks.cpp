@@ -58,9 +58,22 @@ private:
       operands.push_back(mapped(lap.operands[k])); // height, feed, weights
     }
     for (std::size_t k = 0; fitted != nullptr && k < fitted->weights.size(); ++k) {
-      operands.push_back(constant(fitted->weights[k])); // the fitted B-spline's
+      operands.push_back(weight(entry, k, fitted->weights[k])); // the fitted B-spline's
     }
     emit(move, std::move(operands));
+  }
+
+  // A NURBS block's weight k: the part parameter it is, or its number.
+  ValueId weight(const CurveTableEntry& entry, std::size_t k, double number) {
+    for (const CurveTableEntry::ParameterWeight& weight : entry.parameterWeights) {
+      if (weight.point == k) {
+        Instruction parameter;
+        parameter.opcode = Opcode::Param;
+        parameter.index = weight.parameter;
+        return emit(parameter, {});
+      }
+    }
+    return constant(number);
   }
 
   // The table of cubic spans fitted to the lap's curve (once per entry),

@@ -191,32 +191,27 @@ CurveTableEntry chordEntry(const CurveTableEntry& stepped,
 
 } // namespace
 
-namespace {
-
 void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry,
-                       const CutGeometry* hostCut) {
+                       const CutGeometry* hostCut, std::string_view because,
+                       const std::set<std::uint32_t>& kept) {
   for (std::uint32_t index : lapInputs(function, lap).parameters) {
     Parameter& parameter = function.parameters[index];
-    if (parameter.fixed) {
+    if (parameter.fixed || kept.contains(index)) {
       continue;
     }
     parameter.fixed = true;
     if (hostCut != nullptr) {
       continue; // the host's program has no parameters to edit
     }
-    function.warnings.push_back(
-        {LegalisationWarning::Kind::ParameterFixed, entry.curveSpan,
-         fmt::format("'{}' is fixed at its value {:g} in this program: at that value the "
-                     "controller would cut this curve in more than {} steps of one piece, so "
-                     "its points are chosen when compiling; the program raises an alarm if "
-                     "it is changed",
-                     parameter.name, parameter.defaultValue, maximumStepsPerRegion)});
+    function.warnings.push_back({LegalisationWarning::Kind::ParameterFixed, entry.curveSpan,
+                                 fmt::format("'{}' is fixed at its value {:g} in this program: "
+                                             "{}; the program raises an alarm if it is changed",
+                                             parameter.name, parameter.defaultValue, because)});
   }
 }
 
-// The lap reads the chord entry: its three operands, each walk's end a point.
-void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
-                const CurveTableEntry& stepped) {
+void readChordEntry(Function& function, Instruction& lap, std::uint32_t chords,
+                    const CurveTableEntry& stepped) {
   lap.index = chords;
   lap.operands.resize(3);
   for (std::size_t region : stepped.walkRegions) {
@@ -229,6 +224,20 @@ void rewriteLap(Function& function, Instruction& lap, std::uint32_t chords,
     }
   }
 }
+
+std::optional<CurveTableEntry> compiledRangesEntry(const Instruction& lap,
+                                                   const CurveTableEntry& stepped,
+                                                   CompiledValues& compiled,
+                                                   const CutGeometry& cut) {
+  std::optional<std::vector<std::pair<double, double>>> ranges =
+      chordRanges(lap, stepped, compiled, true);
+  if (!ranges) {
+    return std::nullopt;
+  }
+  return chordEntry(stepped, *ranges, &cut);
+}
+
+namespace {
 
 // The ranges of a lap cut in steps within a tolerance whose points the
 // host chooses (an offset's whose counts grow with the radius too: chords at
@@ -300,8 +309,12 @@ bool boundControllerSteps(Function& function) {
         known = chordEntries.emplace(index, added).first;
       }
       const CurveTableEntry& stepped = function.curves[index]; // no entry is added below
-      fixParametersRead(function, lap, stepped, hostCut);
-      rewriteLap(function, lap, known->second, stepped);
+      fixParametersRead(function, lap, stepped, hostCut,
+                        fmt::format("at that value the controller would cut this curve in more "
+                                    "than {} steps of one piece, so its points are chosen when "
+                                    "compiling",
+                                    maximumStepsPerRegion));
+      readChordEntry(function, lap, known->second, stepped);
       changed = true;
     }
   }

@@ -198,6 +198,15 @@ bool readSetting(std::string_view line, CurveTableEntry& entry,
     }
   } else if (keyword == "grid") {
     entry.grid = parseNumber(rest);
+  } else if (keyword == "weights") {
+    for (std::string_view weight : splitList(rest)) {
+      std::vector<std::string_view> words = splitWords(weight);
+      if (words.size() != 3 || words[1] != "param") {
+        throw Failure{"expected 'weights POINT param P, ...'"};
+      }
+      entry.parameterWeights.push_back(
+          {parseWholeNumber(words[0]), static_cast<std::uint32_t>(parseWholeNumber(words[2]))});
+    }
   } else if (keyword == "blocks" && rest == "asked") {
     entry.blocksAsked = true;
   } else if (keyword == "blocks" && startsWith(rest, "@")) {
@@ -235,6 +244,13 @@ std::string curveEntryText(std::span<const CurveTableEntry> curves, std::size_t 
   }
   if (entry.blocksAsked) {
     out += "    blocks asked\n";
+  }
+  if (!entry.parameterWeights.empty()) {
+    std::vector<std::string> weights;
+    for (const CurveTableEntry::ParameterWeight& weight : entry.parameterWeights) {
+      weights.push_back(fmt::format("{} param {}", weight.point, weight.parameter));
+    }
+    out += fmt::format("    weights {}\n", fmt::join(weights, ", "));
   }
   if (entry.splineFit) {
     out += splineFitText(*entry.splineFit);

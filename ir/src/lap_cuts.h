@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -51,6 +52,26 @@ regionsAtCompiled(const Instruction& lap, const CurveTableEntry& stepped, Compil
 std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
                                               const CurveTableEntry& stepped,
                                               CompiledValues& compiled, const CutGeometry& hostCut);
+// The lap's entry (`stepped`, in steps) laid out as chords over each
+// region's range at the compiled values, as bound-controller-steps gives it
+// (within the cut's tolerance less the rounding); nullopt where a range is
+// not known there.
+std::optional<CurveTableEntry> compiledRangesEntry(const Instruction& lap,
+                                                   const CurveTableEntry& stepped,
+                                                   CompiledValues& compiled,
+                                                   const CutGeometry& cut);
+// The lap reads the function's entry `chords` laid out from its entry
+// `stepped`: its three operands (no computed ranges), each walk's end a
+// point.
+void readChordEntry(Function& function, Instruction& lap, std::uint32_t chords,
+                    const CurveTableEntry& stepped);
+// Fixes each parameter the lap reads but `kept`; on a controller (no
+// `hostCut`), with a parameter-fixed warning at the entry's curve: "'p' is
+// fixed at its value v in this program: `because`; the program raises an
+// alarm if it is changed".
+void fixParametersRead(Function& function, const Instruction& lap, const CurveTableEntry& entry,
+                       const CutGeometry* hostCut, std::string_view because,
+                       const std::set<std::uint32_t>& kept = {});
 // `drawn` from `whole.first` to `whole.second` in the parameter `range`,
 // mapped linearly onto it.
 std::shared_ptr<const geom::Curve> linearlyMappedCurve(std::shared_ptr<const geom::Curve> drawn,

@@ -215,7 +215,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   if (runtimeOffset_ && !runtimeOffset_->radius.isConstant()) {
     guardRuntimeRadius(*runtimeOffset_);
   }
-  checkMethod(cut);
+  checkMethod(cut, blocksAskedBy(cut));
   Scalar feed = cutFeed(cut);
   ValueId feedValue = arithmetic_.value(feed);
   ValueId safeValue = arithmetic_.value(*safe_);
@@ -228,6 +228,7 @@ bool PartLowering::lowerControllerCut(const CutStmt& cut, const CutCurve& curve)
   bool activatesLengthOffset =
       beginCutMoves({runtimeOffset_ ? runtimeOffset_->compiled : curve.geometry, tolerance,
                      cut.span, methodOf(cut), arcs ? CutArcs::Native : CutArcs::None});
+  noteMethodSpan(cut);
   if (runtimeOffset_) {
     markCutBeside(curve.geometry, std::fabs(runtimeOffset_->compiledDistance));
   }

@@ -57,6 +57,10 @@ PartLowering::SteppedLap PartLowering::steppedLap(const CutStmt& cut, const CutC
     }
   }
   entry.arcsAsked = arcsAsked_; // never with a ramp (arcCutProblem)
+  if (blocksAskedBy(cut)) {
+    entry.blocksAsked = true;
+    entry.parameterWeights = ownWeightParameters(cut, curve);
+  }
   lap.table = builder_.addCurve(std::move(entry));
   return lap;
 }

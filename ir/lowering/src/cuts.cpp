@@ -352,6 +352,10 @@ void PartLowering::checkRampCloses(const CutCurve& curve, const CutStmt& cut) {
   }
 }
 
+bool PartLowering::blocksAskedBy(const CutStmt& cut) const {
+  return !nativeArcs_ && !runtimeOffset_ && splineKindOfMethod(methodOf(cut)).has_value();
+}
+
 HostCut PartLowering::beginHostCut(const CutStmt& cut, bool blocksAsked) {
   // The curve's points are chosen at its defaults, whatever IR evaluates it.
   fixParameters(*cut.curve, cut.curve->span, "this curve's points");
@@ -392,6 +396,12 @@ bool PartLowering::beginCutMoves(CutGeometry geometry) {
   return activatesLengthOffset;
 }
 
+void PartLowering::noteMethodSpan(const CutStmt& cut) {
+  if (const Modifier* method = findModifier(cut, "method")) {
+    cuts_.back().methodSpan = method->span();
+  }
+}
+
 void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, double toolRadius) {
   cuts_.back().drawnCurve = std::move(drawn);
   cuts_.back().toolRadius = toolRadius;
@@ -403,23 +413,15 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   if (lowerOffsetCut(cut)) {
     return;
   }
-  // A method= the target's blocks print is the cut's own choice, before
-  // arcs. Of a curve of constants, choose-curve-blocks makes its chords the
-  // blocks (blocksAsked); of one that reads parameters, the lowering does,
-  // fixing them (the controller's laps cannot be blocks).
-  bool readsParameters = !parametersOf(*cut.curve).empty();
-  if (readsParameters && (lowerNurbsCut(cut) || lowerPolynomialCut(cut))) {
-    return;
-  }
   // The curve is built once for whichever way lowers the cut. Arc pieces
   // are printed as circles (native_arcs.cpp), not fitted arcs.
   CutCurve curve = cutCurve(cut);
   checkCutBounds(cut, *curve.geometry);
   bool nativeArcs = wantsNativeArcs(cut) && hasArcPiece(curve);
+  // A method= spline asks for the target's curve blocks, which
+  // choose-curve-blocks makes of the chords or steps lowered here for every
+  // target (blocksAsked), after the curve's arcs cut as arcs.
   nativeArcs_ = nativeArcs; // checkMethod says so
-  if (readsParameters && !nativeArcs && lowerSplineCut(cut, curve)) {
-    return;
-  }
   // Fitted arcs are asked of the laps either way below; fit-arcs decides.
   arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut);
   if (lowerControllerCut(cut, curve)) {
@@ -445,7 +447,7 @@ void PartLowering::lowerCut(const CutStmt& cut) {
 // The cut's passes, each lap along the curve a curve.lap whose points the
 // target's legalisation chooses (expand-curve-laps).
 void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
-  bool blocksAsked = splineKindOfMethod(methodOf(cut)).has_value();
+  bool blocksAsked = blocksAskedBy(cut);
   auto [feed, ramp] = beginHostCut(cut, blocksAsked);
   CurveTableEntry entry = curveTableEntry(cut, curve, arcsAsked_);
   entry.blocksAsked = blocksAsked;
@@ -459,9 +461,7 @@ void PartLowering::lowerCurveLaps(const CutStmt& cut, const CutCurve& curve) {
   bool activatesLengthOffset = beginCutMoves(
       {curve.geometry, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
        cut.span, methodOf(cut)});
-  if (const Modifier* method = findModifier(cut, "method")) {
-    cuts_.back().methodSpan = method->span();
-  }
+  noteMethodSpan(cut);
   // Level laps ask for arcs where the cut does; a ramp lap is chords.
   std::uint32_t table = builder_.addCurve(entry);
   std::uint32_t rampTable = table;

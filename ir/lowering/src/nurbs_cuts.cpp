@@ -25,6 +25,8 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <string>
 
 namespace cncc::ir::lowering {
 
@@ -50,6 +52,34 @@ std::vector<std::optional<ValueId>> PartLowering::parameterWeights(const CutStmt
     weights.push_back(parameter ? std::optional<ValueId>(weight->values[0].value) : std::nullopt);
   }
   return weights;
+}
+
+std::vector<CurveTableEntry::ParameterWeight>
+PartLowering::ownWeightParameters(const CutStmt& cut, const CutCurve& curve) {
+  std::vector<CurveTableEntry::ParameterWeight> parameters;
+  std::vector<std::optional<ValueId>> weights = parameterWeights(cut, curve);
+  if (weights.empty()) {
+    return parameters; // no nurbs(...) of its own with a list of weights
+  }
+  const Expr* list = curveArgument(cut, "weights");
+  std::set<std::string> elsewhere; // what the points and knots read
+  for (const Argument& argument : as<CallExpr>(*cut.curve).arguments) {
+    if (argument.value && argument.value.get() != list) {
+      std::set<std::string> read = parametersOf(*argument.value);
+      elsewhere.insert(read.begin(), read.end());
+    }
+  }
+  const Function& function = builder_.function();
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    if (!weights[k]) {
+      continue;
+    }
+    std::uint32_t index = function.definition(*weights[k]).index;
+    if (!elsewhere.contains(function.parameters[index].name)) {
+      parameters.push_back({k, index});
+    }
+  }
+  return parameters;
 }
 
 namespace {

@@ -261,6 +261,11 @@ private:
   // reference.
   void endMachineSettings();
   void checkMethod(const frontend::CutStmt& cut, bool blocksAsked = false);
+  // Whether the cut's laps ask choose-curve-blocks for the target's curve
+  // blocks: a method= spline, on its own curve, with no arcs cut as arcs.
+  bool blocksAskedBy(const frontend::CutStmt& cut) const;
+  // The cut just begun (beginCutMoves) notes where its method= is written.
+  void noteMethodSpan(const frontend::CutStmt& cut);
   // The first of the cut's curve and `toolDiameter` that depends on a part
   // parameter; nullopt when none does (depth= and step= may: the sweep's
   // pass loop computes them). A controller loop's variable unrolls the loop
@@ -391,6 +396,10 @@ private:
   std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
                                                        const CutCurve& curve);
   void fixNurbsBlockParameters(const frontend::CutStmt& cut);
+  // The weights of a nurbs(...) cut that are part parameters read nowhere
+  // else in it (CurveTableEntry::parameterWeights).
+  std::vector<CurveTableEntry::ParameterWeight> ownWeightParameters(const frontend::CutStmt& cut,
+                                                                    const CutCurve& curve);
 
   // spline_cuts.cpp
   bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);

@@ -161,17 +161,43 @@ TEST(CurveBlockChoice, SplineBlocksOnlyInAPlane) {
   EXPECT_NE(function.warnings[0].message.find("leaves its plane"), std::string::npos);
 }
 
-// Blocks are numbers the host computes: a lap whose points read what the
-// program computes (here a parameter) stays the controller's chords.
-TEST(CurveBlockChoice, ALapThatReadsAParameterStaysChords) {
+// Blocks are numbers the host computes: a lap whose points read a part
+// parameter is cut as blocks at its value, which is fixed (on a controller
+// with a warning: its program checks it); one that reads the variable of a
+// loop the program runs stays chords.
+TEST(CurveBlockChoice, ALapThatReadsAParameterFixesIt) {
   std::string text = replaced(parabolaText, "func @parabola() {", "func @parabola(h = 5) {");
   text = replaced(text, "  %4 = const 5\n", "  %4 = param h\n");
-  Function function = parsed(text);
+  Function host = parsed(text);
+  EXPECT_TRUE(chooseCurveBlocks(host));
+  EXPECT_EQ(host.curves[0].sampling, CurveSampling::PolynomialBlocks);
+  EXPECT_TRUE(host.parameters[0].fixed);
+  EXPECT_TRUE(host.warnings.empty()); // a host's program has no parameters to edit
+
+  Function controller = parsed(replaced(text, "increment 0.001", "increment 0.001 controller 12"));
+  EXPECT_TRUE(chooseCurveBlocks(controller));
+  EXPECT_TRUE(controller.parameters[0].fixed);
+  ASSERT_EQ(controller.warnings.size(), 1u);
+  EXPECT_EQ(controller.warnings[0].kind, LegalisationWarning::Kind::ParameterFixed);
+  EXPECT_EQ(controller.warnings[0].message,
+            "'h' is fixed at its value 5 in this program: this curve's SPL blocks are computed "
+            "when compiling; the program raises an alarm if it is changed");
+}
+
+TEST(CurveBlockChoice, ALapThatReadsALoopsVariableStaysChords) {
+  std::string text = replaced(parabolaText, "  cut.begin 0\n", R"(  %9 = const 1
+  %10 = const 3
+  %11 = loop %9, %10 {
+    cut.begin 0
+)");
+  text = replaced(text, "    %8 = mul %4, %7\n", "    %8 = mul %11, %7\n");
+  text = replaced(text, "    curve.point %6, %8, %0\n  }\n}",
+                  "    curve.point %6, %8, %0\n  }\n  }\n}");
+  Function function = parsed(replaced(text, "increment 0.001", "increment 0.001 controller 12"));
   EXPECT_TRUE(chooseCurveBlocks(function));
   EXPECT_EQ(function.curves[0].sampling, CurveSampling::ChordTolerance);
-  EXPECT_FALSE(function.parameters[0].fixed);
   EXPECT_EQ(warningsOf(function),
-            std::vector<std::string>{"this curve changes with the values the program computes: "
+            std::vector<std::string>{"this curve changes with a loop the program runs: "
                                      "method=bspline is cut as straight feed moves within the "
                                      "cut's tolerance"});
 }

@@ -177,19 +177,14 @@ TEST(TargetNeutralLowering, EveryExamplesParts) {
   EXPECT_GE(same, 13u);
 }
 
-// With the blocks each target prints: the same but rosette_plate, whose
-// petals (method=cspline) read the loop's variable, which the controller's
-// laps compute; the lowering cuts them as the blocks itself (fixing what
-// they read) where the target prints them.
+// And with the blocks each target prints (cam_profile's mark, rosette_plate's
+// petals, which read the loop's variable and its bound's parameter).
 TEST(TargetNeutralLowering, EveryExamplesPartsWithTheTargetsBlocks) {
   for (Blocks blocks : {Blocks::Nurbs, Blocks::Polynomial, Blocks::Spline}) {
     std::size_t same = 0;
-    std::set<std::string> expected;
-    if (blocks != Blocks::Nurbs) {
-      expected.insert("rosette_plate");
-    }
-    EXPECT_EQ(examplePartsThatDiffer(blocks, same), expected) << static_cast<int>(blocks);
-    EXPECT_GE(same, 12u);
+    EXPECT_EQ(examplePartsThatDiffer(blocks, same), std::set<std::string>{})
+        << static_cast<int>(blocks);
+    EXPECT_GE(same, 13u);
   }
 }
 

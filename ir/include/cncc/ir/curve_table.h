@@ -214,6 +214,14 @@ struct CurveTableEntry {
   // blocks: choose-curve-blocks makes them the blocks its cut prints
   // (CutGeometry::printedBlocks), where they can follow the lap.
   bool blocksAsked = false;
+  // A NURBS of its own asking for blocks: the control points whose weight
+  // is a part parameter read nowhere else in the curve, and the parameter
+  // (by index). G06.2 keeps them the parameter's (write-curve-blocks).
+  struct ParameterWeight {
+    std::size_t point = 0;
+    std::uint32_t parameter = 0;
+  };
+  std::vector<ParameterWeight> parameterWeights = {};
 
   // A lap cut as the target's NURBS or spline blocks.
   bool isBlocks() const {
