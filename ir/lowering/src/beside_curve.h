@@ -113,6 +113,8 @@ struct HostOffsetLaps {
   CutArcs arcMoves = CutArcs::None;
   std::optional<std::uint32_t> arcsTable;
   std::optional<std::uint32_t> pointsTable;
+  // The laps' tables ask for the target's curve blocks (choose-curve-blocks).
+  bool blocksAsked = false;
 };
 
 // Whether a curve is a line or an arc (geom's LineCurve, ArcCurve).

@@ -141,21 +141,6 @@ ToleranceBudget PartLowering::toleranceBudget(const CutStmt& cut) {
   return budget;
 }
 
-ToleranceBudget PartLowering::blocksBudget(const CutStmt& cut, std::string_view roundedPoints) {
-  ToleranceBudget budget = toleranceBudget(cut);
-  budget.tolerance = budget.toleranceOrDefault();
-  double rounding = budget.pointRounding();
-  if (!(budget.tolerance > 2 * rounding)) {
-    const Expr* written = modifierValue(cut, "tolerance");
-    fail(written != nullptr ? written->span : cut.span,
-         fmt::format("the tolerance {:g} leaves no room for the controller's rounding of the "
-                     "{} ({:.6g})",
-                     budget.tolerance, roundedPoints, rounding),
-         DiagnosticKind::InvalidTolerance);
-  }
-  return budget;
-}
-
 std::size_t PartLowering::sampleCount(const CutStmt& cut) {
   const Expr* expression = modifierValue(cut, "samples");
   double samples = constantNumber(*expression, "samples=");
@@ -529,18 +514,6 @@ CurveTableEntry PartLowering::wholeCurveTableEntry(const CutStmt& cut, const Cut
   for (std::size_t p = 0; p < curve.pieces.size(); ++p) {
     addPieceLayout(entry, curve.pieces[p], curve.pieceStarts[p], cut);
   }
-  return entry;
-}
-
-CurveTableEntry PartLowering::blocksTableEntry(const CutStmt& cut, const CutCurve& curve,
-                                               CurveSampling sampling,
-                                               std::optional<std::uint32_t> blockTable,
-                                               double tolerance) {
-  CurveTableEntry entry = wholeCurveTableEntry(cut, curve);
-  entry.sampling = sampling;
-  entry.amount = std::isfinite(tolerance) ? tolerance : 0;
-  entry.blockTable = blockTable;
-  entry.hostPointRegions.clear(); // the regions are the curve, not points to print
   return entry;
 }
 

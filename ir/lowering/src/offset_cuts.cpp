@@ -13,6 +13,8 @@
 // cut's curve in the cut table (as comp=controller's leads are).
 #include "part_lowering.h"
 
+#include "cncc/ir/curve_blocks.h"
+
 #include "cncc/geom/arc_fitting.h"
 #include "cncc/geom/composite_curve.h"
 #include "cncc/geom/discretisation.h"
@@ -460,21 +462,20 @@ void PartLowering::lowerHostOffsetCut(const CutStmt& cut, double distance) {
   }
   checkCutBounds(cut, *path);
   std::shared_ptr<const BesideCurve> beside = besideCurve(cut, curve, parts, distance);
-  if (lowerOffsetSplineCut(cut, beside, offset)) {
-    markCutBeside(curve.geometry, std::fabs(distance));
-    return;
-  }
-  HostCut begun = beginHostCut(cut);
+  HostOffsetLaps laps = hostOffsetLaps(cut, offset, *beside, rampEntry(cut));
+  nativeArcs_ = laps.arcs.has_value(); // checkMethod says so
+  warnSplineOffsetWithLeads(cut);
+  HostCut begun = beginHostCut(cut, laps.blocksAsked);
   geom::ParameterRange domain = offset->domain();
   if (begun.ramp && (offset->point(domain.t0) - offset->point(domain.t1)).norm() > 1e-6) {
     unsupported(findModifier(cut, "entry")->span(), "entry=ramp on a curve that does not close");
   }
-  HostOffsetLaps laps = hostOffsetLaps(cut, offset, *beside, begun.ramp);
   ValueId feed = arithmetic_.value(begun.feed);
   ValueId safe = arithmetic_.value(*safe_);
   bool activatesLengthOffset =
       beginCutMoves({path, chordTolerance(cut).value_or(std::numeric_limits<double>::quiet_NaN()),
                      cut.span, methodOf(cut), laps.arcMoves});
+  noteMethodSpan(cut);
   markCutBeside(curve.geometry, std::fabs(distance));
   Eigen::Vector3d start = offset->point(domain.t0);
   Eigen::Vector3d finish = offset->point(domain.t1);
@@ -510,13 +511,17 @@ HostOffsetLaps PartLowering::hostOffsetLaps(const CutStmt& cut,
     laps.arcs = exactSegments(*offset);
     laps.arcMoves = laps.arcs ? CutArcs::Native : CutArcs::None;
   }
+  // A method= spline asks for the target's blocks, after the offset's own
+  // arcs; without lead arcs, which the blocks would not follow.
+  laps.blocksAsked = !laps.arcs && findModifier(cut, "lead") == nullptr &&
+                     splineKindOfMethod(methodOf(cut)).has_value();
   if (!laps.arcs) {
     if (std::optional<ArcsAsked> asked = arcsAskedBy(cut)) {
-      laps.arcsTable = besideChordsCurve(cut, beside, asked);
+      laps.arcsTable = besideChordsCurve(cut, beside, asked, laps.blocksAsked);
     }
   }
   if (!(laps.arcs || laps.arcsTable) || ramp) {
-    laps.pointsTable = besideChordsCurve(cut, beside);
+    laps.pointsTable = besideChordsCurve(cut, beside, std::nullopt, laps.blocksAsked);
   }
   return laps;
 }
@@ -550,42 +555,20 @@ std::optional<CompensatedLeads> PartLowering::hostLeads(const CutStmt& cut, cons
   return leads;
 }
 
-// Blocks fitted to the offset where the target prints them (Sinumerik
-// BSPLINE/CSPLINE/ASPLINE, Heidenhain SPL, G06.2 for method=nurbs): the ways
-// of lowering that read the curve's geometry take the offset in a stand-in
-// without pieces of its own, whose laps compute the offset (`beside`). A cut
-// with lead arcs is cut as chords, and so is a ramped one where a target's
-// blocks have no ramp (SPL, G06.2).
-bool PartLowering::lowerOffsetSplineCut(const CutStmt& cut,
-                                        const std::shared_ptr<const BesideCurve>& beside,
-                                        const std::shared_ptr<const geom::Curve>& offset) {
+// Lead arcs with a method= spline on a target that prints spline blocks:
+// the offset's chords (the blocks would not follow the leads).
+void PartLowering::warnSplineOffsetWithLeads(const CutStmt& cut) {
   std::string method = methodOf(cut);
-  if (method.empty() || method == "linear") {
-    return false;
+  bool blocks = options_.splineBlocks || options_.polynomialBlocks || options_.nurbsBlocks;
+  if (findModifier(cut, "lead") == nullptr || !splineKindOfMethod(method) ||
+      !options_.splineInterpolation || !blocks || !options_.reportSplineAsChords) {
+    return;
   }
-  CutCurve stand{{}, offset, {}, beside};
-  // The spline ways emit their own passes, without lead arcs; a ramp's lap
-  // (Sinumerik's: chords through the points the blocks were fitted to) is
-  // the offset's.
-  bool leads = findModifier(cut, "lead") != nullptr;
-  if (!leads && (lowerSplineCut(cut, stand) || lowerPolynomialCut(cut, &stand) ||
-                 lowerNurbsCut(cut, &stand))) {
-    return true;
-  }
-  // A target without spline blocks cuts the method as chords anyway (and
-  // checkMethod says so where it has no spline interpolation at all).
-  if (options_.splineInterpolation &&
-      (options_.splineBlocks || options_.polynomialBlocks || options_.nurbsBlocks)) {
-    diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
-                         fmt::format("this cut beside the curve (side=) is cut as straight feed "
-                                     "moves within its tolerance of the exact offset: method={} "
-                                     "is not built for offsets{} on this target yet",
-                                     method,
-                                     rampEntry(cut) ? " with entry=ramp"
-                                     : leads        ? " with lead="
-                                                    : ""));
-  }
-  return false;
+  diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
+                       fmt::format("this cut beside the curve (side=) is cut as straight feed "
+                                   "moves within its tolerance of the exact offset: method={} is "
+                                   "not built for offsets with lead= on this target yet",
+                                   method));
 }
 
 // The points of an offset a controller-side target prints are read back by

@@ -78,9 +78,10 @@ std::shared_ptr<const BesideCurve> PartLowering::besideCurve(const CutStmt& cut,
 }
 
 std::uint32_t PartLowering::besideChordsCurve(const CutStmt& cut, const BesideCurve& beside,
-                                              std::optional<ArcsAsked> arcs) {
+                                              std::optional<ArcsAsked> arcs, bool blocksAsked) {
   CurveTableEntry entry = beside.layout;
   entry.arcsAsked = arcs;
+  entry.blocksAsked = blocksAsked;
   chooseSampling(entry, cut, *entry.geometry, offsetChordTolerance(cut));
   entry.pointsAsNumbers = true;
   return builder_.addCurve(std::move(entry));

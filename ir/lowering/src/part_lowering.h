@@ -277,10 +277,6 @@ private:
   std::optional<double> chordTolerance(const frontend::CutStmt& cut);
   // The cut's tolerance and the printed grid's share of it (computed here only).
   ToleranceBudget toleranceBudget(const frontend::CutStmt& cut);
-  // The budget of blocks the controller interpolates (NURBS, SPL spans):
-  // samples= or spacing= choose no points of them, so they keep the default
-  // tolerance, which must leave room for the rounding of `roundedPoints`.
-  ToleranceBudget blocksBudget(const frontend::CutStmt& cut, std::string_view roundedPoints);
   std::size_t sampleCount(const frontend::CutStmt& cut);
   geom::CurveSamples samplesFor(const frontend::CutStmt& cut, const geom::Curve& curve);
   // spacing= that would put more points on the curve than a cut may have.
@@ -296,13 +292,6 @@ private:
   CurveTableEntry wholeCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve);
   CurveTableEntry curveTableEntryOn(const frontend::CutStmt& cut,
                                     std::shared_ptr<const geom::Curve> geometry);
-  // The whole curve cut as the target's blocks (NurbsBlocks, SplineBlocks or
-  // PolynomialBlocks) whose data is table `blockTable` (none: fitted by
-  // write-curve-blocks), fitted within `tolerance` (0: through the points
-  // samples= or spacing= chose).
-  CurveTableEntry blocksTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
-                                   CurveSampling sampling, std::optional<std::uint32_t> blockTable,
-                                   double tolerance);
   CurveTableEntry pieceCurveTableEntry(const frontend::CutStmt& cut, const CutCurve& curve,
                                        std::size_t piece, const std::vector<RampSegment>& shares);
   CurvePieceLayout pieceLayout(const CurvePiece& piece, double start);
@@ -390,22 +379,13 @@ private:
                     const ArcHeight& height, ValueId feed, std::optional<Scalar> done = {});
   CurvePoint radiusTowardsCentre(Scalar radius, Scalar from, Scalar sweep, Scalar fraction);
 
-  // nurbs_cuts.cpp
-  // `given`: a curve beside the cut's (lowerOffsetSplineCut), else the cut's own.
-  bool lowerNurbsCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
+  // nurbs_weights.cpp: per weight of a nurbs(...) cut, the part parameter
+  // it is (its value), or nullopt for a number; and those read nowhere else
+  // in the curve (CurveTableEntry::parameterWeights).
   std::vector<std::optional<ValueId>> parameterWeights(const frontend::CutStmt& cut,
                                                        const CutCurve& curve);
-  void fixNurbsBlockParameters(const frontend::CutStmt& cut);
-  // The weights of a nurbs(...) cut that are part parameters read nowhere
-  // else in it (CurveTableEntry::parameterWeights).
   std::vector<CurveTableEntry::ParameterWeight> ownWeightParameters(const frontend::CutStmt& cut,
                                                                     const CutCurve& curve);
-
-  // spline_cuts.cpp
-  bool lowerSplineCut(const frontend::CutStmt& cut, const CutCurve& curve);
-  // polynomial_cuts.cpp
-  // `given`: the curve to cut instead of the statement's (an offset's stand-in).
-  bool lowerPolynomialCut(const frontend::CutStmt& cut, const CutCurve* given = nullptr);
 
   // offset_cuts.cpp: cuts beside the curve (side=left|right).
   bool lowerOffsetCut(const frontend::CutStmt& cut);
@@ -432,9 +412,7 @@ private:
   [[noreturn]] void offsetCheckTooLarge(const frontend::CutStmt& cut, std::size_t limit);
   std::optional<CompensatedLeads> hostLeads(const frontend::CutStmt& cut, const CutCurve& curve,
                                             const geom::Curve& offset, double distance);
-  bool lowerOffsetSplineCut(const frontend::CutStmt& cut,
-                            const std::shared_ptr<const BesideCurve>& beside,
-                            const std::shared_ptr<const geom::Curve>& offset);
+  void warnSplineOffsetWithLeads(const frontend::CutStmt& cut);
   // arcs=true, or --arcs on a target that prints arcs, without arcs=false.
   bool asksFittedArcs(const frontend::CutStmt& cut);
   geom::CurveSamples offsetSamples(const frontend::CutStmt& cut, const geom::Curve& offset);
@@ -447,9 +425,11 @@ private:
                                                  const CutCurve& curve,
                                                  const geom::PiecesOffset& offset, double distance);
   // The offset's points within the cut's budget (as numbers on a
-  // controller), its level laps asking for `arcs` where given.
+  // controller), its level laps asking for `arcs` where given, and for the
+  // target's curve blocks where `blocksAsked`.
   std::uint32_t besideChordsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
-                                  std::optional<ArcsAsked> arcs = std::nullopt);
+                                  std::optional<ArcsAsked> arcs = std::nullopt,
+                                  bool blocksAsked = false);
   std::uint32_t chosenPointsCurve(const frontend::CutStmt& cut, const BesideCurve& beside,
                                   const std::vector<double>& parameters);
   // The lap with its operands (z from, z to, feed, then a NURBS block's weights).

@@ -126,17 +126,20 @@ TEST(TargetNeutralLowering, APassLoopAfterAToolChange) {
   }
 }
 
-// A method= that asks for curve blocks gives the same chords on every
-// target, the blocks a legalisation's (choose-curve-blocks): on a host, a
-// controller and each target that prints blocks (Fanuc's G06.2 computed
-// by a controller, Heidenhain's SPL too, Sinumerik's splines by the host).
-TEST(TargetNeutralLowering, ACurveOfConstantsAskingForBlocks) {
+// A method= that asks for curve blocks gives the same chords or steps on
+// every target, the blocks a legalisation's (choose-curve-blocks): on a
+// host, a controller and each target that prints blocks (Fanuc's G06.2
+// computed by a controller, Heidenhain's SPL too, Sinumerik's splines by
+// the host); a curve of constants, one that reads a parameter, an offset.
+TEST(TargetNeutralLowering, ACurveAskingForBlocks) {
   for (std::string curve :
        {"bezier(points=[(0, 0), (10, 8), (20, 0)]) method=nurbs sweep depth=2 step=1",
         "polar(r = 10 + cos(3*t), t = 0 .. 2*pi) method=cspline entry=ramp",
-        "param(x = 10*cos(t), y = 5*sin(t), z = t, t = 0 .. pi) method=bspline"}) {
+        "param(x = 10*cos(t), y = 5*sin(t), z = t, t = 0 .. pi) method=bspline",
+        "polar(r = a + 2*cos(3*t), t = 0 .. 2*pi) method=nurbs sweep depth=2 step=1",
+        "polar(r = 18 + 2*cos(3*t), t = 0 .. 2*pi) side=right method=bspline entry=ramp"}) {
     std::string source =
-        "part p() {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve " + curve + "\n}\n";
+        "part p(a = 18) {\n  tool 1 diameter=6 feed=300\n  safe z=5\n  curve " + curve + "\n}\n";
     LoweredMotion host = loweredMotion(source, false);
     EXPECT_NE(host.text.find("blocks asked"), std::string::npos) << curve;
     for (auto [controllerComputes, blocks] :
