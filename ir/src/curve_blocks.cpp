@@ -168,6 +168,7 @@ FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve&
   }
   geom::NurbsCurve block(nurbs->knots(), std::move(points), nurbs->weights());
   FittedNurbsBlock fitted;
+  fitted.own = dynamic_cast<const geom::NurbsCurve*>(&curve) != nullptr;
   fitted.table = nurbsMoveTable(block);
   for (std::size_t k = 0; k < block.controlPoints().size(); ++k) {
     fitted.weights.push_back(block.weights().empty() ? 1.0 : block.weights()[k]);

@@ -127,6 +127,7 @@ struct EntryChoice {
   std::optional<CurveTableEntry> level;
   std::optional<CurveTableEntry> ramp;
   std::string chordsBecause;
+  bool ownNurbs = false; // a G06.2 block of the curve's own NURBS: its weights its own
 };
 
 EntryChoice chords(std::string because) {
@@ -154,7 +155,8 @@ EntryChoice chooseEntry(const Function& function, const CutGeometry& cut, const 
     bool nurbs = *sampling == CurveSampling::NurbsBlocks;
     double amount =
         blocksTolerance(cut, *measured, nurbs ? "NURBS control points" : "spline end points");
-    return {blocksEntry(*measured, *sampling, amount, cut.increment), std::nullopt, {}};
+    bool own = nurbs && dynamic_cast<const geom::NurbsCurve*>(curve.get()) != nullptr;
+    return {blocksEntry(*measured, *sampling, amount, cut.increment), std::nullopt, {}, own};
   }
   if (!liesInPlane(*curve)) {
     return chords("spline blocks move in X and Y, and this curve leaves its plane z = constant");
@@ -245,9 +247,10 @@ std::string_view blocksName(CurveSampling sampling) {
 // What the laps read is fixed (a controller's program checks it: a warning
 // there), but the parameters a NURBS block keeps as its weights.
 void fixWhatTheLapsRead(Function& function, const std::vector<LapOfCut>& laps,
-                        const CurveTableEntry& entry, CurveSampling sampling) {
+                        const CurveTableEntry& entry, const EntryChoice& choice) {
+  CurveSampling sampling = choice.level->sampling;
   std::set<std::uint32_t> kept;
-  if (sampling == CurveSampling::NurbsBlocks) {
+  if (choice.ownNurbs) {
     for (const CurveTableEntry::ParameterWeight& weight : entry.parameterWeights) {
       kept.insert(weight.parameter);
     }
@@ -281,8 +284,7 @@ bool chooseCurveBlocks(Function& function) {
       changed = true;
       continue;
     }
-    CurveSampling sampling = choice.level->sampling;
-    fixWhatTheLapsRead(function, laps, function.curves[index], sampling);
+    fixWhatTheLapsRead(function, laps, function.curves[index], choice);
     applyChoice(function, index, laps, choice);
     changed = true;
   }

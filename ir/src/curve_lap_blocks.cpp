@@ -58,7 +58,8 @@ private:
       operands.push_back(mapped(lap.operands[k])); // height, feed, weights
     }
     for (std::size_t k = 0; fitted != nullptr && k < fitted->weights.size(); ++k) {
-      operands.push_back(weight(entry, k, fitted->weights[k])); // the fitted B-spline's
+      operands.push_back(fitted->own ? weight(entry, k, fitted->weights[k])
+                                     : constant(fitted->weights[k])); // the fitted B-spline's
     }
     emit(move, std::move(operands));
   }
@@ -95,6 +96,7 @@ private:
   struct FittedNurbs {
     std::uint32_t table = 0;
     std::vector<double> weights; // one per control point
+    bool own = false;            // the curve's own: its parameter weights too
   };
 
   // The NURBS block fitted to the lap's curve (once per entry), its data a
@@ -105,7 +107,7 @@ private:
       FittedNurbsBlock block = lapFittedNurbs(source_.curves[lap.index], *curveOf(lap));
       output_.tables.push_back(std::move(block.table));
       FittedNurbs fitted{static_cast<std::uint32_t>(output_.tables.size() - 1),
-                         std::move(block.weights)};
+                         std::move(block.weights), block.own};
       known = nurbs_.emplace(lap.index, std::move(fitted)).first;
     }
     return known->second;

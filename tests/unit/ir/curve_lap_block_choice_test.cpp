@@ -2,6 +2,7 @@
 // (blocksAsked) become the blocks its target prints (the cut table's
 // `prints`) where they can follow the lap, and stay chords with a
 // spline-as-chords warning where they cannot; the answer is given once.
+#include "cncc/geom/nurbs_curve.h"
 #include "cncc/ir/curve_lap.h"
 #include "cncc/ir/passes.h"
 #include "cncc/ir/printer.h"
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace cncc::ir {
@@ -200,6 +202,73 @@ TEST(CurveBlockChoice, ALapThatReadsALoopsVariableStaysChords) {
             std::vector<std::string>{"this curve changes with a loop the program runs: "
                                      "method=bspline is cut as straight feed moves within the "
                                      "cut's tolerance"});
+}
+
+// An arch from (0, 0) to (20, 0) through the control point (10, 10) of
+// weight w asking for a G06.2 block, its middle weight the parameter w
+// (`weights 1 param 0`); its region here only the chord.
+constexpr std::string_view archText = R"(func @arch(w = 2) {
+  curve @0 chords 0.009 over 0 .. 1 {
+    piece at 0 over 0 .. 1
+    blocks asked
+    weights 1 param 0
+  }
+  cut @0 tolerance 0.01 increment 0.001 controller 8 method nurbs prints nurbs
+  %0 = param w
+  %1 = const 0
+  %2 = const -1
+  %3 = const 300
+  %4 = const 20
+  cut.begin 0
+  move.rapid %1, %1, %2
+  %5 = curve.lap @0, %2, %2, %3 {
+    %6 = mul %4, %5
+    %7 = mul %0, %1
+    curve.point %6, %7, %1
+  }
+}
+)";
+
+// The move.nurbs's weight operands: a parameter's index, or -1 for a number.
+std::vector<int> nurbsWeights(const Function& function) {
+  std::vector<int> weights;
+  for (const Instruction& instruction : function.instructions) {
+    if (instruction.opcode != Opcode::Nurbs) {
+      continue;
+    }
+    for (std::size_t k = 2; k < instruction.operands.size(); ++k) {
+      const Instruction& weight = function.definition(instruction.operands[k]);
+      weights.push_back(weight.opcode == Opcode::Param ? static_cast<int>(weight.index) : -1);
+    }
+  }
+  return weights;
+}
+
+TEST(CurveBlockChoice, AWeightThatIsAParameterStaysOneInItsNurbsBlock) {
+  Function function = parsed(archText);
+  EXPECT_EQ(printFunction(function), archText);
+  std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {10, 10, 0}, {20, 0, 0}};
+  function.curves[0].geometry = std::make_shared<geom::NurbsCurve>(
+      geom::KnotVector({0, 0, 0, 1, 1, 1}, 2), points, std::vector<double>{1, 2, 1});
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  EXPECT_FALSE(function.parameters[0].fixed); // the block's own weight
+  EXPECT_TRUE(function.warnings.empty());
+  EXPECT_TRUE(writeCurveBlocks(function));
+  EXPECT_EQ(nurbsWeights(function), (std::vector<int>{-1, 0, -1}));
+}
+
+// Read from text, the lap's curve is its region interpreted, not a NURBS of
+// its own: its block is a fitted B-spline, and what it reads is fixed.
+TEST(CurveBlockChoice, AFittedBlockFixesTheWeightsParameter) {
+  Function function = parsed(archText);
+  EXPECT_TRUE(chooseCurveBlocks(function));
+  EXPECT_TRUE(function.parameters[0].fixed);
+  ASSERT_EQ(function.warnings.size(), 1u);
+  EXPECT_EQ(function.warnings[0].kind, LegalisationWarning::Kind::ParameterFixed);
+  EXPECT_TRUE(writeCurveBlocks(function));
+  std::vector<int> weights = nurbsWeights(function);
+  EXPECT_FALSE(weights.empty());
+  EXPECT_EQ(std::count(weights.begin(), weights.end(), 0), 0);
 }
 
 TEST(CurveBlockChoice, AToleranceTheRoundingTakesIsAnError) {

@@ -41,6 +41,7 @@ bool liesInPlane(const geom::Curve& curve);
 struct FittedNurbsBlock {
   std::vector<double> table;   // nurbsMoveTable's
   std::vector<double> weights; // one per control point
+  bool own = false;            // the curve's own NURBS (its weights its own)
 };
 FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve);
 

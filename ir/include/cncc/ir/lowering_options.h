@@ -27,15 +27,17 @@ struct LoweringOptions {
   // by the lowering or choose-curve-blocks): not by verify's reference,
   // whose target's own compile has said so.
   bool reportSplineAsChords = true;
-  // Fanuc/Mitsubishi G06.2: a method=nurbs cut is lowered as one marked feed
-  // per pass that the printer prints as NURBS blocks (nurbs_cuts.cpp).
+  // The curve blocks the target prints, which the cut table says
+  // (CutGeometry::printedBlocks) and choose-curve-blocks makes of the laps
+  // of a method= spline cut. Fanuc/Mitsubishi G06.2: method=nurbs as one
+  // move.nurbs per pass.
   bool nurbsBlocks = false;
-  // Heidenhain SPL: a spline-method cut (cspline, aspline, bspline, nurbs) is
-  // lowered as move.polynomial cubic spans (polynomial_cuts.cpp).
+  // Heidenhain SPL: a spline-method cut (cspline, aspline, bspline, nurbs)
+  // as move.polynomial cubic spans.
   bool polynomialBlocks = false;
   // Sinumerik: a method=bspline, nurbs, cspline or aspline cut in a plane
-  // z = constant is lowered as move.spline blocks fitted once, on the
-  // printed grid (spline_cuts.cpp), their ends as `splineEnds` says.
+  // z = constant as move.spline blocks fitted once, on the printed grid,
+  // their ends as `splineEnds` says.
   bool splineBlocks = false;
   SplineEnds splineEnds = SplineEnds::Automatic;
   // Whether a cut that wants arcs (arcs=true, or arcsOnEveryCut without
