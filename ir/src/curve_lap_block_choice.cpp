@@ -1,7 +1,7 @@
 // `choose-curve-blocks`: the laps whose entry asks for curve blocks (a cut
-// whose method= is a spline: CurveTableEntry::blocksAsked, chords as the
-// lowering gives every target) cut as the blocks their cut's target prints
-// (CutGeometry::printedBlocks), where those can follow the lap:
+// whose method= is a spline: CurveTableEntry::blocksAsked, the chords or
+// steps the lowering gives every target) cut as the blocks their cut's
+// target prints (CutGeometry::printedBlocks), where those can follow it:
 // - Sinumerik spline blocks, for any of the four methods, of a curve in a
 //   plane z = constant: the cut's whole tolerance, which the fit shares
 //   with the rounding; a ramp lap stays chords, through the points the
@@ -9,8 +9,12 @@
 // - Heidenhain SPL spans and G06.2 NURBS blocks (method=nurbs only), level
 //   laps only: the tolerance less the rounding of their ends or control
 //   points on the printed grid, an error where that leaves nothing.
-// write-curve-blocks fits them. A cut whose blocks cannot follow it stays
-// chords (the lowering warned where the target has no spline interpolation).
+// A lap whose ranges the program computes (a curve that reads parameters)
+// is laid out at the compiled values and what it reads fixed (on a
+// controller with a warning; a G06.2 block keeps a weight that is a
+// parameter); one that reads the variable of a loop the controller runs
+// cannot be blocks. write-curve-blocks fits them. Where the blocks cannot
+// follow, the cut stays chords, with a spline-as-chords warning saying why.
 #include "cncc/ir/curve_blocks.h"
 #include "cncc/ir/curve_lap.h"
 
@@ -219,6 +223,9 @@ void applyChoice(Function& function, std::uint32_t index, const std::vector<LapO
   bool rampLaps = false;
   for (const LapOfCut& ofCut : laps) {
     (isRampLap(function, function.instructions[ofCut.lap]) ? rampLaps : levelLaps) = true;
+  }
+  if (!choice.ramp) { // not reached: a cut that ramps has its ramp's chords
+    choice.ramp = asChords(own);
   }
   std::uint32_t level = index;
   std::uint32_t ramp = index;
