@@ -3,15 +3,16 @@
 // out as the moves that print them: move.nurbs or move.spline on the
 // entry's table of block data, or a move.polynomial per cubic span of it,
 // at the lap's height and feed (a NURBS block's weights, the lap's
-// operands after its three, carried over, so a weight that is a part
-// parameter stays one). The lap's regions, the curve the blocks were fitted
-// to, go: the blocks are what the controller cuts. An entry that names no
-// table has its blocks fitted here, once (curve_blocks.h): the spans of SPL
-// blocks (a spline whose transitions make the TNC stop exactly a warning of
-// the function), the G06.2 block of a curve that is not a NURBS of its
-// own, a table of the function with its weights, or Sinumerik spline blocks
-// (a table, and how they were found a comment before each move.spline and
-// the cut's splineBlocks).
+// operands after its three, carried over). The lap's regions, the curve
+// the blocks were fitted to, go: the blocks are what the controller cuts.
+// An entry that names no table has its blocks fitted here, once
+// (curve_blocks.h): the spans of SPL blocks (a spline whose transitions
+// make the TNC stop exactly a warning of the function), the G06.2 block (a
+// NURBS of its own itself, a weight that is a part parameter read as that
+// parameter, CurveTableEntry::parameterWeights, so the operator's edit
+// reaches it; any other curve a fitted B-spline), a table of the function
+// with its weights, or Sinumerik spline blocks (a table, and how they were
+// found a comment before each move.spline and the cut's splineBlocks).
 #include "cncc/ir/curve_blocks.h"
 
 #include "curve_lap_rewriter.h"
