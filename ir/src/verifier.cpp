@@ -391,6 +391,12 @@ private:
                           curveSamplingName(entry.sampling)));
     }
     verifyBlockTable(where, entry);
+    for (const CurveTableEntry::ParameterWeight& weight : entry.parameterWeights) {
+      if (weight.parameter >= function_.parameters.size()) {
+        problem(fmt::format("{} has the weight of point {} the parameter {}, but {} parameters",
+                            where, weight.point, weight.parameter, function_.parameters.size()));
+      }
+    }
     std::size_t regions = entry.regionCount();
     for (std::size_t region : entry.hostPointRegions) {
       if (region >= regions) {

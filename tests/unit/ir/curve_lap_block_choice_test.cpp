@@ -229,6 +229,15 @@ constexpr std::string_view archText = R"(func @arch(w = 2) {
 }
 )";
 
+TEST(CurveBlockChoice, AWeightsParameterMustBeThePartsParameter) {
+  Function function = parsed(archText);
+  function.curves[0].parameterWeights[0].parameter = 1;
+  std::vector<std::string> problems = verifyFunction(function);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("the weight of point 1 the parameter 1, but 1 parameters"),
+            std::string::npos);
+}
+
 // The move.nurbs's weight operands: a parameter's index, or -1 for a number.
 std::vector<int> nurbsWeights(const Function& function) {
   std::vector<int> weights;
