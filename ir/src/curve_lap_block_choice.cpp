@@ -109,14 +109,10 @@ CurveTableEntry blocksEntry(const CurveTableEntry& measured, CurveSampling sampl
 // The lap's entry as the blocks are fitted to its curve: its own, or where
 // the program computes its regions' ranges (a controller's steps along a
 // curve that reads parameters), laid out at the compiled values; nullopt
-// where it reads a loop's variable (each trip its own curve: on a host,
-// unroll-host-control has written the loop out) or a range is not known.
+// where a range is not known there.
 std::optional<CurveTableEntry> measuredEntry(const Function& function, const Instruction& lap,
                                              const CutGeometry& cut) {
   const CurveTableEntry& own = function.curves[lap.index];
-  if (!lapInputs(function, lap).loopVariables.empty()) {
-    return std::nullopt;
-  }
   if (own.sampling != CurveSampling::Steps) {
     return own;
   }
@@ -148,9 +144,14 @@ EntryChoice chooseEntry(const Function& function, const CutGeometry& cut, const 
     return chords(fmt::format("{} blocks cannot descend an entry=ramp",
                               *sampling == CurveSampling::NurbsBlocks ? "G06.2 NURBS" : "SPL"));
   }
+  // Each trip its own curve (on a host, unroll-host-control has written
+  // the loop out).
+  if (!lapInputs(function, lap).loopVariables.empty()) {
+    return chords("this curve changes with a loop the program runs");
+  }
   std::optional<CurveTableEntry> measured = measuredEntry(function, lap, cut);
   if (!measured) {
-    return chords("this curve changes with a loop the program runs");
+    return chords("this curve's pieces are not known when compiling");
   }
   CompiledValues compiled(function);
   std::shared_ptr<const geom::Curve> curve =
