@@ -151,10 +151,10 @@ std::vector<PolynomialMove> lapPolynomialSpans(const CurveTableEntry& entry,
 }
 
 FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve& curve) {
+  // A NURBS of its own is its block; any other curve a cubic B-spline.
+  const auto* own = dynamic_cast<const geom::NurbsCurve*>(&curve);
   std::optional<geom::NurbsCurve> nurbs;
   try {
-    // A NURBS of its own is its block; any other curve a cubic B-spline.
-    const auto* own = dynamic_cast<const geom::NurbsCurve*>(&curve);
     nurbs = own != nullptr ? *own : fittedCubic(curve, entry.amount);
   } catch (const geom::GeometryError& error) {
     throw CurveLapError(CurveLapError::Kind::InvalidTolerance, entry.cutSpan,
@@ -168,7 +168,7 @@ FittedNurbsBlock lapFittedNurbs(const CurveTableEntry& entry, const geom::Curve&
   }
   geom::NurbsCurve block(nurbs->knots(), std::move(points), nurbs->weights());
   FittedNurbsBlock fitted;
-  fitted.own = dynamic_cast<const geom::NurbsCurve*>(&curve) != nullptr;
+  fitted.own = own != nullptr;
   fitted.table = nurbsMoveTable(block);
   for (std::size_t k = 0; k < block.controlPoints().size(); ++k) {
     fitted.weights.push_back(block.weights().empty() ? 1.0 : block.weights()[k]);

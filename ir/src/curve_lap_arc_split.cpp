@@ -141,11 +141,7 @@ std::optional<CurveTableEntry> arcPartEntry(const Function& function, const Inst
 // Each region's share of a ramp lap's descent (none for a level lap).
 std::vector<LapRegionShare> rampShares(const Function& function, const Instruction& lap,
                                        const CurveTableEntry& stepped, CompiledValues& compiled) {
-  ValueId from = lap.operands[0];
-  ValueId to = lap.operands[1];
-  std::optional<double> a = passes::constantValue(function, from);
-  std::optional<double> b = passes::constantValue(function, to);
-  if (from == to || (a && b && *a == *b)) {
+  if (!lapRamps(function, lap)) {
     return {};
   }
   std::shared_ptr<const geom::Curve> curve =
@@ -185,8 +181,10 @@ std::optional<std::vector<LapPart>> hostArcLapParts(const Function& function,
     if (stepped.arcRegion(first) != nullptr) {
       entry = arcPartEntry(function, lap, stepped, first, (*regions)[first], compiled);
     } else {
-      entry = hostChordEntry(regionsLap(lap, stepped, first, count),
-                             pieceEntry(stepped, piece, first, count), compiled, *hostCut);
+      CurveTableEntry part = pieceEntry(stepped, piece, first, count);
+      bool chords = part.amount > 0; // samples=: its counts unless past the limit
+      entry = compiledRangesEntry(regionsLap(lap, stepped, first, count), part, compiled, *hostCut,
+                                  chords);
     }
     if (!entry) {
       return std::nullopt;

@@ -19,7 +19,6 @@
 #include "cncc/ir/curve_lap.h"
 
 #include "lap_cuts.h"
-#include "passes/rewriter.h"
 
 #include <fmt/format.h>
 
@@ -33,16 +32,6 @@
 namespace cncc::ir {
 
 namespace {
-
-// Whether the lap climbs or descends: its two heights not one value.
-bool isRampLap(const Function& function, const Instruction& lap) {
-  if (lap.operands[0] == lap.operands[1]) {
-    return false;
-  }
-  std::optional<double> from = passes::constantValue(function, lap.operands[0]);
-  std::optional<double> to = passes::constantValue(function, lap.operands[1]);
-  return !(from && to && *from == *to);
-}
 
 // The blocks a cut's method= asks of the blocks its target prints; nullopt
 // where they are not the method's (G06.2 prints only method=nurbs).
@@ -111,12 +100,11 @@ CurveTableEntry blocksEntry(const CurveTableEntry& measured, CurveSampling sampl
 // curve that reads parameters), laid out at the compiled values; nullopt
 // where a range is not known there.
 std::optional<CurveTableEntry> measuredEntry(const Function& function, const Instruction& lap,
-                                             const CutGeometry& cut) {
+                                             const CutGeometry& cut, CompiledValues& compiled) {
   const CurveTableEntry& own = function.curves[lap.index];
   if (own.sampling != CurveSampling::Steps) {
     return own;
   }
-  CompiledValues compiled(function);
   return compiledRangesEntry(lap, own, compiled, cut);
 }
 
@@ -149,11 +137,11 @@ EntryChoice chooseEntry(const Function& function, const CutGeometry& cut, const 
   if (!lapInputs(function, lap).loopVariables.empty()) {
     return chords("this curve changes with a loop the program runs");
   }
-  std::optional<CurveTableEntry> measured = measuredEntry(function, lap, cut);
+  CompiledValues compiled(function);
+  std::optional<CurveTableEntry> measured = measuredEntry(function, lap, cut, compiled);
   if (!measured) {
     return chords("this curve's pieces are not known when compiling");
   }
-  CompiledValues compiled(function);
   std::shared_ptr<const geom::Curve> curve =
       lapCurve(function, lap, *measured, [&](ValueId value) { return compiled(value); });
   if (*sampling != CurveSampling::SplineBlocks) {
@@ -191,7 +179,7 @@ rampingCuts(const Function& function,
   for (const auto& [index, laps] : lapsOfEntries) {
     for (const LapOfCut& ofCut : laps) {
       if (function.curves[index].blocksAsked &&
-          isRampLap(function, function.instructions[ofCut.lap])) {
+          lapRamps(function, function.instructions[ofCut.lap])) {
         cuts.insert(ofCut.cut);
       }
     }
@@ -223,7 +211,7 @@ void applyChoice(Function& function, std::uint32_t index, const std::vector<LapO
   bool levelLaps = false;
   bool rampLaps = false;
   for (const LapOfCut& ofCut : laps) {
-    (isRampLap(function, function.instructions[ofCut.lap]) ? rampLaps : levelLaps) = true;
+    (lapRamps(function, function.instructions[ofCut.lap]) ? rampLaps : levelLaps) = true;
   }
   if (!choice.ramp) { // not reached: a cut that ramps has its ramp's chords
     choice.ramp = asChords(own);
@@ -237,7 +225,7 @@ void applyChoice(Function& function, std::uint32_t index, const std::vector<LapO
   }
   for (const LapOfCut& ofCut : laps) {
     Instruction& lap = function.instructions[ofCut.lap];
-    std::uint32_t entry = isRampLap(function, lap) ? ramp : level;
+    std::uint32_t entry = lapRamps(function, lap) ? ramp : level;
     if (own.sampling == CurveSampling::Steps) {
       readChordEntry(function, lap, entry, own); // no computed ranges now
     } else {

@@ -8,6 +8,7 @@
 #include "cncc/ir/curve_lap.h"
 
 #include "compiled_values.h"
+#include "lap_cuts.h"
 #include "passes/evaluate.h"
 #include "passes/rewriter.h"
 
@@ -127,16 +128,7 @@ protected:
   std::optional<std::uint32_t> currentCut() const { return cut_; }
 
   // Whether the lap climbs or descends: its two heights not one value.
-  bool isRamp(const Instruction& lap) const {
-    ValueId from = lap.operands[0];
-    ValueId to = lap.operands[1];
-    if (from == to) {
-      return false;
-    }
-    std::optional<double> a = passes::constantValue(source_, from);
-    std::optional<double> b = passes::constantValue(source_, to);
-    return !(a && b && *a == *b);
-  }
+  bool isRamp(const Instruction& lap) const { return lapRamps(source_, lap); }
 
   std::shared_ptr<const geom::Curve> curveOf(const Instruction& lap) const {
     return lapCurve(source_, lap, [&](ValueId value) { return outsideValue(value); });

@@ -227,10 +227,10 @@ void readChordEntry(Function& function, Instruction& lap, std::uint32_t chords,
 
 std::optional<CurveTableEntry> compiledRangesEntry(const Instruction& lap,
                                                    const CurveTableEntry& stepped,
-                                                   CompiledValues& compiled,
-                                                   const CutGeometry& cut) {
+                                                   CompiledValues& compiled, const CutGeometry& cut,
+                                                   bool withinTheLimit) {
   std::optional<std::vector<std::pair<double, double>>> ranges =
-      chordRanges(lap, stepped, compiled, true);
+      chordRanges(lap, stepped, compiled, withinTheLimit);
   if (!ranges) {
     return std::nullopt;
   }
@@ -255,18 +255,6 @@ boundedLapRanges(const Instruction& lap, const CurveTableEntry& stepped, Compile
 }
 
 } // namespace
-
-std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
-                                              const CurveTableEntry& stepped,
-                                              CompiledValues& compiled,
-                                              const CutGeometry& hostCut) {
-  std::optional<std::vector<std::pair<double, double>>> ranges =
-      chordRanges(lap, stepped, compiled, stepped.amount > 0);
-  if (!ranges) {
-    return std::nullopt;
-  }
-  return chordEntry(stepped, *ranges, &hostCut);
-}
 
 std::optional<CurveTableEntry> boundedStepsEntry(const Function& function, const Instruction& lap,
                                                  std::uint32_t cut, const LoopTrip* trip) {

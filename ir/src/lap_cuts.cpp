@@ -1,5 +1,7 @@
 #include "lap_cuts.h"
 
+#include "passes/rewriter.h"
+
 #include <optional>
 #include <set>
 #include <utility>
@@ -32,6 +34,17 @@ std::map<std::uint32_t, std::vector<LapOfCut>> lapsByEntry(const Function& funct
   std::optional<std::uint32_t> cut;
   collectLaps(function, function.body, cut, laps);
   return laps;
+}
+
+bool lapRamps(const Function& function, const Instruction& lap) {
+  ValueId from = lap.operands[0];
+  ValueId to = lap.operands[1];
+  if (from == to) {
+    return false;
+  }
+  std::optional<double> a = passes::constantValue(function, from);
+  std::optional<double> b = passes::constantValue(function, to);
+  return !(a && b && *a == *b);
 }
 
 const CutGeometry* hostComputedCut(const Function& function, std::uint32_t cut) {

@@ -27,6 +27,9 @@ struct LapOfCut {
 // Every curve.lap, by the index of its entry in the curve table.
 std::map<std::uint32_t, std::vector<LapOfCut>> lapsByEntry(const Function& function);
 
+// Whether the lap climbs or descends: its two heights not one value.
+bool lapRamps(const Function& function, const Instruction& lap);
+
 // The function's cut `cut` where the host computes its numbers (no
 // controller digits, CutGeometry::controllerDigits); null where a
 // controller does, or for noCut.
@@ -44,22 +47,17 @@ struct RegionAtCompiled {
 // lap's operands; nullopt where one is not known there.
 std::optional<std::vector<RegionAtCompiled>>
 regionsAtCompiled(const Instruction& lap, const CurveTableEntry& stepped, CompiledValues& compiled);
-// The chord entry of a lap in steps of a cut the host computes: `stepped`
-// is the lap's entry, or a piece of it split from its arcs, whose computed
-// regions' ranges (and counts) are `lap`'s operands after its three; the
-// points chosen over each region's range at the compiled values. nullopt
-// where a range is not known there.
-std::optional<CurveTableEntry> hostChordEntry(const Instruction& lap,
-                                              const CurveTableEntry& stepped,
-                                              CompiledValues& compiled, const CutGeometry& hostCut);
-// The lap's entry (`stepped`, in steps) laid out as chords over each
-// region's range at the compiled values, as bound-controller-steps gives it
-// (within the cut's tolerance less the rounding); nullopt where a range is
-// not known there.
+// The lap's entry (`stepped`, in steps; or a piece of it split from its
+// arcs, whose computed regions' ranges and counts are `lap`'s operands
+// after its three) laid out as chords over each region's range at the
+// compiled values, as bound-controller-steps gives it (within the cut's
+// tolerance less the rounding). nullopt where a range is not known there,
+// and without `withinTheLimit` where no region's count there is past the
+// limit (the lap keeps its counts).
 std::optional<CurveTableEntry> compiledRangesEntry(const Instruction& lap,
                                                    const CurveTableEntry& stepped,
-                                                   CompiledValues& compiled,
-                                                   const CutGeometry& cut);
+                                                   CompiledValues& compiled, const CutGeometry& cut,
+                                                   bool withinTheLimit = true);
 // The lap reads the function's entry `chords` laid out from its entry
 // `stepped`: its three operands (no computed ranges), each walk's end a
 // point.

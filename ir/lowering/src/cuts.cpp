@@ -394,7 +394,7 @@ void PartLowering::markCutBeside(std::shared_ptr<const geom::Curve> drawn, doubl
 
 void PartLowering::lowerCut(const CutStmt& cut) {
   stepsLeftToTheLegalisation_ = false; // whatever the cut before left
-  nativeArcs_ = false;
+  nativeArcs_ = false;                 // read by checkMethod and blocksAskedBy
   if (lowerOffsetCut(cut)) {
     return;
   }
@@ -411,7 +411,6 @@ void PartLowering::lowerCut(const CutStmt& cut) {
   arcsAsked_ = nativeArcs ? std::nullopt : arcsAskedBy(cut);
   if (lowerControllerCut(cut, curve)) {
     arcsAsked_.reset();
-    nativeArcs_ = false;
     return;
   }
   std::size_t firstEntry = builder_.function().curves.size();
@@ -426,7 +425,6 @@ void PartLowering::lowerCut(const CutStmt& cut) {
     }
   }
   arcsAsked_.reset();
-  nativeArcs_ = false;
 }
 
 // The cut's passes, each lap along the curve a curve.lap whose points the
