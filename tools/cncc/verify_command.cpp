@@ -96,7 +96,6 @@ std::optional<HostReference> hostReference(const CheckedProgram& program,
   // The reference is the chord path whatever the target interpolates: the
   // target's own compile has already warned about spline methods it lacks.
   ir::LoweringOptions reference;
-  reference.splineInterpolation = true;
   reference.reportSplineAsChords = false;
   reference.fittedArcs = false;
   // Nor does it refuse the machine settings the target's compile accepted.

@@ -401,7 +401,8 @@ void PartLowering::lowerCompensatedCut(const CutStmt& cut, const Modifier& comp,
   checkedOffset(cut, curve, distance); // the tool fits the curve
   HostCut begun = beginHostCut(cut);
   std::string method = methodOf(cut);
-  if (options_.splineInterpolation && !method.empty() && method != "linear") {
+  if (options_.splineInterpolation && options_.reportSplineAsChords && !method.empty() &&
+      method != "linear") {
     diagnostics_->report(DiagnosticKind::SplineAsChords, findModifier(cut, "method")->span(),
                          fmt::format("no spline blocks run inside the controller's cutter radius "
                                      "compensation (G06.2 is not allowed with G41/G42): "
